@@ -1,0 +1,45 @@
+#pragma once
+// The shared command-line runner of the helios-* tools: option parsing, --help/--version,
+// and the mapping from exceptions to one-line errors and documented exit codes.
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace helios::cli {
+
+struct Option {
+  std::string name;         // long name without dashes, e.g. "backend"
+  std::string short_name;   // e.g. "o", or ""
+  std::string value_name;   // e.g. "FILE"; empty for a flag
+  std::string help;
+  std::string default_value;
+};
+
+struct ToolInfo {
+  std::string name;                     // helios-parse
+  std::string summary;                  // one line
+  std::string usage;                    // "[options] PROBLEM.txt|-"
+  std::vector<Option> options;          // besides -o, --help, --version
+  std::vector<std::string> positionals; // names of required positional arguments
+  std::string description;              // paragraphs after the usage line
+  std::string example;                  // the e.g.: line
+};
+
+struct Args {
+  std::vector<std::string> positionals;
+  std::map<std::string, std::string> values;  // option name -> value ("1" for flags)
+  std::string output = "-";
+  bool has(const std::string& name) const { return values.count(name) > 0; }
+  const std::string& get(const std::string& name) const { return values.at(name); }
+};
+
+std::string help_text(const ToolInfo& info);
+
+// Parses argv; throws usage_error. Returns false if --help or --version was handled.
+bool parse_args(const ToolInfo& info, int argc, char** argv, Args& args);
+
+// Runs `body` and returns the process exit code, printing "<tool>: error: <what>" on failure.
+int run_tool(const ToolInfo& info, int argc, char** argv, const std::function<int(const Args&)>& body);
+
+}  // namespace helios::cli

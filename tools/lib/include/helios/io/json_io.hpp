@@ -1,0 +1,35 @@
+#pragma once
+// Reading and atomic writing of JSON artifacts.
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace helios::io {
+
+using json = nlohmann::ordered_json;
+
+// Whole text of `path` ("-" reads stdin). Throws input_error naming the file.
+std::string read_text(const std::string& path);
+
+// Parses `path` ("-" = stdin) as JSON. Throws input_error "FILE: malformed JSON at byte N: ...".
+json read_json(const std::string& path);
+
+// Writes `text` to `path` atomically: a temp file in the same folder, fsync, rename. "-" writes
+// to stdout. The temp file is removed if the process is interrupted (SIGINT/SIGTERM/SIGHUP).
+void write_text_atomic(const std::string& path, const std::string& text);
+
+// Refuses NaN/Inf anywhere in `doc` (throws numerical_error naming the JSON path), then writes
+// it pretty-printed and atomically.
+void write_json_atomic(const std::string& path, const json& doc);
+
+// Registers a path to delete if a fatal signal arrives before unregister_temp(path).
+void register_temp(const std::string& path);
+void unregister_temp(const std::string& path);
+// Installs the signal handlers that delete registered temp paths (idempotent).
+void install_cleanup_handlers();
+
+// Required-field accessors that throw std::invalid_argument "field X: ..." on a wrong shape.
+const json& require(const json& obj, const std::string& key, const std::string& where);
+double require_number(const json& obj, const std::string& key, const std::string& where);
+std::string require_string(const json& obj, const std::string& key, const std::string& where);
+
+}  // namespace helios::io

@@ -1,0 +1,28 @@
+#pragma once
+// Validation of artifacts against schemas/<kind>.schema.json (embedded at build time).
+#include <string>
+#include <vector>
+
+#include "helios/io/json_io.hpp"
+
+namespace helios::io {
+
+constexpr int kSchemaVersion = 1;
+
+// Every artifact kind the chain knows: spec, derivation, verify, solution, score.
+const std::vector<std::string>& artifact_kinds();
+
+// Validates `doc` against the schema of `kind`. On failure throws input_error
+// "<source>: <kind> schema violation at <json path>: <reason>". `source` names the file.
+void validate(const std::string& kind, const json& doc, const std::string& source);
+
+// Reads `path`, validates it as `kind` (including schema name and version) and returns it.
+json read_artifact(const std::string& kind, const std::string& path);
+
+// Validates `doc` as `kind` and writes it atomically to `path`.
+void write_artifact(const std::string& kind, const json& doc, const std::string& path);
+
+// The self-description every artifact starts with: schema, schema_version, producer.
+json artifact_header(const std::string& kind, const std::string& tool, const std::string& backend);
+
+}  // namespace helios::io

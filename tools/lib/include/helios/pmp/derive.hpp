@@ -1,0 +1,15 @@
+#pragma once
+// The builtin symbolic PMP engine (design.md section 4): from a problem to the Hamiltonian,
+// state/costate ODEs, optimal control law, transversality conditions and the shooting system.
+#include "helios/io/json_io.hpp"
+#include "helios/pmp/model.hpp"
+
+namespace helios::pmp {
+
+// Derives the necessary conditions of `problem` and returns the derivation artifact.
+io::json derive(const Problem& problem);
+
+// build_problem + derive for a spec artifact.
+io::json derive_from_spec(const io::json& spec);
+
+}  // namespace helios::pmp

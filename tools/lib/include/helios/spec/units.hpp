@@ -1,0 +1,16 @@
+#pragma once
+// Physical quantities in problem texts: a number with a unit, converted to the spec's named unit.
+#include <string>
+
+namespace helios::spec {
+
+enum class Dimension { Length, Speed, Force, Time, Mass, GravParam };
+
+// Name of the unit the spec stores a dimension in (km, km/s, N, days, kg, km^3/s^2).
+std::string spec_unit(Dimension d);
+
+// Factor converting one `unit` into the spec unit of `d`; throws std::invalid_argument
+// "unit 'X' is not a <dimension> unit (use ...)" if the unit is unknown for that dimension.
+double to_spec_unit(Dimension d, const std::string& unit);
+
+}  // namespace helios::spec

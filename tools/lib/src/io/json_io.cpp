@@ -1,0 +1,157 @@
+#include "helios/io/json_io.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <csignal>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <random>
+#include <sstream>
+
+#include "helios/io/error.hpp"
+
+namespace helios::io {
+namespace {
+
+// Fixed storage so the signal handler never allocates.
+constexpr std::size_t kMaxTemps = 16;
+constexpr std::size_t kMaxPath = 4096;
+std::array<std::array<char, kMaxPath>, kMaxTemps> g_temps{};
+volatile std::sig_atomic_t g_temp_used[kMaxTemps] = {};
+
+void cleanup_and_reraise(int sig) {
+  for (std::size_t i = 0; i < kMaxTemps; ++i)
+    if (g_temp_used[i]) ::unlink(g_temps[i].data());
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+std::string temp_name_for(const std::string& path) {
+  std::random_device rd;
+  std::ostringstream name;
+  const auto slash = path.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  const std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
+  name << dir << '.' << base << ".tmp." << ::getpid() << '.' << std::hex << rd();
+  return name.str();
+}
+
+void check_finite(const json& node, const std::string& where) {
+  if (node.is_number_float() && !std::isfinite(node.get<double>()))
+    throw numerical_error("refusing to write a non-finite number at " + (where.empty() ? "/" : where));
+  if (node.is_object())
+    for (auto it = node.begin(); it != node.end(); ++it) check_finite(it.value(), where + "/" + it.key());
+  if (node.is_array())
+    for (std::size_t i = 0; i < node.size(); ++i) check_finite(node[i], where + "/" + std::to_string(i));
+}
+
+}  // namespace
+
+void install_cleanup_handlers() {
+  static bool installed = false;
+  if (installed) return;
+  installed = true;
+  for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) std::signal(sig, cleanup_and_reraise);
+}
+
+void register_temp(const std::string& path) {
+  if (path.size() >= kMaxPath) return;
+  for (std::size_t i = 0; i < kMaxTemps; ++i) {
+    if (g_temp_used[i]) continue;
+    std::memcpy(g_temps[i].data(), path.c_str(), path.size() + 1);
+    g_temp_used[i] = 1;
+    return;
+  }
+}
+
+void unregister_temp(const std::string& path) {
+  for (std::size_t i = 0; i < kMaxTemps; ++i)
+    if (g_temp_used[i] && path == g_temps[i].data()) g_temp_used[i] = 0;
+}
+
+std::string read_text(const std::string& path) {
+  if (path == "-") {
+    std::ostringstream all;
+    all << std::cin.rdbuf();
+    return all.str();
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw input_error(path + ": cannot read: " + std::strerror(errno));
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+json read_json(const std::string& path) {
+  const std::string text = read_text(path);
+  const std::string name = path == "-" ? "<stdin>" : path;
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw input_error(name + ": empty input, expected JSON");
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw input_error(name + ": malformed JSON at byte " + std::to_string(e.byte) + ", fix the file or regenerate it");
+  }
+}
+
+void write_text_atomic(const std::string& path, const std::string& text) {
+  if (path == "-") {
+    std::cout << text << std::flush;
+    return;
+  }
+  install_cleanup_handlers();
+  const std::string tmp = temp_name_for(path);
+  register_temp(tmp);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+  if (fd < 0) {
+    unregister_temp(tmp);
+    throw std::runtime_error(path + ": cannot create temp file: " + std::strerror(errno));
+  }
+  std::size_t done = 0;
+  bool ok = true;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      ok = false;
+      break;
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  ok = ok && ::fsync(fd) == 0;
+  ok = (::close(fd) == 0) && ok;
+  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string why = std::strerror(errno);
+    ::unlink(tmp.c_str());
+    unregister_temp(tmp);
+    throw std::runtime_error(path + ": cannot write: " + why);
+  }
+  unregister_temp(tmp);
+}
+
+void write_json_atomic(const std::string& path, const json& doc) {
+  check_finite(doc, "");
+  write_text_atomic(path, doc.dump(2) + "\n");
+}
+
+const json& require(const json& obj, const std::string& key, const std::string& where) {
+  if (!obj.is_object() || !obj.contains(key)) throw std::invalid_argument("field " + where + "/" + key + " is missing");
+  return obj.at(key);
+}
+
+double require_number(const json& obj, const std::string& key, const std::string& where) {
+  const json& v = require(obj, key, where);
+  if (!v.is_number()) throw std::invalid_argument("field " + where + "/" + key + " must be a number, got " + v.dump());
+  return v.get<double>();
+}
+
+std::string require_string(const json& obj, const std::string& key, const std::string& where) {
+  const json& v = require(obj, key, where);
+  if (!v.is_string()) throw std::invalid_argument("field " + where + "/" + key + " must be a string, got " + v.dump());
+  return v.get<std::string>();
+}
+
+}  // namespace helios::io

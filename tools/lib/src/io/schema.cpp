@@ -1,0 +1,81 @@
+#include "helios/io/schema.hpp"
+
+#include <map>
+#include <memory>
+#include <valijson/adapters/nlohmann_json_adapter.hpp>
+#include <valijson/schema.hpp>
+#include <valijson/schema_parser.hpp>
+#include <valijson/validator.hpp>
+
+#include "helios/io/embedded.hpp"
+#include "helios/io/error.hpp"
+
+namespace helios::io {
+namespace {
+
+const valijson::Schema& schema_for(const std::string& kind) {
+  static std::map<std::string, std::unique_ptr<valijson::Schema>> cache;
+  auto& slot = cache[kind];
+  if (!slot) {
+    // valijson's adapter wants nlohmann::json (unordered); key order is irrelevant to a schema.
+    static std::map<std::string, nlohmann::json> documents;
+    nlohmann::json& doc = documents[kind] = nlohmann::json::parse(embedded::file("schemas/" + kind + ".schema.json"));
+    slot = std::make_unique<valijson::Schema>();
+    valijson::SchemaParser parser;
+    valijson::adapters::NlohmannJsonAdapter adapter(doc);
+    parser.populateSchema(adapter, *slot);
+  }
+  return *slot;
+}
+
+}  // namespace
+
+const std::vector<std::string>& artifact_kinds() {
+  static const std::vector<std::string> kinds = {"spec", "derivation", "verify", "solution", "score"};
+  return kinds;
+}
+
+void validate(const std::string& kind, const json& doc, const std::string& source) {
+  const nlohmann::json plain = nlohmann::json::parse(doc.dump());
+  valijson::Validator validator;
+  valijson::ValidationResults results;
+  valijson::adapters::NlohmannJsonAdapter target(plain);
+  if (validator.validate(schema_for(kind), target, &results)) return;
+  // The deepest error is the most specific; valijson lists parents first.
+  valijson::ValidationResults::Error error, last;
+  while (results.popError(error)) {
+    if (last.context.empty() || error.context.size() >= last.context.size()) last = error;
+  }
+  std::string where;
+  for (const auto& part : last.context) where += part == "<root>" ? "" : part;
+  if (where.empty()) where = "/";
+  throw input_error(source + ": " + kind + " schema violation at " + where + ": " + last.description);
+}
+
+json read_artifact(const std::string& kind, const std::string& path) {
+  json doc = read_json(path);
+  const std::string name = path == "-" ? "<stdin>" : path;
+  if (!doc.is_object() || doc.value("schema", "") != "helios/" + kind)
+    throw input_error(name + ": field /schema is " + (doc.is_object() && doc.contains("schema") ? doc["schema"].dump() : "missing") +
+                      ", expected \"helios/" + kind + "\" (wrong artifact for this tool?)");
+  if (doc.value("schema_version", 0) != kSchemaVersion)
+    throw input_error(name + ": field /schema_version is " + doc["schema_version"].dump() + ", this build reads version " +
+                      std::to_string(kSchemaVersion));
+  validate(kind, doc, name);
+  return doc;
+}
+
+void write_artifact(const std::string& kind, const json& doc, const std::string& path) {
+  validate(kind, doc, "output " + kind);
+  write_json_atomic(path, doc);
+}
+
+json artifact_header(const std::string& kind, const std::string& tool, const std::string& backend) {
+  json header = json::object();
+  header["schema"] = "helios/" + kind;
+  header["schema_version"] = kSchemaVersion;
+  header["producer"] = {{"tool", tool}, {"version", HELIOS_VERSION}, {"backend", backend}};
+  return header;
+}
+
+}  // namespace helios::io

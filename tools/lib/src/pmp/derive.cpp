@@ -1,0 +1,277 @@
+#include "helios/pmp/derive.hpp"
+
+#include <random>
+#include <set>
+#include <stdexcept>
+
+#include "helios/io/schema.hpp"
+
+namespace helios::pmp {
+namespace {
+
+using GiNaC::ex;
+using GiNaC::symbol;
+using io::json;
+using symbolic::to_text;
+
+struct DirectionLaw {
+  std::vector<std::string> controls;
+  std::vector<ex> b;         // a* = -b/|b|
+  std::vector<ex> law;       // a_j*
+  std::vector<ex> gradient;  // g_j = dH/da_j
+  std::string costate_block;  // e.g. "l_vx, l_vy, l_vz" if b is that block of costates
+};
+
+// Minimizes H over a unit vector a that enters H linearly: H = g.a + ..., so a* = -g/|g|.
+// When g = k * (block of costates) with one scalar factor k, a* = -block/|block| (primer
+// vector); that needs k > 0 on the admissible set, which helios-verify checks numerically (G2).
+DirectionLaw direction_law(Problem& p, const ex& H) {
+  DirectionLaw d;
+  std::vector<symbol> a;
+  for (const auto& c : p.controls)
+    if (c.kind == "direction") {
+      d.controls.push_back(c.name);
+      a.push_back(p.symbols.get(c.name));
+    }
+  if (a.empty()) return d;
+  for (const auto& aj : a) {
+    const ex g = H.diff(aj).expand();
+    for (const auto& ak : a)
+      if (!g.diff(ak).is_zero()) throw std::invalid_argument("H is not linear in the thrust direction " + aj.get_name());
+    d.gradient.push_back(g);
+  }
+  std::vector<ex> block;
+  ex common;
+  bool simple = true;
+  for (const auto& g : d.gradient) {
+    int hits = 0;
+    for (const auto& s : p.states) {
+      const ex lam = p.symbols.get(costate_name(s.name));
+      const ex k = g.coeff(lam, 1);
+      if (k.is_zero()) continue;
+      ++hits;
+      if (block.empty()) common = k;
+      if (!(k - common).expand().is_zero() || !(g - k * lam).expand().is_zero()) simple = false;
+      block.push_back(lam);
+    }
+    if (hits != 1) simple = false;
+  }
+  const bool primer = simple && block.size() == a.size();
+  d.b = primer ? block : d.gradient;
+  if (primer)
+    for (std::size_t i = 0; i < block.size(); ++i) d.costate_block += (i ? ", " : "") + to_text(block[i]);
+  ex norm2 = 0;
+  for (const auto& b : d.b) norm2 += b * b;
+  for (const auto& b : d.b) d.law.push_back(-b / GiNaC::sqrt(norm2));
+  return d;
+}
+
+// Substitutes a* into H and simplifies b.(-b/|b|) to -|b|.
+ex substitute_direction(const ex& H, const DirectionLaw& d, Problem& p) {
+  if (d.controls.empty()) return H;
+  const symbol norm("helios_direction_norm");
+  GiNaC::exmap to_law;
+  ex norm2 = 0;
+  for (std::size_t j = 0; j < d.controls.size(); ++j) {
+    to_law[p.symbols.get(d.controls[j])] = -d.b[j] / norm;
+    norm2 += d.b[j] * d.b[j];
+  }
+  ex Hs = H.subs(to_law).expand();
+  // b.b = norm^2: replace the first component's square, so the sum cancels.
+  Hs = Hs.subs(GiNaC::pow(d.b[0], 2) == GiNaC::pow(norm, 2) - (norm2 - GiNaC::pow(d.b[0], 2)).expand(),
+               GiNaC::subs_options::algebraic)
+           .expand();
+  return Hs.subs(norm == GiNaC::sqrt(norm2.expand()));
+}
+
+json named_list(const std::vector<Named>& v, bool with_value) {
+  json out = json::array();
+  for (const auto& n : v) {
+    json e = {{"name", n.name}, {"meaning", n.meaning}, {"unit", n.unit}};
+    if (with_value) e["value"] = n.value;
+    out.push_back(e);
+  }
+  return out;
+}
+
+}  // namespace
+
+json derive(const Problem& problem) {
+  Problem p = problem;  // the symbol table grows while deriving
+  auto& S = p.symbols;
+  const ex lambda0 = S.get("lambda0");
+  const ex eps = S.get("eps");
+
+  // H = lambda0 L + lambda^T f
+  ex H = lambda0 * p.running_cost;
+  for (std::size_t i = 0; i < p.states.size(); ++i) H += S.get(costate_name(p.states[i].name)) * p.f[i];
+
+  json state_odes = json::array(), costate_odes = json::array();
+  for (const auto& s : p.states) {
+    const symbol x = S.get(s.name), lam = S.get(costate_name(s.name));
+    state_odes.push_back({{"state", s.name}, {"rhs", to_text(H.diff(lam))}});
+    costate_odes.push_back({{"costate", costate_name(s.name)}, {"rhs", to_text((-H.diff(x)).expand())}});
+  }
+
+  // Control law: direction first (independent of the throttle), then the throttle.
+  const DirectionLaw dir = direction_law(p, H);
+  const ex Hstar = substitute_direction(H, dir, p);
+  json control = json::object();
+  json direction = json::object();
+  direction["controls"] = dir.controls;
+  json law = json::array();
+  for (const auto& l : dir.law) law.push_back(to_text(l));
+  direction["law"] = law;
+  json gradient = json::array();
+  for (const auto& g : dir.gradient) gradient.push_back(to_text(g));
+  direction["dH_da"] = gradient;
+  direction["reason"] = dir.costate_block.empty()
+                            ? "H is linear in the unit vector a, so a* = -g/|g| with g = dH/da minimizes it"
+                            : "H is linear in the unit vector a with dH/da = k*(" + dir.costate_block +
+                                  "), k > 0: a* = -lambda/|lambda| (primer vector) minimizes it";
+  control["direction"] = direction;
+
+  const symbol u = S.get("u");
+  const ex dHdu = Hstar.diff(u).expand();
+  if (!dHdu.diff(u, 2).is_zero()) throw std::invalid_argument("H is not quadratic in the throttle u");
+  const ex S0 = dHdu.subs(u == 0).expand();
+  const ex S1 = dHdu.subs(u == 1).expand();
+  const ex switching = S0.subs(eps == 0).expand();
+  json throttle = json::object();
+  throttle["control"] = "u";
+  throttle["bounds"] = json::array({0, 1});
+  throttle["switching_function"] = to_text(switching);
+  throttle["dH_du_at_lower"] = to_text(S0);
+  throttle["dH_du_at_upper"] = to_text(S1);
+  throttle["d2H_du2"] = to_text(dHdu.diff(u).expand());
+  throttle["interior"] = to_text((S0 / (S0 - S1).expand()).expand());
+  throttle["smoothing"] = "quadratic";
+  throttle["law"] =
+      "u = 0 where dH_du_at_lower >= 0, u = 1 where dH_du_at_upper <= 0, otherwise u = interior (dH/du = 0); "
+      "at eps = 0: u = 1 if switching_function < 0 else 0 (bang-bang)";
+  control["throttle"] = throttle;
+
+  // Endpoint conditions. Initial: fixed states have free costates (shooting variables);
+  // free states would get lambda(t0) = -dPhi/dx(t0). Final: lambda(tf) = lambda0 dphi/dx + nu^T dpsi/dx.
+  std::set<std::string> fixed_at_t0;
+  json initial_values = json::array();
+  json constraints = json::array();
+  json equations = json::array();
+  json variables = json::array();
+  variables.push_back({{"name", "lambda0"}, {"meaning", "cost multiplier lambda0 (>= 0)"}, {"scale", 1.0},
+                       {"init", "uniform in (0, 1), then the whole vector normalized"}});
+  for (const auto& k : p.constraints) {
+    json c = {{"id", k.id}, {"kind", k.kind}, {"at", k.at}, {"target", k.target}};
+    json psi = json::array();
+    for (std::size_t i = 0; i < k.psi.size(); ++i) psi.push_back(to_text(k.psi[i]));
+    c["psi"] = psi;
+    json multipliers = json::array();
+    for (std::size_t i = 0; i < k.psi.size(); ++i) multipliers.push_back("nu_" + k.id + "_" + std::to_string(i + 1));
+    c["multipliers"] = multipliers;
+    if (k.at == "t0") {
+      // psi(x(t0)) = 0 solved for the states it fixes gives the initial values.
+      GiNaC::lst eqs, unknowns;
+      for (const auto& e : k.psi) eqs.append(e == 0);
+      for (const auto& s : k.fixed_states) {
+        fixed_at_t0.insert(s);
+        unknowns.append(S.get(s));
+      }
+      const ex solved = GiNaC::lsolve(eqs, unknowns);
+      if (solved.nops() != k.fixed_states.size())
+        throw std::invalid_argument("constraint '" + k.id + "' does not determine the initial state it fixes");
+      for (const auto& r : solved) initial_values.push_back({{"state", to_text(r.lhs())}, {"value", to_text(r.rhs())}});
+      c["conditions"] = json::array({"x(t0) is fixed for " + std::to_string(k.fixed_states.size()) +
+                                     " states, so their costates at t0 are free (shooting variables)"});
+    } else {
+      // lambda(tf) - lambda0 dphi/dx - nu^T dpsi/dx = 0; the multipliers of the states psi fixes
+      // are solved from their own rows (dpsi/dx_J invertible), the other rows remain.
+      json conditions = json::array();
+      json eliminated = json::array();
+      for (std::size_t i = 0; i < p.states.size(); ++i) {
+        const symbol x = S.get(p.states[i].name);
+        ex row = S.get(at_event(costate_name(p.states[i].name), "tf")) - lambda0 * p.endpoint_cost.diff(x);
+        bool touched = false;
+        for (std::size_t j = 0; j < k.psi.size(); ++j) {
+          const ex d = k.psi[j].diff(x);
+          if (d.is_zero()) continue;
+          touched = true;
+          row -= S.get(multipliers[j].get<std::string>()) * d;
+        }
+        conditions.push_back(to_text(row) + " = 0");
+        if (touched) {
+          eliminated.push_back(to_text(row) + " = 0");
+        } else {
+          const ex eq = row.subs(S.get(p.states[i].name) == S.get(at_event(p.states[i].name, "tf")));
+          equations.push_back({{"name", "transversality_" + p.states[i].name},
+                               {"expression", to_text(eq)},
+                               {"meaning", "lambda_" + p.states[i].name + "(tf) = 0: " + p.states[i].name + "(tf) is free"},
+                               {"scale", 1.0},
+                               {"source", k.id}});
+        }
+      }
+      c["conditions"] = conditions;
+      c["eliminated_multipliers"] = eliminated;
+      for (std::size_t j = 0; j < k.psi.size(); ++j) {
+        GiNaC::exmap at_tf;
+        for (const auto& s : p.states) at_tf[S.get(s.name)] = S.get(at_event(s.name, "tf"));
+        equations.push_back({{"name", "psi_" + k.id + "_" + std::to_string(j + 1)},
+                             {"expression", to_text(k.psi[j].subs(at_tf))},
+                             {"meaning", "rendezvous with " + k.id + ": " + k.psi_names[j] + " = 0 at tf"},
+                             {"scale", 1.0},
+                             {"source", k.id}});
+      }
+    }
+    constraints.push_back(c);
+  }
+  // Order: endpoint constraints first, then transversality, then the normalization.
+  std::stable_sort(equations.begin(), equations.end(), [](const json& a, const json& b) {
+    return a["name"].get<std::string>().rfind("psi_", 0) == 0 && b["name"].get<std::string>().rfind("psi_", 0) != 0;
+  });
+  ex norm2 = GiNaC::pow(lambda0, 2);
+  for (const auto& s : p.states) {
+    const std::string lam0 = at_event(costate_name(s.name), "t0");
+    if (fixed_at_t0.count(s.name)) {
+      variables.push_back({{"name", lam0}, {"meaning", "costate of " + s.meaning + " at t0"}, {"scale", 1.0},
+                           {"init", "uniform in (-1, 1), then normalized"}});
+      norm2 += GiNaC::pow(S.get(lam0), 2);
+    } else {
+      throw std::invalid_argument("state " + s.name + " is free at t0: not supported by the builtin engine yet");
+    }
+  }
+  equations.push_back({{"name", "normalization"},
+                       {"expression", to_text(GiNaC::sqrt(norm2) - 1)},
+                       {"meaning", "|(lambda0, lambda(t0))| = 1 (lambda0 inside the sphere normalization)"},
+                       {"scale", 1.0},
+                       {"source", "normalization"}});
+
+  json doc = io::artifact_header("derivation", "helios-derive", "builtin");
+  doc["problem"] = {{"id", p.id}, {"dynamics_model", p.dynamics_model}, {"objective", p.objective}};
+  doc["units"] = {{"length", p.units.length_name}, {"length_km", p.units.length_km}, {"time", p.units.time_name},
+                  {"time_s", p.units.time_s}, {"mass_kg", p.units.mass_kg}};
+  doc["times"] = {{"t0", p.t0}, {"tf", p.tf}, {"final_time", "fixed"}};
+  json states = named_list(p.states, false);
+  for (auto& s : states) s["costate"] = costate_name(s["name"].get<std::string>());
+  doc["states"] = states;
+  json controls = json::array();
+  for (const auto& c : p.controls) controls.push_back({{"name", c.name}, {"meaning", c.meaning}, {"kind", c.kind}});
+  doc["controls"] = controls;
+  doc["parameters"] = named_list(p.parameters, true);
+  doc["homotopy"] = {{"symbol", "eps"}, {"start", 1.0}, {"end", 0.0},
+                     {"meaning", "quadratic smoothing of the throttle: eps = 1 energy-like, eps = 0 fuel-optimal bang-bang"}};
+  doc["multiplier"] = "lambda0";
+  json rhs = json::array();
+  for (const auto& fi : p.f) rhs.push_back(to_text(fi));
+  doc["dynamics"] = {{"state_rhs", rhs}, {"running_cost", to_text(p.running_cost)}, {"endpoint_cost", to_text(p.endpoint_cost)}};
+  doc["hamiltonian"] = to_text(H);
+  doc["state_odes"] = state_odes;
+  doc["costate_odes"] = costate_odes;
+  doc["control_law"] = control;
+  doc["initial_values"] = initial_values;
+  doc["constraints"] = constraints;
+  doc["shooting"] = {{"variables", variables}, {"equations", equations}};
+  return doc;
+}
+
+json derive_from_spec(const json& spec) { return derive(build_problem(spec)); }
+
+}  // namespace helios::pmp

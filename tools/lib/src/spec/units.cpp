@@ -1,0 +1,57 @@
+#include "helios/spec/units.hpp"
+
+#include <map>
+#include <stdexcept>
+
+#include "helios/astro/constants.hpp"
+
+namespace helios::spec {
+namespace {
+
+struct Table {
+  std::string spec_unit;
+  std::string accepted;
+  std::map<std::string, double> factor;
+};
+
+const Table& table(Dimension d) {
+  using namespace helios::astro;
+  static const std::map<Dimension, Table> tables = {
+      {Dimension::Length, {"km", "m, km, AU", {{"m", 1e-3}, {"km", 1.0}, {"au", AU_KM}}}},
+      {Dimension::Speed, {"km/s", "m/s, km/s", {{"m/s", 1e-3}, {"km/s", 1.0}}}},
+      {Dimension::Force, {"N", "N, mN", {{"n", 1.0}, {"mn", 1e-3}}}},
+      {Dimension::Time,
+       {"days", "s, days", {{"s", 1.0 / DAY_S}, {"seconds", 1.0 / DAY_S}, {"day", 1.0}, {"days", 1.0}, {"d", 1.0}}}},
+      {Dimension::Mass, {"kg", "kg", {{"kg", 1.0}}}},
+      {Dimension::GravParam, {"km^3/s^2", "km^3/s^2, m^3/s^2", {{"km^3/s^2", 1.0}, {"m^3/s^2", 1e-9}}}},
+  };
+  return tables.at(d);
+}
+
+std::string dimension_name(Dimension d) {
+  switch (d) {
+    case Dimension::Length: return "length";
+    case Dimension::Speed: return "speed";
+    case Dimension::Force: return "force";
+    case Dimension::Time: return "time";
+    case Dimension::Mass: return "mass";
+    case Dimension::GravParam: return "gravitational parameter";
+  }
+  return "?";
+}
+
+}  // namespace
+
+std::string spec_unit(Dimension d) { return table(d).spec_unit; }
+
+double to_spec_unit(Dimension d, const std::string& unit) {
+  std::string key;
+  for (char c : unit) key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const Table& t = table(d);
+  const auto it = t.factor.find(key);
+  if (it == t.factor.end())
+    throw std::invalid_argument("unit '" + unit + "' is not a " + dimension_name(d) + " unit (use " + t.accepted + ")");
+  return it->second;
+}
+
+}  // namespace helios::spec

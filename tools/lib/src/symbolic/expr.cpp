@@ -1,0 +1,165 @@
+#include "helios/symbolic/expr.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <typeinfo>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace helios::symbolic {
+
+const GiNaC::symbol& SymbolTable::get(const std::string& name) {
+  auto it = table_.find(name);
+  if (it == table_.end()) it = table_.emplace(name, GiNaC::symbol(name)).first;
+  return GiNaC::ex_to<GiNaC::symbol>(it->second);
+}
+
+GiNaC::ex SymbolTable::parse(const std::string& text, const std::string& where) const {
+  GiNaC::parser reader(table_, true);
+  try {
+    return reader(text);
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(where + ": cannot parse expression '" + text + "': " + e.what());
+  }
+}
+
+namespace {
+
+// A printer whose output depends only on the expression, not on GiNaC's internal term order
+// (which follows hash values and so memory addresses): terms and factors are sorted by their
+// printed text. Two dialects: GiNaC's own syntax (parsed back by GiNaC::parser) and C++.
+enum class Dialect { Text, Cpp };
+enum Precedence { kSum = 1, kProduct = 2, kPower = 3, kAtom = 4 };
+
+struct Printed {
+  std::string text;
+  int precedence;
+};
+
+std::string wrap(const Printed& p, int needed) { return p.precedence < needed ? "(" + p.text + ")" : p.text; }
+
+Printed print(const GiNaC::ex& e, Dialect d);
+
+Printed print_numeric(const GiNaC::numeric& n, Dialect d) {
+  std::ostringstream out;
+  if (d == Dialect::Cpp) {
+    if (n.is_integer()) {
+      out << n << ".0";
+    } else if (n.is_rational()) {
+      out << n.numer() << ".0/" << n.denom() << ".0";
+    } else {
+      out.precision(17);
+      out << n.to_double();
+    }
+  } else {
+    out << n;
+  }
+  const std::string t = out.str();
+  const bool atomic = n.is_integer() && n.is_nonneg_integer();
+  return {t, atomic ? kAtom : (t[0] == '-' ? kSum : kProduct)};
+}
+
+Printed print_power(const GiNaC::ex& base, const GiNaC::ex& exponent, Dialect d) {
+  const Printed b = print(base, d);
+  if (GiNaC::is_a<GiNaC::numeric>(exponent)) {
+    const GiNaC::numeric k = GiNaC::ex_to<GiNaC::numeric>(exponent);
+    if (k == GiNaC::numeric(1, 2)) return {"sqrt(" + b.text + ")", kAtom};
+    if (d == Dialect::Cpp) {
+      const std::string bb = wrap(b, kAtom);
+      if (k == 2) return {bb + "*" + bb, kProduct};
+      if (k == -1) return {"1.0/" + bb, kProduct};
+      if (k == -2) return {"1.0/(" + bb + "*" + bb + ")", kProduct};
+      if (k == GiNaC::numeric(-1, 2)) return {"1.0/sqrt(" + b.text + ")", kProduct};
+      if (k == GiNaC::numeric(3, 2)) return {bb + "*sqrt(" + b.text + ")", kProduct};
+      if (k == GiNaC::numeric(-3, 2)) return {"1.0/(" + bb + "*sqrt(" + b.text + "))", kProduct};
+    }
+  }
+  if (d == Dialect::Cpp) return {"std::pow(" + b.text + ", " + print(exponent, d).text + ")", kAtom};
+  const Printed x = print(exponent, d);
+  return {wrap(b, kAtom) + "^" + wrap(x, kAtom), kPower};
+}
+
+Printed print(const GiNaC::ex& e, Dialect d) {
+  if (GiNaC::is_a<GiNaC::numeric>(e)) return print_numeric(GiNaC::ex_to<GiNaC::numeric>(e), d);
+  if (GiNaC::is_a<GiNaC::symbol>(e)) return {GiNaC::ex_to<GiNaC::symbol>(e).get_name(), kAtom};
+  if (GiNaC::is_a<GiNaC::add>(e)) {
+    std::vector<std::string> terms;
+    for (const auto& op : e) terms.push_back(print(op, d).text);
+    std::sort(terms.begin(), terms.end());
+    std::string out;
+    for (const auto& t : terms) out += out.empty() || t[0] == '-' ? t : "+" + t;
+    return {out, kSum};
+  }
+  if (GiNaC::is_a<GiNaC::mul>(e)) {
+    std::vector<std::string> factors;
+    std::string sign;
+    GiNaC::numeric coefficient = 1;
+    for (const auto& op : e) {
+      if (GiNaC::is_a<GiNaC::numeric>(op))
+        coefficient *= GiNaC::ex_to<GiNaC::numeric>(op);
+      else
+        factors.push_back(wrap(print(op, d), kProduct));
+    }
+    std::sort(factors.begin(), factors.end());
+    if (coefficient.is_negative()) {
+      sign = "-";
+      coefficient = -coefficient;
+    }
+    if (coefficient != 1) factors.insert(factors.begin(), wrap(print_numeric(coefficient, d), kPower));
+    std::string out;
+    for (const auto& f : factors) out += (out.empty() ? "" : "*") + f;
+    return {sign + out, sign.empty() ? kProduct : kSum};
+  }
+  if (GiNaC::is_a<GiNaC::power>(e)) return print_power(e.op(0), e.op(1), d);
+  if (GiNaC::is_a<GiNaC::function>(e)) {
+    std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+    if (d == Dialect::Cpp) name = "std::" + name;
+    std::string args;
+    for (const auto& op : e) args += (args.empty() ? "" : ", ") + print(op, d).text;
+    return {name + "(" + args + ")", kAtom};
+  }
+  std::ostringstream raw;
+  raw << e;
+  throw std::invalid_argument("cannot print expression " + raw.str());
+}
+
+}  // namespace
+
+// NOTE: printing the expanded form makes the text independent of how GiNaC normalized the
+// signs of sums inside products, which depends on its term order.
+std::string to_text(const GiNaC::ex& e) { return print(e.expand(), Dialect::Text).text; }
+
+std::string to_csrc(const GiNaC::ex& e) { return print(e.expand(), Dialect::Cpp).text; }
+
+double evaluate(const GiNaC::ex& e, const SymbolTable& table, const Values& values) {
+  GiNaC::exmap m;
+  for (const auto& [name, value] : values) {
+    if (table.has(name)) m[table.symtab().at(name)] = value;
+  }
+  const GiNaC::ex v = GiNaC::evalf(e.subs(m));
+  if (!GiNaC::is_a<GiNaC::numeric>(v)) {
+    const auto missing = free_symbols(v);
+    throw std::invalid_argument("no value for symbol " + (missing.empty() ? to_text(v) : missing.front()));
+  }
+  const GiNaC::numeric n = GiNaC::ex_to<GiNaC::numeric>(v);
+  if (!n.is_real()) throw std::domain_error("expression " + to_text(e) + " is not real at the given point");
+  const double d = n.to_double();
+  if (!std::isfinite(d)) throw std::domain_error("expression " + to_text(e) + " is not finite at the given point");
+  return d;
+}
+
+std::vector<std::string> free_symbols(const GiNaC::ex& e) {
+  std::set<std::string> names;
+  for (GiNaC::const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+    if (GiNaC::is_a<GiNaC::symbol>(*it)) names.insert(GiNaC::ex_to<GiNaC::symbol>(*it).get_name());
+  return {names.begin(), names.end()};
+}
+
+bool symbolically_equal(const GiNaC::ex& a, const GiNaC::ex& b) {
+  const GiNaC::ex d = (a - b).expand();
+  if (d.is_zero()) return true;
+  return GiNaC::normal(d).is_zero();
+}
+
+}  // namespace helios::symbolic
