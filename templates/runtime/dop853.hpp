@@ -90,10 +90,12 @@ class Dop853 {
               double atol, double rtol) {
     using namespace dop853_coeffs;
     const int n = n_;
+    double* const kbuf = k_.data();
+    double* const yt = ytmp_.data();
+    double* const yn = ynew_.data();
     const double* K[12];
     K[0] = f0;
-    for (int s = 1; s < 12; ++s) K[s] = k_.data() + static_cast<std::size_t>(s - 1) * n;
-    double* yt = ytmp_.data();
+    for (int s = 1; s < 12; ++s) K[s] = kbuf + (s - 1) * n;
     for (int s = 1; s < 12; ++s) {
       std::fill(yt, yt + n, 0.0);
       for (int j = 0; j < s; ++j) {
@@ -103,7 +105,7 @@ class Dop853 {
         for (int i = 0; i < n; ++i) yt[i] += a * kj[i];
       }
       for (int i = 0; i < n; ++i) yt[i] = y[i] + h * yt[i];
-      f(t + C[s] * h, static_cast<const double*>(yt), k_.data() + static_cast<std::size_t>(s - 1) * n);
+      f(t + C[s] * h, static_cast<const double*>(yt), kbuf + (s - 1) * n);
     }
 
     double err5 = 0.0, err3 = 0.0;
@@ -114,9 +116,9 @@ class Dop853 {
         incr += B[j] * kj;
         e5 += E5[j] * kj;
       }
-      ynew_[i] = y[i] + h * incr;
+      yn[i] = y[i] + h * incr;
       const double e3 = incr - BHH[0] * K[0][i] - BHH[1] * K[8][i] - BHH[2] * K[11][i];
-      const double sk = atol + rtol * std::max(std::fabs(y[i]), std::fabs(ynew_[i]));
+      const double sk = atol + rtol * std::max(std::fabs(y[i]), std::fabs(yn[i]));
       err5 += (e5 / sk) * (e5 / sk);
       err3 += (e3 / sk) * (e3 / sk);
     }
@@ -125,7 +127,7 @@ class Dop853 {
     if (deno <= 0.0) deno = 1.0;
     const double err = n > 0 ? std::fabs(h) * err5 * std::sqrt(1.0 / (n * deno)) : 0.0;
 
-    std::copy(ynew_.begin(), ynew_.end(), y_new);
+    std::copy(yn, yn + n, y_new);
     f(t + h, static_cast<const double*>(y_new), f_new);
     return err;
   }

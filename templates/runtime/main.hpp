@@ -1,1 +1,129 @@
-// placeholder
+// ---------------------------------------------------------------------------------------------
+// HELIOS shooting runtime, entry point (templates/runtime/main.hpp).
+// usage: shoot --settings SETTINGS.json --result RESULT.json --trajectory TRAJECTORY.csv
+// Writes RESULT.json (normalized and physical numbers) and the trajectory of the final solution.
+// ---------------------------------------------------------------------------------------------
+namespace helios_rt {
+
+inline Settings read_settings(const std::string& path) {
+  Settings s;
+  if (path.empty()) return s;
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read settings " + path);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  s.seed = j.value("seed", s.seed);
+  s.max_attempts = j.value("max_attempts", s.max_attempts);
+  s.time_limit_s = j.value("time_limit_s", s.time_limit_s);
+  s.rtol = j.value("integrator_rtol", s.rtol);
+  s.atol = j.value("integrator_atol", s.atol);
+  s.hybrd_tol = j.value("hybrd_tol", s.hybrd_tol);
+  s.accept_residual = j.value("accept_residual", s.accept_residual);
+  s.final_residual = j.value("final_residual", s.final_residual);
+  s.eps_start = j.value("eps_start", s.eps_start);
+  s.eps_min = j.value("eps_min", s.eps_min);
+  s.eps_first_ratio = j.value("eps_first_ratio", s.eps_first_ratio);
+  return s;
+}
+
+inline void write_atomic(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".part";
+  {
+    std::ofstream out(tmp);
+    out << text;
+    if (!out) throw std::runtime_error("cannot write " + tmp);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot rename " + tmp);
+}
+
+// Re-propagates the solution, recording samples and switches, and writes the trajectory CSV.
+inline nlohmann::json trajectory(const Settings& s, const Result& r, const std::string& csv_path) {
+  Propagator prop(s);
+  std::vector<Sample> samples;
+  std::vector<Switch> switches;
+  prop.samples = &samples;
+  prop.switches = &switches;
+  std::vector<double> F(problem::kNumVars);
+  shooting_function(r.x.data(), r.eps, prop, F.data());
+  std::ostringstream csv;
+  csv.precision(15);
+  csv << "t_days";
+  for (int i = 0; i < problem::kNumStates; ++i) csv << ',' << problem::kStateColumns[i];
+  for (int i = 0; i < problem::kNumStates; ++i) csv << ",l_" << problem::kStateNames[i];
+  for (int i = 0; i < problem::kNumControls; ++i) csv << ',' << problem::kControlNames[i];
+  csv << ",H,S\n";
+  double hmin = INFINITY, hmax = -INFINITY;
+  for (const auto& p : samples) {
+    csv << p.t * problem::kTimeUnitDays;
+    for (int i = 0; i < problem::kNumStates; ++i) csv << ',' << p.y[i] * problem::kStateToPhysical[i];
+    for (int i = 0; i < problem::kNumStates; ++i) csv << ',' << p.y[problem::kNumStates + i];
+    for (int i = 0; i < problem::kNumControls; ++i) csv << ',' << p.control[i];
+    csv << ',' << p.H << ',' << p.S << '\n';
+    hmin = std::min(hmin, p.H);
+    hmax = std::max(hmax, p.H);
+  }
+  write_atomic(csv_path, csv.str());
+  nlohmann::json out;
+  nlohmann::json sw = nlohmann::json::array();
+  for (const auto& w : switches) sw.push_back({{"t_days", w.t * problem::kTimeUnitDays}, {"throttle_after", w.throttle_after}});
+  out["switches"] = sw;
+  out["hamiltonian_drift"] = hmax - hmin;
+  out["samples"] = samples.size();
+  const auto& last = samples.back();
+  out["final_state"] = std::vector<double>(last.y.begin(), last.y.begin() + problem::kNumStates);
+  return out;
+}
+
+inline int run(int argc, char** argv) {
+  std::string settings_path, result_path = "result.json", trajectory_path = "trajectory.csv";
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    if (a == "--settings") settings_path = argv[i + 1];
+    else if (a == "--result") result_path = argv[i + 1];
+    else if (a == "--trajectory") trajectory_path = argv[i + 1];
+    else throw std::runtime_error("unknown option " + a);
+  }
+  const Settings s = read_settings(settings_path);
+  wall_seconds();
+  Result r = solve_problem(s);
+  nlohmann::json j;
+  j["status"] = r.status;
+  j["detail"] = r.detail;
+  j["info"] = r.info;
+  j["info_meaning"] = hybrd_meaning(r.info);
+  j["attempts"] = r.attempts;
+  j["iterations"] = r.iterations;
+  j["function_evaluations"] = r.evaluations;
+  j["seed"] = s.seed;
+  nlohmann::json hom = nlohmann::json::array();
+  for (const auto& h : r.homotopy)
+    hom.push_back({{"eps", h.eps}, {"converged", h.converged}, {"max_residual", std::isfinite(h.max_residual) ? h.max_residual : -1.0},
+                   {"evaluations", h.evaluations}});
+  j["homotopy"] = hom;
+  if (r.status == "converged") {
+    nlohmann::json x = nlohmann::json::array(), F = nlohmann::json::array();
+    for (int i = 0; i < problem::kNumVars; ++i) x.push_back({{"name", problem::kVariableNames[i]}, {"value", r.x[i]}});
+    for (int i = 0; i < problem::kNumVars; ++i) F.push_back({{"name", problem::kEquationNames[i]}, {"value", r.F[i]}});
+    j["x"] = x;
+    j["residuals"] = F;
+    j["max_residual"] = r.max_residual;
+    j["epsilon"] = r.eps;
+    j["trajectory"] = trajectory(s, r, trajectory_path);
+    const double mf = j["trajectory"]["final_state"][problem::kMassIndex].get<double>();
+    j["final_mass_kg"] = mf * problem::kMassUnitKg;
+    j["initial_mass_kg"] = problem::kMassUnitKg;
+    j["delta_v_m_s"] = problem::kExhaustVelocityMS * std::log(1.0 / mf);
+  }
+  write_atomic(result_path, j.dump(2) + "\n");
+  return 0;
+}
+
+}  // namespace helios_rt
+
+int main(int argc, char** argv) {
+  try {
+    return helios_rt::run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "shoot: error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,1 +1,372 @@
-// placeholder
+// ---------------------------------------------------------------------------------------------
+// HELIOS shooting runtime (templates/runtime/runtime.hpp): the fixed part of every generated
+// shooting program. It needs the PROBLEM block (namespace problem) before it and the modules
+// DYNAMICS, SWITCH, RESIDUAL and SOLVE after it (their prototypes are below).
+//
+// Numerics (design.md section 6): normalized units; an adaptive DOP853 integrator whose control
+// mode (throttle off / interior / full) is frozen inside each step, with the switching times
+// located to round-off so the shooting function stays smooth at eps = 0; eps-homotopy from
+// eps = 1 with adaptive steps and retreat; seeded random restarts; cminpack hybrd1.
+// ---------------------------------------------------------------------------------------------
+namespace helios_rt {
+
+constexpr int kNY = 2 * problem::kNumStates;  // states then costates
+
+struct Multipliers {
+  double lambda0 = 1;
+  double eps = 1;
+};
+
+// DYNAMICS module: state and costate right-hand sides and H for a given control vector.
+void dynamics(const double* y, const double* control, const Multipliers& mult, double* dy);
+double hamiltonian(const double* y, const double* control, const Multipliers& mult);
+// SWITCH module: direction controls (all but the throttle) and dH/du at u = 0 and u = 1.
+void direction_control(const double* y, double* control);
+void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper);
+
+// Throttle modes. With eps > 0, H is strictly convex in u: u = 0 where dH/du(0) >= 0, u = 1 where
+// dH/du(1) <= 0, otherwise u solves dH/du = 0. At eps = 0 both slopes equal the switching function.
+enum Mode { kOff = 0, kInterior = 1, kFull = 2 };
+
+inline Mode mode_at(const double* y, const Multipliers& mult) {
+  double s0 = 0, s1 = 0;
+  throttle_slopes(y, mult, s0, s1);
+  if (s0 >= 0) return kOff;
+  if (s1 <= 0) return kFull;
+  return kInterior;
+}
+
+inline void control_in_mode(const double* y, Mode mode, const Multipliers& mult, double* control) {
+  direction_control(y, control);
+  double u = mode == kFull ? 1.0 : 0.0;
+  if (mode == kInterior) {
+    double s0 = 0, s1 = 0;
+    throttle_slopes(y, mult, s0, s1);
+    u = std::min(1.0, std::max(0.0, s0 / (s0 - s1)));
+  }
+  control[problem::kThrottleIndex] = u;
+}
+
+// Functions that stay positive while `mode` holds; a sign change is a switch.
+inline int stay_functions(const double* y, Mode mode, const Multipliers& mult, double* g) {
+  double s0 = 0, s1 = 0;
+  throttle_slopes(y, mult, s0, s1);
+  switch (mode) {
+    case kOff: g[0] = s0; return 1;
+    case kFull: g[0] = -s1; return 1;
+    case kInterior: g[0] = -s0; g[1] = s1; return 2;
+  }
+  return 0;
+}
+
+struct numerical_error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Settings {
+  unsigned seed = 1;
+  int max_attempts = 200;
+  double time_limit_s = 600;
+  double rtol = 1e-13, atol = 1e-13;
+  double hybrd_tol = 1e-12;
+  double accept_residual = 1e-8;   // intermediate homotopy steps
+  double final_residual = 1e-10;   // the gate at eps = 0
+  double eps_start = 1.0;
+  double eps_min = 1e-6;           // below this the next step is eps = 0
+  double eps_first_ratio = 0.5;
+  int max_steps = 200000;          // integrator steps per arc
+};
+
+struct Sample {
+  double t;
+  std::array<double, kNY> y;
+  std::array<double, problem::kNumControls> control;
+  double H, S;
+};
+
+struct Switch {
+  double t;
+  double throttle_after;
+};
+
+inline double wall_seconds() {
+  using clock = std::chrono::steady_clock;
+  static const auto start = clock::now();
+  return std::chrono::duration<double>(clock::now() - start).count();
+}
+
+// Integrates y from t0 to t1 under the optimal control, one mode at a time.
+class Propagator {
+ public:
+  explicit Propagator(const Settings& s) : settings_(s), stepper_(kNY) {}
+
+  std::vector<Sample>* samples = nullptr;    // when set, every accepted step is recorded
+  std::vector<Switch>* switches = nullptr;
+
+  void propagate(double t0, double t1, double* y, const Multipliers& mult) {
+    Mode mode = mode_at(y, mult);
+    double t = t0;
+    double h = std::min(t1 - t0, 1e-3 * (1 + std::fabs(t1 - t0)));
+    std::array<double, kNY> f0{}, ynew{}, fnew{};
+    std::array<double, 2> g_old{}, g_new{};
+    auto rhs = [&](double, const double* yy, double* dy) {
+      std::array<double, problem::kNumControls> control{};
+      control_in_mode(yy, mode, mult, control.data());
+      dynamics(yy, control.data(), mult, dy);
+    };
+    record(t, y, mode, mult);
+    int steps = 0;
+    while (t < t1) {
+      if (++steps > settings_.max_steps) throw numerical_error("integrator exceeded max_steps");
+      const bool last = h >= t1 - t;
+      if (last) h = t1 - t;
+      rhs(t, y, f0.data());
+      const double err = stepper_.step(rhs, t, y, f0.data(), h, ynew.data(), fnew.data(), settings_.atol, settings_.rtol);
+      if (!(err <= 1.0)) {
+        h *= Dop853::step_factor(err);
+        if (h < 1e-15 * (1 + std::fabs(t))) throw numerical_error("integrator step size underflow");
+        continue;
+      }
+      const int ng = stay_functions(y, mode, mult, g_old.data());
+      stay_functions(ynew.data(), mode, mult, g_new.data());
+      int crossed = -1;
+      for (int k = 0; k < ng; ++k)
+        if (g_old[k] >= 0 && g_new[k] < 0) crossed = k;
+      if (crossed < 0) {
+        t = last ? t1 : t + h;
+        std::copy(ynew.begin(), ynew.end(), y);
+        record(t, y, mode, mult);
+        h *= Dop853::step_factor(err);
+        continue;
+      }
+      // Locate the switch on the frozen-mode step (Illinois regula falsi in the step length).
+      double a = 0, b = h, ga = g_old[crossed], gb = g_new[crossed];
+      double hs = b;
+      int side = 0;
+      for (int it = 0; it < 100 && b - a > 4e-16 * (1 + std::fabs(t)); ++it) {
+        hs = (a * gb - b * ga) / (gb - ga);
+        if (!(hs > a && hs < b)) hs = 0.5 * (a + b);
+        rhs(t, y, f0.data());
+        stepper_.step(rhs, t, y, f0.data(), hs, ynew.data(), fnew.data(), settings_.atol, settings_.rtol);
+        stay_functions(ynew.data(), mode, mult, g_new.data());
+        const double gs = g_new[crossed];
+        if (gs == 0) {
+          a = b = hs;
+          break;
+        }
+        if ((gs > 0) == (ga > 0)) {
+          a = hs;
+          ga = gs;
+          if (side == -1) gb *= 0.5;
+          side = -1;
+        } else {
+          b = hs;
+          gb = gs;
+          if (side == 1) ga *= 0.5;
+          side = 1;
+        }
+      }
+      // Step to the far side of the bracket so the new mode starts past the switch.
+      hs = b;
+      rhs(t, y, f0.data());
+      stepper_.step(rhs, t, y, f0.data(), hs, ynew.data(), fnew.data(), settings_.atol, settings_.rtol);
+      t += hs;
+      std::copy(ynew.begin(), ynew.end(), y);
+      mode = next_mode(mode, crossed, mult);
+      record(t, y, mode, mult);
+      if (switches) {
+        std::array<double, problem::kNumControls> control{};
+        control_in_mode(y, mode, mult, control.data());
+        switches->push_back({t, control[problem::kThrottleIndex]});
+      }
+      h = std::max(h - hs, 1e-6 * (1 + std::fabs(t1 - t0)));
+    }
+  }
+
+ private:
+  static Mode next_mode(Mode mode, int crossed, const Multipliers& mult) {
+    const bool bang = mult.eps == 0;
+    if (mode == kOff) return bang ? kFull : kInterior;
+    if (mode == kFull) return bang ? kOff : kInterior;
+    return crossed == 0 ? kOff : kFull;
+  }
+
+  void record(double t, const double* y, Mode mode, const Multipliers& mult) {
+    if (!samples) return;
+    Sample s;
+    s.t = t;
+    std::copy(y, y + kNY, s.y.begin());
+    control_in_mode(y, mode, mult, s.control.data());
+    s.H = hamiltonian(y, s.control.data(), mult);
+    double s0 = 0, s1 = 0;
+    throttle_slopes(y, Multipliers{mult.lambda0, 0.0}, s0, s1);
+    s.S = s0;
+    samples->push_back(s);
+  }
+
+  const Settings& settings_;
+  Dop853 stepper_;
+};
+
+// The shooting function of the RESIDUAL module, with the bookkeeping hybrd1 needs.
+void shooting_function(const double* x, double eps, Propagator& prop, double* F);
+
+struct HomotopyStep {
+  double eps;
+  bool converged;
+  double max_residual;
+  int evaluations;
+};
+
+struct Result {
+  std::string status = "not_converged";
+  std::string detail;
+  int info = 0;
+  std::vector<double> x;
+  std::vector<double> F;
+  double eps = 1;
+  double max_residual = 0;
+  int evaluations = 0;
+  int attempts = 0;
+  int iterations = 0;
+  std::vector<HomotopyStep> homotopy;
+};
+
+inline std::string hybrd_meaning(int info) {
+  switch (info) {
+    case 0: return "improper input parameters";
+    case 1: return "relative error between two consecutive iterates is at most tol";
+    case 2: return "number of calls to fcn has reached 200*(n+1)";
+    case 3: return "tol is too small; no further improvement in x is possible";
+    case 4: return "iteration is not making good progress";
+    default: return "stopped by the shooting function (integration failure or time limit)";
+  }
+}
+
+class Shooter {
+ public:
+  explicit Shooter(const Settings& s) : settings_(s), prop_(s) {}
+
+  // hybrd1 from x at eps; true if max|F| <= accept. Returns the info code through `info`.
+  bool solve(std::vector<double>& x, double eps, double accept, int& info, double& max_res) {
+    eps_ = eps;
+    failed_ = false;
+    const int n = static_cast<int>(x.size());
+    std::vector<double> F(n), wa(static_cast<std::size_t>(n * (3 * n + 13)) / 2 + 1);
+    const int before = evaluations;
+    info = hybrd1(&Shooter::callback, this, n, x.data(), F.data(), settings_.hybrd_tol, wa.data(), static_cast<int>(wa.size()));
+    if (failed_) info = -1;
+    // hybrd1 returns the x of the smallest residual it saw; evaluate there for the record.
+    if (!evaluate(x.data(), F.data())) {
+      max_res = INFINITY;
+      return false;
+    }
+    max_res = 0;
+    for (double f : F) max_res = std::max(max_res, std::fabs(f));
+    last_F = F;
+    last_step_evaluations = evaluations - before;
+    return std::isfinite(max_res) && max_res <= accept;
+  }
+
+  bool evaluate(const double* x, double* F) {
+    try {
+      shooting_function(x, eps_, prop_, F);
+      ++evaluations;
+      for (int i = 0; i < problem::kNumVars; ++i)
+        if (!std::isfinite(F[i])) return false;
+      return true;
+    } catch (const numerical_error&) {
+      return false;
+    }
+  }
+
+  int evaluations = 0;
+  int last_step_evaluations = 0;
+  std::vector<double> last_F;
+  Propagator& propagator() { return prop_; }
+
+ private:
+  static int callback(void* self, int n, const double* x, double* F, int) {
+    auto* me = static_cast<Shooter*>(self);
+    if (wall_seconds() > me->settings_.time_limit_s) {
+      me->failed_ = true;
+      return -1;
+    }
+    if (!me->evaluate(x, F)) {
+      // A failed integration is a large residual, so hybrd backs off instead of stopping.
+      for (int i = 0; i < n; ++i) F[i] = 1e6;
+    }
+    return 0;
+  }
+
+  const Settings& settings_;
+  Propagator prop_;
+  double eps_ = 1;
+  bool failed_ = false;
+};
+
+// Continuation in eps from settings.eps_start to 0 with an adaptive step in log(eps) and
+// retreat on failure; a failed start or a stalled continuation restarts from a new seeded guess.
+template <class Guess, class Admissible>
+Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& admissible) {
+  Result r;
+  Shooter shooter(s);
+  std::mt19937_64 rng(s.seed);
+  for (r.attempts = 1; r.attempts <= s.max_attempts; ++r.attempts) {
+    if (wall_seconds() > s.time_limit_s) {
+      r.status = "timeout";
+      r.detail = "time limit reached before convergence";
+      break;
+    }
+    std::vector<double> x(problem::kNumVars);
+    initial_guess(rng, x.data());
+    int info = 0;
+    double res = 0;
+    double eps = s.eps_start;
+    ++r.iterations;
+    const bool started = shooter.solve(x, eps, s.accept_residual, info, res) && admissible(x.data());
+    r.homotopy.push_back({eps, started, res, shooter.last_step_evaluations});
+    if (!started) continue;
+    double log_step = std::log(1.0 / s.eps_first_ratio);
+    double zero_below = s.eps_min;  // eps at or below which the next step goes to eps = 0
+    bool done = false;
+    while (!done && wall_seconds() <= s.time_limit_s) {
+      const bool to_zero = eps <= zero_below;
+      const double next = to_zero ? 0.0 : std::max(eps * std::exp(-log_step), 0.5 * zero_below);
+      std::vector<double> trial = x;
+      ++r.iterations;
+      const double accept = to_zero ? s.final_residual : s.accept_residual;
+      const bool ok = shooter.solve(trial, next, accept, info, res) && admissible(trial.data());
+      r.homotopy.push_back({next, ok, res, shooter.last_step_evaluations});
+      if (ok) {
+        x = trial;
+        eps = next;
+        r.info = info;
+        if (to_zero) done = true;
+        log_step = std::min(log_step * 1.5, std::log(20.0));
+      } else if (to_zero) {
+        zero_below = 0.01 * eps;  // the bang-bang problem is still too far: smooth less first
+        if (zero_below < 1e-12) break;
+      } else {
+        log_step *= 0.5;
+        if (log_step < std::log(1.02)) break;
+      }
+    }
+    if (done) {
+      r.status = "converged";
+      r.x = x;
+      r.F = shooter.last_F;
+      r.eps = 0;
+      r.max_residual = res;
+      break;
+    }
+  }
+  if (r.status != "converged" && r.status != "timeout") {
+    r.detail = "no seeded attempt reached eps = 0 (attempts " + std::to_string(r.attempts - 1) + ")";
+    r.attempts = std::min(r.attempts, s.max_attempts);
+  }
+  r.evaluations = shooter.evaluations;
+  return r;
+}
+
+}  // namespace helios_rt

@@ -86,6 +86,113 @@ inline Universal universal_functions(double chi, double alpha) {
   return u;
 }
 
+// Hyperbolic anomaly H with e*sinh(H) - H = M for e >= 1, safeguarded Newton.
+inline double hyperbolic_anomaly(double M, double e) {
+  if (M == 0.0) return 0.0;
+  const double m = std::fabs(M);
+  // e sinh H - H lies between (e-1) sinh H (also >= H^3/6 when e >= 1) and e sinh H for H >= 0.
+  double lo = std::asinh(m / e);
+  double hi = std::cbrt(6.0 * m);
+  if (e > 1.0) hi = std::min(hi, std::asinh(m / (e - 1.0)));
+  hi = std::max(hi, lo);
+  double H = hi;  // g is convex for H > 0: Newton from above converges monotonically
+  for (int it = 0; it < 200; ++it) {
+    const double g = e * std::sinh(H) - H - m;
+    if (g == 0.0) break;
+    if (g < 0.0) lo = H; else hi = H;
+    const double d = -g / (e * std::cosh(H) - 1.0);
+    if (std::fabs(d) <= 2.0 * EPS * std::fabs(H)) {
+      H += d;
+      break;
+    }
+    double next = H + d;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (hi - lo <= 2.0 * EPS * hi) {
+      H = next;
+      break;
+    }
+    H = next;
+  }
+  return M < 0.0 ? -H : H;
+}
+
+// Root chi of the universal Kepler equation sqrt(mu)*dt = r0*U1 + sigma0*U2 + U3 (sigma0 = r0.v0 /
+// sqrt(mu), alpha = 1/a), with target = sqrt(mu)*dt != 0.
+inline double solve_universal_kepler(double r0, double sigma0, double alpha, double target, double dt, double mu) {
+  const double smu = std::sqrt(mu);
+  // F(chi) = sqrt(mu)*t(chi) - sqrt(mu)*dt is strictly increasing (F' = r > 0).
+  auto eval = [&](double chi, double& F, double& Fp) {
+    const auto u = universal_functions(chi, alpha);
+    F = r0 * u.u1 + sigma0 * u.u2 + u.u3 - target;
+    Fp = r0 * u.u0 + sigma0 * u.u1 + u.u2;
+  };
+
+  double guess = 0.0;
+  if (alpha > 0.0) {
+    guess = smu * dt * alpha;  // exact for circular orbits
+  } else {
+    const double sgn = dt > 0.0 ? 1.0 : -1.0;
+    if (alpha < 0.0) {
+      const double a = 1.0 / alpha;
+      const double num = -2.0 * mu * alpha * dt;
+      const double den = sigma0 * smu + sgn * std::sqrt(-mu * a) * (1.0 - r0 * alpha);
+      const double arg = num / den;
+      if (std::isfinite(arg) && arg > 0.0) guess = sgn * std::sqrt(-a) * std::log(arg);
+    }
+    if (!(guess * sgn > 0.0) || !std::isfinite(guess)) guess = target / r0;
+  }
+
+  // Bracket the root: F(0) = -target, then expand from the guess until F changes sign.
+  double lo, hi, F, Fp;
+  if (dt > 0.0) {
+    lo = 0.0;
+    hi = guess > 0.0 ? guess : target / r0;
+    for (int k = 0; k < 200; ++k) {
+      eval(hi, F, Fp);
+      if (!std::isfinite(F) || F >= 0.0) break;
+      lo = hi;
+      hi *= 2.0;
+    }
+  } else {
+    hi = 0.0;
+    lo = guess < 0.0 ? guess : target / r0;
+    for (int k = 0; k < 200; ++k) {
+      eval(lo, F, Fp);
+      if (!std::isfinite(F) || F <= 0.0) break;
+      hi = lo;
+      lo *= 2.0;
+    }
+  }
+
+  // Newton safeguarded by bisection inside [lo, hi].
+  double chi = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
+  for (int it = 0; it < 300; ++it) {
+    eval(chi, F, Fp);
+    if (!std::isfinite(F) || !std::isfinite(Fp)) {
+      // Overflow only happens far beyond the root.
+      if (chi > 0.0) hi = chi; else lo = chi;
+      chi = 0.5 * (lo + hi);
+      continue;
+    }
+    if (F == 0.0) break;
+    if (F < 0.0) lo = chi; else hi = chi;
+    const double d = -F / Fp;
+    if (std::fabs(d) <= 2.0 * EPS * std::fabs(chi)) {
+      chi += d;
+      break;
+    }
+    double next = chi + d;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (hi - lo <= 2.0 * EPS * std::max(std::fabs(lo), std::fabs(hi))) {
+      chi = next;
+      break;
+    }
+    chi = next;
+  }
+
+  return chi;
+}
+
 }  // namespace kepler_detail
 
 // Eccentric anomaly E with E - e*sin(E) = M, for 0 <= e < 1 and any M. The revolution count of M
@@ -209,79 +316,28 @@ inline std::array<double, 6> propagate(const std::array<double, 6>& state, doubl
   const double alpha = 2.0 / r0 - v02 / mu;  // 1/a; <= 0 for parabolic/hyperbolic
   const double target = smu * dt;
 
-  // F(chi) = sqrt(mu)*t(chi) - sqrt(mu)*dt is strictly increasing (F' = r > 0).
-  auto eval = [&](double chi, double& F, double& Fp) {
-    const auto u = kepler_detail::universal_functions(chi, alpha);
-    F = r0 * u.u1 + sigma0 * u.u2 + u.u3 - target;
-    Fp = r0 * u.u0 + sigma0 * u.u1 + u.u2;
-  };
-
-  double guess = 0.0;
-  if (alpha > 0.0) {
-    guess = smu * dt * alpha;  // exact for circular orbits
-  } else {
-    const double sgn = dt > 0.0 ? 1.0 : -1.0;
-    if (alpha < 0.0) {
-      const double a = 1.0 / alpha;
-      const double num = -2.0 * mu * alpha * dt;
-      const double den = dot3(r0v, v0v) + sgn * std::sqrt(-mu * a) * (1.0 - r0 * alpha);
-      const double arg = num / den;
-      if (std::isfinite(arg) && arg > 0.0) guess = sgn * std::sqrt(-a) * std::log(arg);
-    }
-    if (!(guess * sgn > 0.0) || !std::isfinite(guess)) guess = target / r0;
-  }
-
-  // Bracket the root: F(0) = -target, then expand from the guess until F changes sign.
-  double lo, hi, F, Fp;
-  if (dt > 0.0) {
-    lo = 0.0;
-    hi = guess > 0.0 ? guess : target / r0;
-    for (int k = 0; k < 200; ++k) {
-      eval(hi, F, Fp);
-      if (!std::isfinite(F) || F >= 0.0) break;
-      lo = hi;
-      hi *= 2.0;
-    }
-  } else {
-    hi = 0.0;
-    lo = guess < 0.0 ? guess : target / r0;
-    for (int k = 0; k < 200; ++k) {
-      eval(lo, F, Fp);
-      if (!std::isfinite(F) || F <= 0.0) break;
-      hi = lo;
-      lo *= 2.0;
+  double chi = 0.0, r = 0.0;
+  bool solved = false;
+  if (alpha < 0.0) {
+    // Starting well out on a hyperbola and heading in, the universal Kepler equation is a
+    // difference of terms that grow like exp|H0|; the hyperbolic-anomaly form stays exact there.
+    const double A = -1.0 / alpha, sA = std::sqrt(A);
+    const auto h = kepler_detail::cross3(r0v, v0v);
+    const double e2m1 = dot3(h.data(), h.data()) / (mu * A);  // e^2 - 1 = p/|a|
+    const double e = std::sqrt(1.0 + e2m1);
+    const double H0 = std::asinh(sigma0 / (sA * e));  // e sinh H0 = sigma0/sqrt|a|
+    if (std::fabs(H0) > 1.0) {
+      const double M1 = (sigma0 / sA - H0) + smu / (A * sA) * dt;
+      const double H1 = kepler_detail::hyperbolic_anomaly(M1, e);
+      chi = sA * (H1 - H0);
+      const double sh = std::sinh(0.5 * H1);
+      r = A * (e2m1 / (1.0 + e) * std::cosh(H1) + 2.0 * sh * sh);  // |a|(e cosh H1 - 1), no cancellation
+      solved = std::isfinite(chi) && r > 0.0;
     }
   }
-
-  // Newton safeguarded by bisection inside [lo, hi].
-  const double eps = kepler_detail::EPS;
-  double chi = (guess > lo && guess < hi) ? guess : 0.5 * (lo + hi);
-  for (int it = 0; it < 300; ++it) {
-    eval(chi, F, Fp);
-    if (!std::isfinite(F) || !std::isfinite(Fp)) {
-      // Overflow only happens far beyond the root.
-      if (chi > 0.0) hi = chi; else lo = chi;
-      chi = 0.5 * (lo + hi);
-      continue;
-    }
-    if (F == 0.0) break;
-    if (F < 0.0) lo = chi; else hi = chi;
-    const double d = -F / Fp;
-    if (std::fabs(d) <= 2.0 * eps * std::fabs(chi)) {
-      chi += d;
-      break;
-    }
-    double next = chi + d;
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (hi - lo <= 2.0 * eps * std::max(std::fabs(lo), std::fabs(hi))) {
-      chi = next;
-      break;
-    }
-    chi = next;
-  }
-
+  if (!solved) chi = kepler_detail::solve_universal_kepler(r0, sigma0, alpha, target, dt, mu);
   const auto u = kepler_detail::universal_functions(chi, alpha);
-  const double r = r0 * u.u0 + sigma0 * u.u1 + u.u2;
+  if (!solved) r = r0 * u.u0 + sigma0 * u.u1 + u.u2;
   // Lagrange coefficients. sqrt(mu)*g = r0*U1 + sigma0*U2 = sqrt(mu)*dt - U3: the first form avoids
   // cancellation over many elliptic revolutions, the second when coming in from far along a
   // hyperbola; take the one whose terms are smaller.
@@ -292,7 +348,7 @@ inline std::array<double, 6> propagate(const std::array<double, 6>& state, doubl
   const double fdot = -smu * u.u1 / (r * r0);
   const double gdot = 1.0 - u.u2 / r;
   std::array<double, 6> out{};
-  for (int k = 0; k < 3; ++k) {
+  for (std::size_t k = 0; k < 3; ++k) {
     out[k] = f * r0v[k] + g * v0v[k];
     out[k + 3] = fdot * r0v[k] + gdot * v0v[k];
   }

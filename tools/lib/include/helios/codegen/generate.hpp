@@ -1,0 +1,29 @@
+#pragma once
+// helios-gen (builtin): a derivation -> one self-contained C++ shooting program made of the fixed
+// runtime in templates/ and the generated modules (design.md section 1 and 6).
+#include <string>
+#include <vector>
+
+#include "helios/io/json_io.hpp"
+
+namespace helios::codegen {
+
+enum class ModulePolicy {
+  Auto,       // template DYNAMICS/SWITCH when the derivation's H is the template model's, else generated
+  Generated,  // always generate DYNAMICS/SWITCH from the derivation
+};
+
+struct GenOptions {
+  ModulePolicy modules = ModulePolicy::Auto;
+};
+
+struct GeneratedProgram {
+  std::string source;                       // the whole shoot.cpp
+  std::vector<std::string> generated_modules;  // e.g. RESIDUAL, SOLVE
+  std::vector<std::string> template_modules;   // e.g. DYNAMICS, SWITCH
+};
+
+// Throws std::invalid_argument naming the derivation field it cannot turn into code.
+GeneratedProgram generate(const io::json& derivation, const GenOptions& options);
+
+}  // namespace helios::codegen

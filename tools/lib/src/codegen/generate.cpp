@@ -1,0 +1,343 @@
+#include "helios/codegen/generate.hpp"
+
+#include <random>
+
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "helios/io/embedded.hpp"
+#include "helios/symbolic/expr.hpp"
+
+namespace helios::codegen {
+namespace {
+
+using io::json;
+using symbolic::SymbolTable;
+
+struct Context {
+  const json& d;
+  SymbolTable symbols;
+  std::vector<std::string> states, costates, controls, parameters;
+  int throttle_index = -1;
+  explicit Context(const json& derivation) : d(derivation) {
+    for (const auto& s : d.at("states")) {
+      states.push_back(s.at("name"));
+      costates.push_back(s.at("costate"));
+    }
+    for (const auto& c : d.at("controls")) {
+      controls.push_back(c.at("name"));
+      if (c.at("kind") == "throttle") throttle_index = static_cast<int>(controls.size()) - 1;
+    }
+    for (const auto& p : d.at("parameters")) parameters.push_back(p.at("name"));
+    if (throttle_index < 0) throw std::invalid_argument("field /controls: no control of kind throttle");
+    const std::string mult = d.at("multiplier");
+    for (const auto& n : states) symbols.get(n);
+    for (const auto& n : costates) symbols.get(n);
+    for (const auto& n : controls) symbols.get(n);
+    for (const auto& n : parameters) symbols.get(n);
+    symbols.get(mult);
+    symbols.get(d.at("homotopy").at("symbol").get<std::string>());
+    for (const auto& n : states) {
+      symbols.get(n + "_tf");
+      symbols.get(n + "_t0");
+    }
+    for (const auto& n : costates) {
+      symbols.get(n + "_tf");
+      symbols.get(n + "_t0");
+    }
+  }
+
+  // C++ for a stored expression; parameters are read from namespace problem.
+  std::string cpp(const std::string& text, const std::string& where) {
+    GiNaC::ex e = symbols.parse(text, where);
+    GiNaC::exmap qualified;
+    for (const auto& p : parameters) qualified[symbols.get(p)] = GiNaC::symbol("problem::" + p);
+    return symbolic::to_csrc(e.subs(qualified));
+  }
+};
+
+std::string number(double v) {
+  std::ostringstream out;
+  out << std::setprecision(17) << v;
+  std::string s = out.str();
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+std::string quoted_list(const std::vector<std::string>& v) {
+  std::string out;
+  for (const auto& s : v) out += (out.empty() ? "\"" : ", \"") + s + "\"";
+  return out;
+}
+
+int index_of(const std::vector<std::string>& v, const std::string& name) {
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (v[i] == name) return static_cast<int>(i);
+  return -1;
+}
+
+// Physical column name and factor of each state (normalized -> SI-ish named unit).
+std::pair<std::string, double> physical(const json& units, const json& state) {
+  const std::string unit = state.value("unit", "");
+  const std::string name = state.at("name");
+  const double L = units.at("length_km"), T = units.at("time_s"), M = units.at("mass_kg");
+  if (unit == units.at("length").get<std::string>()) return {name + "_km", L};
+  if (unit == units.at("length").get<std::string>() + "/" + units.at("time").get<std::string>()) return {name + "_km_s", L / T};
+  if (unit == "initial mass") return {name + "_kg", M};
+  return {name, 1.0};
+}
+
+std::string problem_block(Context& c) {
+  const json& d = c.d;
+  std::ostringstream o;
+  const auto& units = d.at("units");
+  o << "// ----- PROBLEM (generated) -----------------------------------------------------------------\n"
+    << "namespace problem {\n"
+    << "constexpr int kNumStates = " << c.states.size() << ";\n"
+    << "constexpr int kNumControls = " << c.controls.size() << ";\n"
+    << "constexpr int kThrottleIndex = " << c.throttle_index << ";\n"
+    << "constexpr int kNumVars = " << d.at("shooting").at("variables").size() << ";\n"
+    << "constexpr int kMassIndex = " << index_of(c.states, "m") << ";\n"
+    << "constexpr double kT0 = " << number(d.at("times").at("t0")) << ";\n"
+    << "constexpr double kTf = " << number(d.at("times").at("tf")) << ";\n"
+    << "constexpr double kTimeUnitDays = " << number(units.at("time_s").get<double>() / 86400.0) << ";\n"
+    << "constexpr double kMassUnitKg = " << number(units.at("mass_kg")) << ";\n";
+  double exhaust = 0;
+  for (const auto& p : d.at("parameters"))
+    if (p.at("name") == "c") exhaust = p.at("value").get<double>() * units.at("length_km").get<double>() * 1e3 / units.at("time_s").get<double>();
+  o << "constexpr double kExhaustVelocityMS = " << number(exhaust) << ";\n";
+  std::vector<std::string> columns;
+  std::string factors;
+  for (const auto& s : d.at("states")) {
+    const auto [col, f] = physical(units, s);
+    columns.push_back(col);
+    factors += (factors.empty() ? "" : ", ") + number(f);
+  }
+  std::vector<std::string> vars, eqs;
+  for (const auto& v : d.at("shooting").at("variables")) vars.push_back(v.at("name"));
+  for (const auto& e : d.at("shooting").at("equations")) eqs.push_back(e.at("name"));
+  o << "const char* const kStateNames[] = {" << quoted_list(c.states) << "};\n"
+    << "const char* const kStateColumns[] = {" << quoted_list(columns) << "};\n"
+    << "constexpr double kStateToPhysical[] = {" << factors << "};\n"
+    << "const char* const kControlNames[] = {" << quoted_list(c.controls) << "};\n"
+    << "const char* const kVariableNames[] = {" << quoted_list(vars) << "};\n"
+    << "const char* const kEquationNames[] = {" << quoted_list(eqs) << "};\n";
+  for (const auto& p : d.at("parameters"))
+    o << "constexpr double " << p.at("name").get<std::string>() << " = " << number(p.at("value")) << ";  // "
+      << p.at("meaning").get<std::string>() << " [" << p.value("unit", "") << "]\n";
+  o << "}  // namespace problem\n";
+  return o.str();
+}
+
+// Local names for y[], control[] and the multipliers, so generated expressions read like the math.
+std::string unpack(Context& c, bool with_control) {
+  std::ostringstream o;
+  for (std::size_t i = 0; i < c.states.size(); ++i)
+    o << "  [[maybe_unused]] const double " << c.states[i] << " = y[" << i << "];\n";
+  for (std::size_t i = 0; i < c.costates.size(); ++i)
+    o << "  [[maybe_unused]] const double " << c.costates[i] << " = y[" << c.states.size() + i << "];\n";
+  if (with_control)
+    for (std::size_t i = 0; i < c.controls.size(); ++i)
+      o << "  [[maybe_unused]] const double " << c.controls[i] << " = control[" << i << "];\n";
+  o << "  [[maybe_unused]] const double " << c.d.at("multiplier").get<std::string>() << " = mult.lambda0;\n"
+    << "  [[maybe_unused]] const double " << c.d.at("homotopy").at("symbol").get<std::string>() << " = mult.eps;\n";
+  return o.str();
+}
+
+std::string generated_dynamics(Context& c) {
+  const json& d = c.d;
+  std::ostringstream o;
+  o << "// ----- modules DYNAMICS + SWITCH (generated from the derivation) ---------------------------\n"
+    << "namespace helios_rt {\n\n"
+    << "void dynamics(const double* y, const double* control, const Multipliers& mult, double* dy) {\n"
+    << unpack(c, true);
+  const auto& so = d.at("state_odes");
+  const auto& co = d.at("costate_odes");
+  if (so.size() != c.states.size() || co.size() != c.states.size())
+    throw std::invalid_argument("field /state_odes or /costate_odes: one equation per state is required");
+  for (std::size_t i = 0; i < so.size(); ++i)
+    o << "  dy[" << i << "] = " << c.cpp(so[i].at("rhs"), "state_odes[" + std::to_string(i) + "]") << ";\n";
+  for (std::size_t i = 0; i < co.size(); ++i)
+    o << "  dy[" << so.size() + i << "] = " << c.cpp(co[i].at("rhs"), "costate_odes[" + std::to_string(i) + "]") << ";\n";
+  o << "}\n\n"
+    << "double hamiltonian(const double* y, const double* control, const Multipliers& mult) {\n"
+    << unpack(c, true) << "  return " << c.cpp(d.at("hamiltonian"), "hamiltonian") << ";\n}\n\n"
+    << "void direction_control(const double* y, double* control) {\n";
+  const json& cl = d.at("control_law");
+  if (cl.contains("direction")) {
+    for (std::size_t i = 0; i < c.states.size(); ++i)
+      o << "  [[maybe_unused]] const double " << c.states[i] << " = y[" << i << "];\n";
+    for (std::size_t i = 0; i < c.costates.size(); ++i)
+      o << "  [[maybe_unused]] const double " << c.costates[i] << " = y[" << c.states.size() + i << "];\n";
+    const auto& names = cl.at("direction").at("controls");
+    const auto& law = cl.at("direction").at("law");
+    for (std::size_t j = 0; j < names.size(); ++j)
+      o << "  control[" << index_of(c.controls, names[j]) << "] = " << c.cpp(law[j], "control_law/direction/law") << ";\n";
+  } else {
+    o << "  (void)y;\n  (void)control;\n";
+  }
+  o << "}\n\n"
+    << "void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper) {\n"
+    << unpack(c, false)
+    << "  at_lower = " << c.cpp(cl.at("throttle").at("dH_du_at_lower"), "control_law/throttle/dH_du_at_lower") << ";\n"
+    << "  at_upper = " << c.cpp(cl.at("throttle").at("dH_du_at_upper"), "control_law/throttle/dH_du_at_upper") << ";\n"
+    << "}\n\n}  // namespace helios_rt\n";
+  return o.str();
+}
+
+std::string residual_module(Context& c) {
+  const json& d = c.d;
+  std::ostringstream o;
+  const auto& vars = d.at("shooting").at("variables");
+  const auto& eqs = d.at("shooting").at("equations");
+  if (vars.size() != eqs.size())
+    throw std::invalid_argument("field /shooting: " + std::to_string(vars.size()) + " variables but " + std::to_string(eqs.size()) + " equations");
+  o << "// ----- module RESIDUAL (generated) -------------------------------------------------------\n"
+    << "namespace helios_rt {\n\n"
+    << "void shooting_function(const double* x, double eps, Propagator& prop, double* F) {\n";
+  for (std::size_t i = 0; i < vars.size(); ++i)
+    o << "  [[maybe_unused]] const double " << vars[i].at("name").get<std::string>() << " = x[" << i << "];  // "
+      << vars[i].at("meaning").get<std::string>() << "\n";
+  o << "  double y[kNY];\n";
+  // Initial states from psi(t0) = 0, initial costates from the shooting variables.
+  for (const auto& iv : d.at("initial_values")) {
+    const int k = index_of(c.states, iv.at("state"));
+    if (k < 0) throw std::invalid_argument("field /initial_values: unknown state " + iv.at("state").dump());
+    o << "  y[" << k << "] = " << c.cpp(iv.at("value"), "initial_values") << ";\n";
+  }
+  for (std::size_t i = 0; i < c.costates.size(); ++i) {
+    const std::string v = c.costates[i] + "_t0";
+    bool found = false;
+    for (const auto& var : vars) found = found || var.at("name") == v;
+    if (!found) throw std::invalid_argument("field /shooting/variables: no variable " + v + " for the initial costate");
+    o << "  y[" << c.states.size() + i << "] = " << v << ";\n";
+  }
+  o << "  const Multipliers mult{" << d.at("multiplier").get<std::string>() << ", eps};\n"
+    << "  prop.propagate(problem::kT0, problem::kTf, y, mult);\n";
+  for (std::size_t i = 0; i < c.states.size(); ++i)
+    o << "  [[maybe_unused]] const double " << c.states[i] << "_tf = y[" << i << "];\n";
+  for (std::size_t i = 0; i < c.costates.size(); ++i)
+    o << "  [[maybe_unused]] const double " << c.costates[i] << "_tf = y[" << c.states.size() + i << "];\n";
+  for (std::size_t i = 0; i < eqs.size(); ++i) {
+    const double scale = eqs[i].at("scale");
+    o << "  F[" << i << "] = (" << c.cpp(eqs[i].at("expression"), "shooting/equations/" + std::to_string(i)) << ")";
+    if (scale != 1.0) o << " / " << number(scale);
+    o << ";  // " << eqs[i].at("meaning").get<std::string>() << "\n";
+  }
+  o << "}\n\n}  // namespace helios_rt\n";
+  return o.str();
+}
+
+std::string solve_module(Context& c) {
+  const json& d = c.d;
+  const auto& vars = d.at("shooting").at("variables");
+  const std::string mult = d.at("multiplier");
+  std::ostringstream o;
+  o << "// ----- module SOLVE (generated) ----------------------------------------------------------\n"
+    << "namespace helios_rt {\n\n"
+    << "// Seeded random guess: the multiplier in (0, 1), the other variables in (-1, 1), the whole\n"
+    << "// vector projected on the unit sphere of the normalization condition.\n"
+    << "inline void initial_guess(std::mt19937_64& rng, double* x) {\n"
+    << "  std::uniform_real_distribution<double> positive(0.0, 1.0), symmetric(-1.0, 1.0);\n"
+    << "  double norm2 = 0;\n";
+  for (std::size_t i = 0; i < vars.size(); ++i) {
+    const bool is_mult = vars[i].at("name") == mult;
+    o << "  x[" << i << "] = " << (is_mult ? "positive(rng)" : "symmetric(rng)") << " * " << number(vars[i].at("scale")) << ";\n";
+  }
+  o << "  for (int i = 0; i < problem::kNumVars; ++i) norm2 += x[i] * x[i];\n"
+    << "  for (int i = 0; i < problem::kNumVars; ++i) x[i] /= std::sqrt(norm2);\n"
+    << "}\n\n"
+    << "Result solve_problem(const Settings& settings) {\n"
+    << "  // A minimum needs lambda0 > 0 (lambda0 = 0 would be an abnormal extremal).\n"
+    << "  const auto admissible = [](const double* x) { return x[" << index_of([&] {
+         std::vector<std::string> names;
+         for (const auto& v : vars) names.push_back(v.at("name"));
+         return names;
+       }(), mult) << "] > 0; };\n"
+    << "  return homotopy_solve(settings, initial_guess, admissible);\n"
+    << "}\n\n}  // namespace helios_rt\n";
+  return o.str();
+}
+
+// True if the template's default DYNAMICS/SWITCH implement this derivation: same state, costate
+// and control order, and the same H (compared at random points).
+bool template_matches(Context& c, const json& model) {
+  if (model.at("states").get<std::vector<std::string>>() != c.states) return false;
+  if (model.at("costates").get<std::vector<std::string>>() != c.costates) return false;
+  if (model.at("controls").get<std::vector<std::string>>() != c.controls) return false;
+  for (const auto& p : model.at("parameters"))
+    if (index_of(c.parameters, p) < 0) return false;
+  const std::vector<std::pair<std::string, std::string>> pairs = {
+      {model.at("hamiltonian"), c.d.at("hamiltonian")},
+      {model.at("dH_du_at_lower"), c.d.at("control_law").at("throttle").at("dH_du_at_lower")},
+      {model.at("dH_du_at_upper"), c.d.at("control_law").at("throttle").at("dH_du_at_upper")}};
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> dist(0.3, 1.7);
+  for (int trial = 0; trial < 8; ++trial) {
+    symbolic::Values values;
+    for (const auto& [name, sym] : c.symbols.symtab()) values[name] = dist(rng) * (trial % 2 ? 1 : -1) * (name == "m" ? -1 : 1);
+    for (const auto& [a, b] : pairs) {
+      try {
+        const double va = symbolic::evaluate(c.symbols.parse(a, "template"), c.symbols, values);
+        const double vb = symbolic::evaluate(c.symbols.parse(b, "derivation"), c.symbols, values);
+        if (std::fabs(va - vb) > 1e-10 * (1 + std::max(std::fabs(va), std::fabs(vb)))) return false;
+      } catch (const std::exception&) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// An embedded header as it goes into the single-file program (no include guard pragma there).
+std::string pasted(const std::string& path) {
+  std::istringstream in(embedded::file(path));
+  std::string line, out;
+  while (std::getline(in, line))
+    if (line.rfind("#pragma once", 0) != 0) out += line + "\n";
+  return out;
+}
+
+}  // namespace
+
+GeneratedProgram generate(const json& derivation, const GenOptions& options) {
+  Context c(derivation);
+  GeneratedProgram g;
+  std::string dynamics;
+  const json model = json::parse(embedded::file("templates/modules/dynamics_cartesian_low_thrust.json"));
+  if (options.modules == ModulePolicy::Auto && template_matches(c, model)) {
+    dynamics = embedded::file("templates/modules/dynamics_cartesian_low_thrust.cpp");
+    g.template_modules = {"DYNAMICS", "SWITCH"};
+  } else {
+    dynamics = generated_dynamics(c);
+    g.generated_modules = {"DYNAMICS", "SWITCH"};
+  }
+  g.generated_modules.push_back("RESIDUAL");
+  g.generated_modules.push_back("SOLVE");
+  std::ostringstream src;
+  src << "// Shooting program for problem " << derivation.at("problem").at("id").get<std::string>()
+      << ", generated by helios-gen " << HELIOS_VERSION << " (builtin) from its derivation. Do not edit:\n"
+      << "// regenerate it. Fixed runtime from templates/runtime, modules below marked generated or template.\n"
+      << "#include <cminpack-1/cminpack.h>\n\n"
+      << "#include <algorithm>\n#include <array>\n#include <chrono>\n#include <cmath>\n#include <cstdio>\n"
+      << "#include <fstream>\n#include <nlohmann/json.hpp>\n#include <random>\n#include <sstream>\n"
+      << "#include <stdexcept>\n#include <string>\n#include <vector>\n\n"
+      << "#define HELIOS_ASTRO_EMBEDDED\n"
+      << pasted("tools/lib/include/helios/astro/constants.hpp") << "\n"
+      << pasted("tools/lib/include/helios/astro/kepler.hpp") << "\n"
+      << pasted("tools/lib/include/helios/astro/ephemeris.hpp") << "\n"
+      << pasted("templates/runtime/dop853.hpp") << "\n"
+      << problem_block(c) << "\n"
+      << embedded::file("templates/runtime/runtime.hpp") << "\n"
+      << dynamics << "\n"
+      << residual_module(c) << "\n"
+      << solve_module(c) << "\n"
+      << embedded::file("templates/runtime/main.hpp");
+  g.source = src.str();
+  return g;
+}
+
+}  // namespace helios::codegen
