@@ -42,6 +42,7 @@ inline nlohmann::json trajectory(const Settings& s, const Result& r, const std::
   std::vector<Switch> switches;
   prop.samples = &samples;
   prop.switches = &switches;
+  prop.max_step = (problem::kTf - problem::kT0) / 500;
   std::vector<double> F(problem::kNumVars);
   shooting_function(r.x.data(), r.eps, prop, F.data());
   std::ostringstream csv;
@@ -86,6 +87,7 @@ inline int run(int argc, char** argv) {
   wall_seconds();
   Result r = solve_problem(s);
   nlohmann::json j;
+  j["problem"] = problem::kProblemId;
   j["status"] = r.status;
   j["detail"] = r.detail;
   j["info"] = r.info;

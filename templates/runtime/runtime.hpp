@@ -102,6 +102,7 @@ class Propagator {
 
   std::vector<Sample>* samples = nullptr;    // when set, every accepted step is recorded
   std::vector<Switch>* switches = nullptr;
+  double max_step = INFINITY;                 // limits steps when recording, for smooth plots
 
   void propagate(double t0, double t1, double* y, const Multipliers& mult) {
     Mode mode = mode_at(y, mult);
@@ -118,6 +119,7 @@ class Propagator {
     int steps = 0;
     while (t < t1) {
       if (++steps > settings_.max_steps) throw numerical_error("integrator exceeded max_steps");
+      h = std::min(h, max_step);
       const bool last = h >= t1 - t;
       if (last) h = t1 - t;
       rhs(t, y, f0.data());

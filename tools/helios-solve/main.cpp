@@ -1,1 +1,52 @@
-int main() { return 1; }
+// helios-solve: shoot.cpp -> solution.json (+ trajectory.csv and plots).
+#include <stdexcept>
+
+#include "helios/io/cli.hpp"
+#include "helios/io/error.hpp"
+#include "helios/io/schema.hpp"
+#include "helios/solve/solve.hpp"
+
+namespace {
+double positive_number(const helios::cli::Args& args, const std::string& name) {
+  try {
+    const double v = std::stod(args.get(name));
+    if (v > 0) return v;
+  } catch (const std::exception&) {
+  }
+  throw helios::usage_error("--" + name + " " + args.get(name) + " is not a positive number");
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  const helios::cli::ToolInfo info{
+      "helios-solve",
+      "compile and run a shooting program, and collect its solution, trajectory and plots",
+      "[options] SHOOT.cpp|-",
+      {{"settings", "", "FILE", "solver settings JSON (seed, tolerances, homotopy, limits)", ""},
+       {"trajectory", "", "FILE", "trajectory CSV to write (t, r, v, m, lambda, u, H, S)", "trajectory.csv"},
+       {"plots", "", "PREFIX", "write PREFIXtrajectory.png and PREFIXthrottle_mass.png; empty: no plots", ""},
+       {"cache-dir", "", "DIR", "compiled programs by content hash", "runs/.cache"},
+       {"time-limit", "", "SECONDS", "wall-clock limit of the run", "600"},
+       {"memory-limit", "", "MB", "address-space limit of the run", "4096"},
+       {"backend", "", "NAME", "backend label recorded in the solution (builtin or llm)", "builtin"}},
+      {"SHOOT"},
+      "Compiles with g++ -O2 (skipped when the cache holds the same source and compiler), runs the\n"
+      "program in a child with CPU, memory, file-size and wall-clock limits, and writes solution.json.\n"
+      "A failed compile or run is recorded in the artifact's status; the tool still exits 0.",
+      "helios-solve runs/builtin/S01/shoot.cpp --settings scenarios/S01/settings.json "
+      "--trajectory runs/builtin/S01/trajectory.csv --plots runs/builtin/S01/ -o runs/builtin/S01/solution.json"};
+  return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
+    helios::solve::SolveOptions o;
+    o.source_path = args.positionals[0];
+    o.settings_path = args.get("settings");
+    o.trajectory_path = args.get("trajectory");
+    o.plot_prefix = args.get("plots");
+    o.cache_dir = args.get("cache-dir");
+    o.backend = args.get("backend");
+    o.time_limit_s = positive_number(args, "time-limit");
+    o.memory_limit_mb = positive_number(args, "memory-limit");
+    if (o.backend != "builtin" && o.backend != "llm") throw helios::usage_error("--backend " + o.backend + " is not builtin or llm");
+    helios::io::write_artifact("solution", helios::solve::solve(o), args.output);
+    return 0;
+  });
+}

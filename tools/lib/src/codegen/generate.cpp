@@ -96,6 +96,7 @@ std::string problem_block(Context& c) {
   const auto& units = d.at("units");
   o << "// ----- PROBLEM (generated) -----------------------------------------------------------------\n"
     << "namespace problem {\n"
+    << "const char* const kProblemId = \"" << d.at("problem").at("id").get<std::string>() << "\";\n"
     << "constexpr int kNumStates = " << c.states.size() << ";\n"
     << "constexpr int kNumControls = " << c.controls.size() << ";\n"
     << "constexpr int kThrottleIndex = " << c.throttle_index << ";\n"

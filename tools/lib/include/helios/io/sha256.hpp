@@ -1,0 +1,7 @@
+#pragma once
+// SHA-256 (FIPS 180-4) of a byte string, as 64 lowercase hex digits: content hashes for caches.
+#include <string>
+
+namespace helios::io {
+std::string sha256_hex(const std::string& data);
+}

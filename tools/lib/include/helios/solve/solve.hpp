@@ -1,0 +1,49 @@
+#pragma once
+// helios-solve: compile a shooting program (cached by content hash), run it under resource
+// limits, and collect solution.json, trajectory.csv and the plots.
+#include <string>
+
+#include "helios/io/json_io.hpp"
+
+namespace helios::solve {
+
+struct SolveOptions {
+  std::string source_path;       // shoot.cpp
+  std::string settings_path;     // solver settings JSON (seed, tolerances, limits); may be empty
+  std::string cache_dir;         // compiled programs, by content hash
+  std::string trajectory_path;   // trajectory.csv to write
+  std::string plot_prefix;       // writes <prefix>trajectory.png and <prefix>throttle_mass.png; empty: no plots
+  std::string backend = "builtin";
+  std::string compiler = "g++";
+  double time_limit_s = 600;     // wall clock for the run (the program also stops itself)
+  double memory_limit_mb = 4096;
+};
+
+struct CompileResult {
+  bool ok = false, cached = false;
+  std::string binary, sha256, command, diagnostics;
+  int warnings = 0;
+  double seconds = 0;
+};
+
+// Compiles `source` with `compiler` -O2 into cache_dir/<sha256>/shoot unless already there.
+CompileResult compile_cached(const std::string& source, const std::string& compiler, const std::string& cache_dir);
+
+struct RunResult {
+  int exit_code = -1;
+  int signal = 0;
+  bool timed_out = false;
+  std::string stderr_text;
+  double seconds = 0;
+};
+
+// Runs argv in a child with CPU, address-space, file-size and wall-clock limits.
+RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s, double memory_limit_mb);
+
+// Draws the 3-D trajectory coloured by throttle and throttle + mass versus time with gnuplot.
+void plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title);
+
+// The whole stage; returns the solution artifact (status "compile_failed" etc. are data, not throws).
+io::json solve(const SolveOptions& options);
+
+}  // namespace helios::solve

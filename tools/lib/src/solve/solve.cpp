@@ -1,0 +1,294 @@
+#include "helios/solve/solve.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <thread>
+
+#include "helios/io/error.hpp"
+#include "helios/io/schema.hpp"
+#include "helios/io/sha256.hpp"
+
+namespace helios::solve {
+namespace {
+
+namespace fs = std::filesystem;
+using io::json;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Output of a shell-free command (for `g++ --version`).
+std::string capture(const std::vector<std::string>& argv) {
+  int pipefd[2];
+  if (::pipe(pipefd) != 0) return "";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::dup2(pipefd[1], 1);
+    ::dup2(pipefd[1], 2);
+    ::close(pipefd[0]);
+    std::vector<char*> args;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    ::execvp(args[0], args.data());
+    _exit(127);
+  }
+  ::close(pipefd[1]);
+  std::string out;
+  char buf[4096];
+  ssize_t n;
+  while ((n = ::read(pipefd[0], buf, sizeof buf)) > 0) out.append(buf, static_cast<std::size_t>(n));
+  ::close(pipefd[0]);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return out;
+}
+
+int count_warnings(const std::string& diagnostics) {
+  int n = 0;
+  for (std::size_t pos = diagnostics.find("warning:"); pos != std::string::npos; pos = diagnostics.find("warning:", pos + 1)) ++n;
+  return n;
+}
+
+std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
+
+}  // namespace
+
+RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s, double memory_limit_mb) {
+  RunResult r;
+  const auto start = std::chrono::steady_clock::now();
+  char err_template[] = "/tmp/helios-stderr-XXXXXX";
+  const int err_fd = ::mkstemp(err_template);
+  if (err_fd < 0) throw std::runtime_error(std::string("cannot create a temp file: ") + std::strerror(errno));
+  ::unlink(err_template);
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
+  if (pid == 0) {
+    // The child dies with helios-solve, so an interrupted run leaves no orphan writing files.
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) _exit(126);
+    ::dup2(err_fd, 2);
+    const rlim_t cpu = static_cast<rlim_t>(std::ceil(wall_limit_s)) + 5;
+    const rlim_t mem = static_cast<rlim_t>(memory_limit_mb * 1024 * 1024);
+    const rlim_t fsize = 512ull * 1024 * 1024;
+    const struct rlimit cpu_limit = {cpu, cpu}, mem_limit = {mem, mem}, file_limit = {fsize, fsize};
+    ::setrlimit(RLIMIT_CPU, &cpu_limit);
+    ::setrlimit(RLIMIT_AS, &mem_limit);
+    ::setrlimit(RLIMIT_FSIZE, &file_limit);
+    std::vector<char*> args;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    ::execv(args[0], args.data());
+    _exit(127);
+  }
+  int status = 0;
+  while (true) {
+    const pid_t done = ::waitpid(pid, &status, WNOHANG);
+    if (done == pid) break;
+    if (seconds_since(start) > wall_limit_s) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      r.timed_out = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  r.seconds = seconds_since(start);
+  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
+  ::lseek(err_fd, 0, SEEK_SET);
+  char buf[4096];
+  ssize_t n;
+  while ((n = ::read(err_fd, buf, sizeof buf)) > 0 && r.stderr_text.size() < 65536) r.stderr_text.append(buf, static_cast<std::size_t>(n));
+  ::close(err_fd);
+  return r;
+}
+
+CompileResult compile_cached(const std::string& source, const std::string& compiler, const std::string& cache_dir) {
+  CompileResult c;
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<std::string> flags = {"-std=c++17", "-O2", "-Wall", "-Wextra"};
+  std::string flag_text;
+  for (const auto& f : flags) flag_text += " " + f;
+  c.command = compiler + flag_text + " shoot.cpp -o shoot -lcminpack";
+  // The key covers the source, the command and the compiler's identity.
+  c.sha256 = io::sha256_hex(source + "\n" + c.command + "\n" + first_line(capture({compiler, "--version"})));
+  const fs::path dir = fs::path(cache_dir) / c.sha256;
+  c.binary = (dir / "shoot").string();
+  if (fs::exists(c.binary)) {
+    c.ok = c.cached = true;
+    std::ifstream log((dir / "compile.log").string());
+    c.diagnostics.assign(std::istreambuf_iterator<char>(log), std::istreambuf_iterator<char>());
+    c.warnings = count_warnings(c.diagnostics);
+    c.seconds = seconds_since(start);
+    return c;
+  }
+  fs::create_directories(dir);
+  const std::string src = (dir / "shoot.cpp").string();
+  io::write_text_atomic(src, source);
+  const std::string tmp_bin = (dir / (".shoot.tmp." + std::to_string(::getpid()))).string();
+  io::register_temp(tmp_bin);
+  std::vector<std::string> argv = {compiler};
+  argv.insert(argv.end(), flags.begin(), flags.end());
+  argv.insert(argv.end(), {src, "-o", tmp_bin, "-lcminpack"});
+  // Compilers live on PATH: resolve through a shell-free execvp in capture().
+  c.diagnostics = capture(argv);
+  c.warnings = count_warnings(c.diagnostics);
+  c.ok = fs::exists(tmp_bin);
+  if (c.ok) {
+    io::write_text_atomic((dir / "compile.log").string(), c.diagnostics);
+    fs::rename(tmp_bin, c.binary);
+  }
+  io::unregister_temp(tmp_bin);
+  c.seconds = seconds_since(start);
+  return c;
+}
+
+void plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title) {
+  const std::string traj_png = prefix + "trajectory.png", mass_png = prefix + "throttle_mass.png";
+  const std::string tmp1 = prefix + ".trajectory.png.tmp", tmp2 = prefix + ".throttle_mass.png.tmp";
+  io::register_temp(tmp1);
+  io::register_temp(tmp2);
+  const std::string script =
+      "set datafile separator ','\n"
+      "set terminal pngcairo size 1000,800 noenhanced\n"
+      "set output '" + tmp1 + "'\n"
+      "set title '" + title + ": trajectory (colour = throttle)'\n"
+      "set xlabel 'x [AU]'\nset ylabel 'y [AU]'\nset zlabel 'z [AU]'\n"
+      "set view equal xy\nset ticslevel 0\nset grid\n"
+      "set palette defined (0 '#2b6cb0', 1 '#e53e3e')\nset cbrange [0:1]\nset cblabel 'throttle u'\n"
+      "au = 149597870.691\n"
+      "splot '" + csv_path + "' every ::1 using ($2/au):($3/au):($4/au):(column('u')) with lines lw 2 palette title 'spacecraft', "
+      "'< echo 0,0,0' using 1:2:3 with points pt 7 ps 2 lc rgb '#d69e2e' title 'central body'\n"
+      "set output '" + tmp2 + "'\n"
+      "set title '" + title + ": throttle and mass'\n"
+      "set xlabel 'time [days]'\nset ylabel 'throttle u'\nset y2label 'mass [kg]'\n"
+      "set yrange [-0.05:1.05]\nset y2tics\nset ytics nomirror\nunset zlabel\n"
+      "plot '" + csv_path + "' every ::1 using 1:(column('u')) with lines lw 2 lc rgb '#e53e3e' title 'throttle', "
+      "'' every ::1 using 1:(column('m_kg')) axes x1y2 with lines lw 2 lc rgb '#2b6cb0' title 'mass'\n";
+  char script_path[] = "/tmp/helios-plot-XXXXXX";
+  const int fd = ::mkstemp(script_path);
+  if (fd < 0) throw std::runtime_error("cannot create a gnuplot script file");
+  if (::write(fd, script.data(), script.size()) != static_cast<ssize_t>(script.size())) {
+    ::close(fd);
+    throw std::runtime_error("cannot write the gnuplot script");
+  }
+  ::close(fd);
+  const std::string out = capture({"gnuplot", script_path});
+  ::unlink(script_path);
+  if (!fs::exists(tmp1) || !fs::exists(tmp2)) {
+    ::unlink(tmp1.c_str());
+    ::unlink(tmp2.c_str());
+    io::unregister_temp(tmp1);
+    io::unregister_temp(tmp2);
+    throw std::runtime_error("gnuplot did not draw the plots (is gnuplot installed?): " + first_line(out));
+  }
+  fs::rename(tmp1, traj_png);
+  fs::rename(tmp2, mass_png);
+  io::unregister_temp(tmp1);
+  io::unregister_temp(tmp2);
+}
+
+json solve(const SolveOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::string source = io::read_text(o.source_path);
+  json settings = json::object();
+  if (!o.settings_path.empty()) settings = io::read_json(o.settings_path);
+  if (!settings.is_object()) throw input_error(o.settings_path + ": settings must be a JSON object");
+  // The program stops itself a little before the wall-clock kill.
+  const double own_limit = std::max(1.0, o.time_limit_s - 5);
+  settings["time_limit_s"] = std::min(settings.value("time_limit_s", own_limit), own_limit);
+
+  json doc = io::artifact_header("solution", "helios-solve", o.backend);
+  doc["problem"] = {{"id", "unknown"}};
+  doc["status"] = "compile_failed";
+  const CompileResult c = compile_cached(source, o.compiler, o.cache_dir);
+  doc["compile"] = {{"ok", c.ok}, {"cached", c.cached}, {"source_sha256", c.sha256}, {"command", c.command},
+                    {"warnings", c.warnings}, {"diagnostics", c.diagnostics.substr(0, 8000)}};
+  doc["seed"] = settings.value("seed", 1);
+  doc["iterations"] = 0;
+  doc["function_evaluations"] = 0;
+  doc["settings"] = settings;
+  doc["timings"] = {{"compile_s", c.seconds}, {"run_s", 0.0}, {"total_s", seconds_since(start)}};
+  if (!c.ok) return doc;
+
+  const fs::path out_dir = fs::path(o.trajectory_path).parent_path();
+  const std::string tag = std::to_string(::getpid());
+  const std::string settings_tmp = (out_dir / (".settings." + tag + ".json")).string();
+  const std::string result_tmp = (out_dir / (".result." + tag + ".json")).string();
+  const std::string traj_tmp = (out_dir / (".trajectory." + tag + ".csv")).string();
+  for (const auto& p : {settings_tmp, result_tmp, traj_tmp, result_tmp + ".part", traj_tmp + ".part"}) io::register_temp(p);
+  const auto cleanup = [&] {
+    for (const auto& p : {settings_tmp, result_tmp, traj_tmp, result_tmp + ".part", traj_tmp + ".part"}) {
+      ::unlink(p.c_str());
+      io::unregister_temp(p);
+    }
+  };
+  io::write_json_atomic(settings_tmp, settings);
+  const RunResult run = run_limited({c.binary, "--settings", settings_tmp, "--result", result_tmp, "--trajectory", traj_tmp},
+                                    o.time_limit_s, o.memory_limit_mb);
+  doc["timings"]["run_s"] = run.seconds;
+  if (run.timed_out || run.exit_code != 0 || !fs::exists(result_tmp)) {
+    doc["status"] = run.timed_out ? "timeout" : "crashed";
+    doc["status_detail"] = run.timed_out ? "killed after " + std::to_string(o.time_limit_s) + " s wall clock"
+                                         : "exit code " + std::to_string(run.exit_code) + ", signal " + std::to_string(run.signal) +
+                                               ": " + first_line(run.stderr_text);
+    cleanup();
+    doc["timings"]["total_s"] = seconds_since(start);
+    return doc;
+  }
+  const json r = io::read_json(result_tmp);
+  doc["problem"]["id"] = r.value("problem", "unknown");
+  doc["status"] = r.at("status");
+  if (!r.value("detail", "").empty()) doc["status_detail"] = r.at("detail");
+  doc["solver_info"] = {{"code", r.at("info")}, {"meaning", r.at("info_meaning")}};
+  doc["seed"] = r.at("seed");
+  doc["restarts"] = std::max(0, r.at("attempts").get<int>() - 1);
+  doc["iterations"] = r.at("iterations");
+  doc["function_evaluations"] = r.at("function_evaluations");
+  json homotopy = json::array();
+  for (const auto& h : r.at("homotopy")) {
+    json step = {{"eps", h.at("eps")}, {"converged", h.at("converged")}, {"evaluations", h.at("evaluations")}};
+    if (h.at("max_residual").get<double>() >= 0) step["max_residual"] = h.at("max_residual");
+    homotopy.push_back(step);
+  }
+  doc["homotopy"] = homotopy;
+  if (r.at("status") == "converged") {
+    const double mf = r.at("final_mass_kg"), m0 = r.at("initial_mass_kg");
+    doc["final_mass_kg"] = mf;
+    doc["propellant_kg"] = m0 - mf;
+    doc["delta_v_m_s"] = r.at("delta_v_m_s");
+    doc["epsilon"] = r.at("epsilon");
+    doc["max_residual"] = r.at("max_residual");
+    doc["residuals"] = r.at("residuals");
+    doc["x"] = r.at("x");
+    doc["switches"] = r.at("trajectory").at("switches");
+    doc["hamiltonian_drift"] = r.at("trajectory").at("hamiltonian_drift");
+    fs::rename(traj_tmp, o.trajectory_path);
+    doc["files"] = {{"trajectory", fs::path(o.trajectory_path).filename().string()}};
+    if (!o.plot_prefix.empty()) {
+      plot_trajectory(o.trajectory_path, o.plot_prefix, doc["problem"]["id"].get<std::string>());
+      doc["files"]["trajectory_plot"] = fs::path(o.plot_prefix + "trajectory.png").filename().string();
+      doc["files"]["throttle_mass_plot"] = fs::path(o.plot_prefix + "throttle_mass.png").filename().string();
+    }
+  }
+  cleanup();
+  doc["timings"]["total_s"] = seconds_since(start);
+  return doc;
+}
+
+}  // namespace helios::solve
