@@ -1,0 +1,525 @@
+#include "helios/score/score.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "helios/io/error.hpp"
+#include "helios/io/schema.hpp"
+
+namespace helios::score {
+namespace {
+
+using io::json;
+
+// ---------------------------------------------------------------------------------------------
+// Reference shape (schemas/reference.schema.json, enforced in code).
+
+struct RefChecker {
+  const std::string& source;
+
+  [[noreturn]] void fail(const std::string& where, const std::string& why) const {
+    throw input_error(source + ": field " + where + " " + why + " (see schemas/reference.schema.json)");
+  }
+
+  void only_keys(const json& obj, const std::string& where, const std::set<std::string>& allowed) const {
+    for (auto it = obj.begin(); it != obj.end(); ++it)
+      if (!allowed.count(it.key())) fail(where + "/" + it.key(), "is not a known field");
+  }
+
+  const json& need(const json& obj, const std::string& key, const std::string& where) const {
+    if (!obj.contains(key)) fail(where + "/" + key, "is missing");
+    return obj.at(key);
+  }
+
+  void positive_number(const json& obj, const std::string& key, const std::string& where) const {
+    const json& v = need(obj, key, where);
+    if (!v.is_number() || !(v.get<double>() > 0)) fail(where + "/" + key, "must be a number > 0, got " + v.dump());
+  }
+
+  void pointer(const json& v, const std::string& where) const {
+    if (!v.is_string()) fail(where, "must be a JSON pointer string, got " + v.dump());
+    try {
+      json::json_pointer p(v.get<std::string>());
+      (void)p;
+    } catch (const json::exception&) {
+      fail(where, "is not a valid JSON pointer: " + v.dump());
+    }
+  }
+
+  void fact(const json& f, const std::string& where, std::set<std::string>& ids) const {
+    if (!f.is_object()) fail(where, "must be an object");
+    only_keys(f, where, {"id", "in", "pointer", "value", "rel_tol", "abs_tol"});
+    const json& id = need(f, "id", where);
+    static const std::regex id_re("^[a-z][a-z0-9_]*$");
+    if (!id.is_string() || !std::regex_match(id.get<std::string>(), id_re))
+      fail(where + "/id", "must match ^[a-z][a-z0-9_]*$, got " + id.dump());
+    if (!ids.insert(id.get<std::string>()).second) fail(where + "/id", "repeats the id " + id.dump());
+    pointer(need(f, "pointer", where), where + "/pointer");
+    const json& value = need(f, "value", where);
+    const bool numbers = value.is_array() && !value.empty() &&
+                         std::all_of(value.begin(), value.end(), [](const json& x) { return x.is_number(); });
+    if (!(value.is_string() || value.is_boolean() || value.is_number() || numbers))
+      fail(where + "/value", "must be a string, boolean, number or non-empty array of numbers, got " + value.dump());
+    for (const char* tol : {"rel_tol", "abs_tol"})
+      if (f.contains(tol) && (!f[tol].is_number() || f[tol].get<double>() < 0))
+        fail(where + "/" + tol, "must be a number >= 0, got " + f[tol].dump());
+    if (f.contains("in")) {
+      const json& in = f["in"];
+      if (!in.is_object()) fail(where + "/in", "must be an object {array, where}");
+      only_keys(in, where + "/in", {"array", "where"});
+      pointer(need(in, "array", where + "/in"), where + "/in/array");
+      const json& w = need(in, "where", where + "/in");
+      if (!w.is_object() || w.empty()) fail(where + "/in/where", "must be a non-empty object of key/value pairs");
+      for (auto it = w.begin(); it != w.end(); ++it)
+        if (!it.value().is_primitive() || it.value().is_null())
+          fail(where + "/in/where/" + it.key(), "must be a string, number or boolean");
+    }
+  }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Helpers.
+
+std::string fmt(double v, const char* format) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+std::string num(double v) { return fmt(v, "%.10g"); }
+
+json detail(const std::string& id, const std::string& verdict, double points, double max, const std::string& note) {
+  return json{{"id", id}, {"verdict", verdict}, {"points", points}, {"max", max}, {"note", note}};
+}
+
+json dimension(double points, double max, json details) {
+  return json{{"points", std::clamp(points, 0.0, max)}, {"max", max}, {"details", std::move(details)}};
+}
+
+const json* field(const std::optional<json>& doc, const char* pointer) {
+  if (!doc || !doc->is_object()) return nullptr;
+  const json::json_pointer p(pointer);
+  return doc->contains(p) ? &doc->at(p) : nullptr;
+}
+
+std::optional<double> number_at(const std::optional<json>& doc, const char* pointer) {
+  const json* v = field(doc, pointer);
+  if (v && v->is_number()) return v->get<double>();
+  return std::nullopt;
+}
+
+std::string string_at(const std::optional<json>& doc, const char* pointer) {
+  const json* v = field(doc, pointer);
+  return v && v->is_string() ? v->get<std::string>() : std::string();
+}
+
+// Compares a spec value with an expected one; empty string = match, else why not.
+// NOTE: numbers (and arrays of numbers, component-wise) match if
+// |found - expected| <= abs_tol + rel_tol * |expected|.
+std::string compare(const json& found, const json& expected, double rel_tol, double abs_tol) {
+  const auto close = [&](double f, double e) { return std::fabs(f - e) <= abs_tol + rel_tol * std::fabs(e); };
+  const std::string tol = " (rel_tol " + num(rel_tol) + (abs_tol > 0 ? ", abs_tol " + num(abs_tol) : std::string()) + ")";
+  if (expected.is_number()) {
+    if (!found.is_number()) return "expected a number " + num(expected.get<double>()) + ", found " + found.dump();
+    if (!close(found.get<double>(), expected.get<double>()))
+      return "found " + num(found.get<double>()) + ", expected " + num(expected.get<double>()) + tol;
+    return "";
+  }
+  if (expected.is_array()) {
+    if (!found.is_array() || found.size() != expected.size())
+      return "expected an array of " + std::to_string(expected.size()) + " numbers, found " + found.dump();
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      if (!found[i].is_number()) return "component " + std::to_string(i) + " is " + found[i].dump() + ", not a number";
+      if (!close(found[i].get<double>(), expected[i].get<double>()))
+        return "component " + std::to_string(i) + ": found " + num(found[i].get<double>()) + ", expected " +
+               num(expected[i].get<double>()) + tol;
+    }
+    return "";
+  }
+  if (found != expected) return "found " + found.dump() + ", expected " + expected.dump();
+  return "";
+}
+
+// d1: one fact of expected_parse looked up in the spec.
+json score_fact(const json& fact, const std::optional<json>& spec, double share) {
+  const std::string id = fact["id"].get<std::string>();
+  const std::string rel = fact["pointer"].get<std::string>();
+  const json& expected = fact["value"];
+  const double rel_tol = fact.value("rel_tol", 0.0);
+  const double abs_tol = fact.value("abs_tol", 0.0);
+  json d;
+  const auto finish = [&](bool pass, const std::string& pointer, const json* found, const std::string& note) {
+    d = detail(id, pass ? "pass" : (spec ? "fail" : "missing"), pass ? share : 0.0, share, note);
+    d["pointer"] = pointer;
+    d["expected"] = expected;
+    d["found"] = found ? *found : json(nullptr);
+    return d;
+  };
+
+  if (!fact.contains("in")) {
+    if (!spec) return finish(false, rel, nullptr, "no spec.json");
+    const json::json_pointer p(rel);
+    if (!spec->contains(p)) return finish(false, rel, nullptr, "spec has no " + rel);
+    const json& found = spec->at(p);
+    const std::string why = compare(found, expected, rel_tol, abs_tol);
+    return finish(why.empty(), rel, &found, why.empty() ? "matches" : why);
+  }
+
+  const std::string array = fact["in"]["array"].get<std::string>();
+  const json& where = fact["in"]["where"];
+  std::string filter;
+  for (auto it = where.begin(); it != where.end(); ++it)
+    filter += (filter.empty() ? "" : " and ") + it.key() + " = " + it.value().dump();
+  const std::string looked_for = array + "/<" + filter + ">" + rel;
+  if (!spec) return finish(false, looked_for, nullptr, "no spec.json");
+  const json::json_pointer ap(array);
+  if (!spec->contains(ap) || !spec->at(ap).is_array()) return finish(false, looked_for, nullptr, "spec has no array " + array);
+  const json& items = spec->at(ap);
+  // Any element with the `where` values may hold the fact, so a reordered array still scores.
+  std::optional<std::pair<std::string, std::string>> first_miss;  // pointer, why
+  const json* first_found = nullptr;
+  std::size_t candidates = 0;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const json& item = items[i];
+    if (!item.is_object()) continue;
+    bool selected = true;
+    for (auto it = where.begin(); it != where.end(); ++it)
+      selected = selected && item.contains(it.key()) && item[it.key()] == it.value();
+    if (!selected) continue;
+    ++candidates;
+    const std::string pointer = array + "/" + std::to_string(i) + rel;
+    const json::json_pointer p(rel);
+    if (!item.contains(p)) {
+      if (!first_miss) first_miss = {{pointer, "has no " + rel}};
+      continue;
+    }
+    const json& found = item.at(p);
+    const std::string why = compare(found, expected, rel_tol, abs_tol);
+    if (why.empty()) return finish(true, pointer, &found, "matches");
+    if (!first_miss) {
+      first_miss = {{pointer, why}};
+      first_found = &found;
+    }
+  }
+  if (candidates == 0) return finish(false, looked_for, nullptr, "no element of " + array + " has " + filter);
+  std::string note = first_miss->second;
+  if (candidates > 1) note = "none of the " + std::to_string(candidates) + " elements with " + filter + " matches; first: " + note;
+  return finish(false, first_miss->first, first_found, note);
+}
+
+json score_parse(const json& reference, const std::optional<json>& spec) {
+  const json& facts = reference["expected_parse"];
+  const double share = kParseMax / static_cast<double>(facts.size());
+  json details = json::array();
+  std::size_t passed = 0;
+  for (const json& fact : facts) {
+    details.push_back(score_fact(fact, spec, share));
+    if (details.back()["verdict"] == "pass") ++passed;
+  }
+  // Points from the count, not a sum of shares, so a perfect parse is exactly kParseMax.
+  return dimension(kParseMax * static_cast<double>(passed) / static_cast<double>(facts.size()), kParseMax, details);
+}
+
+json score_derive(const json& reference, const std::optional<json>& derivation, const std::optional<json>& verify,
+                  std::optional<long>& shooting_variables) {
+  json details = json::array();
+  double points = 0;
+
+  // Verification: kDeriveVerifyMax scaled by the fraction of checks that passed.
+  if (!verify) {
+    details.push_back(detail("verify", "missing", 0, kDeriveVerifyMax, "no verify.json"));
+  } else {
+    const std::string verdict = string_at(verify, "/verdict");
+    std::size_t passed = 0, total = 0;
+    const json* checks = field(verify, "/checks");
+    if (checks && checks->is_array() && !checks->empty()) {
+      total = checks->size();
+      for (const json& c : *checks)
+        if (c.is_object() && c.value("verdict", "") == "pass") ++passed;
+    } else if (number_at(verify, "/summary/total").value_or(0) > 0) {
+      total = static_cast<std::size_t>(*number_at(verify, "/summary/total"));
+      passed = static_cast<std::size_t>(std::clamp(number_at(verify, "/summary/passed").value_or(0), 0.0, double(total)));
+    } else {
+      total = 1;
+      passed = verdict == "pass" ? 1 : 0;
+    }
+    const double pts = kDeriveVerifyMax * static_cast<double>(passed) / static_cast<double>(total);
+    const std::string v = passed == total ? "pass" : (passed == 0 ? "fail" : "partial");
+    details.push_back(detail("verify", v, pts, kDeriveVerifyMax,
+                             "verdict " + (verdict.empty() ? std::string("missing") : verdict) + ", " + std::to_string(passed) +
+                                 " of " + std::to_string(total) + " checks passed"));
+    points += pts;
+  }
+
+  // Shooting-variable count.
+  const long expected = reference["expected_shooting_variables"].get<long>();
+  if (!derivation) {
+    details.push_back(detail("shooting_variables", "missing", 0, kDeriveVariablesMax, "no derivation.json"));
+  } else {
+    const json* vars = field(derivation, "/shooting/variables");
+    json d;
+    if (!vars || !vars->is_array()) {
+      d = detail("shooting_variables", "fail", 0, kDeriveVariablesMax, "derivation has no /shooting/variables array");
+      d["found"] = nullptr;
+    } else {
+      shooting_variables = static_cast<long>(vars->size());
+      const bool ok = *shooting_variables == expected;
+      d = detail("shooting_variables", ok ? "pass" : "fail", ok ? kDeriveVariablesMax : 0, kDeriveVariablesMax,
+                 std::to_string(*shooting_variables) + " shooting variables, expected " + std::to_string(expected));
+      d["found"] = *shooting_variables;
+      points += ok ? kDeriveVariablesMax : 0;
+    }
+    d["expected"] = expected;
+    details.push_back(d);
+  }
+  return dimension(points, kDeriveMax, details);
+}
+
+std::string status_note(const std::optional<json>& solution) {
+  const std::string status = string_at(solution, "/status");
+  const std::string detail_text = string_at(solution, "/status_detail");
+  return "status " + (status.empty() ? std::string("missing") : status) + (detail_text.empty() ? "" : " (" + detail_text + ")");
+}
+
+json score_compile(const std::optional<json>& solution) {
+  json details = json::array();
+  if (!solution) {
+    details.push_back(detail("compile", "missing", 0, kCompileMax, "no solution.json"));
+    return dimension(0, kCompileMax, details);
+  }
+  const json* ok = field(solution, "/compile/ok");
+  const bool compiled = ok && ok->is_boolean() && ok->get<bool>();
+  details.push_back(detail("compile", compiled ? "pass" : "fail", compiled ? kCompileMax : 0, kCompileMax,
+                           compiled ? "compile.ok" : "compile.ok is not true; " + status_note(solution)));
+  return dimension(compiled ? kCompileMax : 0, kCompileMax, details);
+}
+
+json score_converge(const json& reference, const std::optional<json>& solution) {
+  json details = json::array();
+  if (!solution) {
+    details.push_back(detail("status", "missing", 0, kConvergeStatusMax, "no solution.json"));
+    details.push_back(detail("residual", "missing", 0, kConvergeResidualMax, "no solution.json"));
+    return dimension(0, kConvergeMax, details);
+  }
+  const bool converged = string_at(solution, "/status") == "converged";
+  details.push_back(detail("status", converged ? "pass" : "fail", converged ? kConvergeStatusMax : 0, kConvergeStatusMax,
+                           status_note(solution)));
+  const double limit = reference["result"]["max_residual"].get<double>();
+  const auto residual = number_at(solution, "/max_residual");
+  const bool small = residual && *residual < limit;
+  json d = detail("residual", small ? "pass" : "fail", small ? kConvergeResidualMax : 0, kConvergeResidualMax,
+                  residual ? "max_residual " + fmt(*residual, "%.3g") + (small ? " < " : " >= ") + fmt(limit, "%.3g")
+                           : "no max_residual in solution.json");
+  d["expected"] = "< " + fmt(limit, "%.3g");
+  d["found"] = residual ? json(*residual) : json(nullptr);
+  details.push_back(d);
+  return dimension((converged ? kConvergeStatusMax : 0) + (small ? kConvergeResidualMax : 0), kConvergeMax, details);
+}
+
+json score_accuracy(const json& reference, const std::optional<json>& solution) {
+  json details = json::array();
+  const double ref = reference["result"]["final_mass_kg"].get<double>();
+  const double tol = reference["result"]["tolerance_kg"].get<double>();
+  const auto mf = number_at(solution, "/final_mass_kg");
+  json d;
+  double points = 0;
+  if (!solution) {
+    d = detail("final_mass", "missing", 0, kAccuracyMax, "no solution.json");
+  } else if (string_at(solution, "/status") != "converged") {
+    // The m_f of an unconverged run belongs to no trajectory that satisfies the constraints.
+    d = detail("final_mass", "fail", 0, kAccuracyMax, "not scored: " + status_note(solution));
+  } else if (!mf) {
+    d = detail("final_mass", "fail", 0, kAccuracyMax, "no final_mass_kg in solution.json");
+  } else {
+    const double err = std::fabs(*mf - ref);
+    // NOTE: full points within tol, then linear to 0 at kAccuracyZeroAt * tol.
+    if (err <= tol)
+      points = kAccuracyMax;
+    else
+      points = std::max(0.0, kAccuracyMax * (kAccuracyZeroAt * tol - err) / ((kAccuracyZeroAt - 1) * tol));
+    const std::string verdict = points >= kAccuracyMax ? "pass" : (points > 0 ? "partial" : "fail");
+    d = detail("final_mass", verdict, points, kAccuracyMax,
+               "m_f " + fmt(*mf, "%.6f") + " kg vs " + fmt(ref, "%.6f") + " kg: error " + fmt(err, "%.6f") + " kg, tolerance " +
+                   num(tol) + " kg, 0 points at " + num(kAccuracyZeroAt * tol) + " kg");
+  }
+  d["expected"] = ref;
+  d["found"] = mf ? json(*mf) : json(nullptr);
+  details.push_back(d);
+  return dimension(points, kAccuracyMax, details);
+}
+
+json opt_number(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
+
+std::string cell_points(const json& dim) {
+  std::string s = fmt(dim.value("points", 0.0), "%.2f");
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  return s;
+}
+
+std::string cell(const json& v, const char* format) {
+  return v.is_number() ? fmt(v.get<double>(), format) : std::string("n/a");
+}
+
+std::string md_escape(std::string s) {
+  for (std::size_t i = 0; (i = s.find('|', i)) != std::string::npos; i += 2) s.replace(i, 1, "\\|");
+  return s;
+}
+
+}  // namespace
+
+void check_reference(const json& r, const std::string& source) {
+  const RefChecker c{source};
+  if (!r.is_object()) throw input_error(source + ": a reference must be a JSON object (see schemas/reference.schema.json)");
+  c.only_keys(r, "", {"schema", "schema_version", "scenario", "title", "provenance", "citation", "notes", "expected_parse",
+                      "expected_shooting_variables", "result"});
+  if (c.need(r, "schema", "") != "helios/reference") c.fail("/schema", "must be \"helios/reference\", got " + r["schema"].dump());
+  if (c.need(r, "schema_version", "") != io::kSchemaVersion)
+    c.fail("/schema_version", "is " + r["schema_version"].dump() + ", this build reads version " + std::to_string(io::kSchemaVersion));
+  static const std::regex scenario_re("^[A-Za-z0-9_-]+$");
+  const json& scenario = c.need(r, "scenario", "");
+  if (!scenario.is_string() || !std::regex_match(scenario.get<std::string>(), scenario_re))
+    c.fail("/scenario", "must be a scenario name like \"S01\", got " + scenario.dump());
+  const json& provenance = c.need(r, "provenance", "");
+  if (provenance != "published" && provenance != "peer-output" && provenance != "constructed")
+    c.fail("/provenance", "must be one of published, peer-output, constructed, got " + provenance.dump());
+  const json& citation = c.need(r, "citation", "");
+  if (!citation.is_string() || citation.get<std::string>().empty()) c.fail("/citation", "must be a non-empty string");
+  for (const char* key : {"title", "notes"})
+    if (r.contains(key) && !r[key].is_string()) c.fail(std::string("/") + key, "must be a string");
+  const json& facts = c.need(r, "expected_parse", "");
+  if (!facts.is_array() || facts.empty()) c.fail("/expected_parse", "must be a non-empty array of facts");
+  std::set<std::string> ids;
+  for (std::size_t i = 0; i < facts.size(); ++i) c.fact(facts[i], "/expected_parse/" + std::to_string(i), ids);
+  const json& nvars = c.need(r, "expected_shooting_variables", "");
+  if (!nvars.is_number_integer() || nvars.get<long>() < 1)
+    c.fail("/expected_shooting_variables", "must be an integer >= 1, got " + nvars.dump());
+  const json& result = c.need(r, "result", "");
+  if (!result.is_object()) c.fail("/result", "must be an object");
+  c.only_keys(result, "/result", {"final_mass_kg", "tolerance_kg", "max_residual"});
+  for (const char* key : {"final_mass_kg", "tolerance_kg", "max_residual"}) c.positive_number(result, key, "/result");
+}
+
+json score_run(const ScoreInputs& in) {
+  check_reference(in.reference, in.reference_source);
+  const json& ref = in.reference;
+  const std::string scenario = ref["scenario"].get<std::string>();
+
+  // The run's backend (and model) come from the latest stage that ran.
+  std::string backend = "builtin", model;
+  for (const auto* doc : {&in.solution, &in.verify, &in.derivation, &in.spec}) {
+    const std::string b = string_at(*doc, "/producer/backend");
+    if (b == "builtin" || b == "llm") {
+      backend = b;
+      model = string_at(*doc, "/producer/model");
+      break;
+    }
+  }
+  json out = io::artifact_header("score", "helios-score", backend);
+  if (!model.empty()) out["producer"]["model"] = model;
+  out["scenario"] = scenario;
+  out["reference"] = {{"provenance", ref["provenance"]}, {"citation", ref["citation"]}};
+  out["inputs"] = {{"spec", in.spec.has_value()},
+                   {"derivation", in.derivation.has_value()},
+                   {"verify", in.verify.has_value()},
+                   {"solution", in.solution.has_value()}};
+
+  json warnings = json::array();
+  const std::pair<const char*, const std::optional<json>*> named[] = {
+      {"spec", &in.spec}, {"derivation", &in.derivation}, {"solution", &in.solution}};
+  for (const auto& [name, doc] : named) {
+    const std::string id = string_at(*doc, "/problem/id");
+    if (!id.empty() && id != scenario)
+      warnings.push_back(std::string(name) + ".json is problem \"" + id + "\" but the reference is scenario \"" + scenario + "\"");
+  }
+  if (in.verify) {
+    const std::string verdict = string_at(in.verify, "/verdict");
+    if (verdict != "pass" && verdict != "fail")
+      warnings.push_back("verify.json has no verdict \"pass\" or \"fail\" (found " + (verdict.empty() ? "none" : verdict) + ")");
+  }
+
+  std::optional<long> shooting_variables;
+  json dims = json::object();
+  dims["d1_parse"] = score_parse(ref, in.spec);
+  dims["d2_derive"] = score_derive(ref, in.derivation, in.verify, shooting_variables);
+  dims["d3_compile"] = score_compile(in.solution);
+  dims["d4_converge"] = score_converge(ref, in.solution);
+  dims["d5_accuracy"] = score_accuracy(ref, in.solution);
+  double total = 0;
+  for (auto it = dims.begin(); it != dims.end(); ++it) total += it.value()["points"].get<double>();
+  out["dimensions"] = dims;
+  out["total"] = std::clamp(total, 0.0, 100.0);
+  out["max_total"] = 100;
+
+  const auto mf = number_at(in.solution, "/final_mass_kg");
+  const double ref_mf = ref["result"]["final_mass_kg"].get<double>();
+  const std::string status = string_at(in.solution, "/status");
+  out["measured"] = {{"final_mass_kg", opt_number(mf)},
+                     {"reference_final_mass_kg", ref_mf},
+                     {"error_kg", mf ? json(std::fabs(*mf - ref_mf)) : json(nullptr)},
+                     {"max_residual", opt_number(number_at(in.solution, "/max_residual"))},
+                     {"reference_max_residual", ref["result"]["max_residual"]},
+                     {"shooting_variables", shooting_variables ? json(*shooting_variables) : json(nullptr)},
+                     {"reference_shooting_variables", ref["expected_shooting_variables"]},
+                     {"status", status.empty() ? json(nullptr) : json(status)}};
+  if (!warnings.empty()) out["warnings"] = warnings;
+  io::validate("score", out, "output score");
+  return out;
+}
+
+std::string render_scoreboard(const std::vector<json>& scores) {
+  static const char* const kDims[] = {"d1_parse", "d2_derive", "d3_compile", "d4_converge", "d5_accuracy"};
+  std::ostringstream md;
+  md << "# HELIOS scoreboard\n\n"
+     << "Rubric: d1 parse 30, d2 derive 20, d3 compile 20, d4 converge 20, d5 accuracy 10 (total 100). "
+     << "m_f in kg; residual = max |F| in normalized units.\n\n"
+     << "| scenario | backend | d1 parse | d2 derive | d3 compile | d4 converge | d5 accuracy | total | m_f | m_f ref | error | residual |\n"
+     << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+  double sums[5] = {0, 0, 0, 0, 0};
+  double grand = 0;
+  for (const json& s : scores) {
+    const json& p = s.value("producer", json::object());
+    std::string backend = p.value("backend", "?");
+    if (p.contains("model") && p["model"].is_string()) backend += " (" + p["model"].get<std::string>() + ")";
+    md << "| " << md_escape(s.value("scenario", "?")) << " | " << md_escape(backend);
+    for (int i = 0; i < 5; ++i) {
+      const json& dim = s["dimensions"][kDims[i]];
+      sums[i] += dim.value("points", 0.0);
+      md << " | " << cell_points(dim);
+    }
+    grand += s.value("total", 0.0);
+    const json& m = s["measured"];
+    md << " | " << cell_points(json{{"points", s.value("total", 0.0)}}) << " | " << cell(m["final_mass_kg"], "%.3f") << " | "
+       << cell(m["reference_final_mass_kg"], "%.3f") << " | " << cell(m["error_kg"], "%.3f") << " | "
+       << cell(m["max_residual"], "%.1e") << " |\n";
+  }
+  const std::size_t n = scores.size();
+  md << "| **total** | " << n << " scenario" << (n == 1 ? "" : "s");
+  for (double v : sums) md << " | **" << cell_points(json{{"points", v}}) << "**";
+  md << " | **" << cell_points(json{{"points", grand}}) << " / " << 100 * n << "** | | | | |\n";
+  return md.str();
+}
+
+std::string scoreboard_from_dir(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw input_error(dir + ": not a folder, expected a run folder such as runs/builtin");
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const fs::path candidate = entry.path() / "score.json";
+    if (entry.is_directory(ec) && fs::is_regular_file(candidate, ec)) files.push_back(candidate);
+  }
+  if (ec) throw input_error(dir + ": cannot list: " + ec.message());
+  if (files.empty()) throw input_error(dir + ": no */score.json found, run helios-score for a scenario first");
+  std::sort(files.begin(), files.end());
+  std::vector<json> scores;
+  for (const auto& f : files) scores.push_back(io::read_artifact("score", f.string()));
+  return render_scoreboard(scores);
+}
+
+}  // namespace helios::score
