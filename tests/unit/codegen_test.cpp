@@ -1,0 +1,51 @@
+#include "helios/codegen/generate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "helios/pmp/derive.hpp"
+#include "helios/spec/parse.hpp"
+
+namespace {
+
+using helios::io::json;
+
+const json& s01() {
+  static const json d = helios::pmp::derive_from_spec(helios::spec::parse_problem_text(
+      helios::io::read_text(std::string(HELIOS_SOURCE_DIR) + "/scenarios/S01/problem.txt"), "S01"));
+  return d;
+}
+
+TEST(Codegen, StandardModelUsesTemplateDynamicsAndGeneratesResidualAndSolve) {
+  const auto g = helios::codegen::generate(s01(), {});
+  EXPECT_EQ(g.template_modules, (std::vector<std::string>{"DYNAMICS", "SWITCH"}));
+  EXPECT_EQ(g.generated_modules, (std::vector<std::string>{"RESIDUAL", "SOLVE"}));
+  EXPECT_NE(g.source.find("module RESIDUAL (generated)"), std::string::npos);
+  EXPECT_NE(g.source.find("template default: two-body Cartesian low thrust"), std::string::npos);
+  EXPECT_EQ(g.source.find("#pragma once"), std::string::npos);
+  EXPECT_NE(g.source.find("F[6] = (l_m_tf);"), std::string::npos);
+}
+
+TEST(Codegen, DifferentHamiltonianGetsGeneratedDynamics) {
+  json d = s01();
+  // A derivation whose H differs from the template's (a different cost) must not use the template.
+  d["hamiltonian"] = d["hamiltonian"].get<std::string>() + "+l_rx*rx";
+  const auto g = helios::codegen::generate(d, {});
+  EXPECT_EQ(g.generated_modules.size(), 4u);
+  EXPECT_NE(g.source.find("modules DYNAMICS + SWITCH (generated"), std::string::npos);
+}
+
+TEST(Codegen, GeneratedPolicyIsDeterministic) {
+  helios::codegen::GenOptions o;
+  o.modules = helios::codegen::ModulePolicy::Generated;
+  EXPECT_EQ(helios::codegen::generate(s01(), o).source, helios::codegen::generate(s01(), o).source);
+}
+
+TEST(Codegen, CountMismatchIsAnError) {
+  json d = s01();
+  d["shooting"]["equations"].erase(d["shooting"]["equations"].size() - 1);
+  EXPECT_THROW(helios::codegen::generate(d, {}), std::invalid_argument);
+}
+
+}  // namespace

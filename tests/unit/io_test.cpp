@@ -1,0 +1,113 @@
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "helios/io/cli.hpp"
+#include "helios/io/error.hpp"
+#include "helios/io/json_io.hpp"
+#include "helios/io/schema.hpp"
+#include "helios/io/sha256.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using helios::io::json;
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("helios-io-test-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(Io, Sha256KnownVectors) {
+  EXPECT_EQ(helios::io::sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  EXPECT_EQ(helios::io::sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_EQ(helios::io::sha256_hex(std::string(1000, 'a')),
+            "41edece42d63e8d9bf515a9ba6932e1c20cbc9f5a5d134645adb5db1b9737ea3");
+}
+
+TEST(Io, AtomicWriteLeavesOnlyTheTarget) {
+  const fs::path dir = fresh_dir("atomic");
+  helios::io::write_json_atomic((dir / "a.json").string(), json{{"x", 1}});
+  helios::io::write_json_atomic((dir / "a.json").string(), json{{"x", 2}});
+  EXPECT_EQ(helios::io::read_json((dir / "a.json").string())["x"], 2);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  fs::remove_all(dir);
+}
+
+TEST(Io, NonFiniteNumbersAreRefusedAndNothingIsWritten) {
+  const fs::path dir = fresh_dir("nan");
+  const json doc = {{"a", {{"b", json::array({1.0, NAN})}}}};
+  try {
+    helios::io::write_json_atomic((dir / "x.json").string(), doc);
+    FAIL() << "NaN was written";
+  } catch (const helios::numerical_error& e) {
+    EXPECT_STREQ(e.what(), "refusing to write a non-finite number at /a/b/1");
+  }
+  EXPECT_TRUE(fs::is_empty(dir));
+  fs::remove_all(dir);
+}
+
+TEST(Io, MalformedJsonNamesTheFileAndByte) {
+  const fs::path dir = fresh_dir("malformed");
+  const std::string path = (dir / "bad.json").string();
+  helios::io::write_text_atomic(path, "{\"a\": }");
+  try {
+    helios::io::read_json(path);
+    FAIL();
+  } catch (const helios::input_error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": malformed JSON at byte 7, fix the file or regenerate it");
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Io, ReadArtifactChecksKindAndVersion) {
+  const fs::path dir = fresh_dir("kind");
+  const std::string path = (dir / "x.json").string();
+  helios::io::write_json_atomic(path, helios::io::artifact_header("spec", "t", "builtin"));
+  EXPECT_THROW(helios::io::read_artifact("derivation", path), helios::input_error);
+  json doc = helios::io::artifact_header("spec", "t", "builtin");
+  doc["schema_version"] = 99;
+  helios::io::write_json_atomic(path, doc);
+  try {
+    helios::io::read_artifact("spec", path);
+    FAIL();
+  } catch (const helios::input_error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": field /schema_version is 99, this build reads version 1");
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Io, SchemaViolationNamesThePath) {
+  json doc = helios::io::artifact_header("spec", "t", "builtin");
+  doc["problem"] = {{"id", "S01"}, {"title", "x"}};
+  doc["central_body"] = {{"name", "Sun"}, {"mu_km3_s2", -1.0}};
+  try {
+    helios::io::validate("spec", doc, "spec.json");
+    FAIL();
+  } catch (const helios::input_error& e) {
+    EXPECT_NE(std::string(e.what()).find("spec.json: spec schema violation at "), std::string::npos) << e.what();
+  }
+}
+
+TEST(Io, CliRejectsUnknownOptionsAndCountsInputs) {
+  const helios::cli::ToolInfo info{"helios-x", "test", "IN", {{"flag", "", "", "a flag", ""}}, {"IN"}, "", "helios-x in"};
+  helios::cli::Args args;
+  const char* bad[] = {"helios-x", "--nope", "in"};
+  EXPECT_THROW(helios::cli::parse_args(info, 3, const_cast<char**>(bad), args), helios::usage_error);
+  const char* none[] = {"helios-x"};
+  EXPECT_THROW(helios::cli::parse_args(info, 1, const_cast<char**>(none), args), helios::usage_error);
+  const char* good[] = {"helios-x", "--flag", "-o", "out.json", "-"};
+  helios::cli::Args ok;
+  ASSERT_TRUE(helios::cli::parse_args(info, 5, const_cast<char**>(good), ok));
+  EXPECT_EQ(ok.output, "out.json");
+  EXPECT_EQ(ok.positionals.at(0), "-");
+  EXPECT_TRUE(ok.has("flag"));
+  EXPECT_NE(helios::cli::help_text(info).find("\ne.g.: helios-x in\n"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,130 @@
+// The shooting runtime and the template DYNAMICS/SWITCH module, compiled in-process with the
+// S01 constants: costate equations against finite differences of H, H constant along extremals
+// with switches, and the throttle consistent with the switching function's sign.
+#include <cminpack-1/cminpack.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dop853.hpp"
+#include "test_helpers.hpp"
+
+namespace problem {
+constexpr int kNumStates = 7;
+constexpr int kNumControls = 4;
+constexpr int kThrottleIndex = 0;
+constexpr int kNumVars = 8;
+constexpr double mu = 39.47692642137688;   // AU^3/yr^2
+constexpr double Tmax = 3.328530390038211;  // m0 AU/yr^2
+constexpr double c = 4.137416349718383;     // AU/yr
+}  // namespace problem
+
+#include "runtime.hpp"
+#include "../modules/dynamics_cartesian_low_thrust.cpp"
+
+namespace {
+
+using helios_rt::kNY;
+using helios_rt::Multipliers;
+
+std::array<double, kNY> random_extremal_start(unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> sym(-1, 1);
+  // Earth-like circular orbit at 1 AU, unit mass; costates scaled so that the switching function
+  // S = Tmax/c (lambda0 - l_m) - Tmax |l_v|/m changes sign within half a year.
+  std::array<double, kNY> y{1.0, 0.0, 0.0, 0.0, 2 * M_PI, 0.0, 1.0};
+  for (int i = 7; i < 10; ++i) y[i] = 0.5 * sym(rng);
+  for (int i = 10; i < 13; ++i) y[i] = 0.1 * sym(rng);
+  y[13] = 0.3;
+  return y;
+}
+
+std::array<double, 4> optimal_control(const double* y, const Multipliers& m) {
+  std::array<double, 4> control{};
+  helios_rt::control_in_mode(y, helios_rt::mode_at(y, m), m, control.data());
+  return control;
+}
+
+// NOTE: -dH/dx and dH/dlambda by central differences (step 1e-6) agree with the module to ~1e-8.
+TEST(Runtime, TemplateDynamicsAreTheCanonicalEquationsOfH) {
+  for (unsigned seed = 1; seed <= 10; ++seed) {
+    auto y = random_extremal_start(seed);
+    const Multipliers m{0.7, 0.3};
+    const auto control = optimal_control(y.data(), m);
+    std::array<double, kNY> dy{};
+    helios_rt::dynamics(y.data(), control.data(), m, dy.data());
+    // Central difference of H in component i of y.
+    const auto dH = [&](int i) {
+      auto plus = y, minus = y;
+      const double h = 1e-6;
+      plus[i] += h;
+      minus[i] -= h;
+      return (helios_rt::hamiltonian(plus.data(), control.data(), m) - helios_rt::hamiltonian(minus.data(), control.data(), m)) /
+             (2 * h);
+    };
+    for (int i = 0; i < 7; ++i) {
+      EXPECT_TRUE(IsClose(dy[i], dH(7 + i), 1e-7, 1e-7)) << "state " << i << ": x' = dH/dlambda";
+      EXPECT_TRUE(IsClose(dy[7 + i], -dH(i), 1e-7, 1e-7)) << "costate " << i << ": lambda' = -dH/dx";
+    }
+  }
+}
+
+// NOTE: H is autonomous, so along any extremal with the optimal control it is constant, also across
+// bang-bang switches (u changes where S = 0, where H does not jump). Tolerance 1e-10 absolute
+// against integration at rtol = atol = 1e-13.
+TEST(Runtime, HamiltonianIsConstantAlongExtremalsWithSwitches) {
+  int total_switches = 0;
+  for (double eps : {0.0, 0.1}) {
+    for (unsigned seed = 1; seed <= 6; ++seed) {
+      helios_rt::Settings settings;
+      helios_rt::Propagator prop(settings);
+      std::vector<helios_rt::Sample> samples;
+      std::vector<helios_rt::Switch> switches;
+      prop.samples = &samples;
+      prop.switches = &switches;
+      auto y = random_extremal_start(seed);
+      const Multipliers m{0.8, eps};
+      prop.propagate(0.0, 0.5, y.data(), m);
+      total_switches += static_cast<int>(switches.size());
+      double hmin = INFINITY, hmax = -INFINITY;
+      for (const auto& s : samples) {
+        hmin = std::min(hmin, s.H);
+        hmax = std::max(hmax, s.H);
+        // Throttle consistent with the switching function's sign (bang-bang at eps = 0).
+        if (eps == 0 && std::fabs(s.S) > 1e-9) {
+          EXPECT_EQ(s.control[0], s.S < 0 ? 1.0 : 0.0) << "t = " << s.t;
+        }
+      }
+      EXPECT_LT(hmax - hmin, 1e-10) << "eps " << eps << " seed " << seed << " switches " << switches.size();
+    }
+  }
+  EXPECT_GT(total_switches, 0) << "the test must exercise switches";
+}
+
+TEST(Runtime, SwitchTimesAreLocatedToRoundOff) {
+  helios_rt::Settings settings;
+  helios_rt::Propagator prop(settings);
+  std::vector<helios_rt::Switch> switches;
+  prop.switches = &switches;
+  auto y = random_extremal_start(3);
+  const Multipliers m{0.8, 0.0};
+  auto y0 = y;
+  prop.propagate(0.0, 0.5, y.data(), m);
+  ASSERT_FALSE(switches.empty());
+  // Integrate to the first switch alone: the switching function vanishes there.
+  helios_rt::Propagator to_switch(settings);
+  auto ys = y0;
+  to_switch.propagate(0.0, switches[0].t, ys.data(), m);
+  double s0 = 0, s1 = 0;
+  helios_rt::throttle_slopes(ys.data(), m, s0, s1);
+  EXPECT_LT(std::fabs(s0), 1e-12);
+}
+
+}  // namespace
