@@ -1,0 +1,232 @@
+// helios-verify's engine on the builtin S01 derivation and on deliberately broken copies of it.
+#include "helios/verify/verify.hpp"
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "helios/io/json_io.hpp"
+#include "helios/io/schema.hpp"
+#include "helios/pmp/derive.hpp"
+#include "helios/spec/parse.hpp"
+
+namespace {
+
+using helios::io::json;
+
+const json& s01() {
+  static const json derivation = [] {
+    const std::string path = HELIOS_SOURCE_DIR "/scenarios/S01/problem.txt";
+    return helios::pmp::derive_from_spec(helios::spec::parse_problem_text(helios::io::read_text(path), path));
+  }();
+  return derivation;
+}
+
+json verify(const json& derivation) {
+  json report = helios::verify::verify_derivation(derivation, {});
+  helios::io::validate("verify", report, "verify_test");  // every report must satisfy the schema
+  return report;
+}
+
+std::set<std::string> failed_ids(const json& report) {
+  std::set<std::string> ids;
+  for (const auto& c : report["checks"])
+    if (c["verdict"] == "fail") ids.insert(c["id"].get<std::string>());
+  return ids;
+}
+
+const json& check(const json& report, const std::string& id) {
+  for (const auto& c : report["checks"])
+    if (c["id"] == id) return c;
+  throw std::runtime_error("no check " + id);
+}
+
+json& costate_ode(json& d, const std::string& name) {
+  for (auto& e : d["costate_odes"])
+    if (e["costate"] == name) return e;
+  throw std::runtime_error("no costate ODE " + name);
+}
+
+json& equation(json& d, const std::string& name) {
+  for (auto& e : d["shooting"]["equations"])
+    if (e["name"] == name) return e;
+  throw std::runtime_error("no equation " + name);
+}
+
+TEST(Verify, BuiltinDerivationPassesEveryCheck) {
+  const json r = verify(s01());
+  EXPECT_EQ(r["verdict"], "pass") << r["feedback"];
+  EXPECT_EQ(r["summary"]["failed"], 0);
+  EXPECT_EQ(r["feedback"], "");
+  EXPECT_EQ(r["problem"]["id"], "S01");
+  EXPECT_EQ(r["derivation_producer"]["tool"], "helios-derive");
+  for (const auto& c : r["checks"]) {
+    EXPECT_EQ(c["verdict"], "pass") << c["id"] << ": " << c["feedback"];
+    EXPECT_LE(c["max_rel_error"].get<double>(), 1e-9) << c["id"];
+  }
+  // The builtin derivation is also shown exactly, item by item.
+  for (const std::string id : {"hamiltonian", "state_ode:vx", "costate_ode:l_rx", "costate_ode:l_m", "control_direction",
+                               "throttle_switching", "throttle_dH_du_at_lower", "throttle_interior", "transversality:m",
+                               "endpoint:arrival_1", "normalization"})
+    EXPECT_TRUE(check(r, id)["exact"].get<bool>()) << id;
+  // One check per state ODE and costate ODE, and the expected family of other checks.
+  for (const std::string id : {"state_ode:m", "costate_ode:l_vz", "throttle_dH_du_at_upper", "throttle_convexity",
+                               "throttle_law", "endpoint:arrival_6", "count", "shooting_variables", "state_usage"})
+    EXPECT_NO_THROW(check(r, id)) << id;
+}
+
+TEST(Verify, IsDeterministicForASeed) {
+  EXPECT_EQ(verify(s01()).dump(), verify(s01()).dump());
+}
+
+TEST(Verify, FlippedSignOfCostateEquationFailsOnlyThatEquation) {
+  json d = s01();
+  auto& e = costate_ode(d, "l_rx");
+  e["rhs"] = "-(" + e["rhs"].get<std::string>() + ")";
+  const json r = verify(d);
+  EXPECT_EQ(r["verdict"], "fail");
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"costate_ode:l_rx"});
+  const std::string fb = check(r, "costate_ode:l_rx")["feedback"];
+  EXPECT_NE(fb.find("costate_odes[l_rx]"), std::string::npos) << fb;
+  EXPECT_NE(fb.find("expected -dH/drx = "), std::string::npos) << fb;
+  EXPECT_NE(fb.find("flipped"), std::string::npos) << fb;
+  EXPECT_NE(fb.find("relative difference"), std::string::npos) << fb;
+  EXPECT_GT(check(r, "costate_ode:l_rx")["max_rel_error"].get<double>(), 1e-3);
+  EXPECT_NE(r["feedback"].get<std::string>().find(fb), std::string::npos);
+}
+
+TEST(Verify, FlippedSignOfOneTermIsNamed) {
+  json d = s01();
+  std::string rhs = costate_ode(d, "l_rx")["rhs"];
+  const std::string term = "-3*(rx^2+ry^2+rz^2)^(-5/2)*l_vy*mu*rx*ry";
+  ASSERT_NE(rhs.find(term), std::string::npos) << rhs;
+  rhs.replace(rhs.find(term), 1, "+");
+  costate_ode(d, "l_rx")["rhs"] = rhs;
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"costate_ode:l_rx"});
+  const std::string fb = check(r, "costate_ode:l_rx")["feedback"];
+  EXPECT_NE(fb.find("the sign of " + term + " is flipped"), std::string::npos) << fb;
+}
+
+TEST(Verify, EquivalentButDifferentlyWrittenCostateEquationPasses) {
+  json d = s01();
+  costate_ode(d, "l_rx")["rhs"] = "mu*(rx^2+ry^2+rz^2)^(-5/2)*(l_vx*(ry^2+rz^2-2*rx^2) - 3*rx*(l_vy*ry + l_vz*rz))";
+  costate_ode(d, "l_ry")["rhs"] =
+      "mu*l_vy/sqrt(rx^2+ry^2+rz^2)^3 - 3*mu*ry*(l_vx*rx+l_vy*ry+l_vz*rz)/(rx^2+ry^2+rz^2)^(5/2)";
+  const json r = verify(d);
+  EXPECT_EQ(r["verdict"], "pass") << r["feedback"];
+  EXPECT_TRUE(check(r, "costate_ode:l_rx")["exact"].get<bool>());
+}
+
+TEST(Verify, MissingGeometricTermFails) {
+  json d = s01();
+  costate_ode(d, "l_rx")["rhs"] = "(rx^2+ry^2+rz^2)^(-3/2)*l_vx*mu";  // the 3*... terms dropped
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"costate_ode:l_rx"});
+  const std::string fb = check(r, "costate_ode:l_rx")["feedback"];
+  EXPECT_NE(fb.find("lacks the term(s)"), std::string::npos) << fb;
+}
+
+TEST(Verify, WrongSwitchingFunctionFails) {
+  json d = s01();
+  // Sign of the primer vector term flipped.
+  d["control_law"]["throttle"]["switching_function"] = "-Tmax*c^(-1)*l_m+Tmax*m^(-1)*sqrt(l_vx^2+l_vy^2+l_vz^2)+Tmax*c^(-1)*lambda0";
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"throttle_switching"});
+  const std::string fb = check(r, "throttle_switching")["feedback"];
+  EXPECT_NE(fb.find("switching_function"), std::string::npos) << fb;
+  EXPECT_NE(fb.find("sqrt(l_vx^2+l_vy^2+l_vz^2)"), std::string::npos) << fb;
+}
+
+TEST(Verify, SwitchingFunctionStillInTheDirectionFails) {
+  json d = s01();
+  d["control_law"]["throttle"]["switching_function"] = "-Tmax*c^(-1)*l_m+Tmax*m^(-1)*(ax*l_vx+ay*l_vy+az*l_vz)+Tmax*c^(-1)*lambda0";
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"throttle_switching"});
+  EXPECT_NE(check(r, "throttle_switching")["feedback"].get<std::string>().find("must not depend on ax"), std::string::npos);
+}
+
+TEST(Verify, DirectionLawThatMaximizesHFails) {
+  json d = s01();
+  for (auto& l : d["control_law"]["direction"]["law"]) l = "-(" + l.get<std::string>() + ")";
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"control_direction"});
+  EXPECT_NE(check(r, "control_direction")["feedback"].get<std::string>().find("maximizes H"), std::string::npos);
+}
+
+TEST(Verify, ConcaveSmoothingFailsConvexity) {
+  json d = s01();
+  d["dynamics"]["running_cost"] = "Tmax*c^(-1)*eps*u-Tmax*c^(-1)*eps*u^2+Tmax*c^(-1)*u";
+  const json r = verify(d);
+  EXPECT_EQ(r["verdict"], "fail");
+  EXPECT_TRUE(failed_ids(r).count("throttle_convexity"));
+}
+
+TEST(Verify, MissingMassTransversalityFailsCountAndTransversality) {
+  json d = s01();
+  auto& eqs = d["shooting"]["equations"];
+  for (auto it = eqs.begin(); it != eqs.end(); ++it)
+    if ((*it)["name"] == "transversality_m") {
+      eqs.erase(it);
+      break;
+    }
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), (std::set<std::string>{"count", "transversality:m"}));
+  const std::string fb = check(r, "transversality:m")["feedback"];
+  EXPECT_NE(fb.find("missing transversality condition l_m_tf = 0: m(tf) is free"), std::string::npos) << fb;
+  EXPECT_NE(check(r, "count")["feedback"].get<std::string>().find("8 variables but 7 equations"), std::string::npos);
+}
+
+TEST(Verify, EquivalentNormalizationPassesAndLambda0IsRequired) {
+  json d = s01();
+  auto& n = equation(d, "normalization");
+  n["expression"] = "lambda0^2+l_rx_t0^2+l_ry_t0^2+l_rz_t0^2+l_vx_t0^2+l_vy_t0^2+l_vz_t0^2+l_m_t0^2-1";
+  EXPECT_EQ(verify(d)["verdict"], "pass");
+
+  n["expression"] = "-1+sqrt(l_m_t0^2+l_rx_t0^2+l_ry_t0^2+l_rz_t0^2+l_vx_t0^2+l_vy_t0^2+l_vz_t0^2)";
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"normalization"});
+  const std::string fb = check(r, "normalization")["feedback"];
+  EXPECT_NE(fb.find("leaves out lambda0"), std::string::npos) << fb;
+  EXPECT_NE(fb.find("G1"), std::string::npos) << fb;
+}
+
+TEST(Verify, Lambda0NotAShootingVariableFails) {
+  json d = s01();
+  auto& vars = d["shooting"]["variables"];
+  vars.erase(vars.begin());  // lambda0
+  const json r = verify(d);
+  EXPECT_TRUE(failed_ids(r).count("shooting_variables"));
+  EXPECT_TRUE(failed_ids(r).count("count"));
+}
+
+TEST(Verify, ExtraStateWithZeroDynamicsFailsG4) {
+  json d = s01();
+  d["states"].push_back({{"name", "w"}, {"meaning", "an unused quantity"}, {"unit", "1"}, {"costate", "l_w"}});
+  d["dynamics"]["state_rhs"].push_back("0");
+  d["state_odes"].push_back({{"state", "w"}, {"rhs", "0"}});
+  d["costate_odes"].push_back({{"costate", "l_w"}, {"rhs", "0"}});
+  const json r = verify(d);
+  EXPECT_EQ(r["verdict"], "fail");
+  EXPECT_TRUE(failed_ids(r).count("state_usage"));
+  const std::string fb = check(r, "state_usage")["feedback"];
+  EXPECT_NE(fb.find("w"), std::string::npos);
+  EXPECT_NE(fb.find("G4"), std::string::npos);
+}
+
+TEST(Verify, UnparseableDerivedExpressionIsAFailedCheck) {
+  json d = s01();
+  costate_ode(d, "l_rz")["rhs"] = "foo+1";
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"costate_ode:l_rz"});
+  EXPECT_NE(check(r, "costate_ode:l_rz")["feedback"].get<std::string>().find("foo"), std::string::npos);
+}
+
+TEST(Verify, UnusableProblemStatementThrows) {
+  json d = s01();
+  d["dynamics"]["state_rhs"][0] = "vx+bar";
+  EXPECT_THROW(helios::verify::verify_derivation(d, {}), std::invalid_argument);
+}
+
+}  // namespace
