@@ -59,6 +59,14 @@ inline int stay_functions(const double* y, Mode mode, const Multipliers& mult, d
   return 0;
 }
 
+// Ephemeris mode "jpl_lp": a planet's heliocentric state at normalized time t after the epoch of
+// t0, in normalized units.
+inline std::array<double, 6> ephemeris_state(const std::string& body, double t) {
+  const auto s = helios::astro::jpl_lp_state(helios::astro::planet_from_name(body), problem::kEpochMjd2000 + t * problem::kTimeUnitDays);
+  return {s[0] / problem::kLengthUnitKm, s[1] / problem::kLengthUnitKm, s[2] / problem::kLengthUnitKm,
+          s[3] / problem::kSpeedUnitKmS, s[4] / problem::kSpeedUnitKmS, s[5] / problem::kSpeedUnitKmS};
+}
+
 struct numerical_error : std::runtime_error {
   using std::runtime_error::runtime_error;
 };

@@ -42,6 +42,19 @@ TEST(Codegen, GeneratedPolicyIsDeterministic) {
   EXPECT_EQ(helios::codegen::generate(s01(), o).source, helios::codegen::generate(s01(), o).source);
 }
 
+TEST(Codegen, PlanetTargetsAreEvaluatedFromTheEphemerisAtTheEvent) {
+  std::string text = helios::io::read_text(std::string(HELIOS_SOURCE_DIR) + "/scenarios/S01/problem.txt");
+  const std::string from = "with position [-172682023, 176959469, 7948912] km and velocity [-16.427384, -14.860506, 9.21486e-2] km/s";
+  text.replace(text.find(from), from.size(), "with Mars");
+  text.replace(text.find("at t = 0 days"), 13, "at MJD2000 400");
+  const json d = helios::pmp::derive_from_spec(helios::spec::parse_problem_text(text, "mars"));
+  EXPECT_EQ(d["times"]["epoch_mjd2000"], 400.0);
+  const auto g = helios::codegen::generate(d, {});
+  EXPECT_NE(g.source.find("const auto ephemeris_0 = ephemeris_state(\"Mars\", problem::kTf);"), std::string::npos);
+  EXPECT_NE(g.source.find("const double arrival_rx = ephemeris_0[0];"), std::string::npos);
+  EXPECT_EQ(g.source.find("constexpr double arrival_rx"), std::string::npos);
+}
+
 TEST(Codegen, CountMismatchIsAnError) {
   json d = s01();
   d["shooting"]["equations"].erase(d["shooting"]["equations"].size() - 1);

@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "dop853.hpp"
+#include "helios/astro/constants.hpp"
+#include "helios/astro/ephemeris.hpp"
 #include "test_helpers.hpp"
 
 namespace problem {
@@ -21,6 +23,10 @@ constexpr int kNumStates = 7;
 constexpr int kNumControls = 4;
 constexpr int kThrottleIndex = 0;
 constexpr int kNumVars = 8;
+constexpr double kTimeUnitDays = 365.25;
+constexpr double kLengthUnitKm = 149597870.691;
+constexpr double kSpeedUnitKmS = 149597870.691 / 31557600.0;
+constexpr double kEpochMjd2000 = 400.0;
 constexpr double mu = 39.47692642137688;   // AU^3/yr^2
 constexpr double Tmax = 3.328530390038211;  // m0 AU/yr^2
 constexpr double c = 4.137416349718383;     // AU/yr
@@ -125,6 +131,15 @@ TEST(Runtime, SwitchTimesAreLocatedToRoundOff) {
   double s0 = 0, s1 = 0;
   helios_rt::throttle_slopes(ys.data(), m, s0, s1);
   EXPECT_LT(std::fabs(s0), 1e-12);
+}
+
+TEST(Runtime, EphemerisModeIsJplLpInNormalizedUnits) {
+  const auto n = helios_rt::ephemeris_state("Mars", 0.5);
+  const auto s = helios::astro::jpl_lp_state(helios::astro::Planet::Mars, 400.0 + 0.5 * 365.25);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_TRUE(IsClose(n[i] * problem::kLengthUnitKm, s[i], 0, 1e-15));
+    EXPECT_TRUE(IsClose(n[3 + i] * problem::kSpeedUnitKmS, s[3 + i], 0, 1e-15));
+  }
 }
 
 }  // namespace

@@ -17,10 +17,13 @@ namespace {
 using io::json;
 using symbolic::SymbolTable;
 
+int index_of(const std::vector<std::string>& v, const std::string& name);
+
 struct Context {
   const json& d;
   SymbolTable symbols;
   std::vector<std::string> states, costates, controls, parameters;
+  std::vector<std::string> ephemeris_parameters;  // evaluated by the runtime, not constants
   int throttle_index = -1;
   explicit Context(const json& derivation) : d(derivation) {
     for (const auto& s : d.at("states")) {
@@ -31,7 +34,10 @@ struct Context {
       controls.push_back(c.at("name"));
       if (c.at("kind") == "throttle") throttle_index = static_cast<int>(controls.size()) - 1;
     }
-    for (const auto& p : d.at("parameters")) parameters.push_back(p.at("name"));
+    for (const auto& p : d.at("parameters")) {
+      parameters.push_back(p.at("name"));
+      if (p.contains("source")) ephemeris_parameters.push_back(p.at("name"));
+    }
     if (throttle_index < 0) throw std::invalid_argument("field /controls: no control of kind throttle");
     const std::string mult = d.at("multiplier");
     for (const auto& n : states) symbols.get(n);
@@ -54,7 +60,8 @@ struct Context {
   std::string cpp(const std::string& text, const std::string& where) {
     GiNaC::ex e = symbols.parse(text, where);
     GiNaC::exmap qualified;
-    for (const auto& p : parameters) qualified[symbols.get(p)] = GiNaC::symbol("problem::" + p);
+    for (const auto& p : parameters)
+      if (index_of(ephemeris_parameters, p) < 0) qualified[symbols.get(p)] = GiNaC::symbol("problem::" + p);
     return symbolic::to_csrc(e.subs(qualified));
   }
 };
@@ -105,6 +112,9 @@ std::string problem_block(Context& c) {
     << "constexpr double kT0 = " << number(d.at("times").at("t0")) << ";\n"
     << "constexpr double kTf = " << number(d.at("times").at("tf")) << ";\n"
     << "constexpr double kTimeUnitDays = " << number(units.at("time_s").get<double>() / 86400.0) << ";\n"
+    << "constexpr double kLengthUnitKm = " << number(units.at("length_km")) << ";\n"
+    << "constexpr double kSpeedUnitKmS = " << number(units.at("length_km").get<double>() / units.at("time_s").get<double>()) << ";\n"
+    << "constexpr double kEpochMjd2000 = " << number(d.at("times").value("epoch_mjd2000", 0.0)) << ";\n"
     << "constexpr double kMassUnitKg = " << number(units.at("mass_kg")) << ";\n";
   double exhaust = 0;
   for (const auto& p : d.at("parameters"))
@@ -127,8 +137,9 @@ std::string problem_block(Context& c) {
     << "const char* const kVariableNames[] = {" << quoted_list(vars) << "};\n"
     << "const char* const kEquationNames[] = {" << quoted_list(eqs) << "};\n";
   for (const auto& p : d.at("parameters"))
-    o << "constexpr double " << p.at("name").get<std::string>() << " = " << number(p.at("value")) << ";  // "
-      << p.at("meaning").get<std::string>() << " [" << p.value("unit", "") << "]\n";
+    if (!p.contains("source"))
+      o << "constexpr double " << p.at("name").get<std::string>() << " = " << number(p.at("value")) << ";  // "
+        << p.at("meaning").get<std::string>() << " [" << p.value("unit", "") << "]\n";
   o << "}  // namespace problem\n";
   return o.str();
 }
@@ -203,6 +214,19 @@ std::string residual_module(Context& c) {
     o << "  [[maybe_unused]] const double " << vars[i].at("name").get<std::string>() << " = x[" << i << "];  // "
       << vars[i].at("meaning").get<std::string>() << "\n";
   o << "  double y[kNY];\n";
+  // Ephemeris targets: the body's state at the event, in normalized units (target evaluated at the actual epoch).
+  std::map<std::string, std::vector<std::string>> ephemeris;  // "body:event" -> parameter names in order
+  for (const auto& p : d.at("parameters"))
+    if (p.contains("source")) ephemeris[p.at("source").get<std::string>().substr(10)].push_back(p.at("name"));
+  int block = 0;
+  for (const auto& [key, names] : ephemeris) {
+    const std::string body = key.substr(0, key.find(':')), event = key.substr(key.find(':') + 1);
+    if (names.size() != 6) throw std::invalid_argument("field /parameters: ephemeris target " + key + " needs 6 components");
+    const std::string var = "ephemeris_" + std::to_string(block++);
+    o << "  const auto " << var << " = ephemeris_state(\"" << body << "\", " << (event == "t0" ? "problem::kT0" : "problem::kTf") << ");\n";
+    for (std::size_t i = 0; i < 6; ++i)
+      o << "  [[maybe_unused]] const double " << names[i] << " = " << var << "[" << i << "];\n";
+  }
   // Initial states from psi(t0) = 0, initial costates from the shooting variables.
   for (const auto& iv : d.at("initial_values")) {
     const int k = index_of(c.states, iv.at("state"));

@@ -89,6 +89,7 @@ json named_list(const std::vector<Named>& v, bool with_value) {
   for (const auto& n : v) {
     json e = {{"name", n.name}, {"meaning", n.meaning}, {"unit", n.unit}};
     if (with_value) e["value"] = n.value;
+    if (!n.source.empty()) e["source"] = n.source;
     out.push_back(e);
   }
   return out;
@@ -249,6 +250,7 @@ json derive(const Problem& problem) {
   doc["units"] = {{"length", p.units.length_name}, {"length_km", p.units.length_km}, {"time", p.units.time_name},
                   {"time_s", p.units.time_s}, {"mass_kg", p.units.mass_kg}};
   doc["times"] = {{"t0", p.t0}, {"tf", p.tf}, {"final_time", "fixed"}};
+  if (p.has_epoch) doc["times"]["epoch_mjd2000"] = p.epoch_mjd2000;
   json states = named_list(p.states, false);
   for (auto& s : states) s["costate"] = costate_name(s["name"].get<std::string>());
   doc["states"] = states;

@@ -97,6 +97,10 @@ Problem build_problem(const json& spec) {
   p.t0 = 0;
   p.tf = time.at("tof_days").get<double>() * helios::astro::DAY_S / U.time_s;
   p.initial_mass = 1;
+  if (time.contains("epoch_mjd2000")) {
+    p.epoch_mjd2000 = time.at("epoch_mjd2000").get<double>();
+    p.has_epoch = true;
+  }
 
   const std::vector<std::string> pos = {"rx", "ry", "rz"}, vel = {"vx", "vy", "vz"};
   for (const auto& c : spec.at("constraints")) {
@@ -122,8 +126,9 @@ Problem build_problem(const json& spec) {
           p.parameters.push_back({tname, std::string(is_pos ? "position " : "velocity ") + n[1] + " of target " + k.id,
                                   is_pos ? L : L + "/" + T, v});
         } else {
-          p.parameters.push_back({tname, n + " of " + k.target.at("body").get<std::string>() + " (ephemeris, at the event)",
-                                  n[0] == 'r' ? L : L + "/" + T, 0.0});
+          const std::string body = k.target.at("body").get<std::string>();
+          p.parameters.push_back({tname, n + " of " + body + " (JPL low-precision ephemeris at " + k.at + ")",
+                                  n[0] == 'r' ? L : L + "/" + T, 0.0, "ephemeris:" + body + ":" + k.at});
         }
       }
     if (k.kind == "initial_state") {

@@ -4,6 +4,7 @@
 #include <ginac/ginac.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "helios/io/json_io.hpp"
@@ -21,8 +22,11 @@ struct Units {
 };
 
 struct Named {
+  Named(std::string n, std::string m, std::string u, double v = 0, std::string src = "")
+      : name(std::move(n)), meaning(std::move(m)), unit(std::move(u)), value(v), source(std::move(src)) {}
   std::string name, meaning, unit;
-  double value = 0;  // normalized; for parameters only
+  double value = 0;    // normalized; for parameters only
+  std::string source;  // parameters: "" (a constant) or "ephemeris:<body>:<event>" (evaluated by the runtime)
 };
 
 struct Control {
@@ -50,6 +54,8 @@ struct Problem {
   GiNaC::ex endpoint_cost;    // phi (Mayer term), in states at tf
   std::vector<EndpointConstraint> constraints;
   double t0 = 0, tf = 0;      // normalized
+  double epoch_mjd2000 = 0;   // calendar epoch of t0, for ephemeris targets
+  bool has_epoch = false;
   double initial_mass = 1;    // normalized (the mass scale is m0, so 1)
 };
 
