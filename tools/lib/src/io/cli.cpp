@@ -40,8 +40,9 @@ std::string help_text(const ToolInfo& info) {
 }
 
 bool parse_args(const ToolInfo& info, int argc, char** argv, Args& args) {
+  // Options with a value always have one (possibly empty); flags are present only when given.
   for (const auto& opt : info.options)
-    if (!opt.default_value.empty()) args.values[opt.name] = opt.default_value;
+    if (!opt.value_name.empty()) args.values[opt.name] = opt.default_value;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-h" || a == "--help") {

@@ -30,7 +30,8 @@ struct Args {
   std::vector<std::string> positionals;
   std::map<std::string, std::string> values;  // option name -> value ("1" for flags)
   std::string output = "-";
-  bool has(const std::string& name) const { return values.count(name) > 0; }
+  // True if the option was given a non-empty value (or the flag was given).
+  bool has(const std::string& name) const { return values.count(name) > 0 && !values.at(name).empty(); }
   const std::string& get(const std::string& name) const { return values.at(name); }
 };
 
