@@ -40,7 +40,8 @@ double hamiltonian(const double* y, const double* control, const Multipliers& mu
   const double* a = control + 1;
   const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
   const double mu_r3 = problem::mu / (r2 * std::sqrt(r2));
-  double h = mult.lambda0 * problem::Tmax / problem::c * (u - mult.eps * u * (1 - u)) - lm * problem::Tmax * u / problem::c;
+  double h =
+      mult.lambda0 * problem::Tmax / problem::c * (u - mult.eps * u * (1 - u)) - lm * problem::Tmax * u / problem::c;
   for (int i = 0; i < 3; ++i) h += lr[i] * v[i] + lv[i] * (-mu_r3 * r[i] + problem::Tmax * u * a[i] / m);
   return h;
 }

@@ -65,7 +65,8 @@ inline nlohmann::json trajectory(const Settings& s, const Result& r, const std::
   write_atomic(csv_path, csv.str());
   nlohmann::json out;
   nlohmann::json sw = nlohmann::json::array();
-  for (const auto& w : switches) sw.push_back({{"t_days", w.t * problem::kTimeUnitDays}, {"throttle_after", w.throttle_after}});
+  for (const auto& w : switches)
+    sw.push_back({{"t_days", w.t * problem::kTimeUnitDays}, {"throttle_after", w.throttle_after}});
   out["switches"] = sw;
   out["hamiltonian_drift"] = hmax - hmin;
   out["samples"] = samples.size();
@@ -78,10 +79,14 @@ inline int run(int argc, char** argv) {
   std::string settings_path, result_path = "result.json", trajectory_path = "trajectory.csv";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--settings") settings_path = argv[i + 1];
-    else if (a == "--result") result_path = argv[i + 1];
-    else if (a == "--trajectory") trajectory_path = argv[i + 1];
-    else throw std::runtime_error("unknown option " + a);
+    if (a == "--settings")
+      settings_path = argv[i + 1];
+    else if (a == "--result")
+      result_path = argv[i + 1];
+    else if (a == "--trajectory")
+      trajectory_path = argv[i + 1];
+    else
+      throw std::runtime_error("unknown option " + a);
   }
   const Settings s = read_settings(settings_path);
   wall_seconds();
@@ -98,7 +103,9 @@ inline int run(int argc, char** argv) {
   j["seed"] = s.seed;
   nlohmann::json hom = nlohmann::json::array();
   for (const auto& h : r.homotopy)
-    hom.push_back({{"eps", h.eps}, {"converged", h.converged}, {"max_residual", std::isfinite(h.max_residual) ? h.max_residual : -1.0},
+    hom.push_back({{"eps", h.eps},
+                   {"converged", h.converged},
+                   {"max_residual", std::isfinite(h.max_residual) ? h.max_residual : -1.0},
                    {"evaluations", h.evaluations}});
   j["homotopy"] = hom;
   if (r.status == "converged") {

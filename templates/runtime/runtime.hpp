@@ -52,9 +52,16 @@ inline int stay_functions(const double* y, Mode mode, const Multipliers& mult, d
   double s0 = 0, s1 = 0;
   throttle_slopes(y, mult, s0, s1);
   switch (mode) {
-    case kOff: g[0] = s0; return 1;
-    case kFull: g[0] = -s1; return 1;
-    case kInterior: g[0] = -s0; g[1] = s1; return 2;
+    case kOff:
+      g[0] = s0;
+      return 1;
+    case kFull:
+      g[0] = -s1;
+      return 1;
+    case kInterior:
+      g[0] = -s0;
+      g[1] = s1;
+      return 2;
   }
   return 0;
 }
@@ -62,7 +69,8 @@ inline int stay_functions(const double* y, Mode mode, const Multipliers& mult, d
 // Ephemeris mode "jpl_lp": a planet's heliocentric state at normalized time t after the epoch of
 // t0, in normalized units.
 inline std::array<double, 6> ephemeris_state(const std::string& body, double t) {
-  const auto s = helios::astro::jpl_lp_state(helios::astro::planet_from_name(body), problem::kEpochMjd2000 + t * problem::kTimeUnitDays);
+  const auto s = helios::astro::jpl_lp_state(helios::astro::planet_from_name(body),
+                                             problem::kEpochMjd2000 + t * problem::kTimeUnitDays);
   return {s[0] / problem::kLengthUnitKm, s[1] / problem::kLengthUnitKm, s[2] / problem::kLengthUnitKm,
           s[3] / problem::kSpeedUnitKmS, s[4] / problem::kSpeedUnitKmS, s[5] / problem::kSpeedUnitKmS};
 }
@@ -77,12 +85,12 @@ struct Settings {
   double time_limit_s = 600;
   double rtol = 1e-13, atol = 1e-13;
   double hybrd_tol = 1e-12;
-  double accept_residual = 1e-8;   // intermediate homotopy steps
-  double final_residual = 1e-10;   // the gate at eps = 0
+  double accept_residual = 1e-8;  // intermediate homotopy steps
+  double final_residual = 1e-10;  // the gate at eps = 0
   double eps_start = 1.0;
-  double eps_min = 1e-6;           // below this the next step is eps = 0
+  double eps_min = 1e-6;  // below this the next step is eps = 0
   double eps_first_ratio = 0.5;
-  int max_steps = 200000;          // integrator steps per arc
+  int max_steps = 200000;  // integrator steps per arc
 };
 
 struct Sample {
@@ -108,9 +116,9 @@ class Propagator {
  public:
   explicit Propagator(const Settings& s) : settings_(s), stepper_(kNY) {}
 
-  std::vector<Sample>* samples = nullptr;    // when set, every accepted step is recorded
+  std::vector<Sample>* samples = nullptr;  // when set, every accepted step is recorded
   std::vector<Switch>* switches = nullptr;
-  double max_step = INFINITY;                 // limits steps when recording, for smooth plots
+  double max_step = INFINITY;  // limits steps when recording, for smooth plots
 
   void propagate(double t0, double t1, double* y, const Multipliers& mult) {
     Mode mode = mode_at(y, mult);
@@ -131,7 +139,8 @@ class Propagator {
       const bool last = h >= t1 - t;
       if (last) h = t1 - t;
       rhs(t, y, f0.data());
-      const double err = stepper_.step(rhs, t, y, f0.data(), h, ynew.data(), fnew.data(), settings_.atol, settings_.rtol);
+      const double err =
+          stepper_.step(rhs, t, y, f0.data(), h, ynew.data(), fnew.data(), settings_.atol, settings_.rtol);
       if (!(err <= 1.0)) {
         h *= Dop853::step_factor(err);
         if (h < 1e-15 * (1 + std::fabs(t))) throw numerical_error("integrator step size underflow");
@@ -244,12 +253,18 @@ struct Result {
 
 inline std::string hybrd_meaning(int info) {
   switch (info) {
-    case 0: return "improper input parameters";
-    case 1: return "relative error between two consecutive iterates is at most tol";
-    case 2: return "number of calls to fcn has reached 200*(n+1)";
-    case 3: return "tol is too small; no further improvement in x is possible";
-    case 4: return "iteration is not making good progress";
-    default: return "stopped by the shooting function (integration failure or time limit)";
+    case 0:
+      return "improper input parameters";
+    case 1:
+      return "relative error between two consecutive iterates is at most tol";
+    case 2:
+      return "number of calls to fcn has reached 200*(n+1)";
+    case 3:
+      return "tol is too small; no further improvement in x is possible";
+    case 4:
+      return "iteration is not making good progress";
+    default:
+      return "stopped by the shooting function (integration failure or time limit)";
   }
 }
 
@@ -264,7 +279,8 @@ class Shooter {
     const int n = static_cast<int>(x.size());
     std::vector<double> F(n), wa(static_cast<std::size_t>(n * (3 * n + 13)) / 2 + 1);
     const int before = evaluations;
-    info = hybrd1(&Shooter::callback, this, n, x.data(), F.data(), settings_.hybrd_tol, wa.data(), static_cast<int>(wa.size()));
+    info = hybrd1(&Shooter::callback, this, n, x.data(), F.data(), settings_.hybrd_tol, wa.data(),
+                  static_cast<int>(wa.size()));
     if (failed_) info = -1;
     // hybrd1 returns the x of the smallest residual it saw; evaluate there for the record.
     if (!evaluate(x.data(), F.data())) {

@@ -16,7 +16,9 @@ namespace {
 using helios::astro::Elements;
 using State = std::array<double, 6>;
 
-double norm3(const double* x) { return std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]); }
+double norm3(const double* x) {
+  return std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+}
 
 double energy(const State& s, double mu) {
   return 0.5 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]) - mu / norm3(s.data());
@@ -34,13 +36,16 @@ std::array<double, 3> ang_mom(const State& s) {
   for (int k = 0; k < 6; ++k) {
     const double scale = k < 3 ? rs : vs;
     if (!close(a[k], b[k], rtol * scale, 0.0)) {
-      return ::testing::AssertionFailure() << "component " << k << ": " << IsClose(a[k], b[k], rtol * scale, 0.0).message();
+      return ::testing::AssertionFailure()
+             << "component " << k << ": " << IsClose(a[k], b[k], rtol * scale, 0.0).message();
     }
   }
   return ::testing::AssertionSuccess();
 }
 
-double angle_diff(double a, double b) { return std::remainder(a - b, helios::astro::TWO_PI); }
+double angle_diff(double a, double b) {
+  return std::remainder(a - b, helios::astro::TWO_PI);
+}
 
 const double kMuEarth = helios::astro::MU_EARTH_KM3_S2;
 
@@ -78,9 +83,8 @@ TEST(AstroKepler, EccentricAnomalyResidual) {
 TEST(AstroKepler, ElementsStateRoundTrip) {
   using namespace helios::astro;
   const Elements cases[] = {
-      {7000.0, 0.01, 0.5, 1.0, 2.0, 3.0},     {26600.0, 0.74, 1.1, 4.0, 4.7, 0.2},
-      {42164.0, 0.3, 2.9, 6.0, 0.1, 5.9},     {8000.0, 0.95, 0.02, 0.3, 5.5, 1.5},
-      {1.5e8, 0.093, 0.032, 0.86, 5.0, 0.4},  {7000.0, 0.5, 1.0, 0.0, 0.0, 0.0},
+      {7000.0, 0.01, 0.5, 1.0, 2.0, 3.0},  {26600.0, 0.74, 1.1, 4.0, 4.7, 0.2},   {42164.0, 0.3, 2.9, 6.0, 0.1, 5.9},
+      {8000.0, 0.95, 0.02, 0.3, 5.5, 1.5}, {1.5e8, 0.093, 0.032, 0.86, 5.0, 0.4}, {7000.0, 0.5, 1.0, 0.0, 0.0, 0.0},
   };
   for (const auto& el : cases) {
     const State s = elements_to_state(el, kMuEarth);
@@ -195,8 +199,7 @@ TEST(AstroKepler, PropagateMatchesMeanAnomalyAdvance) {
     const double dt = days * DAY_S;
     Elements el1 = el;
     el1.mean_anomaly += n * dt;
-    EXPECT_TRUE(StateClose(propagate(s0, dt, MU_SUN_KM3_S2), elements_to_state(el1, MU_SUN_KM3_S2), 1e-12))
-        << days;
+    EXPECT_TRUE(StateClose(propagate(s0, dt, MU_SUN_KM3_S2), elements_to_state(el1, MU_SUN_KM3_S2), 1e-12)) << days;
   }
 }
 

@@ -44,7 +44,8 @@ TEST(Codegen, GeneratedPolicyIsDeterministic) {
 
 TEST(Codegen, PlanetTargetsAreEvaluatedFromTheEphemerisAtTheEvent) {
   std::string text = helios::io::read_text(std::string(HELIOS_SOURCE_DIR) + "/scenarios/S01/problem.txt");
-  const std::string from = "with position [-172682023, 176959469, 7948912] km and velocity [-16.427384, -14.860506, 9.21486e-2] km/s";
+  const std::string from =
+      "with position [-172682023, 176959469, 7948912] km and velocity [-16.427384, -14.860506, 9.21486e-2] km/s";
   text.replace(text.find(from), from.size(), "with Mars");
   text.replace(text.find("at t = 0 days"), 13, "at MJD2000 400");
   const json d = helios::pmp::derive_from_spec(helios::spec::parse_problem_text(text, "mars"));

@@ -57,7 +57,9 @@ struct Point {
     values["lambda0"] = unit(rng);
     values["eps"] = unit(rng);
   }
-  double eval(const std::string& text) const { return helios::symbolic::evaluate(table.parse(text, "test"), table, values); }
+  double eval(const std::string& text) const {
+    return helios::symbolic::evaluate(table.parse(text, "test"), table, values);
+  }
 };
 
 TEST(Derive, S01HasEightShootingVariablesAndEquations) {
@@ -93,7 +95,8 @@ TEST(Derive, CostateOdesMatchFiniteDifferencesOfH) {
 TEST(Derive, StateOdesAreTheDynamics) {
   Point p(11);
   for (std::size_t i = 0; i < s01()["states"].size(); ++i)
-    EXPECT_TRUE(IsClose(p.eval(s01()["state_odes"][i]["rhs"]), p.eval(s01()["dynamics"]["state_rhs"][i]), 1e-14, 1e-14));
+    EXPECT_TRUE(
+        IsClose(p.eval(s01()["state_odes"][i]["rhs"]), p.eval(s01()["dynamics"]["state_rhs"][i]), 1e-14, 1e-14));
 }
 
 TEST(Derive, ThrottleLawMinimizesH) {

@@ -95,7 +95,8 @@ TEST(Io, SchemaViolationNamesThePath) {
 }
 
 TEST(Io, CliRejectsUnknownOptionsAndCountsInputs) {
-  const helios::cli::ToolInfo info{"helios-x", "test", "IN", {{"flag", "", "", "a flag", ""}}, {"IN"}, "", "helios-x in"};
+  const helios::cli::ToolInfo info{"helios-x", "test", "IN",         {{"flag", "", "", "a flag", ""}},
+                                   {"IN"},     "",     "helios-x in"};
   helios::cli::Args args;
   const char* bad[] = {"helios-x", "--nope", "in"};
   EXPECT_THROW(helios::cli::parse_args(info, 3, const_cast<char**>(bad), args), helios::usage_error);

@@ -14,9 +14,13 @@ using helios::io::json;
 
 const std::string kSource = HELIOS_SOURCE_DIR;
 
-std::string s01_text() { return helios::io::read_text(kSource + "/scenarios/S01/problem.txt"); }
+std::string s01_text() {
+  return helios::io::read_text(kSource + "/scenarios/S01/problem.txt");
+}
 
-json parse(const std::string& text) { return helios::spec::parse_problem_text(text, "problem.txt"); }
+json parse(const std::string& text) {
+  return helios::spec::parse_problem_text(text, "problem.txt");
+}
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
   const auto pos = text.find(from);
@@ -60,7 +64,8 @@ TEST(Parse, UnitsAreConverted) {
   EXPECT_TRUE(IsClose(mn["spacecraft"]["thrust_N"], 0.5, 0, 1e-15));
   const json secs = parse(replaced(text, "348.795 days", "30135888 s"));
   EXPECT_TRUE(IsClose(secs["time"]["tof_days"], 348.795, 0, 1e-15));
-  const json meters = parse(replaced(text, "[9.774596, -28.07828, 4.337725e-4] km/s", "[9774.596, -28078.28, 0.4337725] m/s"));
+  const json meters =
+      parse(replaced(text, "[9.774596, -28.07828, 4.337725e-4] km/s", "[9774.596, -28078.28, 0.4337725] m/s"));
   EXPECT_TRUE(IsClose(meters["constraints"][0]["target"]["velocity_km_s"][0], 9.774596, 0, 1e-15));
   const json au = parse(replaced(text, "[-172682023, 176959469, 7948912] km", "[1, 0, 0] AU"));
   EXPECT_TRUE(IsClose(au["constraints"][1]["target"]["position_km"][0], 149597870.691, 0, 1e-15));

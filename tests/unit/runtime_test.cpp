@@ -27,13 +27,16 @@ constexpr double kTimeUnitDays = 365.25;
 constexpr double kLengthUnitKm = 149597870.691;
 constexpr double kSpeedUnitKmS = 149597870.691 / 31557600.0;
 constexpr double kEpochMjd2000 = 400.0;
-constexpr double mu = 39.47692642137688;   // AU^3/yr^2
+constexpr double mu = 39.47692642137688;    // AU^3/yr^2
 constexpr double Tmax = 3.328530390038211;  // m0 AU/yr^2
 constexpr double c = 4.137416349718383;     // AU/yr
 }  // namespace problem
 
+// clang-format off
+// NOTE: the order is the generated program's: PROBLEM, runtime, then the modules.
 #include "runtime.hpp"
 #include "../modules/dynamics_cartesian_low_thrust.cpp"
+// clang-format on
 
 namespace {
 
@@ -72,7 +75,8 @@ TEST(Runtime, TemplateDynamicsAreTheCanonicalEquationsOfH) {
       const double h = 1e-6;
       plus[i] += h;
       minus[i] -= h;
-      return (helios_rt::hamiltonian(plus.data(), control.data(), m) - helios_rt::hamiltonian(minus.data(), control.data(), m)) /
+      return (helios_rt::hamiltonian(plus.data(), control.data(), m) -
+              helios_rt::hamiltonian(minus.data(), control.data(), m)) /
              (2 * h);
     };
     for (int i = 0; i < 7; ++i) {

@@ -23,8 +23,8 @@ const std::string kSource = HELIOS_SOURCE_DIR;
 
 // The S01 spec and derivation, built once in-process by the builtin backend.
 const json& s01_spec() {
-  static const json spec = helios::spec::parse_problem_text(helios::io::read_text(kSource + "/scenarios/S01/problem.txt"),
-                                                            "scenarios/S01/problem.txt");
+  static const json spec = helios::spec::parse_problem_text(
+      helios::io::read_text(kSource + "/scenarios/S01/problem.txt"), "scenarios/S01/problem.txt");
   return spec;
 }
 
@@ -33,12 +33,16 @@ const json& s01_derivation() {
   return derivation;
 }
 
-json s01_reference() { return helios::io::read_json(kSource + "/scenarios/S01/reference.json"); }
+json s01_reference() {
+  return helios::io::read_json(kSource + "/scenarios/S01/reference.json");
+}
 
 json verify_doc(int passed, int total) {
   json checks = json::array();
   for (int i = 0; i < total; ++i)
-    checks.push_back({{"id", "check_" + std::to_string(i)}, {"category", "costate"}, {"verdict", i < passed ? "pass" : "fail"},
+    checks.push_back({{"id", "check_" + std::to_string(i)},
+                      {"category", "costate"},
+                      {"verdict", i < passed ? "pass" : "fail"},
                       {"feedback", i < passed ? "" : "wrong sign"}});
   return {{"schema", "helios/verify"},
           {"schema_version", 1},
@@ -77,7 +81,9 @@ ScoreInputs perfect_inputs() {
   return in;
 }
 
-double points(const json& score, const char* dim) { return score["dimensions"][dim]["points"].get<double>(); }
+double points(const json& score, const char* dim) {
+  return score["dimensions"][dim]["points"].get<double>();
+}
 
 const json& fact_detail(const json& score, const std::string& id) {
   for (const json& d : score["dimensions"]["d1_parse"]["details"])
@@ -191,7 +197,8 @@ TEST(Score, CompileFailureScoresZeroOnD3) {
   json failed = solution_doc(603.935);
   failed["compile"]["ok"] = false;
   failed["status"] = "compile_failed";
-  for (const char* key : {"final_mass_kg", "delta_v_m_s", "max_residual", "x", "residuals", "epsilon"}) failed.erase(key);
+  for (const char* key : {"final_mass_kg", "delta_v_m_s", "max_residual", "x", "residuals", "epsilon"})
+    failed.erase(key);
   in.solution = failed;
   const json s = helios::score::score_run(in);
   EXPECT_EQ(points(s, "d3_compile"), 0.0);
@@ -230,8 +237,9 @@ TEST(Score, MalformedReferenceIsAnInputErrorNamingTheField) {
     helios::score::score_run(in);
     FAIL() << "expected input_error";
   } catch (const helios::input_error& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "ref.json: field /expected_parse/1/rel_tol must be a number >= 0, got -1 (see schemas/reference.schema.json)");
+    EXPECT_EQ(
+        std::string(e.what()),
+        "ref.json: field /expected_parse/1/rel_tol must be a number >= 0, got -1 (see schemas/reference.schema.json)");
   }
   in.reference = s01_reference();
   in.reference["result"].erase("tolerance_kg");
@@ -244,7 +252,8 @@ TEST(Score, MalformedReferenceIsAnInputErrorNamingTheField) {
 TEST(Score, ScoreboardHasARowPerScenarioAndTotals) {
   const json s = helios::score::score_run(perfect_inputs());
   const std::string md = helios::score::render_scoreboard({s});
-  EXPECT_NE(md.find("| S01 | builtin | 30 | 20 | 20 | 20 | 10 | 100 | 603.935 | 603.935 | 0.000 | 2.5e-12 |"), std::string::npos)
+  EXPECT_NE(md.find("| S01 | builtin | 30 | 20 | 20 | 20 | 10 | 100 | 603.935 | 603.935 | 0.000 | 2.5e-12 |"),
+            std::string::npos)
       << md;
   EXPECT_NE(md.find("| **total** | 1 scenario |"), std::string::npos) << md;
 

@@ -19,8 +19,9 @@ inline ::testing::AssertionResult IsClose(double a, double b, double atol, doubl
   if (close(a, b, atol, rtol)) return ::testing::AssertionSuccess();
   std::ostringstream os;
   os.precision(17);
-  os << a << " vs " << b << ": |diff| = " << std::fabs(a - b) << " > atol + rtol*max = "
-     << atol + rtol * std::max(std::fabs(a), std::fabs(b)) << " (atol " << atol << ", rtol " << rtol << ")";
+  os << a << " vs " << b << ": |diff| = " << std::fabs(a - b)
+     << " > atol + rtol*max = " << atol + rtol * std::max(std::fabs(a), std::fabs(b)) << " (atol " << atol << ", rtol "
+     << rtol << ")";
   return ::testing::AssertionFailure() << os.str();
 }
 

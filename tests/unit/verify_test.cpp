@@ -66,9 +66,9 @@ TEST(Verify, BuiltinDerivationPassesEveryCheck) {
     EXPECT_LE(c["max_rel_error"].get<double>(), 1e-9) << c["id"];
   }
   // The builtin derivation is also shown exactly, item by item.
-  for (const std::string id : {"hamiltonian", "state_ode:vx", "costate_ode:l_rx", "costate_ode:l_m", "control_direction",
-                               "throttle_switching", "throttle_dH_du_at_lower", "throttle_interior", "transversality:m",
-                               "endpoint:arrival_1", "normalization"})
+  for (const std::string id :
+       {"hamiltonian", "state_ode:vx", "costate_ode:l_rx", "costate_ode:l_m", "control_direction", "throttle_switching",
+        "throttle_dH_du_at_lower", "throttle_interior", "transversality:m", "endpoint:arrival_1", "normalization"})
     EXPECT_TRUE(check(r, id)["exact"].get<bool>()) << id;
   // One check per state ODE and costate ODE, and the expected family of other checks.
   for (const std::string id : {"state_ode:m", "costate_ode:l_vz", "throttle_dH_du_at_upper", "throttle_convexity",
@@ -131,7 +131,8 @@ TEST(Verify, MissingGeometricTermFails) {
 TEST(Verify, WrongSwitchingFunctionFails) {
   json d = s01();
   // Sign of the primer vector term flipped.
-  d["control_law"]["throttle"]["switching_function"] = "-Tmax*c^(-1)*l_m+Tmax*m^(-1)*sqrt(l_vx^2+l_vy^2+l_vz^2)+Tmax*c^(-1)*lambda0";
+  d["control_law"]["throttle"]["switching_function"] =
+      "-Tmax*c^(-1)*l_m+Tmax*m^(-1)*sqrt(l_vx^2+l_vy^2+l_vz^2)+Tmax*c^(-1)*lambda0";
   const json r = verify(d);
   EXPECT_EQ(failed_ids(r), std::set<std::string>{"throttle_switching"});
   const std::string fb = check(r, "throttle_switching")["feedback"];
@@ -141,10 +142,12 @@ TEST(Verify, WrongSwitchingFunctionFails) {
 
 TEST(Verify, SwitchingFunctionStillInTheDirectionFails) {
   json d = s01();
-  d["control_law"]["throttle"]["switching_function"] = "-Tmax*c^(-1)*l_m+Tmax*m^(-1)*(ax*l_vx+ay*l_vy+az*l_vz)+Tmax*c^(-1)*lambda0";
+  d["control_law"]["throttle"]["switching_function"] =
+      "-Tmax*c^(-1)*l_m+Tmax*m^(-1)*(ax*l_vx+ay*l_vy+az*l_vz)+Tmax*c^(-1)*lambda0";
   const json r = verify(d);
   EXPECT_EQ(failed_ids(r), std::set<std::string>{"throttle_switching"});
-  EXPECT_NE(check(r, "throttle_switching")["feedback"].get<std::string>().find("must not depend on ax"), std::string::npos);
+  EXPECT_NE(check(r, "throttle_switching")["feedback"].get<std::string>().find("must not depend on ax"),
+            std::string::npos);
 }
 
 TEST(Verify, DirectionLawThatMaximizesHFails) {

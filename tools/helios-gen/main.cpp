@@ -10,7 +10,10 @@ int main(int argc, char** argv) {
       "generate the C++ shooting program of a derivation",
       "[options] DERIVATION.json|-",
       {{"backend", "", "NAME", "generator backend: builtin", "builtin"},
-       {"modules", "", "POLICY", "auto: template DYNAMICS/SWITCH when the derivation is the template's model; generated: always from the derivation", "auto"}},
+       {"modules", "", "POLICY",
+        "auto: template DYNAMICS/SWITCH when the derivation is the template's model; generated: always from the "
+        "derivation",
+        "auto"}},
       {"DERIVATION"},
       "The program is one self-contained C++17 file: the fixed runtime (normalization, ephemeris,\n"
       "DOP853 with switch detection, eps-homotopy, seeded restarts, cminpack hybrd1, JSON output)\n"

@@ -45,7 +45,8 @@ int main(int argc, char** argv) {
     o.backend = args.get("backend");
     o.time_limit_s = positive_number(args, "time-limit");
     o.memory_limit_mb = positive_number(args, "memory-limit");
-    if (o.backend != "builtin" && o.backend != "llm") throw helios::usage_error("--backend " + o.backend + " is not builtin or llm");
+    if (o.backend != "builtin" && o.backend != "llm")
+      throw helios::usage_error("--backend " + o.backend + " is not builtin or llm");
     helios::io::write_artifact("solution", helios::solve::solve(o), args.output);
     return 0;
   });

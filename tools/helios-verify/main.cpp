@@ -18,7 +18,8 @@ long integer_option(const helios::cli::Args& args, const std::string& name, long
     used = 0;
   }
   if (used != text.size() || value < min || value > max)
-    throw helios::usage_error("--" + name + " " + text + " is not an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+    throw helios::usage_error("--" + name + " " + text + " is not an integer in [" + std::to_string(min) + ", " +
+                              std::to_string(max) + "]");
   return value;
 }
 
@@ -51,7 +52,8 @@ int main(int argc, char** argv) {
       for (const auto& c : report["checks"])
         if (c["verdict"] == "fail") ids += (ids.empty() ? "" : ", ") + c["id"].get<std::string>();
       throw helios::check_failed("verdict fail: " + std::to_string(report["summary"]["failed"].get<int>()) + " of " +
-                                 std::to_string(report["summary"]["total"].get<int>()) + " checks failed (" + ids + ")");
+                                 std::to_string(report["summary"]["total"].get<int>()) + " checks failed (" + ids +
+                                 ")");
     }
     return 0;
   });

@@ -92,7 +92,8 @@ std::pair<std::string, double> physical(const json& units, const json& state) {
   const std::string name = state.at("name");
   const double L = units.at("length_km"), T = units.at("time_s"), M = units.at("mass_kg");
   if (unit == units.at("length").get<std::string>()) return {name + "_km", L};
-  if (unit == units.at("length").get<std::string>() + "/" + units.at("time").get<std::string>()) return {name + "_km_s", L / T};
+  if (unit == units.at("length").get<std::string>() + "/" + units.at("time").get<std::string>())
+    return {name + "_km_s", L / T};
   if (unit == "initial mass") return {name + "_kg", M};
   return {name, 1.0};
 }
@@ -113,12 +114,15 @@ std::string problem_block(Context& c) {
     << "constexpr double kTf = " << number(d.at("times").at("tf")) << ";\n"
     << "constexpr double kTimeUnitDays = " << number(units.at("time_s").get<double>() / 86400.0) << ";\n"
     << "constexpr double kLengthUnitKm = " << number(units.at("length_km")) << ";\n"
-    << "constexpr double kSpeedUnitKmS = " << number(units.at("length_km").get<double>() / units.at("time_s").get<double>()) << ";\n"
+    << "constexpr double kSpeedUnitKmS = "
+    << number(units.at("length_km").get<double>() / units.at("time_s").get<double>()) << ";\n"
     << "constexpr double kEpochMjd2000 = " << number(d.at("times").value("epoch_mjd2000", 0.0)) << ";\n"
     << "constexpr double kMassUnitKg = " << number(units.at("mass_kg")) << ";\n";
   double exhaust = 0;
   for (const auto& p : d.at("parameters"))
-    if (p.at("name") == "c") exhaust = p.at("value").get<double>() * units.at("length_km").get<double>() * 1e3 / units.at("time_s").get<double>();
+    if (p.at("name") == "c")
+      exhaust =
+          p.at("value").get<double>() * units.at("length_km").get<double>() * 1e3 / units.at("time_s").get<double>();
   o << "constexpr double kExhaustVelocityMS = " << number(exhaust) << ";\n";
   std::vector<std::string> columns;
   std::string factors;
@@ -173,7 +177,8 @@ std::string generated_dynamics(Context& c) {
   for (std::size_t i = 0; i < so.size(); ++i)
     o << "  dy[" << i << "] = " << c.cpp(so[i].at("rhs"), "state_odes[" + std::to_string(i) + "]") << ";\n";
   for (std::size_t i = 0; i < co.size(); ++i)
-    o << "  dy[" << so.size() + i << "] = " << c.cpp(co[i].at("rhs"), "costate_odes[" + std::to_string(i) + "]") << ";\n";
+    o << "  dy[" << so.size() + i << "] = " << c.cpp(co[i].at("rhs"), "costate_odes[" + std::to_string(i) + "]")
+      << ";\n";
   o << "}\n\n"
     << "double hamiltonian(const double* y, const double* control, const Multipliers& mult) {\n"
     << unpack(c, true) << "  return " << c.cpp(d.at("hamiltonian"), "hamiltonian") << ";\n}\n\n"
@@ -187,7 +192,8 @@ std::string generated_dynamics(Context& c) {
     const auto& names = cl.at("direction").at("controls");
     const auto& law = cl.at("direction").at("law");
     for (std::size_t j = 0; j < names.size(); ++j)
-      o << "  control[" << index_of(c.controls, names[j]) << "] = " << c.cpp(law[j], "control_law/direction/law") << ";\n";
+      o << "  control[" << index_of(c.controls, names[j]) << "] = " << c.cpp(law[j], "control_law/direction/law")
+        << ";\n";
   } else {
     o << "  (void)y;\n  (void)control;\n";
   }
@@ -206,7 +212,8 @@ std::string residual_module(Context& c) {
   const auto& vars = d.at("shooting").at("variables");
   const auto& eqs = d.at("shooting").at("equations");
   if (vars.size() != eqs.size())
-    throw std::invalid_argument("field /shooting: " + std::to_string(vars.size()) + " variables but " + std::to_string(eqs.size()) + " equations");
+    throw std::invalid_argument("field /shooting: " + std::to_string(vars.size()) + " variables but " +
+                                std::to_string(eqs.size()) + " equations");
   o << "// ----- module RESIDUAL (generated) -------------------------------------------------------\n"
     << "namespace helios_rt {\n\n"
     << "void shooting_function(const double* x, double eps, Propagator& prop, double* F) {\n";
@@ -221,9 +228,11 @@ std::string residual_module(Context& c) {
   int block = 0;
   for (const auto& [key, names] : ephemeris) {
     const std::string body = key.substr(0, key.find(':')), event = key.substr(key.find(':') + 1);
-    if (names.size() != 6) throw std::invalid_argument("field /parameters: ephemeris target " + key + " needs 6 components");
+    if (names.size() != 6)
+      throw std::invalid_argument("field /parameters: ephemeris target " + key + " needs 6 components");
     const std::string var = "ephemeris_" + std::to_string(block++);
-    o << "  const auto " << var << " = ephemeris_state(\"" << body << "\", " << (event == "t0" ? "problem::kT0" : "problem::kTf") << ");\n";
+    o << "  const auto " << var << " = ephemeris_state(\"" << body << "\", "
+      << (event == "t0" ? "problem::kT0" : "problem::kTf") << ");\n";
     for (std::size_t i = 0; i < 6; ++i)
       o << "  [[maybe_unused]] const double " << names[i] << " = " << var << "[" << i << "];\n";
   }
@@ -270,18 +279,23 @@ std::string solve_module(Context& c) {
     << "  double norm2 = 0;\n";
   for (std::size_t i = 0; i < vars.size(); ++i) {
     const bool is_mult = vars[i].at("name") == mult;
-    o << "  x[" << i << "] = " << (is_mult ? "positive(rng)" : "symmetric(rng)") << " * " << number(vars[i].at("scale")) << ";\n";
+    o << "  x[" << i << "] = " << (is_mult ? "positive(rng)" : "symmetric(rng)") << " * " << number(vars[i].at("scale"))
+      << ";\n";
   }
   o << "  for (int i = 0; i < problem::kNumVars; ++i) norm2 += x[i] * x[i];\n"
     << "  for (int i = 0; i < problem::kNumVars; ++i) x[i] /= std::sqrt(norm2);\n"
     << "}\n\n"
     << "Result solve_problem(const Settings& settings) {\n"
     << "  // A minimum needs lambda0 > 0 (lambda0 = 0 would be an abnormal extremal).\n"
-    << "  const auto admissible = [](const double* x) { return x[" << index_of([&] {
-         std::vector<std::string> names;
-         for (const auto& v : vars) names.push_back(v.at("name"));
-         return names;
-       }(), mult) << "] > 0; };\n"
+    << "  const auto admissible = [](const double* x) { return x["
+    << index_of(
+           [&] {
+             std::vector<std::string> names;
+             for (const auto& v : vars) names.push_back(v.at("name"));
+             return names;
+           }(),
+           mult)
+    << "] > 0; };\n"
     << "  return homotopy_solve(settings, initial_guess, admissible);\n"
     << "}\n\n}  // namespace helios_rt\n";
   return o.str();
@@ -303,7 +317,8 @@ bool template_matches(Context& c, const json& model) {
   std::uniform_real_distribution<double> dist(0.3, 1.7);
   for (int trial = 0; trial < 8; ++trial) {
     symbolic::Values values;
-    for (const auto& [name, sym] : c.symbols.symtab()) values[name] = dist(rng) * (trial % 2 ? 1 : -1) * (name == "m" ? -1 : 1);
+    for (const auto& [name, sym] : c.symbols.symtab())
+      values[name] = dist(rng) * (trial % 2 ? 1 : -1) * (name == "m" ? -1 : 1);
     for (const auto& [a, b] : pairs) {
       try {
         const double va = symbolic::evaluate(c.symbols.parse(a, "template"), c.symbols, values);

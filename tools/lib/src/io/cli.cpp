@@ -26,7 +26,8 @@ std::string help_text(const ToolInfo& info) {
   out << "options:\n"
       << "  -o, --output FILE   write the artifact to FILE atomically; - = stdout (default -)\n";
   for (const auto& opt : info.options) {
-    std::string head = "  " + (opt.short_name.empty() ? std::string("    ") : "-" + opt.short_name + ", ") + "--" + opt.name;
+    std::string head =
+        "  " + (opt.short_name.empty() ? std::string("    ") : "-" + opt.short_name + ", ") + "--" + opt.name;
     if (!opt.value_name.empty()) head += " " + opt.value_name;
     out << head << std::string(head.size() < 22 ? 22 - head.size() : 1, ' ') << opt.help;
     if (!opt.default_value.empty()) out << " (default " << opt.default_value << ")";
@@ -83,8 +84,8 @@ bool parse_args(const ToolInfo& info, int argc, char** argv, Args& args) {
   if (args.positionals.size() != info.positionals.size()) {
     std::string names;
     for (const auto& p : info.positionals) names += (names.empty() ? "" : " ") + p;
-    throw usage_error("expected " + std::to_string(info.positionals.size()) + " input argument(s) (" + names + "), got " +
-                      std::to_string(args.positionals.size()) + ", see " + info.name + " --help");
+    throw usage_error("expected " + std::to_string(info.positionals.size()) + " input argument(s) (" + names +
+                      "), got " + std::to_string(args.positionals.size()) + ", see " + info.name + " --help");
   }
   return true;
 }

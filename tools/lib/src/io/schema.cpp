@@ -56,11 +56,12 @@ json read_artifact(const std::string& kind, const std::string& path) {
   json doc = read_json(path);
   const std::string name = path == "-" ? "<stdin>" : path;
   if (!doc.is_object() || doc.value("schema", "") != "helios/" + kind)
-    throw input_error(name + ": field /schema is " + (doc.is_object() && doc.contains("schema") ? doc["schema"].dump() : "missing") +
+    throw input_error(name + ": field /schema is " +
+                      (doc.is_object() && doc.contains("schema") ? doc["schema"].dump() : "missing") +
                       ", expected \"helios/" + kind + "\" (wrong artifact for this tool?)");
   if (doc.value("schema_version", 0) != kSchemaVersion)
-    throw input_error(name + ": field /schema_version is " + doc["schema_version"].dump() + ", this build reads version " +
-                      std::to_string(kSchemaVersion));
+    throw input_error(name + ": field /schema_version is " + doc["schema_version"].dump() +
+                      ", this build reads version " + std::to_string(kSchemaVersion));
   validate(kind, doc, name);
   return doc;
 }

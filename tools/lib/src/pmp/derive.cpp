@@ -16,9 +16,9 @@ using symbolic::to_text;
 
 struct DirectionLaw {
   std::vector<std::string> controls;
-  std::vector<ex> b;         // a* = -b/|b|
-  std::vector<ex> law;       // a_j*
-  std::vector<ex> gradient;  // g_j = dH/da_j
+  std::vector<ex> b;          // a* = -b/|b|
+  std::vector<ex> law;        // a_j*
+  std::vector<ex> gradient;   // g_j = dH/da_j
   std::string costate_block;  // e.g. "l_vx, l_vy, l_vz" if b is that block of costates
 };
 
@@ -37,7 +37,8 @@ DirectionLaw direction_law(Problem& p, const ex& H) {
   for (const auto& aj : a) {
     const ex g = H.diff(aj).expand();
     for (const auto& ak : a)
-      if (!g.diff(ak).is_zero()) throw std::invalid_argument("H is not linear in the thrust direction " + aj.get_name());
+      if (!g.diff(ak).is_zero())
+        throw std::invalid_argument("H is not linear in the thrust direction " + aj.get_name());
     d.gradient.push_back(g);
   }
   std::vector<ex> block;
@@ -159,7 +160,9 @@ json derive(const Problem& problem) {
   json constraints = json::array();
   json equations = json::array();
   json variables = json::array();
-  variables.push_back({{"name", "lambda0"}, {"meaning", "cost multiplier lambda0 (>= 0)"}, {"scale", 1.0},
+  variables.push_back({{"name", "lambda0"},
+                       {"meaning", "cost multiplier lambda0 (>= 0)"},
+                       {"scale", 1.0},
                        {"init", "uniform in (0, 1), then the whole vector normalized"}});
   for (const auto& k : p.constraints) {
     json c = {{"id", k.id}, {"kind", k.kind}, {"at", k.at}, {"target", k.target}};
@@ -203,11 +206,12 @@ json derive(const Problem& problem) {
           eliminated.push_back(to_text(row) + " = 0");
         } else {
           const ex eq = row.subs(S.get(p.states[i].name) == S.get(at_event(p.states[i].name, "tf")));
-          equations.push_back({{"name", "transversality_" + p.states[i].name},
-                               {"expression", to_text(eq)},
-                               {"meaning", "lambda_" + p.states[i].name + "(tf) = 0: " + p.states[i].name + "(tf) is free"},
-                               {"scale", 1.0},
-                               {"source", k.id}});
+          equations.push_back(
+              {{"name", "transversality_" + p.states[i].name},
+               {"expression", to_text(eq)},
+               {"meaning", "lambda_" + p.states[i].name + "(tf) = 0: " + p.states[i].name + "(tf) is free"},
+               {"scale", 1.0},
+               {"source", k.id}});
         }
       }
       c["conditions"] = conditions;
@@ -232,7 +236,9 @@ json derive(const Problem& problem) {
   for (const auto& s : p.states) {
     const std::string lam0 = at_event(costate_name(s.name), "t0");
     if (fixed_at_t0.count(s.name)) {
-      variables.push_back({{"name", lam0}, {"meaning", "costate of " + s.meaning + " at t0"}, {"scale", 1.0},
+      variables.push_back({{"name", lam0},
+                           {"meaning", "costate of " + s.meaning + " at t0"},
+                           {"scale", 1.0},
                            {"init", "uniform in (-1, 1), then normalized"}});
       norm2 += GiNaC::pow(S.get(lam0), 2);
     } else {
@@ -247,8 +253,11 @@ json derive(const Problem& problem) {
 
   json doc = io::artifact_header("derivation", "helios-derive", "builtin");
   doc["problem"] = {{"id", p.id}, {"dynamics_model", p.dynamics_model}, {"objective", p.objective}};
-  doc["units"] = {{"length", p.units.length_name}, {"length_km", p.units.length_km}, {"time", p.units.time_name},
-                  {"time_s", p.units.time_s}, {"mass_kg", p.units.mass_kg}};
+  doc["units"] = {{"length", p.units.length_name},
+                  {"length_km", p.units.length_km},
+                  {"time", p.units.time_name},
+                  {"time_s", p.units.time_s},
+                  {"mass_kg", p.units.mass_kg}};
   doc["times"] = {{"t0", p.t0}, {"tf", p.tf}, {"final_time", "fixed"}};
   if (p.has_epoch) doc["times"]["epoch_mjd2000"] = p.epoch_mjd2000;
   json states = named_list(p.states, false);
@@ -258,12 +267,16 @@ json derive(const Problem& problem) {
   for (const auto& c : p.controls) controls.push_back({{"name", c.name}, {"meaning", c.meaning}, {"kind", c.kind}});
   doc["controls"] = controls;
   doc["parameters"] = named_list(p.parameters, true);
-  doc["homotopy"] = {{"symbol", "eps"}, {"start", 1.0}, {"end", 0.0},
-                     {"meaning", "quadratic smoothing of the throttle: eps = 1 energy-like, eps = 0 fuel-optimal bang-bang"}};
+  doc["homotopy"] = {
+      {"symbol", "eps"},
+      {"start", 1.0},
+      {"end", 0.0},
+      {"meaning", "quadratic smoothing of the throttle: eps = 1 energy-like, eps = 0 fuel-optimal bang-bang"}};
   doc["multiplier"] = "lambda0";
   json rhs = json::array();
   for (const auto& fi : p.f) rhs.push_back(to_text(fi));
-  doc["dynamics"] = {{"state_rhs", rhs}, {"running_cost", to_text(p.running_cost)}, {"endpoint_cost", to_text(p.endpoint_cost)}};
+  doc["dynamics"] = {
+      {"state_rhs", rhs}, {"running_cost", to_text(p.running_cost)}, {"endpoint_cost", to_text(p.endpoint_cost)}};
   doc["hamiltonian"] = to_text(H);
   doc["state_odes"] = state_odes;
   doc["costate_odes"] = costate_odes;
@@ -274,6 +287,8 @@ json derive(const Problem& problem) {
   return doc;
 }
 
-json derive_from_spec(const json& spec) { return derive(build_problem(spec)); }
+json derive_from_spec(const json& spec) {
+  return derive(build_problem(spec));
+}
 
 }  // namespace helios::pmp

@@ -35,8 +35,12 @@ Units units_for(const json& central_body) {
 
 }  // namespace
 
-std::string costate_name(const std::string& state) { return "l_" + state; }
-std::string at_event(const std::string& name, const std::string& event) { return name + "_" + event; }
+std::string costate_name(const std::string& state) {
+  return "l_" + state;
+}
+std::string at_event(const std::string& name, const std::string& event) {
+  return name + "_" + event;
+}
 
 Problem build_problem(const json& spec) {
   Problem p;
@@ -45,7 +49,8 @@ Problem build_problem(const json& spec) {
   p.dynamics_model = dyn.at("model").get<std::string>() + "_" + dyn.at("coordinates").get<std::string>() + "_" +
                      dyn.at("propulsion").get<std::string>();
   if (p.dynamics_model != "two_body_cartesian_low_thrust")
-    throw std::invalid_argument("field /dynamics: model " + p.dynamics_model + " is not supported by the builtin engine");
+    throw std::invalid_argument("field /dynamics: model " + p.dynamics_model +
+                                " is not supported by the builtin engine");
   p.objective = spec.at("objective").at("kind").get<std::string>();
   p.units = units_for(spec.at("central_body"));
   const Units& U = p.units;
@@ -60,7 +65,7 @@ Problem build_problem(const json& spec) {
   if (!(thrust > 0) || !(exhaust > 0)) throw std::domain_error("field /spacecraft: thrust and Isp must be positive");
 
   const std::string L = U.length_name, T = U.time_name;
-  p.states = {{"rx", "position x", L}, {"ry", "position y", L}, {"rz", "position z", L},
+  p.states = {{"rx", "position x", L},           {"ry", "position y", L},           {"rz", "position z", L},
               {"vx", "velocity x", L + "/" + T}, {"vy", "velocity y", L + "/" + T}, {"vz", "velocity z", L + "/" + T},
               {"m", "mass", "initial mass"}};
   p.controls = {{"u", "throttle T/Tmax in [0, 1]", "throttle"},
@@ -85,9 +90,15 @@ Problem build_problem(const json& spec) {
 
   // Two-body dynamics with thrust u*Tmax along the unit vector a; mass flow Tmax*u/c.
   const ex r3 = GiNaC::pow(rx * rx + ry * ry + rz * rz, GiNaC::numeric(3, 2));
-  p.f = {vx, vy, vz, -MU * rx / r3 + TM * u * ax / m, -MU * ry / r3 + TM * u * ay / m, -MU * rz / r3 + TM * u * az / m,
+  p.f = {vx,
+         vy,
+         vz,
+         -MU * rx / r3 + TM * u * ax / m,
+         -MU * ry / r3 + TM * u * ay / m,
+         -MU * rz / r3 + TM * u * az / m,
          -TM * u / C};
-  if (p.objective != "minimum_fuel") throw std::invalid_argument("field /objective/kind: " + p.objective + " is not supported");
+  if (p.objective != "minimum_fuel")
+    throw std::invalid_argument("field /objective/kind: " + p.objective + " is not supported");
   // Fuel (mass flow) with the quadratic homotopy term: eps = 1 is an energy-like problem,
   // eps = 0 the bang-bang fuel-optimal one (Bertrand & Epenoy; Jiang, Baoyin & Li 2012).
   p.running_cost = TM / C * (u - eps * u * (1 - u));
@@ -110,7 +121,8 @@ Problem build_problem(const json& spec) {
     k.at = c.at("at").get<std::string>();
     k.target = c.at("target");
     if (k.target.at("kind") == "body" && !time.contains("epoch_mjd2000"))
-      throw std::invalid_argument("field /time/epoch_mjd2000 is missing but constraint '" + k.id + "' follows a body's ephemeris");
+      throw std::invalid_argument("field /time/epoch_mjd2000 is missing but constraint '" + k.id +
+                                  "' follows a body's ephemeris");
     // psi compares position and velocity with the target's, named <id>_<state>.
     for (const auto& names : {pos, vel})
       for (const auto& n : names) {

@@ -91,7 +91,9 @@ std::string fmt(double v, const char* format) {
   return buf;
 }
 
-std::string num(double v) { return fmt(v, "%.10g"); }
+std::string num(double v) {
+  return fmt(v, "%.10g");
+}
 
 json detail(const std::string& id, const std::string& verdict, double points, double max, const std::string& note) {
   return json{{"id", id}, {"verdict", verdict}, {"points", points}, {"max", max}, {"note", note}};
@@ -123,7 +125,8 @@ std::string string_at(const std::optional<json>& doc, const char* pointer) {
 // |found - expected| <= abs_tol + rel_tol * |expected|.
 std::string compare(const json& found, const json& expected, double rel_tol, double abs_tol) {
   const auto close = [&](double f, double e) { return std::fabs(f - e) <= abs_tol + rel_tol * std::fabs(e); };
-  const std::string tol = " (rel_tol " + num(rel_tol) + (abs_tol > 0 ? ", abs_tol " + num(abs_tol) : std::string()) + ")";
+  const std::string tol =
+      " (rel_tol " + num(rel_tol) + (abs_tol > 0 ? ", abs_tol " + num(abs_tol) : std::string()) + ")";
   if (expected.is_number()) {
     if (!found.is_number()) return "expected a number " + num(expected.get<double>()) + ", found " + found.dump();
     if (!close(found.get<double>(), expected.get<double>()))
@@ -178,7 +181,8 @@ json score_fact(const json& fact, const std::optional<json>& spec, double share)
   const std::string looked_for = array + "/<" + filter + ">" + rel;
   if (!spec) return finish(false, looked_for, nullptr, "no spec.json");
   const json::json_pointer ap(array);
-  if (!spec->contains(ap) || !spec->at(ap).is_array()) return finish(false, looked_for, nullptr, "spec has no array " + array);
+  if (!spec->contains(ap) || !spec->at(ap).is_array())
+    return finish(false, looked_for, nullptr, "spec has no array " + array);
   const json& items = spec->at(ap);
   // Any element with the `where` values may hold the fact, so a reordered array still scores.
   std::optional<std::pair<std::string, std::string>> first_miss;  // pointer, why
@@ -208,7 +212,8 @@ json score_fact(const json& fact, const std::optional<json>& spec, double share)
   }
   if (candidates == 0) return finish(false, looked_for, nullptr, "no element of " + array + " has " + filter);
   std::string note = first_miss->second;
-  if (candidates > 1) note = "none of the " + std::to_string(candidates) + " elements with " + filter + " matches; first: " + note;
+  if (candidates > 1)
+    note = "none of the " + std::to_string(candidates) + " elements with " + filter + " matches; first: " + note;
   return finish(false, first_miss->first, first_found, note);
 }
 
@@ -243,7 +248,8 @@ json score_derive(const json& reference, const std::optional<json>& derivation, 
         if (c.is_object() && c.value("verdict", "") == "pass") ++passed;
     } else if (number_at(verify, "/summary/total").value_or(0) > 0) {
       total = static_cast<std::size_t>(*number_at(verify, "/summary/total"));
-      passed = static_cast<std::size_t>(std::clamp(number_at(verify, "/summary/passed").value_or(0), 0.0, double(total)));
+      passed =
+          static_cast<std::size_t>(std::clamp(number_at(verify, "/summary/passed").value_or(0), 0.0, double(total)));
     } else {
       total = 1;
       passed = verdict == "pass" ? 1 : 0;
@@ -251,8 +257,8 @@ json score_derive(const json& reference, const std::optional<json>& derivation, 
     const double pts = kDeriveVerifyMax * static_cast<double>(passed) / static_cast<double>(total);
     const std::string v = passed == total ? "pass" : (passed == 0 ? "fail" : "partial");
     details.push_back(detail("verify", v, pts, kDeriveVerifyMax,
-                             "verdict " + (verdict.empty() ? std::string("missing") : verdict) + ", " + std::to_string(passed) +
-                                 " of " + std::to_string(total) + " checks passed"));
+                             "verdict " + (verdict.empty() ? std::string("missing") : verdict) + ", " +
+                                 std::to_string(passed) + " of " + std::to_string(total) + " checks passed"));
     points += pts;
   }
 
@@ -283,7 +289,8 @@ json score_derive(const json& reference, const std::optional<json>& derivation, 
 std::string status_note(const std::optional<json>& solution) {
   const std::string status = string_at(solution, "/status");
   const std::string detail_text = string_at(solution, "/status_detail");
-  return "status " + (status.empty() ? std::string("missing") : status) + (detail_text.empty() ? "" : " (" + detail_text + ")");
+  return "status " + (status.empty() ? std::string("missing") : status) +
+         (detail_text.empty() ? "" : " (" + detail_text + ")");
 }
 
 json score_compile(const std::optional<json>& solution) {
@@ -307,8 +314,8 @@ json score_converge(const json& reference, const std::optional<json>& solution) 
     return dimension(0, kConvergeMax, details);
   }
   const bool converged = string_at(solution, "/status") == "converged";
-  details.push_back(detail("status", converged ? "pass" : "fail", converged ? kConvergeStatusMax : 0, kConvergeStatusMax,
-                           status_note(solution)));
+  details.push_back(detail("status", converged ? "pass" : "fail", converged ? kConvergeStatusMax : 0,
+                           kConvergeStatusMax, status_note(solution)));
   const double limit = reference["result"]["max_residual"].get<double>();
   const auto residual = number_at(solution, "/max_residual");
   const bool small = residual && *residual < limit;
@@ -344,8 +351,8 @@ json score_accuracy(const json& reference, const std::optional<json>& solution) 
       points = std::max(0.0, kAccuracyMax * (kAccuracyZeroAt * tol - err) / ((kAccuracyZeroAt - 1) * tol));
     const std::string verdict = points >= kAccuracyMax ? "pass" : (points > 0 ? "partial" : "fail");
     d = detail("final_mass", verdict, points, kAccuracyMax,
-               "m_f " + fmt(*mf, "%.6f") + " kg vs " + fmt(ref, "%.6f") + " kg: error " + fmt(err, "%.6f") + " kg, tolerance " +
-                   num(tol) + " kg, 0 points at " + num(kAccuracyZeroAt * tol) + " kg");
+               "m_f " + fmt(*mf, "%.6f") + " kg vs " + fmt(ref, "%.6f") + " kg: error " + fmt(err, "%.6f") +
+                   " kg, tolerance " + num(tol) + " kg, 0 points at " + num(kAccuracyZeroAt * tol) + " kg");
   }
   d["expected"] = ref;
   d["found"] = mf ? json(*mf) : json(nullptr);
@@ -353,7 +360,9 @@ json score_accuracy(const json& reference, const std::optional<json>& solution) 
   return dimension(points, kAccuracyMax, details);
 }
 
-json opt_number(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
+json opt_number(const std::optional<double>& v) {
+  return v ? json(*v) : json(nullptr);
+}
 
 std::string cell_points(const json& dim) {
   std::string s = fmt(dim.value("points", 0.0), "%.2f");
@@ -375,12 +384,16 @@ std::string md_escape(std::string s) {
 
 void check_reference(const json& r, const std::string& source) {
   const RefChecker c{source};
-  if (!r.is_object()) throw input_error(source + ": a reference must be a JSON object (see schemas/reference.schema.json)");
-  c.only_keys(r, "", {"schema", "schema_version", "scenario", "title", "provenance", "citation", "notes", "expected_parse",
-                      "expected_shooting_variables", "result"});
-  if (c.need(r, "schema", "") != "helios/reference") c.fail("/schema", "must be \"helios/reference\", got " + r["schema"].dump());
+  if (!r.is_object())
+    throw input_error(source + ": a reference must be a JSON object (see schemas/reference.schema.json)");
+  c.only_keys(r, "",
+              {"schema", "schema_version", "scenario", "title", "provenance", "citation", "notes", "expected_parse",
+               "expected_shooting_variables", "result"});
+  if (c.need(r, "schema", "") != "helios/reference")
+    c.fail("/schema", "must be \"helios/reference\", got " + r["schema"].dump());
   if (c.need(r, "schema_version", "") != io::kSchemaVersion)
-    c.fail("/schema_version", "is " + r["schema_version"].dump() + ", this build reads version " + std::to_string(io::kSchemaVersion));
+    c.fail("/schema_version",
+           "is " + r["schema_version"].dump() + ", this build reads version " + std::to_string(io::kSchemaVersion));
   static const std::regex scenario_re("^[A-Za-z0-9_-]+$");
   const json& scenario = c.need(r, "scenario", "");
   if (!scenario.is_string() || !std::regex_match(scenario.get<std::string>(), scenario_re))
@@ -435,12 +448,14 @@ json score_run(const ScoreInputs& in) {
   for (const auto& [name, doc] : named) {
     const std::string id = string_at(*doc, "/problem/id");
     if (!id.empty() && id != scenario)
-      warnings.push_back(std::string(name) + ".json is problem \"" + id + "\" but the reference is scenario \"" + scenario + "\"");
+      warnings.push_back(std::string(name) + ".json is problem \"" + id + "\" but the reference is scenario \"" +
+                         scenario + "\"");
   }
   if (in.verify) {
     const std::string verdict = string_at(in.verify, "/verdict");
     if (verdict != "pass" && verdict != "fail")
-      warnings.push_back("verify.json has no verdict \"pass\" or \"fail\" (found " + (verdict.empty() ? "none" : verdict) + ")");
+      warnings.push_back("verify.json has no verdict \"pass\" or \"fail\" (found " +
+                         (verdict.empty() ? "none" : verdict) + ")");
   }
 
   std::optional<long> shooting_variables;
@@ -478,7 +493,8 @@ std::string render_scoreboard(const std::vector<json>& scores) {
   md << "# HELIOS scoreboard\n\n"
      << "Rubric: d1 parse 30, d2 derive 20, d3 compile 20, d4 converge 20, d5 accuracy 10 (total 100). "
      << "m_f in kg; residual = max |F| in normalized units.\n\n"
-     << "| scenario | backend | d1 parse | d2 derive | d3 compile | d4 converge | d5 accuracy | total | m_f | m_f ref | error | residual |\n"
+     << "| scenario | backend | d1 parse | d2 derive | d3 compile | d4 converge | d5 accuracy | total | m_f | m_f ref "
+        "| error | residual |\n"
      << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   double sums[5] = {0, 0, 0, 0, 0};
   double grand = 0;
@@ -494,8 +510,8 @@ std::string render_scoreboard(const std::vector<json>& scores) {
     }
     grand += s.value("total", 0.0);
     const json& m = s["measured"];
-    md << " | " << cell_points(json{{"points", s.value("total", 0.0)}}) << " | " << cell(m["final_mass_kg"], "%.3f") << " | "
-       << cell(m["reference_final_mass_kg"], "%.3f") << " | " << cell(m["error_kg"], "%.3f") << " | "
+    md << " | " << cell_points(json{{"points", s.value("total", 0.0)}}) << " | " << cell(m["final_mass_kg"], "%.3f")
+       << " | " << cell(m["reference_final_mass_kg"], "%.3f") << " | " << cell(m["error_kg"], "%.3f") << " | "
        << cell(m["max_residual"], "%.1e") << " |\n";
   }
   const std::size_t n = scores.size();

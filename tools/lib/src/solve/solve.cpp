@@ -59,11 +59,15 @@ std::string capture(const std::vector<std::string>& argv) {
 
 int count_warnings(const std::string& diagnostics) {
   int n = 0;
-  for (std::size_t pos = diagnostics.find("warning:"); pos != std::string::npos; pos = diagnostics.find("warning:", pos + 1)) ++n;
+  for (std::size_t pos = diagnostics.find("warning:"); pos != std::string::npos;
+       pos = diagnostics.find("warning:", pos + 1))
+    ++n;
   return n;
 }
 
-std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
+std::string first_line(const std::string& s) {
+  return s.substr(0, s.find('\n'));
+}
 
 }  // namespace
 
@@ -113,7 +117,8 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
   ::lseek(err_fd, 0, SEEK_SET);
   char buf[4096];
   ssize_t n;
-  while ((n = ::read(err_fd, buf, sizeof buf)) > 0 && r.stderr_text.size() < 65536) r.stderr_text.append(buf, static_cast<std::size_t>(n));
+  while ((n = ::read(err_fd, buf, sizeof buf)) > 0 && r.stderr_text.size() < 65536)
+    r.stderr_text.append(buf, static_cast<std::size_t>(n));
   ::close(err_fd);
   return r;
 }
@@ -166,19 +171,31 @@ void plot_trajectory(const std::string& csv_path, const std::string& prefix, con
   const std::string script =
       "set datafile separator ','\n"
       "set terminal pngcairo size 1000,800 noenhanced\n"
-      "set output '" + tmp1 + "'\n"
-      "set title '" + title + ": trajectory (colour = throttle)'\n"
+      "set output '" +
+      tmp1 +
+      "'\n"
+      "set title '" +
+      title +
+      ": trajectory (colour = throttle)'\n"
       "set xlabel 'x [AU]'\nset ylabel 'y [AU]'\nset zlabel 'z [AU]'\n"
       "set view equal xy\nset ticslevel 0\nset grid\n"
       "set palette defined (0 '#2b6cb0', 1 '#e53e3e')\nset cbrange [0:1]\nset cblabel 'throttle u'\n"
       "au = 149597870.691\n"
-      "splot '" + csv_path + "' every ::1 using ($2/au):($3/au):($4/au):(column('u')) with lines lw 2 palette title 'spacecraft', "
+      "splot '" +
+      csv_path +
+      "' every ::1 using ($2/au):($3/au):($4/au):(column('u')) with lines lw 2 palette title 'spacecraft', "
       "'< echo 0,0,0' using 1:2:3 with points pt 7 ps 2 lc rgb '#d69e2e' title 'central body'\n"
-      "set output '" + tmp2 + "'\n"
-      "set title '" + title + ": throttle and mass'\n"
+      "set output '" +
+      tmp2 +
+      "'\n"
+      "set title '" +
+      title +
+      ": throttle and mass'\n"
       "set xlabel 'time [days]'\nset ylabel 'throttle u'\nset y2label 'mass [kg]'\n"
       "set yrange [-0.05:1.05]\nset y2tics\nset ytics nomirror\nunset zlabel\n"
-      "plot '" + csv_path + "' every ::1 using 1:(column('u')) with lines lw 2 lc rgb '#e53e3e' title 'throttle', "
+      "plot '" +
+      csv_path +
+      "' every ::1 using 1:(column('u')) with lines lw 2 lc rgb '#e53e3e' title 'throttle', "
       "'' every ::1 using 1:(column('m_kg')) axes x1y2 with lines lw 2 lc rgb '#2b6cb0' title 'mass'\n";
   char script_path[] = "/tmp/helios-plot-XXXXXX";
   const int fd = ::mkstemp(script_path);
@@ -217,8 +234,8 @@ json solve(const SolveOptions& o) {
   doc["problem"] = {{"id", "unknown"}};
   doc["status"] = "compile_failed";
   const CompileResult c = compile_cached(source, o.compiler, o.cache_dir);
-  doc["compile"] = {{"ok", c.ok}, {"cached", c.cached}, {"source_sha256", c.sha256}, {"command", c.command},
-                    {"warnings", c.warnings}, {"diagnostics", c.diagnostics.substr(0, 8000)}};
+  doc["compile"] = {{"ok", c.ok},           {"cached", c.cached},     {"source_sha256", c.sha256},
+                    {"command", c.command}, {"warnings", c.warnings}, {"diagnostics", c.diagnostics.substr(0, 8000)}};
   doc["seed"] = settings.value("seed", 1);
   doc["iterations"] = 0;
   doc["function_evaluations"] = 0;
@@ -231,7 +248,8 @@ json solve(const SolveOptions& o) {
   const std::string settings_tmp = (out_dir / (".settings." + tag + ".json")).string();
   const std::string result_tmp = (out_dir / (".result." + tag + ".json")).string();
   const std::string traj_tmp = (out_dir / (".trajectory." + tag + ".csv")).string();
-  for (const auto& p : {settings_tmp, result_tmp, traj_tmp, result_tmp + ".part", traj_tmp + ".part"}) io::register_temp(p);
+  for (const auto& p : {settings_tmp, result_tmp, traj_tmp, result_tmp + ".part", traj_tmp + ".part"})
+    io::register_temp(p);
   const auto cleanup = [&] {
     for (const auto& p : {settings_tmp, result_tmp, traj_tmp, result_tmp + ".part", traj_tmp + ".part"}) {
       ::unlink(p.c_str());
@@ -239,14 +257,15 @@ json solve(const SolveOptions& o) {
     }
   };
   io::write_json_atomic(settings_tmp, settings);
-  const RunResult run = run_limited({c.binary, "--settings", settings_tmp, "--result", result_tmp, "--trajectory", traj_tmp},
-                                    o.time_limit_s, o.memory_limit_mb);
+  const RunResult run =
+      run_limited({c.binary, "--settings", settings_tmp, "--result", result_tmp, "--trajectory", traj_tmp},
+                  o.time_limit_s, o.memory_limit_mb);
   doc["timings"]["run_s"] = run.seconds;
   if (run.timed_out || run.exit_code != 0 || !fs::exists(result_tmp)) {
     doc["status"] = run.timed_out ? "timeout" : "crashed";
     doc["status_detail"] = run.timed_out ? "killed after " + std::to_string(o.time_limit_s) + " s wall clock"
-                                         : "exit code " + std::to_string(run.exit_code) + ", signal " + std::to_string(run.signal) +
-                                               ": " + first_line(run.stderr_text);
+                                         : "exit code " + std::to_string(run.exit_code) + ", signal " +
+                                               std::to_string(run.signal) + ": " + first_line(run.stderr_text);
     cleanup();
     doc["timings"]["total_s"] = seconds_since(start);
     return doc;

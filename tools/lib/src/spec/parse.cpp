@@ -30,7 +30,8 @@ struct sentence_error : std::runtime_error {
 const std::string kNum = R"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)";
 const std::string kUnit = R"([A-Za-z][A-Za-z0-9^/]*)";
 const std::string kQuantity = "(" + kNum + R"()\s*()" + kUnit + ")";
-const std::string kVector = R"(\[\s*()" + kNum + R"()\s*,\s*()" + kNum + R"()\s*,\s*()" + kNum + R"()\s*\]\s*()" + kUnit + ")";
+const std::string kVector =
+    R"(\[\s*()" + kNum + R"()\s*,\s*()" + kNum + R"()\s*,\s*()" + kNum + R"()\s*\]\s*()" + kUnit + ")";
 
 std::vector<Sentence> split_sentences(const std::string& text) {
   std::vector<Sentence> out;
@@ -72,7 +73,9 @@ std::vector<Sentence> split_sentences(const std::string& text) {
   return out;
 }
 
-double number(const std::string& s) { return std::stod(s); }
+double number(const std::string& s) {
+  return std::stod(s);
+}
 
 double quantity(const std::smatch& m, std::size_t idx, Dimension d) {
   try {
@@ -92,7 +95,9 @@ json vector3(const std::smatch& m, std::size_t idx, Dimension d) {
   return json::array({number(m[idx].str()) * f, number(m[idx + 1].str()) * f, number(m[idx + 2].str()) * f});
 }
 
-std::regex re(const std::string& pattern) { return std::regex("^" + pattern + "$", std::regex::icase); }
+std::regex re(const std::string& pattern) {
+  return std::regex("^" + pattern + "$", std::regex::icase);
+}
 
 // Known gravitational parameters [km^3/s^2] for a central body named without one.
 std::optional<double> known_mu(const std::string& body) {
@@ -108,8 +113,8 @@ std::optional<double> known_mu(const std::string& body) {
 // "position [..] km with velocity [..] km/s" or "<Body>" (JPL low-precision ephemeris).
 json parse_target(const std::string& phrase) {
   std::smatch m;
-  static const std::regex state = re("position " + kVector + " and velocity " + kVector + "|position " + kVector +
-                                     " with velocity " + kVector);
+  static const std::regex state =
+      re("position " + kVector + " and velocity " + kVector + "|position " + kVector + " with velocity " + kVector);
   if (std::regex_match(phrase, m, state)) {
     const std::size_t base = m[1].matched ? 1 : 9;
     return {{"kind", "fixed_state"},
@@ -120,14 +125,16 @@ json parse_target(const std::string& phrase) {
   if (std::regex_match(phrase, m, body)) {
     std::string name = m[1].str();
     name[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
-    for (std::size_t i = 1; i < name.size(); ++i) name[i] = static_cast<char>(std::tolower(static_cast<unsigned char>(name[i])));
+    for (std::size_t i = 1; i < name.size(); ++i)
+      name[i] = static_cast<char>(std::tolower(static_cast<unsigned char>(name[i])));
     return {{"kind", "body"}, {"body", name}, {"ephemeris", "jpl_lp"}};
   }
   throw sentence_error("expected 'position [x, y, z] UNIT with velocity [vx, vy, vz] UNIT' or a planet name");
 }
 
 struct Builder {
-  json problem, central_body, spacecraft = json::object(), objective, time = json::object(), constraints = json::array();
+  json problem, central_body, spacecraft = json::object(), objective, time = json::object(),
+                              constraints = json::array();
   std::map<std::string, int> seen;  // what each sentence set, to refuse contradictions
 
   void once(const std::string& what) {
@@ -138,13 +145,15 @@ struct Builder {
     std::smatch m;
     static const std::regex problem_re = re(R"(Problem ([A-Za-z0-9_-]+)\s*:\s*(.+))");
     static const std::regex central_re =
-        re(R"(The central body is (?:the )?([A-Za-z]+)(?: with (?:a )?gravitational parameter (?:of )?)" + kQuantity + ")?");
+        re(R"(The central body is (?:the )?([A-Za-z]+)(?: with (?:a )?gravitational parameter (?:of )?)" + kQuantity +
+           ")?");
     static const std::regex has_re = re(R"(The spacecraft has (.+))");
     static const std::regex depart_re = re(R"(The spacecraft departs(?: at (.+?))? from (.+))");
     static const std::regex tof_re = re(R"(The time of flight is (?:fixed at )?)" + kQuantity);
-    static const std::regex arrive_re =
-        re(R"(At the final time the spacecraft (?:rendezvouses|must rendezvous) with (.+)|The spacecraft (?:rendezvouses|must rendezvous) with (.+) at the final time)");
-    static const std::regex fuel_re = re(R"(Minimi[sz]e (?:the )?(?:fuel(?: consumption)?|propellant(?: mass)?|fuel use))");
+    static const std::regex arrive_re = re(
+        R"(At the final time the spacecraft (?:rendezvouses|must rendezvous) with (.+)|The spacecraft (?:rendezvouses|must rendezvous) with (.+) at the final time)");
+    static const std::regex fuel_re =
+        re(R"(Minimi[sz]e (?:the )?(?:fuel(?: consumption)?|propellant(?: mass)?|fuel use))");
     if (std::regex_match(s, m, problem_re)) {
       once("the problem name");
       problem = {{"id", m[1].str()}, {"title", m[2].str()}};
@@ -152,7 +161,9 @@ struct Builder {
       once("the central body");
       const std::string name = m[1].str();
       const auto mu = m[2].matched ? std::optional<double>(quantity(m, 2, Dimension::GravParam)) : known_mu(name);
-      if (!mu) throw sentence_error("no gravitational parameter known for '" + name + "': add 'with gravitational parameter VALUE km^3/s^2'");
+      if (!mu)
+        throw sentence_error("no gravitational parameter known for '" + name +
+                             "': add 'with gravitational parameter VALUE km^3/s^2'");
       if (*mu <= 0) throw sentence_error("gravitational parameter must be positive");
       central_body = {{"name", name}, {"mu_km3_s2", *mu}};
     } else if (std::regex_match(s, m, has_re)) {
@@ -160,7 +171,8 @@ struct Builder {
     } else if (std::regex_match(s, m, depart_re)) {
       once("the departure");
       if (m[1].matched) epoch(m[1].str());
-      constraints.push_back({{"id", "departure"}, {"kind", "initial_state"}, {"at", "t0"}, {"target", parse_target(m[2].str())}});
+      constraints.push_back(
+          {{"id", "departure"}, {"kind", "initial_state"}, {"at", "t0"}, {"target", parse_target(m[2].str())}});
     } else if (std::regex_match(s, m, tof_re)) {
       once("the time of flight");
       const double tof = quantity(m, 1, Dimension::Time);
@@ -170,7 +182,8 @@ struct Builder {
     } else if (std::regex_match(s, m, arrive_re)) {
       once("the final rendezvous");
       const std::string phrase = m[1].matched ? m[1].str() : m[2].str();
-      constraints.push_back({{"id", "arrival"}, {"kind", "rendezvous"}, {"at", "tf"}, {"target", parse_target(phrase)}});
+      constraints.push_back(
+          {{"id", "arrival"}, {"kind", "rendezvous"}, {"at", "tf"}, {"target", parse_target(phrase)}});
     } else if (std::regex_match(s, m, fuel_re)) {
       once("the objective");
       objective = {{"kind", "minimum_fuel"}};
@@ -193,7 +206,8 @@ struct Builder {
       time["t0_days"] = 0.0;
       time["epoch_mjd2000"] = number(m[1].str()) - helios::astro::MJD_MINUS_MJD2000;
     } else {
-      throw sentence_error("departure time '" + phrase + "' must read 't = VALUE UNIT', 'MJD VALUE' or 'MJD2000 VALUE'");
+      throw sentence_error("departure time '" + phrase +
+                           "' must read 't = VALUE UNIT', 'MJD VALUE' or 'MJD2000 VALUE'");
     }
   }
 
@@ -208,7 +222,9 @@ struct Builder {
       const std::string part = *it;
       std::smatch m;
       if (!std::regex_match(part, m, clause))
-        throw sentence_error("cannot read '" + part + "': expected 'a maximum thrust of Q', 'a specific impulse of Q' or 'an initial mass of Q'");
+        throw sentence_error(
+            "cannot read '" + part +
+            "': expected 'a maximum thrust of Q', 'a specific impulse of Q' or 'an initial mass of Q'");
       std::string key = m[1].str();
       for (auto& c : key) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
       const auto& [field, dim] = fields.at(key);
@@ -229,11 +245,13 @@ json parse_problem_text(const std::string& text, const std::string& source) {
     try {
       b.handle(sentence.text);
     } catch (const sentence_error& e) {
-      throw input_error(source + ":" + std::to_string(sentence.line) + ": cannot use sentence \"" + sentence.text + "\": " + e.what());
+      throw input_error(source + ":" + std::to_string(sentence.line) + ": cannot use sentence \"" + sentence.text +
+                        "\": " + e.what());
     }
   }
   const auto missing = [&](const std::string& what, const std::string& example) {
-    throw input_error(source + ": the problem text never states " + what + " (add a sentence such as \"" + example + "\")");
+    throw input_error(source + ": the problem text never states " + what + " (add a sentence such as \"" + example +
+                      "\")");
   };
   if (b.problem.is_null()) missing("its name", "Problem S01: Earth to Mars.");
   if (b.central_body.is_null()) missing("the central body", "The central body is the Sun.");
@@ -244,7 +262,8 @@ json parse_problem_text(const std::string& text, const std::string& source) {
     if (!b.spacecraft.contains(field)) missing("the spacecraft's " + field, example);
   if (!b.seen.count("the departure")) missing("the departure", "The spacecraft departs at t = 0 days from the Earth.");
   if (!b.time.contains("tof_days")) missing("the time of flight", "The time of flight is 348.795 days.");
-  if (!b.seen.count("the final rendezvous")) missing("the final condition", "At the final time the spacecraft rendezvouses with Mars.");
+  if (!b.seen.count("the final rendezvous"))
+    missing("the final condition", "At the final time the spacecraft rendezvouses with Mars.");
   if (b.objective.is_null()) missing("the objective", "Minimize the fuel consumption.");
   if (!b.time.contains("t0_days")) b.time["t0_days"] = 0.0;
   json doc = io::artifact_header("spec", "helios-parse", "builtin");

@@ -30,19 +30,27 @@ const Table& table(Dimension d) {
 
 std::string dimension_name(Dimension d) {
   switch (d) {
-    case Dimension::Length: return "length";
-    case Dimension::Speed: return "speed";
-    case Dimension::Force: return "force";
-    case Dimension::Time: return "time";
-    case Dimension::Mass: return "mass";
-    case Dimension::GravParam: return "gravitational parameter";
+    case Dimension::Length:
+      return "length";
+    case Dimension::Speed:
+      return "speed";
+    case Dimension::Force:
+      return "force";
+    case Dimension::Time:
+      return "time";
+    case Dimension::Mass:
+      return "mass";
+    case Dimension::GravParam:
+      return "gravitational parameter";
   }
   return "?";
 }
 
 }  // namespace
 
-std::string spec_unit(Dimension d) { return table(d).spec_unit; }
+std::string spec_unit(Dimension d) {
+  return table(d).spec_unit;
+}
 
 double to_spec_unit(Dimension d, const std::string& unit) {
   std::string key;

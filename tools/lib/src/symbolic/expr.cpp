@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <typeinfo>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <typeinfo>
 
 namespace helios::symbolic {
 
@@ -37,7 +37,9 @@ struct Printed {
   int precedence;
 };
 
-std::string wrap(const Printed& p, int needed) { return p.precedence < needed ? "(" + p.text + ")" : p.text; }
+std::string wrap(const Printed& p, int needed) {
+  return p.precedence < needed ? "(" + p.text + ")" : p.text;
+}
 
 Printed print(const GiNaC::ex& e, Dialect d);
 
@@ -128,9 +130,13 @@ Printed print(const GiNaC::ex& e, Dialect d) {
 
 // NOTE: printing the expanded form makes the text independent of how GiNaC normalized the
 // signs of sums inside products, which depends on its term order.
-std::string to_text(const GiNaC::ex& e) { return print(e.expand(), Dialect::Text).text; }
+std::string to_text(const GiNaC::ex& e) {
+  return print(e.expand(), Dialect::Text).text;
+}
 
-std::string to_csrc(const GiNaC::ex& e) { return print(e.expand(), Dialect::Cpp).text; }
+std::string to_csrc(const GiNaC::ex& e) {
+  return print(e.expand(), Dialect::Cpp).text;
+}
 
 double evaluate(const GiNaC::ex& e, const SymbolTable& table, const Values& values) {
   GiNaC::exmap m;

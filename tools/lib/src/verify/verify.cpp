@@ -168,8 +168,10 @@ class Compiled {
   double eval(int i, const Point& x) const {
     const Node& n = nodes_[static_cast<std::size_t>(i)];
     switch (n.op) {
-      case Op::Const: return n.value;
-      case Op::Var: return x[static_cast<std::size_t>(n.slot)];
+      case Op::Const:
+        return n.value;
+      case Op::Var:
+        return x[static_cast<std::size_t>(n.slot)];
       case Op::Add: {
         double s = 0;
         for (int a : n.args) s += eval(a, x);
@@ -180,10 +182,14 @@ class Compiled {
         for (int a : n.args) p *= eval(a, x);
         return p;
       }
-      case Op::Pow: return std::pow(eval(n.args[0], x), n.value);
-      case Op::PowEx: return std::pow(eval(n.args[0], x), eval(n.args[1], x));
-      case Op::Fn1: return n.f1(eval(n.args[0], x));
-      case Op::Fn2: return n.f2(eval(n.args[0], x), eval(n.args[1], x));
+      case Op::Pow:
+        return std::pow(eval(n.args[0], x), n.value);
+      case Op::PowEx:
+        return std::pow(eval(n.args[0], x), eval(n.args[1], x));
+      case Op::Fn1:
+        return n.f1(eval(n.args[0], x));
+      case Op::Fn2:
+        return n.f2(eval(n.args[0], x), eval(n.args[1], x));
     }
     return std::nan("");
   }
@@ -199,7 +205,8 @@ struct HalfPowers : GiNaC::map_function {
   ex operator()(const ex& e) override {
     if (GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<numeric>(e.op(1))) {
       const numeric k = GiNaC::ex_to<numeric>(e.op(1));
-      if (k.is_rational() && !k.is_integer() && k.denom() == 2) return GiNaC::pow(root((*this)(e.op(0)).expand()), k * 2);
+      if (k.is_rational() && !k.is_integer() && k.denom() == 2)
+        return GiNaC::pow(root((*this)(e.op(0)).expand()), k * 2);
     }
     return e.map(*this);
   }
@@ -272,7 +279,8 @@ ex tidy(const ex& e) {
       bool sum_in_denominator = false;
       for (GiNaC::const_preorder_iterator i = den.preorder_begin(); i != den.preorder_end(); ++i)
         sum_in_denominator = sum_in_denominator || GiNaC::is_a<GiNaC::add>(*i);
-      out += sum_in_denominator ? (cofactor * factor).expand() : r.expand() * GiNaC::pow(factor.op(0), factor.op(1) + 1);
+      out +=
+          sum_in_denominator ? (cofactor * factor).expand() : r.expand() * GiNaC::pow(factor.op(0), factor.op(1) + 1);
     }
     return out;
   } catch (const std::exception&) {
@@ -317,7 +325,8 @@ std::string term_diagnosis(const ex& expected, const ex& given) {
     if (!used[j]) extra.push_back(print(G[j]));
   if (matched + flipped.size() == 0) return "";
   for (auto* list : {&flipped, &missing, &extra}) std::sort(list->begin(), list->end());
-  if (!flipped.empty() && flipped.size() == E.size() && extra.empty()) return "the sign of the whole expression is flipped";
+  if (!flipped.empty() && flipped.size() == E.size() && extra.empty())
+    return "the sign of the whole expression is flipped";
   std::vector<std::string> parts;
   if (!flipped.empty()) parts.push_back("the sign of " + join(flipped, ", ") + " is flipped");
   if (!missing.empty()) parts.push_back("it lacks the term(s) " + join(missing, ", "));
@@ -327,7 +336,19 @@ std::string term_diagnosis(const ex& expected, const ex& given) {
 
 // ---------------------------------------------------------------------------------------------
 
-enum class Kind { Position, Velocity, Mass, OtherState, Costate, Multiplier, Homotopy, Throttle, Direction, Parameter, Free };
+enum class Kind {
+  Position,
+  Velocity,
+  Mass,
+  OtherState,
+  Costate,
+  Multiplier,
+  Homotopy,
+  Throttle,
+  Direction,
+  Parameter,
+  Free
+};
 
 Kind state_kind(const std::string& name, const std::string& meaning) {
   const std::string m = lower(meaning);
@@ -352,9 +373,14 @@ struct Check {
     if (feedback.empty()) feedback = why;
   }
   json to_json() const {
-    return {{"id", id},         {"category", category}, {"verdict", pass ? "pass" : "fail"},
-            {"method", method}, {"points", points},     {"exact", exact},
-            {"max_rel_error", std::isfinite(max_rel) ? max_rel : 2.0}, {"feedback", pass ? "" : feedback}};
+    return {{"id", id},
+            {"category", category},
+            {"verdict", pass ? "pass" : "fail"},
+            {"method", method},
+            {"points", points},
+            {"exact", exact},
+            {"max_rel_error", std::isfinite(max_rel) ? max_rel : 2.0},
+            {"feedback", pass ? "" : feedback}};
   }
 };
 
@@ -427,7 +453,8 @@ class Verifier {
 
   int declare(const std::string& name, Kind kind, double value = 0) {
     if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') ||
-        !std::all_of(name.begin(), name.end(), [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; }))
+        !std::all_of(name.begin(), name.end(),
+                     [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; }))
       throw input_error("derivation: '" + name + "' is not a valid symbol name");
     if (slots_.count(name)) throw input_error("derivation: the name '" + name + "' is used for two different symbols");
     table_.get(name);
@@ -516,7 +543,8 @@ class Verifier {
       const std::string name = io::require_string(c, "name", "derivation controls");
       const std::string kind = io::require_string(c, "kind", "derivation control " + name);
       if (kind == "throttle") {
-        if (!throttle_.empty()) throw input_error("derivation: more than one throttle control (" + throttle_ + ", " + name + ")");
+        if (!throttle_.empty())
+          throw input_error("derivation: more than one throttle control (" + throttle_ + ", " + name + ")");
         throttle_ = name;
         declare(name, Kind::Throttle);
       } else if (kind == "direction") {
@@ -543,8 +571,10 @@ class Verifier {
     const json& dyn = io::require(d, "dynamics", "derivation");
     const json& rhs = io::require(dyn, "state_rhs", "derivation dynamics");
     if (!rhs.is_array() || rhs.size() != states_.size())
-      throw input_error("derivation: dynamics.state_rhs must have one expression per state (" + std::to_string(states_.size()) + ")");
-    for (std::size_t i = 0; i < rhs.size(); ++i) f_.push_back(statement(rhs[i], "dynamics.state_rhs[" + states_[i] + "]"));
+      throw input_error("derivation: dynamics.state_rhs must have one expression per state (" +
+                        std::to_string(states_.size()) + ")");
+    for (std::size_t i = 0; i < rhs.size(); ++i)
+      f_.push_back(statement(rhs[i], "dynamics.state_rhs[" + states_[i] + "]"));
     L_ = statement(io::require(dyn, "running_cost", "derivation dynamics"), "dynamics.running_cost");
     phi_ = statement(io::require(dyn, "endpoint_cost", "derivation dynamics"), "dynamics.endpoint_cost");
     GiNaC::exmap tf_to_state;  // an endpoint cost written in x_tf is read in x
@@ -555,7 +585,8 @@ class Verifier {
         Constraint k;
         k.id = io::require_string(c, "id", "derivation constraints");
         k.at = io::require_string(c, "at", "derivation constraint " + k.id);
-        if (k.at != "t0" && k.at != "tf") throw input_error("derivation: constraint " + k.id + " is at '" + k.at + "', expected t0 or tf");
+        if (k.at != "t0" && k.at != "tf")
+          throw input_error("derivation: constraint " + k.id + " is at '" + k.at + "', expected t0 or tf");
         GiNaC::exmap to_state;
         for (const auto& s : states_) to_state[sym(s + "_" + k.at)] = sym(s);
         const json& psi = io::require(c, "psi", "derivation constraint " + k.id);
@@ -593,17 +624,39 @@ class Verifier {
       Point p(values_.size());
       for (std::size_t i = 0; i < p.size(); ++i) {
         switch (kinds_[i]) {
-          case Kind::Position: p[i] = (uniform(0, 1) < 0.5 ? -1 : 1) * uniform(0.5, 2); break;
-          case Kind::Velocity: p[i] = uniform(-2, 2); break;
-          case Kind::Mass: p[i] = uniform(0.3, 1); break;
-          case Kind::OtherState: p[i] = uniform(0.5, 1.5); break;
-          case Kind::Costate: p[i] = uniform(-1, 1); break;
-          case Kind::Multiplier: p[i] = uniform(0.1, 1); break;
-          case Kind::Homotopy: p[i] = uniform(0.05, 1); break;
-          case Kind::Throttle: p[i] = uniform(0, 1); break;
-          case Kind::Direction: p[i] = 0; break;
-          case Kind::Parameter: p[i] = values_[i]; break;
-          case Kind::Free: p[i] = uniform(-1, 1); break;
+          case Kind::Position:
+            p[i] = (uniform(0, 1) < 0.5 ? -1 : 1) * uniform(0.5, 2);
+            break;
+          case Kind::Velocity:
+            p[i] = uniform(-2, 2);
+            break;
+          case Kind::Mass:
+            p[i] = uniform(0.3, 1);
+            break;
+          case Kind::OtherState:
+            p[i] = uniform(0.5, 1.5);
+            break;
+          case Kind::Costate:
+            p[i] = uniform(-1, 1);
+            break;
+          case Kind::Multiplier:
+            p[i] = uniform(0.1, 1);
+            break;
+          case Kind::Homotopy:
+            p[i] = uniform(0.05, 1);
+            break;
+          case Kind::Throttle:
+            p[i] = uniform(0, 1);
+            break;
+          case Kind::Direction:
+            p[i] = 0;
+            break;
+          case Kind::Parameter:
+            p[i] = values_[i];
+            break;
+          case Kind::Free:
+            p[i] = uniform(-1, 1);
+            break;
         }
       }
       if (!directions_.empty()) p = set_direction(p, random_unit(directions_.size()));
@@ -612,7 +665,8 @@ class Verifier {
       if (finite) points_.push_back(std::move(p));
     }
     if (points_.empty() || static_cast<int>(points_.size()) < opt_.points)
-      throw std::domain_error("derivation: the dynamics and running cost are not finite at random points of the state space");
+      throw std::domain_error(
+          "derivation: the dynamics and running cost are not finite at random points of the state space");
   }
 
   Check start(const std::string& id, const std::string& category, const std::string& method) const {
@@ -668,14 +722,15 @@ class Verifier {
       const std::string t = term_diagnosis(expected.symbolic, given);
       if (!t.empty()) diag.push_back(t);
     }
-    c.fail(label + ": expected " + expected_name + " = " + print(tidy(expected.symbolic)) + ", got " + given_text.get<std::string>() +
-           (diag.empty() ? "" : "; " + join(diag, "; ")) + " (relative difference " + num(worst) + " at a sample point: " +
-           num(we) + " expected, " + num(wg) + " given).");
+    c.fail(label + ": expected " + expected_name + " = " + print(tidy(expected.symbolic)) + ", got " +
+           given_text.get<std::string>() + (diag.empty() ? "" : "; " + join(diag, "; ")) + " (relative difference " +
+           num(worst) + " at a sample point: " + num(we) + " expected, " + num(wg) + " given).");
     return c;
   }
 
   void check_hamiltonian() {
-    const std::string sum = join(std::vector<std::string>{multiplier_ + "*running_cost", "sum of costate*state_rhs"}, " + ");
+    const std::string sum =
+        join(std::vector<std::string>{multiplier_ + "*running_cost", "sum of costate*state_rhs"}, " + ");
     const json text = d_.contains("hamiltonian") ? d_["hamiltonian"] : json();
     checks_.push_back(equality("hamiltonian", "hamiltonian", "hamiltonian", sum, {H_, Hc_, {}}, text, true));
   }
@@ -690,7 +745,8 @@ class Verifier {
       const std::string name = state ? states_[i] : costates_[i];
       known.insert(name);
       const std::string by = state ? costates_[i] : states_[i];
-      const ex expected = state ? H_.diff(GiNaC::ex_to<symbol>(sym(by))) : (-H_.diff(GiNaC::ex_to<symbol>(sym(by)))).expand();
+      const ex expected =
+          state ? H_.diff(GiNaC::ex_to<symbol>(sym(by))) : (-H_.diff(GiNaC::ex_to<symbol>(sym(by)))).expand();
       const std::string expected_name = std::string(state ? "dH/d" : "-dH/d") + by;
       const std::string id = std::string(state ? "state_ode:" : "costate_ode:") + name;
       const std::string category = state ? "state_odes" : "costate_odes";
@@ -721,9 +777,11 @@ class Verifier {
     for (std::size_t k = 0; k < list.size(); ++k) {
       const std::string name = list[k].is_object() ? list[k].value(key, "") : "";
       if (known.count(name)) continue;
-      Check c = start(std::string(state ? "state_ode:" : "costate_ode:") + (name.empty() ? "#" + std::to_string(k) : name),
-                      state ? "state_odes" : "costate_odes", "structural");
-      c.fail(field + "[" + std::to_string(k) + "] is for '" + name + "', which is not a " + key + " of this problem; remove it.");
+      Check c =
+          start(std::string(state ? "state_ode:" : "costate_ode:") + (name.empty() ? "#" + std::to_string(k) : name),
+                state ? "state_odes" : "costate_odes", "structural");
+      c.fail(field + "[" + std::to_string(k) + "] is for '" + name + "', which is not a " + key +
+             " of this problem; remove it.");
       checks_.push_back(c);
     }
   }
@@ -801,14 +859,14 @@ class Verifier {
         const double v = std::isfinite(hA) ? (hA - hb) / (1 + std::max(std::fabs(hA), std::fabs(hb))) : 2.0;
         if (is_flip && v > flip) {
           flip = v;
-          flip_msg = "control_law.direction.law maximizes H instead of minimizing it: H(-a*) = " + num(hb) + " < H(a*) = " +
-                     num(hA) + " at a sample point (G2); flip its sign: " + advice + ".";
+          flip_msg = "control_law.direction.law maximizes H instead of minimizing it: H(-a*) = " + num(hb) +
+                     " < H(a*) = " + num(hA) + " at a sample point (G2); flip its sign: " + advice + ".";
         } else if (!is_flip && v > worse) {
           worse = v;
           std::vector<std::string> bt;
           for (double x : b) bt.push_back(num(x));
-          worse_msg = "control_law.direction.law does not minimize H over unit vectors: H(a*) = " + num(hA) + " but H(a) = " +
-                      num(hb) + " for a = (" + join(bt, ", ") + ") at a sample point; " + advice + ".";
+          worse_msg = "control_law.direction.law does not minimize H over unit vectors: H(a*) = " + num(hA) +
+                      " but H(a) = " + num(hb) + " for a = (" + join(bt, ", ") + ") at a sample point; " + advice + ".";
         }
       };
       std::vector<double> minus = A;
@@ -824,7 +882,8 @@ class Verifier {
     for (const auto& l : law) n2 += l * l;
     bool exact = exact_equal(n2, 1);
     for (std::size_t j = 0; exact && j < law.size(); ++j)
-      for (std::size_t k = j + 1; exact && k < law.size(); ++k) exact = exact_equal(law[j] * grad_a_[k], law[k] * grad_a_[j]);
+      for (std::size_t k = j + 1; exact && k < law.size(); ++k)
+        exact = exact_equal(law[j] * grad_a_[k], law[k] * grad_a_[j]);
     if (unit_err > kTol) {
       c.fail(unit_msg);
     } else if (flip > kTol) {
@@ -846,8 +905,10 @@ class Verifier {
       t = &d_["control_law"]["throttle"];
     if (!t) {
       Check c = start("throttle_switching", "control", "structural");
-      c.fail("control_law.throttle is missing: give the switching function dH/du (at eps = 0, a* substituted), "
-             "dH_du_at_lower, dH_du_at_upper and the interior law of the throttle " + throttle_ + ".");
+      c.fail(
+          "control_law.throttle is missing: give the switching function dH/du (at eps = 0, a* substituted), "
+          "dH_du_at_lower, dH_du_at_upper and the interior law of the throttle " +
+          throttle_ + ".");
       checks_.push_back(c);
       return;
     }
@@ -877,14 +938,14 @@ class Verifier {
 
     checks_.push_back(equality("throttle_switching", "control", "control_law.throttle.switching_function",
                                "dH/d" + throttle_ + " at " + eps_ + " = 0" + a_note,
-                               {Hu_star.subs(GiNaC::lst{u == 0, eps == 0}), Hu_c, at(0, true)}, field("switching_function"),
-                               true, no_u_a_eps));
+                               {Hu_star.subs(GiNaC::lst{u == 0, eps == 0}), Hu_c, at(0, true)},
+                               field("switching_function"), true, no_u_a_eps));
     checks_.push_back(equality("throttle_dH_du_at_lower", "control", "control_law.throttle.dH_du_at_lower",
-                               "dH/d" + throttle_ + " at " + throttle_ + " = 0" + a_note, {Hu_star.subs(u == 0), Hu_c, at(0, false)},
-                               field("dH_du_at_lower"), true, no_u_a));
+                               "dH/d" + throttle_ + " at " + throttle_ + " = 0" + a_note,
+                               {Hu_star.subs(u == 0), Hu_c, at(0, false)}, field("dH_du_at_lower"), true, no_u_a));
     checks_.push_back(equality("throttle_dH_du_at_upper", "control", "control_law.throttle.dH_du_at_upper",
-                               "dH/d" + throttle_ + " at " + throttle_ + " = 1" + a_note, {Hu_star.subs(u == 1), Hu_c, at(1, false)},
-                               field("dH_du_at_upper"), true, no_u_a));
+                               "dH/d" + throttle_ + " at " + throttle_ + " = 1" + a_note,
+                               {Hu_star.subs(u == 1), Hu_c, at(1, false)}, field("dH_du_at_upper"), true, no_u_a));
     if (t->contains("d2H_du2"))
       checks_.push_back(equality("throttle_d2H_du2", "control", "control_law.throttle.d2H_du2",
                                  "d2H/d" + throttle_ + "2" + a_note, {Huu.subs(astar), Huu_c, at(std::nan(""), false)},
@@ -898,8 +959,9 @@ class Verifier {
         const double viol = std::isfinite(v) ? std::max(0.0, -v) / (1 + std::fabs(v)) : 2.0;
         if (viol > c.max_rel) c.max_rel = viol;
         if (viol > kTol)
-          c.fail("d2H/d" + throttle_ + "2 = " + print(tidy(Huu.subs(astar))) + " is " + num(v) + " < 0 at a sample point with " +
-                 multiplier_ + " > 0, " + eps_ + " > 0: dH/du = 0 is then a maximum of H; the " + eps_ +
+          c.fail("d2H/d" + throttle_ + "2 = " + print(tidy(Huu.subs(astar))) + " is " + num(v) +
+                 " < 0 at a sample point with " + multiplier_ + " > 0, " + eps_ +
+                 " > 0: dH/du = 0 is then a maximum of H; the " + eps_ +
                  " smoothing in running_cost must make H convex in " + throttle_ + ".");
       }
       checks_.push_back(c);
@@ -940,9 +1002,9 @@ class Verifier {
         c.exact = exact_equal(Hu_star.subs(u == interior), 0);
         c.pass = worst <= kTol || c.exact;
         if (!c.pass)
-          c.fail("control_law.throttle.interior = " + field("interior").get<std::string>() + " does not solve dH/d" + throttle_ +
-                 " = " + print(tidy(Hu_star)) + " = 0: at a sample point it gives " + throttle_ + " = " + num(wu) +
-                 " where dH/d" + throttle_ + " = " + num(wv) + ".");
+          c.fail("control_law.throttle.interior = " + field("interior").get<std::string>() + " does not solve dH/d" +
+                 throttle_ + " = " + print(tidy(Hu_star)) + " = 0: at a sample point it gives " + throttle_ + " = " +
+                 num(wu) + " where dH/d" + throttle_ + " = " + num(wv) + ".");
       }
       checks_.push_back(c);
     }
@@ -951,8 +1013,8 @@ class Verifier {
     {
       Check c = start("throttle_law", "control", "random_points");
       const json bounds = field("bounds");
-      const bool bounds_ok = bounds.is_array() && bounds.size() == 2 && bounds[0].is_number() && bounds[1].is_number() &&
-                             bounds[0].get<double>() == 0 && bounds[1].get<double>() == 1;
+      const bool bounds_ok = bounds.is_array() && bounds.size() == 2 && bounds[0].is_number() &&
+                             bounds[1].is_number() && bounds[0].get<double>() == 0 && bounds[1].get<double>() == 1;
       Compiled lo, hi;
       std::string error = interior_error;
       try {
@@ -968,7 +1030,8 @@ class Verifier {
       }
       const std::string control = t->value("control", "");
       if (control != throttle_) {
-        c.fail("control_law.throttle.control is '" + control + "', expected '" + throttle_ + "' (the control of kind throttle).");
+        c.fail("control_law.throttle.control is '" + control + "', expected '" + throttle_ +
+               "' (the control of kind throttle).");
       } else if (!bounds_ok) {
         c.fail("control_law.throttle.bounds must be [0, 1] (the throttle is T/Tmax).");
       } else if (!error.empty()) {
@@ -996,9 +1059,11 @@ class Verifier {
             const double v = (hs - hk) / (1 + std::max(std::fabs(hs), std::fabs(hk)));
             if (v > c.max_rel) c.max_rel = v;
             if (v > kTol)
-              c.fail("the throttle law (u = 0 if dH_du_at_lower >= 0, 1 if dH_du_at_upper <= 0, else interior) does not "
-                     "minimize H over " + throttle_ + " in [0, 1]: at a sample point it gives " + throttle_ + " = " + num(ustar) +
-                     " with H = " + num(hs) + ", but " + throttle_ + " = " + num(uk) + " gives H = " + num(hk) + ".");
+              c.fail(
+                  "the throttle law (u = 0 if dH_du_at_lower >= 0, 1 if dH_du_at_upper <= 0, else interior) does not "
+                  "minimize H over " +
+                  throttle_ + " in [0, 1]: at a sample point it gives " + throttle_ + " = " + num(ustar) +
+                  " with H = " + num(hs) + ", but " + throttle_ + " = " + num(uk) + " gives H = " + num(hk) + ".");
           }
         }
       }
@@ -1129,8 +1194,8 @@ class Verifier {
       for (const auto& v : variables_)
         if (!seen.insert(v).second) dup.insert(v);
       if (variables_.size() != equations_.size())
-        c.fail("shooting has " + std::to_string(variables_.size()) + " variables but " + std::to_string(equations_.size()) +
-               " equations: the shooting system must be square.");
+        c.fail("shooting has " + std::to_string(variables_.size()) + " variables but " +
+               std::to_string(equations_.size()) + " equations: the shooting system must be square.");
       else if (!dup.empty())
         c.fail("shooting.variables lists " + join({dup.begin(), dup.end()}, ", ") + " more than once.");
       checks_.push_back(c);
@@ -1148,7 +1213,8 @@ class Verifier {
       for (const auto& v : variables_)
         if (!slots_.count(v)) unknown.push_back("'" + v + "'");
       if (!missing.empty()) c.fail("shooting.variables lacks " + join(missing, ", ") + ".");
-      if (!unknown.empty()) c.fail("shooting.variables has " + join(unknown, ", ") + ", which are not symbols of this derivation.");
+      if (!unknown.empty())
+        c.fail("shooting.variables has " + join(unknown, ", ") + ", which are not symbols of this derivation.");
       checks_.push_back(c);
     }
     {
@@ -1173,9 +1239,10 @@ class Verifier {
         for (const auto& name : symbolic::free_symbols(eq.e))
           if (!allowed.count(name)) bad.push_back(name);
         if (!bad.empty())
-          problems.push_back("shooting equation '" + eq.name + "' uses " + join(bad, ", ") +
-                             ", not known at the shooting boundaries (use <state>_tf, <costate>_tf, <state>_t0, shooting "
-                             "variables and parameters)");
+          problems.push_back(
+              "shooting equation '" + eq.name + "' uses " + join(bad, ", ") +
+              ", not known at the shooting boundaries (use <state>_tf, <costate>_tf, <state>_t0, shooting "
+              "variables and parameters)");
       }
       if (!problems.empty()) c.fail(join(problems, "; ") + ".");
       checks_.push_back(c);
@@ -1235,8 +1302,8 @@ class Verifier {
       std::vector<std::string> left_out;
       for (const auto& v : sphere)
         if (!named->e.has(sym(v))) left_out.push_back(v);
-      c.fail("shooting equation 'normalization' (" + named->text + " = 0) is not equivalent to " + print(expected) + " = 0" +
-             (left_out.empty() ? "" : ": it leaves out " + join(left_out, ", ")) + " (G1: " + multiplier_ +
+      c.fail("shooting equation 'normalization' (" + named->text + " = 0) is not equivalent to " + print(expected) +
+             " = 0" + (left_out.empty() ? "" : ": it leaves out " + join(left_out, ", ")) + " (G1: " + multiplier_ +
              " must be inside the sphere normalization with the costates at t0).");
     } else {
       c.fail(want + ".");
@@ -1260,7 +1327,8 @@ class Verifier {
       if (!used) unused.push_back(states_[i]);
     }
     if (!unused.empty())
-      c.fail("state(s) " + join(unused, ", ") + " have identically zero dynamics and appear in no other dynamics, cost or final "
+      c.fail("state(s) " + join(unused, ", ") +
+             " have identically zero dynamics and appear in no other dynamics, cost or final "
              "constraint: they are not states of this problem; remove them (G4).");
     checks_.push_back(c);
   }
@@ -1293,6 +1361,8 @@ class Verifier {
 
 }  // namespace
 
-json verify_derivation(const json& derivation, const VerifyOptions& options) { return Verifier(derivation, options).run(); }
+json verify_derivation(const json& derivation, const VerifyOptions& options) {
+  return Verifier(derivation, options).run();
+}
 
 }  // namespace helios::verify

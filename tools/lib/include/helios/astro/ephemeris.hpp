@@ -34,10 +34,14 @@ inline const JplLpRow& jpl_lp_row(Planet p) {
   static const JplLpRow venus{{0.72333566, 0.00677672, 3.39467605, 181.97909950, 131.60246718, 76.67984255},
                               {0.00000390, -0.00004107, -0.00078890, 58517.81538729, 0.00268329, -0.27769418}};
   switch (p) {
-    case Planet::EarthMoonBarycenter: return emb;
-    case Planet::Mars: return mars;
-    case Planet::Jupiter: return jupiter;
-    case Planet::Venus: return venus;
+    case Planet::EarthMoonBarycenter:
+      return emb;
+    case Planet::Mars:
+      return mars;
+    case Planet::Jupiter:
+      return jupiter;
+    case Planet::Venus:
+      return venus;
   }
   throw std::invalid_argument("jpl_lp: unknown Planet enumerator");
 }
@@ -75,8 +79,7 @@ inline Planet planet_from_name(const std::string& name) {
   if (s == "mars") return Planet::Mars;
   if (s == "jupiter") return Planet::Jupiter;
   if (s == "venus") return Planet::Venus;
-  throw std::invalid_argument("unknown planet name '" + name +
-                              "' (expected one of: Earth, EMB, Mars, Jupiter, Venus)");
+  throw std::invalid_argument("unknown planet name '" + name + "' (expected one of: Earth, EMB, Mars, Jupiter, Venus)");
 }
 
 }  // namespace helios::astro

@@ -34,7 +34,9 @@ inline double wrap_two_pi(double x) {
   return w >= TWO_PI ? 0.0 : w;
 }
 
-inline double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline double dot3(const double* a, const double* b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 inline std::array<double, 3> cross3(const double* a, const double* b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
@@ -99,7 +101,10 @@ inline double hyperbolic_anomaly(double M, double e) {
   for (int it = 0; it < 200; ++it) {
     const double g = e * std::sinh(H) - H - m;
     if (g == 0.0) break;
-    if (g < 0.0) lo = H; else hi = H;
+    if (g < 0.0)
+      lo = H;
+    else
+      hi = H;
     const double d = -g / (e * std::cosh(H) - 1.0);
     if (std::fabs(d) <= 2.0 * EPS * std::fabs(H)) {
       H += d;
@@ -170,12 +175,18 @@ inline double solve_universal_kepler(double r0, double sigma0, double alpha, dou
     eval(chi, F, Fp);
     if (!std::isfinite(F) || !std::isfinite(Fp)) {
       // Overflow only happens far beyond the root.
-      if (chi > 0.0) hi = chi; else lo = chi;
+      if (chi > 0.0)
+        hi = chi;
+      else
+        lo = chi;
       chi = 0.5 * (lo + hi);
       continue;
     }
     if (F == 0.0) break;
-    if (F < 0.0) lo = chi; else hi = chi;
+    if (F < 0.0)
+      lo = chi;
+    else
+      hi = chi;
     const double d = -F / Fp;
     if (std::fabs(d) <= 2.0 * EPS * std::fabs(chi)) {
       chi += d;
@@ -209,7 +220,10 @@ inline double eccentric_anomaly(double M, double e) {
   for (int it = 0; it < 100; ++it) {
     const double f = E - e * std::sin(E) - m;
     if (f == 0.0) break;
-    if (f < 0.0) lo = E; else hi = E;
+    if (f < 0.0)
+      lo = E;
+    else
+      hi = E;
     const double fp = 1.0 - e * std::cos(E);
     const double fpp = e * std::sin(E);
     // Halley step: cubic convergence, still well defined where fp is small (e -> 1, E -> 0).
@@ -250,7 +264,7 @@ inline std::array<double, 6> elements_to_state(const Elements& el, double mu) {
   const double ci = std::cos(el.i), si = std::sin(el.i);
   const double P[3] = {cO * cw - sO * sw * ci, sO * cw + cO * sw * ci, sw * si};
   const double Q[3] = {-cO * sw - sO * cw * ci, -sO * sw + cO * cw * ci, cw * si};
-  return {xp * P[0] + yp * Q[0], xp * P[1] + yp * Q[1], xp * P[2] + yp * Q[2],
+  return {xp * P[0] + yp * Q[0],   xp * P[1] + yp * Q[1],   xp * P[2] + yp * Q[2],
           vxp * P[0] + vyp * Q[0], vxp * P[1] + vyp * Q[1], vxp * P[2] + vyp * Q[2]};
 }
 
@@ -288,14 +302,14 @@ inline Elements state_to_elements(const std::array<double, 6>& s, double mu) {
 
   const double ecoef1 = v2 / mu - 1.0 / rn;
   const double ecoef2 = rv / mu;
-  const double evec[3] = {ecoef1 * r[0] - ecoef2 * v[0], ecoef1 * r[1] - ecoef2 * v[1],
-                          ecoef1 * r[2] - ecoef2 * v[2]};
+  const double evec[3] = {ecoef1 * r[0] - ecoef2 * v[0], ecoef1 * r[1] - ecoef2 * v[1], ecoef1 * r[2] - ecoef2 * v[2]};
   el.e = std::sqrt(dot3(evec, evec));
 
   const double u = std::atan2(dot3(r, Qn.data()), dot3(r, N));  // argument of latitude
   el.argp = el.e > tiny ? wrap_two_pi(std::atan2(dot3(evec, Qn.data()), dot3(evec, N))) : 0.0;
   const double nu = u - el.argp;
-  const double E = 2.0 * std::atan2(std::sqrt(1.0 - el.e) * std::sin(0.5 * nu), std::sqrt(1.0 + el.e) * std::cos(0.5 * nu));
+  const double E =
+      2.0 * std::atan2(std::sqrt(1.0 - el.e) * std::sin(0.5 * nu), std::sqrt(1.0 + el.e) * std::cos(0.5 * nu));
   el.mean_anomaly = wrap_two_pi(E - el.e * std::sin(E));
   return el;
 }
@@ -343,8 +357,8 @@ inline std::array<double, 6> propagate(const std::array<double, 6>& state, doubl
   // hyperbola; take the one whose terms are smaller.
   const double f = 1.0 - u.u2 / r0;
   const double ga = r0 * u.u1, gb = sigma0 * u.u2;
-  const double g = (std::fabs(ga) + std::fabs(gb) <= std::fabs(target) + std::fabs(u.u3)) ? (ga + gb) / smu
-                                                                                          : dt - u.u3 / smu;
+  const double g =
+      (std::fabs(ga) + std::fabs(gb) <= std::fabs(target) + std::fabs(u.u3)) ? (ga + gb) / smu : dt - u.u3 / smu;
   const double fdot = -smu * u.u1 / (r * r0);
   const double gdot = 1.0 - u.u2 / r;
   std::array<double, 6> out{};

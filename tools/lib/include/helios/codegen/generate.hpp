@@ -18,7 +18,7 @@ struct GenOptions {
 };
 
 struct GeneratedProgram {
-  std::string source;                       // the whole shoot.cpp
+  std::string source;                          // the whole shoot.cpp
   std::vector<std::string> generated_modules;  // e.g. RESIDUAL, SOLVE
   std::vector<std::string> template_modules;   // e.g. DYNAMICS, SWITCH
 };

@@ -9,21 +9,21 @@
 namespace helios::cli {
 
 struct Option {
-  std::string name;         // long name without dashes, e.g. "backend"
-  std::string short_name;   // e.g. "o", or ""
-  std::string value_name;   // e.g. "FILE"; empty for a flag
+  std::string name;        // long name without dashes, e.g. "backend"
+  std::string short_name;  // e.g. "o", or ""
+  std::string value_name;  // e.g. "FILE"; empty for a flag
   std::string help;
   std::string default_value;
 };
 
 struct ToolInfo {
-  std::string name;                     // helios-parse
-  std::string summary;                  // one line
-  std::string usage;                    // "[options] PROBLEM.txt|-"
-  std::vector<Option> options;          // besides -o, --help, --version
-  std::vector<std::string> positionals; // names of required positional arguments
-  std::string description;              // paragraphs after the usage line
-  std::string example;                  // the e.g.: line
+  std::string name;                      // helios-parse
+  std::string summary;                   // one line
+  std::string usage;                     // "[options] PROBLEM.txt|-"
+  std::vector<Option> options;           // besides -o, --help, --version
+  std::vector<std::string> positionals;  // names of required positional arguments
+  std::string description;               // paragraphs after the usage line
+  std::string example;                   // the e.g.: line
 };
 
 struct Args {

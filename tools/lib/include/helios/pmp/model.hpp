@@ -36,11 +36,11 @@ struct Control {
 
 // psi(x(t_k), p) = 0 at t0 or tf. `targets` are parameter names whose values psi compares with.
 struct EndpointConstraint {
-  std::string id, kind, at;          // kind: initial_state | rendezvous; at: t0 | tf
-  std::vector<GiNaC::ex> psi;        // in the state symbols (evaluated at `at`)
+  std::string id, kind, at;    // kind: initial_state | rendezvous; at: t0 | tf
+  std::vector<GiNaC::ex> psi;  // in the state symbols (evaluated at `at`)
   std::vector<std::string> psi_names;
   std::vector<std::string> fixed_states;  // states psi fixes (for meaning and counting)
-  io::json target;                   // the spec's target, for the generator's ephemeris mode
+  io::json target;                        // the spec's target, for the generator's ephemeris mode
 };
 
 struct Problem {
@@ -49,14 +49,14 @@ struct Problem {
   symbolic::SymbolTable symbols;
   std::vector<Named> states, parameters;
   std::vector<Control> controls;
-  std::vector<GiNaC::ex> f;   // state rhs, one per state
-  GiNaC::ex running_cost;     // L (with the homotopy parameter eps)
-  GiNaC::ex endpoint_cost;    // phi (Mayer term), in states at tf
+  std::vector<GiNaC::ex> f;  // state rhs, one per state
+  GiNaC::ex running_cost;    // L (with the homotopy parameter eps)
+  GiNaC::ex endpoint_cost;   // phi (Mayer term), in states at tf
   std::vector<EndpointConstraint> constraints;
-  double t0 = 0, tf = 0;      // normalized
-  double epoch_mjd2000 = 0;   // calendar epoch of t0, for ephemeris targets
+  double t0 = 0, tf = 0;     // normalized
+  double epoch_mjd2000 = 0;  // calendar epoch of t0, for ephemeris targets
   bool has_epoch = false;
-  double initial_mass = 1;    // normalized (the mass scale is m0, so 1)
+  double initial_mass = 1;  // normalized (the mass scale is m0, so 1)
 };
 
 // Name of the costate of state `x` (l_x) and of a symbol at an event time (x_tf).

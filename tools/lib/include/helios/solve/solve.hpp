@@ -8,14 +8,14 @@
 namespace helios::solve {
 
 struct SolveOptions {
-  std::string source_path;       // shoot.cpp
-  std::string settings_path;     // solver settings JSON (seed, tolerances, limits); may be empty
-  std::string cache_dir;         // compiled programs, by content hash
-  std::string trajectory_path;   // trajectory.csv to write
-  std::string plot_prefix;       // writes <prefix>trajectory.png and <prefix>throttle_mass.png; empty: no plots
+  std::string source_path;      // shoot.cpp
+  std::string settings_path;    // solver settings JSON (seed, tolerances, limits); may be empty
+  std::string cache_dir;        // compiled programs, by content hash
+  std::string trajectory_path;  // trajectory.csv to write
+  std::string plot_prefix;      // writes <prefix>trajectory.png and <prefix>throttle_mass.png; empty: no plots
   std::string backend = "builtin";
   std::string compiler = "g++";
-  double time_limit_s = 600;     // wall clock for the run (the program also stops itself)
+  double time_limit_s = 600;  // wall clock for the run (the program also stops itself)
   double memory_limit_mb = 4096;
 };
 
