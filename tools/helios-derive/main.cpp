@@ -16,8 +16,7 @@ int main(int argc, char** argv) {
       "shooting variables and equations (with meaning and scaling). Expressions are GiNaC text.",
       "helios-derive runs/builtin/S01/spec.json -o runs/builtin/S01/derivation.json"};
   return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
-    if (args.get("backend") != "builtin")
-      throw helios::usage_error("--backend " + args.get("backend") + " is not available in this build (use builtin)");
+    helios::cli::backend_option(args, {"builtin"});
     const auto spec = helios::io::read_artifact("spec", args.positionals[0]);
     helios::io::write_artifact("derivation", helios::pmp::derive_from_spec(spec), args.output);
     return 0;

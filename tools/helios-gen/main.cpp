@@ -20,8 +20,7 @@ int main(int argc, char** argv) {
       "and the modules RESIDUAL and SOLVE generated from the shooting system.",
       "helios-gen runs/builtin/S01/derivation.json -o runs/builtin/S01/shoot.cpp"};
   return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
-    if (args.get("backend") != "builtin")
-      throw helios::usage_error("--backend " + args.get("backend") + " is not available in this build (use builtin)");
+    helios::cli::backend_option(args, {"builtin"});
     helios::codegen::GenOptions options;
     const std::string policy = args.get("modules");
     if (policy == "generated")

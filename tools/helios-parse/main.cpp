@@ -16,8 +16,7 @@ int main(int argc, char** argv) {
       "units (km, km/s, N, s, days, kg, km^3/s^2).",
       "helios-parse scenarios/S01/problem.txt -o runs/builtin/S01/spec.json"};
   return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
-    if (args.get("backend") != "builtin")
-      throw helios::usage_error("--backend " + args.get("backend") + " is not available in this build (use builtin)");
+    helios::cli::backend_option(args, {"builtin"});
     const std::string& input = args.positionals[0];
     const auto spec = helios::spec::parse_problem_text(helios::io::read_text(input), input == "-" ? "<stdin>" : input);
     helios::io::write_artifact("spec", spec, args.output);

@@ -6,17 +6,6 @@
 #include "helios/io/schema.hpp"
 #include "helios/solve/solve.hpp"
 
-namespace {
-double positive_number(const helios::cli::Args& args, const std::string& name) {
-  try {
-    const double v = std::stod(args.get(name));
-    if (v > 0) return v;
-  } catch (const std::exception&) {
-  }
-  throw helios::usage_error("--" + name + " " + args.get(name) + " is not a positive number");
-}
-}  // namespace
-
 int main(int argc, char** argv) {
   const helios::cli::ToolInfo info{
       "helios-solve",
@@ -42,11 +31,9 @@ int main(int argc, char** argv) {
     o.trajectory_path = args.get("trajectory");
     o.plot_prefix = args.get("plots");
     o.cache_dir = args.get("cache-dir");
-    o.backend = args.get("backend");
-    o.time_limit_s = positive_number(args, "time-limit");
-    o.memory_limit_mb = positive_number(args, "memory-limit");
-    if (o.backend != "builtin" && o.backend != "llm")
-      throw helios::usage_error("--backend " + o.backend + " is not builtin or llm");
+    o.backend = helios::cli::backend_option(args, {"builtin", "llm"});
+    o.time_limit_s = helios::cli::positive_option(args, "time-limit");
+    o.memory_limit_mb = helios::cli::positive_option(args, "memory-limit");
     helios::io::write_artifact("solution", helios::solve::solve(o), args.output);
     return 0;
   });

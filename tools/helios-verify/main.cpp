@@ -6,25 +6,6 @@
 #include "helios/io/schema.hpp"
 #include "helios/verify/verify.hpp"
 
-namespace {
-
-long integer_option(const helios::cli::Args& args, const std::string& name, long min, long max) {
-  const std::string& text = args.get(name);
-  std::size_t used = 0;
-  long value = -1;
-  try {
-    value = std::stol(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || value < min || value > max)
-    throw helios::usage_error("--" + name + " " + text + " is not an integer in [" + std::to_string(min) + ", " +
-                              std::to_string(max) + "]");
-  return value;
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
   const helios::cli::ToolInfo info{
       "helios-verify",
@@ -42,8 +23,8 @@ int main(int argc, char** argv) {
       "helios-verify runs/builtin/S01/derivation.json -o runs/builtin/S01/verify.json"};
   return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
     helios::verify::VerifyOptions options;
-    options.points = static_cast<int>(integer_option(args, "points", 1, 100000));
-    options.seed = static_cast<unsigned>(integer_option(args, "seed", 0, 4294967295L));
+    options.points = static_cast<int>(helios::cli::integer_option(args, "points", 1, 100000));
+    options.seed = static_cast<unsigned>(helios::cli::integer_option(args, "seed", 0, 4294967295L));
     const auto derivation = helios::io::read_artifact("derivation", args.positionals[0]);
     const auto report = helios::verify::verify_derivation(derivation, options);
     helios::io::write_artifact("verify", report, args.output);

@@ -1,5 +1,6 @@
 #include "helios/io/cli.hpp"
 
+#include <cmath>
 #include <exception>
 #include <iostream>
 #include <sstream>
@@ -88,6 +89,45 @@ bool parse_args(const ToolInfo& info, int argc, char** argv, Args& args) {
                       "), got " + std::to_string(args.positionals.size()) + ", see " + info.name + " --help");
   }
   return true;
+}
+
+long integer_option(const Args& args, const std::string& name, long min, long max) {
+  const std::string& text = args.get(name);
+  std::size_t used = 0;
+  long value = -1;
+  try {
+    value = std::stol(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || value < min || value > max)
+    throw usage_error("--" + name + " " + text + " is not an integer in [" + std::to_string(min) + ", " +
+                      std::to_string(max) + "]");
+  return value;
+}
+
+double positive_option(const Args& args, const std::string& name) {
+  const std::string& text = args.get(name);
+  std::size_t used = 0;
+  double value = -1;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !(value > 0) || !std::isfinite(value))
+    throw usage_error("--" + name + " " + text + " is not a positive number");
+  return value;
+}
+
+std::string backend_option(const Args& args, const std::vector<std::string>& available) {
+  const std::string& backend = args.get("backend");
+  std::string names;
+  for (const auto& a : available) {
+    if (a == backend) return backend;
+    names += (names.empty() ? "" : ", ") + a;
+  }
+  throw usage_error("--backend " + backend + " is not available in this build (use " + names + ")");
 }
 
 int run_tool(const ToolInfo& info, int argc, char** argv, const std::function<int(const Args&)>& body) {

@@ -37,6 +37,12 @@ struct Args {
 
 std::string help_text(const ToolInfo& info);
 
+// Typed option values; each throws usage_error "--NAME VALUE is not ..." on a bad value.
+long integer_option(const Args& args, const std::string& name, long min, long max);
+double positive_option(const Args& args, const std::string& name);
+// The --backend value, which must be one of `available`.
+std::string backend_option(const Args& args, const std::vector<std::string>& available);
+
 // Parses argv; throws usage_error. Returns false if --help or --version was handled.
 bool parse_args(const ToolInfo& info, int argc, char** argv, Args& args);
 
