@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -226,6 +227,21 @@ json solve(const SolveOptions& o) {
   json settings = json::object();
   if (!o.settings_path.empty()) settings = io::read_json(o.settings_path);
   if (!settings.is_object()) throw input_error(o.settings_path + ": settings must be a JSON object");
+  // The runtime reads these (templates/runtime/main.hpp); anything else is a typo, not a no-op.
+  static const std::vector<std::string> known = {
+      "seed",           "max_attempts",    "time_limit_s",   "integrator_rtol", "integrator_atol",
+      "hybrd_tol",      "accept_residual", "final_residual", "eps_start",       "eps_min",
+      "eps_first_ratio"};
+  for (auto it = settings.begin(); it != settings.end(); ++it) {
+    if (std::find(known.begin(), known.end(), it.key()) == known.end())
+      throw input_error(o.settings_path + ": field /" + it.key() +
+                        " is not a solver setting (known: seed, max_attempts, "
+                        "time_limit_s, integrator_rtol, integrator_atol, hybrd_tol, accept_residual, final_residual, "
+                        "eps_start, eps_min, eps_first_ratio)");
+    if (!it.value().is_number() || !(it.value().get<double>() >= 0))
+      throw input_error(o.settings_path + ": field /" + it.key() + " must be a non-negative number, got " +
+                        it.value().dump());
+  }
   // The program stops itself a little before the wall-clock kill.
   const double own_limit = std::max(1.0, o.time_limit_s - 5);
   settings["time_limit_s"] = std::min(settings.value("time_limit_s", own_limit), own_limit);
