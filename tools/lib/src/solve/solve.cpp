@@ -233,11 +233,11 @@ json solve(const SolveOptions& o) {
       "hybrd_tol",      "accept_residual", "final_residual", "eps_start",       "eps_min",
       "eps_first_ratio"};
   for (auto it = settings.begin(); it != settings.end(); ++it) {
-    if (std::find(known.begin(), known.end(), it.key()) == known.end())
-      throw input_error(o.settings_path + ": field /" + it.key() +
-                        " is not a solver setting (known: seed, max_attempts, "
-                        "time_limit_s, integrator_rtol, integrator_atol, hybrd_tol, accept_residual, final_residual, "
-                        "eps_start, eps_min, eps_first_ratio)");
+    if (std::find(known.begin(), known.end(), it.key()) == known.end()) {
+      std::string names;
+      for (const auto& k : known) names += (names.empty() ? "" : ", ") + k;
+      throw input_error(o.settings_path + ": field /" + it.key() + " is not a solver setting (known: " + names + ")");
+    }
     if (!it.value().is_number() || !(it.value().get<double>() >= 0))
       throw input_error(o.settings_path + ": field /" + it.key() + " must be a non-negative number, got " +
                         it.value().dump());
