@@ -32,10 +32,14 @@ else
 endif
 VERIFY_FLAGS := $(if $(filter advisory,$(VERIFY_MODE)),--advisory,)
 
-.PHONY: run all scoreboard test unit bats bench tools deps clean
-run: $(RUNS)/$(scenario)/score.json
+# Every artifact is named here, so make treats none as intermediate: a deleted one is remade.
+ARTIFACTS := spec.json derivation.json verify.json shoot.cpp solution.json score.json
+artifacts_of = $(addprefix $(RUNS)/$(1)/,$(ARTIFACTS))
 
-all: $(foreach s,$(SCENARIOS),$(RUNS)/$(s)/score.json)
+.PHONY: run all scoreboard test unit bats bench tools deps clean
+run: $(call artifacts_of,$(scenario))
+
+all: $(foreach s,$(SCENARIOS),$(call artifacts_of,$(s)))
 
 deps:
 	@tools/install-deps.sh
@@ -72,8 +76,6 @@ $(RUNS)/%/score.json: scenarios/%/reference.json $(RUNS)/%/spec.json $(RUNS)/%/d
                       $(RUNS)/%/verify.json $(RUNS)/%/solution.json $(TOOLS_STAMP)
 	$(BIN)/helios-score --reference $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
 	  --verify $(@D)/verify.json --solution $(@D)/solution.json -o $@
-
-.PRECIOUS: $(RUNS)/%/spec.json $(RUNS)/%/derivation.json $(RUNS)/%/verify.json $(RUNS)/%/shoot.cpp $(RUNS)/%/solution.json
 
 scoreboard: $(RUNS)/scoreboard.md
 $(RUNS)/scoreboard.md: $(wildcard $(RUNS)/S*/score.json) $(TOOLS_STAMP)

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -81,9 +82,14 @@ std::string read_text(const std::string& path) {
     all << std::cin.rdbuf();
     return all.str();
   }
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw input_error(path + ": is a directory, expected a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw input_error(path + ": cannot read: " + std::strerror(errno));
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  std::ostringstream all;
+  all << in.rdbuf();
+  if (in.bad()) throw input_error(path + ": read error");
+  return all.str();
 }
 
 json read_json(const std::string& path) {

@@ -41,13 +41,25 @@ void validate(const std::string& kind, const json& doc, const std::string& sourc
   valijson::ValidationResults results;
   valijson::adapters::NlohmannJsonAdapter target(plain);
   if (validator.validate(schema_for(kind), target, &results)) return;
-  // The deepest error is the most specific; valijson lists parents first.
+  // The deepest error is the most specific; at equal depth, an error saying what is wrong beats
+  // one that only reports a failed combinator (if/then/else, oneOf).
+  const auto generic = [](const std::string& d) { return d.rfind("Failed to validate against", 0) == 0; };
   valijson::ValidationResults::Error error, last;
+  bool have = false;
   while (results.popError(error)) {
-    if (last.context.empty() || error.context.size() >= last.context.size()) last = error;
+    const bool deeper = !have || error.context.size() > last.context.size();
+    const bool better_same_depth = have && error.context.size() == last.context.size() && generic(last.description) &&
+                                   !generic(error.description);
+    if (deeper || better_same_depth) last = error;
+    have = true;
   }
+  // valijson names the location as "<root>", "[constraints]", "[1]", ...: print a JSON pointer.
   std::string where;
-  for (const auto& part : last.context) where += part == "<root>" ? "" : part;
+  for (const auto& part : last.context) {
+    if (part == "<root>") continue;
+    const bool bracketed = part.size() >= 2 && part.front() == '[' && part.back() == ']';
+    where += "/" + (bracketed ? part.substr(1, part.size() - 2) : part);
+  }
   if (where.empty()) where = "/";
   throw input_error(source + ": " + kind + " schema violation at " + where + ": " + last.description);
 }

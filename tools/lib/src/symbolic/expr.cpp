@@ -20,7 +20,9 @@ GiNaC::ex SymbolTable::parse(const std::string& text, const std::string& where) 
   try {
     return reader(text);
   } catch (const std::exception& e) {
-    throw std::invalid_argument(where + ": cannot parse expression '" + text + "': " + e.what());
+    // GiNaC's message continues with the parser's source location on further lines.
+    const std::string why = e.what();
+    throw std::invalid_argument(where + ": cannot parse expression '" + text + "': " + why.substr(0, why.find('\n')));
   }
 }
 

@@ -1,0 +1,156 @@
+#!/usr/bin/env bats
+# helios-gen: derivation.json -> shoot.cpp
+
+load test_helper
+
+setup() {
+  common_setup
+  require_tool parse derive gen
+}
+
+# The flags of helios-solve's compile, made strict.
+syntax_check() {
+  g++ -std=c++17 -O2 -Wall -Wextra -Werror -fsyntax-only "$1"
+}
+
+# ---- shared contract -------------------------------------------------------------------------
+
+@test "gen: no arguments -> exit 2, one error line" {
+  contract_no_args gen
+}
+
+@test "gen: unknown option -> exit 2" {
+  s01_derivation
+  contract_bad_option gen derivation.json
+}
+
+@test "gen: a bad --modules value -> exit 2, nothing written" {
+  s01_derivation
+  mkdir out
+  run -2 --separate-stderr "$BIN/helios-gen" --modules sometimes derivation.json -o out/shoot.cpp
+  assert_one_error_line gen
+  assert_stderr_contains "sometimes"
+  assert_dir_empty out
+}
+
+@test "gen: --backend other than builtin -> exit 2" {
+  s01_derivation
+  run -2 --separate-stderr "$BIN/helios-gen" --backend nope derivation.json
+  assert_one_error_line gen
+}
+
+@test "gen: missing input file -> exit 3 naming the file, nothing written" {
+  mkdir out
+  run -3 --separate-stderr "$BIN/helios-gen" no-such-derivation.json -o out/shoot.cpp
+  assert_one_error_line gen
+  assert_stderr_contains "no-such-derivation.json"
+  assert_dir_empty out
+}
+
+@test "gen: --help ends with an e.g. line" {
+  contract_help gen
+}
+
+@test "gen: --version" {
+  contract_version gen
+}
+
+@test "gen: malformed JSON -> exit 3, nothing written" {
+  printf '[{"schema": "helios/derivation"}' >broken.json
+  mkdir out
+  run -3 --separate-stderr "$BIN/helios-gen" broken.json -o out/shoot.cpp
+  assert_one_error_line gen
+  assert_stderr_contains "broken.json"
+  assert_dir_empty out
+}
+
+@test "gen: schema violation (derivation without hamiltonian) -> exit 3 naming the field" {
+  s01_derivation
+  jq 'del(.hamiltonian)' derivation.json >bad.json
+  mkdir out
+  run -3 --separate-stderr "$BIN/helios-gen" bad.json -o out/shoot.cpp
+  assert_one_error_line gen
+  assert_stderr_contains "bad.json" "hamiltonian"
+  assert_dir_empty out
+}
+
+@test "gen: schema violation (shooting equation without expression) -> exit 3 naming the field path" {
+  s01_derivation
+  jq 'del(.shooting.equations[2].expression)' derivation.json >bad.json
+  run -3 --separate-stderr "$BIN/helios-gen" bad.json
+  assert_one_error_line gen
+  assert_stderr_contains "expression"
+  [[ $stderr == *"/shooting/equations/2"* || $stderr == *"[shooting][equations][2]"* ]]
+}
+
+@test "gen: wrong artifact kind (a spec) -> exit 3, nothing written" {
+  s01_spec
+  mkdir out
+  run -3 --separate-stderr "$BIN/helios-gen" spec.json -o out/shoot.cpp
+  assert_one_error_line gen
+  assert_stderr_contains "helios/spec" "helios/derivation"
+  assert_dir_empty out
+}
+
+@test "gen: wrong artifact kind (settings.json, no schema field) -> exit 3" {
+  run -3 --separate-stderr "$BIN/helios-gen" "$S01/settings.json"
+  assert_one_error_line gen
+  assert_stderr_contains "/schema"
+}
+
+@test "gen: an unparsable expression -> exit 3, one error line naming where, nothing written" {
+  s01_derivation
+  jq '.shooting.equations[0].expression = "rx_tf +* 2"' derivation.json >bad.json
+  mkdir out
+  run -3 --separate-stderr "$BIN/helios-gen" bad.json -o out/shoot.cpp
+  assert_one_error_line gen
+  assert_stderr_contains "rx_tf +* 2"
+  [[ $stderr == *"shooting/equations/0"* || $stderr == *"[shooting][equations][0]"* ]]
+  assert_dir_empty out
+}
+
+@test "gen: an expression with an unknown symbol -> exit 3 (generated modules)" {
+  s01_derivation
+  jq '.costate_odes[0].rhs = "foo + l_vx"' derivation.json >bad.json
+  run -3 --separate-stderr "$BIN/helios-gen" --modules generated bad.json
+  assert_one_error_line gen
+  assert_stderr_contains "foo"
+}
+
+# ---- generated program -----------------------------------------------------------------------
+
+@test "gen: the S01 program has the RESIDUAL and SOLVE modules and compiles cleanly" {
+  s01_derivation
+  run -0 --separate-stderr "$BIN/helios-gen" derivation.json -o shoot.cpp
+  [[ -z $output && -z $stderr ]]
+  grep -q "module RESIDUAL" shoot.cpp
+  grep -q "module SOLVE" shoot.cpp
+  # auto policy: S01 is the template's model, so DYNAMICS + SWITCH come from the template.
+  grep -q "modules DYNAMICS + SWITCH" shoot.cpp
+  run -1 grep -q "modules DYNAMICS + SWITCH (generated" shoot.cpp
+  assert_no_temp_files .
+  syntax_check shoot.cpp
+}
+
+@test "gen: --modules generated generates DYNAMICS + SWITCH and compiles cleanly" {
+  s01_derivation
+  run -0 --separate-stderr "$BIN/helios-gen" --modules generated derivation.json -o shoot.cpp
+  grep -q "modules DYNAMICS + SWITCH (generated" shoot.cpp
+  grep -q "module RESIDUAL" shoot.cpp
+  grep -q "module SOLVE" shoot.cpp
+  syntax_check shoot.cpp
+}
+
+@test "gen: stdin input and stdout output give the same program as files" {
+  s01_derivation
+  "$BIN/helios-gen" derivation.json -o from-file.cpp
+  "$BIN/helios-gen" - <derivation.json >from-stdin.cpp
+  cmp from-file.cpp from-stdin.cpp
+}
+
+@test "gen: output is byte-identical across runs" {
+  s01_derivation
+  "$BIN/helios-gen" derivation.json -o a.cpp
+  "$BIN/helios-gen" derivation.json -o b.cpp
+  cmp a.cpp b.cpp
+}

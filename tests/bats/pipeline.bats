@@ -1,0 +1,231 @@
+#!/usr/bin/env bats
+# The Makefile pipeline: problem.txt -> spec -> derivation -> verify -> shoot.cpp -> solution -> score.
+#
+# Runs make in the repository on a private scenario, scenarios/T01 (a copy of S01), so it never
+# touches the S01 runs of others: setup_file creates scenarios/T01, teardown_file removes it and
+# runs/builtin/T01. A lock (/tmp/helios-bats-T01.lock) serializes concurrent runs of this file.
+#
+# make is run with `-o build/tools.stamp`: the tools are taken as built (as in the other files, run
+# `make tools` first; `make bats` does), so that a colleague editing a tool source meanwhile does not
+# turn these runs into tool rebuilds. The compile cache is a private one (CACHE=...).
+
+load test_helper
+
+BATS_NO_PARALLELIZE_WITHIN_FILE=true
+
+T01_LOCK=/tmp/helios-bats-T01.lock
+T01_LOCK_FD=201
+ARTIFACTS=(spec.json derivation.json verify.json shoot.cpp solution.json score.json)
+EARLY=(spec.json derivation.json verify.json shoot.cpp)
+LATE=(solution.json score.json)
+
+setup_file() {
+  require_tool parse derive verify gen solve score
+  eval "exec $T01_LOCK_FD>\"\$T01_LOCK\""
+  if ! flock -w 600 "$T01_LOCK_FD"; then
+    echo "another run of pipeline.bats holds $T01_LOCK" >&2
+    return 1
+  fi
+  T01_OWNED=1
+  rm -rf "$ROOT/scenarios/T01" "$ROOT/runs/builtin/T01"
+  mkdir "$ROOT/scenarios/T01"
+  sed 's/^Problem S01:/Problem T01:/' "$S01/problem.txt" >"$ROOT/scenarios/T01/problem.txt"
+  grep -q '^Problem T01:' "$ROOT/scenarios/T01/problem.txt"
+  jq '.scenario = "T01"' "$S01/reference.json" >"$ROOT/scenarios/T01/reference.json"
+  cp "$S01/settings.json" "$ROOT/scenarios/T01/settings.json"
+  export PIPE_CACHE="$BATS_FILE_TMPDIR/cache"
+}
+
+teardown_file() {
+  if [[ ${T01_OWNED:-} == 1 ]]; then
+    rm -rf "$ROOT/scenarios/T01" "$ROOT/runs/builtin/T01"
+    flock -u "$T01_LOCK_FD" || true
+  fi
+  eval "exec $T01_LOCK_FD>&-"
+}
+
+setup() {
+  common_setup
+  RUNDIR="$ROOT/runs/builtin/T01"
+  MAKE_CACHE="$PIPE_CACHE"
+}
+
+# make for T01, isolated from an enclosing make (`make bats`) and from tool rebuilds.
+pmake() {
+  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
+    make --no-print-directory -C "$ROOT" -o build/tools.stamp scenario=T01 CACHE="$MAKE_CACHE" "$@"
+}
+
+# Builds T01 unless it is complete and up to date.
+ensure_built() {
+  local f complete=1
+  for f in "${ARTIFACTS[@]}"; do [[ -s $RUNDIR/$f ]] || complete=0; done
+  if ((complete)) && pmake -q; then return 0; fi
+  # make would not remake a missing intermediate artifact under an up-to-date score.json.
+  ((complete)) || rm -f "$RUNDIR/score.json"
+  pmake >"$BATS_TEST_TMPDIR/ensure.log" 2>&1 || { cat "$BATS_TEST_TMPDIR/ensure.log" >&2; return 1; }
+}
+
+# mtime_of FILE: mtime of runs/builtin/T01/FILE in nanoseconds.
+mtime_of() {
+  local t
+  t="$(stat -c %.9Y "$RUNDIR/$1")"
+  echo "${t/./}"
+}
+
+# snapshot FILE...: "FILE MTIME" lines.
+snapshot() {
+  local f
+  for f in "$@"; do echo "$f $(mtime_of "$f")"; done
+}
+
+# poll SECONDS CMD...: retries CMD every 0.1 s until it succeeds or SECONDS pass.
+poll() {
+  local deadline=$((SECONDS + $1))
+  shift
+  until "$@"; do
+    ((SECONDS < deadline)) || return 1
+    sleep 0.1
+  done
+}
+
+is_group_leader() {
+  [[ $(ps -o pgid= -p "$1" | tr -d ' ') == "$1" ]]
+}
+
+solve_running_in_group() {
+  pgrep -g "$1" -f 'helios-solve.*T01' >/dev/null
+}
+
+group_gone() {
+  ! pgrep -g "$1" >/dev/null
+}
+
+# assert_ran TOOL...: make's output shows these tools running; assert_not_ran: it does not.
+assert_ran() {
+  local t
+  for t in "$@"; do [[ $output == *"bin/helios-$t "* ]] || { echo "make did not run helios-$t:" >&2; echo "$output" >&2; return 1; }; done
+}
+assert_not_ran() {
+  local t
+  for t in "$@"; do [[ $output != *"bin/helios-$t "* ]] || { echo "make ran helios-$t:" >&2; echo "$output" >&2; return 1; }; done
+}
+
+# ---- tests -------------------------------------------------------------------------------------
+
+@test "pipeline: make scenario=T01 runs the whole chain and scores 100" {
+  rm -rf "$RUNDIR"
+  run -0 pmake
+  assert_ran parse derive verify gen solve score
+  local f
+  for f in "${ARTIFACTS[@]}" trajectory.csv; do [[ -s $RUNDIR/$f ]] || { echo "missing $f" >&2; false; }; done
+  assert_png "$RUNDIR/trajectory.png"
+  assert_png "$RUNDIR/throttle_mass.png"
+  assert_jq "$RUNDIR/spec.json" '.problem.id == "T01"'
+  assert_jq "$RUNDIR/verify.json" '.verdict == "pass"'
+  assert_jq "$RUNDIR/solution.json" '.status == "converged" and .max_residual < 1e-10'
+  assert_jq "$RUNDIR/score.json" '.scenario == "T01" and .total == 100'
+  assert_no_temp_files "$RUNDIR"
+}
+
+@test "pipeline: a second make does nothing" {
+  ensure_built
+  local before after
+  before="$(snapshot "${ARTIFACTS[@]}" trajectory.csv trajectory.png throttle_mass.png)"
+  run -0 pmake -q
+  run -0 pmake
+  [[ $output == *"Nothing to be done"* ]] || { echo "$output" >&2; false; }
+  assert_not_ran parse derive verify gen solve score
+  after="$(snapshot "${ARTIFACTS[@]}" trajectory.csv trajectory.png throttle_mass.png)"
+  [[ $before == "$after" ]] || { diff <(echo "$before") <(echo "$after") >&2; false; }
+}
+
+@test "pipeline: touching settings.json re-runs only solve and score" {
+  ensure_built
+  local before_early before_late f
+  before_early="$(snapshot "${EARLY[@]}")"
+  declare -A before_late
+  for f in "${LATE[@]}"; do before_late[$f]="$(mtime_of "$f")"; done
+  sleep 0.05 # past the file system's timestamp granularity
+  touch "$ROOT/scenarios/T01/settings.json"
+  run -1 pmake -q
+  run -0 pmake
+  assert_ran solve score
+  assert_not_ran parse derive verify gen
+  [[ $(snapshot "${EARLY[@]}") == "$before_early" ]]
+  for f in "${LATE[@]}"; do
+    (($(mtime_of "$f") > ${before_late[$f]})) || { echo "$f was not rebuilt" >&2; false; }
+  done
+  assert_jq "$RUNDIR/score.json" '.total == 100'
+  run -0 pmake -q
+}
+
+@test "pipeline: a deleted solution.json is remade (make -q reports it)" {
+  ensure_built
+  local before_early
+  before_early="$(snapshot "${EARLY[@]}")"
+  rm -f "$RUNDIR/solution.json"
+  run -1 pmake -q
+  run -0 pmake
+  assert_ran solve score
+  assert_not_ran parse derive verify gen
+  [[ -s $RUNDIR/solution.json ]]
+  [[ $(snapshot "${EARLY[@]}") == "$before_early" ]]
+}
+
+@test "pipeline: make killed mid-solve leaves no partial artifacts, and a rerun resumes" {
+  ensure_built
+  local before_early score_before
+  before_early="$(snapshot "${EARLY[@]}")"
+  score_before="$(mtime_of score.json)"
+  # The state of a first run that reached the solve (score.json goes too: with it in place, make
+  # 4.3 would not remake the missing intermediate solution.json, see the test above).
+  rm -f "$RUNDIR/solution.json" "$RUNDIR/score.json"
+  # A fresh compile cache, so that helios-solve spends ~5 s compiling: the window to interrupt it.
+  MAKE_CACHE="$BATS_TEST_TMPDIR/cache"
+  setsid env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
+    make --no-print-directory -C "$ROOT" -o build/tools.stamp scenario=T01 CACHE="$MAKE_CACHE" \
+    >"$BATS_TEST_TMPDIR/make.log" 2>&1 3>&- &
+  local pid=$!
+  # setsid execs make as the leader of a new process group; never signal any other group.
+  if ! poll 5 is_group_leader "$pid"; then
+    kill "$pid" 2>/dev/null || true
+    cat "$BATS_TEST_TMPDIR/make.log" >&2
+    echo "make ($pid) did not become a process group leader" >&2
+    false
+  fi
+  if ! poll 120 solve_running_in_group "$pid"; then
+    kill -TERM -- "-$pid" 2>/dev/null || true
+    cat "$BATS_TEST_TMPDIR/make.log" >&2
+    echo "helios-solve never started" >&2
+    false
+  fi
+  sleep 1
+  solve_running_in_group "$pid" || { echo "helios-solve finished before it could be interrupted" >&2; false; }
+  kill -TERM -- "-$pid"
+  local rc=0
+  wait "$pid" || rc=$?
+  ((rc != 0)) || { echo "make exited 0 although it was killed" >&2; false; }
+  poll 10 group_gone "$pid" || { echo "processes of the killed make are still running:" >&2; pgrep -a -g "$pid" >&2; false; }
+  echo "--- log of the interrupted make:"
+  cat "$BATS_TEST_TMPDIR/make.log"
+
+  [[ ! -e $RUNDIR/solution.json ]] || { echo "solution.json exists after the interrupted solve" >&2; false; }
+  assert_no_temp_files "$RUNDIR"
+  assert_no_temp_files "$MAKE_CACHE"
+  [[ $(snapshot "${EARLY[@]}") == "$before_early" ]]
+  run -1 pmake -q
+
+  # The rerun resumes at the solve: only solution.json and score.json are made.
+  run -0 pmake
+  assert_ran solve score
+  assert_not_ran parse derive verify gen
+  [[ $(snapshot "${EARLY[@]}") == "$before_early" ]]
+  [[ -s $RUNDIR/solution.json && -s $RUNDIR/score.json ]]
+  (($(mtime_of score.json) > score_before))
+  (($(mtime_of solution.json) > score_before))
+  assert_jq "$RUNDIR/solution.json" '.status == "converged" and .compile.cached == false'
+  assert_jq "$RUNDIR/score.json" '.total == 100'
+  assert_no_temp_files "$RUNDIR"
+  run -0 pmake -q
+}

@@ -1,0 +1,188 @@
+#!/usr/bin/env bats
+# helios-solve: shoot.cpp -> solution.json (+ trajectory.csv, trajectory.png, throttle_mass.png)
+#
+# Compiling shoot.cpp takes ~5 s, so setup_file compiles and runs S01 once, into
+# $BATS_FILE_TMPDIR/e2e with the compile cache $BATS_FILE_TMPDIR/cache; the other tests reuse
+# that cache (a cache hit costs < 1 s).
+
+load test_helper
+
+setup_file() {
+  require_tool parse derive gen solve
+  export SRC="$BATS_FILE_TMPDIR/s01" CACHE="$BATS_FILE_TMPDIR/cache" E2E="$BATS_FILE_TMPDIR/e2e"
+  mkdir -p "$SRC" "$E2E"
+  s01_shoot "$SRC"
+  cp "$SRC/shoot.cpp" "$E2E/shoot.cpp"
+  local rc=0 start end
+  start=$(date +%s.%N)
+  s01_solve "$E2E" "$CACHE" >"$E2E/stdout" 2>"$E2E/stderr" || rc=$?
+  end=$(date +%s.%N)
+  echo "$rc" >"$E2E/status"
+  echo "$start $end" >"$E2E/wall"
+}
+
+setup() {
+  common_setup
+  require_tool solve
+}
+
+# ---- end to end --------------------------------------------------------------------------------
+
+@test "solve: S01 end to end converges to the paper's final mass" {
+  [[ $(cat "$E2E/status") == 0 ]] || { cat "$E2E/stderr" >&2; false; }
+  [[ ! -s $E2E/stderr && ! -s $E2E/stdout ]]
+  local sol="$E2E/solution.json"
+  assert_jq "$sol" '.schema == "helios/solution" and .problem.id == "S01"'
+  assert_jq "$sol" '.status == "converged"'
+  assert_jq "$sol" '.compile.ok == true and .compile.cached == false'
+  assert_jq "$sol" '.max_residual < 1e-10'
+  assert_jq "$sol" '(.final_mass_kg - 603.935) | fabs <= 0.01'
+  assert_jq "$sol" '.files.trajectory == "trajectory.csv"'
+  assert_no_temp_files "$E2E"
+}
+
+@test "solve: trajectory.csv has the t_days, m_kg, u, H and S columns" {
+  local csv="$E2E/trajectory.csv"
+  [[ -s $csv ]]
+  local header
+  header="$(head -n 1 "$csv")"
+  local col
+  for col in t_days m_kg u H S; do
+    [[ ",$header," == *",$col,"* ]] || { echo "column $col missing from: $header" >&2; false; }
+  done
+  # Rows have as many fields as the header; the first row starts at t = 0 with the initial mass.
+  [[ $(wc -l <"$csv") -gt 10 ]]
+  awk -F, -v n="$(awk -F, 'NR == 1 { print NF }' "$csv")" 'NF != n { exit 1 }' "$csv"
+  local m_col
+  m_col="$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "m_kg") print i }' "$csv")"
+  awk -F, -v c="$m_col" 'NR == 2 { exit !($1 == 0 && $c == 1000) }' "$csv"
+}
+
+@test "solve: both plots exist and are PNG files" {
+  assert_png "$E2E/trajectory.png"
+  assert_png "$E2E/throttle_mass.png"
+  assert_jq "$E2E/solution.json" '.files.trajectory_plot == "trajectory.png" and .files.throttle_mass_plot == "throttle_mass.png"'
+}
+
+@test "solve: a second run with the same cache reports compile.cached true" {
+  cp "$SRC/shoot.cpp" shoot.cpp
+  run -0 --separate-stderr s01_solve "$BATS_TEST_TMPDIR" "$CACHE"
+  assert_jq solution.json '.compile.cached == true and .compile.ok == true'
+  assert_jq solution.json '.status == "converged"'
+  jq -e --slurpfile first "$E2E/solution.json" \
+    '.compile.source_sha256 == $first[0].compile.source_sha256 and .final_mass_kg == $first[0].final_mass_kg' solution.json
+  assert_no_temp_files "$BATS_TEST_TMPDIR"
+  assert_no_temp_files "$CACHE"
+}
+
+@test "solve: reads the program from stdin with -" {
+  run -0 --separate-stderr bash -c \
+    '"$BIN/helios-solve" - --settings "$S01/settings.json" --cache-dir "$CACHE" --trajectory t.csv --plots "" <"$SRC/shoot.cpp"'
+  jq -e '.status == "converged" and .compile.cached == true' <<<"$output"
+  [[ -s t.csv ]]
+}
+
+@test "solve: a shoot.cpp with a syntax error -> status compile_failed, exit 0" {
+  { cat "$SRC/shoot.cpp"; echo 'this is not C++ at all'; } >shoot.cpp
+  run -0 --separate-stderr "$BIN/helios-solve" shoot.cpp --settings "$S01/settings.json" --cache-dir "$CACHE" \
+    --trajectory trajectory.csv --plots ./ -o solution.json
+  assert_jq solution.json '.status == "compile_failed"'
+  assert_jq solution.json '.compile.ok == false and .compile.cached == false'
+  assert_jq solution.json '.compile.diagnostics | test("error")'
+  assert_jq solution.json 'has("final_mass_kg") | not'
+  [[ ! -e trajectory.csv && ! -e trajectory.png && ! -e throttle_mass.png ]]
+  assert_no_temp_files "$BATS_TEST_TMPDIR"
+  assert_no_temp_files "$CACHE"
+}
+
+# ---- shared contract -------------------------------------------------------------------------
+
+@test "solve: no arguments -> exit 2, one error line" {
+  contract_no_args solve
+}
+
+@test "solve: unknown option -> exit 2" {
+  contract_bad_option solve "$SRC/shoot.cpp"
+}
+
+@test "solve: a non-positive or non-numeric --time-limit -> exit 2" {
+  local limit
+  for limit in 0 -5 abc; do
+    mkdir "out$limit"
+    run -2 --separate-stderr "$BIN/helios-solve" "$SRC/shoot.cpp" --settings "$S01/settings.json" \
+      --cache-dir "$CACHE" --trajectory "out$limit/t.csv" --plots "" --time-limit "$limit" -o "out$limit/solution.json"
+    assert_one_error_line solve
+    assert_stderr_contains "--time-limit"
+    assert_dir_empty "out$limit"
+  done
+}
+
+@test "solve: a non-positive --memory-limit -> exit 2" {
+  run -2 --separate-stderr "$BIN/helios-solve" "$SRC/shoot.cpp" --settings "$S01/settings.json" \
+    --cache-dir "$CACHE" --plots "" --memory-limit 0
+  assert_one_error_line solve
+}
+
+@test "solve: an unknown --backend -> exit 2" {
+  run -2 --separate-stderr "$BIN/helios-solve" "$SRC/shoot.cpp" --settings "$S01/settings.json" \
+    --cache-dir "$CACHE" --plots "" --backend nope
+  assert_one_error_line solve
+}
+
+@test "solve: missing input file -> exit 3 naming the file, nothing written" {
+  mkdir out
+  run -3 --separate-stderr "$BIN/helios-solve" no-such-shoot.cpp --settings "$S01/settings.json" \
+    --cache-dir "$CACHE" --trajectory out/trajectory.csv --plots out/ -o out/solution.json
+  assert_one_error_line solve
+  assert_stderr_contains "no-such-shoot.cpp"
+  assert_dir_empty out
+}
+
+@test "solve: missing input file without the optional --settings/--plots -> exit 3 naming the file" {
+  run -3 --separate-stderr "$BIN/helios-solve" no-such-shoot.cpp
+  assert_one_error_line solve
+  assert_stderr_contains "no-such-shoot.cpp"
+}
+
+@test "solve: --plots is optional (no plots drawn without it)" {
+  cp "$SRC/shoot.cpp" shoot.cpp
+  run -0 --separate-stderr "$BIN/helios-solve" shoot.cpp --settings "$S01/settings.json" --cache-dir "$CACHE" \
+    --trajectory trajectory.csv -o solution.json
+  assert_jq solution.json '.status == "converged"'
+  [[ -s trajectory.csv && ! -e trajectory.png && ! -e throttle_mass.png ]]
+}
+
+@test "solve: --help ends with an e.g. line" {
+  contract_help solve
+}
+
+@test "solve: --version" {
+  contract_version solve
+}
+
+@test "solve: malformed --settings JSON -> exit 3 naming the file, nothing written" {
+  printf '{"seed": 1,' >settings.json
+  mkdir out
+  run -3 --separate-stderr "$BIN/helios-solve" "$SRC/shoot.cpp" --settings settings.json --cache-dir "$CACHE" \
+    --trajectory out/trajectory.csv --plots out/ -o out/solution.json
+  assert_one_error_line solve
+  assert_stderr_contains "settings.json" "malformed JSON"
+  assert_dir_empty out
+}
+
+@test "solve: --settings that is not a JSON object -> exit 3" {
+  echo '[1, 2, 3]' >settings.json
+  run -3 --separate-stderr "$BIN/helios-solve" "$SRC/shoot.cpp" --settings settings.json --cache-dir "$CACHE" \
+    --plots "" -o solution.json
+  assert_one_error_line solve
+  assert_stderr_contains "settings.json"
+  [[ ! -e solution.json ]]
+}
+
+@test "solve: missing --settings file -> exit 3 naming the file" {
+  run -3 --separate-stderr "$BIN/helios-solve" "$SRC/shoot.cpp" --settings no-such-settings.json \
+    --cache-dir "$CACHE" --plots "" -o solution.json
+  assert_one_error_line solve
+  assert_stderr_contains "no-such-settings.json"
+  [[ ! -e solution.json ]]
+}

@@ -1,0 +1,166 @@
+# Common setup for the HELIOS Bats suite (bats-core >= 1.5).
+#
+#   load test_helper        (at the top of every *.bats file)
+#
+# Every test runs in its own $BATS_TEST_TMPDIR (the working directory); nothing is written to the
+# source tree except by pipeline.bats, which owns scenarios/T01 and runs/builtin/T01.
+# The tools are NOT rebuilt here: run `make tools` first (`make bats` does).
+
+bats_require_minimum_version 1.5.0
+
+ROOT="$(cd "$BATS_TEST_DIRNAME/../.." && pwd)"
+BIN="$ROOT/build/bin"
+S01="$ROOT/scenarios/S01"
+export ROOT BIN S01
+
+# Called from each file's setup().
+common_setup() {
+  cd "$BATS_TEST_TMPDIR" || return 1
+}
+
+# Fails the test (or setup_file) with a clear message when a tool has not been built.
+require_tool() {
+  local tool
+  for tool in "$@"; do
+    if [[ ! -x "$BIN/helios-$tool" ]]; then
+      echo "missing $BIN/helios-$tool: run 'make tools' first" >&2
+      return 1
+    fi
+  done
+}
+
+# ---- S01 artifacts, written into the current test's tmpdir (or DIR) -------------------------
+
+# s01_spec [DIR] -> DIR/spec.json
+s01_spec() {
+  local dir="${1:-$BATS_TEST_TMPDIR}"
+  "$BIN/helios-parse" "$S01/problem.txt" -o "$dir/spec.json"
+}
+
+# s01_derivation [DIR] -> DIR/spec.json, DIR/derivation.json
+s01_derivation() {
+  local dir="${1:-$BATS_TEST_TMPDIR}"
+  s01_spec "$dir"
+  "$BIN/helios-derive" "$dir/spec.json" -o "$dir/derivation.json"
+}
+
+# s01_verify [DIR] -> ... DIR/verify.json
+s01_verify() {
+  local dir="${1:-$BATS_TEST_TMPDIR}"
+  [[ -f "$dir/derivation.json" ]] || s01_derivation "$dir"
+  "$BIN/helios-verify" "$dir/derivation.json" -o "$dir/verify.json"
+}
+
+# s01_shoot [DIR [POLICY]] -> ... DIR/shoot.cpp (POLICY: auto | generated)
+s01_shoot() {
+  local dir="${1:-$BATS_TEST_TMPDIR}" policy="${2:-auto}"
+  [[ -f "$dir/derivation.json" ]] || s01_derivation "$dir"
+  "$BIN/helios-gen" --modules "$policy" "$dir/derivation.json" -o "$dir/shoot.cpp"
+}
+
+# s01_solve DIR CACHE_DIR -> DIR/solution.json, DIR/trajectory.csv, DIR/trajectory.png,
+# DIR/throttle_mass.png (needs DIR/shoot.cpp)
+s01_solve() {
+  local dir="$1" cache="$2"
+  "$BIN/helios-solve" "$dir/shoot.cpp" --settings "$S01/settings.json" --cache-dir "$cache" \
+    --trajectory "$dir/trajectory.csv" --plots "$dir/" -o "$dir/solution.json"
+}
+
+# ---- assertions ------------------------------------------------------------------------------
+
+# After `run -N --separate-stderr helios-TOOL ...`: stderr is exactly one line "helios-TOOL: error: ...".
+assert_one_error_line() {
+  local tool="$1"
+  if [[ ${#stderr_lines[@]} -ne 1 ]]; then
+    echo "expected exactly one stderr line, got ${#stderr_lines[@]}:" >&2
+    printf '%s\n' "$stderr" >&2
+    return 1
+  fi
+  if [[ ${stderr_lines[0]} != "helios-$tool: error: "* ]]; then
+    echo "stderr does not start with 'helios-$tool: error: ': $stderr" >&2
+    return 1
+  fi
+}
+
+# assert_stderr_contains TEXT...: every TEXT occurs in $stderr (fixed strings).
+assert_stderr_contains() {
+  local text
+  for text in "$@"; do
+    if [[ $stderr != *"$text"* ]]; then
+      echo "stderr does not mention '$text': $stderr" >&2
+      return 1
+    fi
+  done
+}
+
+# assert_no_temp_files DIR: no dot-files (atomic-write temps such as .x.json.tmp.PID.N) below DIR.
+assert_no_temp_files() {
+  local left
+  left="$(find "$1" -mindepth 1 -name '.*' 2>/dev/null)"
+  if [[ -n $left ]]; then
+    echo "temp files left behind:" >&2
+    printf '%s\n' "$left" >&2
+    return 1
+  fi
+}
+
+# assert_dir_empty DIR: nothing at all was written into DIR.
+assert_dir_empty() {
+  local left
+  left="$(find "$1" -mindepth 1 2>/dev/null)"
+  if [[ -n $left ]]; then
+    echo "expected $1 to stay empty, found:" >&2
+    printf '%s\n' "$left" >&2
+    return 1
+  fi
+}
+
+# assert_jq FILE FILTER: `jq -e FILTER FILE` is true (prints the file's relevant part on failure).
+assert_jq() {
+  local file="$1" filter="$2"
+  if ! jq -e "$filter" "$file" >/dev/null; then
+    echo "jq -e '$filter' failed on $file" >&2
+    head -c 3000 "$file" >&2
+    return 1
+  fi
+}
+
+# assert_png FILE: exists and starts with the PNG signature 89 50 4E 47 0D 0A 1A 0A.
+assert_png() {
+  [[ -s $1 ]] || { echo "missing or empty PNG: $1" >&2; return 1; }
+  local magic
+  magic="$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')"
+  [[ $magic == 89504e470d0a1a0a ]] || { echo "$1 does not start with the PNG magic (got $magic)" >&2; return 1; }
+}
+
+# ---- the contract every tool shares (used by each tool's file) -------------------------------
+
+# contract_no_args TOOL
+contract_no_args() {
+  run -2 --separate-stderr "$BIN/helios-$1"
+  assert_one_error_line "$1"
+  [[ -z $output ]]
+}
+
+# contract_bad_option TOOL [ARGS...]
+contract_bad_option() {
+  local tool="$1"
+  shift
+  run -2 --separate-stderr "$BIN/helios-$tool" --no-such-option "$@"
+  assert_one_error_line "$tool"
+  assert_stderr_contains "--no-such-option"
+}
+
+contract_help() {
+  run -0 --separate-stderr "$BIN/helios-$1" --help
+  [[ $output == *"usage: helios-$1"* ]]
+  local last="${lines[${#lines[@]} - 1]}"
+  [[ $last == "e.g.: helios-$1 "* ]] || { echo "last help line is not 'e.g.: helios-$1 ...': $last" >&2; return 1; }
+  [[ -z $stderr ]]
+}
+
+contract_version() {
+  run -0 --separate-stderr "$BIN/helios-$1" --version
+  [[ $output == "helios-$1 0.1.0" ]] || { echo "got: $output" >&2; return 1; }
+  [[ -z $stderr ]]
+}
