@@ -58,7 +58,7 @@ struct Context {
 
   // C++ for a stored expression; parameters are read from namespace problem.
   std::string cpp(const std::string& text, const std::string& where) {
-    GiNaC::ex e = symbols.parse(text, where);
+    GiNaC::ex e = symbols.parse(text, "field " + where);
     GiNaC::exmap qualified;
     for (const auto& p : parameters)
       if (index_of(ephemeris_parameters, p) < 0) qualified[symbols.get(p)] = GiNaC::symbol("problem::" + p);
@@ -175,13 +175,13 @@ std::string generated_dynamics(Context& c) {
   if (so.size() != c.states.size() || co.size() != c.states.size())
     throw std::invalid_argument("field /state_odes or /costate_odes: one equation per state is required");
   for (std::size_t i = 0; i < so.size(); ++i)
-    o << "  dy[" << i << "] = " << c.cpp(so[i].at("rhs"), "state_odes[" + std::to_string(i) + "]") << ";\n";
+    o << "  dy[" << i << "] = " << c.cpp(so[i].at("rhs"), "/state_odes/" + std::to_string(i) + "/rhs") << ";\n";
   for (std::size_t i = 0; i < co.size(); ++i)
-    o << "  dy[" << so.size() + i << "] = " << c.cpp(co[i].at("rhs"), "costate_odes[" + std::to_string(i) + "]")
+    o << "  dy[" << so.size() + i << "] = " << c.cpp(co[i].at("rhs"), "/costate_odes/" + std::to_string(i) + "/rhs")
       << ";\n";
   o << "}\n\n"
     << "double hamiltonian(const double* y, const double* control, const Multipliers& mult) {\n"
-    << unpack(c, true) << "  return " << c.cpp(d.at("hamiltonian"), "hamiltonian") << ";\n}\n\n"
+    << unpack(c, true) << "  return " << c.cpp(d.at("hamiltonian"), "/hamiltonian") << ";\n}\n\n"
     << "void direction_control(const double* y, double* control) {\n";
   const json& cl = d.at("control_law");
   if (cl.contains("direction")) {
@@ -192,16 +192,16 @@ std::string generated_dynamics(Context& c) {
     const auto& names = cl.at("direction").at("controls");
     const auto& law = cl.at("direction").at("law");
     for (std::size_t j = 0; j < names.size(); ++j)
-      o << "  control[" << index_of(c.controls, names[j]) << "] = " << c.cpp(law[j], "control_law/direction/law")
-        << ";\n";
+      o << "  control[" << index_of(c.controls, names[j])
+        << "] = " << c.cpp(law[j], "/control_law/direction/law/" + std::to_string(j)) << ";\n";
   } else {
     o << "  (void)y;\n  (void)control;\n";
   }
   o << "}\n\n"
     << "void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper) {\n"
     << unpack(c, false)
-    << "  at_lower = " << c.cpp(cl.at("throttle").at("dH_du_at_lower"), "control_law/throttle/dH_du_at_lower") << ";\n"
-    << "  at_upper = " << c.cpp(cl.at("throttle").at("dH_du_at_upper"), "control_law/throttle/dH_du_at_upper") << ";\n"
+    << "  at_lower = " << c.cpp(cl.at("throttle").at("dH_du_at_lower"), "/control_law/throttle/dH_du_at_lower") << ";\n"
+    << "  at_upper = " << c.cpp(cl.at("throttle").at("dH_du_at_upper"), "/control_law/throttle/dH_du_at_upper") << ";\n"
     << "}\n\n}  // namespace helios_rt\n";
   return o.str();
 }
@@ -240,7 +240,8 @@ std::string residual_module(Context& c) {
   for (const auto& iv : d.at("initial_values")) {
     const int k = index_of(c.states, iv.at("state"));
     if (k < 0) throw std::invalid_argument("field /initial_values: unknown state " + iv.at("state").dump());
-    o << "  y[" << k << "] = " << c.cpp(iv.at("value"), "initial_values") << ";\n";
+    o << "  y[" << k << "] = " << c.cpp(iv.at("value"), "/initial_values/" + iv.at("state").get<std::string>())
+      << ";\n";
   }
   for (std::size_t i = 0; i < c.costates.size(); ++i) {
     const std::string v = c.costates[i] + "_t0";
@@ -257,7 +258,8 @@ std::string residual_module(Context& c) {
     o << "  [[maybe_unused]] const double " << c.costates[i] << "_tf = y[" << c.states.size() + i << "];\n";
   for (std::size_t i = 0; i < eqs.size(); ++i) {
     const double scale = eqs[i].at("scale");
-    o << "  F[" << i << "] = (" << c.cpp(eqs[i].at("expression"), "shooting/equations/" + std::to_string(i)) << ")";
+    o << "  F[" << i << "] = ("
+      << c.cpp(eqs[i].at("expression"), "/shooting/equations/" + std::to_string(i) + "/expression") << ")";
     if (scale != 1.0) o << " / " << number(scale);
     o << ";  // " << eqs[i].at("meaning").get<std::string>() << "\n";
   }
