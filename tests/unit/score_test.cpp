@@ -237,15 +237,18 @@ TEST(Score, MalformedReferenceIsAnInputErrorNamingTheField) {
     helios::score::score_run(in);
     FAIL() << "expected input_error";
   } catch (const helios::input_error& e) {
-    EXPECT_EQ(
-        std::string(e.what()),
-        "ref.json: field /expected_parse/1/rel_tol must be a number >= 0, got -1 (see schemas/reference.schema.json)");
+    EXPECT_EQ(std::string(e.what()),
+              "ref.json: reference schema violation at /expected_parse/1/rel_tol: Expected number greater than or "
+              "equal to 0.000000");
   }
   in.reference = s01_reference();
   in.reference["result"].erase("tolerance_kg");
   EXPECT_THROW(helios::score::score_run(in), helios::input_error);
   in.reference = s01_reference();
   in.reference["expected_parse"][0]["pointr"] = "/x";
+  EXPECT_THROW(helios::score::score_run(in), helios::input_error);
+  in.reference = s01_reference();
+  in.reference["expected_parse"][1]["id"] = in.reference["expected_parse"][0]["id"];
   EXPECT_THROW(helios::score::score_run(in), helios::input_error);
 }
 

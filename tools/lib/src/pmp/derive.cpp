@@ -1,6 +1,5 @@
 #include "helios/pmp/derive.hpp"
 
-#include <random>
 #include <set>
 #include <stdexcept>
 

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -15,72 +14,6 @@ namespace helios::score {
 namespace {
 
 using io::json;
-
-// ---------------------------------------------------------------------------------------------
-// Reference shape (schemas/reference.schema.json, enforced in code).
-
-struct RefChecker {
-  const std::string& source;
-
-  [[noreturn]] void fail(const std::string& where, const std::string& why) const {
-    throw input_error(source + ": field " + where + " " + why + " (see schemas/reference.schema.json)");
-  }
-
-  void only_keys(const json& obj, const std::string& where, const std::set<std::string>& allowed) const {
-    for (auto it = obj.begin(); it != obj.end(); ++it)
-      if (!allowed.count(it.key())) fail(where + "/" + it.key(), "is not a known field");
-  }
-
-  const json& need(const json& obj, const std::string& key, const std::string& where) const {
-    if (!obj.contains(key)) fail(where + "/" + key, "is missing");
-    return obj.at(key);
-  }
-
-  void positive_number(const json& obj, const std::string& key, const std::string& where) const {
-    const json& v = need(obj, key, where);
-    if (!v.is_number() || !(v.get<double>() > 0)) fail(where + "/" + key, "must be a number > 0, got " + v.dump());
-  }
-
-  void pointer(const json& v, const std::string& where) const {
-    if (!v.is_string()) fail(where, "must be a JSON pointer string, got " + v.dump());
-    try {
-      json::json_pointer p(v.get<std::string>());
-      (void)p;
-    } catch (const json::exception&) {
-      fail(where, "is not a valid JSON pointer: " + v.dump());
-    }
-  }
-
-  void fact(const json& f, const std::string& where, std::set<std::string>& ids) const {
-    if (!f.is_object()) fail(where, "must be an object");
-    only_keys(f, where, {"id", "in", "pointer", "value", "rel_tol", "abs_tol"});
-    const json& id = need(f, "id", where);
-    static const std::regex id_re("^[a-z][a-z0-9_]*$");
-    if (!id.is_string() || !std::regex_match(id.get<std::string>(), id_re))
-      fail(where + "/id", "must match ^[a-z][a-z0-9_]*$, got " + id.dump());
-    if (!ids.insert(id.get<std::string>()).second) fail(where + "/id", "repeats the id " + id.dump());
-    pointer(need(f, "pointer", where), where + "/pointer");
-    const json& value = need(f, "value", where);
-    const bool numbers = value.is_array() && !value.empty() &&
-                         std::all_of(value.begin(), value.end(), [](const json& x) { return x.is_number(); });
-    if (!(value.is_string() || value.is_boolean() || value.is_number() || numbers))
-      fail(where + "/value", "must be a string, boolean, number or non-empty array of numbers, got " + value.dump());
-    for (const char* tol : {"rel_tol", "abs_tol"})
-      if (f.contains(tol) && (!f[tol].is_number() || f[tol].get<double>() < 0))
-        fail(where + "/" + tol, "must be a number >= 0, got " + f[tol].dump());
-    if (f.contains("in")) {
-      const json& in = f["in"];
-      if (!in.is_object()) fail(where + "/in", "must be an object {array, where}");
-      only_keys(in, where + "/in", {"array", "where"});
-      pointer(need(in, "array", where + "/in"), where + "/in/array");
-      const json& w = need(in, "where", where + "/in");
-      if (!w.is_object() || w.empty()) fail(where + "/in/where", "must be a non-empty object of key/value pairs");
-      for (auto it = w.begin(); it != w.end(); ++it)
-        if (!it.value().is_primitive() || it.value().is_null())
-          fail(where + "/in/where/" + it.key(), "must be a string, number or boolean");
-    }
-  }
-};
 
 // ---------------------------------------------------------------------------------------------
 // Helpers.
@@ -383,39 +316,12 @@ std::string md_escape(std::string s) {
 }  // namespace
 
 void check_reference(const json& r, const std::string& source) {
-  const RefChecker c{source};
-  if (!r.is_object())
-    throw input_error(source + ": a reference must be a JSON object (see schemas/reference.schema.json)");
-  c.only_keys(r, "",
-              {"schema", "schema_version", "scenario", "title", "provenance", "citation", "notes", "expected_parse",
-               "expected_shooting_variables", "result"});
-  if (c.need(r, "schema", "") != "helios/reference")
-    c.fail("/schema", "must be \"helios/reference\", got " + r["schema"].dump());
-  if (c.need(r, "schema_version", "") != io::kSchemaVersion)
-    c.fail("/schema_version",
-           "is " + r["schema_version"].dump() + ", this build reads version " + std::to_string(io::kSchemaVersion));
-  static const std::regex scenario_re("^[A-Za-z0-9_-]+$");
-  const json& scenario = c.need(r, "scenario", "");
-  if (!scenario.is_string() || !std::regex_match(scenario.get<std::string>(), scenario_re))
-    c.fail("/scenario", "must be a scenario name like \"S01\", got " + scenario.dump());
-  const json& provenance = c.need(r, "provenance", "");
-  if (provenance != "published" && provenance != "peer-output" && provenance != "constructed")
-    c.fail("/provenance", "must be one of published, peer-output, constructed, got " + provenance.dump());
-  const json& citation = c.need(r, "citation", "");
-  if (!citation.is_string() || citation.get<std::string>().empty()) c.fail("/citation", "must be a non-empty string");
-  for (const char* key : {"title", "notes"})
-    if (r.contains(key) && !r[key].is_string()) c.fail(std::string("/") + key, "must be a string");
-  const json& facts = c.need(r, "expected_parse", "");
-  if (!facts.is_array() || facts.empty()) c.fail("/expected_parse", "must be a non-empty array of facts");
+  io::validate("reference", r, source);
   std::set<std::string> ids;
-  for (std::size_t i = 0; i < facts.size(); ++i) c.fact(facts[i], "/expected_parse/" + std::to_string(i), ids);
-  const json& nvars = c.need(r, "expected_shooting_variables", "");
-  if (!nvars.is_number_integer() || nvars.get<long>() < 1)
-    c.fail("/expected_shooting_variables", "must be an integer >= 1, got " + nvars.dump());
-  const json& result = c.need(r, "result", "");
-  if (!result.is_object()) c.fail("/result", "must be an object");
-  c.only_keys(result, "/result", {"final_mass_kg", "tolerance_kg", "max_residual"});
-  for (const char* key : {"final_mass_kg", "tolerance_kg", "max_residual"}) c.positive_number(result, key, "/result");
+  for (std::size_t i = 0; i < r["expected_parse"].size(); ++i)
+    if (!ids.insert(r["expected_parse"][i]["id"].get<std::string>()).second)
+      throw input_error(source + ": field /expected_parse/" + std::to_string(i) + "/id repeats the id " +
+                        r["expected_parse"][i]["id"].dump());
 }
 
 json score_run(const ScoreInputs& in) {
