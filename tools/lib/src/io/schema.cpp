@@ -48,8 +48,8 @@ void validate(const std::string& kind, const json& doc, const std::string& sourc
   bool have = false;
   while (results.popError(error)) {
     const bool deeper = !have || error.context.size() > last.context.size();
-    const bool better_same_depth = have && error.context.size() == last.context.size() && generic(last.description) &&
-                                   !generic(error.description);
+    const bool better_same_depth =
+        have && error.context.size() == last.context.size() && generic(last.description) && !generic(error.description);
     if (deeper || better_same_depth) last = error;
     have = true;
   }
@@ -59,6 +59,14 @@ void validate(const std::string& kind, const json& doc, const std::string& sourc
     if (part == "<root>") continue;
     const bool bracketed = part.size() >= 2 && part.front() == '[' && part.back() == ']';
     where += "/" + (bracketed ? part.substr(1, part.size() - 2) : part);
+  }
+  // A missing property is named by its own path, so the message points at the field to add.
+  const std::string missing = "Missing required property '";
+  if (last.description.rfind(missing, 0) == 0) {
+    const std::string key =
+        last.description.substr(missing.size(), last.description.find('\'', missing.size()) - missing.size());
+    throw input_error(source + ": " + kind + " schema violation at " + where + "/" + key +
+                      ": required field is missing");
   }
   if (where.empty()) where = "/";
   throw input_error(source + ": " + kind + " schema violation at " + where + ": " + last.description);
