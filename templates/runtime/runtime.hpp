@@ -338,12 +338,13 @@ Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& adm
   Result r;
   Shooter shooter(s);
   std::mt19937_64 rng(s.seed);
-  for (r.attempts = 1; r.attempts <= s.max_attempts; ++r.attempts) {
+  while (r.attempts < s.max_attempts) {
     if (wall_seconds() > s.time_limit_s) {
       r.status = "timeout";
       r.detail = "time limit reached before convergence";
       break;
     }
+    ++r.attempts;  // attempts started, each from a new seeded guess
     std::vector<double> x(problem::kNumVars);
     initial_guess(rng, x.data());
     int info = 0;
@@ -387,10 +388,8 @@ Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& adm
       break;
     }
   }
-  if (r.status != "converged" && r.status != "timeout") {
-    r.detail = "no seeded attempt reached eps = 0 (attempts " + std::to_string(r.attempts - 1) + ")";
-    r.attempts = std::min(r.attempts, s.max_attempts);
-  }
+  if (r.status == "not_converged")
+    r.detail = "no seeded attempt reached eps = 0 (" + std::to_string(r.attempts) + " attempts)";
   r.evaluations = shooter.evaluations;
   return r;
 }
