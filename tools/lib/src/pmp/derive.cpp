@@ -1,5 +1,6 @@
 #include "helios/pmp/derive.hpp"
 
+#include <algorithm>
 #include <set>
 #include <stdexcept>
 
@@ -132,14 +133,18 @@ json derive(const Problem& problem) {
                                   "), k > 0: a* = -lambda/|lambda| (primer vector) minimizes it";
   control["direction"] = direction;
 
-  const symbol u = S.get("u");
+  const auto throttle_control =
+      std::find_if(p.controls.begin(), p.controls.end(), [](const Control& c) { return c.kind == "throttle"; });
+  if (throttle_control == p.controls.end()) throw std::invalid_argument("the problem has no throttle control");
+  const symbol u = S.get(throttle_control->name);
   const ex dHdu = Hstar.diff(u).expand();
-  if (!dHdu.diff(u, 2).is_zero()) throw std::invalid_argument("H is not quadratic in the throttle u");
+  if (!dHdu.diff(u, 2).is_zero())
+    throw std::invalid_argument("H is not quadratic in the throttle " + throttle_control->name);
   const ex S0 = dHdu.subs(u == 0).expand();
   const ex S1 = dHdu.subs(u == 1).expand();
   const ex switching = S0.subs(eps == 0).expand();
   json throttle = json::object();
-  throttle["control"] = "u";
+  throttle["control"] = throttle_control->name;
   throttle["bounds"] = json::array({0, 1});
   throttle["switching_function"] = to_text(switching);
   throttle["dH_du_at_lower"] = to_text(S0);
