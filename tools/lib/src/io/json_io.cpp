@@ -61,7 +61,7 @@ void install_cleanup_handlers() {
   for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) std::signal(sig, cleanup_and_reraise);
 }
 
-void register_temp(const std::string& path) {
+static void register_temp(const std::string& path) {
   if (path.size() >= kMaxPath) return;
   for (std::size_t i = 0; i < kMaxTemps; ++i) {
     if (g_temp_used[i]) continue;
@@ -71,9 +71,21 @@ void register_temp(const std::string& path) {
   }
 }
 
-void unregister_temp(const std::string& path) {
+static void unregister_temp(const std::string& path) {
   for (std::size_t i = 0; i < kMaxTemps; ++i)
     if (g_temp_used[i] && path == g_temps[i].data()) g_temp_used[i] = 0;
+}
+
+TempFiles::TempFiles(std::vector<std::string> paths) : paths_(std::move(paths)) {
+  install_cleanup_handlers();
+  for (const auto& p : paths_) register_temp(p);
+}
+
+TempFiles::~TempFiles() {
+  for (const auto& p : paths_) {
+    ::unlink(p.c_str());
+    unregister_temp(p);
+  }
 }
 
 std::string read_text(const std::string& path) {
@@ -108,14 +120,10 @@ void write_text_atomic(const std::string& path, const std::string& text) {
     std::cout << text << std::flush;
     return;
   }
-  install_cleanup_handlers();
   const std::string tmp = temp_name_for(path);
-  register_temp(tmp);
+  const TempFiles guard({tmp});
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
-  if (fd < 0) {
-    unregister_temp(tmp);
-    throw std::runtime_error(path + ": cannot create temp file: " + std::strerror(errno));
-  }
+  if (fd < 0) throw std::runtime_error(path + ": cannot create temp file: " + std::strerror(errno));
   std::size_t done = 0;
   bool ok = true;
   while (done < text.size()) {
@@ -129,13 +137,8 @@ void write_text_atomic(const std::string& path, const std::string& text) {
   }
   ok = ok && ::fsync(fd) == 0;
   ok = (::close(fd) == 0) && ok;
-  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    ::unlink(tmp.c_str());
-    unregister_temp(tmp);
-    throw std::runtime_error(path + ": cannot write: " + why);
-  }
-  unregister_temp(tmp);
+  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
 }
 
 void write_json_atomic(const std::string& path, const json& doc) {

@@ -147,7 +147,7 @@ CompileResult compile_cached(const std::string& source, const std::string& compi
   const std::string src = (dir / "shoot.cpp").string();
   io::write_text_atomic(src, source);
   const std::string tmp_bin = (dir / (".shoot.tmp." + std::to_string(::getpid()))).string();
-  io::register_temp(tmp_bin);
+  const io::TempFiles guard({tmp_bin});
   std::vector<std::string> argv = {compiler};
   argv.insert(argv.end(), flags.begin(), flags.end());
   argv.insert(argv.end(), {src, "-o", tmp_bin, "-lcminpack"});
@@ -159,7 +159,6 @@ CompileResult compile_cached(const std::string& source, const std::string& compi
     io::write_text_atomic((dir / "compile.log").string(), c.diagnostics);
     fs::rename(tmp_bin, c.binary);
   }
-  io::unregister_temp(tmp_bin);
   c.seconds = seconds_since(start);
   return c;
 }
@@ -167,8 +166,7 @@ CompileResult compile_cached(const std::string& source, const std::string& compi
 void plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title) {
   const std::string traj_png = prefix + "trajectory.png", mass_png = prefix + "throttle_mass.png";
   const std::string tmp1 = prefix + ".trajectory.png.tmp", tmp2 = prefix + ".throttle_mass.png.tmp";
-  io::register_temp(tmp1);
-  io::register_temp(tmp2);
+  const io::TempFiles guard({tmp1, tmp2});
   const std::string script =
       "set datafile separator ','\n"
       "set terminal pngcairo size 1000,800 noenhanced\n"
@@ -208,17 +206,10 @@ void plot_trajectory(const std::string& csv_path, const std::string& prefix, con
   ::close(fd);
   const std::string out = capture({"gnuplot", script_path});
   ::unlink(script_path);
-  if (!fs::exists(tmp1) || !fs::exists(tmp2)) {
-    ::unlink(tmp1.c_str());
-    ::unlink(tmp2.c_str());
-    io::unregister_temp(tmp1);
-    io::unregister_temp(tmp2);
+  if (!fs::exists(tmp1) || !fs::exists(tmp2))
     throw std::runtime_error("gnuplot did not draw the plots (is gnuplot installed?): " + first_line(out));
-  }
   fs::rename(tmp1, traj_png);
   fs::rename(tmp2, mass_png);
-  io::unregister_temp(tmp1);
-  io::unregister_temp(tmp2);
 }
 
 json solve(const SolveOptions& o) {
@@ -264,14 +255,8 @@ json solve(const SolveOptions& o) {
   const std::string settings_tmp = (out_dir / (".settings." + tag + ".json")).string();
   const std::string result_tmp = (out_dir / (".result." + tag + ".json")).string();
   const std::string traj_tmp = (out_dir / (".trajectory." + tag + ".csv")).string();
-  for (const auto& p : {settings_tmp, result_tmp, traj_tmp, result_tmp + ".part", traj_tmp + ".part"})
-    io::register_temp(p);
-  const auto cleanup = [&] {
-    for (const auto& p : {settings_tmp, result_tmp, traj_tmp, result_tmp + ".part", traj_tmp + ".part"}) {
-      ::unlink(p.c_str());
-      io::unregister_temp(p);
-    }
-  };
+  // The program writes RESULT.part / TRAJECTORY.part and renames them; all go when solve() returns.
+  const io::TempFiles guard({settings_tmp, result_tmp, traj_tmp, result_tmp + ".part", traj_tmp + ".part"});
   io::write_json_atomic(settings_tmp, settings);
   const RunResult run =
       run_limited({c.binary, "--settings", settings_tmp, "--result", result_tmp, "--trajectory", traj_tmp},
@@ -282,7 +267,6 @@ json solve(const SolveOptions& o) {
     doc["status_detail"] = run.timed_out ? "killed after " + std::to_string(o.time_limit_s) + " s wall clock"
                                          : "exit code " + std::to_string(run.exit_code) + ", signal " +
                                                std::to_string(run.signal) + ": " + first_line(run.stderr_text);
-    cleanup();
     doc["timings"]["total_s"] = seconds_since(start);
     return doc;
   }
@@ -321,7 +305,6 @@ json solve(const SolveOptions& o) {
       doc["files"]["throttle_mass_plot"] = fs::path(o.plot_prefix + "throttle_mass.png").filename().string();
     }
   }
-  cleanup();
   doc["timings"]["total_s"] = seconds_since(start);
   return doc;
 }

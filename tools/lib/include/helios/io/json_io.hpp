@@ -2,6 +2,7 @@
 // Reading and atomic writing of JSON artifacts.
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace helios::io {
 
@@ -21,9 +22,19 @@ void write_text_atomic(const std::string& path, const std::string& text);
 // it pretty-printed and atomically.
 void write_json_atomic(const std::string& path, const json& doc);
 
-// Registers a path to delete if a fatal signal arrives before unregister_temp(path).
-void register_temp(const std::string& path);
-void unregister_temp(const std::string& path);
+// Temporary paths that are deleted when the guard goes out of scope (normal return or exception)
+// or when a fatal signal (SIGINT/SIGTERM/SIGHUP/SIGPIPE) arrives first. A path renamed away
+// before then is simply gone; deleting it is a no-op.
+class TempFiles {
+ public:
+  explicit TempFiles(std::vector<std::string> paths);
+  ~TempFiles();
+  TempFiles(const TempFiles&) = delete;
+  TempFiles& operator=(const TempFiles&) = delete;
+
+ private:
+  std::vector<std::string> paths_;
+};
 // Installs the signal handlers that delete registered temp paths (idempotent).
 void install_cleanup_handlers();
 
