@@ -216,7 +216,7 @@ struct Builder {
     static const std::regex clause = re(R"((?:an? )?(maximum thrust|specific impulse|initial mass) of )" + kQuantity);
     static const std::map<std::string, std::pair<std::string, Dimension>> fields = {
         {"maximum thrust", {"thrust_N", Dimension::Force}},
-        {"specific impulse", {"isp_s", Dimension::Time}},
+        {"specific impulse", {"isp_s", Dimension::Duration}},
         {"initial mass", {"initial_mass_kg", Dimension::Mass}}};
     for (std::sregex_token_iterator it(list.begin(), list.end(), split, -1), end; it != end; ++it) {
       const std::string part = *it;
@@ -229,8 +229,7 @@ struct Builder {
       for (auto& c : key) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
       const auto& [field, dim] = fields.at(key);
       once("the " + key);
-      double value = quantity(m, 2, dim);
-      if (dim == Dimension::Time) value *= helios::astro::DAY_S;  // Isp is stored in seconds
+      const double value = quantity(m, 2, dim);
       if (value <= 0) throw sentence_error("the " + key + " must be positive, got " + m[2].str() + " " + m[3].str());
       spacecraft[field] = value;
     }

@@ -22,6 +22,8 @@ const Table& table(Dimension d) {
       {Dimension::Force, {"N", "N, mN", {{"n", 1.0}, {"mn", 1e-3}}}},
       {Dimension::Time,
        {"days", "s, days", {{"s", 1.0 / DAY_S}, {"seconds", 1.0 / DAY_S}, {"day", 1.0}, {"days", 1.0}, {"d", 1.0}}}},
+      {Dimension::Duration,
+       {"s", "s, days", {{"s", 1.0}, {"seconds", 1.0}, {"day", DAY_S}, {"days", DAY_S}, {"d", DAY_S}}}},
       {Dimension::Mass, {"kg", "kg", {{"kg", 1.0}}}},
       {Dimension::GravParam, {"km^3/s^2", "km^3/s^2, m^3/s^2", {{"km^3/s^2", 1.0}, {"m^3/s^2", 1e-9}}}},
   };
@@ -37,6 +39,7 @@ std::string dimension_name(Dimension d) {
     case Dimension::Force:
       return "force";
     case Dimension::Time:
+    case Dimension::Duration:
       return "time";
     case Dimension::Mass:
       return "mass";

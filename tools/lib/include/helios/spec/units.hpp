@@ -4,9 +4,10 @@
 
 namespace helios::spec {
 
-enum class Dimension { Length, Speed, Force, Time, Mass, GravParam };
+// Time is stored in days (epochs, times of flight); Duration in seconds (specific impulse).
+enum class Dimension { Length, Speed, Force, Time, Duration, Mass, GravParam };
 
-// Name of the unit the spec stores a dimension in (km, km/s, N, days, kg, km^3/s^2).
+// Name of the unit the spec stores a dimension in (km, km/s, N, days, s, kg, km^3/s^2).
 std::string spec_unit(Dimension d);
 
 // Factor converting one `unit` into the spec unit of `d`; throws std::invalid_argument
