@@ -91,7 +91,7 @@ bats: $(TOOLS_STAMP)
 test: unit bats
 
 bench: $(TOOLS_STAMP)
-	tests/bench/bench.sh S01
+	tests/bench/bench.sh
 
 clean:
 	rm -rf $(BUILD) runs/builtin runs/llm $(CACHE)
