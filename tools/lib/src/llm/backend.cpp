@@ -11,6 +11,7 @@
 #include "helios/io/embedded.hpp"
 #include "helios/io/error.hpp"
 #include "helios/io/schema.hpp"
+#include "helios/pmp/derive.hpp"
 #include "helios/pmp/model.hpp"
 #include "helios/verify/verify.hpp"
 
@@ -193,13 +194,8 @@ json parse_problem(const std::string& text, const std::string& source, const Cal
 json normalization(const json& spec) {
   const pmp::Problem p = pmp::build_problem(spec);
   json out;
-  out["units"] = {{"length", p.units.length_name},
-                  {"length_km", p.units.length_km},
-                  {"time", p.units.time_name},
-                  {"time_s", p.units.time_s},
-                  {"mass_kg", p.units.mass_kg}};
-  out["times"] = {{"t0", p.t0}, {"tf", p.tf}, {"final_time", "fixed"}};
-  if (p.has_epoch) out["times"]["epoch_mjd2000"] = p.epoch_mjd2000;
+  out["units"] = pmp::units_of(p);
+  out["times"] = pmp::times_of(p);
   json params = json::array();
   for (const auto& n : p.parameters) {
     json e = {{"name", n.name}, {"meaning", n.meaning}, {"unit", n.unit}, {"value", n.value}};
@@ -283,8 +279,7 @@ std::string generate(const GenRequest& r, const CallInfo& call) {
                                                             {"COMPILER_ERRORS", compiler_errors(*r.compile_report)}})});
   }
   const json modules = conv.ask(messages, [&](const std::string& content) { return modules_reply(content); });
-  return codegen::assemble(r.derivation, modules_source(modules),
-                           "llm, model " + conv.model());
+  return codegen::assemble(r.derivation, modules_source(modules), "llm, model " + conv.model());
 }
 
 json modules_of(const std::string& source) {

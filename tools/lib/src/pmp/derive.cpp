@@ -406,20 +406,8 @@ json derive(const Problem& problem) {
                     {"dynamics_model", p.dynamics_model},
                     {"objective", p.objective},
                     {"perturbations", p.perturbations}};
-  doc["units"] = {{"length", p.units.length_name},
-                  {"length_km", p.units.length_km},
-                  {"time", p.units.time_name},
-                  {"time_s", p.units.time_s},
-                  {"mass_kg", p.units.mass_kg}};
-  if (p.free_final_time) {
-    doc["times"] = {{"t0", p.t0},
-                    {"final_time", "free"},
-                    {"tf_window", {p.tf_min, p.tf}},
-                    {"tf_expression", to_text(p.tf_min + (p.tf - p.tf_min) * S.get("tf_frac"))}};
-  } else {
-    doc["times"] = {{"t0", p.t0}, {"tf", p.tf}, {"final_time", "fixed"}};
-  }
-  if (p.has_epoch) doc["times"]["epoch_mjd2000"] = p.epoch_mjd2000;
+  doc["units"] = units_of(p);
+  doc["times"] = times_of(p);
   json states = named_list(p.states, false);
   for (auto& s : states) s["costate"] = costate_name(s["name"].get<std::string>());
   doc["states"] = states;
@@ -461,6 +449,29 @@ json derive(const Problem& problem) {
   doc["constraints"] = constraints;
   doc["shooting"] = {{"variables", variables}, {"equations", equations}};
   return doc;
+}
+
+json units_of(const Problem& p) {
+  return {{"length", p.units.length_name},
+          {"length_km", p.units.length_km},
+          {"time", p.units.time_name},
+          {"time_s", p.units.time_s},
+          {"mass_kg", p.units.mass_kg}};
+}
+
+json times_of(const Problem& p) {
+  json times;
+  if (p.free_final_time) {
+    const GiNaC::symbol tf_frac("tf_frac");
+    times = {{"t0", p.t0},
+             {"final_time", "free"},
+             {"tf_window", {p.tf_min, p.tf}},
+             {"tf_expression", to_text(p.tf_min + (p.tf - p.tf_min) * tf_frac)}};
+  } else {
+    times = {{"t0", p.t0}, {"tf", p.tf}, {"final_time", "fixed"}};
+  }
+  if (p.has_epoch) times["epoch_mjd2000"] = p.epoch_mjd2000;
+  return times;
 }
 
 json derive_from_spec(const json& spec) {
