@@ -3,7 +3,8 @@
 // H = lambda0*Tmax/c*(u - eps*u*(1-u)) + l_r.v + l_v.(-mu r/|r|^3 + Tmax u a/m) - l_m Tmax u/c
 namespace helios_rt {
 
-void dynamics(const double* y, const double* control, const Multipliers& mult, double* dy) {
+void dynamics(double t, const double* y, const double* control, const Multipliers& mult, double* dy) {
+  (void)t;
   (void)mult;
   const double* r = y;
   const double* v = y + 3;
@@ -29,7 +30,8 @@ void dynamics(const double* y, const double* control, const Multipliers& mult, d
   dy[13] = thrust_acc / m * lv_dot_a;
 }
 
-double hamiltonian(const double* y, const double* control, const Multipliers& mult) {
+double hamiltonian(double t, const double* y, const double* control, const Multipliers& mult) {
+  (void)t;
   const double* r = y;
   const double* v = y + 3;
   const double m = y[6];

@@ -72,6 +72,7 @@ inline nlohmann::json trajectory(const Settings& s, const Result& r, const std::
   out["samples"] = samples.size();
   const auto& last = samples.back();
   out["final_state"] = std::vector<double>(last.y.begin(), last.y.begin() + problem::kNumStates);
+  out["tf"] = last.t;
   return out;
 }
 
@@ -117,10 +118,13 @@ inline int run(int argc, char** argv) {
     j["max_residual"] = r.max_residual;
     j["epsilon"] = r.eps;
     j["trajectory"] = trajectory(s, r, trajectory_path);
-    const double mf = j["trajectory"]["final_state"][problem::kMassIndex].get<double>();
-    j["final_mass_kg"] = mf * problem::kMassUnitKg;
-    j["initial_mass_kg"] = problem::kMassUnitKg;
-    j["delta_v_m_s"] = problem::kExhaustVelocityMS * std::log(1.0 / mf);
+    j["tof_days"] = (j["trajectory"]["tf"].get<double>() - problem::kT0) * problem::kTimeUnitDays;
+    if constexpr (problem::kMassIndex >= 0) {
+      const double mf = j["trajectory"]["final_state"][problem::kMassIndex].get<double>();
+      j["final_mass_kg"] = mf * problem::kMassUnitKg;
+      j["initial_mass_kg"] = problem::kMassUnitKg;
+      j["delta_v_m_s"] = problem::kExhaustVelocityMS * std::log(1.0 / mf);
+    }
   }
   write_atomic(result_path, j.dump(2) + "\n");
   return 0;

@@ -17,10 +17,11 @@ struct Multipliers {
   double eps = 1;
 };
 
-// DYNAMICS module: state and costate right-hand sides and H for a given control vector.
-void dynamics(const double* y, const double* control, const Multipliers& mult, double* dy);
-double hamiltonian(const double* y, const double* control, const Multipliers& mult);
-// SWITCH module: direction controls (all but the throttle) and dH/du at u = 0 and u = 1.
+// DYNAMICS module: state and costate right-hand sides and H at time t for a given control vector.
+void dynamics(double t, const double* y, const double* control, const Multipliers& mult, double* dy);
+double hamiltonian(double t, const double* y, const double* control, const Multipliers& mult);
+// SWITCH module: the continuous controls (all but the throttle) and dH/du at u = 0 and u = 1.
+// A problem without a throttle (kThrottleIndex < 0) has one mode and no throttle_slopes.
 void direction_control(const double* y, double* control);
 void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper);
 
@@ -29,41 +30,62 @@ void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower,
 enum Mode { kOff = 0, kInterior = 1, kFull = 2 };
 
 inline Mode mode_at(const double* y, const Multipliers& mult) {
-  double s0 = 0, s1 = 0;
-  throttle_slopes(y, mult, s0, s1);
-  if (s0 >= 0) return kOff;
-  if (s1 <= 0) return kFull;
-  return kInterior;
+  if constexpr (problem::kThrottleIndex < 0) {
+    return kFull;
+  } else {
+    double s0 = 0, s1 = 0;
+    throttle_slopes(y, mult, s0, s1);
+    if (s0 >= 0) return kOff;
+    if (s1 <= 0) return kFull;
+    return kInterior;
+  }
 }
 
 inline void control_in_mode(const double* y, Mode mode, const Multipliers& mult, double* control) {
   direction_control(y, control);
-  double u = mode == kFull ? 1.0 : 0.0;
-  if (mode == kInterior) {
-    double s0 = 0, s1 = 0;
-    throttle_slopes(y, mult, s0, s1);
-    u = std::min(1.0, std::max(0.0, s0 / (s0 - s1)));
+  if constexpr (problem::kThrottleIndex >= 0) {
+    double u = mode == kFull ? 1.0 : 0.0;
+    if (mode == kInterior) {
+      double s0 = 0, s1 = 0;
+      throttle_slopes(y, mult, s0, s1);
+      u = std::min(1.0, std::max(0.0, s0 / (s0 - s1)));
+    }
+    control[problem::kThrottleIndex] = u;
   }
-  control[problem::kThrottleIndex] = u;
+}
+
+// The switching function at eps = 0 (0 without a throttle), recorded in the trajectory.
+inline double switching_value(const double* y, const Multipliers& mult) {
+  if constexpr (problem::kThrottleIndex < 0) {
+    return 0.0;
+  } else {
+    double s0 = 0, s1 = 0;
+    throttle_slopes(y, Multipliers{mult.lambda0, 0.0}, s0, s1);
+    return s0;
+  }
 }
 
 // Functions that stay positive while `mode` holds; a sign change is a switch.
 inline int stay_functions(const double* y, Mode mode, const Multipliers& mult, double* g) {
-  double s0 = 0, s1 = 0;
-  throttle_slopes(y, mult, s0, s1);
-  switch (mode) {
-    case kOff:
-      g[0] = s0;
-      return 1;
-    case kFull:
-      g[0] = -s1;
-      return 1;
-    case kInterior:
-      g[0] = -s0;
-      g[1] = s1;
-      return 2;
+  if constexpr (problem::kThrottleIndex < 0) {
+    return 0;
+  } else {
+    double s0 = 0, s1 = 0;
+    throttle_slopes(y, mult, s0, s1);
+    switch (mode) {
+      case kOff:
+        g[0] = s0;
+        return 1;
+      case kFull:
+        g[0] = -s1;
+        return 1;
+      case kInterior:
+        g[0] = -s0;
+        g[1] = s1;
+        return 2;
+    }
+    return 0;
   }
-  return 0;
 }
 
 // Ephemeris mode "jpl_lp": a planet's heliocentric state at normalized time t after the epoch of
@@ -75,9 +97,48 @@ inline std::array<double, 6> ephemeris_state(const std::string& body, double t) 
           s[3] / problem::kSpeedUnitKmS, s[4] / problem::kSpeedUnitKmS, s[5] / problem::kSpeedUnitKmS};
 }
 
+// Time derivative of the ephemeris model itself (not the Kepler velocity it reports), as a free
+// event time's transversality condition needs: a fourth-order central difference.
+inline std::array<double, 6> ephemeris_rate(const std::string& body, double t) {
+  const double h = 1e-3 / problem::kTimeUnitDays;  // 1e-3 day: truncation ~1e-13, round-off ~1e-12
+  const auto p1 = ephemeris_state(body, t + h), m1 = ephemeris_state(body, t - h);
+  const auto p2 = ephemeris_state(body, t + 2 * h), m2 = ephemeris_state(body, t - 2 * h);
+  std::array<double, 6> d{};
+  for (int i = 0; i < 6; ++i) d[i] = (8 * (p1[i] - m1[i]) - (p2[i] - m2[i])) / (12 * h);
+  return d;
+}
+
 struct numerical_error : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// Unpowered dynamics of a coasting target (generated when the problem has one).
+void coast_dynamics(const double* y, double* dy);
+
+// A coasting target's state at t1 from its state y0 at t0, integrated to 1e-14.
+inline std::array<double, 6> coast_state(const std::array<double, 6>& y0, double t0, double t1) {
+  Dop853 stepper(6);
+  std::array<double, 6> y = y0, f0{}, ynew{}, fnew{};
+  auto rhs = [](double, const double* yy, double* dy) { coast_dynamics(yy, dy); };
+  double t = t0, h = 1e-3 * (1 + std::fabs(t1 - t0));
+  const double direction = t1 >= t0 ? 1.0 : -1.0;
+  for (int steps = 0; direction * (t1 - t) > 0; ++steps) {
+    if (steps > 1000000) throw numerical_error("coasting target: integrator exceeded its step budget");
+    const bool last = h >= direction * (t1 - t);
+    const double step = last ? t1 - t : direction * h;
+    rhs(t, y.data(), f0.data());
+    const double err = stepper.step(rhs, t, y.data(), f0.data(), step, ynew.data(), fnew.data(), 1e-14, 1e-14);
+    if (!(err <= 1.0)) {
+      h *= Dop853::step_factor(err);
+      if (h < 1e-15 * (1 + std::fabs(t))) throw numerical_error("coasting target: step size underflow");
+      continue;
+    }
+    t = last ? t1 : t + step;
+    y = ynew;
+    h *= Dop853::step_factor(err);
+  }
+  return y;
+}
 
 struct Settings {
   unsigned seed = 1;
@@ -87,7 +148,7 @@ struct Settings {
   double hybrd_tol = 1e-12;
   double accept_residual = 1e-8;  // intermediate homotopy steps
   double final_residual = 1e-10;  // the gate at eps = 0
-  double eps_start = 1.0;
+  double eps_start = problem::kHomotopyStart;
   double eps_min = 1e-6;  // below this the next step is eps = 0
   double eps_first_ratio = 0.5;
   int max_steps = 200000;  // integrator steps per arc
@@ -126,10 +187,10 @@ class Propagator {
     double h = std::min(t1 - t0, 1e-3 * (1 + std::fabs(t1 - t0)));
     std::array<double, kNY> f0{}, ynew{}, fnew{};
     std::array<double, 2> g_old{}, g_new{};
-    auto rhs = [&](double, const double* yy, double* dy) {
+    auto rhs = [&](double tt, const double* yy, double* dy) {
       std::array<double, problem::kNumControls> control{};
       control_in_mode(yy, mode, mult, control.data());
-      dynamics(yy, control.data(), mult, dy);
+      dynamics(tt, yy, control.data(), mult, dy);
     };
     record(t, y, mode, mult);
     int steps = 0;
@@ -216,10 +277,8 @@ class Propagator {
     s.t = t;
     std::copy(y, y + kNY, s.y.begin());
     control_in_mode(y, mode, mult, s.control.data());
-    s.H = hamiltonian(y, s.control.data(), mult);
-    double s0 = 0, s1 = 0;
-    throttle_slopes(y, Multipliers{mult.lambda0, 0.0}, s0, s1);
-    s.S = s0;
+    s.H = hamiltonian(t, y, s.control.data(), mult);
+    s.S = switching_value(y, mult);
     samples->push_back(s);
   }
 

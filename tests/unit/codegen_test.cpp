@@ -51,7 +51,7 @@ TEST(Codegen, PlanetTargetsAreEvaluatedFromTheEphemerisAtTheEvent) {
   const json d = helios::pmp::derive_from_spec(helios::spec::parse_problem_text(text, "mars"));
   EXPECT_EQ(d["times"]["epoch_mjd2000"], 400.0);
   const auto g = helios::codegen::generate(d, {});
-  EXPECT_NE(g.source.find("const auto ephemeris_0 = ephemeris_state(\"Mars\", problem::kTf);"), std::string::npos);
+  EXPECT_NE(g.source.find("const auto ephemeris_0 = ephemeris_state(\"Mars\", tf);"), std::string::npos);
   EXPECT_NE(g.source.find("const double arrival_rx = ephemeris_0[0];"), std::string::npos);
   EXPECT_EQ(g.source.find("constexpr double arrival_rx"), std::string::npos);
 }

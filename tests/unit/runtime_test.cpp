@@ -27,6 +27,7 @@ constexpr double kTimeUnitDays = 365.25;
 constexpr double kLengthUnitKm = 149597870.691;
 constexpr double kSpeedUnitKmS = 149597870.691 / 31557600.0;
 constexpr double kEpochMjd2000 = 400.0;
+constexpr double kHomotopyStart = 1.0;
 constexpr double mu = 39.47692642137688;    // AU^3/yr^2
 constexpr double Tmax = 3.328530390038211;  // m0 AU/yr^2
 constexpr double c = 4.137416349718383;     // AU/yr
@@ -68,15 +69,15 @@ TEST(Runtime, TemplateDynamicsAreTheCanonicalEquationsOfH) {
     const Multipliers m{0.7, 0.3};
     const auto control = optimal_control(y.data(), m);
     std::array<double, kNY> dy{};
-    helios_rt::dynamics(y.data(), control.data(), m, dy.data());
+    helios_rt::dynamics(0.0, y.data(), control.data(), m, dy.data());
     // Central difference of H in component i of y.
     const auto dH = [&](int i) {
       auto plus = y, minus = y;
       const double h = 1e-6;
       plus[i] += h;
       minus[i] -= h;
-      return (helios_rt::hamiltonian(plus.data(), control.data(), m) -
-              helios_rt::hamiltonian(minus.data(), control.data(), m)) /
+      return (helios_rt::hamiltonian(0.0, plus.data(), control.data(), m) -
+              helios_rt::hamiltonian(0.0, minus.data(), control.data(), m)) /
              (2 * h);
     };
     for (int i = 0; i < 7; ++i) {

@@ -38,8 +38,15 @@ struct Context {
       parameters.push_back(p.at("name"));
       if (p.contains("source")) ephemeris_parameters.push_back(p.at("name"));
     }
-    if (throttle_index < 0) throw std::invalid_argument("field /controls: no control of kind throttle");
     const std::string mult = d.at("multiplier");
+    symbols.get("t");
+    if (d.contains("event_values"))
+      for (const auto& e : d.at("event_values")) symbols.get(e.at("name").get<std::string>());
+    for (const auto& v : d.at("shooting").at("variables")) symbols.get(v.at("name").get<std::string>());
+    for (const char* kind : {"direction", "sail"})
+      if (d.at("control_law").contains(kind))
+        for (const auto& def : d.at("control_law").at(kind).value("definitions", json::array()))
+          symbols.get(def.at("name").get<std::string>());
     for (const auto& n : states) symbols.get(n);
     for (const auto& n : costates) symbols.get(n);
     for (const auto& n : controls) symbols.get(n);
@@ -111,7 +118,10 @@ std::string problem_block(Context& c) {
     << "constexpr int kNumVars = " << d.at("shooting").at("variables").size() << ";\n"
     << "constexpr int kMassIndex = " << index_of(c.states, "m") << ";\n"
     << "constexpr double kT0 = " << number(d.at("times").at("t0")) << ";\n"
-    << "constexpr double kTf = " << number(d.at("times").at("tf")) << ";\n"
+    << "// The final time, or the upper end of its window when it is free.\n"
+    << "constexpr double kTf = "
+    << number(d.at("times").contains("tf") ? d.at("times").at("tf") : d.at("times").at("tf_window")[1]) << ";\n"
+    << "constexpr double kHomotopyStart = " << number(d.at("homotopy").at("start")) << ";\n"
     << "constexpr double kTimeUnitDays = " << number(units.at("time_s").get<double>() / 86400.0) << ";\n"
     << "constexpr double kLengthUnitKm = " << number(units.at("length_km")) << ";\n"
     << "constexpr double kSpeedUnitKmS = "
@@ -155,6 +165,7 @@ std::string unpack(Context& c, bool with_control) {
     o << "  [[maybe_unused]] const double " << c.states[i] << " = y[" << i << "];\n";
   for (std::size_t i = 0; i < c.costates.size(); ++i)
     o << "  [[maybe_unused]] const double " << c.costates[i] << " = y[" << c.states.size() + i << "];\n";
+  if (with_control) o << "  [[maybe_unused]] const double t = time;\n";
   if (with_control)
     for (std::size_t i = 0; i < c.controls.size(); ++i)
       o << "  [[maybe_unused]] const double " << c.controls[i] << " = control[" << i << "];\n";
@@ -168,7 +179,7 @@ std::string generated_dynamics(Context& c) {
   std::ostringstream o;
   o << "// ----- modules DYNAMICS + SWITCH (generated from the derivation) ---------------------------\n"
     << "namespace helios_rt {\n\n"
-    << "void dynamics(const double* y, const double* control, const Multipliers& mult, double* dy) {\n"
+    << "void dynamics(double time, const double* y, const double* control, const Multipliers& mult, double* dy) {\n"
     << unpack(c, true);
   const auto& so = d.at("state_odes");
   const auto& co = d.at("costate_odes");
@@ -180,30 +191,63 @@ std::string generated_dynamics(Context& c) {
     o << "  dy[" << so.size() + i << "] = " << c.cpp(co[i].at("rhs"), "/costate_odes/" + std::to_string(i) + "/rhs")
       << ";\n";
   o << "}\n\n"
-    << "double hamiltonian(const double* y, const double* control, const Multipliers& mult) {\n"
+    << "double hamiltonian(double time, const double* y, const double* control, const Multipliers& mult) {\n"
     << unpack(c, true) << "  return " << c.cpp(d.at("hamiltonian"), "/hamiltonian") << ";\n}\n\n"
     << "void direction_control(const double* y, double* control) {\n";
   const json& cl = d.at("control_law");
-  if (cl.contains("direction")) {
+  if (cl.contains("direction") || cl.contains("sail")) {
     for (std::size_t i = 0; i < c.states.size(); ++i)
       o << "  [[maybe_unused]] const double " << c.states[i] << " = y[" << i << "];\n";
     for (std::size_t i = 0; i < c.costates.size(); ++i)
       o << "  [[maybe_unused]] const double " << c.costates[i] << " = y[" << c.states.size() + i << "];\n";
-    const auto& names = cl.at("direction").at("controls");
-    const auto& law = cl.at("direction").at("law");
-    for (std::size_t j = 0; j < names.size(); ++j)
-      o << "  control[" << index_of(c.controls, names[j])
-        << "] = " << c.cpp(law[j], "/control_law/direction/law/" + std::to_string(j)) << ";\n";
+    for (const char* kind : {"direction", "sail"}) {
+      if (!cl.contains(kind)) continue;
+      const auto& names = cl.at(kind).at("controls");
+      const auto& law = cl.at(kind).at("law");
+      const json definitions = cl.at(kind).value("definitions", json::array());
+      for (std::size_t j = 0; j < definitions.size(); ++j)
+        o << "  const double " << definitions[j].at("name").get<std::string>() << " = "
+          << c.cpp(definitions[j].at("expression"),
+                   "/control_law/" + std::string(kind) + "/definitions/" + std::to_string(j) + "/expression")
+          << ";\n";
+      for (std::size_t j = 0; j < names.size(); ++j)
+        o << "  control[" << index_of(c.controls, names[j])
+          << "] = " << c.cpp(law[j], "/control_law/" + std::string(kind) + "/law/" + std::to_string(j)) << ";\n";
+    }
   } else {
     o << "  (void)y;\n  (void)control;\n";
   }
-  o << "}\n\n"
-    << "void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper) {\n"
-    << unpack(c, false)
-    << "  at_lower = " << c.cpp(cl.at("throttle").at("dH_du_at_lower"), "/control_law/throttle/dH_du_at_lower") << ";\n"
-    << "  at_upper = " << c.cpp(cl.at("throttle").at("dH_du_at_upper"), "/control_law/throttle/dH_du_at_upper") << ";\n"
-    << "}\n\n}  // namespace helios_rt\n";
+  o << "}\n\n";
+  if (cl.contains("throttle"))
+    o << "void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper) {\n"
+      << unpack(c, false)
+      << "  at_lower = " << c.cpp(cl.at("throttle").at("dH_du_at_lower"), "/control_law/throttle/dH_du_at_lower")
+      << ";\n"
+      << "  at_upper = " << c.cpp(cl.at("throttle").at("dH_du_at_upper"), "/control_law/throttle/dH_du_at_upper")
+      << ";\n"
+      << "}\n\n";
+  o << "}  // namespace helios_rt\n";
   return o.str();
+}
+
+// Runtime-evaluated parameters grouped by source "<kind>:<what>:<event>", names in order.
+std::map<std::string, std::vector<std::string>> runtime_parameters(const json& d, const std::string& kind) {
+  std::map<std::string, std::vector<std::string>> groups;
+  for (const auto& p : d.at("parameters")) {
+    const std::string source = p.value("source", "");
+    if (source.rfind(kind + ":", 0) == 0) groups[source.substr(kind.size() + 1)].push_back(p.at("name"));
+  }
+  for (const auto& [key, names] : groups)
+    if (names.size() != 6)
+      throw std::invalid_argument("field /parameters: " + kind + " target " + key + " needs 6 components, got " +
+                                  std::to_string(names.size()));
+  return groups;
+}
+
+std::string event_time(const std::string& event) {
+  if (event == "t0") return "problem::kT0";
+  if (event == "tf") return "tf";
+  throw std::invalid_argument("field /parameters: unknown event '" + event + "' (t0 or tf)");
 }
 
 std::string residual_module(Context& c) {
@@ -215,27 +259,54 @@ std::string residual_module(Context& c) {
     throw std::invalid_argument("field /shooting: " + std::to_string(vars.size()) + " variables but " +
                                 std::to_string(eqs.size()) + " equations");
   o << "// ----- module RESIDUAL (generated) -------------------------------------------------------\n"
-    << "namespace helios_rt {\n\n"
-    << "void shooting_function(const double* x, double eps, Propagator& prop, double* F) {\n";
+    << "namespace helios_rt {\n\n";
+  if (d.contains("coast_dynamics")) {
+    const auto& coast = d.at("coast_dynamics");
+    const auto names = coast.at("states").get<std::vector<std::string>>();
+    if (names.size() != 6 || coast.at("rhs").size() != 6)
+      throw std::invalid_argument("field /coast_dynamics: a coasting target has 6 states and 6 right-hand sides");
+    o << "void coast_dynamics(const double* y, double* dy) {\n";
+    for (std::size_t i = 0; i < names.size(); ++i)
+      o << "  [[maybe_unused]] const double " << names[i] << " = y[" << i << "];\n";
+    for (std::size_t i = 0; i < names.size(); ++i)
+      o << "  dy[" << i << "] = " << c.cpp(coast.at("rhs")[i], "/coast_dynamics/rhs/" + std::to_string(i)) << ";\n";
+    o << "}\n\n";
+  }
+  o << "void shooting_function(const double* x, double eps, Propagator& prop, double* F) {\n";
   for (std::size_t i = 0; i < vars.size(); ++i)
     o << "  [[maybe_unused]] const double " << vars[i].at("name").get<std::string>() << " = x[" << i << "];  // "
       << vars[i].at("meaning").get<std::string>() << "\n";
-  o << "  double y[kNY];\n";
-  // Ephemeris targets: the body's state at the event, in normalized units (target evaluated at the actual epoch).
-  std::map<std::string, std::vector<std::string>> ephemeris;  // "body:event" -> parameter names in order
-  for (const auto& p : d.at("parameters"))
-    if (p.contains("source")) ephemeris[p.at("source").get<std::string>().substr(10)].push_back(p.at("name"));
-  int block = 0;
-  for (const auto& [key, names] : ephemeris) {
-    const std::string body = key.substr(0, key.find(':')), event = key.substr(key.find(':') + 1);
-    if (names.size() != 6)
-      throw std::invalid_argument("field /parameters: ephemeris target " + key + " needs 6 components");
-    const std::string var = "ephemeris_" + std::to_string(block++);
-    o << "  const auto " << var << " = ephemeris_state(\"" << body << "\", "
-      << (event == "t0" ? "problem::kT0" : "problem::kTf") << ");\n";
-    for (std::size_t i = 0; i < 6; ++i)
-      o << "  [[maybe_unused]] const double " << names[i] << " = " << var << "[" << i << "];\n";
+  const json& times = d.at("times");
+  if (times.at("final_time") == "free") {
+    o << "  const double tf = " << c.cpp(times.at("tf_expression"), "/times/tf_expression") << ";\n"
+      << "  if (!(tf > problem::kT0)) throw numerical_error(\"the final time fell before the initial time\");\n";
+  } else {
+    o << "  const double tf = problem::kTf;\n";
   }
+  o << "  double y[kNY];\n";
+  // Targets evaluated at the actual event time, in normalized units.
+  int block = 0;
+  for (const char* kind : {"ephemeris", "ephemeris_rate", "coast"})
+    for (const auto& [key, names] : runtime_parameters(d, kind)) {
+      const std::string what = key.substr(0, key.find(':')), event = key.substr(key.find(':') + 1);
+      const std::string var = std::string(kind) + "_" + std::to_string(block++);
+      if (std::string(kind) == "coast") {
+        std::string start;
+        for (const auto& n : names) {
+          if (index_of(c.parameters, n + "_0") < 0)
+            throw std::invalid_argument("field /parameters: coasting target " + what + " has no initial value " + n +
+                                        "_0");
+          start += (start.empty() ? "" : ", ") + std::string("problem::") + n + "_0";
+        }
+        o << "  const auto " << var << " = coast_state({" << start << "}, problem::kT0, " << event_time(event)
+          << ");\n";
+      } else {
+        const std::string function = std::string(kind) == "ephemeris" ? "ephemeris_state" : "ephemeris_rate";
+        o << "  const auto " << var << " = " << function << "(\"" << what << "\", " << event_time(event) << ");\n";
+      }
+      for (std::size_t i = 0; i < 6; ++i)
+        o << "  [[maybe_unused]] const double " << names[i] << " = " << var << "[" << i << "];\n";
+    }
   // Initial states from psi(t0) = 0, initial costates from the shooting variables.
   for (const auto& iv : d.at("initial_values")) {
     const int k = index_of(c.states, iv.at("state"));
@@ -251,11 +322,20 @@ std::string residual_module(Context& c) {
     o << "  y[" << c.states.size() + i << "] = " << v << ";\n";
   }
   o << "  const Multipliers mult{" << d.at("multiplier").get<std::string>() << ", eps};\n"
-    << "  prop.propagate(problem::kT0, problem::kTf, y, mult);\n";
+    << "  prop.propagate(problem::kT0, tf, y, mult);\n";
   for (std::size_t i = 0; i < c.states.size(); ++i)
     o << "  [[maybe_unused]] const double " << c.states[i] << "_tf = y[" << i << "];\n";
   for (std::size_t i = 0; i < c.costates.size(); ++i)
     o << "  [[maybe_unused]] const double " << c.costates[i] << "_tf = y[" << c.states.size() + i << "];\n";
+  if (d.contains("event_values"))
+    for (const auto& e : d.at("event_values")) {
+      if (e.at("name") != "H_tf")
+        throw std::invalid_argument("field /event_values: the runtime evaluates H_tf only, not " + e.at("name").dump());
+      o << "  std::array<double, problem::kNumControls> control_tf{};\n"
+        << "  control_in_mode(y, mode_at(y, mult), mult, control_tf.data());\n"
+        << "  const double H_tf = hamiltonian(tf, y, control_tf.data(), mult);  // "
+        << e.at("meaning").get<std::string>() << "\n";
+    }
   for (std::size_t i = 0; i < eqs.size(); ++i) {
     const double scale = eqs[i].at("scale");
     o << "  F[" << i << "] = ("
@@ -279,13 +359,26 @@ std::string solve_module(Context& c) {
     << "inline void initial_guess(std::mt19937_64& rng, double* x) {\n"
     << "  std::uniform_real_distribution<double> positive(0.0, 1.0), symmetric(-1.0, 1.0);\n"
     << "  double norm2 = 0;\n";
+  // The sphere holds the variables of the normalization equation; the others (a final-time
+  // fraction) are drawn in (0, 1) and left alone.
+  std::vector<std::string> in_sphere;
+  for (const auto& e : d.at("shooting").at("equations"))
+    if (e.at("name") == "normalization")
+      in_sphere =
+          symbolic::free_symbols(c.symbols.parse(e.at("expression"), "field /shooting/equations/normalization"));
+  std::vector<std::size_t> sphere;
   for (std::size_t i = 0; i < vars.size(); ++i) {
-    const bool is_mult = vars[i].at("name") == mult;
-    o << "  x[" << i << "] = " << (is_mult ? "positive(rng)" : "symmetric(rng)") << " * " << number(vars[i].at("scale"))
-      << ";\n";
+    const std::string name = vars[i].at("name");
+    const bool normalized = index_of(in_sphere, name) >= 0;
+    if (normalized) sphere.push_back(i);
+    o << "  x[" << i << "] = " << (name == mult || !normalized ? "positive(rng)" : "symmetric(rng)") << " * "
+      << number(vars[i].at("scale")) << ";\n";
   }
-  o << "  for (int i = 0; i < problem::kNumVars; ++i) norm2 += x[i] * x[i];\n"
-    << "  for (int i = 0; i < problem::kNumVars; ++i) x[i] /= std::sqrt(norm2);\n"
+  if (sphere.empty()) throw std::invalid_argument("field /shooting/equations: no normalization equation");
+  std::string indices;
+  for (const auto i : sphere) indices += (indices.empty() ? "" : ", ") + std::to_string(i);
+  o << "  for (const int i : {" << indices << "}) norm2 += x[i] * x[i];\n"
+    << "  for (const int i : {" << indices << "}) x[i] /= std::sqrt(norm2);\n"
     << "}\n\n"
     << "Result solve_problem(const Settings& settings) {\n"
     << "  // A minimum needs lambda0 > 0 (lambda0 = 0 would be an abnormal extremal).\n"

@@ -1,6 +1,8 @@
 #include "helios/pmp/derive.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <random>
 #include <set>
 #include <stdexcept>
 
@@ -85,6 +87,89 @@ ex substitute_direction(const ex& H, const DirectionLaw& d, Problem& p) {
   return Hs.subs(norm == GiNaC::sqrt(norm2.expand()));
 }
 
+// Minimizes H over a sail normal n (|n| = 1, n.rhat >= 0) when the sail adds k (n.rhat)^2 n to
+// the velocity: write n = cos(alpha) rhat + sin(alpha) s with s a unit vector normal to rhat.
+// H is linear in s with the positive factor k cos^2 sin, so s* = -lv_perp/|lv_perp| (the primer
+// vector in the plane normal to rhat), leaving h(alpha) = k cos^2 (A cos - B sin) with
+// A = lv.rhat, B = |lv_perp|. h'(alpha) = 0 becomes a polynomial in tan(alpha); its root in
+// [0, pi/2] with h'' > 0 is the optimal cone angle. The steps are done on GiNaC, not typed in.
+struct SailLaw {
+  std::vector<std::string> controls;
+  std::vector<std::pair<std::string, ex>> definitions;  // sail_A, sail_B, in order
+  ex cone_angle;                                        // alpha*(x, lambda, definitions)
+  std::vector<ex> law;  // n* in terms of the cone angle symbol sail_alpha and the definitions
+  std::string stationarity;
+};
+
+SailLaw sail_law(Problem& p, const ex& H) {
+  SailLaw s;
+  std::vector<symbol> n;
+  for (const auto& c : p.controls)
+    if (c.kind == "sail_normal") {
+      s.controls.push_back(c.name);
+      n.push_back(p.symbols.get(c.name));
+    }
+  if (n.size() != 3)
+    throw std::invalid_argument("a sail needs three normal components, got " + std::to_string(n.size()));
+  const auto& rhat = p.sail.rhat;
+  std::vector<ex> lv;
+  for (const auto& v : p.sail.velocity) lv.push_back(p.symbols.get(costate_name(v)));
+  const ex A = (lv[0] * rhat[0] + lv[1] * rhat[1] + lv[2] * rhat[2]);
+  std::vector<ex> perp;
+  for (int i = 0; i < 3; ++i) perp.push_back(lv[i] - A * rhat[i]);
+  const ex B = GiNaC::sqrt(perp[0] * perp[0] + perp[1] * perp[1] + perp[2] * perp[2]);
+
+  // Stationarity of h(alpha) = cos^2 (a cos - b sin) in t = tan(alpha).
+  const symbol al("helios_alpha"), tt("helios_tan"), a("helios_A"), b("helios_B");
+  const ex h = GiNaC::pow(GiNaC::cos(al), 2) * (a * GiNaC::cos(al) - b * GiNaC::sin(al));
+  const ex dh = h.diff(al).expand().subs(GiNaC::sin(al) == tt * GiNaC::cos(al)).expand();
+  const ex poly = (dh / GiNaC::pow(GiNaC::cos(al), 3)).expand().normal().expand();
+  if (poly.has(al) || poly.degree(tt) != 2)
+    throw std::logic_error("sail law: dh/dalpha is not cos^3 times a quadratic in tan(alpha)");
+  const ex c2 = poly.coeff(tt, 2), c1 = poly.coeff(tt, 1), c0 = poly.coeff(tt, 0);
+  s.stationarity = to_text(poly.subs(GiNaC::lst{tt == symbol("tan_alpha"), a == symbol("A"), b == symbol("B")})) +
+                   " = 0 with A = lambda_v.rhat, B = |lambda_v_perp|";
+  // c2 = 2B > 0 and c0 = -B < 0: the roots have opposite signs; the non-negative one,
+  // t = -2 c0 / (c1 + sqrt(c1^2 - 4 c2 c0)), written as an angle that stays defined as B -> 0.
+  const ex root = GiNaC::atan2(-2 * c0, c1 + GiNaC::sqrt(c1 * c1 - 4 * c2 * c0));
+  // Second-order check at sample values: h'' > 0 at the root (a minimum, rule G2).
+  for (const auto& [av, bv] : std::vector<std::pair<double, double>>{{-0.7, 0.4}, {0.3, 0.9}, {0.8, 0.05}}) {
+    const ex at = root.subs(GiNaC::lst{a == av, b == bv}).evalf();
+    const ex second = h.diff(al, 2).subs(GiNaC::lst{a == av, b == bv, al == at}).evalf();
+    if (!GiNaC::is_a<GiNaC::numeric>(second) || GiNaC::ex_to<GiNaC::numeric>(second).to_double() <= 0)
+      throw std::logic_error("sail law: the root of the stationarity condition is not a minimum");
+  }
+  // The law is written with named intermediate quantities so it stays readable (and cheap).
+  const symbol& A_sym = p.symbols.get("sail_A");
+  const symbol& B_sym = p.symbols.get("sail_B");
+  const symbol& alpha_sym = p.symbols.get("sail_alpha");
+  ex lv2 = 0;
+  for (const auto& l : lv) lv2 += l * l;
+  s.definitions = {{"sail_A", A}, {"sail_B", GiNaC::sqrt(lv2 - A_sym * A_sym)}};
+  s.cone_angle = root.subs(GiNaC::lst{a == A_sym, b == B_sym});
+  s.definitions.push_back({"sail_alpha", s.cone_angle});
+  for (int i = 0; i < 3; ++i)
+    s.law.push_back(GiNaC::cos(alpha_sym) * rhat[i] - GiNaC::sin(alpha_sym) * (lv[i] - A_sym * rhat[i]) / B_sym);
+  // The engine's own consistency check: along n*(alpha) the n-dependent part of H is k h(alpha).
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> dist(0.2, 1.5);
+  for (int trial = 0; trial < 4; ++trial) {
+    GiNaC::exmap at;
+    for (const auto& sym : symbolic::free_symbols(H)) at[p.symbols.get(sym)] = dist(rng) * (trial % 2 ? -1 : 1);
+    for (const auto& nj : n) at[nj] = 0;
+    const double alpha = 0.3 + 0.25 * trial;
+    GiNaC::exmap on_law = at;
+    for (int i = 0; i < 3; ++i) on_law[n[i]] = (std::cos(alpha) * rhat[i] - std::sin(alpha) * perp[i] / B).subs(at);
+    const double lhs = GiNaC::ex_to<GiNaC::numeric>((H.subs(on_law) - H.subs(at)).evalf()).to_double();
+    const double rhs =
+        GiNaC::ex_to<GiNaC::numeric>((p.sail.k * h.subs(GiNaC::lst{al == alpha, a == A, b == B})).subs(at).evalf())
+            .to_double();
+    if (std::fabs(lhs - rhs) > 1e-10 * (1 + std::fabs(rhs)))
+      throw std::logic_error("sail law: H does not have the form k (n.rhat)^2 (lambda_v.n) in the sail normal");
+  }
+  return s;
+}
+
 json named_list(const std::vector<Named>& v, bool with_value) {
   json out = json::array();
   for (const auto& n : v) {
@@ -115,47 +200,72 @@ json derive(const Problem& problem) {
     costate_odes.push_back({{"costate", costate_name(s.name)}, {"rhs", to_text((-H.diff(x)).expand())}});
   }
 
-  // Control law: direction first (independent of the throttle), then the throttle.
+  // Control law: direction first (independent of the throttle), then the throttle; a sail's
+  // normal has its own law.
+  json control = json::object();
   const DirectionLaw dir = direction_law(p, H);
   const ex Hstar = substitute_direction(H, dir, p);
-  json control = json::object();
-  json direction = json::object();
-  direction["controls"] = dir.controls;
-  json law = json::array();
-  for (const auto& l : dir.law) law.push_back(to_text(l));
-  direction["law"] = law;
-  json gradient = json::array();
-  for (const auto& g : dir.gradient) gradient.push_back(to_text(g));
-  direction["dH_da"] = gradient;
-  direction["reason"] = dir.costate_block.empty()
-                            ? "H is linear in the unit vector a, so a* = -g/|g| with g = dH/da minimizes it"
-                            : "H is linear in the unit vector a with dH/da = k*(" + dir.costate_block +
-                                  "), k > 0: a* = -lambda/|lambda| (primer vector) minimizes it";
-  control["direction"] = direction;
+  if (!dir.controls.empty()) {
+    json direction = json::object();
+    direction["controls"] = dir.controls;
+    json law = json::array();
+    for (const auto& l : dir.law) law.push_back(to_text(l));
+    direction["law"] = law;
+    json gradient = json::array();
+    for (const auto& g : dir.gradient) gradient.push_back(to_text(g));
+    direction["dH_da"] = gradient;
+    direction["reason"] = dir.costate_block.empty()
+                              ? "H is linear in the unit vector a, so a* = -g/|g| with g = dH/da minimizes it"
+                              : "H is linear in the unit vector a with dH/da = k*(" + dir.costate_block +
+                                    "), k > 0: a* = -lambda/|lambda| (primer vector) minimizes it";
+    control["direction"] = direction;
+  }
+  const bool has_sail =
+      std::any_of(p.controls.begin(), p.controls.end(), [](const Control& c) { return c.kind == "sail_normal"; });
+  if (has_sail) {
+    const SailLaw sail = sail_law(p, H);
+    json law = json::array();
+    for (const auto& l : sail.law) law.push_back(to_text(l));
+    json definitions = json::array();
+    for (const auto& [name, e] : sail.definitions) definitions.push_back({{"name", name}, {"expression", to_text(e)}});
+    control["sail"] = {
+        {"controls", sail.controls},
+        {"definitions", definitions},
+        {"cone_angle", to_text(sail.cone_angle)},
+        {"law", law},
+        {"stationarity", sail.stationarity},
+        {"admissible", "|n| = 1, n.rhat >= 0 (the sail cannot push toward the Sun)"},
+        {"reason",
+         "n = cos(alpha) rhat + sin(alpha) s: H is linear in the unit vector s normal to rhat, so s* = "
+         "-lambda_v_perp/|lambda_v_perp|; then dH/dalpha = 0 is a quadratic in tan(alpha) whose non-negative root "
+         "minimizes H on [0, pi/2]"}};
+  }
 
   const auto throttle_control =
       std::find_if(p.controls.begin(), p.controls.end(), [](const Control& c) { return c.kind == "throttle"; });
-  if (throttle_control == p.controls.end()) throw std::invalid_argument("the problem has no throttle control");
-  const symbol u = S.get(throttle_control->name);
-  const ex dHdu = Hstar.diff(u).expand();
-  if (!dHdu.diff(u, 2).is_zero())
-    throw std::invalid_argument("H is not quadratic in the throttle " + throttle_control->name);
-  const ex S0 = dHdu.subs(u == 0).expand();
-  const ex S1 = dHdu.subs(u == 1).expand();
-  const ex switching = S0.subs(eps == 0).expand();
-  json throttle = json::object();
-  throttle["control"] = throttle_control->name;
-  throttle["bounds"] = json::array({0, 1});
-  throttle["switching_function"] = to_text(switching);
-  throttle["dH_du_at_lower"] = to_text(S0);
-  throttle["dH_du_at_upper"] = to_text(S1);
-  throttle["d2H_du2"] = to_text(dHdu.diff(u).expand());
-  throttle["interior"] = to_text((S0 / (S0 - S1).expand()).expand());
-  throttle["smoothing"] = "quadratic";
-  throttle["law"] =
-      "u = 0 where dH_du_at_lower >= 0, u = 1 where dH_du_at_upper <= 0, otherwise u = interior (dH/du = 0); "
-      "at eps = 0: u = 1 if switching_function < 0 else 0 (bang-bang)";
-  control["throttle"] = throttle;
+  if (throttle_control != p.controls.end()) {
+    const symbol u = S.get(throttle_control->name);
+    const ex dHdu = Hstar.diff(u).expand();
+    if (!dHdu.diff(u, 2).is_zero())
+      throw std::invalid_argument("H is not quadratic in the throttle " + throttle_control->name);
+    const ex S0 = dHdu.subs(u == 0).expand();
+    const ex S1 = dHdu.subs(u == 1).expand();
+    const ex switching = S0.subs(eps == 0).expand();
+    json throttle = json::object();
+    throttle["control"] = throttle_control->name;
+    throttle["bounds"] = json::array({0, 1});
+    throttle["switching_function"] = to_text(switching);
+    throttle["dH_du_at_lower"] = to_text(S0);
+    throttle["dH_du_at_upper"] = to_text(S1);
+    throttle["d2H_du2"] = to_text(dHdu.diff(u).expand());
+    const ex span = (S0 - S1).expand();
+    throttle["interior"] = span.is_zero() ? "0" : to_text((S0 / span).expand());
+    throttle["smoothing"] = H.has(eps) ? "quadratic" : "none";
+    throttle["law"] =
+        "u = 0 where dH_du_at_lower >= 0, u = 1 where dH_du_at_upper <= 0, otherwise u = interior (dH/du = 0); "
+        "at eps = 0: u = 1 if switching_function < 0 else 0 (bang-bang)";
+    control["throttle"] = throttle;
+  }
 
   // Endpoint conditions. Initial: fixed states have free costates (shooting variables);
   // free states would get lambda(t0) = -dPhi/dx(t0). Final: lambda(tf) = lambda0 dphi/dx + nu^T dpsi/dx.
@@ -168,6 +278,11 @@ json derive(const Problem& problem) {
                        {"meaning", "cost multiplier lambda0 (>= 0)"},
                        {"scale", 1.0},
                        {"init", "uniform in (0, 1), then the whole vector normalized"}});
+  GiNaC::exmap at_tf;
+  for (const auto& s : p.states) at_tf[S.get(s.name)] = S.get(at_event(s.name, "tf"));
+  const symbol H_tf = S.get("H_tf");
+  ex time_condition = H_tf + lambda0 * p.endpoint_cost.diff(S.get("t"));  // H(tf) + dPhi/dtf, nu added below
+  bool final_constraint = false;
   for (const auto& k : p.constraints) {
     json c = {{"id", k.id}, {"kind", k.kind}, {"at", k.at}, {"target", k.target}};
     json psi = json::array();
@@ -193,8 +308,12 @@ json derive(const Problem& problem) {
     } else {
       // lambda(tf) - lambda0 dphi/dx - nu^T dpsi/dx = 0; the multipliers of the states psi fixes
       // are solved from their own rows (dpsi/dx_J invertible), the other rows remain.
+      if (final_constraint) throw std::invalid_argument("constraint '" + k.id + "': only one constraint at tf");
+      final_constraint = true;
       json conditions = json::array();
       json eliminated = json::array();
+      GiNaC::lst touched_rows, nus;
+      for (const auto& m : multipliers) nus.append(S.get(m.get<std::string>()));
       for (std::size_t i = 0; i < p.states.size(); ++i) {
         const symbol x = S.get(p.states[i].name);
         ex row = S.get(at_event(costate_name(p.states[i].name), "tf")) - lambda0 * p.endpoint_cost.diff(x);
@@ -208,8 +327,9 @@ json derive(const Problem& problem) {
         conditions.push_back(to_text(row) + " = 0");
         if (touched) {
           eliminated.push_back(to_text(row) + " = 0");
+          touched_rows.append(row.subs(at_tf) == 0);
         } else {
-          const ex eq = row.subs(S.get(p.states[i].name) == S.get(at_event(p.states[i].name, "tf")));
+          const ex eq = row.subs(at_tf);
           equations.push_back(
               {{"name", "transversality_" + p.states[i].name},
                {"expression", to_text(eq)},
@@ -221,16 +341,38 @@ json derive(const Problem& problem) {
       c["conditions"] = conditions;
       c["eliminated_multipliers"] = eliminated;
       for (std::size_t j = 0; j < k.psi.size(); ++j) {
-        GiNaC::exmap at_tf;
-        for (const auto& s : p.states) at_tf[S.get(s.name)] = S.get(at_event(s.name, "tf"));
         equations.push_back({{"name", "psi_" + k.id + "_" + std::to_string(j + 1)},
                              {"expression", to_text(k.psi[j].subs(at_tf))},
                              {"meaning", "rendezvous with " + k.id + ": " + k.psi_names[j] + " = 0 at tf"},
                              {"scale", 1.0},
                              {"source", k.id}});
       }
+      if (p.free_final_time) {
+        // H(tf) + dPhi/dtf = 0 with Phi = lambda0 phi + nu^T psi: nu^T dpsi/dtf through the target's
+        // motion, nu taken from the rows it was eliminated with.
+        const ex nu = GiNaC::lsolve(touched_rows, nus);
+        if (nu.nops() != nus.nops())
+          throw std::invalid_argument("constraint '" + k.id + "': its multipliers are not determined by lambda(tf)");
+        GiNaC::exmap nu_value;
+        for (const auto& r : nu) nu_value[r.lhs()] = r.rhs();
+        for (std::size_t j = 0; j < k.psi.size(); ++j)
+          time_condition += S.get(multipliers[j].get<std::string>()).subs(nu_value) * k.psi_t[j].subs(at_tf);
+        c["time_condition"] = "H(tf) + lambda0*dphi/dtf + nu^T dpsi/dtf = 0 (tf free)";
+      }
     }
     constraints.push_back(c);
+  }
+  if (p.free_final_time) {
+    if (!final_constraint) throw std::invalid_argument("a free final time needs a constraint at tf");
+    variables.push_back({{"name", "tf_frac"},
+                         {"meaning", "final time as a fraction of its window: tf = tf_min + (tf_max - tf_min)*tf_frac"},
+                         {"scale", 1.0},
+                         {"init", "uniform in (0, 1)"}});
+    equations.push_back({{"name", "transversality_tf"},
+                         {"expression", to_text(time_condition.expand())},
+                         {"meaning", "H(tf) + dPhi/dtf = 0: the final time is free"},
+                         {"scale", 1.0},
+                         {"source", "final_time"}});
   }
   // Order: endpoint constraints first, then transversality, then the normalization.
   std::stable_sort(equations.begin(), equations.end(), [](const json& a, const json& b) {
@@ -249,6 +391,9 @@ json derive(const Problem& problem) {
       throw std::invalid_argument("state " + s.name + " is free at t0: not supported by the builtin engine yet");
     }
   }
+  // The final-time fraction is not a multiplier: it stays out of the sphere.
+  std::stable_sort(variables.begin(), variables.end(),
+                   [](const json& a, const json& b) { return a["name"] != "tf_frac" && b["name"] == "tf_frac"; });
   equations.push_back({{"name", "normalization"},
                        {"expression", to_text(GiNaC::sqrt(norm2) - 1)},
                        {"meaning", "|(lambda0, lambda(t0))| = 1 (lambda0 inside the sphere normalization)"},
@@ -256,13 +401,23 @@ json derive(const Problem& problem) {
                        {"source", "normalization"}});
 
   json doc = io::artifact_header("derivation", "helios-derive", "builtin");
-  doc["problem"] = {{"id", p.id}, {"dynamics_model", p.dynamics_model}, {"objective", p.objective}};
+  doc["problem"] = {{"id", p.id},
+                    {"dynamics_model", p.dynamics_model},
+                    {"objective", p.objective},
+                    {"perturbations", p.perturbations}};
   doc["units"] = {{"length", p.units.length_name},
                   {"length_km", p.units.length_km},
                   {"time", p.units.time_name},
                   {"time_s", p.units.time_s},
                   {"mass_kg", p.units.mass_kg}};
-  doc["times"] = {{"t0", p.t0}, {"tf", p.tf}, {"final_time", "fixed"}};
+  if (p.free_final_time) {
+    doc["times"] = {{"t0", p.t0},
+                    {"final_time", "free"},
+                    {"tf_window", {p.tf_min, p.tf}},
+                    {"tf_expression", to_text(p.tf_min + (p.tf - p.tf_min) * S.get("tf_frac"))}};
+  } else {
+    doc["times"] = {{"t0", p.t0}, {"tf", p.tf}, {"final_time", "fixed"}};
+  }
   if (p.has_epoch) doc["times"]["epoch_mjd2000"] = p.epoch_mjd2000;
   json states = named_list(p.states, false);
   for (auto& s : states) s["costate"] = costate_name(s["name"].get<std::string>());
@@ -271,16 +426,32 @@ json derive(const Problem& problem) {
   for (const auto& c : p.controls) controls.push_back({{"name", c.name}, {"meaning", c.meaning}, {"kind", c.kind}});
   doc["controls"] = controls;
   doc["parameters"] = named_list(p.parameters, true);
-  doc["homotopy"] = {
-      {"symbol", "eps"},
-      {"start", 1.0},
-      {"end", 0.0},
-      {"meaning", "quadratic smoothing of the throttle: eps = 1 energy-like, eps = 0 fuel-optimal bang-bang"}};
+  if (H.has(eps))
+    doc["homotopy"] = {
+        {"symbol", "eps"},
+        {"start", 1.0},
+        {"end", 0.0},
+        {"meaning", "quadratic smoothing of the throttle: eps = 1 energy-like, eps = 0 fuel-optimal bang-bang"}};
+  else
+    doc["homotopy"] = {{"symbol", "eps"},
+                       {"start", 0.0},
+                       {"end", 0.0},
+                       {"meaning", "none: H does not contain eps (no smoothing is needed or used)"}};
   doc["multiplier"] = "lambda0";
   json rhs = json::array();
   for (const auto& fi : p.f) rhs.push_back(to_text(fi));
   doc["dynamics"] = {
       {"state_rhs", rhs}, {"running_cost", to_text(p.running_cost)}, {"endpoint_cost", to_text(p.endpoint_cost)}};
+  const bool coasting = std::any_of(p.parameters.begin(), p.parameters.end(),
+                                    [](const Named& q) { return q.source.rfind("coast:", 0) == 0; });
+  if (coasting) {
+    json coast = json::array();
+    for (const auto& fi : p.coast_f) coast.push_back(to_text(fi));
+    doc["coast_dynamics"] = {{"states", {"rx", "ry", "rz", "vx", "vy", "vz"}}, {"rhs", coast}};
+  }
+  if (p.free_final_time)
+    doc["event_values"] =
+        json::array({{{"name", "H_tf"}, {"meaning", "H at tf with the optimal control (the runtime evaluates it)"}}});
   doc["hamiltonian"] = to_text(H);
   doc["state_odes"] = state_odes;
   doc["costate_odes"] = costate_odes;

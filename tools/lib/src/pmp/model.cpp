@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "helios/astro/constants.hpp"
+#include "helios/spec/parse.hpp"
 
 namespace helios::pmp {
 namespace {
@@ -23,7 +24,10 @@ Units units_for(const json& central_body) {
     u.time_s = JULIAN_YEAR_DAYS * DAY_S;
   } else {
     // Planetocentric: body radius and the time unit that makes mu = 1.
-    const double radius = name == "Earth" ? R_EARTH_KM : name == "Mars" ? R_MARS_KM : 0.0;
+    const double radius = central_body.contains("radius_km") ? central_body.at("radius_km").get<double>()
+                          : name == "Earth"                  ? R_EARTH_KM
+                          : name == "Mars"                   ? R_MARS_KM
+                                                             : 0.0;
     if (radius == 0.0) throw std::invalid_argument("field /central_body/name: no radius known for '" + name + "'");
     u.length_name = name + " radius";
     u.length_km = radius;
@@ -42,39 +46,120 @@ std::string at_event(const std::string& name, const std::string& event) {
   return name + "_" + event;
 }
 
+bool Problem::has_state(const std::string& name) const {
+  for (const auto& s : states)
+    if (s.name == name) return true;
+  return false;
+}
+
+namespace {
+
+// Two-body gravity plus the J2 zonal term (z along the central body's pole):
+// a_J2 = -3/2 J2 mu R^2 / r^5 [x (1 - 5 z^2/r^2), y (1 - 5 z^2/r^2), z (3 - 5 z^2/r^2)].
+std::vector<ex> gravity(const std::vector<ex>& r, const ex& mu, const ex* j2, const ex* radius) {
+  const ex r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+  const ex r3 = GiNaC::pow(r2, GiNaC::numeric(3, 2));
+  std::vector<ex> g = {-mu * r[0] / r3, -mu * r[1] / r3, -mu * r[2] / r3};
+  if (j2) {
+    const ex k = -GiNaC::numeric(3, 2) * (*j2) * mu * (*radius) * (*radius) / GiNaC::pow(r2, GiNaC::numeric(5, 2));
+    const ex zz = 5 * r[2] * r[2] / r2;
+    g[0] += k * r[0] * (1 - zz);
+    g[1] += k * r[1] * (1 - zz);
+    g[2] += k * r[2] * (3 - zz);
+  }
+  return g;
+}
+
+// A user-written acceleration (spec units: km, km/s, kg, s) in normalized units.
+std::vector<ex> user_acceleration(const json& pert, Problem& p, const ex& mass) {
+  symbolic::SymbolTable vars;
+  for (const char* v : spec::kAccelerationVariables) vars.get(v);
+  const Units& U = p.units;
+  auto& S = p.symbols;
+  const ex rx = S.get("rx"), ry = S.get("ry"), rz = S.get("rz");
+  GiNaC::exmap to_model = {
+      {vars.get("x"), rx * U.length_km},
+      {vars.get("y"), ry * U.length_km},
+      {vars.get("z"), rz * U.length_km},
+      {vars.get("r"), GiNaC::sqrt(rx * rx + ry * ry + rz * rz) * U.length_km},
+      {vars.get("vx"), S.get("vx") * U.speed_km_s()},
+      {vars.get("vy"), S.get("vy") * U.speed_km_s()},
+      {vars.get("vz"), S.get("vz") * U.speed_km_s()},
+      {vars.get("m"), mass * U.mass_kg},
+      {vars.get("t"), S.get("t") * U.time_s},
+  };
+  const std::string unit = pert.at("unit");
+  const double to_km_s2 = unit == "mm/s^2" ? 1e-6 : unit == "m/s^2" ? 1e-3 : 1.0;
+  const double scale = to_km_s2 * U.time_s * U.time_s / U.length_km;
+  std::vector<ex> a;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::string where =
+        "field /dynamics/perturbations (" + pert.at("name").get<std::string>() + ")/components/" + std::to_string(i);
+    a.push_back(vars.parse(pert.at("components")[i].get<std::string>(), where).subs(to_model) * scale);
+  }
+  return a;
+}
+
+}  // namespace
+
 Problem build_problem(const json& spec) {
   Problem p;
   p.id = spec.at("problem").at("id").get<std::string>();
   const json& dyn = spec.at("dynamics");
-  p.dynamics_model = dyn.at("model").get<std::string>() + "_" + dyn.at("coordinates").get<std::string>() + "_" +
-                     dyn.at("propulsion").get<std::string>();
-  if (p.dynamics_model != "two_body_cartesian_low_thrust")
-    throw std::invalid_argument("field /dynamics: model " + p.dynamics_model +
-                                " is not supported by the builtin engine");
+  p.propulsion = dyn.at("propulsion").get<std::string>();
+  const json perturbations = dyn.value("perturbations", json::array());
+  bool j2 = false;
+  for (const auto& q : perturbations) {
+    if (q.at("kind") == "j2") {
+      j2 = true;
+      p.perturbations.push_back("j2");
+    } else {
+      p.perturbations.push_back(q.at("name").get<std::string>());
+    }
+  }
+  p.dynamics_model = dyn.at("model").get<std::string>() + (j2 ? "_j2" : "") + "_" +
+                     dyn.at("coordinates").get<std::string>() + "_" + p.propulsion;
   p.objective = spec.at("objective").at("kind").get<std::string>();
-  p.units = units_for(spec.at("central_body"));
-  const Units& U = p.units;
+  const json& central = spec.at("central_body");
+  p.units = units_for(central);
+  const bool sail = p.propulsion == "solar_sail";
 
   const json& sc = spec.at("spacecraft");
-  const double m0 = sc.at("initial_mass_kg").get<double>();
-  p.units.mass_kg = m0;
-  const double thrust = sc.at("thrust_N").get<double>() / p.units.force_N();
-  const double exhaust = sc.at("isp_s").get<double>() * helios::astro::G0_M_S2 * 1e-3 / U.speed_km_s();
-  const double mu = spec.at("central_body").at("mu_km3_s2").get<double>() * U.time_s * U.time_s /
-                    (U.length_km * U.length_km * U.length_km);
-  if (!(thrust > 0) || !(exhaust > 0)) throw std::domain_error("field /spacecraft: thrust and Isp must be positive");
-
+  if (!sail) p.units.mass_kg = sc.at("initial_mass_kg").get<double>();
+  const Units& U = p.units;
+  const double mu =
+      central.at("mu_km3_s2").get<double>() * U.time_s * U.time_s / (U.length_km * U.length_km * U.length_km);
   const std::string L = U.length_name, T = U.time_name;
+
   p.states = {{"rx", "position x", L},           {"ry", "position y", L},           {"rz", "position z", L},
-              {"vx", "velocity x", L + "/" + T}, {"vy", "velocity y", L + "/" + T}, {"vz", "velocity z", L + "/" + T},
-              {"m", "mass", "initial mass"}};
-  p.controls = {{"u", "throttle T/Tmax in [0, 1]", "throttle"},
-                {"ax", "thrust direction x (unit vector)", "direction"},
-                {"ay", "thrust direction y (unit vector)", "direction"},
-                {"az", "thrust direction z (unit vector)", "direction"}};
-  p.parameters = {{"mu", "gravitational parameter of the central body", L + "^3/" + T + "^2", mu},
-                  {"Tmax", "maximum thrust", "initial mass*" + L + "/" + T + "^2", thrust},
-                  {"c", "exhaust velocity Isp*g0", L + "/" + T, exhaust}};
+              {"vx", "velocity x", L + "/" + T}, {"vy", "velocity y", L + "/" + T}, {"vz", "velocity z", L + "/" + T}};
+  p.parameters = {{"mu", "gravitational parameter of the central body", L + "^3/" + T + "^2", mu}};
+  if (j2) {
+    p.parameters.push_back({"J2", "J2 zonal coefficient of the central body", "1", central.at("j2").get<double>()});
+    p.parameters.push_back(
+        {"Req", "equatorial radius of the central body", L, central.at("radius_km").get<double>() / U.length_km});
+  }
+  if (sail) {
+    const double ac =
+        sc.at("sail_characteristic_acceleration_mm_s2").get<double>() * 1e-6 * U.time_s * U.time_s / U.length_km;
+    const double ref = sc.at("sail_reference_distance_AU").get<double>() * helios::astro::AU_KM / U.length_km;
+    p.controls = {{"nx", "sail normal x (unit vector, n.r >= 0)", "sail_normal"},
+                  {"ny", "sail normal y (unit vector, n.r >= 0)", "sail_normal"},
+                  {"nz", "sail normal z (unit vector, n.r >= 0)", "sail_normal"}};
+    p.parameters.push_back({"ac", "characteristic acceleration of the sail", L + "/" + T + "^2", ac});
+    p.parameters.push_back({"rref", "distance at which the characteristic acceleration holds", L, ref});
+  } else {
+    const double thrust = sc.at("thrust_N").get<double>() / U.force_N();
+    const double exhaust = sc.at("isp_s").get<double>() * helios::astro::G0_M_S2 * 1e-3 / U.speed_km_s();
+    if (!(thrust > 0) || !(exhaust > 0)) throw std::domain_error("field /spacecraft: thrust and Isp must be positive");
+    p.states.push_back({"m", "mass", "initial mass"});
+    p.controls = {{"u", "throttle T/Tmax in [0, 1]", "throttle"},
+                  {"ax", "thrust direction x (unit vector)", "direction"},
+                  {"ay", "thrust direction y (unit vector)", "direction"},
+                  {"az", "thrust direction z (unit vector)", "direction"}};
+    p.parameters.push_back({"Tmax", "maximum thrust", "initial mass*" + L + "/" + T + "^2", thrust});
+    p.parameters.push_back({"c", "exhaust velocity Isp*g0", L + "/" + T, exhaust});
+  }
 
   auto& S = p.symbols;
   for (const auto& s : p.states) {
@@ -83,72 +168,141 @@ Problem build_problem(const json& spec) {
   }
   for (const auto& c : p.controls) S.get(c.name);
   for (const auto& q : p.parameters) S.get(q.name);
-  const ex rx = S.get("rx"), ry = S.get("ry"), rz = S.get("rz"), vx = S.get("vx"), vy = S.get("vy"), vz = S.get("vz"),
-           m = S.get("m"), u = S.get("u"), ax = S.get("ax"), ay = S.get("ay"), az = S.get("az"), MU = S.get("mu"),
-           TM = S.get("Tmax"), C = S.get("c"), eps = S.get("eps");
   S.get("lambda0");
+  S.get("t");
+  const ex eps = S.get("eps");
+  const std::vector<ex> r = {S.get("rx"), S.get("ry"), S.get("rz")}, v = {S.get("vx"), S.get("vy"), S.get("vz")};
+  const ex MU = S.get("mu");
+  ex J2sym, Rsym;
+  if (j2) {
+    J2sym = S.get("J2");
+    Rsym = S.get("Req");
+  }
+  const std::vector<ex> g = gravity(r, MU, j2 ? &J2sym : nullptr, j2 ? &Rsym : nullptr);
+  p.coast_f = {v[0], v[1], v[2], g[0], g[1], g[2]};
 
-  // Two-body dynamics with thrust u*Tmax along the unit vector a; mass flow Tmax*u/c.
-  const ex r3 = GiNaC::pow(rx * rx + ry * ry + rz * rz, GiNaC::numeric(3, 2));
-  p.f = {vx,
-         vy,
-         vz,
-         -MU * rx / r3 + TM * u * ax / m,
-         -MU * ry / r3 + TM * u * ay / m,
-         -MU * rz / r3 + TM * u * az / m,
-         -TM * u / C};
-  if (p.objective != "minimum_fuel")
+  std::vector<ex> accel = g;
+  ex mass = 1;
+  if (sail) {
+    // Ideal flat sail: a = ac (rref/r)^2 (n.rhat)^2 n, n the unit normal pointing away from the Sun.
+    const ex rn = GiNaC::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    const std::vector<ex> n = {S.get("nx"), S.get("ny"), S.get("nz")};
+    const ex cos_cone = (n[0] * r[0] + n[1] * r[1] + n[2] * r[2]) / rn;
+    const ex k = S.get("ac") * GiNaC::pow(S.get("rref") / rn, 2);
+    for (int i = 0; i < 3; ++i) accel[i] += k * GiNaC::pow(cos_cone, 2) * n[i];
+    p.sail = {k, {r[0] / rn, r[1] / rn, r[2] / rn}, {"vx", "vy", "vz"}};
+  } else {
+    mass = S.get("m");
+    const ex u = S.get("u"), TM = S.get("Tmax");
+    const std::vector<ex> a = {S.get("ax"), S.get("ay"), S.get("az")};
+    for (int i = 0; i < 3; ++i) accel[i] += TM * u * a[i] / mass;
+  }
+  for (const auto& q : perturbations)
+    if (q.at("kind") == "acceleration") {
+      const std::vector<ex> a = user_acceleration(q, p, mass);
+      for (int i = 0; i < 3; ++i) accel[i] += a[i];
+    }
+  p.f = {v[0], v[1], v[2], accel[0], accel[1], accel[2]};
+  if (!sail) p.f.push_back(-S.get("Tmax") * S.get("u") / S.get("c"));
+
+  if (p.objective == "minimum_fuel") {
+    if (sail)
+      throw std::invalid_argument("field /objective/kind: a solar sail uses no fuel; minimize the time instead");
+    // Fuel (mass flow) with the quadratic homotopy term: eps = 1 is an energy-like problem,
+    // eps = 0 the bang-bang fuel-optimal one (Bertrand & Epenoy; Jiang, Baoyin & Li 2012).
+    const ex TM = S.get("Tmax"), C = S.get("c"), u = S.get("u");
+    p.running_cost = TM / C * (u - eps * u * (1 - u));
+  } else if (p.objective == "minimum_time") {
+    p.running_cost = 1;
+  } else {
     throw std::invalid_argument("field /objective/kind: " + p.objective + " is not supported");
-  // Fuel (mass flow) with the quadratic homotopy term: eps = 1 is an energy-like problem,
-  // eps = 0 the bang-bang fuel-optimal one (Bertrand & Epenoy; Jiang, Baoyin & Li 2012).
-  p.running_cost = TM / C * (u - eps * u * (1 - u));
+  }
   p.endpoint_cost = 0;
 
   const json& time = spec.at("time");
   p.t0 = 0;
-  p.tf = time.at("tof_days").get<double>() * helios::astro::DAY_S / U.time_s;
+  p.free_final_time = time.at("final_time") == "free";
+  if (p.free_final_time) {
+    p.tf_min = time.at("tof_min_days").get<double>() * helios::astro::DAY_S / U.time_s;
+    p.tf = time.at("tof_max_days").get<double>() * helios::astro::DAY_S / U.time_s;
+  } else {
+    p.tf = time.at("tof_days").get<double>() * helios::astro::DAY_S / U.time_s;
+  }
   p.initial_mass = 1;
   if (time.contains("epoch_mjd2000")) {
     p.epoch_mjd2000 = time.at("epoch_mjd2000").get<double>();
     p.has_epoch = true;
   }
 
-  const std::vector<std::string> pos = {"rx", "ry", "rz"}, vel = {"vx", "vy", "vz"};
+  const std::vector<std::string> names = {"rx", "ry", "rz", "vx", "vy", "vz"};
   for (const auto& c : spec.at("constraints")) {
     EndpointConstraint k;
     k.id = c.at("id").get<std::string>();
     k.kind = c.at("kind").get<std::string>();
     k.at = c.at("at").get<std::string>();
     k.target = c.at("target");
-    if (k.target.at("kind") == "body" && !time.contains("epoch_mjd2000"))
+    const std::string kind = k.target.at("kind");
+    if (kind == "body" && !time.contains("epoch_mjd2000"))
       throw std::invalid_argument("field /time/epoch_mjd2000 is missing but constraint '" + k.id +
                                   "' follows a body's ephemeris");
-    // psi compares position and velocity with the target's, named <id>_<state>.
-    for (const auto& names : {pos, vel})
-      for (const auto& n : names) {
-        const std::string tname = k.id + "_" + n;
-        k.psi.push_back(S.get(n) - S.get(tname));
-        k.psi_names.push_back(n + " - " + tname);
-        k.fixed_states.push_back(n);
-        if (k.target.at("kind") == "fixed_state") {
-          const bool is_pos = n[0] == 'r';
-          const int i = n[1] - 'x';
-          const double v = is_pos ? k.target.at("position_km")[i].get<double>() / U.length_km
-                                  : k.target.at("velocity_km_s")[i].get<double>() / U.speed_km_s();
-          p.parameters.push_back({tname, std::string(is_pos ? "position " : "velocity ") + n[1] + " of target " + k.id,
-                                  is_pos ? L : L + "/" + T, v});
-        } else {
-          const std::string body = k.target.at("body").get<std::string>();
-          p.parameters.push_back({tname, n + " of " + body + " (JPL low-precision ephemeris at " + k.at + ")",
-                                  n[0] == 'r' ? L : L + "/" + T, 0.0, "ephemeris:" + body + ":" + k.at});
-        }
+    const bool moving_event = k.at == "tf" && p.free_final_time;
+    std::vector<ex> target_state;
+    for (const auto& n : names) {
+      const bool is_pos = n[0] == 'r';
+      const int i = n[1] - 'x';
+      const std::string unit = is_pos ? L : L + "/" + T;
+      const std::string tname = k.id + "_" + n;
+      const std::string what = std::string(is_pos ? "position " : "velocity ") + n[1];
+      target_state.push_back(S.get(tname));
+      if (kind == "fixed_state") {
+        const double value = is_pos ? k.target.at("position_km")[i].get<double>() / U.length_km
+                                    : k.target.at("velocity_km_s")[i].get<double>() / U.speed_km_s();
+        p.parameters.push_back({tname, what + " of target " + k.id, unit, value});
+      } else if (kind == "body") {
+        const std::string body = k.target.at("body").get<std::string>();
+        p.parameters.push_back({tname, what + " of " + body + " (JPL low-precision ephemeris at " + k.at + ")", unit,
+                                0.0, "ephemeris:" + body + ":" + k.at});
+      } else {
+        const std::string start = tname + "_0";
+        const double value = is_pos ? k.target.at("position_km")[i].get<double>() / U.length_km
+                                    : k.target.at("velocity_km_s")[i].get<double>() / U.speed_km_s();
+        p.parameters.push_back({start, what + " of coasting target " + k.id + " at t0", unit, value});
+        S.get(start);
+        p.parameters.push_back({tname, what + " of coasting target " + k.id + " at " + k.at + " (propagated unpowered)",
+                                unit, 0.0, "coast:" + k.id + ":" + k.at});
       }
+    }
+    // psi compares position and velocity with the target's; psi_t is its derivative through the
+    // target's motion, needed where the event time is free.
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      const std::string tname = k.id + "_" + names[j];
+      k.psi.push_back(S.get(names[j]) - S.get(tname));
+      k.psi_names.push_back(names[j] + " - " + tname);
+      k.fixed_states.push_back(names[j]);
+      ex rate = 0;
+      if (moving_event && kind == "body") {
+        const std::string rname = tname + "_rate";
+        p.parameters.push_back({rname, "time derivative of " + tname + " (ephemeris model)",
+                                (j < 3 ? L : L + "/" + T) + "/" + T, 0.0,
+                                "ephemeris_rate:" + k.target.at("body").get<std::string>() + ":" + k.at});
+        rate = S.get(rname);
+      } else if (moving_event && kind == "coasting") {
+        GiNaC::exmap at_target;
+        for (std::size_t i = 0; i < names.size(); ++i) at_target[S.get(names[i])] = target_state[i];
+        rate = p.coast_f[j].subs(at_target);
+      }
+      k.psi_t.push_back(-rate);
+    }
     if (k.kind == "initial_state") {
       if (k.at != "t0") throw std::invalid_argument("constraint '" + k.id + "': an initial state must be at t0");
-      // The spacecraft's initial mass is known: mass is fixed at t0 as well.
-      k.psi.push_back(m - 1);
-      k.psi_names.push_back("m - 1");
-      k.fixed_states.push_back("m");
+      if (kind == "coasting") throw std::invalid_argument("constraint '" + k.id + "': a departure cannot coast");
+      if (p.has_state("m")) {
+        // The spacecraft's initial mass is known: mass is fixed at t0 as well.
+        k.psi.push_back(S.get("m") - 1);
+        k.psi_names.push_back("m - 1");
+        k.fixed_states.push_back("m");
+        k.psi_t.push_back(0);
+      }
     } else if (k.at != "tf") {
       throw std::invalid_argument("constraint '" + k.id + "': rendezvous is supported at tf only");
     }

@@ -261,20 +261,34 @@ json score_converge(const json& reference, const std::optional<json>& solution) 
   return dimension((converged ? kConvergeStatusMax : 0) + (small ? kConvergeResidualMax : 0), kConvergeMax, details);
 }
 
+// The quantity d5 scores: the final mass, or the time of flight where the reference gives that.
+struct Accuracy {
+  std::string id, key, unit, symbol;
+  double ref = 0, tol = 0;
+};
+
+Accuracy accuracy_quantity(const json& reference) {
+  const json& r = reference["result"];
+  if (r.contains("final_mass_kg"))
+    return {
+        "final_mass", "final_mass_kg", "kg", "m_f", r["final_mass_kg"].get<double>(), r["tolerance_kg"].get<double>()};
+  return {"final_time", "tof_days", "days", "tof", r["tof_days"].get<double>(), r["tolerance_days"].get<double>()};
+}
+
 json score_accuracy(const json& reference, const std::optional<json>& solution) {
   json details = json::array();
-  const double ref = reference["result"]["final_mass_kg"].get<double>();
-  const double tol = reference["result"]["tolerance_kg"].get<double>();
-  const auto mf = number_at(solution, "/final_mass_kg");
+  const Accuracy q = accuracy_quantity(reference);
+  const double ref = q.ref, tol = q.tol;
+  const auto mf = number_at(solution, ("/" + q.key).c_str());
   json d;
   double points = 0;
   if (!solution) {
-    d = detail("final_mass", "missing", 0, kAccuracyMax, "no solution.json");
+    d = detail(q.id, "missing", 0, kAccuracyMax, "no solution.json");
   } else if (string_at(solution, "/status") != "converged") {
-    // The m_f of an unconverged run belongs to no trajectory that satisfies the constraints.
-    d = detail("final_mass", "fail", 0, kAccuracyMax, "not scored: " + status_note(solution));
+    // The result of an unconverged run belongs to no trajectory that satisfies the constraints.
+    d = detail(q.id, "fail", 0, kAccuracyMax, "not scored: " + status_note(solution));
   } else if (!mf) {
-    d = detail("final_mass", "fail", 0, kAccuracyMax, "no final_mass_kg in solution.json");
+    d = detail(q.id, "fail", 0, kAccuracyMax, "no " + q.key + " in solution.json");
   } else {
     const double err = std::fabs(*mf - ref);
     // NOTE: full points within tol, then linear to 0 at kAccuracyZeroAt * tol.
@@ -283,9 +297,10 @@ json score_accuracy(const json& reference, const std::optional<json>& solution) 
     else
       points = std::max(0.0, kAccuracyMax * (kAccuracyZeroAt * tol - err) / ((kAccuracyZeroAt - 1) * tol));
     const std::string verdict = points >= kAccuracyMax ? "pass" : (points > 0 ? "partial" : "fail");
-    d = detail("final_mass", verdict, points, kAccuracyMax,
-               "m_f " + fmt(*mf, "%.6f") + " kg vs " + fmt(ref, "%.6f") + " kg: error " + fmt(err, "%.6f") +
-                   " kg, tolerance " + num(tol) + " kg, 0 points at " + num(kAccuracyZeroAt * tol) + " kg");
+    const std::string u = " " + q.unit;
+    d = detail(q.id, verdict, points, kAccuracyMax,
+               q.symbol + " " + fmt(*mf, "%.6f") + u + " vs " + fmt(ref, "%.6f") + u + ": error " + fmt(err, "%.6f") +
+                   u + ", tolerance " + num(tol) + u + ", 0 points at " + num(kAccuracyZeroAt * tol) + u);
   }
   d["expected"] = ref;
   d["found"] = mf ? json(*mf) : json(nullptr);
@@ -378,16 +393,22 @@ json score_run(const ScoreInputs& in) {
   out["max_total"] = 100;
 
   const auto mf = number_at(in.solution, "/final_mass_kg");
-  const double ref_mf = ref["result"]["final_mass_kg"].get<double>();
+  const auto ref_mf = number_at(ref, "/result/final_mass_kg");
   const std::string status = string_at(in.solution, "/status");
   out["measured"] = {{"final_mass_kg", opt_number(mf)},
-                     {"reference_final_mass_kg", ref_mf},
-                     {"error_kg", mf ? json(std::fabs(*mf - ref_mf)) : json(nullptr)},
+                     {"reference_final_mass_kg", opt_number(ref_mf)},
+                     {"error_kg", mf && ref_mf ? json(std::fabs(*mf - *ref_mf)) : json(nullptr)},
                      {"max_residual", opt_number(number_at(in.solution, "/max_residual"))},
                      {"reference_max_residual", ref["result"]["max_residual"]},
                      {"shooting_variables", shooting_variables ? json(*shooting_variables) : json(nullptr)},
                      {"reference_shooting_variables", ref["expected_shooting_variables"]},
                      {"status", status.empty() ? json(nullptr) : json(status)}};
+  if (const auto ref_tof = number_at(ref, "/result/tof_days")) {
+    const auto tof = number_at(in.solution, "/tof_days");
+    out["measured"]["tof_days"] = opt_number(tof);
+    out["measured"]["reference_tof_days"] = *ref_tof;
+    out["measured"]["error_days"] = tof ? json(std::fabs(*tof - *ref_tof)) : json(nullptr);
+  }
   if (!warnings.empty()) out["warnings"] = warnings;
   io::validate("score", out, "output score");
   return out;

@@ -15,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
@@ -163,39 +164,55 @@ CompileResult compile_cached(const std::string& source, const std::string& compi
   return c;
 }
 
-void plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title) {
-  const std::string traj_png = prefix + "trajectory.png", mass_png = prefix + "throttle_mass.png";
-  const std::string tmp1 = prefix + ".trajectory.png.tmp", tmp2 = prefix + ".throttle_mass.png.tmp";
+// The trajectory CSV's header and first data row, to pick the plots' units and panels.
+std::pair<std::vector<std::string>, std::vector<double>> csv_head(const std::string& csv_path) {
+  std::ifstream in(csv_path);
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  std::vector<std::string> columns;
+  std::vector<double> values;
+  std::stringstream hs(header), rs(row);
+  for (std::string c; std::getline(hs, c, ',');) columns.push_back(c);
+  for (std::string v; std::getline(rs, v, ',');) values.push_back(std::atof(v.c_str()));
+  return {columns, values};
+}
+
+json plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title) {
+  const auto [columns, first] = csv_head(csv_path);
+  const auto has = [&](const std::string& c) { return std::find(columns.begin(), columns.end(), c) != columns.end(); };
+  const bool engine = has("u") && has("m_kg");
+  const bool heliocentric = first.size() > 3 && std::hypot(first[1], first[2], first[3]) > 1e7;
+  const std::string length = heliocentric ? "AU" : "km", scale = heliocentric ? "149597870.691" : "1.0";
+  // Cone angle between the sail normal and the Sun line, in degrees.
+  const std::string cone =
+      "(acos((column('nx')*$2 + column('ny')*$3 + column('nz')*$4)/sqrt($2**2 + $3**2 + $4**2))*180/pi)";
+  const std::string colour = engine ? "(column('u'))" : cone;
+  const std::string panel = engine ? "throttle_mass" : "cone_angle";
+  const std::string traj_png = prefix + "trajectory.png", panel_png = prefix + panel + ".png";
+  const std::string tmp1 = prefix + ".trajectory.png.tmp", tmp2 = prefix + "." + panel + ".png.tmp";
   const io::TempFiles guard({tmp1, tmp2});
-  const std::string script =
-      "set datafile separator ','\n"
-      "set terminal pngcairo size 1000,800 noenhanced\n"
-      "set output '" +
-      tmp1 +
-      "'\n"
-      "set title '" +
-      title +
-      ": trajectory (colour = throttle)'\n"
-      "set xlabel 'x [AU]'\nset ylabel 'y [AU]'\nset zlabel 'z [AU]'\n"
-      "set view equal xy\nset ticslevel 0\nset grid\n"
-      "set palette defined (0 '#2b6cb0', 1 '#e53e3e')\nset cbrange [0:1]\nset cblabel 'throttle u'\n"
-      "au = 149597870.691\n"
-      "splot '" +
-      csv_path +
-      "' every ::1 using ($2/au):($3/au):($4/au):(column('u')) with lines lw 2 palette title 'spacecraft', "
-      "'< echo 0,0,0' using 1:2:3 with points pt 7 ps 2 lc rgb '#d69e2e' title 'central body'\n"
-      "set output '" +
-      tmp2 +
-      "'\n"
-      "set title '" +
-      title +
-      ": throttle and mass'\n"
-      "set xlabel 'time [days]'\nset ylabel 'throttle u'\nset y2label 'mass [kg]'\n"
-      "set yrange [-0.05:1.05]\nset y2tics\nset ytics nomirror\nunset zlabel\n"
-      "plot '" +
-      csv_path +
-      "' every ::1 using 1:(column('u')) with lines lw 2 lc rgb '#e53e3e' title 'throttle', "
-      "'' every ::1 using 1:(column('m_kg')) axes x1y2 with lines lw 2 lc rgb '#2b6cb0' title 'mass'\n";
+  std::string script = "set datafile separator ','\nset terminal pngcairo size 1000,800 noenhanced\n";
+  script += "set output '" + tmp1 + "'\nset title '" + title +
+            ": trajectory (colour = " + (engine ? "throttle" : "cone angle") + ")'\n";
+  script += "set xlabel 'x [" + length + "]'\nset ylabel 'y [" + length + "]'\nset zlabel 'z [" + length + "]'\n";
+  script += "set view equal xy\nset ticslevel 0\nset grid\nset palette defined (0 '#2b6cb0', 1 '#e53e3e')\n";
+  script +=
+      engine ? "set cbrange [0:1]\nset cblabel 'throttle u'\n" : "set cbrange [0:90]\nset cblabel 'cone angle [deg]'\n";
+  script += "L = " + scale + "\nsplot '" + csv_path + "' every ::1 using ($2/L):($3/L):($4/L):" + colour +
+            " with lines lw 2 palette title 'spacecraft', '< echo 0,0,0' using 1:2:3 with points pt 7 ps 2 lc rgb "
+            "'#d69e2e' title 'central body'\n";
+  script += "set output '" + tmp2 + "'\nset xlabel 'time [days]'\nunset zlabel\n";
+  if (engine)
+    script += "set title '" + title +
+              ": throttle and mass'\nset ylabel 'throttle u'\nset y2label 'mass [kg]'\n"
+              "set yrange [-0.05:1.05]\nset y2tics\nset ytics nomirror\nplot '" +
+              csv_path +
+              "' every ::1 using 1:(column('u')) with lines lw 2 lc rgb '#e53e3e' title 'throttle', "
+              "'' every ::1 using 1:(column('m_kg')) axes x1y2 with lines lw 2 lc rgb '#2b6cb0' title 'mass'\n";
+  else
+    script += "set title '" + title + ": sail cone angle'\nset ylabel 'cone angle [deg]'\nset yrange [0:90]\nplot '" +
+              csv_path + "' every ::1 using 1:" + cone + " with lines lw 2 lc rgb '#e53e3e' title 'cone angle'\n";
   char script_path[] = "/tmp/helios-plot-XXXXXX";
   const int fd = ::mkstemp(script_path);
   if (fd < 0) throw std::runtime_error("cannot create a gnuplot script file");
@@ -209,7 +226,9 @@ void plot_trajectory(const std::string& csv_path, const std::string& prefix, con
   if (!fs::exists(tmp1) || !fs::exists(tmp2))
     throw std::runtime_error("gnuplot did not draw the plots (is gnuplot installed?): " + first_line(out));
   fs::rename(tmp1, traj_png);
-  fs::rename(tmp2, mass_png);
+  fs::rename(tmp2, panel_png);
+  return {{"trajectory_plot", fs::path(traj_png).filename().string()},
+          {panel + "_plot", fs::path(panel_png).filename().string()}};
 }
 
 json solve(const SolveOptions& o) {
@@ -287,10 +306,13 @@ json solve(const SolveOptions& o) {
   }
   doc["homotopy"] = homotopy;
   if (r.at("status") == "converged") {
-    const double mf = r.at("final_mass_kg"), m0 = r.at("initial_mass_kg");
-    doc["final_mass_kg"] = mf;
-    doc["propellant_kg"] = m0 - mf;
-    doc["delta_v_m_s"] = r.at("delta_v_m_s");
+    doc["tof_days"] = r.at("tof_days");
+    if (r.contains("final_mass_kg")) {  // a sail has no mass state
+      const double mf = r.at("final_mass_kg"), m0 = r.at("initial_mass_kg");
+      doc["final_mass_kg"] = mf;
+      doc["propellant_kg"] = m0 - mf;
+      doc["delta_v_m_s"] = r.at("delta_v_m_s");
+    }
     doc["epsilon"] = r.at("epsilon");
     doc["max_residual"] = r.at("max_residual");
     doc["residuals"] = r.at("residuals");
@@ -300,9 +322,7 @@ json solve(const SolveOptions& o) {
     fs::rename(traj_tmp, o.trajectory_path);
     doc["files"] = {{"trajectory", fs::path(o.trajectory_path).filename().string()}};
     if (!o.plot_prefix.empty()) {
-      plot_trajectory(o.trajectory_path, o.plot_prefix, doc["problem"]["id"].get<std::string>());
-      doc["files"]["trajectory_plot"] = fs::path(o.plot_prefix + "trajectory.png").filename().string();
-      doc["files"]["throttle_mass_plot"] = fs::path(o.plot_prefix + "throttle_mass.png").filename().string();
+      doc["files"].update(plot_trajectory(o.trajectory_path, o.plot_prefix, doc["problem"]["id"].get<std::string>()));
     }
   }
   doc["timings"]["total_s"] = seconds_since(start);

@@ -11,6 +11,7 @@
 #include "helios/io/error.hpp"
 #include "helios/io/schema.hpp"
 #include "helios/spec/units.hpp"
+#include "helios/symbolic/expr.hpp"
 
 namespace helios::spec {
 namespace {
@@ -110,14 +111,43 @@ std::optional<double> known_mu(const std::string& body) {
   return std::nullopt;
 }
 
-// "position [..] km with velocity [..] km/s" or "<Body>" (JPL low-precision ephemeris).
+std::optional<double> known_radius(const std::string& body) {
+  std::string key;
+  for (char c : body) key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (key == "earth") return helios::astro::R_EARTH_KM;
+  if (key == "mars") return helios::astro::R_MARS_KM;
+  return std::nullopt;
+}
+
+// Splits "a, b, c" at the commas outside parentheses.
+std::vector<std::string> top_level_items(const std::string& list) {
+  std::vector<std::string> items(1);
+  int depth = 0;
+  for (char c : list) {
+    if (c == '(') ++depth;
+    if (c == ')') --depth;
+    if (c == ',' && depth == 0) {
+      items.emplace_back();
+      continue;
+    }
+    items.back() += c;
+  }
+  for (auto& s : items) {
+    s.erase(0, s.find_first_not_of(' '));
+    s.erase(s.find_last_not_of(' ') + 1);
+  }
+  return items;
+}
+
+// "position [..] km with velocity [..] km/s", "a coasting target starting from position .. with
+// velocity .." (its state at t0; it then moves unpowered) or "<Body>" (JPL low-precision ephemeris).
 json parse_target(const std::string& phrase) {
   std::smatch m;
-  static const std::regex state =
-      re("position " + kVector + " and velocity " + kVector + "|position " + kVector + " with velocity " + kVector);
+  static const std::regex state = re("(a coasting target starting from )?(?:position " + kVector + " and velocity " +
+                                     kVector + "|position " + kVector + " with velocity " + kVector + ")");
   if (std::regex_match(phrase, m, state)) {
-    const std::size_t base = m[1].matched ? 1 : 9;
-    return {{"kind", "fixed_state"},
+    const std::size_t base = m[2].matched ? 2 : 10;
+    return {{"kind", m[1].matched ? "coasting" : "fixed_state"},
             {"position_km", vector3(m, base, Dimension::Length)},
             {"velocity_km_s", vector3(m, base + 4, Dimension::Speed)}};
   }
@@ -129,12 +159,15 @@ json parse_target(const std::string& phrase) {
       name[i] = static_cast<char>(std::tolower(static_cast<unsigned char>(name[i])));
     return {{"kind", "body"}, {"body", name}, {"ephemeris", "jpl_lp"}};
   }
-  throw sentence_error("expected 'position [x, y, z] UNIT with velocity [vx, vy, vz] UNIT' or a planet name");
+  throw sentence_error(
+      "expected 'position [x, y, z] UNIT with velocity [vx, vy, vz] UNIT', 'a coasting target starting from position "
+      "... with velocity ...' or a planet name");
 }
 
 struct Builder {
   json problem, central_body, spacecraft = json::object(), objective, time = json::object(),
-                              constraints = json::array();
+                              constraints = json::array(), perturbations = json::array();
+  std::string propulsion = "low_thrust";
   std::map<std::string, int> seen;  // what each sentence set, to refuse contradictions
 
   void once(const std::string& what) {
@@ -144,12 +177,21 @@ struct Builder {
   void handle(const std::string& s) {
     std::smatch m;
     static const std::regex problem_re = re(R"(Problem ([A-Za-z0-9_-]+)\s*:\s*(.+))");
-    static const std::regex central_re =
-        re(R"(The central body is (?:the )?([A-Za-z]+)(?: with (?:a )?gravitational parameter (?:of )?)" + kQuantity +
-           ")?");
+    static const std::regex central_re = re(R"(The central body is (?:the )?([A-Za-z]+)(?: with (.+))?)");
     static const std::regex has_re = re(R"(The spacecraft has (.+))");
     static const std::regex depart_re = re(R"(The spacecraft departs(?: at (.+?))? from (.+))");
     static const std::regex tof_re = re(R"(The time of flight is (?:fixed at )?)" + kQuantity);
+    static const std::regex free_tof_re = re(R"(The time of flight is free,? (?:at most )" + kQuantity + "|between " +
+                                             kQuantity + " and " + kQuantity + ")");
+    static const std::regex sail_re =
+        re(R"(The spacecraft is an ideal (?:flat )?solar sail with (?:a )?characteristic acceleration (?:of )?)" +
+           kQuantity + " at " + kQuantity);
+    static const std::regex j2_re = re(R"(The dynamics include the J2 (?:perturbation|term) of the central body)");
+    static const std::regex accel_re = re(
+        R"(The dynamics include (?:a|an) (?:perturbing|additional) acceleration ([A-Za-z][A-Za-z0-9_]*) of \[(.+)\]\s*()" +
+        kUnit + ")");
+    static const std::regex time_re =
+        re(R"(Minimi[sz]e (?:the )?(?:time of flight|flight time|final time|transfer time))");
     static const std::regex arrive_re = re(
         R"(At the final time the spacecraft (?:rendezvouses|must rendezvous) with (.+)|The spacecraft (?:rendezvouses|must rendezvous) with (.+) at the final time)");
     static const std::regex fuel_re =
@@ -159,13 +201,29 @@ struct Builder {
       problem = {{"id", m[1].str()}, {"title", m[2].str()}};
     } else if (std::regex_match(s, m, central_re)) {
       once("the central body");
-      const std::string name = m[1].str();
-      const auto mu = m[2].matched ? std::optional<double>(quantity(m, 2, Dimension::GravParam)) : known_mu(name);
-      if (!mu)
-        throw sentence_error("no gravitational parameter known for '" + name +
-                             "': add 'with gravitational parameter VALUE km^3/s^2'");
-      if (*mu <= 0) throw sentence_error("gravitational parameter must be positive");
-      central_body = {{"name", name}, {"mu_km3_s2", *mu}};
+      central(m[1].str(), m[2].matched ? m[2].str() : "");
+    } else if (std::regex_match(s, m, sail_re)) {
+      once("the propulsion");
+      propulsion = "solar_sail";
+      const double ac = quantity(m, 1, Dimension::Acceleration);
+      const double ref = quantity(m, 3, Dimension::Length) / helios::astro::AU_KM;
+      if (ac <= 0 || ref <= 0) throw sentence_error("the characteristic acceleration and distance must be positive");
+      spacecraft["sail_characteristic_acceleration_mm_s2"] = ac;
+      spacecraft["sail_reference_distance_AU"] = ref;
+    } else if (std::regex_match(s, m, j2_re)) {
+      once("the J2 perturbation");
+      perturbations.push_back({{"kind", "j2"}});
+    } else if (std::regex_match(s, m, accel_re)) {
+      once("the acceleration " + m[1].str());
+      perturbations.push_back(user_acceleration(m[1].str(), m[2].str(), m[3].str()));
+    } else if (std::regex_match(s, m, free_tof_re)) {
+      once("the time of flight");
+      const double lo = m[1].matched ? 0.0 : quantity(m, 3, Dimension::Time);
+      const double hi = m[1].matched ? quantity(m, 1, Dimension::Time) : quantity(m, 5, Dimension::Time);
+      if (!(lo >= 0 && hi > lo)) throw sentence_error("the time-of-flight window must satisfy 0 <= min < max");
+      time["final_time"] = "free";
+      time["tof_min_days"] = lo;
+      time["tof_max_days"] = hi;
     } else if (std::regex_match(s, m, has_re)) {
       spacecraft_clauses(m[1].str());
     } else if (std::regex_match(s, m, depart_re)) {
@@ -187,9 +245,73 @@ struct Builder {
     } else if (std::regex_match(s, m, fuel_re)) {
       once("the objective");
       objective = {{"kind", "minimum_fuel"}};
+    } else if (std::regex_match(s, m, time_re)) {
+      once("the objective");
+      objective = {{"kind", "minimum_time"}};
     } else {
       throw sentence_error("it matches no form of the controlled English (see README.md, 'Controlled English')");
     }
+  }
+
+  // "gravitational parameter Q", "equatorial radius Q", "J2 coefficient N" in any order.
+  void central(const std::string& name, const std::string& list) {
+    static const std::regex split(R"(\s*(?:,\s*and\s+|,\s*|\s+and\s+)\s*)");
+    static const std::regex mu_re = re(R"((?:an? )?gravitational parameter (?:of )?)" + kQuantity);
+    static const std::regex radius_re = re(R"((?:an? )?(?:equatorial )?radius (?:of )?)" + kQuantity);
+    static const std::regex j2_re = re(R"((?:an? )?J2(?: coefficient)? (?:of )?()" + kNum + ")");
+    central_body = {{"name", name}};
+    if (!list.empty())
+      for (std::sregex_token_iterator it(list.begin(), list.end(), split, -1), end; it != end; ++it) {
+        const std::string part = *it;
+        std::smatch m;
+        if (std::regex_match(part, m, mu_re)) {
+          central_body["mu_km3_s2"] = quantity(m, 1, Dimension::GravParam);
+        } else if (std::regex_match(part, m, radius_re)) {
+          central_body["radius_km"] = quantity(m, 1, Dimension::Length);
+        } else if (std::regex_match(part, m, j2_re)) {
+          central_body["j2"] = number(m[1].str());
+        } else {
+          throw sentence_error("cannot read '" + part +
+                               "': expected 'gravitational parameter Q', 'equatorial radius Q' or 'J2 coefficient N'");
+        }
+      }
+    if (!central_body.contains("mu_km3_s2")) {
+      const auto mu = known_mu(name);
+      if (!mu)
+        throw sentence_error("no gravitational parameter known for '" + name +
+                             "': add 'with gravitational parameter VALUE km^3/s^2'");
+      central_body["mu_km3_s2"] = *mu;
+    }
+    if (!(central_body["mu_km3_s2"].get<double>() > 0))
+      throw sentence_error("gravitational parameter must be positive");
+    if (!central_body.contains("radius_km"))
+      if (const auto r = known_radius(name)) central_body["radius_km"] = *r;
+    if (central_body.contains("radius_km") && !(central_body["radius_km"].get<double>() > 0))
+      throw sentence_error("the radius must be positive");
+  }
+
+  // A perturbing acceleration written as three expressions; refused here if it uses anything
+  // but the documented variables, so the deriver never meets an unknown symbol.
+  static json user_acceleration(const std::string& name, const std::string& list, const std::string& unit) {
+    const std::vector<std::string> items = top_level_items(list);
+    if (items.size() != 3)
+      throw sentence_error("the acceleration " + name + " needs three components [ax, ay, az], got " +
+                           std::to_string(items.size()));
+    std::string key;
+    for (char c : unit) key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (key != "mm/s^2" && key != "m/s^2" && key != "km/s^2")
+      throw sentence_error("unit '" + unit + "' is not an acceleration unit (use mm/s^2, m/s^2, km/s^2)");
+    symbolic::SymbolTable vars;
+    for (const char* v : kAccelerationVariables) vars.get(v);
+    for (const auto& item : items) {
+      try {
+        vars.parse(item, "component");
+      } catch (const std::invalid_argument& e) {
+        throw sentence_error(std::string(e.what()) +
+                             " (variables: x, y, z, r [km], vx, vy, vz [km/s], m [kg], t [s since departure])");
+      }
+    }
+    return {{"kind", "acceleration"}, {"name", name}, {"components", items}, {"unit", key}};
   }
 
   void epoch(const std::string& phrase) {
@@ -229,6 +351,7 @@ struct Builder {
       for (auto& c : key) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
       const auto& [field, dim] = fields.at(key);
       once("the " + key);
+      ++seen["the spacecraft's engine"];
       const double value = quantity(m, 2, dim);
       if (value <= 0) throw sentence_error("the " + key + " must be positive, got " + m[2].str() + " " + m[3].str());
       spacecraft[field] = value;
@@ -254,13 +377,21 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   };
   if (b.problem.is_null()) missing("its name", "Problem S01: Earth to Mars.");
   if (b.central_body.is_null()) missing("the central body", "The central body is the Sun.");
-  for (const auto& [field, example] : std::vector<std::pair<std::string, std::string>>{
-           {"thrust_N", "The spacecraft has a maximum thrust of 0.5 N."},
-           {"isp_s", "The spacecraft has a specific impulse of 2000 s."},
-           {"initial_mass_kg", "The spacecraft has an initial mass of 1000 kg."}})
-    if (!b.spacecraft.contains(field)) missing("the spacecraft's " + field, example);
+  if (b.propulsion == "low_thrust")
+    for (const auto& [field, example] : std::vector<std::pair<std::string, std::string>>{
+             {"thrust_N", "The spacecraft has a maximum thrust of 0.5 N."},
+             {"isp_s", "The spacecraft has a specific impulse of 2000 s."},
+             {"initial_mass_kg", "The spacecraft has an initial mass of 1000 kg."}})
+      if (!b.spacecraft.contains(field)) missing("the spacecraft's " + field, example);
+  if (b.propulsion == "solar_sail" && b.seen.count("the spacecraft's engine"))
+    throw input_error(source + ": the spacecraft is a solar sail, so it has no thrust, specific impulse or mass");
   if (!b.seen.count("the departure")) missing("the departure", "The spacecraft departs at t = 0 days from the Earth.");
-  if (!b.time.contains("tof_days")) missing("the time of flight", "The time of flight is 348.795 days.");
+  if (!b.time.contains("final_time")) missing("the time of flight", "The time of flight is 348.795 days.");
+  for (const auto& p : b.perturbations)
+    if (p["kind"] == "j2" && (!b.central_body.contains("j2") || !b.central_body.contains("radius_km")))
+      throw input_error(source +
+                        ": the J2 perturbation needs the central body's J2 coefficient and radius (\"The central "
+                        "body is the Earth with J2 coefficient 1.08262668e-3 and equatorial radius 6378.137 km.\")");
   if (!b.seen.count("the final rendezvous"))
     missing("the final condition", "At the final time the spacecraft rendezvouses with Mars.");
   if (b.objective.is_null()) missing("the objective", "Minimize the fuel consumption.");
@@ -270,10 +401,11 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   doc["problem"] = b.problem;
   doc["central_body"] = b.central_body;
   doc["spacecraft"] = b.spacecraft;
-  doc["dynamics"] = {{"model", "two_body"}, {"coordinates", "cartesian"}, {"propulsion", "low_thrust"}};
+  doc["dynamics"] = {{"model", "two_body"}, {"coordinates", "cartesian"}, {"propulsion", b.propulsion}};
+  if (!b.perturbations.empty()) doc["dynamics"]["perturbations"] = b.perturbations;
   doc["objective"] = b.objective;
   json time = json::object();
-  for (const char* k : {"t0_days", "epoch_mjd2000", "final_time", "tof_days"})
+  for (const char* k : {"t0_days", "epoch_mjd2000", "final_time", "tof_days", "tof_min_days", "tof_max_days"})
     if (b.time.contains(k)) time[k] = b.time[k];
   doc["time"] = time;
   doc["constraints"] = b.constraints;

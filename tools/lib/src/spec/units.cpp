@@ -26,6 +26,8 @@ const Table& table(Dimension d) {
        {"s", "s, days", {{"s", 1.0}, {"seconds", 1.0}, {"day", DAY_S}, {"days", DAY_S}, {"d", DAY_S}}}},
       {Dimension::Mass, {"kg", "kg", {{"kg", 1.0}}}},
       {Dimension::GravParam, {"km^3/s^2", "km^3/s^2, m^3/s^2", {{"km^3/s^2", 1.0}, {"m^3/s^2", 1e-9}}}},
+      {Dimension::Acceleration,
+       {"mm/s^2", "mm/s^2, m/s^2, km/s^2", {{"mm/s^2", 1.0}, {"m/s^2", 1e3}, {"km/s^2", 1e6}}}},
   };
   return tables.at(d);
 }
@@ -38,6 +40,8 @@ std::string dimension_name(Dimension d) {
       return "speed";
     case Dimension::Force:
       return "force";
+    case Dimension::Acceleration:
+      return "acceleration";
     case Dimension::Time:
     case Dimension::Duration:
       return "time";

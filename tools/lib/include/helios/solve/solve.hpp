@@ -12,7 +12,8 @@ struct SolveOptions {
   std::string settings_path;    // solver settings JSON (seed, tolerances, limits); may be empty
   std::string cache_dir;        // compiled programs, by content hash
   std::string trajectory_path;  // trajectory.csv to write
-  std::string plot_prefix;      // writes <prefix>trajectory.png and <prefix>throttle_mass.png; empty: no plots
+  std::string plot_prefix;      // writes <prefix>trajectory.png and <prefix>throttle_mass.png (engine) or
+                                // <prefix>cone_angle.png (sail); empty: no plots
   std::string backend = "builtin";
   std::string compiler = "g++";
   double time_limit_s = 600;  // wall clock for the run (the program also stops itself)
@@ -40,8 +41,10 @@ struct RunResult {
 // Runs argv in a child with CPU, address-space, file-size and wall-clock limits.
 RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s, double memory_limit_mb);
 
-// Draws the 3-D trajectory coloured by throttle and throttle + mass versus time with gnuplot.
-void plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title);
+// Draws the 3-D trajectory coloured by the control, and the control panel versus time, with
+// gnuplot: throttle + mass (throttle_mass.png) for an engine, the cone angle (cone_angle.png) for
+// a sail. Returns the file names by role ({"trajectory_plot": .., "<panel>_plot": ..}).
+io::json plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title);
 
 // The whole stage; returns the solution artifact (status "compile_failed" etc. are data, not throws).
 io::json solve(const SolveOptions& options);

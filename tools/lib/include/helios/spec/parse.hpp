@@ -8,6 +8,10 @@
 
 namespace helios::spec {
 
+// Variables a user-written perturbing acceleration may use: position x, y, z and its norm r [km],
+// velocity vx, vy, vz [km/s], mass m [kg], time t [s since departure].
+inline constexpr const char* kAccelerationVariables[] = {"x", "y", "z", "r", "vx", "vy", "vz", "m", "t"};
+
 // Reads a problem text into a spec artifact (header included). `source` names the file in errors:
 // "<source>:<line>: cannot use sentence \"...\": <why>". Throws input_error.
 io::json parse_problem_text(const std::string& text, const std::string& source);
