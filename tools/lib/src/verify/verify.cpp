@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -364,6 +365,7 @@ enum class Kind {
   Direction,
   Sail,
   Parameter,
+  Sourced,  // a parameter the runtime evaluates (ephemeris, rate, coast): its value may be a placeholder
   EventValue,
   Free
 };
@@ -627,9 +629,12 @@ class Verifier {
       for (std::size_t i = 0; i < c["states"].size(); ++i) {
         const std::string name = c["states"][i].is_string() ? c["states"][i].get<std::string>() : "";
         const Kind k = i < rv.size() ? kinds_[static_cast<std::size_t>(slot(states_[rv[i]]))] : Kind::Free;
-        if (slots_.count(name))
-          throw std::invalid_argument("coast_dynamics.states: '" + name + "' is already a symbol of the problem");
-        declare(name, k);
+        // The coast states may reuse the problem's own r, v names (same order), or be new symbols.
+        if (!(i < rv.size() && name == states_[rv[i]])) {
+          if (slots_.count(name))
+            throw std::invalid_argument("coast_dynamics.states: '" + name + "' is already a symbol of the problem");
+          declare(name, k);
+        }
         coast_states_.push_back(name);
       }
       for (std::size_t i = 0; i < c["rhs"].size(); ++i)
@@ -702,34 +707,57 @@ class Verifier {
       theta = std::clamp(theta, 0.0, half_pi);
       return Hc_(set_sail(p, f.at(theta, phi)));
     };
-    double bt = 0, bp = 0, bh = h(0, 0);
-    for (int i = 1; i <= kSailCone; ++i)
-      for (int j = 0; j < kSailClock; ++j) {
-        const double t = half_pi * i / kSailCone, ph = two_pi * j / kSailClock, v = h(t, ph);
-        if (v < bh) {
-          bh = v;
-          bt = t;
-          bp = ph;
+    // Grid rows: uniform in the cone angle, plus rows closing in on the rim geometrically (a
+    // minimum next to the rim sits in a thin sliver a uniform grid can miss).
+    std::vector<double> rows;
+    for (int i = 1; i <= kSailCone; ++i) rows.push_back(half_pi * i / kSailCone);
+    for (int k = 5; k <= 16; ++k) rows.push_back(half_pi * (1 - std::ldexp(1.0, -k)));
+    struct Start {
+      double h, t, p;
+    };
+    std::vector<Start> grid{{h(0, 0), 0, 0}};
+    for (double t : rows)
+      for (int j = 0; j < kSailClock; ++j) grid.push_back({h(t, two_pi * j / kSailClock), t, two_pi * j / kSailClock});
+    std::sort(grid.begin(), grid.end(), [](const Start& a, const Start& b) { return a.h < b.h; });
+    Vec3 best{};
+    double best_h = std::numeric_limits<double>::infinity();
+    for (std::size_t s = 0; s < std::min<std::size_t>(3, grid.size()); ++s) {
+      double bt = grid[s].t, bp = grid[s].p, bh = grid[s].h;
+      double step_t = std::max(1e-4, std::min(half_pi / kSailCone, (half_pi - bt) / 2)), step_p = two_pi / kSailClock;
+      while (step_t > 1e-12) {
+        bool moved = false;
+        for (const auto& [dt, dp] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
+          const double t = std::clamp(bt + dt * step_t, 0.0, half_pi), ph = bp + dp * step_p, v = h(t, ph);
+          if (v < bh) {
+            bh = v;
+            bt = t;
+            bp = ph;
+            moved = true;
+          }
+        }
+        if (!moved) {
+          step_t /= 2;
+          step_p /= 2;
         }
       }
-    double step_t = half_pi / kSailCone, step_p = two_pi / kSailClock;
-    while (step_t > 1e-10) {
-      bool moved = false;
-      for (const auto& [dt, dp] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
-        const double t = std::clamp(bt + dt * step_t, 0.0, half_pi), ph = bp + dp * step_p, v = h(t, ph);
-        if (v < bh) {
-          bh = v;
-          bt = t;
-          bp = ph;
-          moved = true;
-        }
-      }
-      if (!moved) {
-        step_t /= 2;
-        step_p /= 2;
+      const Vec3 n = polish_sail(p, f.at(bt, bp));
+      const double hn = Hc_(set_sail(p, n));
+      if (hn < best_h) {
+        best_h = hn;
+        best = n;
       }
     }
-    return polish_sail(p, f.at(bt, bp));
+    return best;
+  }
+
+  // Relative norm of the part of dH/dn tangent to the unit sphere at n (0 at an interior optimum).
+  double sail_tangential(const Point& p, const Vec3& n) const {
+    const Point q = set_sail(p, n);
+    const Vec3 g{grad_nc_[0](q), grad_nc_[1](q), grad_nc_[2](q)};
+    const double gn = dot(g, n);
+    Vec3 t{};
+    for (std::size_t k = 0; k < 3; ++k) t[k] = g[k] - gn * n[k];
+    return std::isfinite(gn) ? std::sqrt(dot(t, t)) / (1 + std::sqrt(dot(g, g))) : 2.0;
   }
 
   // Comparing values of H finds n* only to ~sqrt(machine epsilon); Newton on the tangential part
@@ -824,6 +852,30 @@ class Verifier {
     return optimal_controls(q, true);
   }
 
+  // control_law.sail.definitions: named intermediate expressions (e.g. sail_A, sail_B, sail_alpha),
+  // each in the problem's symbols and the earlier definitions; the sail law is read with them inlined.
+  void read_sail_definitions() {
+    if (!d_.contains("control_law") || !d_["control_law"].is_object() || !d_["control_law"].contains("sail") ||
+        !d_["control_law"]["sail"].is_object() || !d_["control_law"]["sail"].contains("definitions"))
+      return;
+    try {
+      const json& defs = d_["control_law"]["sail"]["definitions"];
+      if (!defs.is_array()) throw std::invalid_argument("control_law.sail.definitions must be an array");
+      for (const auto& def : defs) {
+        const std::string name = def.is_object() ? def.value("name", "") : "";
+        const std::string where = "control_law.sail.definitions[" + name + "]";
+        if (slots_.count(name)) throw std::invalid_argument(where + ": the name is already a symbol of the problem");
+        const ex e = statement(def.is_object() && def.contains("expression") ? def["expression"] : json(), where);
+        declare(name, Kind::Free);
+        sail_definitions_[sym(name)] = e.subs(sail_definitions_);
+      }
+    } catch (const std::exception& e) {
+      sail_definitions_error_ = e.what();
+    }
+  }
+  GiNaC::exmap sail_definitions_;
+  std::string sail_definitions_error_;
+
   void read_problem() {
     const json& d = d_;
     if (!d.is_object()) throw input_error("derivation: not a JSON object");
@@ -874,8 +926,10 @@ class Verifier {
     for (const auto& p : parameters) {
       const std::string name = io::require_string(p, "name", "derivation parameters");
       parameters_.push_back(name);
-      declare(name, Kind::Parameter, io::require_number(p, "value", "derivation parameter " + name));
-      if (p.contains("source") && p["source"].is_string()) sources_[name] = p["source"].get<std::string>();
+      const bool sourced = p.contains("source") && p["source"].is_string();
+      declare(name, sourced ? Kind::Sourced : Kind::Parameter,
+              io::require_number(p, "value", "derivation parameter " + name));
+      if (sourced) sources_[name] = p["source"].get<std::string>();
     }
     declare(multiplier_, Kind::Multiplier);
     declare(eps_, Kind::Homotopy);
@@ -916,6 +970,7 @@ class Verifier {
     }
 
     read_coast();
+    read_sail_definitions();
 
     H_ = sym(multiplier_) * L_;
     for (std::size_t i = 0; i < states_.size(); ++i) H_ += sym(costates_[i]) * f_[i];
@@ -981,6 +1036,9 @@ class Verifier {
             break;
           case Kind::Parameter:
             p[i] = values_[i];
+            break;
+          case Kind::Sourced:
+            p[i] = (uniform(0, 1) < 0.5 ? -1 : 1) * uniform(0.5, 1.5);
             break;
           case Kind::Free:
             p[i] = uniform(-1, 1);
@@ -1321,15 +1379,17 @@ class Verifier {
       const json law = sail->value("law", json::array());
       if (!law.is_array() || law.size() != 3)
         throw std::invalid_argument("control_law.sail.law must give one expression per sail control " + names);
+      if (!sail_definitions_error_.empty()) throw std::invalid_argument(sail_definitions_error_);
       for (std::size_t k = 0; k < 3; ++k) {
         const std::string where = "control_law.sail.law[" + sails_[k] + "]";
-        const ex e = statement(law[k], where);
+        const ex e = statement(law[k], where).subs(sail_definitions_);
         for (const auto& n : sails_)
           if (e.has(sym(n))) throw std::invalid_argument(where + " depends on the sail control " + n);
         lc.push_back(compile(e));
       }
       const ex a =
-          statement(sail->contains("cone_angle") ? (*sail)["cone_angle"] : json(), "control_law.sail.cone_angle");
+          statement(sail->contains("cone_angle") ? (*sail)["cone_angle"] : json(), "control_law.sail.cone_angle")
+              .subs(sail_definitions_);
       cone = compile(a);
     } catch (const std::exception& e) {
       error = e.what();
@@ -1409,12 +1469,15 @@ class Verifier {
     } else if (stat_err > kTol) {
       c.fail(stat_msg);
     }
-    // The cone angle: against the law once verified, else against the verifier's own minimizer.
+    // The cone angle: against the law once verified, else against the verifier's own minimizer
+    // where that is an interior stationary point resolved to full precision.
     const double tol = c.pass ? kTol : 1e-6;
     for (std::size_t i = 0; i < points_.size(); ++i) {
       const Point& p = points_[i];
       const Vec3 rh = r_hat(p), n = c.pass ? laws[i] : optimal_sail(p);
-      const double want = cone_of(n, rh), got = cone(p), err = rel_diff(got, want);
+      const double want = cone_of(n, rh), got = cone(p);
+      const bool comparable = c.pass || (dot(n, rh) > 1e-3 && sail_tangential(p, n) < 1e-12);
+      const double err = comparable ? rel_diff(got, want) : 0.0;
       ca.max_rel = std::max(ca.max_rel, err);
       if (!(got >= -kTol && got <= 1.5707963267948966 + kTol))
         ca.fail("control_law.sail.cone_angle gives " + num(got) + " rad at a sample point, outside [0, pi/2].");
@@ -1930,7 +1993,7 @@ class Verifier {
         std::vector<std::string> left;
         for (const auto& name : symbolic::free_symbols(expected)) {
           const Kind kk = kinds_[static_cast<std::size_t>(slot(name))];
-          if (kk != Kind::Parameter &&
+          if (kk != Kind::Parameter && kk != Kind::Sourced &&
               std::find(coast_states_.begin(), coast_states_.end(), name) == coast_states_.end())
             left.push_back(name);
         }
