@@ -302,12 +302,14 @@ def main():
     seed_dir, case_dir = HERE / "seed", HERE / "cases"
     seed_dir.mkdir(exist_ok=True)
     case_dir.mkdir(exist_ok=True)
+    builtin = ["S01", "S05", "S06", "S11"]
     if bin_dir:
-        spec = subprocess.run([str(bin_dir / "helios-parse"), str(ROOT / "scenarios/S01/problem.txt")],
-                              check=True, capture_output=True, text=True).stdout
-        out = subprocess.run([str(bin_dir / "helios-derive"), "-"], input=spec, check=True, capture_output=True,
-                             text=True).stdout
-        (seed_dir / "S01.json").write_text(out)
+        for scenario in builtin:
+            spec = subprocess.run([str(bin_dir / "helios-parse"), str(ROOT / f"scenarios/{scenario}/problem.txt")],
+                                  check=True, capture_output=True, text=True).stdout
+            out = subprocess.run([str(bin_dir / "helios-derive"), "-"], input=spec, check=True,
+                                 capture_output=True, text=True).stdout
+            (seed_dir / f"{scenario}.json").write_text(out)
     s01 = json.loads((seed_dir / "S01.json").read_text())
     S05, j2model = s05h(s01)
     S06 = s06h(S05)
@@ -316,6 +318,8 @@ def main():
     for name, doc in (("S05h", S05), ("S06h", S06), ("S11h", S11), ("S01f", S01F)):
         write(seed_dir / f"{name}.json", doc)
     seeds = {"S01": s01, "S05h": S05, "S06h": S06, "S11h": S11, "S01f": S01F}
+    for scenario in builtin[1:]:
+        seeds[scenario] = json.loads((seed_dir / f"{scenario}.json").read_text())
 
     cases = []
 
@@ -551,6 +555,49 @@ def main():
         H, f, xs, ls = j2model
         d["state_odes"][5]["rhs"] = g(f[5].subs(J2, 0))
     case("S05h-state-ode-without-J2", "S05h", "vz' without the J2 acceleration", ["state_ode:vz"], j2_state)
+
+    # ---- the builtin engine's S05, S06, S11 (tests/verify-corpus/seed/ from helios-derive)
+    for scenario in builtin[1:]:
+        case(f"{scenario}-builtin", scenario, "builtin derivation as produced")
+    case("S05-flip-l_vx", "S05", "builtin J2: sign of l_vx' flipped", ["costate_ode:l_vx"], lambda d: flip(d, "l_vx"))
+    case("S11-flip-l_ry", "S11", "builtin sail: sign of l_ry' flipped", ["costate_ode:l_ry"],
+         lambda d: flip(d, "l_ry"))
+
+    def without_terms(d, name, *factors):
+        """Drops from costate `name` every term that contains all `factors` (symbol names)."""
+        e = sp.sympify(costate(d, name)["rhs"].replace("^", "**"))
+        keep = [t for t in sp.Add.make_args(sp.expand_mul(e)) if not all(sp.Symbol(f) in t.free_symbols
+                                                                          for f in factors)]
+        assert len(keep) < len(sp.Add.make_args(sp.expand_mul(e)))
+        costate(d, name)["rhs"] = g(sp.Add(*keep))
+    case("S05-missing-J2-entry", "S05", "builtin J2: l_ry' misses the l_vz d(a_J2,z)/dry entry (G6)",
+         ["costate_ode:l_ry"], lambda d: without_terms(d, "l_ry", "J2", "l_vz"))
+    case("S06-missing-J2-entry", "S06", "builtin J2 rendezvous: l_rx' misses the l_vy d(a_J2,y)/drx entry (G6)",
+         ["costate_ode:l_rx"], lambda d: without_terms(d, "l_rx", "J2", "l_vy"))
+    case("S11-missing-G3", "S11", "builtin sail: l_rz' misses the sail terms in nx (G3)", ["costate_ode:l_rz"],
+         lambda d: without_terms(d, "l_rz", "ac", "nx"))
+
+    def coast_two_body(d):
+        rhs = d["coast_dynamics"]["rhs"]
+        for k in range(3, 6):
+            e = sp.sympify(rhs[k].replace("^", "**"))
+            rhs[k] = g(e.subs(sp.Symbol("J2"), 0))
+    case("S06-coast-without-J2", "S06", "builtin J2 rendezvous: the coasting target moves without J2",
+         ["coast_dynamics"], coast_two_body)
+
+    def builtin_minus_root(d):
+        sail = d["control_law"]["sail"]
+        for df in sail["definitions"]:
+            if df["name"] == "sail_alpha":
+                df["expression"] = "atan((3*sail_A-sqrt(8*sail_B^2+9*sail_A^2))/(4*sail_B))"
+    case("S11-wrong-root", "S11", "builtin sail: minus sign in front of the square root in sail_alpha",
+         ["control_sail"], builtin_minus_root)
+    case("S11-mass-state", "S11", "builtin sail with a mass state left in (G4)", ["state_usage"], sail_with_mass)
+    case("S11-transversality-tf-sign", "S11", "builtin sail: + lambda.rate in the free-tf condition",
+         ["transversality_tf"], lambda d: eq(d, "transversality_tf").update(
+             expression=eq(d, "transversality_tf")["expression"].replace("-arrival", "+arrival")))
+    case("S06-count-missing-transversality-m", "S06", "builtin J2 rendezvous: lambda_m(tf) = 0 dropped",
+         ["count", "transversality:m"], lambda d: drop_eq(d, "transversality_m"))
 
     write(HERE / "manifest.json", {"description": "helios-verify accuracy corpus: expected verdict and the exact "
                                                   "set of failing checks of every case (generate.py)",
