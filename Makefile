@@ -1,5 +1,5 @@
 # HELIOS: problem text -> spec -> derivation -> verify -> shoot.cpp -> solution -> score.
-#   make scenario=S01 [BACKEND=builtin]   one scenario (default S01)
+#   make scenario=S01 [BACKEND=builtin|llm] one scenario (default S01)
 #   make all                               every scenario (-j works)
 #   make scoreboard | test | bench | clean
 SHELL := bash
@@ -15,25 +15,45 @@ VERIFY_MODE ?= advisory
 # Prefix for the solve step, e.g. LAUNCH="srun -c2" on a cluster.
 LAUNCH ?=
 SOLVE_TIME_LIMIT ?= 900
+# llm backend: derive <-> verify rounds, and gen <-> compile rounds (1 generation + repairs).
+DERIVE_ROUNDS ?= 3
+GEN_ROUNDS ?= 4
+# llm backend: a name for the run folder runs/llm-<RUN_TAG> (e.g. one per model), and the
+# parser backend (llm by default; builtin to start from the deterministic spec).
+RUN_TAG ?=
+PARSE_BACKEND ?= $(BACKEND)
+# Where runs go (tests point it at a private folder).
+RUNS_ROOT ?= runs
 
 BUILD := build
 BIN := $(BUILD)/bin
-RUNS := runs/$(BACKEND)
-CACHE := runs/.cache
+RUNS := $(RUNS_ROOT)/$(BACKEND)$(if $(RUN_TAG),-$(RUN_TAG))
+CACHE := $(RUNS_ROOT)/.cache
 SCENARIOS := $(notdir $(wildcard scenarios/S[0-9]*))
 TOOLS := parse derive verify gen solve score
 TOOL_BINS := $(addprefix $(BIN)/helios-,$(TOOLS))
-TOOL_SOURCES := CMakeLists.txt $(shell find tools templates schemas cmake -type f -not -name '*.sh')
+TOOL_SOURCES := CMakeLists.txt $(shell find tools templates schemas prompts cmake -type f -not -name '*.sh')
 TOOLS_STAMP := $(BUILD)/tools.stamp
 
-ifeq ($(BACKEND),builtin)
-else
-  $(error BACKEND=$(BACKEND): only the builtin backend is available in this build)
+ifeq ($(filter $(BACKEND),builtin llm),)
+  $(error BACKEND=$(BACKEND) is not a backend of this build (use builtin or llm))
+endif
+ifeq ($(filter $(VERIFY_MODE),advisory strict),)
+  $(error VERIFY_MODE=$(VERIFY_MODE) is not advisory or strict)
 endif
 VERIFY_FLAGS := $(if $(filter advisory,$(VERIFY_MODE)),--advisory,)
 
 # Every artifact is named here, so make treats none as intermediate: a deleted one is remade.
-ARTIFACTS := spec.json derivation.json verify.json shoot.cpp solution.json score.json
+# The llm backend's refinement rounds are numbered artifacts on an explicit chain:
+# derivation.r1 -> verify.r1 -> derivation.r2 -> ... and shoot.r1 -> compile.r1 -> shoot.r2 -> ...
+# A round whose predecessor passed is written unchanged without asking the model, and
+# derivation.json / shoot.cpp link to the last round.
+derive_rounds := $(shell seq 1 $(DERIVE_ROUNDS))
+gen_rounds := $(shell seq 1 $(GEN_ROUNDS))
+ROUND_ARTIFACTS := $(foreach k,$(derive_rounds),derivation.r$(k).json $(if $(filter $(k),$(DERIVE_ROUNDS)),,verify.r$(k).json)) \
+                   $(foreach k,$(gen_rounds),shoot.r$(k).cpp $(if $(filter $(k),$(GEN_ROUNDS)),,compile.r$(k).json))
+ARTIFACTS := spec.json $(if $(filter llm,$(BACKEND)),$(ROUND_ARTIFACTS)) derivation.json verify.json shoot.cpp \
+             solution.json score.json
 artifacts_of = $(addprefix $(RUNS)/$(1)/,$(ARTIFACTS))
 
 .PHONY: run all scoreboard test unit bats bench tools deps clean
@@ -56,20 +76,64 @@ tools: $(TOOLS_STAMP)
 
 $(RUNS)/%/spec.json: scenarios/%/problem.txt $(TOOLS_STAMP)
 	@mkdir -p $(@D)
-	$(BIN)/helios-parse $< -o $@
-
-$(RUNS)/%/derivation.json: $(RUNS)/%/spec.json $(TOOLS_STAMP)
-	$(BIN)/helios-derive $< -o $@
+	$(BIN)/helios-parse --backend $(PARSE_BACKEND) $< -o $@
 
 $(RUNS)/%/verify.json: $(RUNS)/%/derivation.json $(TOOLS_STAMP)
 	$(BIN)/helios-verify $(VERIFY_FLAGS) $< -o $@
 
+ifeq ($(BACKEND),builtin)
+$(RUNS)/%/derivation.json: $(RUNS)/%/spec.json $(TOOLS_STAMP)
+	$(BIN)/helios-derive $< -o $@
+
 $(RUNS)/%/shoot.cpp: $(RUNS)/%/derivation.json $(RUNS)/%/verify.json $(TOOLS_STAMP)
 	$(BIN)/helios-gen $< -o $@
+else
+# Static pattern rules over the explicit list of every scenario's rounds: each round is its own
+# rule (make would not reuse one implicit rule twice in a chain), every round file is a named
+# target, so an interrupted run resumes at the first missing round.
+LLM_SCENARIOS := $(sort $(SCENARIOS) $(scenario))
+each_run = $(foreach s,$(LLM_SCENARIOS),$(RUNS)/$(s)/$(1))
+
+$(call each_run,derivation.r1.json): $(RUNS)/%/derivation.r1.json: $(RUNS)/%/spec.json $(TOOLS_STAMP)
+	$(BIN)/helios-derive --backend llm --round 1 $< -o $@
+
+# Verification of a round is advisory: its failed checks are the next round's feedback.
+define derive_round
+$(call each_run,verify.r$(2).json): $(RUNS)/%/verify.r$(2).json: $(RUNS)/%/derivation.r$(2).json $(TOOLS_STAMP)
+	$(BIN)/helios-verify --advisory $$< -o $$@
+
+$(call each_run,derivation.r$(1).json): $(RUNS)/%/derivation.r$(1).json: $(RUNS)/%/spec.json \
+    $(RUNS)/%/derivation.r$(2).json $(RUNS)/%/verify.r$(2).json $(TOOLS_STAMP)
+	$(BIN)/helios-derive --backend llm --round $(1) --previous $$(@D)/derivation.r$(2).json \
+	  --feedback $$(@D)/verify.r$(2).json $$< -o $$@
+endef
+$(foreach k,$(wordlist 2,$(DERIVE_ROUNDS),$(derive_rounds)),$(eval $(call derive_round,$(k),$(word $(k),0 $(derive_rounds)))))
+
+# The final derivation is the last round (a relative link: make sees the round's time stamp).
+$(call each_run,derivation.json): $(RUNS)/%/derivation.json: $(RUNS)/%/derivation.r$(DERIVE_ROUNDS).json
+	ln -sfn $(<F) $@
+
+$(call each_run,shoot.r1.cpp): $(RUNS)/%/shoot.r1.cpp: $(RUNS)/%/derivation.json $(RUNS)/%/verify.json $(TOOLS_STAMP)
+	$(BIN)/helios-gen --backend llm --round 1 $< -o $@
+
+define gen_round
+$(call each_run,compile.r$(2).json): $(RUNS)/%/compile.r$(2).json: $(RUNS)/%/shoot.r$(2).cpp $(TOOLS_STAMP)
+	$(BIN)/helios-solve --backend llm --compile-only --cache-dir $(CACHE) $$< -o $$@
+
+$(call each_run,shoot.r$(1).cpp): $(RUNS)/%/shoot.r$(1).cpp: $(RUNS)/%/derivation.json \
+    $(RUNS)/%/shoot.r$(2).cpp $(RUNS)/%/compile.r$(2).json $(TOOLS_STAMP)
+	$(BIN)/helios-gen --backend llm --round $(1) --previous $$(@D)/shoot.r$(2).cpp \
+	  --compile-report $$(@D)/compile.r$(2).json $$< -o $$@
+endef
+$(foreach k,$(wordlist 2,$(GEN_ROUNDS),$(gen_rounds)),$(eval $(call gen_round,$(k),$(word $(k),0 $(gen_rounds)))))
+
+$(call each_run,shoot.cpp): $(RUNS)/%/shoot.cpp: $(RUNS)/%/shoot.r$(GEN_ROUNDS).cpp
+	ln -sfn $(<F) $@
+endif
 
 # trajectory.csv and the plots are written before solution.json, which marks the stage done.
 $(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp scenarios/%/settings.json $(TOOLS_STAMP)
-	$(LAUNCH) $(BIN)/helios-solve $< --settings scenarios/$*/settings.json --cache-dir $(CACHE) \
+	$(LAUNCH) $(BIN)/helios-solve --backend $(BACKEND) $< --settings scenarios/$*/settings.json --cache-dir $(CACHE) \
 	  --time-limit $(SOLVE_TIME_LIMIT) --trajectory $(@D)/trajectory.csv --plots $(@D)/ -o $@
 
 $(RUNS)/%/score.json: scenarios/%/reference.json $(RUNS)/%/spec.json $(RUNS)/%/derivation.json \
@@ -77,9 +141,14 @@ $(RUNS)/%/score.json: scenarios/%/reference.json $(RUNS)/%/spec.json $(RUNS)/%/d
 	$(BIN)/helios-score --reference $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
 	  --verify $(@D)/verify.json --solution $(@D)/solution.json -o $@
 
-scoreboard: $(RUNS)/scoreboard.md
+# This backend's table, and the paper's three tables over every run folder under $(RUNS_ROOT).
+scoreboard: $(RUNS)/scoreboard.md $(RUNS_ROOT)/scoreboard.md
 $(RUNS)/scoreboard.md: $(wildcard $(RUNS)/S*/score.json) $(TOOLS_STAMP)
 	$(BIN)/helios-score --scoreboard $(RUNS) -o $@
+
+$(RUNS_ROOT)/scoreboard.md: $(wildcard $(RUNS_ROOT)/*/*/score.json $(RUNS_ROOT)/*/*/*.transcript.json \
+                              $(RUNS_ROOT)/*/*/compile.r*.json) $(TOOLS_STAMP)
+	$(BIN)/helios-score --tables $(RUNS_ROOT) -o $@
 
 unit: $(TOOLS_STAMP)
 	cmake --build $(BUILD)
@@ -91,7 +160,7 @@ bats: $(TOOLS_STAMP)
 test: unit bats
 
 bench: $(TOOLS_STAMP)
-	tests/bench/bench.sh S01
+	tests/bench/bench.sh
 
 clean:
-	rm -rf $(BUILD) runs/builtin runs/llm $(CACHE)
+	rm -rf $(BUILD) runs/builtin runs/llm runs/llm-* runs/scoreboard.md runs/.cache

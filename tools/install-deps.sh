@@ -17,6 +17,7 @@ checks=(
   "libvalijson-dev:/usr/include/valijson/validator.hpp"
   "libcurl4-openssl-dev:/usr/include/x86_64-linux-gnu/curl/curl.h"
   "libgtest-dev:/usr/include/gtest/gtest.h"
+  "libcpp-httplib-dev:/usr/include/httplib.h"
   "gnuplot-nox:cmd/gnuplot"
   "bats:cmd/bats"
   "jq:cmd/jq"

@@ -1,40 +1,70 @@
 #!/usr/bin/env bash
-# Benchmark: wall time of each stage of one scenario on the builtin backend, from a cold start
-# (fresh output folder, empty compile cache), then a warm solve (compile cache hit).
-# usage: tests/bench/bench.sh [SCENARIO]   (run from the repository root; needs `make tools`)
+# Benchmark of the builtin backend, from a cold start (fresh output folder, empty compile cache):
+# per scenario the wall time of each stage, the solver's restarts and homotopy steps, and the
+# result; then a warm solve of the first scenario (compile cache hit) and, for the J2 scenarios,
+# the m_f of the same problem without J2 (the J2 sentence removed).
+# usage: tests/bench/bench.sh [SCENARIO...]   (default: every scenario; run from the repository root; needs `make tools`)
 set -euo pipefail
-scenario=${1:-S01}
 bin=build/bin
+if (($# == 0)); then
+  mapfile -t scenarios < <(ls scenarios | grep -E '^S[0-9]+$')
+else
+  scenarios=("$@")
+fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 now() { date +%s.%N; }
-declare -A seconds
-stage() {
-  local name=$1
-  shift
+# seconds CMD...: runs CMD, prints its wall time in seconds
+seconds() {
   local t0
   t0=$(now)
   "$@"
-  seconds[$name]=$(echo "$(now) - $t0" | bc -l)
-  printf '%-28s %8.3f s\n' "$name" "${seconds[$name]}"
+  echo "$(now) - $t0" | bc -l
+}
+ratio() { echo "$1 / $2" | bc -l; }
+
+# chain DIR PROBLEM SETTINGS: parse, derive, verify, gen, cold solve; sets the stage times t_*
+chain() {
+  local dir=$1 problem=$2 settings=$3
+  mkdir -p "$dir"
+  t_parse=$(seconds "$bin/helios-parse" "$problem" -o "$dir/spec.json")
+  t_derive=$(seconds "$bin/helios-derive" "$dir/spec.json" -o "$dir/derivation.json")
+  t_verify=$(seconds "$bin/helios-verify" --advisory "$dir/derivation.json" -o "$dir/verify.json")
+  t_gen=$(seconds "$bin/helios-gen" "$dir/derivation.json" -o "$dir/shoot.cpp")
+  t_solve=$(seconds "$bin/helios-solve" "$dir/shoot.cpp" --settings "$settings" --cache-dir "$dir/cache" \
+    --trajectory "$dir/trajectory.csv" -o "$dir/solution.json")
 }
 
-echo "HELIOS benchmark, scenario $scenario, $(nproc) cores, $(date -u +%FT%TZ)"
-stage parse "$bin/helios-parse" "scenarios/$scenario/problem.txt" -o "$work/spec.json"
-stage derive "$bin/helios-derive" "$work/spec.json" -o "$work/derivation.json"
-stage verify "$bin/helios-verify" "$work/derivation.json" -o "$work/verify.json"
-stage gen "$bin/helios-gen" "$work/derivation.json" -o "$work/shoot.cpp"
-stage "solve (cold: compile+run)" "$bin/helios-solve" "$work/shoot.cpp" --settings "scenarios/$scenario/settings.json" \
-  --cache-dir "$work/cache" --trajectory "$work/trajectory.csv" --plots "$work/" -o "$work/solution.json"
-stage "solve (warm: cached binary)" "$bin/helios-solve" "$work/shoot.cpp" --settings "scenarios/$scenario/settings.json" \
-  --cache-dir "$work/cache" --trajectory "$work/trajectory.csv" -o "$work/solution2.json"
-stage score "$bin/helios-score" --reference "scenarios/$scenario/reference.json" --spec "$work/spec.json" \
-  --derivation "$work/derivation.json" --verify "$work/verify.json" --solution "$work/solution.json" -o "$work/score.json"
+echo "HELIOS benchmark, builtin backend, $(nproc) cores, $(date -u +%FT%TZ)"
+printf '%-5s %7s %7s %7s %7s %8s %8s %8s %5s %5s  %-13s %s\n' scen parse derive verify gen compile run solve \
+  rest homot status result
+for s in "${scenarios[@]}"; do
+  chain "$work/$s" "scenarios/$s/problem.txt" "scenarios/$s/settings.json"
+  "$bin/helios-score" --reference "scenarios/$s/reference.json" --spec "$work/$s/spec.json" \
+    --derivation "$work/$s/derivation.json" --verify "$work/$s/verify.json" --solution "$work/$s/solution.json" \
+    -o "$work/$s/score.json"
+  printf '%-5s %7.3f %7.3f %7.3f %7.3f %8.3f %8.3f %8.3f %5s %5s  %-13s %s\n' "$s" "$t_parse" "$t_derive" "$t_verify" \
+    "$t_gen" "$(jq .timings.compile_s "$work/$s/solution.json")" "$(jq .timings.run_s "$work/$s/solution.json")" \
+    "$t_solve" "$(jq '.restarts // "-"' "$work/$s/solution.json")" "$(jq '.homotopy | length' "$work/$s/solution.json")" \
+    "$(jq -r .status "$work/$s/solution.json")" \
+    "$(jq -r 'if .final_mass_kg then "m_f \(.final_mass_kg) kg" else "tof \(.tof_days) d" end + ", max|F| \(.max_residual)"' \
+      "$work/$s/solution.json"), verify $(jq -r .verdict "$work/$s/verify.json"), score $(jq .total "$work/$s/score.json")"
+  front=$(echo "$t_parse + $t_derive + $t_verify" | bc -l)
+  printf '      parse+derive+verify %.3f s (target < 1 s: ratio %.3f); verify %.3f s (target < 1 s: ratio %.3f); solve cold %.3f s (target < 30 s: ratio %.3f)\n' \
+    "$front" "$(ratio "$front" 1)" "$t_verify" "$(ratio "$t_verify" 1)" "$t_solve" "$(ratio "$t_solve" 30)"
+done
 
-front=$(echo "${seconds[parse]} + ${seconds[derive]} + ${seconds[verify]}" | bc -l)
-printf '%-28s %8.3f s   (target < 1 s: ratio %.3f)\n' "parse+derive+verify" "$front" "$(echo "$front / 1" | bc -l)"
-printf '%-28s %8.3f s   (target < 30 s: ratio %.3f)\n' "solve cold" "${seconds[solve (cold: compile+run)]}" \
-  "$(echo "${seconds[solve (cold: compile+run)]} / 30" | bc -l)"
-jq -r '"compile \(.timings.compile_s) s, run \(.timings.run_s) s, status \(.status), m_f \(.final_mass_kg) kg, max|F| \(.max_residual), evaluations \(.function_evaluations), restarts \(.restarts)"' "$work/solution.json"
-jq -r '"score total \(.total)"' "$work/score.json"
+first=${scenarios[0]}
+t_warm=$(seconds "$bin/helios-solve" "$work/$first/shoot.cpp" --settings "scenarios/$first/settings.json" \
+  --cache-dir "$work/$first/cache" -o "$work/$first/solution2.json")
+printf 'warm solve of %s (cached binary): %.3f s\n' "$first" "$t_warm"
+
+# J2 on/off: the same problem text without the sentence that adds J2.
+for s in "${scenarios[@]}"; do
+  grep -q "include the J2 perturbation" "scenarios/$s/problem.txt" || continue
+  grep -v "include the J2 perturbation" "scenarios/$s/problem.txt" > "$work/$s-noJ2.txt"
+  chain "$work/$s-noJ2" "$work/$s-noJ2.txt" "scenarios/$s/settings.json"
+  jq -rn --slurpfile on "$work/$s/solution.json" --slurpfile off "$work/$s-noJ2/solution.json" --arg s "$s" \
+    '"\($s) J2 on: m_f \($on[0].final_mass_kg) kg, J2 off: \($off[0].final_mass_kg) kg (\($off[0].status)), difference \(($on[0].final_mass_kg - $off[0].final_mass_kg) * 1000) g"'
+done

@@ -105,3 +105,62 @@ TEST(Parse, CommentsAndLineBreaksInsideSentences) {
 }
 
 }  // namespace
+
+namespace {
+
+json parse_scenario(const std::string& id) {
+  const std::string path = kSource + "/scenarios/" + id + "/problem.txt";
+  return helios::spec::parse_problem_text(helios::io::read_text(path), path);
+}
+
+TEST(Parse, J2CentralBodyAndPerturbation) {
+  const json s = parse_scenario("S05");
+  EXPECT_EQ(s["central_body"]["j2"], 1.08262668e-3);
+  EXPECT_EQ(s["central_body"]["radius_km"], 6378.137);
+  EXPECT_EQ(s["dynamics"]["perturbations"], json::parse(R"([{"kind": "j2"}])"));
+  // J2 without the body's coefficient cannot be formulated.
+  const std::string text = replaced(helios::io::read_text(kSource + "/scenarios/S05/problem.txt"),
+                                    " and J2 coefficient 1.08262668e-3", "");
+  EXPECT_NE(error_of(text).find("needs the central body's J2 coefficient"), std::string::npos) << error_of(text);
+}
+
+TEST(Parse, CoastingTargetKeepsItsInitialState) {
+  const json target = parse_scenario("S06")["constraints"][1]["target"];
+  EXPECT_EQ(target["kind"], "coasting");
+  EXPECT_EQ(target["position_km"][2], 1462.832958);
+}
+
+TEST(Parse, SolarSailMinimumTimeWithAWindow) {
+  const json s = parse_scenario("S11");
+  EXPECT_EQ(s["dynamics"]["propulsion"], "solar_sail");
+  EXPECT_EQ(s["spacecraft"]["sail_characteristic_acceleration_mm_s2"], 1.0);
+  EXPECT_TRUE(IsClose(s["spacecraft"]["sail_reference_distance_AU"].get<double>(), 1.0, 1e-15, 0));
+  EXPECT_EQ(s["objective"]["kind"], "minimum_time");
+  EXPECT_EQ(s["time"]["final_time"], "free");
+  EXPECT_EQ(s["time"]["tof_min_days"], 100.0);
+  EXPECT_EQ(s["time"]["tof_max_days"], 1000.0);
+  const json at_most = parse(replaced(helios::io::read_text(kSource + "/scenarios/S11/problem.txt"),
+                                      "free, between 100 days and 1000 days", "free, at most 2 years"));
+  EXPECT_EQ(at_most["time"]["tof_min_days"], 0.0);
+  EXPECT_EQ(at_most["time"]["tof_max_days"], 730.5);  // Julian years
+  const std::string sail_with_engine =
+      helios::io::read_text(kSource + "/scenarios/S11/problem.txt") + "The spacecraft has a maximum thrust of 1 N.\n";
+  EXPECT_NE(error_of(sail_with_engine).find("solar sail"), std::string::npos) << error_of(sail_with_engine);
+}
+
+TEST(Parse, UserAccelerationIsCheckedAtParseTime) {
+  const json s = parse_scenario("S12");
+  const json& a = s["dynamics"]["perturbations"][0];
+  EXPECT_EQ(a["name"], "srp");
+  EXPECT_EQ(a["unit"], "m/s^2");
+  EXPECT_EQ(a["components"][0], "1.6416e-4/m*(149597870.691/r)^2*x/r");
+  const std::string text = helios::io::read_text(kSource + "/scenarios/S12/problem.txt");
+  const std::string unknown = replaced(text, "^2*x/r,", "^2*x/rho,");
+  EXPECT_NE(error_of(unknown).find("rho"), std::string::npos) << error_of(unknown);
+  const std::string two = replaced(text, ", 1.6416e-4/m*(149597870.691/r)^2*z/r]", "]");
+  EXPECT_NE(error_of(two).find("three components"), std::string::npos) << error_of(two);
+  const std::string unit = replaced(text, "z/r] m/s^2", "z/r] N");
+  EXPECT_NE(error_of(unit).find("not an acceleration unit"), std::string::npos) << error_of(unit);
+}
+
+}  // namespace

@@ -148,3 +148,43 @@ TEST(Runtime, EphemerisModeIsJplLpInNormalizedUnits) {
 }
 
 }  // namespace
+
+// Unpowered two-body motion for the coasting-target propagator (the generated program's
+// coast_dynamics comes from the derivation; this is the same field without J2).
+void helios_rt::coast_dynamics(const double* y, double* dy) {
+  const double r2 = y[0] * y[0] + y[1] * y[1] + y[2] * y[2];
+  const double k = -problem::mu / (r2 * std::sqrt(r2));
+  for (int i = 0; i < 3; ++i) {
+    dy[i] = y[3 + i];
+    dy[3 + i] = k * y[i];
+  }
+}
+
+namespace {
+
+// A circular orbit at 1 AU turns by 2 pi t / T: the coasting propagator reaches 1e-12.
+TEST(Runtime, CoastingTargetFollowsTheKeplerOrbit) {
+  const double v = std::sqrt(problem::mu);
+  const double period = 2 * M_PI / std::sqrt(problem::mu);
+  const auto y = helios_rt::coast_state({1.0, 0.0, 0.0, 0.0, v, 0.0}, 0.0, 0.3 * period);
+  const double angle = 2 * M_PI * 0.3;
+  EXPECT_TRUE(IsClose(y[0], std::cos(angle), 1e-12, 0));
+  EXPECT_TRUE(IsClose(y[1], std::sin(angle), 1e-12, 0));
+  EXPECT_TRUE(IsClose(y[4], v * std::cos(angle), 1e-11, 0));
+  const auto back = helios_rt::coast_state(y, 0.3 * period, 0.0);  // and backwards
+  EXPECT_TRUE(IsClose(back[0], 1.0, 1e-12, 0));
+}
+
+// The rate is the derivative of the ephemeris model itself: Richardson-consistent and close to
+// (but, because the elements drift, not equal to) the Kepler velocity the model reports.
+TEST(Runtime, EphemerisRateIsTheModelsTimeDerivative) {
+  const double t = 0.7;
+  const auto rate = helios_rt::ephemeris_rate("Mars", t);
+  const auto state = helios_rt::ephemeris_state("Mars", t);
+  const double h = 1e-6;
+  const auto plus = helios_rt::ephemeris_state("Mars", t + h), minus = helios_rt::ephemeris_state("Mars", t - h);
+  for (int i = 0; i < 6; ++i) EXPECT_TRUE(IsClose(rate[i], (plus[i] - minus[i]) / (2 * h), 1e-7, 1e-9)) << i;
+  for (int i = 0; i < 3; ++i) EXPECT_TRUE(IsClose(rate[i], state[3 + i], 1e-3, 1e-3)) << i;
+}
+
+}  // namespace

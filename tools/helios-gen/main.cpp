@@ -1,26 +1,50 @@
-// helios-gen: derivation.json -> shoot.cpp (fixed runtime from templates/ + generated modules).
+// helios-gen: derivation.json -> shoot.cpp (fixed runtime from templates/ + generated modules, or
+// modules written by the llm backend, one gen <-> compile repair round per call).
+#include <optional>
+
 #include "helios/codegen/generate.hpp"
 #include "helios/io/cli.hpp"
 #include "helios/io/error.hpp"
 #include "helios/io/schema.hpp"
+#include "helios/llm/backend.hpp"
 
 int main(int argc, char** argv) {
   const helios::cli::ToolInfo info{
       "helios-gen",
       "generate the C++ shooting program of a derivation",
       "[options] DERIVATION.json|-",
-      {{"backend", "", "NAME", "generator backend: builtin", "builtin"},
+      {{"backend", "", "NAME", "generator backend: builtin or llm", "builtin"},
        {"modules", "", "POLICY",
         "auto: template DYNAMICS/SWITCH when the derivation is the template's model; generated: always from the "
         "derivation",
-        "auto"}},
+        "auto"},
+       {"previous", "", "FILE", "llm: shoot.cpp of the round before", ""},
+       {"compile-report", "", "FILE", "llm: compile report of --previous (helios-solve --compile-only)", ""},
+       {"round", "", "N", "llm: repair round number (1 = first generation)", "1"},
+       {"transcript", "", "FILE", "llm: transcript of the exchange (default: next to -o, NAME.transcript.json)", ""}},
       {"DERIVATION"},
       "The program is one self-contained C++17 file: the fixed runtime (normalization, ephemeris,\n"
       "DOP853 with switch detection, eps-homotopy, seeded restarts, cminpack hybrd1, JSON output)\n"
-      "and the modules RESIDUAL and SOLVE generated from the shooting system.",
+      "and the modules RESIDUAL and SOLVE generated from the shooting system.\n"
+      "With --backend llm the model writes the four modules (prompts/codegen.txt); round N > 1 sends\n"
+      "the compiler's errors of --previous (prompts/repair.txt), and when --compile-report says the\n"
+      "previous program compiled, writes it unchanged without asking the model.",
       "helios-gen runs/builtin/S01/derivation.json -o runs/builtin/S01/shoot.cpp"};
   return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
-    helios::cli::backend_option(args, {"builtin"});
+    const std::string backend = helios::cli::backend_option(args, {"builtin", "llm"});
+    if (backend == "llm") {
+      helios::llm::GenRequest request{helios::io::read_artifact("derivation", args.positionals[0]), std::nullopt,
+                                      std::nullopt};
+      if (args.has("previous")) request.previous_source = helios::io::read_text(args.get("previous"));
+      if (args.has("compile-report"))
+        request.compile_report = helios::io::read_artifact("compile", args.get("compile-report"));
+      const int round = static_cast<int>(helios::cli::integer_option(args, "round", 1, 100));
+      const auto call = helios::llm::call_info(args.output, args.get("transcript"), round);
+      helios::io::write_text_atomic(args.output, helios::llm::generate(request, call));
+      return 0;
+    }
+    for (const char* llm_only : {"previous", "compile-report", "transcript"})
+      if (args.has(llm_only)) throw helios::usage_error(std::string("--") + llm_only + " needs --backend llm");
     helios::codegen::GenOptions options;
     const std::string policy = args.get("modules");
     if (policy == "generated")

@@ -20,7 +20,8 @@ int main(int argc, char** argv) {
        {"derivation", "", "FILE", "derivation.json of the run (omitted: no shooting-variable points)", ""},
        {"verify", "", "FILE", "verify.json of the run (omitted: no verification points)", ""},
        {"solution", "", "FILE", "solution.json of the run (omitted: d3-d5 score 0)", ""},
-       {"scoreboard", "", "DIR", "render DIR/*/score.json as a Markdown table instead", ""}},
+       {"scoreboard", "", "DIR", "render DIR/*/score.json as a Markdown table instead", ""},
+       {"tables", "", "ROOT", "render the paper's three tables from a runs tree ROOT/<backend>/<scenario>/", ""}},
       {},
       "Scores the paper's five-dimension rubric: d1 parse 30 (facts of the reference found in the\n"
       "spec within tolerance), d2 derive 20 (14 x fraction of verify checks passed, 6 for the\n"
@@ -28,11 +29,20 @@ int main(int argc, char** argv) {
       "10 for max_residual below the reference's), d5 accuracy 10 (full within tolerance_kg of the\n"
       "reference m_f, linearly down to 0 at 100 x tolerance_kg; converged runs only). Any stage\n"
       "input may be omitted; its dimensions then score 0. With --scoreboard, writes one table row\n"
-      "per scenario folder plus a totals row.",
+      "per scenario folder plus a totals row. With --tables, writes the per-scenario comparison of\n"
+      "backends and models, the token consumption (from *.transcript.json) and the compile-repair\n"
+      "loop effect (compile.r1.json before, the final compile after) over every run folder of ROOT.",
       "helios-score --reference scenarios/S01/reference.json --spec runs/builtin/S01/spec.json "
       "--derivation runs/builtin/S01/derivation.json --verify runs/builtin/S01/verify.json "
       "--solution runs/builtin/S01/solution.json -o runs/builtin/S01/score.json"};
   return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
+    if (args.has("tables")) {
+      for (const char* other : {"scoreboard", "reference", "spec", "derivation", "verify", "solution"})
+        if (args.has(other))
+          throw helios::usage_error(std::string("--tables takes no --") + other + ", see helios-score --help");
+      helios::io::write_text_atomic(args.output, helios::score::tables_from_runs(args.get("tables")));
+      return 0;
+    }
     if (args.has("scoreboard")) {
       for (const char* stage : {"reference", "spec", "derivation", "verify", "solution"})
         if (args.has(stage))

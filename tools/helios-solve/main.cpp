@@ -17,11 +17,14 @@ int main(int argc, char** argv) {
        {"cache-dir", "", "DIR", "compiled programs by content hash", "runs/.cache"},
        {"time-limit", "", "SECONDS", "wall-clock limit of the run", "600"},
        {"memory-limit", "", "MB", "address-space limit of the run", "4096"},
-       {"backend", "", "NAME", "backend label recorded in the solution (builtin or llm)", "builtin"}},
+       {"backend", "", "NAME", "backend label recorded in the solution (builtin or llm)", "builtin"},
+       {"compile-only", "", "", "only compile (into the cache) and write a compile report instead", ""}},
       {"SHOOT"},
       "Compiles with g++ -O2 (skipped when the cache holds the same source and compiler), runs the\n"
       "program in a child with CPU, memory, file-size and wall-clock limits, and writes solution.json.\n"
-      "A failed compile or run is recorded in the artifact's status; the tool still exits 0.",
+      "A failed compile or run is recorded in the artifact's status; the tool still exits 0.\n"
+      "With --compile-only it writes a compile report (schemas/compile.schema.json: ok, errors,\n"
+      "diagnostics) for a gen <-> compile repair round; a failed compile still exits 0.",
       "helios-solve runs/builtin/S01/shoot.cpp --settings scenarios/S01/settings.json "
       "--trajectory runs/builtin/S01/trajectory.csv --plots runs/builtin/S01/ -o runs/builtin/S01/solution.json"};
   return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
@@ -34,6 +37,10 @@ int main(int argc, char** argv) {
     o.backend = helios::cli::backend_option(args, {"builtin", "llm"});
     o.time_limit_s = helios::cli::positive_option(args, "time-limit");
     o.memory_limit_mb = helios::cli::positive_option(args, "memory-limit");
+    if (args.has("compile-only")) {
+      helios::io::write_artifact("compile", helios::solve::compile_report(o), args.output);
+      return 0;
+    }
     helios::io::write_artifact("solution", helios::solve::solve(o), args.output);
     return 0;
   });

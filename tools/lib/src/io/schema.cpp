@@ -31,7 +31,7 @@ const valijson::Schema& schema_for(const std::string& kind) {
 }  // namespace
 
 const std::vector<std::string>& artifact_kinds() {
-  static const std::vector<std::string> kinds = {"spec", "derivation", "verify", "solution", "score"};
+  static const std::vector<std::string> kinds = {"spec", "derivation", "verify", "solution", "score", "compile", "transcript"};
   return kinds;
 }
 

@@ -24,17 +24,23 @@ struct DirectionLaw {
   std::string costate_block;  // e.g. "l_vx, l_vy, l_vz" if b is that block of costates
 };
 
+// The controls of one kind: their names and symbols, in the problem's order.
+std::vector<symbol> controls_of_kind(Problem& p, const std::string& kind, std::vector<std::string>& names) {
+  std::vector<symbol> symbols;
+  for (const auto& c : p.controls)
+    if (c.kind == kind) {
+      names.push_back(c.name);
+      symbols.push_back(p.symbols.get(c.name));
+    }
+  return symbols;
+}
+
 // Minimizes H over a unit vector a that enters H linearly: H = g.a + ..., so a* = -g/|g|.
 // When g = k * (block of costates) with one scalar factor k, a* = -block/|block| (primer
 // vector); that needs k > 0 on the admissible set, which helios-verify checks numerically (G2).
 DirectionLaw direction_law(Problem& p, const ex& H) {
   DirectionLaw d;
-  std::vector<symbol> a;
-  for (const auto& c : p.controls)
-    if (c.kind == "direction") {
-      d.controls.push_back(c.name);
-      a.push_back(p.symbols.get(c.name));
-    }
+  const std::vector<symbol> a = controls_of_kind(p, "direction", d.controls);
   if (a.empty()) return d;
   for (const auto& aj : a) {
     const ex g = H.diff(aj).expand();
@@ -103,12 +109,7 @@ struct SailLaw {
 
 SailLaw sail_law(Problem& p, const ex& H) {
   SailLaw s;
-  std::vector<symbol> n;
-  for (const auto& c : p.controls)
-    if (c.kind == "sail_normal") {
-      s.controls.push_back(c.name);
-      n.push_back(p.symbols.get(c.name));
-    }
+  const std::vector<symbol> n = controls_of_kind(p, "sail_normal", s.controls);
   if (n.size() != 3)
     throw std::invalid_argument("a sail needs three normal components, got " + std::to_string(n.size()));
   const auto& rhat = p.sail.rhat;

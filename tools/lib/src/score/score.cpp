@@ -344,16 +344,15 @@ json score_run(const ScoreInputs& in) {
   const json& ref = in.reference;
   const std::string scenario = ref["scenario"].get<std::string>();
 
-  // The run's backend (and model) come from the latest stage that ran.
-  std::string backend = "builtin", model;
+  // The run's backend comes from the latest stage that ran, its model from the latest stage a
+  // model wrote (helios-solve and helios-verify record none).
+  std::string backend, model;
   for (const auto* doc : {&in.solution, &in.verify, &in.derivation, &in.spec}) {
     const std::string b = string_at(*doc, "/producer/backend");
-    if (b == "builtin" || b == "llm") {
-      backend = b;
-      model = string_at(*doc, "/producer/model");
-      break;
-    }
+    if (backend.empty() && (b == "builtin" || b == "llm")) backend = b;
+    if (model.empty() && b == "llm") model = string_at(*doc, "/producer/model");
   }
+  if (backend.empty()) backend = "builtin";
   json out = io::artifact_header("score", "helios-score", backend);
   if (!model.empty()) out["producer"]["model"] = model;
   out["scenario"] = scenario;
@@ -463,6 +462,186 @@ std::string scoreboard_from_dir(const std::string& dir) {
   std::vector<json> scores;
   for (const auto& f : files) scores.push_back(io::read_artifact("score", f.string()));
   return render_scoreboard(scores);
+}
+
+namespace {
+
+// One scenario run found under a runs tree, for the paper's tables.
+struct RunRecord {
+  std::string group;  // "<backend> (<model>)" or the backend
+  std::string scenario;
+  double score = 0;
+  bool compiled = false, converged = false;
+  bool has_repair_loop = false, compiled_first = false;
+  int repair_rounds = 0, derive_rounds = 0, requests = 0;
+  long prompt_tokens = 0, completion_tokens = 0, total_tokens = 0;
+};
+
+// Runs are grouped by backend and model, so repeated runs of one model in several folders
+// (runs/llm-a, runs/llm-b) count together; the folder name stands in for an unknown backend.
+std::string group_label(const std::string& folder, const std::string& backend, const std::string& model) {
+  std::string label = backend.empty() ? folder : backend;
+  if (!model.empty()) label += " (" + model + ")";
+  return label;
+}
+
+std::string frac(int k, int n) {
+  return std::to_string(k) + "/" + std::to_string(n);
+}
+
+std::string thousands(long v) {
+  std::string s = std::to_string(v);
+  for (int i = static_cast<int>(s.size()) - 3; i > (v < 0 ? 1 : 0); i -= 3) s.insert(static_cast<std::size_t>(i), ",");
+  return s;
+}
+
+RunRecord read_run(const std::filesystem::path& folder, const std::string& run_folder) {
+  namespace fs = std::filesystem;
+  RunRecord r;
+  const json score = io::read_artifact("score", (folder / "score.json").string());
+  r.scenario = score.value("scenario", folder.filename().string());
+  r.score = score.value("total", 0.0);
+  const json& d3 = score["dimensions"]["d3_compile"];
+  r.compiled = d3.value("points", 0.0) >= d3.value("max", kCompileMax);
+  r.converged = score["measured"].value("status", json()).is_string() && score["measured"]["status"] == "converged";
+  std::string model = score["producer"].value("model", "");
+  std::vector<fs::path> files;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(folder, ec)) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) {
+    const std::string name = f.filename().string();
+    if (name.size() > 16 && name.substr(name.size() - 16) == ".transcript.json") {
+      const json t = io::read_artifact("transcript", f.string());
+      r.prompt_tokens += t["usage"]["prompt_tokens"].get<long>();
+      r.completion_tokens += t["usage"]["completion_tokens"].get<long>();
+      r.total_tokens += t["usage"]["total_tokens"].get<long>();
+      r.requests += static_cast<int>(t["turns"].size());
+      if (t["purpose"] == "repair") ++r.repair_rounds;
+      if (t["purpose"] == "derive") ++r.derive_rounds;
+      if (model.empty()) model = t["producer"].value("model", "");
+    }
+  }
+  if (fs::exists(folder / "compile.r1.json")) {
+    r.has_repair_loop = true;
+    r.compiled_first = io::read_artifact("compile", (folder / "compile.r1.json").string())["ok"].get<bool>();
+  } else {
+    r.compiled_first = r.compiled;
+  }
+  r.group = group_label(run_folder, score["producer"].value("backend", ""), model);
+  return r;
+}
+
+}  // namespace
+
+std::string tables_from_runs(const std::string& root) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(root, ec)) throw input_error(root + ": not a folder, expected a runs tree such as runs/");
+  std::vector<fs::path> run_folders;
+  for (const auto& e : fs::directory_iterator(root, ec))
+    if (e.is_directory(ec) && e.path().filename().string().front() != '.') run_folders.push_back(e.path());
+  std::sort(run_folders.begin(), run_folders.end());
+  std::vector<RunRecord> runs;
+  for (const auto& folder : run_folders) {
+    std::vector<fs::path> scenarios;
+    for (const auto& e : fs::directory_iterator(folder, ec))
+      if (e.is_directory(ec) && fs::is_regular_file(e.path() / "score.json", ec)) scenarios.push_back(e.path());
+    std::sort(scenarios.begin(), scenarios.end());
+    for (const auto& s : scenarios) runs.push_back(read_run(s, folder.filename().string()));
+  }
+  if (runs.empty())
+    throw input_error(root + ": no <backend>/<scenario>/score.json found, run make scenario=S01 [BACKEND=llm] first");
+  std::vector<std::string> groups, scenarios;
+  for (const auto& r : runs) {
+    if (std::find(groups.begin(), groups.end(), r.group) == groups.end()) groups.push_back(r.group);
+    if (std::find(scenarios.begin(), scenarios.end(), r.scenario) == scenarios.end()) scenarios.push_back(r.scenario);
+  }
+  std::sort(scenarios.begin(), scenarios.end());
+  const auto select = [&](const std::string& group, const std::string& scenario) {
+    std::vector<const RunRecord*> out;
+    for (const auto& r : runs)
+      if (r.group == group && (scenario.empty() || r.scenario == scenario)) out.push_back(&r);
+    return out;
+  };
+
+  std::ostringstream md;
+  md << "# HELIOS results across backends and models\n\n"
+     << "From every `<run folder>/<scenario>/` under " << md_escape(root)
+     << " that has a score.json. Rubric as in the scoreboard (total 100); tokens from the llm "
+        "transcripts (`*.transcript.json`).\n\n";
+
+  md << "## Table 1: per-scenario comparison of backends and models\n\n"
+     << "| scenario | backend (model) | runs | mean score | compiled | converged |\n"
+     << "|---|---|--:|--:|--:|--:|\n";
+  for (const auto& scenario : scenarios)
+    for (const auto& group : groups) {
+      const auto sel = select(group, scenario);
+      if (sel.empty()) continue;
+      double sum = 0;
+      int compiled = 0, converged = 0;
+      for (const auto* r : sel) {
+        sum += r->score;
+        compiled += r->compiled;
+        converged += r->converged;
+      }
+      const int n = static_cast<int>(sel.size());
+      md << "| " << md_escape(scenario) << " | " << md_escape(group) << " | " << n << " | " << fmt(sum / n, "%.1f")
+         << " | " << frac(compiled, n) << " | " << frac(converged, n) << " |\n";
+    }
+  for (const auto& group : groups) {
+    const auto sel = select(group, "");
+    double sum = 0;
+    int compiled = 0, converged = 0;
+    for (const auto* r : sel) {
+      sum += r->score;
+      compiled += r->compiled;
+      converged += r->converged;
+    }
+    const int n = static_cast<int>(sel.size());
+    md << "| **all** | " << md_escape(group) << " | " << n << " | **" << fmt(sum / n, "%.1f") << "** | **"
+       << frac(compiled, n) << "** | **" << frac(converged, n) << "** |\n";
+  }
+
+  md << "\n## Table 2: token consumption\n\n"
+     << "| backend (model) | scenarios | requests | input tokens | output tokens | total tokens | "
+        "total per scenario |\n"
+     << "|---|--:|--:|--:|--:|--:|--:|\n";
+  for (const auto& group : groups) {
+    const auto sel = select(group, "");
+    long in = 0, out = 0, total = 0;
+    int requests = 0;
+    for (const auto* r : sel) {
+      in += r->prompt_tokens;
+      out += r->completion_tokens;
+      total += r->total_tokens;
+      requests += r->requests;
+    }
+    const long n = static_cast<long>(sel.size());
+    md << "| " << md_escape(group) << " | " << n << " | " << requests << " | " << thousands(in) << " | "
+       << thousands(out) << " | " << thousands(total) << " | " << thousands((total + n / 2) / n) << " |\n";
+  }
+
+  md << "\n## Table 3: effect of the compile-repair loop\n\n"
+     << "| backend (model) | scenarios | compiled before repair | compiled after repair | repaired | "
+        "repair rounds used |\n"
+     << "|---|--:|--:|--:|--:|--:|\n";
+  for (const auto& group : groups) {
+    const auto sel = select(group, "");
+    int before = 0, after = 0, repaired = 0, rounds = 0;
+    bool loop = false;
+    for (const auto* r : sel) {
+      before += r->compiled_first;
+      after += r->compiled;
+      repaired += !r->compiled_first && r->compiled;
+      rounds += r->repair_rounds;
+      loop = loop || r->has_repair_loop;
+    }
+    const int n = static_cast<int>(sel.size());
+    md << "| " << md_escape(group) << " | " << n << " | " << frac(before, n) << " | " << frac(after, n) << " | "
+       << repaired << " | " << (loop ? std::to_string(rounds) : std::string("no loop")) << " |\n";
+  }
+  return md.str();
 }
 
 }  // namespace helios::score

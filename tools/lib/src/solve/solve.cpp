@@ -71,15 +71,88 @@ std::string first_line(const std::string& s) {
   return s.substr(0, s.find('\n'));
 }
 
+std::string limit_text(double seconds) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", seconds);
+  return buf;
+}
+
+// Processes the program may add to the user's count (RLIMIT_NPROC): it needs none.
+constexpr long kMaxChildProcesses = 16;
+
+// Processes whose parent is this process, from /proc (the orphans a subreaper inherits).
+std::vector<pid_t> children_of_self() {
+  std::vector<pid_t> out;
+  const std::string self = std::to_string(::getpid());
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator("/proc", ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(entry.path() / "stat");
+    std::string line;
+    if (!std::getline(stat, line)) continue;
+    // pid (comm) state ppid ...: comm may hold spaces, so read after the last ')'.
+    const auto close = line.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(line.substr(close + 1));
+    std::string state, ppid;
+    rest >> state >> ppid;
+    if (ppid == self) out.push_back(static_cast<pid_t>(std::stol(name)));
+  }
+  return out;
+}
+
+// Number of processes of the real user (RLIMIT_NPROC counts them all).
+long processes_of_user() {
+  long n = 0;
+  const uid_t uid = ::getuid();
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator("/proc", ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
+    struct stat st;
+    if (::stat(entry.path().c_str(), &st) == 0 && st.st_uid == uid) ++n;
+  }
+  return n;
+}
+
+// Kills whatever the program left behind: its process group, then (as a child subreaper) every
+// orphan reparented to us, including those that left the group with setsid(). Returns how many.
+int kill_leftovers(pid_t group) {
+  int killed = 0;
+  ::kill(-group, SIGKILL);
+  for (int quiet = 0, round = 0; quiet < 3 && round < 200; ++round) {
+    const auto stray = children_of_self();
+    if (stray.empty()) {
+      ++quiet;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      continue;
+    }
+    quiet = 0;
+    for (const pid_t p : stray) {
+      ::kill(p, SIGKILL);
+      ::waitpid(p, nullptr, 0);
+      ++killed;
+    }
+  }
+  while (::waitpid(-1, nullptr, WNOHANG) > 0) {
+  }
+  return killed;
+}
+
 }  // namespace
 
-RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s, double memory_limit_mb) {
+RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s, double memory_limit_mb,
+                      const std::string& workdir) {
   RunResult r;
   const auto start = std::chrono::steady_clock::now();
   char err_template[] = "/tmp/helios-stderr-XXXXXX";
   const int err_fd = ::mkstemp(err_template);
   if (err_fd < 0) throw std::runtime_error(std::string("cannot create a temp file: ") + std::strerror(errno));
   ::unlink(err_template);
+  // Orphans of the program (a daemonized or setsid() child) are reparented to us, so none escapes.
+  ::prctl(PR_SET_CHILD_SUBREAPER, 1);
+  const rlim_t nproc = static_cast<rlim_t>(processes_of_user() + kMaxChildProcesses);
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
@@ -87,25 +160,34 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
     // The child dies with helios-solve, so an interrupted run leaves no orphan writing files.
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (::getppid() != parent) _exit(126);
+    // Its own process group, so a timeout kills everything it started.
+    ::setpgid(0, 0);
     ::dup2(err_fd, 2);
+    if (!workdir.empty() && ::chdir(workdir.c_str()) != 0) _exit(126);
     const rlim_t cpu = static_cast<rlim_t>(std::ceil(wall_limit_s)) + 5;
     const rlim_t mem = static_cast<rlim_t>(memory_limit_mb * 1024 * 1024);
     const rlim_t fsize = 512ull * 1024 * 1024;
     const struct rlimit cpu_limit = {cpu, cpu}, mem_limit = {mem, mem}, file_limit = {fsize, fsize};
+    const struct rlimit no_core = {0, 0}, proc_limit = {nproc, nproc};
     ::setrlimit(RLIMIT_CPU, &cpu_limit);
     ::setrlimit(RLIMIT_AS, &mem_limit);
     ::setrlimit(RLIMIT_FSIZE, &file_limit);
+    ::setrlimit(RLIMIT_CORE, &no_core);
+    // NOTE: the kernel does not apply RLIMIT_NPROC to root; kill_leftovers() is the bound there.
+    ::setrlimit(RLIMIT_NPROC, &proc_limit);
     std::vector<char*> args;
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
     ::execv(args[0], args.data());
     _exit(127);
   }
+  ::setpgid(pid, pid);  // also from the parent, so the group exists before any kill
   int status = 0;
   while (true) {
     const pid_t done = ::waitpid(pid, &status, WNOHANG);
     if (done == pid) break;
     if (seconds_since(start) > wall_limit_s) {
+      ::kill(-pid, SIGKILL);
       ::kill(pid, SIGKILL);
       ::waitpid(pid, &status, 0);
       r.timed_out = true;
@@ -113,6 +195,7 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
+  r.leftover_processes = kill_leftovers(pid);
   r.seconds = seconds_since(start);
   if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
@@ -231,6 +314,26 @@ json plot_trajectory(const std::string& csv_path, const std::string& prefix, con
           {panel + "_plot", fs::path(panel_png).filename().string()}};
 }
 
+json compile_report(const SolveOptions& o) {
+  const std::string source = io::read_text(o.source_path);
+  const CompileResult c = compile_cached(source, o.compiler, o.cache_dir);
+  json doc = io::artifact_header("compile", "helios-solve", o.backend);
+  doc["source"] = o.source_path == "-" ? "<stdin>" : o.source_path;
+  doc["ok"] = c.ok;
+  doc["cached"] = c.cached;
+  doc["source_sha256"] = c.sha256;
+  doc["command"] = c.command;
+  doc["warnings"] = c.warnings;
+  int errors = 0;
+  for (std::size_t pos = c.diagnostics.find("error:"); pos != std::string::npos;
+       pos = c.diagnostics.find("error:", pos + 1))
+    ++errors;
+  doc["errors"] = errors;
+  doc["diagnostics"] = c.diagnostics.substr(0, 16000);
+  doc["timings"] = {{"compile_s", c.seconds}};
+  return doc;
+}
+
 json solve(const SolveOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const std::string source = io::read_text(o.source_path);
@@ -278,14 +381,18 @@ json solve(const SolveOptions& o) {
   const io::TempFiles guard({settings_tmp, result_tmp, traj_tmp, result_tmp + ".part", traj_tmp + ".part"});
   io::write_json_atomic(settings_tmp, settings);
   const RunResult run =
-      run_limited({c.binary, "--settings", settings_tmp, "--result", result_tmp, "--trajectory", traj_tmp},
-                  o.time_limit_s, o.memory_limit_mb);
+      run_limited({fs::absolute(c.binary).string(), "--settings", fs::absolute(settings_tmp).string(), "--result",
+                   fs::absolute(result_tmp).string(), "--trajectory", fs::absolute(traj_tmp).string()},
+                  o.time_limit_s, o.memory_limit_mb, fs::absolute(out_dir.empty() ? fs::path(".") : out_dir).string());
   doc["timings"]["run_s"] = run.seconds;
   if (run.timed_out || run.exit_code != 0 || !fs::exists(result_tmp)) {
     doc["status"] = run.timed_out ? "timeout" : "crashed";
-    doc["status_detail"] = run.timed_out ? "killed after " + std::to_string(o.time_limit_s) + " s wall clock"
+    doc["status_detail"] = run.timed_out ? "killed after " + limit_text(o.time_limit_s) + " s wall clock"
                                          : "exit code " + std::to_string(run.exit_code) + ", signal " +
                                                std::to_string(run.signal) + ": " + first_line(run.stderr_text);
+    if (run.leftover_processes > 0)
+      doc["status_detail"] = doc["status_detail"].get<std::string>() + "; killed " +
+                             std::to_string(run.leftover_processes) + " leftover processes";
     doc["timings"]["total_s"] = seconds_since(start);
     return doc;
   }

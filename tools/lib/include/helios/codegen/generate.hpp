@@ -26,4 +26,12 @@ struct GeneratedProgram {
 // Throws std::invalid_argument naming the derivation field it cannot turn into code.
 GeneratedProgram generate(const io::json& derivation, const GenOptions& options);
 
+// The PROBLEM block (namespace problem: sizes, names, units, constant parameters) of a derivation.
+std::string problem_block(const io::json& derivation);
+
+// The whole program around `modules` (C++ defining DYNAMICS, SWITCH, RESIDUAL and SOLVE in
+// namespace helios_rt): headers, astro code, integrator, PROBLEM block, runtime, modules, entry
+// point. `origin` names the generator in the first comment line (builtin, or llm and the model).
+std::string assemble(const io::json& derivation, const std::string& modules, const std::string& origin);
+
 }  // namespace helios::codegen

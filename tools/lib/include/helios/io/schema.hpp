@@ -9,7 +9,7 @@ namespace helios::io {
 
 constexpr int kSchemaVersion = 1;
 
-// Every artifact kind the chain knows: spec, derivation, verify, solution, score.
+// Every artifact kind the chain knows: spec, derivation, verify, solution, score, compile, transcript.
 const std::vector<std::string>& artifact_kinds();
 
 // Validates `doc` against the schema of `kind`. On failure throws input_error

@@ -48,4 +48,11 @@ std::string render_scoreboard(const std::vector<io::json>& scores);
 // if DIR is not a folder or holds no score.json; a malformed one is an error naming it.
 std::string scoreboard_from_dir(const std::string& dir);
 
+// The paper's three tables from a runs tree ROOT/<run folder>/<scenario>/ (run folders such as
+// builtin, llm, llm-<tag>): per-scenario comparison of backends and models (mean score, compiled
+// and converged counts), token consumption from the transcripts (input, output, total, per
+// scenario), and the compile-repair loop (compiled before and after repair). Runs are grouped by
+// backend and model. Throws input_error if ROOT holds no scored run or a file in it is malformed.
+std::string tables_from_runs(const std::string& root);
+
 }  // namespace helios::score

@@ -36,15 +36,23 @@ struct RunResult {
   bool timed_out = false;
   std::string stderr_text;
   double seconds = 0;
+  int leftover_processes = 0;  // processes the program left running, killed after it ended
 };
 
-// Runs argv in a child with CPU, address-space, file-size and wall-clock limits.
-RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s, double memory_limit_mb);
+// Runs argv (argv[0] a path) in a child with CPU, address-space, file-size, core and process-count
+// limits and a wall-clock limit, in its own process group with `workdir` (if not empty) as its
+// working directory. On return nothing it started is left running: the group and any orphan
+// (helios-solve is a child subreaper) are killed.
+RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s, double memory_limit_mb,
+                      const std::string& workdir = "");
 
 // Draws the 3-D trajectory coloured by the control, and the control panel versus time, with
 // gnuplot: throttle + mass (throttle_mass.png) for an engine, the cone angle (cone_angle.png) for
 // a sail. Returns the file names by role ({"trajectory_plot": .., "<panel>_plot": ..}).
 io::json plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title);
+
+// Compiles only (into the cache) and returns the compile artifact: ok, diagnostics, error count.
+io::json compile_report(const SolveOptions& options);
 
 // The whole stage; returns the solution artifact (status "compile_failed" etc. are data, not throws).
 io::json solve(const SolveOptions& options);
