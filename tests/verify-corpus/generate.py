@@ -4,6 +4,7 @@
 Seeds (tests/verify-corpus/seed/):
   S01.json         builtin derivation (helios-parse scenarios/S01/problem.txt | helios-derive -);
                    refreshed with --bin build/bin, else the committed copy is used
+Bases (tests/verify-corpus/base/, committed with the engine): builtin S05, S06, S11, S12.
   S05h.json        Earth J2 orbit transfer, fixed tf, minimum fuel        (written here)
   S06h.json        S05h with a coasting target under J2 (coast_dynamics)   (written here)
   S11h.json        solar sail, minimum time, free tf, Mars ephemeris       (written here)
@@ -302,14 +303,13 @@ def main():
     seed_dir, case_dir = HERE / "seed", HERE / "cases"
     seed_dir.mkdir(exist_ok=True)
     case_dir.mkdir(exist_ok=True)
-    builtin = ["S01", "S05", "S06", "S11"]
+    builtin = ["S05", "S06", "S11", "S12"]  # base/: committed with the engine (see base/README.md)
     if bin_dir:
-        for scenario in builtin:
-            spec = subprocess.run([str(bin_dir / "helios-parse"), str(ROOT / f"scenarios/{scenario}/problem.txt")],
-                                  check=True, capture_output=True, text=True).stdout
-            out = subprocess.run([str(bin_dir / "helios-derive"), "-"], input=spec, check=True,
-                                 capture_output=True, text=True).stdout
-            (seed_dir / f"{scenario}.json").write_text(out)
+        spec = subprocess.run([str(bin_dir / "helios-parse"), str(ROOT / "scenarios/S01/problem.txt")],
+                              check=True, capture_output=True, text=True).stdout
+        out = subprocess.run([str(bin_dir / "helios-derive"), "-"], input=spec, check=True, capture_output=True,
+                             text=True).stdout
+        (seed_dir / "S01.json").write_text(out)
     s01 = json.loads((seed_dir / "S01.json").read_text())
     S05, j2model = s05h(s01)
     S06 = s06h(S05)
@@ -318,8 +318,8 @@ def main():
     for name, doc in (("S05h", S05), ("S06h", S06), ("S11h", S11), ("S01f", S01F)):
         write(seed_dir / f"{name}.json", doc)
     seeds = {"S01": s01, "S05h": S05, "S06h": S06, "S11h": S11, "S01f": S01F}
-    for scenario in builtin[1:]:
-        seeds[scenario] = json.loads((seed_dir / f"{scenario}.json").read_text())
+    for scenario in builtin:
+        seeds[scenario] = json.loads((HERE / "base" / f"{scenario}.json").read_text())
 
     cases = []
 
@@ -556,8 +556,8 @@ def main():
         d["state_odes"][5]["rhs"] = g(f[5].subs(J2, 0))
     case("S05h-state-ode-without-J2", "S05h", "vz' without the J2 acceleration", ["state_ode:vz"], j2_state)
 
-    # ---- the builtin engine's S05, S06, S11 (tests/verify-corpus/seed/ from helios-derive)
-    for scenario in builtin[1:]:
+    # ---- the builtin engine's S05, S06, S11, S12 (tests/verify-corpus/base/)
+    for scenario in builtin:
         case(f"{scenario}-builtin", scenario, "builtin derivation as produced")
     case("S05-flip-l_vx", "S05", "builtin J2: sign of l_vx' flipped", ["costate_ode:l_vx"], lambda d: flip(d, "l_vx"))
     case("S11-flip-l_ry", "S11", "builtin sail: sign of l_ry' flipped", ["costate_ode:l_ry"],
@@ -598,6 +598,18 @@ def main():
              expression=eq(d, "transversality_tf")["expression"].replace("-arrival", "+arrival")))
     case("S06-count-missing-transversality-m", "S06", "builtin J2 rendezvous: lambda_m(tf) = 0 dropped",
          ["count", "transversality:m"], lambda d: drop_eq(d, "transversality_m"))
+
+    def without_float_terms(d, name):
+        """Drops from costate `name` the terms with a floating-point coefficient (S12's SRP constant)."""
+        e = sp.expand_mul(sp.sympify(costate(d, name)["rhs"].replace("^", "**")))
+        keep = [t for t in sp.Add.make_args(e) if not t.atoms(sp.Float)]
+        assert len(keep) < len(sp.Add.make_args(e))
+        costate(d, name)["rhs"] = g(sp.Add(*keep))
+    case("S12-missing-SRP-jacobian", "S12", "S01 + SRP: l_rx' without the Jacobian of the SRP acceleration",
+         ["costate_ode:l_rx"], lambda d: without_float_terms(d, "l_rx"))
+    case("S12-missing-SRP-mass-term", "S12", "S01 + SRP: l_m' without d(a_SRP)/dm (the plate's a = k/m)",
+         ["costate_ode:l_m"], lambda d: without_float_terms(d, "l_m"))
+    case("S12-flip-l_vz", "S12", "S01 + SRP: sign of l_vz' flipped", ["costate_ode:l_vz"], lambda d: flip(d, "l_vz"))
 
     write(HERE / "manifest.json", {"description": "helios-verify accuracy corpus: expected verdict and the exact "
                                                   "set of failing checks of every case (generate.py)",
