@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <map>
@@ -91,7 +92,6 @@ class Compiled {
     Op op = Op::Const;
     double value = 0;
     int slot = 0;
-    int twice = 0;  // Pow with a small integer or half-integer exponent: 2 * exponent, else 0
     double (*f1)(double) = nullptr;
     double (*f2)(double, double) = nullptr;
     std::vector<int> args;
@@ -148,8 +148,6 @@ class Compiled {
       if (GiNaC::is_a<numeric>(e.op(1)) && GiNaC::ex_to<numeric>(e.op(1)).is_real()) {
         n.op = Op::Pow;
         n.value = GiNaC::ex_to<numeric>(e.op(1)).to_double();
-        if (n.value == std::round(2 * n.value) / 2 && std::fabs(n.value) <= 12 && n.value != 0)
-          n.twice = static_cast<int>(std::lround(2 * n.value));
       } else {
         n.op = Op::PowEx;
         n.args.push_back(build(e.op(1), slots));
@@ -190,15 +188,8 @@ class Compiled {
         for (int a : n.args) p *= eval(a, x);
         return p;
       }
-      case Op::Pow: {
-        const double b = eval(n.args[0], x);
-        if (n.twice == 0) return std::pow(b, n.value);
-        // Small integer and half-integer powers by products and one sqrt (pow dominates the time).
-        const int k = std::abs(n.twice);
-        double r = k % 2 ? std::sqrt(b) : 1.0;
-        for (int i = 0; i < k / 2; ++i) r *= b;
-        return n.twice < 0 ? 1.0 / r : r;
-      }
+      case Op::Pow:
+        return std::pow(eval(n.args[0], x), n.value);
       case Op::PowEx:
         return std::pow(eval(n.args[0], x), eval(n.args[1], x));
       case Op::Fn1:
@@ -390,6 +381,17 @@ Kind state_kind(const std::string& name, const std::string& meaning) {
   return Kind::OtherState;
 }
 
+// max_rel_error as reported: 3 significant digits, and 0 below 1e-13 (agreement to rounding).
+// NOTE: GiNaC orders terms by hash values, which vary between runs, so evaluations of some forms
+// differ in their last bits from run to run; the report must not.
+double reported(double v) {
+  if (!std::isfinite(v)) return 2.0;
+  if (v < 1e-13) return 0.0;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2e", v);
+  return std::strtod(buf, nullptr);
+}
+
 struct Check {
   std::string id, category, method;
   bool pass = true, exact = false;
@@ -409,7 +411,7 @@ struct Check {
             {"method", method},
             {"points", points},
             {"exact", exact},
-            {"max_rel_error", std::isfinite(max_rel) ? max_rel : 2.0},
+            {"max_rel_error", reported(max_rel)},
             {"feedback", pass ? "" : feedback}};
   }
 };
