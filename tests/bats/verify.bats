@@ -142,3 +142,41 @@ flip_l_rx() {
   "$BIN/helios-verify" derivation.json -o b.json
   cmp a.json b.json
 }
+
+# ---- issue 4: sail, free final time, corpus ------------------------------------------------
+
+# s11_derivation: the builtin derivation of the solar-sail scenario (free tf) -> derivation.json
+s11_derivation() {
+  "$BIN/helios-parse" "$ROOT/scenarios/S11/problem.txt" -o spec.json
+  "$BIN/helios-derive" spec.json -o derivation.json
+}
+
+@test "verify: the S11 sail derivation (free tf, no mass) passes, sail and free-tf checks included" {
+  s11_derivation
+  run -0 --separate-stderr "$BIN/helios-verify" derivation.json -o verify.json
+  assert_jq verify.json '.verdict == "pass"'
+  assert_jq verify.json '[.checks[].id] | contains(["control_sail", "control_sail_cone_angle", "transversality_tf"])'
+  assert_jq verify.json '[.checks[].id] | any(. == "costate_ode:l_m") | not'
+}
+
+@test "verify: a sail law with the other root of dH/dalpha = 0 fails with exit 4 naming control_law.sail" {
+  s11_derivation
+  jq '(.control_law.sail.definitions[] | select(.name == "sail_alpha") | .expression) =
+      "atan((3*sail_A-sqrt(8*sail_B^2+9*sail_A^2))/(4*sail_B))"' derivation.json >wrong.json
+  run -4 --separate-stderr "$BIN/helios-verify" wrong.json -o verify.json
+  assert_one_error_line verify
+  assert_stderr_contains "control_sail"
+  assert_jq verify.json '[.checks[] | select(.verdict == "fail") | .id] == ["control_sail"]'
+  assert_jq verify.json '.feedback | test("control_law.sail.law does not minimize H")'
+}
+
+@test "verify: every corpus case gets its expected verdict and failing checks" {
+  local corpus="$ROOT/tests/verify-corpus" n=0 file want got
+  while IFS=$'\t' read -r file want; do
+    "$BIN/helios-verify" --advisory "$corpus/$file" -o out.json
+    got=$(jq -r '[.verdict, ([.checks[] | select(.verdict == "fail") | .id] | sort | join(","))] | join(" ")' out.json)
+    [[ $got == "$want" ]] || { echo "$file: got '$got', expected '$want'" >&2; return 1; }
+    n=$((n + 1))
+  done < <(jq -r '.cases[] | [.file, .verdict + " " + (.fails | join(","))] | @tsv' "$corpus/manifest.json")
+  ((n >= 40))
+}

@@ -15,11 +15,28 @@ namespace {
 
 using helios::io::json;
 
+json derive(const std::string& scenario) {
+  const std::string path = HELIOS_SOURCE_DIR "/scenarios/" + scenario + "/problem.txt";
+  return helios::pmp::derive_from_spec(helios::spec::parse_problem_text(helios::io::read_text(path), path));
+}
+
 const json& s01() {
-  static const json derivation = [] {
-    const std::string path = HELIOS_SOURCE_DIR "/scenarios/S01/problem.txt";
-    return helios::pmp::derive_from_spec(helios::spec::parse_problem_text(helios::io::read_text(path), path));
-  }();
+  static const json derivation = derive("S01");
+  return derivation;
+}
+
+const json& s05() {
+  static const json derivation = derive("S05");
+  return derivation;
+}
+
+const json& s06() {
+  static const json derivation = derive("S06");
+  return derivation;
+}
+
+const json& s11() {
+  static const json derivation = derive("S11");
   return derivation;
 }
 
@@ -230,6 +247,146 @@ TEST(Verify, UnusableProblemStatementThrows) {
   json d = s01();
   d["dynamics"]["state_rhs"][0] = "vx+bar";
   EXPECT_THROW(helios::verify::verify_derivation(d, {}), std::invalid_argument);
+}
+
+// ---- issue 4: J2, coasting targets, the sail, free final time
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST(Verify, BuiltinJ2CoastAndSailDerivationsPassEveryCheck) {
+  for (const json* d : {&s05(), &s06(), &s11()}) {
+    const json r = verify(*d);
+    EXPECT_EQ(r["verdict"], "pass") << (*d)["problem"]["id"] << ": " << r["feedback"];
+  }
+  const json sail = verify(s11());
+  for (const std::string id :
+       {"control_sail", "control_sail_cone_angle", "transversality_tf", "tf_expression", "event_values", "state_usage"})
+    EXPECT_EQ(check(sail, id)["verdict"], "pass") << id;
+  EXPECT_EQ(check(verify(s06()), "coast_dynamics")["verdict"], "pass");
+}
+
+json& sail_alpha(json& d) {
+  for (auto& def : d["control_law"]["sail"]["definitions"])
+    if (def["name"] == "sail_alpha") return def["expression"];
+  throw std::runtime_error("no sail_alpha");
+}
+
+TEST(Verify, SailLawWithTheOtherRootFailsNamingTheLaw) {
+  json d = s11();
+  sail_alpha(d) = "atan((3*sail_A-sqrt(8*sail_B^2+9*sail_A^2))/(4*sail_B))";  // minus sign before the root
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"control_sail"});
+  const std::string fb = check(r, "control_sail")["feedback"];
+  EXPECT_TRUE(contains(fb, "control_law.sail.law does not minimize H over the admissible hemisphere")) << fb;
+  EXPECT_TRUE(contains(fb, "stationary point of H but not its minimum")) << fb;
+}
+
+TEST(Verify, SailLawOutsideTheHemisphereOrNotUnitFails) {
+  json d = s11();
+  auto& law = d["control_law"]["sail"]["law"];
+  const json right = law;
+  for (auto& l : law) l = "2*(" + l.get<std::string>() + ")";
+  EXPECT_TRUE(contains(check(verify(d), "control_sail")["feedback"], "is not a unit vector"));
+  const char* rhat[] = {"-rx/sqrt(rx^2+ry^2+rz^2)", "-ry/sqrt(rx^2+ry^2+rz^2)", "-rz/sqrt(rx^2+ry^2+rz^2)"};
+  for (int k = 0; k < 3; ++k) law[k] = rhat[k];
+  EXPECT_TRUE(contains(check(verify(d), "control_sail")["feedback"], "leaves the admissible set"));
+}
+
+TEST(Verify, SailConeAngleMustMatchTheLaw) {
+  json d = s11();
+  d["control_law"]["sail"]["cone_angle"] = "Pi/2-sail_alpha";
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"control_sail_cone_angle"});
+}
+
+TEST(Verify, SailWithAMassStateFailsG4) {
+  json d = s11();
+  d["states"].push_back({{"name", "m"}, {"meaning", "mass"}, {"unit", "kg"}, {"costate", "l_m"}});
+  d["dynamics"]["state_rhs"].push_back("0");
+  d["state_odes"].push_back({{"state", "m"}, {"rhs", "0"}});
+  d["costate_odes"].push_back({{"costate", "l_m"}, {"rhs", "0"}});
+  const json r = verify(d);
+  EXPECT_TRUE(failed_ids(r).count("state_usage"));
+  EXPECT_TRUE(contains(check(r, "state_usage")["feedback"], "a sail has no mass state"));
+}
+
+TEST(Verify, FreeFinalTimeConditionIsRecomputedFromPsi) {
+  json d = s11();
+  auto& e = equation(d, "transversality_tf")["expression"];
+  const std::string right = e;
+  e = "-(" + right + ")";  // any constant multiple is the same equation
+  EXPECT_EQ(verify(d)["verdict"], "pass");
+
+  std::string dropped = right;
+  const std::string term = "-arrival_vz_rate*l_vz_tf";
+  ASSERT_TRUE(contains(dropped, term)) << dropped;
+  dropped.erase(dropped.find(term), term.size());
+  e = dropped;
+  json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"transversality_tf"});
+  std::string fb = check(r, "transversality_tf")["feedback"];
+  EXPECT_TRUE(contains(fb, "shooting equation 'transversality_tf'")) << fb;
+  EXPECT_TRUE(contains(fb, "it lacks the term(s) -arrival_vz_rate*l_vz_tf")) << fb;
+
+  e = "H_tf";  // as if the target did not move
+  r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"transversality_tf"});
+}
+
+TEST(Verify, FreeFinalTimeAddsOneVariableAndOneEquation) {
+  json d = s11();
+  auto& vars = d["shooting"]["variables"];
+  for (auto it = vars.begin(); it != vars.end(); ++it)
+    if ((*it)["name"] == "tf_frac") {
+      vars.erase(it);
+      break;
+    }
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), (std::set<std::string>{"count", "tf_expression"}));
+  EXPECT_TRUE(contains(check(r, "tf_expression")["feedback"], "Rule 0"));
+}
+
+TEST(Verify, MissingJ2JacobianEntryIsNamed) {
+  json d = s05();
+  // l_ry' without its l_vz terms from J2: the entry d(vz')/dry of the J2 acceleration.
+  std::string rhs = costate_ode(d, "l_ry")["rhs"], kept;
+  std::string term;
+  int depth = 0;
+  for (std::size_t i = 0; i <= rhs.size(); ++i) {
+    const char ch = i < rhs.size() ? rhs[i] : '+';
+    if ((ch == '+' || ch == '-') && depth == 0 && !term.empty() && term.back() != '^' && term.back() != '*') {
+      if (!(contains(term, "J2") && contains(term, "l_vz"))) kept += term;
+      term.clear();
+    }
+    depth += ch == '(' ? 1 : ch == ')' ? -1 : 0;
+    if (i < rhs.size()) term += ch;
+  }
+  ASSERT_NE(kept, rhs);
+  costate_ode(d, "l_ry")["rhs"] = kept;
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"costate_ode:l_ry"});
+  const std::string fb = check(r, "costate_ode:l_ry")["feedback"];
+  EXPECT_TRUE(contains(fb, "coefficient of l_vz must be -d(dynamics.state_rhs[vz])/dry")) << fb;
+  EXPECT_TRUE(contains(fb, "the Jacobian entry dvz'/dry")) << fb;
+}
+
+TEST(Verify, CoastingTargetMustObeyTheSameField) {
+  json d = s06();
+  auto& rhs = d["coast_dynamics"]["rhs"];
+  rhs[5] = "-(rx^2+ry^2+rz^2)^(-3/2)*mu*rz";  // two-body only
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"coast_dynamics"});
+  EXPECT_TRUE(contains(check(r, "coast_dynamics")["feedback"], "coast_dynamics.rhs[5]"));
+}
+
+TEST(Verify, RightHandSideWithTheOptimalControlSubstitutedPasses) {
+  json d = s01();
+  costate_ode(d, "l_m")["rhs"] = "-Tmax*u*sqrt(l_vx^2+l_vy^2+l_vz^2)/m^2";  // a* = -l_v/|l_v| substituted
+  EXPECT_EQ(verify(d)["verdict"], "pass");
+  costate_ode(d, "l_m")["rhs"] = "Tmax*u*sqrt(l_vx^2+l_vy^2+l_vz^2)/m^2";  // with the maximizing direction
+  EXPECT_EQ(failed_ids(verify(d)), std::set<std::string>{"costate_ode:l_m"});
 }
 
 }  // namespace

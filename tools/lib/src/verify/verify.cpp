@@ -3,11 +3,14 @@
 #include <ginac/ginac.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -30,9 +33,12 @@ using io::json;
 using symbolic::to_text;
 using Point = std::vector<double>;
 
-constexpr double kTol = 1e-9;          // |a - b| <= kTol (1 + max(|a|, |b|)) at every point
-constexpr int kRandomDirections = 48;  // random unit vectors tried against a* at each point
-constexpr int kThrottleGrid = 40;      // intervals of the grid of u in [0, 1]
+constexpr double kTol = 1e-9;           // |a - b| <= kTol (1 + max(|a|, |b|)) at every point
+constexpr int kRandomDirections = 48;   // random unit vectors tried against a* at each point
+constexpr int kThrottleGrid = 40;       // intervals of the grid of u in [0, 1]
+constexpr int kSailCone = 12;           // cone-angle rows of the grid over the admissible hemisphere
+constexpr int kSailClock = 24;          // clock-angle columns of that grid
+constexpr int kRandomSailNormals = 64;  // random admissible sail normals tried against n* at each point
 
 // ---------------------------------------------------------------------------------------------
 // Small helpers
@@ -218,7 +224,19 @@ struct HalfPowers : GiNaC::map_function {
   }
 };
 
+// Number of nodes of an expression tree, counted up to `limit`.
+std::size_t tree_size(const ex& e, std::size_t limit) {
+  std::size_t n = 0;
+  for (auto i = e.preorder_begin(); i != e.preorder_end() && n <= limit; ++i) ++n;
+  return n;
+}
+
+// Expressions beyond this many nodes skip the exact comparison (the random points still decide):
+// GiNaC's expand/normal grow quickly on large rational forms and the verdict must stay < 1 s.
+constexpr std::size_t kExactBudget = 1500;
+
 bool exact_equal(const ex& a, const ex& b) {
+  if (tree_size(a, kExactBudget) + tree_size(b, kExactBudget) > kExactBudget) return false;
   try {
     if (symbolic::symbolically_equal(a, b)) return true;
     HalfPowers half;
@@ -346,7 +364,10 @@ enum class Kind {
   Homotopy,
   Throttle,
   Direction,
+  Sail,
   Parameter,
+  Sourced,  // a parameter the runtime evaluates (ephemeris, rate, coast): its value may be a placeholder
+  EventValue,
   Free
 };
 
@@ -358,6 +379,17 @@ Kind state_kind(const std::string& name, const std::string& meaning) {
       (name[0] == 'r' && name.size() <= 2))
     return Kind::Position;
   return Kind::OtherState;
+}
+
+// max_rel_error as reported: 3 significant digits, and 0 below 1e-13 (agreement to rounding).
+// NOTE: GiNaC orders terms by hash values, which vary between runs, so evaluations of some forms
+// differ in their last bits from run to run; the report must not.
+double reported(double v) {
+  if (!std::isfinite(v)) return 2.0;
+  if (v < 1e-13) return 0.0;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2e", v);
+  return std::strtod(buf, nullptr);
 }
 
 struct Check {
@@ -379,7 +411,7 @@ struct Check {
             {"method", method},
             {"points", points},
             {"exact", exact},
-            {"max_rel_error", std::isfinite(max_rel) ? max_rel : 2.0},
+            {"max_rel_error", reported(max_rel)},
             {"feedback", pass ? "" : feedback}};
   }
 };
@@ -417,9 +449,12 @@ class Verifier {
     check_odes(true);
     check_odes(false);
     check_direction();
+    check_sail();
     check_throttle();
     read_shooting();
+    check_coast();
     check_endpoints();
+    check_times();
     check_shooting_shape();
     check_normalization();
     check_state_usage();
@@ -435,8 +470,27 @@ class Verifier {
   std::vector<Kind> kinds_;
   std::vector<double> values_;
 
-  std::vector<std::string> states_, costates_, directions_, parameters_;
+  std::vector<std::string> states_, costates_, directions_, sails_, parameters_;
   std::string throttle_, multiplier_, eps_;
+  std::vector<std::size_t> positions_;          // indices of the position states (r-hat of the sail)
+  std::map<std::string, std::string> sources_;  // parameter -> source ("ephemeris:Mars:tf", ...)
+  // Free final time: tf = tf_expression(shooting variables); event values such as H_tf.
+  bool free_tf_ = false;
+  std::string tf_text_, tf_error_;
+  ex tf_expr_;
+  std::vector<std::string> tf_vars_;  // symbols of tf_expression declared by it (e.g. tf_frac)
+  struct EventValue {
+    std::string name, meaning;
+    bool hamiltonian = false;  // H at tf under the optimal control
+  };
+  std::vector<EventValue> events_;
+  // Uncontrolled dynamics of coasting targets.
+  bool has_coast_ = false;
+  std::vector<std::string> coast_states_;
+  std::vector<ex> coast_rhs_;
+  std::string coast_error_;
+  std::vector<ex> grad_n_;  // dH/dn of the sail normal
+  std::vector<Compiled> grad_nc_;
   std::vector<ex> f_;
   ex L_, phi_, H_;
   std::vector<Constraint> constraints_;
@@ -516,6 +570,324 @@ class Verifier {
     return set_direction(p, g);
   }
 
+  // Identifiers of an expression text that are not function names.
+  static std::vector<std::string> identifiers(const std::string& text) {
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < text.size();) {
+      const auto ch = static_cast<unsigned char>(text[i]);
+      if (!(std::isalpha(ch) || ch == '_') || (i > 0 && (std::isalnum(static_cast<unsigned char>(text[i - 1])) ||
+                                                         text[i - 1] == '_' || text[i - 1] == '.'))) {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      while (j < text.size() && (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_')) ++j;
+      std::size_t k = j;
+      while (k < text.size() && std::isspace(static_cast<unsigned char>(text[k]))) ++k;
+      if (k >= text.size() || text[k] != '(') out.push_back(text.substr(i, j - i));
+      i = j;
+    }
+    return out;
+  }
+
+  // times (free final time: tf_expression in shooting variables it introduces) and event_values.
+  void read_times_and_events() {
+    const json& times = d_.contains("times") && d_["times"].is_object() ? d_["times"] : json::object();
+    free_tf_ = times.value("final_time", "fixed") == "free";
+    if (d_.contains("event_values") && d_["event_values"].is_array())
+      for (const auto& e : d_["event_values"]) {
+        EventValue v;
+        v.name = io::require_string(e, "name", "derivation event_values");
+        v.meaning = e.value("meaning", "");
+        const std::string m = lower(v.meaning);
+        v.hamiltonian = v.name == "H_tf" || m.find("hamiltonian") != std::string::npos || m.rfind("h at tf", 0) == 0;
+        declare(v.name, Kind::EventValue);
+        events_.push_back(v);
+      }
+    if (!free_tf_) return;
+    if (!times.contains("tf_expression") || !times["tf_expression"].is_string()) {
+      tf_error_ = "times.tf_expression is missing: a free final time needs tf as an expression of a shooting variable";
+      return;
+    }
+    tf_text_ = times["tf_expression"].get<std::string>();
+    for (const auto& name : identifiers(tf_text_))
+      if (!slots_.count(name) && name != "Pi" && name != "Euler" && name != "Catalan") {
+        tf_vars_.push_back(name);
+        declare(name, Kind::Free);
+      }
+    try {
+      tf_expr_ = table_.parse(tf_text_, "times.tf_expression");
+    } catch (const std::exception& e) {
+      tf_error_ = e.what();
+    }
+    // An endpoint cost may name the final time itself (Mayer form of minimum time).
+    if (!slots_.count("tf")) declare("tf", Kind::Free);
+  }
+
+  // coast_dynamics: the state symbols of the coasting target and their uncontrolled dynamics.
+  void read_coast() {
+    if (!d_.contains("coast_dynamics")) return;
+    has_coast_ = true;
+    const json& c = d_["coast_dynamics"];
+    try {
+      if (!c.is_object() || !c.contains("states") || !c["states"].is_array() || !c.contains("rhs") ||
+          !c["rhs"].is_array())
+        throw std::invalid_argument("coast_dynamics must have arrays states and rhs");
+      std::vector<std::size_t> rv;
+      for (std::size_t i = 0; i < states_.size(); ++i) {
+        const Kind k = kinds_[static_cast<std::size_t>(slot(states_[i]))];
+        if (k == Kind::Position || k == Kind::Velocity) rv.push_back(i);
+      }
+      for (std::size_t i = 0; i < c["states"].size(); ++i) {
+        const std::string name = c["states"][i].is_string() ? c["states"][i].get<std::string>() : "";
+        const Kind k = i < rv.size() ? kinds_[static_cast<std::size_t>(slot(states_[rv[i]]))] : Kind::Free;
+        // The coast states may reuse the problem's own r, v names (same order), or be new symbols.
+        if (!(i < rv.size() && name == states_[rv[i]])) {
+          if (slots_.count(name))
+            throw std::invalid_argument("coast_dynamics.states: '" + name + "' is already a symbol of the problem");
+          declare(name, k);
+        }
+        coast_states_.push_back(name);
+      }
+      for (std::size_t i = 0; i < c["rhs"].size(); ++i)
+        coast_rhs_.push_back(statement(c["rhs"][i], "coast_dynamics.rhs[" + std::to_string(i) + "]"));
+    } catch (const std::exception& e) {
+      coast_error_ = e.what();
+    }
+  }
+
+  // ----- the sail normal n: |n| = 1, n.r_hat >= 0
+
+  using Vec3 = std::array<double, 3>;
+  static double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+  Vec3 r_hat(const Point& p) const {
+    Vec3 r{};
+    for (std::size_t k = 0; k < 3; ++k) r[k] = p[static_cast<std::size_t>(slot(states_[positions_[k]]))];
+    const double n = std::sqrt(dot(r, r));
+    for (auto& x : r) x /= n;
+    return r;
+  }
+  Point set_sail(Point p, const Vec3& n) const {
+    for (std::size_t k = 0; k < 3; ++k) p[static_cast<std::size_t>(slot(sails_[k]))] = n[k];
+    return p;
+  }
+  Vec3 sail_of(const Point& p) const {
+    Vec3 n{};
+    for (std::size_t k = 0; k < 3; ++k) n[k] = p[static_cast<std::size_t>(slot(sails_[k]))];
+    return n;
+  }
+  Vec3 random_admissible(const Point& p) {
+    const Vec3 rh = r_hat(p);
+    const auto u = random_unit(3);
+    Vec3 n{u[0], u[1], u[2]};
+    const double c = dot(n, rh);
+    if (c < 0)
+      for (std::size_t k = 0; k < 3; ++k) n[k] -= 2 * c * rh[k];
+    return n;
+  }
+  // n = cos(theta) r_hat + sin(theta) (cos(phi) e1 + sin(phi) e2), theta in [0, pi/2].
+  struct SailFrame {
+    Vec3 r, e1, e2;
+    Vec3 at(double theta, double phi) const {
+      Vec3 n{};
+      for (std::size_t k = 0; k < 3; ++k)
+        n[k] = std::cos(theta) * r[k] + std::sin(theta) * (std::cos(phi) * e1[k] + std::sin(phi) * e2[k]);
+      return n;
+    }
+  };
+  SailFrame sail_frame(const Point& p) const {
+    SailFrame f;
+    f.r = r_hat(p);
+    const std::size_t k = std::fabs(f.r[0]) < 0.6 ? 0 : (std::fabs(f.r[1]) < 0.6 ? 1 : 2);
+    Vec3 t{};
+    t[k] = 1;
+    const double c = dot(t, f.r);
+    for (std::size_t j = 0; j < 3; ++j) f.e1[j] = t[j] - c * f.r[j];
+    const double n = std::sqrt(dot(f.e1, f.e1));
+    for (auto& x : f.e1) x /= n;
+    f.e2 = {f.r[1] * f.e1[2] - f.r[2] * f.e1[1], f.r[2] * f.e1[0] - f.r[0] * f.e1[2],
+            f.r[0] * f.e1[1] - f.r[1] * f.e1[0]};
+    return f;
+  }
+
+  // The verifier's own minimizer of H over the admissible hemisphere, found numerically (a grid
+  // in cone and clock angle, then a shrinking pattern search): it knows nothing of a closed form.
+  Vec3 optimal_sail(const Point& p) const {
+    const SailFrame f = sail_frame(p);
+    const double half_pi = 1.5707963267948966, two_pi = 6.283185307179586;
+    auto h = [&](double theta, double phi) {
+      theta = std::clamp(theta, 0.0, half_pi);
+      return Hc_(set_sail(p, f.at(theta, phi)));
+    };
+    // Grid rows: uniform in the cone angle, plus rows closing in on the rim geometrically (a
+    // minimum next to the rim sits in a thin sliver a uniform grid can miss).
+    std::vector<double> rows;
+    for (int i = 1; i <= kSailCone; ++i) rows.push_back(half_pi * i / kSailCone);
+    for (int k = 5; k <= 17; k += 3) rows.push_back(half_pi * (1 - std::ldexp(1.0, -k)));
+    struct Start {
+      double h, t, p;
+    };
+    std::vector<Start> grid{{h(0, 0), 0, 0}};
+    for (double t : rows)
+      for (int j = 0; j < kSailClock; ++j) grid.push_back({h(t, two_pi * j / kSailClock), t, two_pi * j / kSailClock});
+    std::sort(grid.begin(), grid.end(), [](const Start& a, const Start& b) { return a.h < b.h; });
+    Vec3 best{};
+    double best_h = std::numeric_limits<double>::infinity();
+    for (std::size_t s = 0; s < std::min<std::size_t>(3, grid.size()); ++s) {
+      double bt = grid[s].t, bp = grid[s].p, bh = grid[s].h;
+      double step_t = std::max(1e-4, std::min(half_pi / kSailCone, (half_pi - bt) / 2)), step_p = two_pi / kSailClock;
+      while (step_t > 1e-9) {
+        bool moved = false;
+        for (const auto& [dt, dp] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
+          const double t = std::clamp(bt + dt * step_t, 0.0, half_pi), ph = bp + dp * step_p, v = h(t, ph);
+          if (v < bh) {
+            bh = v;
+            bt = t;
+            bp = ph;
+            moved = true;
+          }
+        }
+        if (!moved) {
+          step_t /= 2;
+          step_p /= 2;
+        }
+      }
+      const Vec3 n = polish_sail(p, f.at(bt, bp));
+      const double hn = Hc_(set_sail(p, n));
+      if (hn < best_h) {
+        best_h = hn;
+        best = n;
+      }
+    }
+    return best;
+  }
+
+  // Relative norm of the part of dH/dn tangent to the unit sphere at n (0 at an interior optimum).
+  double sail_tangential(const Point& p, const Vec3& n) const {
+    const Point q = set_sail(p, n);
+    const Vec3 g{grad_nc_[0](q), grad_nc_[1](q), grad_nc_[2](q)};
+    const double gn = dot(g, n);
+    Vec3 t{};
+    for (std::size_t k = 0; k < 3; ++k) t[k] = g[k] - gn * n[k];
+    return std::isfinite(gn) ? std::sqrt(dot(t, t)) / (1 + std::sqrt(dot(g, g))) : 2.0;
+  }
+
+  // Comparing values of H finds n* only to ~sqrt(machine epsilon); Newton on the tangential part
+  // of dH/dn (zero at an interior minimum) brings it to full precision.
+  Vec3 polish_sail(const Point& p, Vec3 n) const {
+    const Vec3 rh = r_hat(p);
+    if (dot(n, rh) < 1e-3) return n;  // on (or next to) the rim: no stationarity to solve
+    auto unit = [](Vec3 v) {
+      const double l = std::sqrt(dot(v, v));
+      for (auto& x : v) x /= l;
+      return v;
+    };
+    const double h0 = Hc_(set_sail(p, n));
+    Vec3 best = n;
+    for (int it = 0; it < 6; ++it) {
+      // Tangent basis at n, and F(s, t) = tangential gradient at unit(n + s b1 + t b2) on (b1, b2).
+      Vec3 b1{}, b2{};
+      const Vec3 seed = std::fabs(n[0]) < 0.6 ? Vec3{1, 0, 0} : (std::fabs(n[1]) < 0.6 ? Vec3{0, 1, 0} : Vec3{0, 0, 1});
+      const double c = dot(seed, n);
+      for (std::size_t k = 0; k < 3; ++k) b1[k] = seed[k] - c * n[k];
+      b1 = unit(b1);
+      b2 = {n[1] * b1[2] - n[2] * b1[1], n[2] * b1[0] - n[0] * b1[2], n[0] * b1[1] - n[1] * b1[0]};
+      auto F = [&](double s, double t) {
+        Vec3 m{};
+        for (std::size_t k = 0; k < 3; ++k) m[k] = n[k] + s * b1[k] + t * b2[k];
+        m = unit(m);
+        const Point q = set_sail(p, m);
+        const Vec3 g{grad_nc_[0](q), grad_nc_[1](q), grad_nc_[2](q)};
+        const double gm = dot(g, m);
+        return std::array<double, 2>{dot(g, b1) - gm * dot(m, b1), dot(g, b2) - gm * dot(m, b2)};
+      };
+      const auto F0 = F(0, 0);
+      if (std::fabs(F0[0]) + std::fabs(F0[1]) < 1e-15) break;
+      const double e = 1e-7;
+      const auto Fs = F(e, 0), Ft = F(0, e);
+      const double j11 = (Fs[0] - F0[0]) / e, j21 = (Fs[1] - F0[1]) / e, j12 = (Ft[0] - F0[0]) / e,
+                   j22 = (Ft[1] - F0[1]) / e, det = j11 * j22 - j12 * j21;
+      if (!(std::fabs(det) > 0) || !std::isfinite(det)) break;
+      const double ds = -(j22 * F0[0] - j12 * F0[1]) / det, dt = -(-j21 * F0[0] + j11 * F0[1]) / det;
+      if (std::fabs(ds) + std::fabs(dt) > 0.1) break;
+      Vec3 m{};
+      for (std::size_t k = 0; k < 3; ++k) m[k] = n[k] + ds * b1[k] + dt * b2[k];
+      n = unit(m);
+    }
+    // Keep the polished point only if it is admissible and no worse than the search's.
+    const double h1 = Hc_(set_sail(p, n));
+    if (dot(n, rh) >= 0 && std::isfinite(h1) && h1 <= h0 + 1e-12 * (1 + std::fabs(h0))) best = n;
+    return best;
+  }
+
+  // p with the controls at the verifier's own optimum: a* = -g/|g|, n* numerically, and (with
+  // `throttle`) u* minimizing H over [0, 1] (grid, then golden section).
+  Point optimal_controls(const Point& p, bool throttle) const {
+    Point q = p;
+    if (!sails_.empty()) q = set_sail(q, optimal_sail(q));
+    if (throttle && !throttle_.empty()) {
+      const auto us = static_cast<std::size_t>(slot(throttle_));
+      auto h = [&](double u) {
+        Point r = q;
+        r[us] = u;
+        return Hc_(with_direction(r, u));
+      };
+      int best = 0;
+      for (int k = 1; k <= kThrottleGrid; ++k)
+        if (h(static_cast<double>(k) / kThrottleGrid) < h(static_cast<double>(best) / kThrottleGrid)) best = k;
+      double a = std::max(0, best - 1) / static_cast<double>(kThrottleGrid);
+      double b = std::min(kThrottleGrid, best + 1) / static_cast<double>(kThrottleGrid);
+      const double g = 0.6180339887498949;
+      for (int it = 0; it < 80 && b - a > 1e-13; ++it) {
+        const double x1 = b - g * (b - a), x2 = a + g * (b - a);
+        if (h(x1) <= h(x2))
+          b = x2;
+        else
+          a = x1;
+      }
+      double u = 0.5 * (a + b);
+      for (double end : {0.0, 1.0})
+        if (h(end) <= h(u)) u = end;
+      q[us] = u;
+      return with_direction(q, u);
+    }
+    return with_direction(q, std::nan(""));
+  }
+
+  // The point as seen at tf: states and costates take their _tf values, controls their optimum.
+  Point at_tf(const Point& p) const {
+    Point q = p;
+    for (std::size_t i = 0; i < states_.size(); ++i) {
+      q[static_cast<std::size_t>(slot(states_[i]))] = p[static_cast<std::size_t>(slot(states_[i] + "_tf"))];
+      q[static_cast<std::size_t>(slot(costates_[i]))] = p[static_cast<std::size_t>(slot(costates_[i] + "_tf"))];
+    }
+    return optimal_controls(q, true);
+  }
+
+  // control_law.sail.definitions: named intermediate expressions (e.g. sail_A, sail_B, sail_alpha),
+  // each in the problem's symbols and the earlier definitions; the sail law is read with them inlined.
+  void read_sail_definitions() {
+    if (!d_.contains("control_law") || !d_["control_law"].is_object() || !d_["control_law"].contains("sail") ||
+        !d_["control_law"]["sail"].is_object() || !d_["control_law"]["sail"].contains("definitions"))
+      return;
+    try {
+      const json& defs = d_["control_law"]["sail"]["definitions"];
+      if (!defs.is_array()) throw std::invalid_argument("control_law.sail.definitions must be an array");
+      for (const auto& def : defs) {
+        const std::string name = def.is_object() ? def.value("name", "") : "";
+        const std::string where = "control_law.sail.definitions[" + name + "]";
+        if (slots_.count(name)) throw std::invalid_argument(where + ": the name is already a symbol of the problem");
+        const ex e = statement(def.is_object() && def.contains("expression") ? def["expression"] : json(), where);
+        declare(name, Kind::Free);
+        sail_definitions_[sym(name)] = e.subs(sail_definitions_);
+      }
+    } catch (const std::exception& e) {
+      sail_definitions_error_ = e.what();
+    }
+  }
+  GiNaC::exmap sail_definitions_;
+  std::string sail_definitions_error_;
+
   void read_problem() {
     const json& d = d_;
     if (!d.is_object()) throw input_error("derivation: not a JSON object");
@@ -550,17 +922,30 @@ class Verifier {
       } else if (kind == "direction") {
         directions_.push_back(name);
         declare(name, Kind::Direction);
+      } else if (kind == "sail_normal") {
+        sails_.push_back(name);
+        declare(name, Kind::Sail);
       } else {
         throw input_error("derivation: control " + name + " has unknown kind '" + kind + "'");
       }
     }
+    for (std::size_t i = 0; i < states_.size(); ++i)
+      if (kinds_[static_cast<std::size_t>(slot(states_[i]))] == Kind::Position) positions_.push_back(i);
+    if (!sails_.empty() && (sails_.size() != 3 || positions_.size() != 3))
+      throw input_error(
+          "derivation: a sail normal needs three controls of kind sail_normal and three position states, got " +
+          std::to_string(sails_.size()) + " and " + std::to_string(positions_.size()));
     for (const auto& p : parameters) {
       const std::string name = io::require_string(p, "name", "derivation parameters");
       parameters_.push_back(name);
-      declare(name, Kind::Parameter, io::require_number(p, "value", "derivation parameter " + name));
+      const bool sourced = p.contains("source") && p["source"].is_string();
+      declare(name, sourced ? Kind::Sourced : Kind::Parameter,
+              io::require_number(p, "value", "derivation parameter " + name));
+      if (sourced) sources_[name] = p["source"].get<std::string>();
     }
     declare(multiplier_, Kind::Multiplier);
     declare(eps_, Kind::Homotopy);
+    read_times_and_events();
     if (d.contains("constraints") && d["constraints"].is_array())
       for (const auto& c : d["constraints"])
         if (c.contains("multipliers") && c["multipliers"].is_array())
@@ -596,12 +981,19 @@ class Verifier {
       }
     }
 
+    read_coast();
+    read_sail_definitions();
+
     H_ = sym(multiplier_) * L_;
     for (std::size_t i = 0; i < states_.size(); ++i) H_ += sym(costates_[i]) * f_[i];
     Hc_ = compile(H_);
     for (const auto& a : directions_) {
       grad_a_.push_back(H_.diff(GiNaC::ex_to<symbol>(sym(a))));
       grad_ac_.push_back(compile(grad_a_.back()));
+    }
+    for (const auto& n : sails_) {
+      grad_n_.push_back(H_.diff(GiNaC::ex_to<symbol>(sym(n))));
+      grad_nc_.push_back(compile(grad_n_.back()));
     }
     // Until the derivation's own law is verified, exact checks use a* = -g/|g| at full thrust.
     ex norm2 = 0;
@@ -619,6 +1011,7 @@ class Verifier {
     for (const auto& fi : f_) statement.push_back(compile(fi));
     statement.push_back(Hc_);
     for (const auto& c : grad_ac_) statement.push_back(c);
+    for (const auto& c : grad_nc_) statement.push_back(c);
     const int max_draws = 200 * opt_.points;
     for (int draw = 0; draw < max_draws && static_cast<int>(points_.size()) < opt_.points; ++draw) {
       Point p(values_.size());
@@ -649,10 +1042,15 @@ class Verifier {
             p[i] = uniform(0, 1);
             break;
           case Kind::Direction:
+          case Kind::Sail:
+          case Kind::EventValue:
             p[i] = 0;
             break;
           case Kind::Parameter:
             p[i] = values_[i];
+            break;
+          case Kind::Sourced:
+            p[i] = (uniform(0, 1) < 0.5 ? -1 : 1) * uniform(0.5, 1.5);
             break;
           case Kind::Free:
             p[i] = uniform(-1, 1);
@@ -660,8 +1058,17 @@ class Verifier {
         }
       }
       if (!directions_.empty()) p = set_direction(p, random_unit(directions_.size()));
+      if (!sails_.empty()) p = set_sail(p, random_admissible(p));
       bool finite = true;
       for (const auto& c : statement) finite = finite && std::isfinite(c(p));
+      if (!finite) continue;
+      // Event values are what the runtime evaluates: H_tf is H at the _tf values, optimal controls.
+      for (const auto& v : events_)
+        if (v.hamiltonian) {
+          const double h = Hc_(at_tf(p));
+          if (!std::isfinite(h)) finite = false;
+          p[static_cast<std::size_t>(slot(v.name))] = h;
+        }
       if (finite) points_.push_back(std::move(p));
     }
     if (points_.empty() || static_cast<int>(points_.size()) < opt_.points)
@@ -769,8 +1176,32 @@ class Verifier {
         checks_.push_back(c);
         continue;
       }
-      Check c = equality(id, category, field + "[" + name + "]", expected_name, {expected, compile(expected), {}},
-                         entry->contains("rhs") ? (*entry)["rhs"] : json(), true);
+      const json given_text = entry->contains("rhs") ? (*entry)["rhs"] : json();
+      // A right-hand side with the optimal control substituted (no control symbols left) is
+      // compared with the expected one at the verifier's own optimal controls: at the optimum
+      // both are the same function (envelope theorem).
+      std::function<Point(const Point&)> at;
+      ex given;
+      bool parsed = false;
+      try {
+        given = statement(given_text, field + "[" + name + "]");
+        parsed = true;
+      } catch (const std::exception&) {
+      }
+      if (parsed) {
+        bool dropped = false, throttle_dropped = false;
+        for (const auto* list : {&directions_, &sails_})
+          for (const auto& u : *list) dropped = dropped || (expected.has(sym(u)) && !given.has(sym(u)));
+        if (!throttle_.empty()) throttle_dropped = expected.has(sym(throttle_)) && !given.has(sym(throttle_));
+        if (dropped || throttle_dropped)
+          at = [this, throttle_dropped](const Point& p) { return optimal_controls(p, throttle_dropped); };
+      }
+      Check c = equality(id, category, field + "[" + name + "]", expected_name, {expected, compile(expected), at},
+                         given_text, true);
+      if (!c.pass && !state && parsed && !at && c.feedback.find("whole expression is flipped") == std::string::npos) {
+        const std::string j = jacobian_diagnosis(i, given);
+        if (!j.empty()) c.feedback += " " + j;
+      }
       if (!order.empty() && c.pass) c.fail(order + ".");
       checks_.push_back(c);
     }
@@ -784,6 +1215,34 @@ class Verifier {
              " of this problem; remove it.");
       checks_.push_back(c);
     }
+  }
+
+  // Which block of -dH/dx_i = -lambda0 dL/dx_i - sum_j lambda_j df_j/dx_i a wrong costate
+  // equation gets wrong: its coefficient of each multiplier against the Jacobian entry.
+  std::string jacobian_diagnosis(std::size_t i, const ex& given) const {
+    const symbol& x = GiNaC::ex_to<symbol>(sym(states_[i]));
+    std::vector<std::string> parts;
+    for (std::size_t j = 0; j <= states_.size(); ++j) {
+      const bool cost = j == states_.size();
+      const std::string lname = cost ? multiplier_ : costates_[j];
+      const symbol& l = GiNaC::ex_to<symbol>(sym(lname));
+      const ex want = -(cost ? L_ : f_[j]).diff(x), got = given.diff(l);
+      const Compiled wc = compile(want), gc = compile(got);
+      double worst = 0;
+      for (const auto& p : points_) worst = std::max(worst, rel_diff(wc(p), gc(p)));
+      if (worst <= 1e-7) continue;
+      const std::string entry = cost ? "dynamics.running_cost" : "dynamics.state_rhs[" + states_[j] + "]";
+      const ex miss = tidy((want - got).expand());
+      const std::string miss_text = print(miss);
+      std::string part = "its coefficient of " + lname + " must be -d(" + entry + ")/d" + states_[i];
+      if (got.expand().is_zero())
+        part += ", but " + lname + " is missing altogether";
+      else if (miss_text.size() <= 240)
+        part += ", and it misses " + lname + "*(" + miss_text + ")";
+      parts.push_back(part + " (the Jacobian entry d" + (cost ? "L" : states_[j] + "'") + "/d" + states_[i] + ")");
+    }
+    if (parts.empty()) return "";
+    return "In costate_odes[" + costates_[i] + "]: " + join(parts, "; ") + ".";
   }
 
   std::string gradient_text() const {
@@ -895,6 +1354,152 @@ class Verifier {
       astar_sym_ = law;  // verified: the exact throttle checks may use the derivation's own form
     }
     checks_.push_back(c);
+  }
+
+  std::string vec_text(const Vec3& v) const { return "(" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) + ")"; }
+  static double cone_of(const Vec3& n, const Vec3& r) {
+    const Vec3 x{n[1] * r[2] - n[2] * r[1], n[2] * r[0] - n[0] * r[2], n[0] * r[1] - n[1] * r[0]};
+    return std::atan2(std::sqrt(dot(x, x)), dot(n, r));
+  }
+
+  // The sail law: n* admissible (|n*| = 1, n*.r_hat >= 0), stationary on the unit sphere (the
+  // tangential part of dH/dn vanishes, so dH/dalpha = 0 in the plane of r_hat and n*), and the
+  // minimum of H over the hemisphere (against the verifier's own numerical minimizer and random
+  // admissible normals). The cone angle must be the angle between n* and r_hat.
+  void check_sail() {
+    if (sails_.empty()) return;
+    Check c = start("control_sail", "control", "random_points");
+    Check ca = start("control_sail_cone_angle", "control", "random_points");
+    const std::string names = "(" + join(sails_, ", ") + ")";
+    const std::string set = "the admissible hemisphere |n| = 1, n.r_hat >= 0";
+    const json* sail = nullptr;
+    if (d_.contains("control_law") && d_["control_law"].is_object() && d_["control_law"].contains("sail"))
+      sail = &d_["control_law"]["sail"];
+    std::vector<Compiled> lc;
+    Compiled cone;
+    std::string error;
+    try {
+      if (!sail || !sail->is_object())
+        throw std::invalid_argument("control_law.sail is missing: give the law of the sail normal " + names +
+                                    " minimizing H over " + set + ", and its cone angle");
+      std::vector<std::string> listed;
+      for (const auto& x : sail->value("controls", json::array()))
+        listed.push_back(x.is_string() ? x.get<std::string>() : x.dump());
+      if (listed != sails_)
+        throw std::invalid_argument("control_law.sail.controls is (" + join(listed, ", ") + "), expected " + names +
+                                    " (the controls of kind sail_normal, in order)");
+      const json law = sail->value("law", json::array());
+      if (!law.is_array() || law.size() != 3)
+        throw std::invalid_argument("control_law.sail.law must give one expression per sail control " + names);
+      if (!sail_definitions_error_.empty()) throw std::invalid_argument(sail_definitions_error_);
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::string where = "control_law.sail.law[" + sails_[k] + "]";
+        const ex e = statement(law[k], where).subs(sail_definitions_);
+        for (const auto& n : sails_)
+          if (e.has(sym(n))) throw std::invalid_argument(where + " depends on the sail control " + n);
+        lc.push_back(compile(e));
+      }
+      const ex a =
+          statement(sail->contains("cone_angle") ? (*sail)["cone_angle"] : json(), "control_law.sail.cone_angle")
+              .subs(sail_definitions_);
+      cone = compile(a);
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    if (!error.empty()) {
+      c.max_rel = ca.max_rel = 2;
+      c.fail(error + ".");
+      ca.fail(error + ".");
+      checks_.push_back(c);
+      checks_.push_back(ca);
+      return;
+    }
+    std::mt19937_64 saved = rng_;
+    rng_.seed(0x8CB92BA72F3D8DD7ULL ^ opt_.seed);
+    double unit_err = 0, adm_err = 0, worse = 0, stat_err = 0;
+    std::string unit_msg, adm_msg, worse_msg, stat_msg;
+    std::vector<Vec3> laws;
+    for (const auto& p : points_) {
+      const Vec3 n{lc[0](p), lc[1](p), lc[2](p)}, rh = r_hat(p);
+      laws.push_back(n);
+      const double norm = std::sqrt(dot(n, n));
+      const double ue = rel_diff(norm, 1.0);
+      if (ue > unit_err) {
+        unit_err = ue;
+        unit_msg = "control_law.sail.law is not a unit vector: |n*| = " + num(norm) + " at a sample point.";
+      }
+      const double nr = dot(n, rh);
+      if (std::isfinite(nr) && -nr > adm_err) {
+        adm_err = -nr;
+        adm_msg = "control_law.sail.law leaves the admissible set: n*.r_hat = " + num(nr) +
+                  " < 0 at a sample point (the sail cannot face away from the Sun; cone angle in [0, pi/2]).";
+      }
+      const double hn = Hc_(set_sail(p, n));
+      auto compare = [&](const Vec3& m) {
+        const double hm = Hc_(set_sail(p, m));
+        const double v = std::isfinite(hn) ? (hn - hm) / (1 + std::max(std::fabs(hn), std::fabs(hm))) : 2.0;
+        if (v > worse) {
+          worse = v;
+          worse_msg = "control_law.sail.law does not minimize H over " + set +
+                      ": at a sample point it gives n* = " + vec_text(n) + " (cone angle " + num(cone_of(n, rh)) +
+                      " rad) with H = " + num(hn) + ", but n = " + vec_text(m) + " (cone angle " + num(cone_of(m, rh)) +
+                      " rad) gives H = " + num(hm);
+        }
+      };
+      compare(optimal_sail(p));
+      for (int k = 0; k < kRandomSailNormals; ++k) compare(random_admissible(p));
+      // Stationarity on the unit sphere where n* is inside the hemisphere.
+      const Point q = set_sail(p, n);
+      const Vec3 g{grad_nc_[0](q), grad_nc_[1](q), grad_nc_[2](q)};
+      if (nr > 1e-6 && std::fabs(norm - 1) < 1e-6) {
+        const double gn = dot(g, n);
+        Vec3 t{};
+        for (std::size_t k = 0; k < 3; ++k) t[k] = g[k] - gn * n[k];
+        const double se = std::isfinite(gn) ? std::sqrt(dot(t, t)) / (1 + std::sqrt(dot(g, g))) : 2.0;
+        if (se > stat_err) {
+          stat_err = se;
+          stat_msg =
+              "control_law.sail.law is not a stationary point of H on the unit sphere: at a sample point the "
+              "part of dH/dn = " +
+              vec_text(g) + " tangent to the sphere at n* = " + vec_text(n) + " has norm " + num(std::sqrt(dot(t, t))) +
+              " (dH/dalpha != 0 at the given cone angle); solve dH/dalpha = 0 for the cone angle alpha in the "
+              "plane of r_hat and the costate direction and take the root of smallest H.";
+        }
+      }
+    }
+    rng_ = saved;
+    c.max_rel = std::min(2.0, std::max({unit_err, adm_err, worse, stat_err}));
+    if (unit_err > kTol) {
+      c.fail(unit_msg);
+    } else if (adm_err > kTol) {
+      c.fail(adm_msg);
+    } else if (worse > kTol) {
+      c.fail(worse_msg + (stat_err <= kTol
+                              ? "; the law is a stationary point of H but not its minimum (a wrong root "
+                                "of dH/dalpha = 0, or a maximizer): take the root of smallest H."
+                              : "; solve dH/dalpha = 0 for the cone angle and take the root of smallest H."));
+    } else if (stat_err > kTol) {
+      c.fail(stat_msg);
+    }
+    // The cone angle: against the law once verified, else against the verifier's own minimizer
+    // where that is an interior stationary point resolved to full precision.
+    const double tol = c.pass ? kTol : 1e-6;
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const Point& p = points_[i];
+      const Vec3 rh = r_hat(p), n = c.pass ? laws[i] : optimal_sail(p);
+      const double want = cone_of(n, rh), got = cone(p);
+      const bool comparable = c.pass || (dot(n, rh) > 1e-3 && sail_tangential(p, n) < 1e-12);
+      const double err = comparable ? rel_diff(got, want) : 0.0;
+      ca.max_rel = std::max(ca.max_rel, err);
+      if (!(got >= -kTol && got <= 1.5707963267948966 + kTol))
+        ca.fail("control_law.sail.cone_angle gives " + num(got) + " rad at a sample point, outside [0, pi/2].");
+      else if (err > tol)
+        ca.fail("control_law.sail.cone_angle is not the angle between r_hat and the " +
+                std::string(c.pass ? "sail law" : "sail normal minimizing H") + ": at a sample point it gives " +
+                num(got) + " rad, expected " + num(want) + " rad.");
+    }
+    checks_.push_back(c);
+    checks_.push_back(ca);
   }
 
   void check_throttle() {
@@ -1183,6 +1788,248 @@ class Verifier {
       checks_.push_back(c);
     }
     fixed_at_t0_ = at_t0;
+    if (free_tf_) check_free_tf(to_tf);
+  }
+
+  // Time derivatives of the parameters that move with tf: an ephemeris component has its
+  // ephemeris_rate partner (same body; the parameter named <name>_rate, else the same position
+  // among that body's rates), a coasting target's component the coast dynamics.
+  std::map<std::string, ex> tf_rates(std::vector<std::string>& problems) const {
+    std::map<std::string, ex> rates;
+    std::map<std::string, std::vector<std::string>> ephem, rate, coast;  // by body / constraint
+    for (const auto& name : parameters_) {
+      const auto it = sources_.find(name);
+      if (it == sources_.end()) continue;
+      const std::string& src = it->second;
+      const auto a = src.find(':'), b = src.rfind(':');
+      if (a == std::string::npos || b == a || src.substr(b + 1) != "tf") continue;
+      const std::string kind = src.substr(0, a), owner = src.substr(a + 1, b - a - 1);
+      (kind == "ephemeris" ? ephem : kind == "ephemeris_rate" ? rate : coast)[owner].push_back(name);
+    }
+    for (const auto& [body, names] : ephem) {
+      const auto& r = rate[body];
+      for (std::size_t k = 0; k < names.size(); ++k) {
+        const auto named = std::find(r.begin(), r.end(), names[k] + "_rate");
+        if (named != r.end())
+          rates[names[k]] = sym(*named);
+        else if (r.size() == names.size())
+          rates[names[k]] = sym(r[k]);
+        else
+          problems.push_back("parameter " + names[k] + " (source ephemeris:" + body +
+                             ":tf) moves with tf but has no parameter with source ephemeris_rate:" + body + ":tf");
+      }
+    }
+    for (const auto& [owner, names] : coast) {
+      if (!has_coast_ || !coast_error_.empty() || names.size() != coast_states_.size() ||
+          coast_rhs_.size() != coast_states_.size()) {
+        problems.push_back("the coasting target of " + owner + " (" + join(names, ", ") +
+                           ") has no usable coast_dynamics to give its rate");
+        continue;
+      }
+      GiNaC::exmap to_params;
+      for (std::size_t k = 0; k < names.size(); ++k) to_params[sym(coast_states_[k])] = sym(names[k]);
+      for (std::size_t k = 0; k < names.size(); ++k) rates[names[k]] = coast_rhs_[k].subs(to_params);
+    }
+    return rates;
+  }
+
+  // Free final time: H(tf) + dPhi/dtf = 0 with Phi = lambda0 phi + nu.psi, where nu is eliminated
+  // through lambda(tf) = dPhi/dx(tf) and dpsi/dtf comes from the parameters that move with tf.
+  void check_free_tf(GiNaC::exmap to_tf) {
+    Check c = start("transversality_tf", "transversality", "random_points+exact");
+    for (const auto& l : costates_) to_tf[sym(l)] = sym(l + "_tf");
+    std::vector<std::string> problems;
+    const std::map<std::string, ex> rates = tf_rates(problems);
+    const EventValue* H_tf = nullptr;
+    for (const auto& v : events_)
+      if (v.hamiltonian && !H_tf) H_tf = &v;
+    if (!H_tf)
+      problems.push_back(
+          "event_values must declare the Hamiltonian at tf (e.g. {\"name\": \"H_tf\", \"meaning\": \"H at tf under "
+          "the optimal control\"}) for the free-final-time condition");
+    std::vector<ex> psi, dpsi;
+    for (const auto& k : constraints_)
+      if (k.at == "tf")
+        for (const auto& e : k.psi) {
+          ex d = slots_.count("tf") ? e.diff(GiNaC::ex_to<symbol>(sym("tf"))) : ex(0);
+          for (const auto& [name, rate] : rates) d += e.diff(GiNaC::ex_to<symbol>(sym(name))) * rate;
+          psi.push_back(e);
+          dpsi.push_back(d);
+        }
+    // nu from m independent rows of lambda_i(tf) - lambda0 dphi/dx_i = sum_j nu_j dpsi_j/dx_i.
+    const std::size_t m = psi.size(), n = states_.size();
+    const ex lambda0 = sym(multiplier_);
+    ex expected;
+    try {
+      if (!problems.empty()) throw std::invalid_argument(join(problems, "; "));
+      std::vector<std::vector<ex>> J(m, std::vector<ex>(n));
+      std::vector<std::vector<double>> Jn(m, std::vector<double>(n));
+      for (std::size_t j = 0; j < m; ++j)
+        for (std::size_t i = 0; i < n; ++i) {
+          J[j][i] = psi[j].diff(GiNaC::ex_to<symbol>(sym(states_[i])));
+          Jn[j][i] = compile(J[j][i])(points_[0]);
+        }
+      std::vector<std::size_t> rows;  // state indices of the pivots
+      for (std::size_t j = 0; j < m; ++j) {
+        std::size_t best = n;
+        for (std::size_t i = 0; i < n; ++i)
+          if (std::find(rows.begin(), rows.end(), i) == rows.end() &&
+              (best == n || std::fabs(Jn[j][i]) > std::fabs(Jn[j][best])))
+            best = i;
+        if (best == n || !(std::fabs(Jn[j][best]) > 1e-12))
+          throw std::invalid_argument("the final constraints' psi are not independent in the states");
+        for (std::size_t k = j + 1; k < m; ++k) {
+          const double f = Jn[k][best] / Jn[j][best];
+          for (std::size_t i = 0; i < n; ++i) Jn[k][i] -= f * Jn[j][i];
+        }
+        rows.push_back(best);
+      }
+      GiNaC::matrix M(static_cast<unsigned>(m), static_cast<unsigned>(m)), rhs(static_cast<unsigned>(m), 1),
+          nu(static_cast<unsigned>(m), 1);
+      for (std::size_t r = 0; r < m; ++r) {
+        const std::size_t i = rows[r];
+        for (std::size_t j = 0; j < m; ++j) M(static_cast<unsigned>(r), static_cast<unsigned>(j)) = J[j][i];
+        rhs(static_cast<unsigned>(r), 0) =
+            sym(costates_[i]) - lambda0 * phi_.diff(GiNaC::ex_to<symbol>(sym(states_[i])));
+        nu(static_cast<unsigned>(r), 0) = symbol("helios_nu_" + std::to_string(r));
+      }
+      const GiNaC::matrix sol = m == 0 ? GiNaC::matrix(0, 1) : M.solve(nu, rhs);
+      expected = H_tf ? sym(H_tf->name) : ex(0);
+      if (slots_.count("tf")) expected += lambda0 * phi_.diff(GiNaC::ex_to<symbol>(sym("tf")));
+      for (std::size_t j = 0; j < m; ++j) expected += sol(static_cast<unsigned>(j), 0) * dpsi[j];
+      expected = GiNaC::normal(expected.subs(to_tf)).expand();
+    } catch (const std::exception& e) {
+      c.max_rel = 2;
+      c.fail("cannot form the free-final-time condition H(tf) + dPhi/dtf = 0: " + std::string(e.what()) + ".");
+      checks_.push_back(c);
+      return;
+    }
+    const std::string want = print(expected) + " = 0 (H(tf) + dPhi/dtf = 0 with Phi = " + multiplier_ +
+                             "*phi + nu.psi and nu eliminated through lambda(tf) = dPhi/dx(tf))";
+    find_equation(c, expected, "missing free-final-time condition " + want + "; add it to shooting.equations.");
+    if (!c.pass) {
+      // Name the equation that was meant to be it: the one called transversality_tf, else the one using H_tf.
+      const Equation* meant = nullptr;
+      for (const auto& eq : equations_)
+        if (eq.ok && (eq.name == "transversality_tf" || (!meant && H_tf && eq.e.has(sym(H_tf->name))))) meant = &eq;
+      if (meant) {
+        const std::string t = term_diagnosis(expected, meant->e);
+        c.feedback = "shooting equation '" + meant->name + "' (" + meant->text + " = 0) is not the free-final-time " +
+                     "transversality condition " + want + (t.empty() ? "" : ": " + t) +
+                     "; ephemeris targets contribute -lambda(tf).(target rate) through dpsi/dtf.";
+      }
+    }
+    checks_.push_back(c);
+  }
+
+  // tf_expression: with a free final time tf is an unknown of the shooting (Rule 0).
+  void check_times() {
+    if (!events_.empty()) {
+      Check c = start("event_values", "counts", "structural");
+      c.exact = true;
+      std::vector<std::string> unknown;
+      for (const auto& v : events_)
+        if (!v.hamiltonian) unknown.push_back(v.name + " ('" + v.meaning + "')");
+      if (!unknown.empty())
+        c.fail("event_values " + join(unknown, ", ") +
+               " cannot be recomputed (known: the Hamiltonian at tf under the optimal control, H_tf); express them "
+               "in states, costates and parameters at tf instead.");
+      checks_.push_back(c);
+    }
+    if (!free_tf_) return;
+    Check c = start("tf_expression", "counts", "structural");
+    c.exact = true;
+    const json& times = d_["times"];
+    const json w = times.value("tf_window", json::array());
+    if (!tf_error_.empty()) {
+      c.fail(tf_error_ + ".");
+    } else if (!w.is_array() || w.size() != 2 || !w[0].is_number() || !w[1].is_number() ||
+               !(w[0].get<double>() < w[1].get<double>())) {
+      c.fail("times.tf_window must be [lo, hi] with lo < hi (normalized time).");
+    } else {
+      const std::set<std::string> vars(variables_.begin(), variables_.end());
+      std::vector<std::string> used, missing;
+      for (const auto& name : symbolic::free_symbols(tf_expr_)) {
+        if (vars.count(name)) used.push_back(name);
+        if (std::find(tf_vars_.begin(), tf_vars_.end(), name) != tf_vars_.end() && !vars.count(name))
+          missing.push_back(name);
+      }
+      if (!missing.empty())
+        c.fail("times.tf_expression = " + tf_text_ + " uses " + join(missing, ", ") +
+               ", which shooting.variables lacks: a free final time adds one shooting variable (Rule 0).");
+      else if (used.empty())
+        c.fail("times.tf_expression = " + tf_text_ +
+               " depends on no shooting variable: a free final time must be an unknown of the shooting (Rule 0).");
+    }
+    checks_.push_back(c);
+  }
+
+  // Coasting targets: coast_dynamics.rhs must be the problem's own r, v dynamics with the controls
+  // removed (throttle 0), so that the target obeys the same field (J2 included).
+  void check_coast() {
+    std::map<std::string, std::vector<std::string>> groups;
+    for (const auto& [name, src] : sources_)
+      if (src.rfind("coast:", 0) == 0) groups[src.substr(6, src.rfind(':') - 6)].push_back(name);
+    if (groups.empty() && !has_coast_) return;
+    Check c = start("coast_dynamics", "state_odes", "random_points+exact");
+    std::vector<std::size_t> rv;
+    for (std::size_t i = 0; i < states_.size(); ++i) {
+      const Kind k = kinds_[static_cast<std::size_t>(slot(states_[i]))];
+      if (k == Kind::Position || k == Kind::Velocity) rv.push_back(i);
+    }
+    std::set<std::string> ids;
+    for (const auto& k : constraints_) ids.insert(k.id);
+    if (!has_coast_) {
+      c.fail(
+          "parameters with source coast:<constraint>:tf exist but coast_dynamics is missing: give the "
+          "uncontrolled dynamics that carries the target from t0.");
+    } else if (!coast_error_.empty()) {
+      c.fail(coast_error_ + ".");
+    } else if (coast_states_.size() != rv.size() || coast_rhs_.size() != rv.size()) {
+      c.fail("coast_dynamics must have one state and one rhs per position and velocity state of the problem (" +
+             std::to_string(rv.size()) + "), got " + std::to_string(coast_states_.size()) + " states and " +
+             std::to_string(coast_rhs_.size()) + " rhs.");
+    } else {
+      for (const auto& [owner, names] : groups)
+        if (!ids.count(owner))
+          c.fail("parameters " + join(names, ", ") + " have source coast:" + owner + ":tf, but no constraint has id " +
+                 owner + ".");
+        else if (names.size() != coast_states_.size())
+          c.fail("the coasting target of " + owner + " has " + std::to_string(names.size()) +
+                 " parameters but coast_dynamics has " + std::to_string(coast_states_.size()) + " states.");
+      GiNaC::exmap to_coast, off;
+      for (std::size_t k = 0; k < rv.size(); ++k) to_coast[sym(states_[rv[k]])] = sym(coast_states_[k]);
+      if (!throttle_.empty()) off[sym(throttle_)] = 0;
+      for (std::size_t k = 0; k < rv.size() && c.pass; ++k) {
+        const ex expected = f_[rv[k]].subs(off).subs(to_coast);
+        std::vector<std::string> left;
+        for (const auto& name : symbolic::free_symbols(expected)) {
+          const Kind kk = kinds_[static_cast<std::size_t>(slot(name))];
+          if (kk != Kind::Parameter && kk != Kind::Sourced &&
+              std::find(coast_states_.begin(), coast_states_.end(), name) == coast_states_.end())
+            left.push_back(name);
+        }
+        const std::string text = d_["coast_dynamics"]["rhs"][k].get<std::string>();
+        if (!left.empty()) {
+          c.fail("cannot form the uncontrolled dynamics of " + states_[rv[k]] + ": state_rhs with the throttle at 0 " +
+                 "still depends on " + join(left, ", ") + ".");
+          break;
+        }
+        const Compiled ec = compile(expected), gc = compile(coast_rhs_[k]);
+        double worst = 0;
+        for (const auto& p : points_) worst = std::max(worst, rel_diff(ec(p), gc(p)));
+        c.max_rel = std::max(c.max_rel, worst);
+        if (worst > kTol && !exact_equal(expected, coast_rhs_[k])) {
+          const std::string t = term_diagnosis(expected, coast_rhs_[k]);
+          c.fail("coast_dynamics.rhs[" + std::to_string(k) + "] (the rate of " + coast_states_[k] +
+                 ") must be dynamics.state_rhs[" + states_[rv[k]] + "] with the controls removed, expected " +
+                 print(tidy(expected)) + ", got " + text + (t.empty() ? "" : "; " + t) +
+                 " (the target moves in the same field as the spacecraft).");
+        }
+      }
+      c.exact = c.pass;
+    }
+    checks_.push_back(c);
   }
   std::set<std::string> fixed_at_t0_;
 
@@ -1224,6 +2071,7 @@ class Verifier {
       std::set<std::string> allowed(variables_.begin(), variables_.end());
       allowed.insert(parameters_.begin(), parameters_.end());
       allowed.insert(eps_);
+      for (const auto& v : events_) allowed.insert(v.name);
       for (std::size_t i = 0; i < states_.size(); ++i)
         for (const char* event : {"_t0", "_tf"}) {
           allowed.insert(states_[i] + event);
@@ -1315,7 +2163,7 @@ class Verifier {
   void check_state_usage() {
     Check c = start("state_usage", "counts", "structural");
     c.exact = true;
-    std::vector<std::string> unused;
+    std::vector<std::string> unused, constant;
     for (std::size_t i = 0; i < states_.size(); ++i) {
       const ex x = sym(states_[i]);
       if (!f_[i].expand().is_zero()) continue;
@@ -1324,12 +2172,19 @@ class Verifier {
       for (const auto& k : constraints_)
         if (k.at == "tf")
           for (const auto& psi : k.psi) used = used || psi.has(x);
-      if (!used) unused.push_back(states_[i]);
+      if (!used)
+        unused.push_back(states_[i]);
+      else if (fixed_at_t0_.count(states_[i]))
+        constant.push_back(states_[i]);
     }
     if (!unused.empty())
       c.fail("state(s) " + join(unused, ", ") +
              " have identically zero dynamics and appear in no other dynamics, cost or final "
-             "constraint: they are not states of this problem; remove them (G4).");
+             "constraint: they are not states of this problem; remove them (G4; e.g. a sail has no mass state).");
+    if (!constant.empty())
+      c.fail("state(s) " + join(constant, ", ") +
+             " have identically zero dynamics and a fixed initial value: they are constants, not states; make them "
+             "parameters and remove their costates and shooting variables (G4; e.g. a sail has no mass state).");
     checks_.push_back(c);
   }
 
