@@ -172,7 +172,7 @@ def free_tf_parts(d, body, window, tf_var):
     lo, hi = window
     d["times"] = {"t0": 0.0, "final_time": "free", "tf_window": [lo, hi],
                   "tf_expression": f"{lo}+{hi - lo}*{tf_var}"}
-    d["event_values"] = [{"name": "H_tf", "meaning": "H at tf under the optimal control"}]
+    d["event_values"] = [{"name": "H_tf", "kind": "hamiltonian", "at": "tf", "meaning": "H at tf under the optimal control"}]
     rates = []
     for p in d["parameters"]:
         if p["name"].startswith("arrival_"):

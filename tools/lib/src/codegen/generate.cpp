@@ -329,12 +329,12 @@ std::string residual_module(Context& c) {
     o << "  [[maybe_unused]] const double " << c.costates[i] << "_tf = y[" << c.states.size() + i << "];\n";
   if (d.contains("event_values"))
     for (const auto& e : d.at("event_values")) {
-      if (e.at("name") != "H_tf")
-        throw std::invalid_argument("field /event_values: the runtime evaluates H_tf only, not " + e.at("name").dump());
+      if (e.at("kind") != "hamiltonian" || e.value("at", "tf") != "tf")
+        throw std::invalid_argument("field /event_values: the runtime evaluates H at tf only, not " + e.dump());
       o << "  std::array<double, problem::kNumControls> control_tf{};\n"
         << "  control_in_mode(y, mode_at(y, mult), mult, control_tf.data());\n"
-        << "  const double H_tf = hamiltonian(tf, y, control_tf.data(), mult);  // "
-        << e.at("meaning").get<std::string>() << "\n";
+        << "  const double " << e.at("name").get<std::string>()
+        << " = hamiltonian(tf, y, control_tf.data(), mult);  // " << e.at("meaning").get<std::string>() << "\n";
     }
   for (std::size_t i = 0; i < eqs.size(); ++i) {
     const double scale = eqs[i].at("scale");

@@ -439,8 +439,10 @@ json derive(const Problem& problem) {
     doc["coast_dynamics"] = {{"states", {"rx", "ry", "rz", "vx", "vy", "vz"}}, {"rhs", coast}};
   }
   if (p.free_final_time)
-    doc["event_values"] =
-        json::array({{{"name", "H_tf"}, {"meaning", "H at tf with the optimal control (the runtime evaluates it)"}}});
+    doc["event_values"] = json::array({{{"name", "H_tf"},
+                                        {"kind", "hamiltonian"},
+                                        {"at", "tf"},
+                                        {"meaning", "H at tf with the optimal control (the runtime evaluates it)"}}});
   doc["hamiltonian"] = to_text(H);
   doc["state_odes"] = state_odes;
   doc["costate_odes"] = costate_odes;

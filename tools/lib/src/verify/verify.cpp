@@ -599,8 +599,7 @@ class Verifier {
         EventValue v;
         v.name = io::require_string(e, "name", "derivation event_values");
         v.meaning = e.value("meaning", "");
-        const std::string m = lower(v.meaning);
-        v.hamiltonian = v.name == "H_tf" || m.find("hamiltonian") != std::string::npos || m.rfind("h at tf", 0) == 0;
+        v.hamiltonian = e.value("kind", "") == "hamiltonian";
         declare(v.name, Kind::EventValue);
         events_.push_back(v);
       }
