@@ -574,23 +574,10 @@ std::string tables_from_runs(const std::string& root) {
   md << "## Table 1: per-scenario comparison of backends and models\n\n"
      << "| scenario | backend (model) | runs | mean score | compiled | converged |\n"
      << "|---|---|--:|--:|--:|--:|\n";
-  for (const auto& scenario : scenarios)
-    for (const auto& group : groups) {
-      const auto sel = select(group, scenario);
-      if (sel.empty()) continue;
-      double sum = 0;
-      int compiled = 0, converged = 0;
-      for (const auto* r : sel) {
-        sum += r->score;
-        compiled += r->compiled;
-        converged += r->converged;
-      }
-      const int n = static_cast<int>(sel.size());
-      md << "| " << md_escape(scenario) << " | " << md_escape(group) << " | " << n << " | " << fmt(sum / n, "%.1f")
-         << " | " << frac(compiled, n) << " | " << frac(converged, n) << " |\n";
-    }
-  for (const auto& group : groups) {
-    const auto sel = select(group, "");
+  // One row: the runs of `group` on `scenario` ("" = all scenarios), bold for the totals.
+  const auto row = [&](const std::string& group, const std::string& scenario) {
+    const auto sel = select(group, scenario);
+    if (sel.empty()) return;
     double sum = 0;
     int compiled = 0, converged = 0;
     for (const auto* r : sel) {
@@ -599,9 +586,14 @@ std::string tables_from_runs(const std::string& root) {
       converged += r->converged;
     }
     const int n = static_cast<int>(sel.size());
-    md << "| **all** | " << md_escape(group) << " | " << n << " | **" << fmt(sum / n, "%.1f") << "** | **"
-       << frac(compiled, n) << "** | **" << frac(converged, n) << "** |\n";
-  }
+    const std::string b = scenario.empty() ? "**" : "";
+    md << "| " << (scenario.empty() ? "**all**" : md_escape(scenario)) << " | " << md_escape(group) << " | " << n
+       << " | " << b << fmt(sum / n, "%.1f") << b << " | " << b << frac(compiled, n) << b << " | " << b
+       << frac(converged, n) << b << " |\n";
+  };
+  for (const auto& scenario : scenarios)
+    for (const auto& group : groups) row(group, scenario);
+  for (const auto& group : groups) row(group, "");
 
   md << "\n## Table 2: token consumption\n\n"
      << "| backend (model) | scenarios | requests | input tokens | output tokens | total tokens | "
