@@ -57,7 +57,7 @@ done
 
 first=${scenarios[0]}
 t_warm=$(seconds "$bin/helios-solve" "$work/$first/shoot.cpp" --settings "scenarios/$first/settings.json" \
-  --cache-dir "$work/$first/cache" -o "$work/$first/solution2.json")
+  --cache-dir "$work/$first/cache" --trajectory "$work/$first/trajectory2.csv" -o "$work/$first/solution2.json")
 printf 'warm solve of %s (cached binary): %.3f s\n' "$first" "$t_warm"
 
 # J2 on/off: the same problem text without the sentence that adds J2.
