@@ -5,6 +5,7 @@
 
 #include "helios/astro/constants.hpp"
 #include "helios/spec/parse.hpp"
+#include "helios/spec/units.hpp"
 
 namespace helios::pmp {
 namespace {
@@ -88,8 +89,8 @@ std::vector<ex> user_acceleration(const json& pert, Problem& p, const ex& mass) 
       {vars.get("m"), mass * U.mass_kg},
       {vars.get("t"), S.get("t") * U.time_s},
   };
-  const std::string unit = pert.at("unit");
-  const double to_km_s2 = unit == "mm/s^2" ? 1e-6 : unit == "m/s^2" ? 1e-3 : 1.0;
+  // The spec unit of accelerations is mm/s^2 = 1e-6 km/s^2.
+  const double to_km_s2 = spec::to_spec_unit(spec::Dimension::Acceleration, pert.at("unit")) * 1e-6;
   const double scale = to_km_s2 * U.time_s * U.time_s / U.length_km;
   std::vector<ex> a;
   for (std::size_t i = 0; i < 3; ++i) {
@@ -274,6 +275,8 @@ Problem build_problem(const json& spec) {
     }
     // psi compares position and velocity with the target's; psi_t is its derivative through the
     // target's motion, needed where the event time is free.
+    GiNaC::exmap at_target;  // a coasting target moves by the coast dynamics at its own state
+    for (std::size_t i = 0; i < names.size(); ++i) at_target[S.get(names[i])] = target_state[i];
     for (std::size_t j = 0; j < names.size(); ++j) {
       const std::string tname = k.id + "_" + names[j];
       k.psi.push_back(S.get(names[j]) - S.get(tname));
@@ -287,8 +290,6 @@ Problem build_problem(const json& spec) {
                                 "ephemeris_rate:" + k.target.at("body").get<std::string>() + ":" + k.at});
         rate = S.get(rname);
       } else if (moving_event && kind == "coasting") {
-        GiNaC::exmap at_target;
-        for (std::size_t i = 0; i < names.size(); ++i) at_target[S.get(names[i])] = target_state[i];
         rate = p.coast_f[j].subs(at_target);
       }
       k.psi_t.push_back(-rate);

@@ -103,8 +103,7 @@ std::regex re(const std::string& pattern) {
 // Known gravitational parameters [km^3/s^2] for a central body named without one.
 std::optional<double> known_mu(const std::string& body) {
   using namespace helios::astro;
-  std::string key;
-  for (char c : body) key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string key = lowercase(body);
   if (key == "sun") return MU_SUN_KM3_S2;
   if (key == "earth") return MU_EARTH_KM3_S2;
   if (key == "mars") return MU_MARS_KM3_S2;
@@ -112,8 +111,7 @@ std::optional<double> known_mu(const std::string& body) {
 }
 
 std::optional<double> known_radius(const std::string& body) {
-  std::string key;
-  for (char c : body) key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string key = lowercase(body);
   if (key == "earth") return helios::astro::R_EARTH_KM;
   if (key == "mars") return helios::astro::R_MARS_KM;
   return std::nullopt;
@@ -153,10 +151,8 @@ json parse_target(const std::string& phrase) {
   }
   static const std::regex body = re(R"((?:the )?(Earth|Mars|Venus|Jupiter))");
   if (std::regex_match(phrase, m, body)) {
-    std::string name = m[1].str();
+    std::string name = lowercase(m[1].str());
     name[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
-    for (std::size_t i = 1; i < name.size(); ++i)
-      name[i] = static_cast<char>(std::tolower(static_cast<unsigned char>(name[i])));
     return {{"kind", "body"}, {"body", name}, {"ephemeris", "jpl_lp"}};
   }
   throw sentence_error(
@@ -297,10 +293,11 @@ struct Builder {
     if (items.size() != 3)
       throw sentence_error("the acceleration " + name + " needs three components [ax, ay, az], got " +
                            std::to_string(items.size()));
-    std::string key;
-    for (char c : unit) key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (key != "mm/s^2" && key != "m/s^2" && key != "km/s^2")
-      throw sentence_error("unit '" + unit + "' is not an acceleration unit (use mm/s^2, m/s^2, km/s^2)");
+    try {
+      to_spec_unit(Dimension::Acceleration, unit);
+    } catch (const std::invalid_argument& e) {
+      throw sentence_error(e.what());
+    }
     symbolic::SymbolTable vars;
     for (const char* v : kAccelerationVariables) vars.get(v);
     for (const auto& item : items) {
@@ -311,7 +308,7 @@ struct Builder {
                              " (variables: x, y, z, r [km], vx, vy, vz [km/s], m [kg], t [s since departure])");
       }
     }
-    return {{"kind", "acceleration"}, {"name", name}, {"components", items}, {"unit", key}};
+    return {{"kind", "acceleration"}, {"name", name}, {"components", items}, {"unit", lowercase(unit)}};
   }
 
   void epoch(const std::string& phrase) {
@@ -347,8 +344,7 @@ struct Builder {
         throw sentence_error(
             "cannot read '" + part +
             "': expected 'a maximum thrust of Q', 'a specific impulse of Q' or 'an initial mass of Q'");
-      std::string key = m[1].str();
-      for (auto& c : key) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      const std::string key = lowercase(m[1].str());
       const auto& [field, dim] = fields.at(key);
       once("the " + key);
       ++seen["the spacecraft's engine"];

@@ -63,17 +63,24 @@ std::string dimension_name(Dimension d) {
 
 }  // namespace
 
+std::string lowercase(const std::string& text) {
+  std::string out;
+  for (char c : text) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
 std::string spec_unit(Dimension d) {
   return table(d).spec_unit;
 }
 
 double to_spec_unit(Dimension d, const std::string& unit) {
-  std::string key;
-  for (char c : unit) key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   const Table& t = table(d);
-  const auto it = t.factor.find(key);
-  if (it == t.factor.end())
-    throw std::invalid_argument("unit '" + unit + "' is not a " + dimension_name(d) + " unit (use " + t.accepted + ")");
+  const auto it = t.factor.find(lowercase(unit));
+  if (it == t.factor.end()) {
+    const std::string name = dimension_name(d);
+    const std::string article = std::string("aeiou").find(name[0]) == std::string::npos ? "a " : "an ";
+    throw std::invalid_argument("unit '" + unit + "' is not " + article + name + " unit (use " + t.accepted + ")");
+  }
   return it->second;
 }
 

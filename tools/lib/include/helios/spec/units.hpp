@@ -10,6 +10,9 @@ enum class Dimension { Length, Speed, Force, Time, Duration, Mass, GravParam, Ac
 // Name of the unit the spec stores a dimension in (km, km/s, N, days, s, kg, km^3/s^2, mm/s^2).
 std::string spec_unit(Dimension d);
 
+// `text` in lower case (units and body names are matched case-insensitively).
+std::string lowercase(const std::string& text);
+
 // Factor converting one `unit` into the spec unit of `d`; throws std::invalid_argument
 // "unit 'X' is not a <dimension> unit (use ...)" if the unit is unknown for that dimension.
 double to_spec_unit(Dimension d, const std::string& unit);
