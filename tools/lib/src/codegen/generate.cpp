@@ -23,7 +23,7 @@ struct Context {
   const json& d;
   SymbolTable symbols;
   std::vector<std::string> states, costates, controls, parameters;
-  std::vector<std::string> ephemeris_parameters;  // evaluated by the runtime, not constants
+  std::vector<std::string> runtime_evaluated;  // parameters with a source: locals of RESIDUAL, not constants
   int throttle_index = -1;
   explicit Context(const json& derivation) : d(derivation) {
     for (const auto& s : d.at("states")) {
@@ -36,7 +36,7 @@ struct Context {
     }
     for (const auto& p : d.at("parameters")) {
       parameters.push_back(p.at("name"));
-      if (p.contains("source")) ephemeris_parameters.push_back(p.at("name"));
+      if (p.contains("source")) runtime_evaluated.push_back(p.at("name"));
     }
     const std::string mult = d.at("multiplier");
     symbols.get("t");
@@ -68,7 +68,7 @@ struct Context {
     GiNaC::ex e = symbols.parse(text, "field " + where);
     GiNaC::exmap qualified;
     for (const auto& p : parameters)
-      if (index_of(ephemeris_parameters, p) < 0) qualified[symbols.get(p)] = GiNaC::symbol("problem::" + p);
+      if (index_of(runtime_evaluated, p) < 0) qualified[symbols.get(p)] = GiNaC::symbol("problem::" + p);
     return symbolic::to_csrc(e.subs(qualified));
   }
 };
@@ -327,15 +327,16 @@ std::string residual_module(Context& c) {
     o << "  [[maybe_unused]] const double " << c.states[i] << "_tf = y[" << i << "];\n";
   for (std::size_t i = 0; i < c.costates.size(); ++i)
     o << "  [[maybe_unused]] const double " << c.costates[i] << "_tf = y[" << c.states.size() + i << "];\n";
-  if (d.contains("event_values"))
-    for (const auto& e : d.at("event_values")) {
-      if (e.at("kind") != "hamiltonian" || e.value("at", "tf") != "tf")
-        throw std::invalid_argument("field /event_values: the runtime evaluates H at tf only, not " + e.dump());
-      o << "  std::array<double, problem::kNumControls> control_tf{};\n"
-        << "  control_in_mode(y, mode_at(y, mult), mult, control_tf.data());\n"
-        << "  const double " << e.at("name").get<std::string>()
-        << " = hamiltonian(tf, y, control_tf.data(), mult);  // " << e.at("meaning").get<std::string>() << "\n";
-    }
+  const json events = d.value("event_values", json::array());
+  if (!events.empty())
+    o << "  std::array<double, problem::kNumControls> control_tf{};\n"
+      << "  control_in_mode(y, mode_at(y, mult), mult, control_tf.data());\n";
+  for (const auto& e : events) {
+    if (e.value("kind", "") != "hamiltonian" || e.value("at", "tf") != "tf")
+      throw std::invalid_argument("field /event_values: the runtime evaluates H at tf only, not " + e.dump());
+    o << "  const double " << e.at("name").get<std::string>() << " = hamiltonian(tf, y, control_tf.data(), mult);  // "
+      << e.at("meaning").get<std::string>() << "\n";
+  }
   for (std::size_t i = 0; i < eqs.size(); ++i) {
     const double scale = eqs[i].at("scale");
     o << "  F[" << i << "] = ("
