@@ -72,6 +72,7 @@ inline nlohmann::json trajectory(const Settings& s, const Result& r, const std::
   out["samples"] = samples.size();
   const auto& last = samples.back();
   out["final_state"] = std::vector<double>(last.y.begin(), last.y.begin() + problem::kNumStates);
+  out["t0"] = samples.front().t;
   out["tf"] = last.t;
   return out;
 }
@@ -118,7 +119,10 @@ inline int run(int argc, char** argv) {
     j["max_residual"] = r.max_residual;
     j["epsilon"] = r.eps;
     j["trajectory"] = trajectory(s, r, trajectory_path);
-    j["tof_days"] = (j["trajectory"]["tf"].get<double>() - problem::kT0) * problem::kTimeUnitDays;
+    const auto& path = j["trajectory"];
+    j["tof_days"] = (path["tf"].get<double>() - path["t0"].get<double>()) * problem::kTimeUnitDays;
+    if (problem::kEpochMjd2000 != 0)
+      j["departure_mjd2000"] = problem::kEpochMjd2000 + path["t0"].get<double>() * problem::kTimeUnitDays;
     if constexpr (problem::kMassIndex >= 0) {
       const double mf = j["trajectory"]["final_state"][problem::kMassIndex].get<double>();
       j["final_mass_kg"] = mf * problem::kMassUnitKg;

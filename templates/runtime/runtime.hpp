@@ -90,7 +90,12 @@ inline int stay_functions(const double* y, Mode mode, const Multipliers& mult, d
 
 // Ephemeris mode "jpl_lp": a planet's heliocentric state at normalized time t after the epoch of
 // t0, in normalized units.
+// A body of problem::kOrbitBodies is propagated on its Keplerian orbit instead.
 inline std::array<double, 6> ephemeris_state(const std::string& body, double t) {
+  for (const auto& b : problem::kOrbitBodies)
+    if (body == b.name)
+      return helios::astro::propagate(helios::astro::elements_to_state(b.elements, problem::mu), t - b.epoch,
+                                      problem::mu);
   const auto s = helios::astro::jpl_lp_state(helios::astro::planet_from_name(body),
                                              problem::kEpochMjd2000 + t * problem::kTimeUnitDays);
   return {s[0] / problem::kLengthUnitKm, s[1] / problem::kLengthUnitKm, s[2] / problem::kLengthUnitKm,

@@ -31,6 +31,17 @@ constexpr double kHomotopyStart = 1.0;
 constexpr double mu = 39.47692642137688;    // AU^3/yr^2
 constexpr double Tmax = 3.328530390038211;  // m0 AU/yr^2
 constexpr double c = 4.137416349718383;     // AU/yr
+struct OrbitBody {
+  const char* name;
+  helios::astro::Elements elements;
+  double epoch;
+};
+// Nikko's GTOC7 row (a in AU; epoch MJD 56800 as years from MJD2000 400).
+inline const std::vector<OrbitBody> kOrbitBodies = {
+    {"Nikko",
+     {2.2375176, 0.1052183, 5.70117 * helios::astro::DEG_TO_RAD, 71.94548 * helios::astro::DEG_TO_RAD,
+      2.08462 * helios::astro::DEG_TO_RAD, 287.3844555 * helios::astro::DEG_TO_RAD},
+     (56800.0 - 51544.0 - 400.0) / 365.25}};
 }  // namespace problem
 
 // clang-format off
@@ -185,6 +196,24 @@ TEST(Runtime, EphemerisRateIsTheModelsTimeDerivative) {
   const auto plus = helios_rt::ephemeris_state("Mars", t + h), minus = helios_rt::ephemeris_state("Mars", t - h);
   for (int i = 0; i < 6; ++i) EXPECT_TRUE(IsClose(rate[i], (plus[i] - minus[i]) / (2 * h), 1e-7, 1e-9)) << i;
   for (int i = 0; i < 3; ++i) EXPECT_TRUE(IsClose(rate[i], state[3 + i], 1e-3, 1e-3)) << i;
+}
+
+// A body given by elements moves on its Kepler orbit: at its epoch it is at the elements' state,
+// and the model's rate is (v, -mu r/|r|^3) to the rate's truncation error.
+TEST(Runtime, OrbitBodyFollowsItsElements) {
+  const auto& body = problem::kOrbitBodies[0];
+  const auto at_epoch = helios_rt::ephemeris_state("Nikko", body.epoch);
+  const auto expected = helios::astro::elements_to_state(body.elements, problem::mu);
+  for (int i = 0; i < 6; ++i) EXPECT_TRUE(IsClose(at_epoch[i], expected[i], 1e-13, 1e-13)) << i;
+  const double t = body.epoch + 1.3;
+  const auto state = helios_rt::ephemeris_state("Nikko", t);
+  const auto rate = helios_rt::ephemeris_rate("Nikko", t);
+  const double r = std::sqrt(state[0] * state[0] + state[1] * state[1] + state[2] * state[2]);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_TRUE(IsClose(rate[i], state[3 + i], 1e-9, 1e-10)) << i;
+    EXPECT_TRUE(IsClose(rate[3 + i], -problem::mu * state[i] / (r * r * r), 1e-9, 1e-10)) << i;
+  }
+  EXPECT_TRUE(IsClose(r, 2.2375176 * (1 - 0.1052183), 0, 0.5));  // within the orbit's range
 }
 
 }  // namespace

@@ -61,7 +61,18 @@ struct Context {
       symbols.get(n + "_tf");
       symbols.get(n + "_t0");
     }
+    for (const auto& e : d.value("events", json::array())) {
+      const std::string id = e.at("id");
+      events.push_back(id);
+      symbols.get("t_" + id);
+      for (const auto* names : {&states, &costates})
+        for (const auto& n : *names) {
+          symbols.get(n + "_" + id + "_m");
+          symbols.get(n + "_" + id + "_p");
+        }
+    }
   }
+  std::vector<std::string> events;
 
   // C++ for a stored expression; parameters are read from namespace problem.
   std::string cpp(const std::string& text, const std::string& where) {
@@ -150,6 +161,16 @@ std::string problem_block(Context& c) {
     << "const char* const kControlNames[] = {" << quoted_list(c.controls) << "};\n"
     << "const char* const kVariableNames[] = {" << quoted_list(vars) << "};\n"
     << "const char* const kEquationNames[] = {" << quoted_list(eqs) << "};\n";
+  o << "struct OrbitBody {\n  const char* name;\n  helios::astro::Elements elements;  // normalized a, rad\n"
+    << "  double epoch;  // normalized time of the elements\n};\n"
+    << "inline const std::vector<OrbitBody> kOrbitBodies = {\n";
+  for (const auto& b : d.value("bodies", json::array())) {
+    const json& el = b.at("elements");
+    o << "    {\"" << b.at("name").get<std::string>() << "\", {" << number(el.at("a")) << ", " << number(el.at("e"))
+      << ", " << number(el.at("i_rad")) << ", " << number(el.at("raan_rad")) << ", " << number(el.at("argp_rad"))
+      << ", " << number(el.at("mean_anomaly_rad")) << "}, " << number(b.at("epoch")) << "},\n";
+  }
+  o << "};\n";
   for (const auto& p : d.at("parameters"))
     if (!p.contains("source"))
       o << "constexpr double " << p.at("name").get<std::string>() << " = " << number(p.at("value")) << ";  // "
@@ -244,10 +265,13 @@ std::map<std::string, std::vector<std::string>> runtime_parameters(const json& d
   return groups;
 }
 
-std::string event_time(const std::string& event) {
-  if (event == "t0") return "problem::kT0";
-  if (event == "tf") return "tf";
-  throw std::invalid_argument("field /parameters: unknown event '" + event + "' (t0 or tf)");
+// The C++ local holding the time of `event`: t0, tf, an interior event's epoch t_<id> or the end
+// of its stay t_<id>_dep.
+std::string event_time(const Context& c, const std::string& event) {
+  if (event == "t0" || event == "tf") return event;
+  for (const auto& id : c.events)
+    if (event == id || event == id + "_dep") return "t_" + event;
+  throw std::invalid_argument("field /parameters: unknown event '" + event + "' (t0, tf or an interior event)");
 }
 
 std::string residual_module(Context& c) {
@@ -277,13 +301,32 @@ std::string residual_module(Context& c) {
     o << "  [[maybe_unused]] const double " << vars[i].at("name").get<std::string>() << " = x[" << i << "];  // "
       << vars[i].at("meaning").get<std::string>() << "\n";
   const json& times = d.at("times");
-  if (times.at("final_time") == "free") {
-    o << "  const double tf = " << c.cpp(times.at("tf_expression"), "/times/tf_expression") << ";\n"
-      << "  if (!(tf > problem::kT0)) throw numerical_error(\"the final time fell before the initial time\");\n";
-  } else {
+  o << "  const double t0 = "
+    << (times.contains("t0_expression") ? c.cpp(times.at("t0_expression"), "/times/t0_expression")
+                                        : std::string("problem::kT0"))
+    << ";\n";
+  if (times.contains("tf_expression"))
+    o << "  const double tf = " << c.cpp(times.at("tf_expression"), "/times/tf_expression") << ";\n";
+  else
     o << "  const double tf = problem::kTf;\n";
+  // Epochs of the interior events (a stay ends at t_<id>_dep), checked to be in order.
+  std::string order = "t0";
+  const json events = d.value("events", json::array());
+  for (std::size_t k = 0; k < events.size(); ++k) {
+    const json& e = events[k];
+    const std::string id = e.at("id"), where = "/events/" + std::to_string(k);
+    o << "  const double t_" << id << " = " << c.cpp(e.at("time").at("expression"), where + "/time/expression")
+      << ";\n"
+      << "  [[maybe_unused]] const double t_" << id << "_dep = t_" << id << " + "
+      << number(e.at("time").at("duration")) << ";\n";
+    order += ", t_" + id + ", t_" + id + "_dep";
   }
-  o << "  double y[kNY];\n";
+  order += ", tf";
+  o << "  {\n    const double epochs[] = {" << order << "};\n"
+    << "    for (std::size_t k = 1; k < sizeof epochs / sizeof epochs[0]; ++k)\n"
+    << "      if (!(epochs[k] >= epochs[k - 1]) || (k % 2 == 1 && !(epochs[k] > epochs[k - 1])))\n"
+    << "        throw numerical_error(\"the event epochs are out of order\");\n  }\n"
+    << "  double y[kNY];\n";
   // Targets evaluated at the actual event time, in normalized units.
   int block = 0;
   for (const char* kind : {"ephemeris", "ephemeris_rate", "coast"})
@@ -298,11 +341,11 @@ std::string residual_module(Context& c) {
                                         "_0");
           start += (start.empty() ? "" : ", ") + std::string("problem::") + n + "_0";
         }
-        o << "  const auto " << var << " = coast_state({" << start << "}, problem::kT0, " << event_time(event)
+        o << "  const auto " << var << " = coast_state({" << start << "}, problem::kT0, " << event_time(c, event)
           << ");\n";
       } else {
         const std::string function = std::string(kind) == "ephemeris" ? "ephemeris_state" : "ephemeris_rate";
-        o << "  const auto " << var << " = " << function << "(\"" << what << "\", " << event_time(event) << ");\n";
+        o << "  const auto " << var << " = " << function << "(\"" << what << "\", " << event_time(c, event) << ");\n";
       }
       for (std::size_t i = 0; i < 6; ++i)
         o << "  [[maybe_unused]] const double " << names[i] << " = " << var << "[" << i << "];\n";
@@ -322,21 +365,67 @@ std::string residual_module(Context& c) {
     o << "  y[" << c.states.size() + i << "] = " << v << ";\n";
   }
   o << "  const Multipliers mult{" << d.at("multiplier").get<std::string>() << ", eps};\n"
-    << "  prop.propagate(problem::kT0, tf, y, mult);\n";
-  for (std::size_t i = 0; i < c.states.size(); ++i)
-    o << "  [[maybe_unused]] const double " << c.states[i] << "_tf = y[" << i << "];\n";
-  for (std::size_t i = 0; i < c.costates.size(); ++i)
-    o << "  [[maybe_unused]] const double " << c.costates[i] << "_tf = y[" << c.states.size() + i << "];\n";
-  const json events = d.value("event_values", json::array());
-  if (!events.empty())
-    o << "  std::array<double, problem::kNumControls> control_tf{};\n"
-      << "  control_in_mode(y, mode_at(y, mult), mult, control_tf.data());\n";
-  for (const auto& e : events) {
-    if (e.value("kind", "") != "hamiltonian" || e.value("at", "tf") != "tf")
-      throw std::invalid_argument("field /event_values: the runtime evaluates H at tf only, not " + e.dump());
-    o << "  const double " << e.at("name").get<std::string>() << " = hamiltonian(tf, y, control_tf.data(), mult);  // "
-      << e.at("meaning").get<std::string>() << "\n";
+    << "  std::array<double, problem::kNumControls> control{};\n";
+  // Event values: H just before / after an event, under the optimal control.
+  std::map<std::string, std::string> hamiltonian_at;
+  for (const auto& e : d.value("event_values", json::array())) {
+    if (e.value("kind", "") != "hamiltonian")
+      throw std::invalid_argument("field /event_values: the runtime evaluates H only, not " + e.dump());
+    hamiltonian_at[e.value("at", "tf")] = e.at("name");
   }
+  const auto evaluate_h = [&](const std::string& at, const std::string& time) {
+    const auto it = hamiltonian_at.find(at);
+    if (it == hamiltonian_at.end()) return;
+    o << "  control_in_mode(y, mode_at(y, mult), mult, control.data());\n"
+      << "  const double " << it->second << " = hamiltonian(" << time << ", y, control.data(), mult);\n";
+    hamiltonian_at.erase(it);
+  };
+  const auto unpack_y = [&](const std::string& suffix) {
+    for (std::size_t i = 0; i < c.states.size(); ++i)
+      o << "  [[maybe_unused]] const double " << c.states[i] << suffix << " = y[" << i << "];\n";
+    for (std::size_t i = 0; i < c.costates.size(); ++i)
+      o << "  [[maybe_unused]] const double " << c.costates[i] << suffix << " = y[" << c.states.size() + i << "];\n";
+  };
+  evaluate_h("t0", "t0");
+  std::string from = "t0";
+  for (std::size_t k = 0; k < events.size(); ++k) {
+    const json& e = events[k];
+    const std::string id = e.at("id"), where = "/events/" + std::to_string(k);
+    o << "  prop.propagate(" << from << ", t_" << id << ", y, mult);\n";
+    unpack_y("_" + id + "_m");
+    evaluate_h(id + "_m", "t_" + id);
+    // x+ = g(x-), lambda+ from the jump rows (or a shooting variable).
+    const auto& state_map = e.at("state_map");
+    const auto& costate_map = e.at("costate_map");
+    if (state_map.size() != c.states.size() || costate_map.size() != c.costates.size())
+      throw std::invalid_argument("field " + where + ": state_map and costate_map need one entry per state");
+    for (std::size_t i = 0; i < c.states.size(); ++i) {
+      if (state_map[i].at("state") != c.states[i] || costate_map[i].at("costate") != c.costates[i])
+        throw std::invalid_argument("field " + where + ": the maps must follow the state order");
+      o << "  y[" << i << "] = " << c.cpp(state_map[i].at("expression"), where + "/state_map/" + std::to_string(i))
+        << ";\n";
+    }
+    for (std::size_t i = 0; i < c.costates.size(); ++i) {
+      const json& m = costate_map[i];
+      const std::string value =
+          m.contains("variable") ? m.at("variable").get<std::string>()
+                                 : c.cpp(m.at("expression"), where + "/costate_map/" + std::to_string(i));
+      o << "  y[" << c.states.size() + i << "] = " << value << ";\n";
+    }
+    for (std::size_t i = 0; i < c.states.size(); ++i)
+      o << "  [[maybe_unused]] const double " << c.states[i] << "_" << id << "_p = y[" << i << "];\n";
+    for (std::size_t i = 0; i < c.costates.size(); ++i)
+      if (!costate_map[i].contains("variable") || costate_map[i].at("variable") != c.costates[i] + "_" + id + "_p")
+        o << "  [[maybe_unused]] const double " << c.costates[i] << "_" << id << "_p = y[" << c.states.size() + i
+          << "];\n";
+    evaluate_h(id + "_p", "t_" + id + "_dep");
+    from = "t_" + id + "_dep";
+  }
+  o << "  prop.propagate(" << from << ", tf, y, mult);\n";
+  unpack_y("_tf");
+  evaluate_h("tf", "tf");
+  if (!hamiltonian_at.empty())
+    throw std::invalid_argument("field /event_values: no event '" + hamiltonian_at.begin()->first + "'");
   for (std::size_t i = 0; i < eqs.size(); ++i) {
     const double scale = eqs[i].at("scale");
     o << "  F[" << i << "] = ("
@@ -372,7 +461,10 @@ std::string solve_module(Context& c) {
     const std::string name = vars[i].at("name");
     const bool normalized = index_of(in_sphere, name) >= 0;
     if (normalized) sphere.push_back(i);
-    o << "  x[" << i << "] = " << (name == mult || !normalized ? "positive(rng)" : "symmetric(rng)") << " * "
+    // In (0, 1): the cost multiplier and time fractions; in (-1, 1): costates, multipliers, parameters.
+    const std::string role = vars[i].value("role", normalized ? "costate" : "time_fraction");
+    const bool positive = name == mult || role == "time_fraction";
+    o << "  x[" << i << "] = " << (positive ? "positive(rng)" : "symmetric(rng)") << " * "
       << number(vars[i].at("scale")) << ";\n";
   }
   if (sphere.empty()) throw std::invalid_argument("field /shooting/equations: no normalization equation");

@@ -182,6 +182,136 @@ json named_list(const std::vector<Named>& v, bool with_value) {
   return out;
 }
 
+// d e/dt through the time-dependent parameters (a target's state at its event).
+ex time_derivative(Problem& p, const ex& e) {
+  ex d = 0;
+  for (const auto& [name, rate] : p.parameter_rates) d += e.diff(p.symbols.get(name)) * rate;
+  return d;
+}
+
+// Conditions of an interior event from Phi = ... + nu_c^T c(t, x-, p) + nu_g^T (x+ - g(t + D, x-, p))
+// (Bryson-Ho): lambda(t+) = -dPhi/dx+ = -nu_g; lambda(t-) = dPhi/dx- = nu_c^T dc/dx- + lambda(t+)^T dg/dx-;
+// H(t-) - H(t+) + dPhi/dt = 0 for the free epoch; dPhi/dp = 0 for a free parameter p of psi.
+// A state the map carries over (dg_s/dx- = e_s) gets lambda(t+) explicitly from its jump row; any
+// other state's lambda(t+) is a shooting variable and its jump row an equation.
+json interior_event_conditions(Problem& p, const InteriorEvent& e, json& variables, json& equations) {
+  auto& S = p.symbols;
+  const std::size_t n = p.states.size();
+  std::vector<symbol> xm, xp, lm, lp;
+  for (const auto& s : p.states) {
+    xm.push_back(S.get(before_event(s.name, e.id)));
+    xp.push_back(S.get(after_event(s.name, e.id)));
+    lm.push_back(S.get(before_event(costate_name(s.name), e.id)));
+    lp.push_back(S.get(after_event(costate_name(s.name), e.id)));
+  }
+  std::vector<symbol> nu;
+  for (std::size_t j = 0; j < e.c.size(); ++j) nu.push_back(S.get("nu_" + e.id + "_" + std::to_string(j + 1)));
+  const std::string frac = event_time_name(e.id) + "_frac";
+  const symbol t_frac = S.get(frac);
+  variables.push_back({{"name", frac},
+                       {"meaning", "epoch of " + e.id + " as a fraction of its window"},
+                       {"role", "time_fraction"},
+                       {"scale", 1.0},
+                       {"init", "uniform in (0, 1)"}});
+  for (std::size_t j = 0; j < nu.size(); ++j)
+    variables.push_back({{"name", nu[j].get_name()},
+                         {"meaning", "multiplier of " + e.id + ": " + e.c_names[j] + " = 0"},
+                         {"role", "multiplier"},
+                         {"scale", 1.0},
+                         {"init", "uniform in (-1, 1)"}});
+  std::vector<bool> carried(n);
+  for (std::size_t s = 0; s < n; ++s) {
+    carried[s] = true;
+    for (std::size_t k = 0; k < n; ++k)
+      if (!(e.map[s].diff(xm[k]) - (k == s ? 1 : 0)).expand().is_zero()) carried[s] = false;
+    if (!carried[s])
+      variables.push_back({{"name", lp[s].get_name()},
+                           {"meaning", "costate of " + p.states[s].meaning + " just after " + e.id +
+                                           " (= -multiplier of the state map)"},
+                           {"role", "multiplier"},
+                           {"scale", 1.0},
+                           {"init", "uniform in (-1, 1)"}});
+  }
+  for (const auto& q : e.free_parameters)
+    variables.push_back({{"name", q},
+                         {"meaning", "free parameter of " + e.id + "'s constraint (found by stationarity)"},
+                         {"role", "parameter"},
+                         {"scale", 1.0},
+                         {"init", "uniform in (-1, 1)"}});
+
+  json psi = json::array(), multipliers = json::array(), conditions = json::array();
+  for (std::size_t j = 0; j < e.c.size(); ++j) {
+    psi.push_back(to_text(e.c[j]));
+    multipliers.push_back(nu[j].get_name());
+    equations.push_back({{"name", "psi_" + e.id + "_" + std::to_string(j + 1)},
+                         {"expression", to_text(e.c[j])},
+                         {"meaning", e.kind + " at " + e.id + ": " + e.c_names[j] + " = 0"},
+                         {"scale", 1.0},
+                         {"source", e.id}});
+  }
+  for (std::size_t s = 0; s < n; ++s) {
+    psi.push_back(to_text(xp[s] - e.map[s]));
+    multipliers.push_back("-" + lp[s].get_name());
+  }
+  // Jump rows: lambda(t-)_s - nu^T dc/dx-_s - sum_k lambda(t+)_k dg_k/dx-_s = 0.
+  json state_map = json::array(), costate_map = json::array();
+  for (std::size_t s = 0; s < n; ++s) {
+    ex rest = lm[s];
+    for (std::size_t j = 0; j < e.c.size(); ++j) rest -= nu[j] * e.c[j].diff(xm[s]);
+    for (std::size_t k = 0; k < n; ++k)
+      if (!carried[k] || k != s) rest -= lp[k] * e.map[k].diff(xm[s]);
+    rest = rest.expand();
+    conditions.push_back(lm[s].get_name() + " = nu^T dc/d" + xm[s].get_name() + " + lambda(t+)^T dg/d" +
+                         xm[s].get_name());
+    state_map.push_back({{"state", p.states[s].name}, {"expression", to_text(e.map[s])}});
+    if (carried[s]) {
+      costate_map.push_back({{"costate", costate_name(p.states[s].name)}, {"expression", to_text(rest)}});
+    } else {
+      costate_map.push_back({{"costate", costate_name(p.states[s].name)}, {"variable", lp[s].get_name()}});
+      equations.push_back({{"name", "jump_" + e.id + "_" + p.states[s].name},
+                           {"expression", to_text(rest)},
+                           {"meaning", "costate jump at " + e.id + ": " + lm[s].get_name() +
+                                           " = nu^T dc/dx- + lambda(t+)^T dg/dx- (row " + p.states[s].name + ")"},
+                           {"scale", 1.0},
+                           {"source", e.id}});
+    }
+  }
+  // Time: H(t-) - H(t+) + nu^T dc/dt + lambda(t+)^T dg/dt = 0 (the map is evaluated at t + D).
+  ex time_condition = S.get("H_" + e.id + "_m") - S.get("H_" + e.id + "_p");
+  for (std::size_t j = 0; j < e.c.size(); ++j) time_condition += nu[j] * time_derivative(p, e.c[j]);
+  for (std::size_t k = 0; k < n; ++k) time_condition += lp[k] * time_derivative(p, e.map[k]);
+  equations.push_back({{"name", "time_" + e.id},
+                       {"expression", to_text(time_condition.expand())},
+                       {"meaning", "H(t-) - H(t+) + dPhi/dt = 0 at " + e.id + ": its epoch is free"},
+                       {"scale", 1.0},
+                       {"source", e.id}});
+  conditions.push_back("lambda(t+) = -nu_g (the multipliers of x+ - g)");
+  conditions.push_back("H(t-) - H(t+) + nu_c^T dc/dt + lambda(t+)^T dg/dt = 0 (free epoch)");
+  for (const auto& q : e.free_parameters) {
+    const symbol par = S.get(q);
+    ex st = 0;
+    for (std::size_t j = 0; j < e.c.size(); ++j) st += nu[j] * e.c[j].diff(par);
+    for (std::size_t k = 0; k < n; ++k) st += lp[k] * e.map[k].diff(par);
+    equations.push_back({{"name", "stationarity_" + e.id + "_" + q},
+                         {"expression", to_text(st)},
+                         {"meaning", "dPhi/d" + q + " = 0: " + q + " is a free parameter of psi at " + e.id},
+                         {"scale", 1.0},
+                         {"source", e.id}});
+    conditions.push_back("nu_c^T dc/d" + q + " + lambda(t+)^T dg/d" + q + " = 0");
+  }
+  const ex t_event = e.window_lo + (e.window_hi - e.window_lo) * t_frac;
+  return {{"id", e.id},
+          {"kind", e.kind},
+          {"target", e.target},
+          {"time", {{"symbol", event_time_name(e.id)}, {"window", {e.window_lo, e.window_hi}},
+                    {"expression", to_text(t_event)}, {"duration", e.duration}}},
+          {"psi", psi},
+          {"multipliers", multipliers},
+          {"conditions", conditions},
+          {"state_map", state_map},
+          {"costate_map", costate_map}};
+}
+
 }  // namespace
 
 json derive(const Problem& problem) {
@@ -283,6 +413,7 @@ json derive(const Problem& problem) {
   for (const auto& s : p.states) at_tf[S.get(s.name)] = S.get(at_event(s.name, "tf"));
   const symbol H_tf = S.get("H_tf");
   ex time_condition = H_tf + lambda0 * p.endpoint_cost.diff(S.get("t"));  // H(tf) + dPhi/dtf, nu added below
+  ex departure_condition = 0;  // -H(t0) + dPhi/dt0 for a sliding departure
   bool final_constraint = false;
   for (const auto& k : p.constraints) {
     json c = {{"id", k.id}, {"kind", k.kind}, {"at", k.at}, {"target", k.target}};
@@ -306,6 +437,26 @@ json derive(const Problem& problem) {
       for (const auto& r : solved) initial_values.push_back({{"state", to_text(r.lhs())}, {"value", to_text(r.rhs())}});
       c["conditions"] = json::array({"x(t0) is fixed for " + std::to_string(k.fixed_states.size()) +
                                      " states, so their costates at t0 are free (shooting variables)"});
+      if (p.free_departure) {
+        // lambda(t0) = -nu^T dpsi/dx(t0) gives nu; the sliding t0 adds -H(t0) + nu^T dpsi/dt0.
+        GiNaC::lst rows, nus;
+        for (const auto& m : multipliers) nus.append(S.get(m.get<std::string>()));
+        for (const auto& s : k.fixed_states) {
+          ex row = S.get(at_event(costate_name(s), "t0"));
+          for (std::size_t j = 0; j < k.psi.size(); ++j)
+            row += S.get(multipliers[j].get<std::string>()) * k.psi[j].diff(S.get(s));
+          rows.append(row == 0);
+        }
+        const ex nu = GiNaC::lsolve(rows, nus);
+        if (nu.nops() != nus.nops())
+          throw std::invalid_argument("constraint '" + k.id + "': its multipliers are not determined by lambda(t0)");
+        GiNaC::exmap nu_value;
+        for (const auto& r : nu) nu_value[r.lhs()] = r.rhs();
+        departure_condition = -S.get("H_t0");
+        for (std::size_t j = 0; j < k.psi.size(); ++j)
+          departure_condition += S.get(multipliers[j].get<std::string>()).subs(nu_value) * k.psi_t[j];
+        c["time_condition"] = "-H(t0) + nu^T dpsi/dt0, added to the final time's terms (tf = t0 + tof)";
+      }
     } else {
       // lambda(tf) - lambda0 dphi/dx - nu^T dpsi/dx = 0; the multipliers of the states psi fixes
       // are solved from their own rows (dpsi/dx_J invertible), the other rows remain.
@@ -348,7 +499,7 @@ json derive(const Problem& problem) {
                              {"scale", 1.0},
                              {"source", k.id}});
       }
-      if (p.free_final_time) {
+      if (p.free_final_time || p.free_departure) {
         // H(tf) + dPhi/dtf = 0 with Phi = lambda0 phi + nu^T psi: nu^T dpsi/dtf through the target's
         // motion, nu taken from the rows it was eliminated with.
         const ex nu = GiNaC::lsolve(touched_rows, nus);
@@ -363,10 +514,25 @@ json derive(const Problem& problem) {
     }
     constraints.push_back(c);
   }
+  if (p.free_departure) {
+    if (!final_constraint) throw std::invalid_argument("a sliding departure needs a constraint at tf");
+    variables.push_back({{"name", "t0_frac"},
+                         {"meaning", "departure epoch as a fraction of its window: t0 = t0_min + (t0_max - t0_min)*t0_frac"},
+                         {"role", "time_fraction"},
+                         {"scale", 1.0},
+                         {"init", "uniform in (0, 1)"}});
+    equations.push_back({{"name", "transversality_t0"},
+                         {"expression", to_text((departure_condition + time_condition).expand())},
+                         {"meaning",
+                          "-H(t0) + dPhi/dt0 + H(tf) + dPhi/dtf = 0: t0 slides and tf = t0 + tof moves with it"},
+                         {"scale", 1.0},
+                         {"source", "departure"}});
+  }
   if (p.free_final_time) {
     if (!final_constraint) throw std::invalid_argument("a free final time needs a constraint at tf");
     variables.push_back({{"name", "tf_frac"},
                          {"meaning", "final time as a fraction of its window: tf = tf_min + (tf_max - tf_min)*tf_frac"},
+                         {"role", "time_fraction"},
                          {"scale", 1.0},
                          {"init", "uniform in (0, 1)"}});
     equations.push_back({{"name", "transversality_tf"},
@@ -375,6 +541,8 @@ json derive(const Problem& problem) {
                          {"scale", 1.0},
                          {"source", "final_time"}});
   }
+  json events = json::array();
+  for (const auto& e : p.events) events.push_back(interior_event_conditions(p, e, variables, equations));
   // Order: endpoint constraints first, then transversality, then the normalization.
   std::stable_sort(equations.begin(), equations.end(), [](const json& a, const json& b) {
     return a["name"].get<std::string>().rfind("psi_", 0) == 0 && b["name"].get<std::string>().rfind("psi_", 0) != 0;
@@ -392,9 +560,15 @@ json derive(const Problem& problem) {
       throw std::invalid_argument("state " + s.name + " is free at t0: not supported by the builtin engine yet");
     }
   }
-  // The final-time fraction is not a multiplier: it stays out of the sphere.
+  // lambda0 and lambda(t0) first (the sphere), then the events' variables, then the time fractions.
+  const auto rank = [](const json& v) {
+    const std::string name = v["name"];
+    if (name == "lambda0" || (name.rfind("l_", 0) == 0 && name.size() > 3 && name.substr(name.size() - 3) == "_t0"))
+      return 0;
+    return v.value("role", "") == "time_fraction" ? 2 : 1;
+  };
   std::stable_sort(variables.begin(), variables.end(),
-                   [](const json& a, const json& b) { return a["name"] != "tf_frac" && b["name"] == "tf_frac"; });
+                   [&](const json& a, const json& b) { return rank(a) < rank(b); });
   equations.push_back({{"name", "normalization"},
                        {"expression", to_text(GiNaC::sqrt(norm2) - 1)},
                        {"meaning", "|(lambda0, lambda(t0))| = 1 (lambda0 inside the sphere normalization)"},
@@ -438,11 +612,37 @@ json derive(const Problem& problem) {
     for (const auto& fi : p.coast_f) coast.push_back(to_text(fi));
     doc["coast_dynamics"] = {{"states", {"rx", "ry", "rz", "vx", "vy", "vz"}}, {"rhs", coast}};
   }
-  if (p.free_final_time)
-    doc["event_values"] = json::array({{{"name", "H_tf"},
-                                        {"kind", "hamiltonian"},
-                                        {"at", "tf"},
-                                        {"meaning", "H at tf with the optimal control (the runtime evaluates it)"}}});
+  json event_values = json::array();
+  const auto hamiltonian_at = [&](const std::string& at, const std::string& meaning) {
+    event_values.push_back({{"name", "H_" + at},
+                            {"kind", "hamiltonian"},
+                            {"at", at},
+                            {"meaning", "H " + meaning + " with the optimal control (the runtime evaluates it)"}});
+  };
+  if (p.free_departure) hamiltonian_at("t0", "at t0");
+  for (const auto& e : p.events) {
+    hamiltonian_at(e.id + "_m", "just before " + e.id);
+    hamiltonian_at(e.id + "_p", "just after " + e.id + (e.duration > 0 ? " (at the end of the stay)" : ""));
+  }
+  if (p.free_final_time || p.free_departure) hamiltonian_at("tf", "at tf");
+  if (!event_values.empty()) doc["event_values"] = event_values;
+  if (!p.orbit_bodies.empty()) {
+    json bodies = json::array();
+    for (const auto& b : p.orbit_bodies)
+      bodies.push_back({{"name", b.name},
+                        {"model", "kepler"},
+                        {"epoch", b.epoch},
+                        {"elements",
+                         {{"a", b.elements.a},
+                          {"e", b.elements.e},
+                          {"i_rad", b.elements.i},
+                          {"raan_rad", b.elements.raan},
+                          {"argp_rad", b.elements.argp},
+                          {"mean_anomaly_rad", b.elements.mean_anomaly}}},
+                        {"meaning", "Keplerian orbit about the central body (normalized a and epoch)"}});
+    doc["bodies"] = bodies;
+  }
+  if (!events.empty()) doc["events"] = events;
   doc["hamiltonian"] = to_text(H);
   doc["state_odes"] = state_odes;
   doc["costate_odes"] = costate_odes;
@@ -471,6 +671,15 @@ json times_of(const Problem& p) {
              {"tf_expression", to_text(p.tf_min + (p.tf - p.tf_min) * tf_frac)}};
   } else {
     times = {{"t0", p.t0}, {"tf", p.tf}, {"final_time", "fixed"}};
+  }
+  if (p.free_departure) {
+    // The departure slides in its window; the total time of flight stays fixed.
+    const GiNaC::symbol t0_frac("t0_frac");
+    const GiNaC::ex t0 = p.t0_min + (p.t0_max - p.t0_min) * t0_frac;
+    times["departure"] = "free";
+    times["t0_window"] = {p.t0_min, p.t0_max};
+    times["t0_expression"] = to_text(t0);
+    times["tf_expression"] = to_text(t0 + (p.tf - p.t0));
   }
   if (p.has_epoch) times["epoch_mjd2000"] = p.epoch_mjd2000;
   return times;

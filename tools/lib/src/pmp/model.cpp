@@ -6,12 +6,14 @@
 #include "helios/astro/constants.hpp"
 #include "helios/spec/parse.hpp"
 #include "helios/spec/units.hpp"
+#include "helios/symbolic/expr.hpp"
 
 namespace helios::pmp {
 namespace {
 
 using GiNaC::ex;
 using io::json;
+using symbolic::to_text;
 
 Units units_for(const json& central_body) {
   using namespace helios::astro;
@@ -45,6 +47,15 @@ std::string costate_name(const std::string& state) {
 }
 std::string at_event(const std::string& name, const std::string& event) {
   return name + "_" + event;
+}
+std::string before_event(const std::string& name, const std::string& event) {
+  return name + "_" + event + "_m";
+}
+std::string after_event(const std::string& name, const std::string& event) {
+  return name + "_" + event + "_p";
+}
+std::string event_time_name(const std::string& event) {
+  return "t_" + event;
 }
 
 bool Problem::has_state(const std::string& name) const {
@@ -99,6 +110,173 @@ std::vector<ex> user_acceleration(const json& pert, Problem& p, const ex& mass) 
     a.push_back(vars.parse(pert.at("components")[i].get<std::string>(), where).subs(to_model) * scale);
   }
   return a;
+}
+
+const std::vector<std::string> kPositionVelocity = {"rx", "ry", "rz", "vx", "vy", "vz"};
+
+// Registers a body on a Keplerian orbit (once per name) so the runtime can propagate it.
+void add_orbit_body(Problem& p, const std::string& name, const json& el) {
+  for (const auto& b : p.orbit_bodies)
+    if (b.name == name) return;
+  using namespace helios::astro;
+  OrbitBody b;
+  b.name = name;
+  b.elements.a = el.at("a_AU").get<double>() * AU_KM / p.units.length_km;
+  b.elements.e = el.at("e").get<double>();
+  b.elements.i = el.at("i_deg").get<double>() * DEG_TO_RAD;
+  b.elements.raan = el.at("raan_deg").get<double>() * DEG_TO_RAD;
+  b.elements.argp = el.at("argp_deg").get<double>() * DEG_TO_RAD;
+  if (el.contains("mean_anomaly_deg")) {
+    b.elements.mean_anomaly = el.at("mean_anomaly_deg").get<double>() * DEG_TO_RAD;
+  } else {
+    // True to mean anomaly through the eccentric anomaly.
+    const double nu = el.at("true_anomaly_deg").get<double>() * DEG_TO_RAD, e = b.elements.e;
+    const double E = 2 * std::atan2(std::sqrt(1 - e) * std::sin(nu / 2), std::sqrt(1 + e) * std::cos(nu / 2));
+    b.elements.mean_anomaly = E - e * std::sin(E);
+  }
+  b.epoch = (el.at("epoch_mjd2000").get<double>() - p.epoch_mjd2000) * DAY_S / p.units.time_s;
+  p.orbit_bodies.push_back(b);
+}
+
+// The target's position and velocity at `event` (t0, tf, an interior event's id or <id>_dep) as
+// parameters <prefix>_rx ... <prefix>_vz; `rates` gets their time derivatives, 0 unless `moving`.
+std::vector<ex> target_state(Problem& p, const std::string& prefix, const json& target, const std::string& event,
+                             bool moving, std::vector<ex>& rates) {
+  auto& S = p.symbols;
+  const Units& U = p.units;
+  const std::string L = U.length_name, T = U.time_name;
+  const std::string kind = target.at("kind");
+  if ((kind == "body" || kind == "orbit") && !p.has_epoch)
+    throw std::invalid_argument("field /time/epoch_mjd2000 is missing but target '" + prefix +
+                                "' follows a body's motion");
+  if (kind == "orbit") add_orbit_body(p, target.at("body"), target.at("elements"));
+  std::vector<ex> state;
+  rates.clear();
+  for (std::size_t j = 0; j < kPositionVelocity.size(); ++j) {
+    const std::string& n = kPositionVelocity[j];
+    const bool is_pos = j < 3;
+    const int i = static_cast<int>(j % 3);
+    const std::string unit = is_pos ? L : L + "/" + T;
+    const std::string name = prefix + "_" + n;
+    const std::string what = std::string(is_pos ? "position " : "velocity ") + n[1];
+    state.push_back(S.get(name));
+    ex rate = 0;
+    if (kind == "fixed_state") {
+      const double value = is_pos ? target.at("position_km")[i].get<double>() / U.length_km
+                                  : target.at("velocity_km_s")[i].get<double>() / U.speed_km_s();
+      p.parameters.push_back({name, what + " of target " + prefix, unit, value});
+    } else if (kind == "body" || kind == "orbit") {
+      const std::string body = target.at("body").get<std::string>();
+      const std::string model = kind == "body" ? "JPL low-precision ephemeris" : "Keplerian orbit";
+      p.parameters.push_back(
+          {name, what + " of " + body + " (" + model + ") at " + event, unit, 0.0, "ephemeris:" + body + ":" + event});
+      if (moving) {
+        const std::string rname = name + "_rate";
+        p.parameters.push_back({rname, "time derivative of " + name + " (of the ephemeris model)", unit + "/" + T,
+                                0.0, "ephemeris_rate:" + body + ":" + event});
+        rate = S.get(rname);
+      }
+    } else {
+      const std::string start = name + "_0";
+      const double value = is_pos ? target.at("position_km")[i].get<double>() / U.length_km
+                                  : target.at("velocity_km_s")[i].get<double>() / U.speed_km_s();
+      p.parameters.push_back({start, what + " of coasting target " + prefix + " at t0", unit, value});
+      S.get(start);
+      p.parameters.push_back({name, what + " of coasting target " + prefix + " at " + event + " (propagated unpowered)",
+                              unit, 0.0, "coast:" + prefix + ":" + event});
+    }
+    rates.push_back(rate);
+  }
+  if (kind == "coasting" && moving) {
+    // A coasting target moves by the coast dynamics at its own state.
+    GiNaC::exmap at_target;
+    for (std::size_t i = 0; i < kPositionVelocity.size(); ++i) at_target[S.get(kPositionVelocity[i])] = state[i];
+    for (std::size_t j = 0; j < kPositionVelocity.size(); ++j) rates[j] = p.coast_f[j].subs(at_target);
+  }
+  for (std::size_t j = 0; j < state.size(); ++j)
+    if (!rates[j].is_zero()) p.parameter_rates[GiNaC::ex_to<GiNaC::symbol>(state[j]).get_name()] = rates[j];
+  return state;
+}
+
+// An interior event: conditions c on the arriving state and the map g to the leaving state.
+InteriorEvent interior_event(Problem& p, const json& c) {
+  auto& S = p.symbols;
+  const Units& U = p.units;
+  InteriorEvent e;
+  e.id = c.at("id");
+  e.kind = c.at("kind");
+  e.target = c.at("target");
+  const std::string where = "constraint '" + e.id + "'";
+  const double day = helios::astro::DAY_S / U.time_s;
+  e.window_lo = c.at("window_days")[0].get<double>() * day;
+  e.window_hi = c.at("window_days")[1].get<double>() * day;
+  if (!(e.window_hi > e.window_lo)) throw std::invalid_argument(where + ": field window_days is empty");
+  if (e.target.at("kind") == "coasting" || e.target.at("kind") == "fixed_state")
+    throw std::invalid_argument(where + ": an interior event needs a moving body (an ephemeris or an orbit)");
+  const double tf_max = p.free_departure ? p.t0_max + p.tf : p.tf;
+  if (e.window_lo <= (p.free_departure ? p.t0_min : p.t0) || e.window_hi >= tf_max)
+    throw std::invalid_argument(where + ": its window must lie inside the time of flight");
+  e.duration = c.value("stay_days", 0.0) * day;
+  const double drop = c.value("mass_drop_kg", 0.0) / U.mass_kg;
+  if ((e.duration > 0 || drop > 0) && e.kind != "rendezvous")
+    throw std::invalid_argument(where + ": only a rendezvous has a stay or a mass drop");
+  if (drop > 0 && !p.has_state("m")) throw std::invalid_argument(where + ": a mass drop needs a mass state");
+
+  std::vector<ex> rates;
+  const std::vector<ex> arrival = target_state(p, e.id, e.target, e.id, true, rates);
+  std::vector<ex> xm;
+  for (const auto& s : p.states) xm.push_back(S.get(before_event(s.name, e.id)));
+  for (const auto& s : p.states) S.get(after_event(s.name, e.id));
+  S.get(event_time_name(e.id));
+  const std::size_t matched = e.kind == "rendezvous" ? 6 : 3;  // a flyby or swing-by matches position only
+  for (std::size_t j = 0; j < matched; ++j) {
+    e.c.push_back(xm[j] - arrival[j]);
+    e.c_names.push_back(kPositionVelocity[j] + " - " + to_text(arrival[j]));
+  }
+  e.map = xm;  // continuous unless changed below
+  if (e.kind == "rendezvous" && e.duration > 0) {
+    // After the stay the spacecraft leaves from the target's state at t_<id> + stay.
+    const std::vector<ex> departure = target_state(p, e.id + "_dep", e.target, e.id + "_dep", true, rates);
+    for (std::size_t j = 0; j < 6; ++j) e.map[j] = departure[j];
+  }
+  if (drop > 0) {
+    const std::string name = "drop_" + e.id;
+    p.parameters.push_back({name, "mass left at " + e.id, "initial mass", drop});
+    const std::size_t m = 6;
+    e.map[m] = xm[m] - S.get(name);
+  }
+  if (e.kind == "gravity_assist") {
+    // Unpowered patched-conic swing-by: the excess velocity v_inf = v- - v_body keeps its size and
+    // turns by delta about v_inf, at azimuth phi from the plane of v_inf and the body's position:
+    //   v_inf+ = cos(delta) v_inf + sin(delta) (cos(phi) |v_inf| w/|w| + sin(phi) v_inf x w/|w|),
+    //   w = v_inf x r_body. delta and phi are free parameters of psi (Category C).
+    if (!c.contains("body_mu_km3_s2")) throw std::invalid_argument(where + ": field body_mu_km3_s2 is missing");
+    const std::string mu_name = "mu_" + e.id, delta = "delta_" + e.id, phi = "phi_" + e.id;
+    p.parameters.push_back({mu_name, "gravitational parameter of the swing-by body " + e.id,
+                            U.length_name + "^3/" + U.time_name + "^2",
+                            c.at("body_mu_km3_s2").get<double>() * U.time_s * U.time_s /
+                                (U.length_km * U.length_km * U.length_km)});
+    const ex d = S.get(delta), f = S.get(phi);
+    e.free_parameters = {delta, phi};
+    std::vector<ex> vinf(3), rb(3);
+    for (int i = 0; i < 3; ++i) {
+      vinf[i] = xm[3 + i] - arrival[3 + i];
+      rb[i] = arrival[i];
+    }
+    const auto cross = [](const std::vector<ex>& a, const std::vector<ex>& b) {
+      return std::vector<ex>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    };
+    const std::vector<ex> w = cross(vinf, rb), vw = cross(vinf, w);
+    const ex wn = GiNaC::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    const ex vn = GiNaC::sqrt(vinf[0] * vinf[0] + vinf[1] * vinf[1] + vinf[2] * vinf[2]);
+    for (int i = 0; i < 3; ++i)
+      e.map[3 + i] = arrival[3 + i] + GiNaC::cos(d) * vinf[i] +
+                     GiNaC::sin(d) * (GiNaC::cos(f) * vn * w[i] + GiNaC::sin(f) * vw[i]) / wn;
+    if (c.contains("min_periapsis_radius_km"))
+      p.parameters.push_back({"rmin_" + e.id, "lowest periapsis radius of the swing-by at " + e.id, U.length_name,
+                              c.at("min_periapsis_radius_km").get<double>() / U.length_km});
+  }
+  return e;
 }
 
 }  // namespace
@@ -230,73 +408,52 @@ Problem build_problem(const json& spec) {
     p.tf = time.at("tof_days").get<double>() * helios::astro::DAY_S / U.time_s;
   }
   p.initial_mass = 1;
+  p.free_departure = time.value("departure", "fixed") == "free";
+  if (p.free_departure) {
+    if (p.free_final_time)
+      throw std::invalid_argument("field /time/departure: a free departure needs a fixed total time of flight");
+    if (!time.contains("t0_window_days") || !time.contains("epoch_mjd2000"))
+      throw std::invalid_argument("field /time: a free departure needs t0_window_days and epoch_mjd2000");
+    p.t0_min = time.at("t0_window_days")[0].get<double>() * helios::astro::DAY_S / U.time_s;
+    p.t0_max = time.at("t0_window_days")[1].get<double>() * helios::astro::DAY_S / U.time_s;
+    if (!(p.t0_max > p.t0_min))
+      throw std::invalid_argument("field /time/t0_window_days: the window is empty");
+  }
   if (time.contains("epoch_mjd2000")) {
     p.epoch_mjd2000 = time.at("epoch_mjd2000").get<double>();
     p.has_epoch = true;
   }
 
-  const std::vector<std::string> names = {"rx", "ry", "rz", "vx", "vy", "vz"};
   for (const auto& c : spec.at("constraints")) {
+    const std::string at = c.at("at");
+    if (at == "interior") {
+      p.events.push_back(interior_event(p, c));
+      continue;
+    }
     EndpointConstraint k;
     k.id = c.at("id").get<std::string>();
     k.kind = c.at("kind").get<std::string>();
-    k.at = c.at("at").get<std::string>();
+    k.at = at;
     k.target = c.at("target");
-    const std::string kind = k.target.at("kind");
-    if (kind == "body" && !time.contains("epoch_mjd2000"))
-      throw std::invalid_argument("field /time/epoch_mjd2000 is missing but constraint '" + k.id +
-                                  "' follows a body's ephemeris");
-    const bool moving_event = k.at == "tf" && p.free_final_time;
-    std::vector<ex> target_state;
-    for (const auto& n : names) {
-      const bool is_pos = n[0] == 'r';
-      const int i = n[1] - 'x';
-      const std::string unit = is_pos ? L : L + "/" + T;
-      const std::string tname = k.id + "_" + n;
-      const std::string what = std::string(is_pos ? "position " : "velocity ") + n[1];
-      target_state.push_back(S.get(tname));
-      if (kind == "fixed_state") {
-        const double value = is_pos ? k.target.at("position_km")[i].get<double>() / U.length_km
-                                    : k.target.at("velocity_km_s")[i].get<double>() / U.speed_km_s();
-        p.parameters.push_back({tname, what + " of target " + k.id, unit, value});
-      } else if (kind == "body") {
-        const std::string body = k.target.at("body").get<std::string>();
-        p.parameters.push_back({tname, what + " of " + body + " (JPL low-precision ephemeris at " + k.at + ")", unit,
-                                0.0, "ephemeris:" + body + ":" + k.at});
-      } else {
-        const std::string start = tname + "_0";
-        const double value = is_pos ? k.target.at("position_km")[i].get<double>() / U.length_km
-                                    : k.target.at("velocity_km_s")[i].get<double>() / U.speed_km_s();
-        p.parameters.push_back({start, what + " of coasting target " + k.id + " at t0", unit, value});
-        S.get(start);
-        p.parameters.push_back({tname, what + " of coasting target " + k.id + " at " + k.at + " (propagated unpowered)",
-                                unit, 0.0, "coast:" + k.id + ":" + k.at});
-      }
-    }
-    // psi compares position and velocity with the target's; psi_t is its derivative through the
-    // target's motion, needed where the event time is free.
-    GiNaC::exmap at_target;  // a coasting target moves by the coast dynamics at its own state
-    for (std::size_t i = 0; i < names.size(); ++i) at_target[S.get(names[i])] = target_state[i];
-    for (std::size_t j = 0; j < names.size(); ++j) {
-      const std::string tname = k.id + "_" + names[j];
-      k.psi.push_back(S.get(names[j]) - S.get(tname));
-      k.psi_names.push_back(names[j] + " - " + tname);
-      k.fixed_states.push_back(names[j]);
-      ex rate = 0;
-      if (moving_event && kind == "body") {
-        const std::string rname = tname + "_rate";
-        p.parameters.push_back({rname, "time derivative of " + tname + " (ephemeris model)",
-                                (j < 3 ? L : L + "/" + T) + "/" + T, 0.0,
-                                "ephemeris_rate:" + k.target.at("body").get<std::string>() + ":" + k.at});
-        rate = S.get(rname);
-      } else if (moving_event && kind == "coasting") {
-        rate = p.coast_f[j].subs(at_target);
-      }
-      k.psi_t.push_back(-rate);
+    if (k.kind != "initial_state" && k.kind != "rendezvous")
+      throw std::invalid_argument("constraint '" + k.id + "': a " + k.kind + " is an interior event, not at " + at);
+    if (k.target.at("kind") == "coasting" && p.free_departure)
+      throw std::invalid_argument("constraint '" + k.id + "': a coasting target needs a fixed departure epoch");
+    // The event moves when its own time is free, or with a sliding departure (tf = t0 + tof).
+    const bool moving = (k.at == "tf" && p.free_final_time) || p.free_departure;
+    std::vector<ex> rates;
+    const std::vector<ex> target = target_state(p, k.id, k.target, k.at, moving, rates);
+    for (std::size_t j = 0; j < kPositionVelocity.size(); ++j) {
+      const std::string& n = kPositionVelocity[j];
+      k.psi.push_back(S.get(n) - target[j]);
+      k.psi_names.push_back(n + " - " + to_text(target[j]));
+      k.fixed_states.push_back(n);
+      k.psi_t.push_back(-rates[j]);
     }
     if (k.kind == "initial_state") {
       if (k.at != "t0") throw std::invalid_argument("constraint '" + k.id + "': an initial state must be at t0");
-      if (kind == "coasting") throw std::invalid_argument("constraint '" + k.id + "': a departure cannot coast");
+      if (k.target.at("kind") == "coasting")
+        throw std::invalid_argument("constraint '" + k.id + "': a departure cannot coast");
       if (p.has_state("m")) {
         // The spacecraft's initial mass is known: mass is fixed at t0 as well.
         k.psi.push_back(S.get("m") - 1);
@@ -309,6 +466,9 @@ Problem build_problem(const json& spec) {
     }
     p.constraints.push_back(k);
   }
+  for (std::size_t i = 1; i < p.events.size(); ++i)
+    if (p.events[i].window_lo < p.events[i - 1].window_lo)
+      throw std::invalid_argument("constraint '" + p.events[i].id + "': interior events must be listed in time order");
   return p;
 }
 

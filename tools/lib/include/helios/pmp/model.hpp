@@ -3,10 +3,12 @@
 // f(x, u), running cost L, endpoint constraints psi, all in the solver's normalized units.
 #include <ginac/ginac.h>
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "helios/astro/kepler.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/symbolic/expr.hpp"
 
@@ -49,6 +51,28 @@ struct EndpointConstraint {
   io::json target;                        // the spec's target, for the generator's ephemeris mode
 };
 
+// A body on a Keplerian orbit about the central body, propagated by the runtime.
+struct OrbitBody {
+  std::string name;
+  astro::Elements elements;  // a in normalized length, angles in rad, mean anomaly at `epoch`
+  double epoch = 0;          // normalized time of the elements, from the time origin
+};
+
+// An event inside the trajectory at a free epoch t_<id> in [window_lo, window_hi] (Bryson-Ho):
+//   psi = [ c(t_<id>, x-, p) ; x+ - g(t_<id> + duration, x-, p) ] = 0,
+// x- = the state arriving (symbols <state>_<id>_m), x+ = the state leaving (<state>_<id>_p).
+// c are the conditions on the arriving state; g maps it to the leaving state (the identity for a
+// flyby, the target's state after a stay, a rotated excess velocity for a gravity assist).
+struct InteriorEvent {
+  std::string id, kind;  // rendezvous | flyby | gravity_assist
+  double window_lo = 0, window_hi = 0, duration = 0;
+  std::vector<GiNaC::ex> c;
+  std::vector<std::string> c_names;
+  std::vector<GiNaC::ex> map;                // g, one per state
+  std::vector<std::string> free_parameters;  // Category C parameters inside psi (found by stationarity)
+  io::json target;
+};
+
 // An ideal flat sail: acceleration k (n.rhat)^2 n added to the velocity states, n the unit normal.
 struct SailModel {
   GiNaC::ex k;                        // ac (rref/r)^2
@@ -70,8 +94,14 @@ struct Problem {
   GiNaC::ex running_cost;                  // L (with the homotopy parameter eps)
   GiNaC::ex endpoint_cost;                 // phi (Mayer term), in states at tf
   std::vector<EndpointConstraint> constraints;
+  std::vector<InteriorEvent> events;  // in time order
+  std::vector<OrbitBody> orbit_bodies;
+  // d/dt of every time-dependent parameter (a target's state at an event): parameter -> rate.
+  std::map<std::string, GiNaC::ex> parameter_rates;
   double t0 = 0, tf = 0;  // normalized; tf is the window's upper end when the final time is free
   bool free_final_time = false;
+  bool free_departure = false;  // t0 slides in [t0_min, t0_max]; tf = t0 + (tf - t0 nominal)
+  double t0_min = 0, t0_max = 0;
   double tf_min = 0;         // normalized lower end of the final-time window
   double epoch_mjd2000 = 0;  // calendar epoch of t0, for ephemeris targets
   bool has_epoch = false;
@@ -79,9 +109,13 @@ struct Problem {
   bool has_state(const std::string& name) const;
 };
 
-// Name of the costate of state `x` (l_x) and of a symbol at an event time (x_tf).
+// Name of the costate of state `x` (l_x) and of a symbol at an event time (x_tf); the state
+// arriving at / leaving an interior event (x_<id>_m / x_<id>_p) and the event's time (t_<id>).
 std::string costate_name(const std::string& state);
 std::string at_event(const std::string& name, const std::string& event);
+std::string before_event(const std::string& name, const std::string& event);
+std::string after_event(const std::string& name, const std::string& event);
+std::string event_time_name(const std::string& event);
 
 // Builds the problem of a validated spec. Throws std::invalid_argument / std::domain_error
 // naming the spec field for what this engine cannot formulate.
