@@ -22,6 +22,7 @@ inline Settings read_settings(const std::string& path) {
   s.eps_start = j.value("eps_start", s.eps_start);
   s.eps_min = j.value("eps_min", s.eps_min);
   s.eps_first_ratio = j.value("eps_first_ratio", s.eps_first_ratio);
+  s.leg_attempts = j.value("leg_attempts", s.leg_attempts);
   return s;
 }
 
@@ -110,6 +111,16 @@ inline int run(int argc, char** argv) {
                    {"max_residual", std::isfinite(h.max_residual) ? h.max_residual : -1.0},
                    {"evaluations", h.evaluations}});
   j["homotopy"] = hom;
+  j["method"] = r.method;
+  if (!r.legs.empty()) {
+    nlohmann::json legs = nlohmann::json::array();
+    for (const auto& l : r.legs)
+      legs.push_back({{"leg", l.leg},
+                      {"converged", l.converged},
+                      {"max_residual", std::isfinite(l.max_residual) ? l.max_residual : -1.0},
+                      {"evaluations", l.evaluations}});
+    j["legs"] = legs;
+  }
   if (r.status == "converged") {
     nlohmann::json x = nlohmann::json::array(), F = nlohmann::json::array();
     for (int i = 0; i < problem::kNumVars; ++i) x.push_back({{"name", problem::kVariableNames[i]}, {"value", r.x[i]}});

@@ -156,6 +156,7 @@ struct Settings {
   double eps_start = problem::kHomotopyStart;
   double eps_min = 1e-6;  // below this the next step is eps = 0
   double eps_first_ratio = 0.5;
+  int leg_attempts = 20;  // random guesses per leg before the attempt is abandoned
   int max_steps = 200000;  // integrator steps per arc
 };
 
@@ -294,6 +295,26 @@ class Propagator {
 // The shooting function of the RESIDUAL module, with the bookkeeping hybrd1 needs.
 void shooting_function(const double* x, double eps, Propagator& prop, double* F);
 
+// Problems with interior events also have the shooting function by legs (RESIDUAL module):
+// stop_at = k solves leg k alone (it ends at event k as if the trajectory ended there);
+// stop_at = -1 is multiple shooting: after event k the costates restart from starts[k*n...] and
+// their mismatch with the jump conditions is written to continuity[k*n...].
+struct Legs {
+  int stop_at = -1;
+  const double* starts = nullptr;
+  double* continuity = nullptr;
+};
+void shooting_legs(const double* x, double eps, Propagator& prop, double* F, const Legs* legs);
+using Residual = std::function<void(const double* x, double eps, Propagator& prop, double* F)>;
+
+// Which shooting variables each leg solves for alone (indices into x; leg k > 0 also solves for
+// its start costates), and the variables a leg alone holds fixed: the time fractions at their
+// guesses, the event's other variables (costates after a state map, parameters) at 0.
+struct LegPlan {
+  std::vector<std::vector<int>> variables;
+  std::vector<int> time_fractions, held_at_zero;
+};
+
 struct HomotopyStep {
   double eps;
   bool converged;
@@ -301,8 +322,17 @@ struct HomotopyStep {
   int evaluations;
 };
 
+struct LegStep {
+  int leg;
+  bool converged;
+  double max_residual;
+  int evaluations;
+};
+
 struct Result {
   std::string status = "not_converged";
+  std::string method = "single shooting";
+  std::vector<LegStep> legs;
   std::string detail;
   int info = 0;
   std::vector<double> x;
@@ -334,13 +364,15 @@ inline std::string hybrd_meaning(int info) {
 
 class Shooter {
  public:
-  explicit Shooter(const Settings& s) : settings_(s), prop_(s) {}
+  explicit Shooter(const Settings& s, Residual residual = shooting_function)
+      : settings_(s), prop_(s), residual_(std::move(residual)) {}
 
   // hybrd1 from x at eps; true if max|F| <= accept. Returns the info code through `info`.
   bool solve(std::vector<double>& x, double eps, double accept, int& info, double& max_res) {
     eps_ = eps;
     failed_ = false;
     const int n = static_cast<int>(x.size());
+    size_ = n;
     std::vector<double> F(n), wa(static_cast<std::size_t>(n * (3 * n + 13)) / 2 + 1);
     const int before = evaluations;
     info = hybrd1(&Shooter::callback, this, n, x.data(), F.data(), settings_.hybrd_tol, wa.data(),
@@ -360,9 +392,9 @@ class Shooter {
 
   bool evaluate(const double* x, double* F) {
     try {
-      shooting_function(x, eps_, prop_, F);
+      residual_(x, eps_, prop_, F);
       ++evaluations;
-      for (int i = 0; i < problem::kNumVars; ++i)
+      for (int i = 0; i < size_; ++i)
         if (!std::isfinite(F[i])) return false;
       return true;
     } catch (const numerical_error&) {
@@ -391,12 +423,46 @@ class Shooter {
 
   const Settings& settings_;
   Propagator prop_;
+  Residual residual_;
+  int size_ = problem::kNumVars;
   double eps_ = 1;
   bool failed_ = false;
 };
 
-// Continuation in eps from settings.eps_start to 0 with an adaptive step in log(eps) and
-// retreat on failure; a failed start or a stalled continuation restarts from a new seeded guess.
+// Continuation in eps from a solution x at eps down to 0, with an adaptive step in log(eps) and
+// retreat on failure. True when eps = 0 is reached (x and res are then its solution).
+template <class Admissible>
+bool continue_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& x, double eps, Result& r,
+                      Admissible&& admissible, double& res) {
+  int info = 0;
+  double log_step = std::log(1.0 / s.eps_first_ratio);
+  double zero_below = s.eps_min;  // eps at or below which the next step goes to eps = 0
+  while (wall_seconds() <= s.time_limit_s) {
+    const bool to_zero = eps <= zero_below;
+    const double next = to_zero ? 0.0 : std::max(eps * std::exp(-log_step), 0.5 * zero_below);
+    std::vector<double> trial = x;
+    ++r.iterations;
+    const double accept = to_zero ? s.final_residual : s.accept_residual;
+    const bool ok = shooter.solve(trial, next, accept, info, res) && admissible(trial.data());
+    r.homotopy.push_back({next, ok, res, shooter.last_step_evaluations});
+    if (ok) {
+      x = trial;
+      eps = next;
+      r.info = info;
+      if (to_zero) return true;
+      log_step = std::min(log_step * 1.5, std::log(20.0));
+    } else if (to_zero) {
+      zero_below = 0.01 * eps;  // the bang-bang problem is still too far: smooth less first
+      if (zero_below < 1e-12) return false;
+    } else {
+      log_step *= 0.5;
+      if (log_step < std::log(1.02)) return false;
+    }
+  }
+  return false;
+}
+
+// Seeded random restarts, each continued in eps from settings.eps_start to 0.
 template <class Guess, class Admissible>
 Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& admissible) {
   Result r;
@@ -413,37 +479,10 @@ Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& adm
     initial_guess(rng, x.data());
     int info = 0;
     double res = 0;
-    double eps = s.eps_start;
     ++r.iterations;
-    const bool started = shooter.solve(x, eps, s.accept_residual, info, res) && admissible(x.data());
-    r.homotopy.push_back({eps, started, res, shooter.last_step_evaluations});
-    if (!started) continue;
-    double log_step = std::log(1.0 / s.eps_first_ratio);
-    double zero_below = s.eps_min;  // eps at or below which the next step goes to eps = 0
-    bool done = false;
-    while (!done && wall_seconds() <= s.time_limit_s) {
-      const bool to_zero = eps <= zero_below;
-      const double next = to_zero ? 0.0 : std::max(eps * std::exp(-log_step), 0.5 * zero_below);
-      std::vector<double> trial = x;
-      ++r.iterations;
-      const double accept = to_zero ? s.final_residual : s.accept_residual;
-      const bool ok = shooter.solve(trial, next, accept, info, res) && admissible(trial.data());
-      r.homotopy.push_back({next, ok, res, shooter.last_step_evaluations});
-      if (ok) {
-        x = trial;
-        eps = next;
-        r.info = info;
-        if (to_zero) done = true;
-        log_step = std::min(log_step * 1.5, std::log(20.0));
-      } else if (to_zero) {
-        zero_below = 0.01 * eps;  // the bang-bang problem is still too far: smooth less first
-        if (zero_below < 1e-12) break;
-      } else {
-        log_step *= 0.5;
-        if (log_step < std::log(1.02)) break;
-      }
-    }
-    if (done) {
+    const bool started = shooter.solve(x, s.eps_start, s.accept_residual, info, res) && admissible(x.data());
+    r.homotopy.push_back({s.eps_start, started, res, shooter.last_step_evaluations});
+    if (started && continue_to_zero(s, shooter, x, s.eps_start, r, admissible, res)) {
       r.status = "converged";
       r.x = x;
       r.F = shooter.last_F;
@@ -455,6 +494,105 @@ Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& adm
   if (r.status == "not_converged")
     r.detail = "no seeded attempt reached eps = 0 (" + std::to_string(r.attempts) + " attempts)";
   r.evaluations = shooter.evaluations;
+  return r;
+}
+
+// Problems with interior events (the RESIDUAL module's LegPlan): each attempt first
+// solves the legs one after the other at eps_start, each as if the trajectory ended at its event
+// (leg k starts from the state leg k-1 reached); from those, multiple shooting over all legs is
+// continued in eps to 0 and the solution is polished by single shooting. The legs are small
+// problems that converge from random guesses where the whole one rarely does.
+template <class Guess, class Admissible>
+Result legs_homotopy_solve(const Settings& s, const LegPlan& plan, Guess&& initial_guess, Admissible&& admissible) {
+  constexpr int n = problem::kNumStates, N = problem::kNumVars;
+  const int events = static_cast<int>(plan.variables.size()) - 1;
+  Result r;
+  r.method = "legs, then multiple shooting, then single shooting";
+  std::mt19937_64 rng(s.seed);
+  std::uniform_real_distribution<double> symmetric(-1.0, 1.0);
+  Shooter single(s);
+  int evaluations = 0;
+  while (r.attempts < s.max_attempts && r.status == "not_converged") {
+    if (wall_seconds() > s.time_limit_s) {
+      r.status = "timeout";
+      r.detail = "time limit reached before convergence";
+      break;
+    }
+    ++r.attempts;
+    std::vector<double> x(N), starts(static_cast<std::size_t>(events * n));
+    initial_guess(rng, x.data());
+    for (const int i : plan.held_at_zero) x[i] = 0;
+    if (r.attempts == 1)
+      for (const int i : plan.time_fractions) x[i] = 0.5;  // first attempt: the middle of every window
+    bool legs_solved = true;
+    for (int k = 0; k <= events && legs_solved; ++k) {
+      const auto& own = plan.variables[k];
+      const int m = static_cast<int>(own.size()) + (k > 0 ? n : 0);
+      const Residual leg = [&, k](const double* z, double eps, Propagator& prop, double* F) {
+        std::vector<double> xx = x, st = starts;
+        for (std::size_t j = 0; j < own.size(); ++j) xx[own[j]] = z[j];
+        if (k > 0)
+          for (int i = 0; i < n; ++i) st[(k - 1) * n + i] = z[own.size() + i];
+        const Legs legs{k, st.data(), nullptr};
+        shooting_legs(xx.data(), eps, prop, F, &legs);
+      };
+      Shooter shooter(s, leg);
+      bool solved = false;
+      for (int tries = 0; tries < s.leg_attempts && !solved; ++tries) {
+        std::vector<double> z(m);
+        if (k == 0) {
+          if (tries > 0) initial_guess(rng, x.data());
+          for (std::size_t j = 0; j < own.size(); ++j) z[j] = x[own[j]];
+        } else {
+          for (auto& v : z) v = symmetric(rng);
+        }
+        int info = 0;
+        double res = 0;
+        ++r.iterations;
+        solved = shooter.solve(z, s.eps_start, s.accept_residual, info, res);
+        if (solved) {
+          for (std::size_t j = 0; j < own.size(); ++j) x[own[j]] = z[j];
+          if (k > 0)
+            for (int i = 0; i < n; ++i) starts[(k - 1) * n + i] = z[own.size() + i];
+          solved = k > 0 || admissible(x.data());
+        }
+        r.legs.push_back({k, solved, res, shooter.last_step_evaluations});
+      }
+      evaluations += shooter.evaluations;
+      legs_solved = solved;
+    }
+    if (!legs_solved) continue;
+    // Multiple shooting over [x, starts]: F = [the problem's equations, costate continuity].
+    const Residual multiple = [&](const double* z, double eps, Propagator& prop, double* F) {
+      const Legs legs{-1, z + N, F + N};
+      shooting_legs(z, eps, prop, F, &legs);
+    };
+    Shooter shooter(s, multiple);
+    std::vector<double> z(x);
+    z.insert(z.end(), starts.begin(), starts.end());
+    int info = 0;
+    double res = 0;
+    ++r.iterations;
+    const bool joined = shooter.solve(z, s.eps_start, s.accept_residual, info, res) && admissible(z.data());
+    r.homotopy.push_back({s.eps_start, joined, res, shooter.last_step_evaluations});
+    if (joined && continue_to_zero(s, shooter, z, s.eps_start, r, admissible, res)) {
+      x.assign(z.begin(), z.begin() + N);
+      ++r.iterations;
+      const bool polished = single.solve(x, 0.0, s.final_residual, info, res) && admissible(x.data());
+      r.homotopy.push_back({0.0, polished, res, single.last_step_evaluations});
+      if (polished) {
+        r.status = "converged";
+        r.x = x;
+        r.F = single.last_F;
+        r.eps = 0;
+        r.max_residual = res;
+      }
+    }
+    evaluations += shooter.evaluations;
+  }
+  if (r.status == "not_converged")
+    r.detail = "no seeded attempt reached eps = 0 (" + std::to_string(r.attempts) + " attempts)";
+  r.evaluations = evaluations + single.evaluations;
   return r;
 }
 

@@ -1,8 +1,8 @@
 #include "helios/codegen/generate.hpp"
 
-#include <random>
-
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <iomanip>
 #include <map>
 #include <sstream>
@@ -274,6 +274,54 @@ std::string event_time(const Context& c, const std::string& event) {
   throw std::invalid_argument("field /parameters: unknown event '" + event + "' (t0, tf or an interior event)");
 }
 
+// The legs between events: which shooting variables each leg solves for alone (leg 0: lambda0,
+// lambda(t0) and the first event's multipliers; leg k: the next event's multipliers, besides its
+// start costates), and the single-shooting function as the plain case of shooting_legs.
+std::string legs_block(Context& c, const std::vector<int>& leg_sizes) {
+  const json& d = c.d;
+  const auto& vars = d.at("shooting").at("variables");
+  const json& events = d.at("events");
+  std::vector<std::vector<int>> own(events.size() + 1);
+  for (std::size_t i = 0; i < vars.size(); ++i) {
+    const std::string name = vars[i].at("name");
+    if (name == d.at("multiplier") || (name.rfind("l_", 0) == 0 && name.size() > 3 &&
+                                        name.compare(name.size() - 3, 3, "_t0") == 0))
+      own[0].push_back(static_cast<int>(i));
+    for (std::size_t k = 0; k < events.size(); ++k)
+      if (name.rfind("nu_" + events[k].at("id").get<std::string>() + "_", 0) == 0)
+        own[k].push_back(static_cast<int>(i));
+  }
+  // Alone, a leg holds the time fractions at their guesses and the event's other variables (the
+  // costates after a state map, Category-C parameters) at 0.
+  std::vector<int> fractions, zero;
+  for (std::size_t i = 0; i < vars.size(); ++i) {
+    bool owned = false;
+    for (const auto& leg : own) owned = owned || std::find(leg.begin(), leg.end(), static_cast<int>(i)) != leg.end();
+    if (vars[i].value("role", "") == "time_fraction")
+      fractions.push_back(static_cast<int>(i));
+    else if (!owned)
+      zero.push_back(static_cast<int>(i));
+  }
+  const auto list = [](const std::vector<int>& v) {
+    std::string out;
+    for (std::size_t j = 0; j < v.size(); ++j) out += (j ? ", " : "") + std::to_string(v[j]);
+    return "{" + out + "}";
+  };
+  std::ostringstream o;
+  o << "const LegPlan kLegPlan = {{";
+  for (std::size_t k = 0; k < own.size(); ++k) {
+    const int unknowns = static_cast<int>(own[k].size()) + (k > 0 ? static_cast<int>(c.states.size()) : 0);
+    if (unknowns != leg_sizes.at(k))
+      throw std::invalid_argument("field /events: leg " + std::to_string(k) + " has " + std::to_string(unknowns) +
+                                  " unknowns but " + std::to_string(leg_sizes[k]) + " equations");
+    o << (k ? ", " : "") << list(own[k]);
+  }
+  o << "}, " << list(fractions) << ", " << list(zero) << "};\n\n"
+    << "void shooting_function(const double* x, double eps, Propagator& prop, double* F) {\n"
+    << "  shooting_legs(x, eps, prop, F, nullptr);\n}\n\n";
+  return o.str();
+}
+
 std::string residual_module(Context& c) {
   const json& d = c.d;
   std::ostringstream o;
@@ -284,6 +332,7 @@ std::string residual_module(Context& c) {
                                 std::to_string(eqs.size()) + " equations");
   o << "// ----- module RESIDUAL (generated) -------------------------------------------------------\n"
     << "namespace helios_rt {\n\n";
+  std::vector<int> leg_sizes;  // equations of each leg alone
   if (d.contains("coast_dynamics")) {
     const auto& coast = d.at("coast_dynamics");
     const auto names = coast.at("states").get<std::vector<std::string>>();
@@ -296,7 +345,20 @@ std::string residual_module(Context& c) {
       o << "  dy[" << i << "] = " << c.cpp(coast.at("rhs")[i], "/coast_dynamics/rhs/" + std::to_string(i)) << ";\n";
     o << "}\n\n";
   }
-  o << "void shooting_function(const double* x, double eps, Propagator& prop, double* F) {\n";
+  const json events = d.value("events", json::array());
+  if (!events.empty())
+    o << "// With `legs`: multiple shooting (the costates after each event are legs->starts, their mismatch\n"
+      << "// with the jump conditions goes to legs->continuity), or one leg alone (legs->stop_at).\n"
+      << "void shooting_legs(const double* x, double eps, Propagator& prop, double* F, const Legs* legs) {\n";
+  else
+    o << "void shooting_function(const double* x, double eps, Propagator& prop, double* F) {\n";
+  // The equation of each name, for the legs' own residuals.
+  const auto equation = [&](const std::string& name) {
+    for (std::size_t i = 0; i < eqs.size(); ++i)
+      if (eqs[i].at("name") == name)
+        return c.cpp(eqs[i].at("expression"), "/shooting/equations/" + std::to_string(i) + "/expression");
+    throw std::invalid_argument("field /shooting/equations: no equation " + name);
+  };
   for (std::size_t i = 0; i < vars.size(); ++i)
     o << "  [[maybe_unused]] const double " << vars[i].at("name").get<std::string>() << " = x[" << i << "];  // "
       << vars[i].at("meaning").get<std::string>() << "\n";
@@ -311,7 +373,6 @@ std::string residual_module(Context& c) {
     o << "  const double tf = problem::kTf;\n";
   // Epochs of the interior events (a stay ends at t_<id>_dep), checked to be in order.
   std::string order = "t0";
-  const json events = d.value("events", json::array());
   for (std::size_t k = 0; k < events.size(); ++k) {
     const json& e = events[k];
     const std::string id = e.at("id"), where = "/events/" + std::to_string(k);
@@ -394,6 +455,22 @@ std::string residual_module(Context& c) {
     o << "  prop.propagate(" << from << ", t_" << id << ", y, mult);\n";
     unpack_y("_" + id + "_m");
     evaluate_h(id + "_m", "t_" + id);
+    // Leg k alone ends here as if the trajectory ended: its conditions c = 0 and lambda(t+) = 0
+    // (the shooting variables of lambda(t+) are 0 in leg mode); leg 0 carries the normalization.
+    o << "  if (legs && legs->stop_at == " << k << ") {\n";
+    int row = 0;
+    if (k == 0) o << "    F[" << row++ << "] = " << equation("normalization") << ";\n";
+    for (std::size_t j = 0; j < e.at("psi").size() - c.states.size(); ++j)
+      o << "    F[" << row++ << "] = " << equation("psi_" + id + "_" + std::to_string(j + 1)) << ";\n";
+    for (std::size_t i = 0; i < c.costates.size(); ++i) {
+      const json& m = e.at("costate_map")[i];
+      o << "    F[" << row++ << "] = "
+        << (m.contains("variable") ? equation("jump_" + id + "_" + c.states[i])
+                                   : c.cpp(m.at("expression"), where + "/costate_map/" + std::to_string(i)))
+        << ";\n";
+    }
+    o << "    return;\n  }\n";
+    leg_sizes.push_back(row);
     // x+ = g(x-), lambda+ from the jump rows (or a shooting variable).
     const auto& state_map = e.at("state_map");
     const auto& costate_map = e.at("costate_map");
@@ -412,6 +489,12 @@ std::string residual_module(Context& c) {
                                  : c.cpp(m.at("expression"), where + "/costate_map/" + std::to_string(i));
       o << "  y[" << c.states.size() + i << "] = " << value << ";\n";
     }
+    o << "  if (legs) {\n"
+      << "    for (int i = 0; i < problem::kNumStates; ++i) {\n"
+      << "      const double start = legs->starts[" << k << " * problem::kNumStates + i];\n"
+      << "      if (legs->continuity) legs->continuity[" << k
+      << " * problem::kNumStates + i] = y[problem::kNumStates + i] - start;\n"
+      << "      y[problem::kNumStates + i] = start;\n    }\n  }\n";
     for (std::size_t i = 0; i < c.states.size(); ++i)
       o << "  [[maybe_unused]] const double " << c.states[i] << "_" << id << "_p = y[" << i << "];\n";
     for (std::size_t i = 0; i < c.costates.size(); ++i)
@@ -426,6 +509,19 @@ std::string residual_module(Context& c) {
   evaluate_h("tf", "tf");
   if (!hamiltonian_at.empty())
     throw std::invalid_argument("field /event_values: no event '" + hamiltonian_at.begin()->first + "'");
+  if (!events.empty()) {
+    // The last leg alone: the final constraint's own equations (its epoch held at its guess).
+    std::string final_id;
+    for (const auto& k : d.at("constraints"))
+      if (k.at("at") == "tf") final_id = k.at("id");
+    o << "  if (legs && legs->stop_at == " << events.size() << ") {\n";
+    int row = 0;
+    for (std::size_t i = 0; i < eqs.size(); ++i)
+      if (eqs[i].value("source", "") == final_id)
+        o << "    F[" << row++ << "] = " << equation(eqs[i].at("name")) << ";\n";
+    o << "    return;\n  }\n";
+    leg_sizes.push_back(row);
+  }
   for (std::size_t i = 0; i < eqs.size(); ++i) {
     const double scale = eqs[i].at("scale");
     o << "  F[" << i << "] = ("
@@ -433,7 +529,9 @@ std::string residual_module(Context& c) {
     if (scale != 1.0) o << " / " << number(scale);
     o << ";  // " << eqs[i].at("meaning").get<std::string>() << "\n";
   }
-  o << "}\n\n}  // namespace helios_rt\n";
+  o << "}\n\n";
+  if (!events.empty()) o << legs_block(c, leg_sizes);
+  o << "}  // namespace helios_rt\n";
   return o.str();
 }
 
@@ -484,7 +582,8 @@ std::string solve_module(Context& c) {
            }(),
            mult)
     << "] > 0; };\n"
-    << "  return homotopy_solve(settings, initial_guess, admissible);\n"
+    << (d.contains("events") ? "  return legs_homotopy_solve(settings, kLegPlan, initial_guess, admissible);\n"
+                             : "  return homotopy_solve(settings, initial_guess, admissible);\n")
     << "}\n\n}  // namespace helios_rt\n";
   return o.str();
 }
@@ -562,7 +661,7 @@ std::string assemble(const json& derivation, const std::string& modules, const s
       << "// regenerate it. Fixed runtime from templates/runtime, modules below marked generated or template.\n"
       << "#include <cminpack-1/cminpack.h>\n\n"
       << "#include <algorithm>\n#include <array>\n#include <chrono>\n#include <cmath>\n#include <cstdio>\n"
-      << "#include <fstream>\n#include <nlohmann/json.hpp>\n#include <random>\n#include <sstream>\n"
+      << "#include <fstream>\n#include <functional>\n#include <nlohmann/json.hpp>\n#include <random>\n#include <sstream>\n"
       << "#include <stdexcept>\n#include <string>\n#include <vector>\n\n"
       << "#define HELIOS_ASTRO_EMBEDDED\n"
       << pasted("tools/lib/include/helios/astro/constants.hpp") << "\n"
