@@ -182,6 +182,12 @@ json named_list(const std::vector<Named>& v, bool with_value) {
   return out;
 }
 
+// The expanded form of e where that is not longer (a swing-by's rotation expands enormously).
+ex tidy(const ex& e) {
+  const ex expanded = e.expand();
+  return to_text(expanded).size() <= to_text(e).size() ? expanded : e;
+}
+
 // d e/dt through the time-dependent parameters (a target's state at its event).
 ex time_derivative(Problem& p, const ex& e) {
   ex d = 0;
@@ -260,7 +266,7 @@ json interior_event_conditions(Problem& p, const InteriorEvent& e, json& variabl
     for (std::size_t j = 0; j < e.c.size(); ++j) rest -= nu[j] * e.c[j].diff(xm[s]);
     for (std::size_t k = 0; k < n; ++k)
       if (!carried[k] || k != s) rest -= lp[k] * e.map[k].diff(xm[s]);
-    rest = rest.expand();
+    rest = tidy(rest);
     conditions.push_back(lm[s].get_name() + " = nu^T dc/d" + xm[s].get_name() + " + lambda(t+)^T dg/d" +
                          xm[s].get_name());
     state_map.push_back({{"state", p.states[s].name}, {"expression", to_text(e.map[s])}});
@@ -281,7 +287,7 @@ json interior_event_conditions(Problem& p, const InteriorEvent& e, json& variabl
   for (std::size_t j = 0; j < e.c.size(); ++j) time_condition += nu[j] * time_derivative(p, e.c[j]);
   for (std::size_t k = 0; k < n; ++k) time_condition += lp[k] * time_derivative(p, e.map[k]);
   equations.push_back({{"name", "time_" + e.id},
-                       {"expression", to_text(time_condition.expand())},
+                       {"expression", to_text(tidy(time_condition))},
                        {"meaning", "H(t-) - H(t+) + dPhi/dt = 0 at " + e.id + ": its epoch is free"},
                        {"scale", 1.0},
                        {"source", e.id}});
@@ -293,7 +299,7 @@ json interior_event_conditions(Problem& p, const InteriorEvent& e, json& variabl
     for (std::size_t j = 0; j < e.c.size(); ++j) st += nu[j] * e.c[j].diff(par);
     for (std::size_t k = 0; k < n; ++k) st += lp[k] * e.map[k].diff(par);
     equations.push_back({{"name", "stationarity_" + e.id + "_" + q},
-                         {"expression", to_text(st)},
+                         {"expression", to_text(tidy(st))},
                          {"meaning", "dPhi/d" + q + " = 0: " + q + " is a free parameter of psi at " + e.id},
                          {"scale", 1.0},
                          {"source", e.id}});

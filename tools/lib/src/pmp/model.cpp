@@ -247,9 +247,9 @@ InteriorEvent interior_event(Problem& p, const json& c) {
   }
   if (e.kind == "gravity_assist") {
     // Unpowered patched-conic swing-by: the excess velocity v_inf = v- - v_body keeps its size and
-    // turns by delta about v_inf, at azimuth phi from the plane of v_inf and the body's position:
+    // turns by delta, at azimuth phi about v_inf measured from the ecliptic-parallel normal w:
     //   v_inf+ = cos(delta) v_inf + sin(delta) (cos(phi) |v_inf| w/|w| + sin(phi) v_inf x w/|w|),
-    //   w = v_inf x r_body. delta and phi are free parameters of psi (Category C).
+    //   w = z x v_inf. delta and phi are free parameters of psi (Category C).
     if (!c.contains("body_mu_km3_s2")) throw std::invalid_argument(where + ": field body_mu_km3_s2 is missing");
     const std::string mu_name = "mu_" + e.id, delta = "delta_" + e.id, phi = "phi_" + e.id;
     p.parameters.push_back({mu_name, "gravitational parameter of the swing-by body " + e.id,
@@ -258,15 +258,12 @@ InteriorEvent interior_event(Problem& p, const json& c) {
                                 (U.length_km * U.length_km * U.length_km)});
     const ex d = S.get(delta), f = S.get(phi);
     e.free_parameters = {delta, phi};
-    std::vector<ex> vinf(3), rb(3);
-    for (int i = 0; i < 3; ++i) {
-      vinf[i] = xm[3 + i] - arrival[3 + i];
-      rb[i] = arrival[i];
-    }
+    std::vector<ex> vinf(3);
+    for (int i = 0; i < 3; ++i) vinf[i] = xm[3 + i] - arrival[3 + i];
     const auto cross = [](const std::vector<ex>& a, const std::vector<ex>& b) {
       return std::vector<ex>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
     };
-    const std::vector<ex> w = cross(vinf, rb), vw = cross(vinf, w);
+    const std::vector<ex> w = cross({0, 0, 1}, vinf), vw = cross(vinf, w);
     const ex wn = GiNaC::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
     const ex vn = GiNaC::sqrt(vinf[0] * vinf[0] + vinf[1] * vinf[1] + vinf[2] * vinf[2]);
     for (int i = 0; i < 3; ++i)
