@@ -1041,7 +1041,7 @@ json parse_problem_text(const std::string& text, const std::string& source) {
       if (!b.spacecraft.contains(field)) missing("the spacecraft's " + field, example);
   if (b.propulsion == "solar_sail" && b.seen.count("the spacecraft's engine"))
     throw input_error(source + ": the spacecraft is a solar sail, so it has no thrust, specific impulse or mass");
-  if (!b.seen.count("the departure")) missing("the departure", "The spacecraft departs at t = 0 days from the Earth.");
+  if (!b.seen.count("the departure")) missing("the departure", "The spacecraft departs at MJD2000 400 from Earth.");
   if (!b.time.contains("final_time")) missing("the time of flight", "The time of flight is 348.795 days.");
   for (const auto& p : b.perturbations)
     if (p["kind"] == "j2" && (!b.central_body.contains("j2") || !b.central_body.contains("radius_km")))
