@@ -119,8 +119,8 @@ TEST(Parse, J2CentralBodyAndPerturbation) {
   EXPECT_EQ(s["central_body"]["radius_km"], 6378.137);
   EXPECT_EQ(s["dynamics"]["perturbations"], json::parse(R"([{"kind": "j2"}])"));
   // J2 without the body's coefficient cannot be formulated.
-  const std::string text = replaced(helios::io::read_text(kSource + "/scenarios/S05/problem.txt"),
-                                    " and J2 coefficient 1.08262668e-3", "");
+  const std::string text =
+      replaced(helios::io::read_text(kSource + "/scenarios/S05/problem.txt"), " and J2 coefficient 1.08262668e-3", "");
   EXPECT_NE(error_of(text).find("needs the central body's J2 coefficient"), std::string::npos) << error_of(text);
 }
 
@@ -161,6 +161,355 @@ TEST(Parse, UserAccelerationIsCheckedAtParseTime) {
   EXPECT_NE(error_of(two).find("three components"), std::string::npos) << error_of(two);
   const std::string unit = replaced(text, "z/r] m/s^2", "z/r] N");
   EXPECT_NE(error_of(unit).find("not an acceleration unit"), std::string::npos) << error_of(unit);
+}
+
+}  // namespace
+
+// ---- bodies by elements, free departure, events on the way -------------------------------------
+
+namespace {
+
+const std::string kHead =
+    "Problem E01: Asteroid tour.\n"
+    "The central body is the Sun.\n"
+    "The spacecraft has a maximum thrust of 0.3 N, a specific impulse of 3000 s and an initial mass of 2000 kg.\n";
+const std::string kNikko =
+    "Nikko moves on a Keplerian orbit about the Sun with a = 2.2375176 AU, e = 0.1052183, i = 5.70117 deg, node = "
+    "71.94548 deg, argument of perihelion = 2.08462 deg and mean anomaly = 287.3844555 deg at MJD 56800.\n";
+const std::string kDeparture =
+    "The spacecraft departs from Earth at MJD2000 10336.6.\n"
+    "The time of flight is 981.1 days.\n";
+const std::string kEnd =
+    "At the final time the spacecraft rendezvouses with Mars.\n"
+    "Minimize the fuel consumption.\n";
+
+// kHead + middle + kEnd: lines 1-3 are kHead.
+std::string tour(const std::string& middle) {
+  return kHead + middle + kEnd;
+}
+
+json valid(const std::string& text) {
+  const json spec = parse(text);
+  EXPECT_NO_THROW(helios::io::validate("spec", spec, "spec"));
+  return spec;
+}
+
+void expect_error(const std::string& text, const std::string& part) {
+  const std::string err = error_of(text);
+  EXPECT_NE(err.find(part), std::string::npos) << "expected '" << part << "' in: " << err;
+}
+
+TEST(ParseEvents, OrbitSentenceGivesAnOrbitTarget) {
+  const json s = valid(tour(kNikko + kDeparture + "The spacecraft flies by Nikko between day 100 and day 200.\n"));
+  const json& t = s["constraints"][1]["target"];
+  EXPECT_EQ(t["kind"], "orbit");
+  EXPECT_EQ(t["body"], "Nikko");
+  EXPECT_EQ(t["elements"], json::parse(R"({"epoch_mjd2000": 5256.0, "a_AU": 2.2375176, "e": 0.1052183,
+      "i_deg": 5.70117, "raan_deg": 71.94548, "argp_deg": 2.08462, "mean_anomaly_deg": 287.3844555})"));
+  // MJD2000 epochs, radians, kilometres and the true anomaly.
+  const json other = valid(
+      tour(kDeparture +
+           "Nikko moves on a Keplerian orbit about the Sun with a = 334726238.7 km, e = 0.1, i = 0.1 rad, node = 1 "
+           "deg, argument of perihelion = 2 deg and true anomaly = 3 deg at MJD2000 5256.\n"
+           "The spacecraft flies by Nikko between day 100 and day 200.\n"));
+  const json& el = other["constraints"][1]["target"]["elements"];
+  EXPECT_EQ(el["epoch_mjd2000"], 5256.0);
+  EXPECT_TRUE(IsClose(el["a_AU"], 334726238.7 / 149597870.691, 0, 1e-15));
+  EXPECT_TRUE(IsClose(el["i_deg"], 5.729577951308232, 0, 1e-15));
+  EXPECT_EQ(el["true_anomaly_deg"], 3.0);
+  EXPECT_FALSE(el.contains("mean_anomaly_deg"));
+}
+
+TEST(ParseEvents, ElementsTable) {
+  const std::string table =
+      "The following asteroids move on Keplerian orbits about the Sun with these elements:\n"
+      "| body | a [AU] | e | i [deg] | node [deg] | argument of perihelion [deg] | mean anomaly [deg] | epoch [MJD] |\n"
+      "|---|---|---|---|---|---|---|---|\n"
+      "| Nikko | 2.2375176 | 0.1052183 | 5.70117 | 71.94548 | 2.08462 | 287.3844555 | 56800 |\n"
+      "|  Rock_1423 | 2.45 | 0.15 | 8.2 | 201.5 | 310.25 | 45.5 | 56800 |\n";
+  const json s = valid(tour(table + kDeparture +
+                            "The spacecraft flies by Nikko between day 100 and day 200.\n"
+                            "The spacecraft flies by Rock_1423 between day 300 and day 400.\n"));
+  EXPECT_EQ(s["constraints"][1]["target"], valid(tour(kNikko + kDeparture +
+                                                      "The spacecraft flies by Nikko between day 100 and day "
+                                                      "200.\n"))["constraints"][1]["target"]);
+  EXPECT_EQ(s["constraints"][2]["target"]["elements"]["argp_deg"], 310.25);
+  // A table stands without its introducing sentence, and its rows need no rule line.
+  const json bare = valid(tour(table.substr(table.find('\n') + 1) + kDeparture +
+                               "The spacecraft flies by Nikko between day 100 and day 200.\n"
+                               "The spacecraft flies by Rock_1423 between day 300 and day 400.\n"));
+  EXPECT_EQ(bare["constraints"], s["constraints"]);
+}
+
+TEST(ParseEvents, ElementsTableErrors) {
+  const std::string header =
+      "| body | a [AU] | e | i [deg] | node [deg] | argument of perihelion [deg] | mean anomaly [deg] | epoch [MJD] "
+      "|\n";
+  const std::string row = "| Nikko | 2.2375176 | 0.1052183 | 5.70117 | 71.94548 | 2.08462 | 287.3844555 | 56800 |\n";
+  const std::string events = kDeparture + "The spacecraft flies by Nikko between day 100 and day 200.\n";
+  // Columns in another order.
+  std::string swapped = header;
+  swapped.replace(swapped.find("| e | i [deg] |"), 15, "| i [deg] | e |");
+  EXPECT_EQ(error_of(tour(swapped + row + events)),
+            "problem.txt:4: cannot use table row \"" + swapped.substr(0, swapped.size() - 1) +
+                "\": column 3 is 'i [deg]': the header reads | body | a [AU] | e | i [deg] | node [deg] | argument "
+                "of perihelion [deg] | mean anomaly [deg] | epoch [MJD] | (a in AU or km, angles in deg or rad, 'true "
+                "anomaly' instead of 'mean anomaly', epoch in MJD or MJD2000)");
+  expect_error(tour(row + events), "problem.txt:4: cannot use table row \"| Nikko");
+  expect_error(tour(row + events), "needs its header line just above it");
+  std::string short_row = row;
+  short_row.replace(short_row.find(" 56800 |"), 8, "");
+  expect_error(tour(header + short_row + events), "the row has 7 cells where the header has 8");
+  std::string word = row;
+  word.replace(word.find("0.1052183"), 9, "small");
+  expect_error(tour(header + word + events), "cell 3 'small' is not a number");
+  std::string bad_name = row;
+  bad_name.replace(bad_name.find("Nikko"), 5, "Nik-ko");
+  expect_error(tour(header + bad_name + events), "'Nik-ko' is not a body name");
+  std::string km = header;
+  km.replace(km.find("i [deg]"), 7, "i [km]");
+  expect_error(tour(km + row + events), "unit 'km' is not an angle unit (use deg, rad)");
+  expect_error(tour("The asteroids move on Keplerian orbits about the Sun.\n" + events),
+               "problem.txt:5: cannot use sentence \"The spacecraft departs from Earth at MJD2000 10336.6\": it "
+               "follows a sentence announcing a table");
+}
+
+TEST(ParseEvents, FreeDepartureFromABody) {
+  const json s =
+      valid(tour(kNikko + "The spacecraft departs from Nikko.\n"
+                          "The departure epoch is free between 30 days before and 30 days after MJD2000 10336.6.\n"
+                          "The total time of flight is 981.1 days.\n"));
+  EXPECT_EQ(s["time"], json::parse(R"({"t0_days": 0.0, "epoch_mjd2000": 10336.6, "departure": "free",
+      "t0_window_days": [-30.0, 30.0], "final_time": "fixed", "tof_days": 981.1})"));
+  EXPECT_EQ(s["constraints"][0]["target"]["body"], "Nikko");
+  EXPECT_EQ(s["constraints"][0]["at"], "t0");
+  // The same epoch in the departure sentence, a window given as a half-width, MJD.
+  const json within = valid(tour(kNikko + "The spacecraft departs from Nikko at MJD 61880.6.\n"
+                                          "The departure date is free within 2 days of MJD 61880.6.\n"
+                                          "The total time of flight is 981.1 days.\n"));
+  EXPECT_EQ(within["time"]["t0_window_days"], json::parse("[-2.0, 2.0]"));
+  EXPECT_TRUE(IsClose(within["time"]["epoch_mjd2000"], 10336.6, 1e-9, 0));  // MJD - 51544
+  // A departure sentence alone fixes the epoch.
+  const json fixed = valid(
+      tour(kNikko + "The spacecraft departs from Nikko at MJD2000 10336.6.\n" + "The time of flight is 981.1 days.\n"));
+  EXPECT_FALSE(fixed["time"].contains("departure"));
+  EXPECT_EQ(fixed["time"]["epoch_mjd2000"], 10336.6);
+  // Contradictions.
+  expect_error(tour(kNikko + "The spacecraft departs from Nikko at MJD2000 10000.\n"
+                             "The departure epoch is free between 30 days before and 30 days after MJD2000 10336.6.\n"
+                             "The total time of flight is 981.1 days.\n"),
+               "problem.txt:6: cannot use sentence \"The departure epoch is free between 30 days before and 30 days "
+               "after MJD2000 10336.6\": the epoch MJD2000 10336.6 contradicts the epoch MJD2000 10000 stated before");
+  expect_error(tour(kNikko + "The spacecraft departs from Nikko.\n"
+                             "The departure epoch is free between 30 days after and 30 days before MJD2000 10336.6.\n"
+                             "The total time of flight is 981.1 days.\n"),
+               "the departure window is empty");
+  expect_error(tour(kNikko + "The spacecraft departs from Nikko.\n"
+                             "The departure epoch is free between 30 days before and 30 days after MJD2000 10336.6.\n"
+                             "The time of flight is free, between 100 days and 900 days.\n"),
+               "problem.txt:6: cannot use sentence \"The departure epoch is free between 30 days before and 30 days "
+               "after MJD2000 10336.6\": a free departure epoch needs a fixed total time of flight");
+  expect_error(tour(kNikko + "The spacecraft departs from Nikko.\n"
+                             "The departure epoch is free between 30 kg before and 30 days after MJD2000 10336.6.\n"
+                             "The total time of flight is 981.1 days.\n"),
+               "unit 'kg' is not a time unit");
+}
+
+TEST(ParseEvents, RendezvousWithStayAndLander) {
+  const json s = valid(tour(kNikko + kDeparture +
+                            "The spacecraft rendezvouses with Nikko between day 200 and day 320 and stays there for "
+                            "30 days.\nIt leaves a lander of 50 kg at Nikko.\n"));
+  ASSERT_EQ(s["constraints"].size(), 3u);
+  const json& c = s["constraints"][1];
+  EXPECT_EQ(c["id"], "nikko");
+  EXPECT_EQ(c["kind"], "rendezvous");
+  EXPECT_EQ(c["at"], "interior");
+  EXPECT_EQ(c["window_days"], json::parse("[200.0, 320.0]"));
+  EXPECT_EQ(c["stay_days"], 30.0);
+  EXPECT_EQ(c["mass_drop_kg"], 50.0);
+  // The lander in the same sentence, the stay in other units, the window in MJD2000.
+  const json same = valid(tour(kNikko + kDeparture +
+                               "The spacecraft rendezvouses with Nikko between MJD2000 10536.6 and MJD2000 10656.6, "
+                               "stays there for 2592000 s and leaves a lander of 50 kg.\n"));
+  EXPECT_TRUE(IsClose(same["constraints"][1]["window_days"][0], 200.0, 1e-9, 0));
+  EXPECT_TRUE(IsClose(same["constraints"][1]["window_days"][1], 320.0, 1e-9, 0));
+  // No stay.
+  const json no_stay = valid(tour(kNikko + kDeparture +
+                                  "The spacecraft rendezvouses with Nikko between day 200 and day 320 and does not "
+                                  "stay.\n"));
+  EXPECT_EQ(no_stay["constraints"][1]["stay_days"], 0.0);
+  const json bare =
+      valid(tour(kNikko + kDeparture + "The spacecraft rendezvouses with Nikko between day 200 and day 320.\n"));
+  EXPECT_FALSE(bare["constraints"][1].contains("stay_days"));
+}
+
+TEST(ParseEvents, RendezvousErrors) {
+  const std::string visit = "The spacecraft rendezvouses with Nikko between day 200 and day 320";
+  expect_error(tour(kNikko + kDeparture + visit + " and stays there for 30 kg.\n"), "unit 'kg' is not a time unit");
+  expect_error(tour(kNikko + kDeparture + visit + " and stays there for 30 days and stays there for 2 days.\n"),
+               "the stay at Nikko is given twice");
+  expect_error(tour(kNikko + kDeparture + visit + " and dances.\n"),
+               "cannot read 'dances': a rendezvous takes 'stays there for Q', 'does not stay' and 'leaves a lander "
+               "of Q'");
+  expect_error(tour(kNikko + kDeparture + "It leaves a lander of 50 kg at Nikko.\n" + visit + ".\n"),
+               "problem.txt:7: cannot use sentence \"It leaves a lander of 50 kg at Nikko\": no rendezvous with Nikko "
+               "is stated before this sentence");
+  expect_error(tour(kNikko + kDeparture + "The spacecraft flies by Nikko between day 100 and day 200.\n" +
+                    "It leaves a lander of 50 kg at Nikko.\n"),
+               "only a rendezvous can leave a lander");
+  expect_error(tour(kNikko + kDeparture + visit + ".\nThe spacecraft rendezvouses with Nikko between day 400 and day " +
+                    "500.\nIt leaves a lander of 50 kg at Nikko.\n"),
+               "rendezvouses with Nikko 2 times");
+  expect_error(tour(kNikko + kDeparture + visit + " and leaves a lander of 2500 kg.\n"),
+               "the landers weigh 2500 kg, not less than the initial mass");
+  expect_error(tour(kNikko + kDeparture + visit + " and leaves a lander of 50 kg at Rock_1423.\n"),
+               "the clause names Rock_1423 but the event is at Nikko");
+  expect_error(tour(kNikko + kDeparture + "The spacecraft rendezvouses with Nikko.\n"),
+               "an event on the way needs its window");
+  expect_error(tour(kNikko + kDeparture + "The spacecraft rendezvouses with Nikko between 200 days and 320 days.\n"),
+               "the window must read 'between day N and day N'");
+}
+
+TEST(ParseEvents, FlybyAndGravityAssist) {
+  const json s = valid(tour(kNikko + kDeparture +
+                            "The spacecraft flies by Nikko between day 100 and day 200.\n"
+                            "The spacecraft swings by Mars between day 300 and day 600 in an unpowered gravity "
+                            "assist; Mars has a gravitational parameter of 42828.3 km^3/s^2 and the periapsis radius "
+                            "must be at least 3889.9 km.\n"));
+  ASSERT_EQ(s["constraints"].size(), 4u);
+  EXPECT_EQ(s["constraints"][1], json::parse(R"({"id": "nikko", "kind": "flyby", "at": "interior",
+      "target": )" + s["constraints"][1]["target"].dump() +
+                                             R"(, "window_days": [100.0, 200.0]})"));
+  EXPECT_EQ(s["constraints"][2], json::parse(R"({"id": "mars", "kind": "gravity_assist", "at": "interior",
+      "target": {"kind": "body", "body": "Mars", "ephemeris": "jpl_lp"}, "window_days": [300.0, 600.0],
+      "body_mu_km3_s2": 42828.3, "min_periapsis_radius_km": 3889.9})"));
+  // Mars's parameter is known; a second visit of a body gets the suffix _2.
+  const json twice = valid(tour(kNikko + kDeparture +
+                                "The spacecraft flies by Nikko between day 100 and day 200.\n"
+                                "The spacecraft swings by Mars between day 300 and day 400.\n"
+                                "The spacecraft flies by Nikko between day 500 and day 600.\n"));
+  EXPECT_EQ(twice["constraints"][2]["body_mu_km3_s2"], 42828.3);
+  EXPECT_FALSE(twice["constraints"][2].contains("min_periapsis_radius_km"));
+  EXPECT_EQ(twice["constraints"][3]["id"], "nikko_2");
+  // Errors.
+  expect_error(tour(kNikko + kDeparture + "The spacecraft flies by Nikko between day 100 and day 200 and stays.\n"),
+               "a flyby matches the position only and takes no further clause");
+  expect_error(tour(kNikko + kDeparture + "The spacecraft swings by Nikko between day 100 and day 200.\n"),
+               "the gravitational parameter of Nikko is not known: add '; Nikko has a gravitational parameter of Q "
+               "km^3/s^2'");
+  expect_error(tour(kNikko + kDeparture +
+                    "The spacecraft swings by Mars between day 300 and day 600; Mars has a gravitational parameter "
+                    "of 42828.3 km and the periapsis radius must be at least 3889.9 km.\n"),
+               "unit 'km' is not a gravitational parameter unit");
+  expect_error(tour(kNikko + kDeparture +
+                    "The spacecraft swings by Mars between day 300 and day 600; Venus has a gravitational parameter "
+                    "of 324859 km^3/s^2.\n"),
+               "the clause names Venus but the event is at Mars");
+}
+
+TEST(ParseEvents, FinalRendezvousWithABodyByElements) {
+  const json s = valid(kHead + kNikko + kDeparture +
+                       "At the final time the spacecraft rendezvouses with NIKKO.\nMinimize the fuel consumption.\n");
+  EXPECT_EQ(s["constraints"][1]["id"], "arrival");
+  EXPECT_EQ(s["constraints"][1]["at"], "tf");
+  EXPECT_EQ(s["constraints"][1]["target"]["kind"], "orbit");
+  EXPECT_EQ(s["constraints"][1]["target"]["body"], "Nikko");  // as its orbit names it
+}
+
+TEST(ParseEvents, NamesAreCheckedAndResolved) {
+  EXPECT_EQ(error_of(tour(kDeparture + "The spacecraft flies by Ceres between day 100 and day 200.\n")),
+            "problem.txt:6: cannot use sentence \"The spacecraft flies by Ceres between day 100 and day 200\": "
+            "unknown body 'Ceres': state its orbit ('Ceres moves on a Keplerian orbit about the Sun with a = Q, e = "
+            "N, i = Q, node = Q, argument of perihelion = Q and mean anomaly = Q at MJD N') or name a planet with an "
+            "ephemeris (Earth, Mars, Venus, Jupiter)");
+  expect_error(tour(kDeparture + "The spacecraft flies by Rock 1423 between day 100 and day 200.\n"),
+               "'Rock 1423' is not a body name: use letters, digits and underscores, starting with a letter");
+  std::string dashed = kNikko;
+  dashed.replace(0, 5, "Nik-ko");
+  expect_error(tour(dashed + kDeparture), "problem.txt:4: cannot use sentence \"Nik-ko moves");
+  expect_error(tour(dashed + kDeparture), "'Nik-ko' is not a body name");
+  expect_error(tour(kDeparture + "The spacecraft flies by 1423 between day 100 and day 200.\n"),
+               "'1423' is not a body name");
+  expect_error(tour(kNikko + kDeparture),
+               "problem.txt:4: cannot use sentence \"Nikko moves on a Keplerian orbit about the Sun with a = "
+               "2.2375176 AU");
+  expect_error(tour(kNikko + kDeparture), "no sentence sends the spacecraft to Nikko");
+  expect_error(tour(kNikko + kNikko + kDeparture), "the orbit of Nikko is given twice (first on line 4)");
+  std::string earth_orbit = kNikko;
+  earth_orbit.replace(earth_orbit.find("about the Sun"), 13, "about the Earth");
+  expect_error(tour(earth_orbit + kDeparture + "The spacecraft flies by Nikko between day 100 and day 200.\n"),
+               "the orbit is about Earth but the central body is Sun");
+  expect_error(tour(kDeparture + "The spacecraft flies by Arrival between day 100 and day 200.\n"),
+               "'Arrival' cannot name a body");
+}
+
+TEST(ParseEvents, ElementErrors) {
+  const std::string flyby = kDeparture + "The spacecraft flies by Nikko between day 100 and day 200.\n";
+  const auto with = [&](const std::string& from, const std::string& to) {
+    return tour(replaced(kNikko, from, to) + flyby);
+  };
+  expect_error(with(" at MJD 56800", ""),
+               "the elements of Nikko need their epoch: end the sentence with 'at MJD N' or 'at MJD2000 N'");
+  expect_error(with("5.70117 deg", "5.70117 kg"), "unit 'kg' is not an angle unit (use deg, rad)");
+  expect_error(with("5.70117 deg", "5.70117"), "the angles need a unit (deg or rad)");
+  expect_error(with("2.2375176 AU", "2.2375176"), "the semi-major axis needs a length unit");
+  expect_error(with("2.2375176 AU", "2.2375176 s"), "unit 's' is not a length unit");
+  expect_error(with("e = 0.1052183", "e = 0.1052183 deg"), "the eccentricity is a pure number");
+  expect_error(with("e = 0.1052183", "e = 1.2"), "the eccentricity must satisfy 0 <= e < 1, got 1.2");
+  expect_error(with("a = 2.2375176 AU", "a = -2 AU"), "the semi-major axis must be positive");
+  expect_error(with(", node = 71.94548 deg", ""), "the orbit of Nikko lacks its ascending node");
+  expect_error(with(" and mean anomaly = 287.3844555 deg", ""), "lacks its anomaly");
+  expect_error(with("mean anomaly = 287.3844555 deg", "mean anomaly = 287.3844555 deg and true anomaly = 3 deg"),
+               "'true anomaly = 3 deg' repeats an element of Nikko");
+  expect_error(with("node = 71.94548 deg", "colour = red"), "cannot read 'colour = red'");
+}
+
+TEST(ParseEvents, EpochsAndWindowsAreChecked) {
+  // Bodies move with time: no calendar epoch, no spec.
+  expect_error(tour(kNikko + "The spacecraft departs at t = 0 days from Nikko.\n"
+                             "The time of flight is 981.1 days.\n"),
+               "problem.txt:5: cannot use sentence \"The spacecraft departs at t = 0 days from Nikko\": Nikko moves "
+               "with time, so the text needs a calendar epoch");
+  const std::string visit = "The spacecraft rendezvouses with Nikko between day 200 and day 320.\n";
+  // Overlapping and out-of-order windows.
+  EXPECT_EQ(error_of(tour(kNikko + kDeparture + visit + "The spacecraft flies by Mars between day 300 and day 400.\n")),
+            "problem.txt:8: cannot use sentence \"The spacecraft flies by Mars between day 300 and day 400\": its "
+            "window, day 300 to day 400, starts before the window of the event at Nikko (day 200 to day 320) ends: "
+            "state the events in the order they happen, with windows that do not overlap");
+  expect_error(tour(kNikko + kDeparture + visit + "The spacecraft flies by Mars between day 100 and day 150.\n"),
+               "starts before the window of the event at Nikko");
+  // Empty, or outside the flight (before the departure window's start, after its end plus the time of flight).
+  expect_error(tour(kNikko + kDeparture + "The spacecraft flies by Nikko between day 200 and day 100.\n"),
+               "its window, day 200 to day 100, is empty");
+  expect_error(tour(kNikko + kDeparture + "The spacecraft flies by Nikko between day 900 and day 1000.\n"),
+               "must lie inside the flight: after day 0 and before day 981.1");
+  expect_error(tour(kNikko + kDeparture + "The spacecraft flies by Nikko between day 0 and day 100.\n"),
+               "must lie inside the flight");
+  const json sliding =
+      valid(tour(kNikko + "The spacecraft departs from Earth.\n"
+                          "The departure epoch is free between 30 days before and 30 days after MJD2000 "
+                          "10336.6.\nThe total time of flight is 981.1 days.\n"
+                          "The spacecraft flies by Nikko between day -10 and day 1000.\n"));
+  EXPECT_EQ(sliding["constraints"][1]["window_days"], json::parse("[-10.0, 1000.0]"));
+  // A solar sail has no mass to drop.
+  std::string sail = tour(kNikko + kDeparture + visit + "It leaves a lander of 5 kg at Nikko.\n");
+  sail =
+      replaced(sail,
+               "The spacecraft has a maximum thrust of 0.3 N, a specific impulse of 3000 s and an initial mass of "
+               "2000 kg.",
+               "The spacecraft is an ideal flat solar sail with a characteristic acceleration of 1.0 mm/s^2 at 1 AU.");
+  expect_error(sail,
+               "problem.txt:8: cannot use sentence \"It leaves a lander of 5 kg at Nikko\": a solar sail has no "
+               "mass to leave behind");
+}
+
+TEST(ParseEvents, FixtureTourParsesAndValidates) {
+  const std::string path = kSource + "/tests/fixtures/parse/tour.txt";
+  const json s = helios::spec::parse_problem_text(helios::io::read_text(path), path);
+  EXPECT_NO_THROW(helios::io::validate("spec", s, "spec"));
+  std::vector<std::string> ids;
+  for (const auto& c : s["constraints"]) ids.push_back(c["id"]);
+  EXPECT_EQ(ids, (std::vector<std::string>{"departure", "nikko", "rock_1423", "mars", "arrival"}));
 }
 
 }  // namespace

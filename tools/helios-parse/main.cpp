@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
       {"PROBLEM"},
       "Every sentence must match a form of the controlled English documented in README.md;\n"
       "a sentence that does not is an error quoting it. Quantities are converted to the spec's\n"
-      "units (km, km/s, N, s, days, kg, km^3/s^2).\n"
+      "units (km, km/s, N, s, days, kg, km^3/s^2; orbital elements in AU and deg).\n"
       "With --backend llm the model reads the text (prompts/parse.txt) and its reply is schema-checked;\n"
       "a reply that is not a valid spec is fed back (HELIOS_LLM_MAX_TURNS). Endpoint and model come\n"
       "from HELIOS_LLM_BASE_URL, HELIOS_LLM_MODEL and HELIOS_LLM_API_KEY (see README.md).",

@@ -1,7 +1,9 @@
 #include "helios/spec/parse.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <regex>
@@ -18,9 +20,11 @@ namespace {
 
 using io::json;
 
+// A sentence, or one line of a table (a line starting with '|').
 struct Sentence {
-  std::string text;  // whitespace collapsed, final period removed
-  int line = 0;      // line where it starts
+  std::string text;        // whitespace collapsed, final period removed
+  int line = 0;            // line where it starts
+  bool table_row = false;  // a table line, read as it stands
 };
 
 // Thrown by the sentence handlers; turned into an input_error naming file, line and sentence.
@@ -51,6 +55,23 @@ std::vector<Sentence> split_sentences(const std::string& text) {
     if (in_comment) continue;
     if (at_line_start && c == '#') {
       in_comment = true;
+      continue;
+    }
+    if (at_line_start && c == '|') {
+      // A table line ends any sentence before it (like the end of the text does) and is one item.
+      while (!current.empty() && current.back() == ' ') current.pop_back();
+      if (!current.empty()) out.push_back({current, start_line});
+      current.clear();
+      const std::size_t end = std::min(text.find('\n', i), text.size());
+      std::string row;
+      for (std::size_t j = i; j < end; ++j) {
+        const bool space = std::isspace(static_cast<unsigned char>(text[j])) != 0;
+        if (space && (row.empty() || row.back() == ' ')) continue;
+        row += space ? ' ' : text[j];
+      }
+      while (!row.empty() && row.back() == ' ') row.pop_back();
+      out.push_back({row, line, true});
+      i = end - 1;
       continue;
     }
     if (!std::isspace(static_cast<unsigned char>(c))) at_line_start = false;
@@ -137,8 +158,66 @@ std::vector<std::string> top_level_items(const std::string& list) {
   return items;
 }
 
+// Where an item of the text stands, for errors found after the whole text was read.
+struct Where {
+  int line = 0;
+  std::string text;
+  bool table_row = false;
+};
+
+std::string num_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+std::string trimmed(const std::string& s) {
+  const auto b = s.find_first_not_of(' ');
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(' ') - b + 1);
+}
+
+// Factor converting `unit` into the spec unit of `d`, as a sentence error when unknown.
+double unit_factor(Dimension d, const std::string& unit) {
+  try {
+    return to_spec_unit(d, unit);
+  } catch (const std::invalid_argument& e) {
+    throw sentence_error(e.what());
+  }
+}
+
+// Splits a clause list at ';', ',', ', and' and ' and '.
+std::vector<std::string> clauses_of(const std::string& list) {
+  static const std::regex split(R"(\s*(?:;\s*|,\s*and\s+|,\s*|\s+and\s+)\s*)", std::regex::icase);
+  std::vector<std::string> out;
+  for (std::sregex_token_iterator it(list.begin(), list.end(), split, -1), end; it != end; ++it) out.push_back(*it);
+  return out;
+}
+
+bool is_planet(const std::string& key) {
+  return key == "earth" || key == "mars" || key == "venus" || key == "jupiter";
+}
+
+// A body's name as written: letters, digits and underscores, starting with a letter. It becomes a
+// constraint id (in lower case) and a string inside the generated C++, so nothing else is accepted.
+std::string body_name(const std::string& phrase) {
+  static const std::regex the = re(R"(the (.+))");
+  static const std::regex ok("[A-Za-z][A-Za-z0-9_]*");
+  std::smatch m;
+  const std::string name = std::regex_match(phrase, m, the) ? m[1].str() : phrase;
+  if (!std::regex_match(name, ok))
+    throw sentence_error("'" + phrase +
+                         "' is not a body name: use letters, digits and underscores, starting with a letter (e.g. "
+                         "Rock_1423)");
+  const std::string key = lowercase(name);
+  if (key == "departure" || key == "arrival")
+    throw sentence_error("'" + name + "' cannot name a body: '" + key + "' is the id of the " + key + " constraint");
+  return name;
+}
+
 // "position [..] km with velocity [..] km/s", "a coasting target starting from position .. with
-// velocity .." (its state at t0; it then moves unpowered) or "<Body>" (JPL low-precision ephemeris).
+// velocity .." (its state at t0; it then moves unpowered) or a body's name, kept as {"ref": NAME}
+// and looked up once the whole text is read (a body given by its orbit, else a planet).
 json parse_target(const std::string& phrase) {
   std::smatch m;
   static const std::regex state = re("(a coasting target starting from )?(?:position " + kVector + " and velocity " +
@@ -149,20 +228,122 @@ json parse_target(const std::string& phrase) {
             {"position_km", vector3(m, base, Dimension::Length)},
             {"velocity_km_s", vector3(m, base + 4, Dimension::Speed)}};
   }
-  static const std::regex body = re(R"((?:the )?(Earth|Mars|Venus|Jupiter))");
-  if (std::regex_match(phrase, m, body)) {
-    std::string name = lowercase(m[1].str());
-    name[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
-    return {{"kind", "body"}, {"body", name}, {"ephemeris", "jpl_lp"}};
+  if (phrase.find('[') == std::string::npos) {
+    try {
+      return {{"ref", body_name(phrase)}};
+    } catch (const sentence_error& e) {
+      throw sentence_error(std::string(e.what()) +
+                           "; a state reads 'position [x, y, z] UNIT with velocity [vx, vy, vz] UNIT'");
+    }
   }
   throw sentence_error(
       "expected 'position [x, y, z] UNIT with velocity [vx, vy, vz] UNIT', 'a coasting target starting from position "
-      "... with velocity ...' or a planet name");
+      "... with velocity ...' or a body's name");
 }
 
+// Which element a name in an orbit sentence or a table header stands for: a, e, i, raan, argp,
+// mean or true (the anomaly), or "" if none.
+std::string element_field(const std::string& name) {
+  static const std::map<std::string, std::string> fields = {{"a", "a"},
+                                                            {"semi-major axis", "a"},
+                                                            {"semimajor axis", "a"},
+                                                            {"e", "e"},
+                                                            {"eccentricity", "e"},
+                                                            {"i", "i"},
+                                                            {"inclination", "i"},
+                                                            {"node", "raan"},
+                                                            {"raan", "raan"},
+                                                            {"ascending node", "raan"},
+                                                            {"longitude of the ascending node", "raan"},
+                                                            {"right ascension of the ascending node", "raan"},
+                                                            {"argument of perihelion", "argp"},
+                                                            {"argument of periapsis", "argp"},
+                                                            {"argument of pericenter", "argp"},
+                                                            {"argument of pericentre", "argp"},
+                                                            {"mean anomaly", "mean"},
+                                                            {"true anomaly", "true"}};
+  const auto it = fields.find(lowercase(trimmed(name)));
+  return it == fields.end() ? "" : it->second;
+}
+
+// Classical elements in the spec's units, checked for an ellipse.
+json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v) {
+  const double a = v.at("a"), e = v.at("e");
+  if (!(a > 0)) throw sentence_error("the semi-major axis must be positive, got " + num_text(a) + " AU");
+  if (!(e >= 0 && e < 1)) throw sentence_error("the eccentricity must satisfy 0 <= e < 1, got " + num_text(e));
+  const bool mean = v.count("mean") != 0;
+  return {{"epoch_mjd2000", epoch_mjd2000},
+          {"a_AU", a},
+          {"e", e},
+          {"i_deg", v.at("i")},
+          {"raan_deg", v.at("raan")},
+          {"argp_deg", v.at("argp")},
+          {mean ? "mean_anomaly_deg" : "true_anomaly_deg", mean ? v.at("mean") : v.at("true")}};
+}
+
+// "MJD N" or "MJD2000 N" as MJD2000.
+double mjd2000_of(const std::string& scale, const std::string& value) {
+  const double v = number(value);
+  return lowercase(scale) == "mjd" ? v - helios::astro::MJD_MINUS_MJD2000 : v;
+}
+
+// A window bound: "day N" (days after the epoch) or an absolute "MJD N" / "MJD2000 N".
+struct EpochRef {
+  double value = 0;  // days, or MJD2000 when absolute
+  bool absolute = false;
+};
+
+// A body given by its orbital elements (a sentence or a table row).
+struct OrbitDef {
+  std::string name, about;  // about: the body it orbits as written ("" = the central body)
+  json elements;
+  Where where;
+  bool used = false;
+};
+
+// An event on the way: a rendezvous, a flyby or a gravity assist inside a window.
+struct Event {
+  Where where;
+  std::string kind, body;
+  EpochRef lo, hi;
+  std::optional<double> stay, drop, mu, rmin;
+  Where drop_where;
+  json target;
+  double window_lo = 0, window_hi = 0;
+};
+
+// The departure or the final rendezvous.
+struct Endpoint {
+  Where where;
+  json target;
+};
+
+// Columns of an elements table: unit factors of a and the angles, which anomaly, which epoch scale.
+struct TableColumns {
+  double a_factor = 1;
+  std::array<double, 4> angle_factor{};  // i, node, argp, anomaly
+  std::string anomaly, epoch_scale;
+};
+
+const char* const kTableHeader =
+    "| body | a [AU] | e | i [deg] | node [deg] | argument of perihelion [deg] | mean anomaly [deg] | epoch [MJD] |";
+
 struct Builder {
+  explicit Builder(std::string src) : source(std::move(src)) {}
+
+  std::string source;
+  Where here;  // the item being read
   json problem, central_body, spacecraft = json::object(), objective, time = json::object(),
-                              constraints = json::array(), perturbations = json::array();
+                              perturbations = json::array();
+  std::optional<Endpoint> departure, arrival;
+  std::vector<Event> events;
+  std::vector<OrbitDef> orbits;
+  std::optional<TableColumns> table;  // a table's header was read and its rows may follow
+  bool table_separator_allowed = false;
+  std::optional<Where> table_intro;  // a sentence announcing a table, waiting for its header
+  std::string table_about;
+  Where free_departure_where;
+  bool departure_at_t = false;
   std::string propulsion = "low_thrust";
   std::map<std::string, int> seen;  // what each sentence set, to refuse contradictions
 
@@ -170,15 +351,39 @@ struct Builder {
     if (seen[what]++) throw sentence_error(what + " is given twice");
   }
 
+  [[noreturn]] void fail(const Where& w, const std::string& why) const {
+    throw input_error(source + ":" + std::to_string(w.line) + ": cannot use " +
+                      (w.table_row ? "table row" : "sentence") + " \"" + w.text + "\": " + why);
+  }
+
+  // One item of the text; a sentence error is reported at it.
+  void read(const Sentence& item) {
+    here = {item.line, item.text, item.table_row};
+    try {
+      if (table_intro && !(item.table_row && is_table_header(item.text)))
+        throw sentence_error("it follows a sentence announcing a table, so it must be the table's header " +
+                             std::string(kTableHeader));
+      if (item.table_row) {
+        table_line(item.text);
+      } else {
+        table.reset();
+        handle(item.text);
+      }
+    } catch (const sentence_error& e) {
+      fail(here, e.what());
+    }
+  }
+
   void handle(const std::string& s) {
     std::smatch m;
     static const std::regex problem_re = re(R"(Problem ([A-Za-z0-9_-]+)\s*:\s*(.+))");
     static const std::regex central_re = re(R"(The central body is (?:the )?([A-Za-z]+)(?: with (.+))?)");
     static const std::regex has_re = re(R"(The spacecraft has (.+))");
+    static const std::regex depart_from_re = re(R"(The spacecraft departs from (.+) at ((?:t\s*=|MJD2000 |MJD ).+))");
     static const std::regex depart_re = re(R"(The spacecraft departs(?: at (.+?))? from (.+))");
-    static const std::regex tof_re = re(R"(The time of flight is (?:fixed at )?)" + kQuantity);
-    static const std::regex free_tof_re = re(R"(The time of flight is free,? (?:at most )" + kQuantity + "|between " +
-                                             kQuantity + " and " + kQuantity + ")");
+    static const std::regex tof_re = re(R"(The (?:total )?time of flight is (?:fixed at )?)" + kQuantity);
+    static const std::regex free_tof_re = re(R"(The (?:total )?time of flight is free,? (?:at most )" + kQuantity +
+                                             "|between " + kQuantity + " and " + kQuantity + ")");
     static const std::regex sail_re =
         re(R"(The spacecraft is an ideal (?:flat )?solar sail with (?:a )?characteristic acceleration (?:of )?)" +
            kQuantity + " at " + kQuantity);
@@ -192,6 +397,21 @@ struct Builder {
         R"(At the final time the spacecraft (?:rendezvouses|must rendezvous) with (.+)|The spacecraft (?:rendezvouses|must rendezvous) with (.+) at the final time)");
     static const std::regex fuel_re =
         re(R"(Minimi[sz]e (?:the )?(?:fuel(?: consumption)?|propellant(?: mass)?|fuel use))");
+    static const std::regex orbit_re = re(
+        R"((?:the (?:asteroid|comet|planet|moon|body|object) )?(.+?) moves on an? (?:Keplerian )?orbit (?:about|around) (the central body|(?:the )?[A-Za-z][A-Za-z0-9_]*) with (.+?)(?: at (?:the )?(?:epoch )?(MJD2000|MJD) ()" +
+        kNum + "))?");
+    static const std::regex intro_re = re(
+        R"(The (?:following )?(?:bodies|asteroids|comets|planets|targets) move on (?:Keplerian )?orbits (?:about|around) (the central body|(?:the )?[A-Za-z][A-Za-z0-9_]*)(?: with (?:these|the following) elements)?\s*:?)");
+    static const std::regex free_dep_re =
+        re(R"(The departure (?:epoch|date) is free,? between )" + kQuantity + " (before|after) and " + kQuantity +
+           " (before|after) (MJD2000|MJD) (" + kNum + ")");
+    static const std::regex free_dep_within_re = re(R"(The departure (?:epoch|date) is free,? within )" + kQuantity +
+                                                    " (?:of|around) (MJD2000|MJD) (" + kNum + ")");
+    static const std::regex event_re = re(
+        R"(The spacecraft (rendezvouses with|must rendezvous with|flies by|must fly by|swings by|must swing by) (.+))");
+    static const std::regex drop_re =
+        re(R"((?:It|The spacecraft) (?:leaves|drops|releases) (?:a|an) (?:lander|probe|payload|package) of )" +
+           kQuantity + " at (.+)");
     if (std::regex_match(s, m, problem_re)) {
       once("the problem name");
       problem = {{"id", m[1].str()}, {"title", m[2].str()}};
@@ -222,11 +442,10 @@ struct Builder {
       time["tof_max_days"] = hi;
     } else if (std::regex_match(s, m, has_re)) {
       spacecraft_clauses(m[1].str());
+    } else if (std::regex_match(s, m, depart_from_re)) {
+      depart(m[2].str(), m[1].str());
     } else if (std::regex_match(s, m, depart_re)) {
-      once("the departure");
-      if (m[1].matched) epoch(m[1].str());
-      constraints.push_back(
-          {{"id", "departure"}, {"kind", "initial_state"}, {"at", "t0"}, {"target", parse_target(m[2].str())}});
+      depart(m[1].matched ? m[1].str() : "", m[2].str());
     } else if (std::regex_match(s, m, tof_re)) {
       once("the time of flight");
       const double tof = quantity(m, 1, Dimension::Time);
@@ -236,18 +455,365 @@ struct Builder {
     } else if (std::regex_match(s, m, arrive_re)) {
       once("the final rendezvous");
       const std::string phrase = m[1].matched ? m[1].str() : m[2].str();
-      constraints.push_back(
-          {{"id", "arrival"}, {"kind", "rendezvous"}, {"at", "tf"}, {"target", parse_target(phrase)}});
+      arrival = Endpoint{here, parse_target(phrase)};
     } else if (std::regex_match(s, m, fuel_re)) {
       once("the objective");
       objective = {{"kind", "minimum_fuel"}};
     } else if (std::regex_match(s, m, time_re)) {
       once("the objective");
       objective = {{"kind", "minimum_time"}};
+    } else if (std::regex_match(s, m, orbit_re)) {
+      orbit_sentence(m);
+    } else if (std::regex_match(s, m, intro_re)) {
+      table_intro = here;
+      table_about = m[1].str();
+    } else if (std::regex_match(s, m, free_dep_re)) {
+      once("the departure window");
+      const double a = quantity(m, 1, Dimension::Time), b = quantity(m, 4, Dimension::Time);
+      if (a < 0 || b < 0) throw sentence_error("say 'N days before' or 'N days after' with N >= 0");
+      const double lo = lowercase(m[3].str()) == "before" ? -a : a;
+      const double hi = lowercase(m[6].str()) == "before" ? -b : b;
+      if (!(hi > lo)) throw sentence_error("the departure window is empty: its start must come before its end");
+      free_departure(lo, hi, mjd2000_of(m[7].str(), m[8].str()));
+    } else if (std::regex_match(s, m, free_dep_within_re)) {
+      once("the departure window");
+      const double a = quantity(m, 1, Dimension::Time);
+      if (!(a > 0)) throw sentence_error("the departure window's half-width must be positive");
+      free_departure(-a, a, mjd2000_of(m[3].str(), m[4].str()));
+    } else if (std::regex_match(s, m, event_re)) {
+      const std::string verb = lowercase(m[1].str());
+      event(verb.find("rendezvous") != std::string::npos ? "rendezvous"
+            : verb.find("fl") != std::string::npos       ? "flyby"
+                                                         : "gravity_assist",
+            m[2].str());
+    } else if (std::regex_match(s, m, drop_re)) {
+      lander(quantity(m, 1, Dimension::Mass), body_name(m[3].str()));
     } else {
       throw sentence_error("it matches no form of the controlled English (see README.md, 'Controlled English')");
     }
   }
+
+  // ---- departure and epochs -------------------------------------------------------------------
+
+  void depart(const std::string& at, const std::string& target) {
+    once("the departure");
+    if (!at.empty()) epoch(at);
+    departure = Endpoint{here, parse_target(target)};
+  }
+
+  void set_epoch(double mjd2000) {
+    if (time.contains("epoch_mjd2000") && time["epoch_mjd2000"].get<double>() != mjd2000)
+      throw sentence_error("the epoch MJD2000 " + num_text(mjd2000) + " contradicts the epoch MJD2000 " +
+                           num_text(time["epoch_mjd2000"].get<double>()) + " stated before");
+    time["t0_days"] = 0.0;
+    time["epoch_mjd2000"] = mjd2000;
+  }
+
+  void epoch(const std::string& phrase) {
+    std::smatch m;
+    static const std::regex t_re = re(R"(t\s*=\s*)" + kQuantity);
+    static const std::regex mjd_re = re("(MJD2000|MJD) (" + kNum + ")");
+    if (std::regex_match(phrase, m, t_re)) {
+      time["t0_days"] = quantity(m, 1, Dimension::Time);
+      departure_at_t = true;
+    } else if (std::regex_match(phrase, m, mjd_re)) {
+      set_epoch(mjd2000_of(m[1].str(), m[2].str()));
+    } else {
+      throw sentence_error("departure time '" + phrase +
+                           "' must read 't = VALUE UNIT', 'MJD VALUE' or 'MJD2000 VALUE'");
+    }
+  }
+
+  void free_departure(double lo, double hi, double mjd2000) {
+    set_epoch(mjd2000);
+    time["departure"] = "free";
+    time["t0_window_days"] = json::array({lo, hi});
+    free_departure_where = here;
+  }
+
+  // ---- bodies given by their orbits ----------------------------------------------------------
+
+  void define_orbit(const std::string& written, const std::string& about, json elements) {
+    const std::string name = body_name(written);
+    for (const auto& o : orbits)
+      if (lowercase(o.name) == lowercase(name))
+        throw sentence_error("the orbit of " + name + " is given twice (first on line " + std::to_string(o.where.line) +
+                             ")");
+    orbits.push_back({name, about, std::move(elements), here});
+  }
+
+  // "NAME moves on a Keplerian orbit about the Sun with a = Q, e = N, ... at MJD N".
+  void orbit_sentence(const std::smatch& m) {
+    const std::string name = body_name(m[1].str());
+    if (!m[4].matched)
+      throw sentence_error("the elements of " + name +
+                           " need their epoch: end the sentence with 'at MJD N' or "
+                           "'at MJD2000 N'");
+    static const std::regex clause = re(R"((.+?)\s*=\s*()" + kNum + R"()(?:\s*()" + kUnit + "))?");
+    std::map<std::string, double> v;
+    for (const auto& part : clauses_of(m[3].str())) {
+      std::smatch c;
+      const std::string field = std::regex_match(part, c, clause) ? element_field(c[1].str()) : "";
+      if (field.empty())
+        throw sentence_error("cannot read '" + part +
+                             "': expected 'a = Q', 'e = N', 'i = Q', 'node = Q', 'argument of perihelion = Q' and "
+                             "'mean anomaly = Q' or 'true anomaly = Q'");
+      if (v.count(field) || (field == "mean" && v.count("true")) || (field == "true" && v.count("mean")))
+        throw sentence_error("'" + part + "' repeats an element of " + name);
+      v[field] = number(c[2].str()) * element_unit(field, c[3].matched ? c[3].str() : "");
+    }
+    for (const char* f : {"a", "e", "i", "raan", "argp"})
+      if (!v.count(f)) throw sentence_error("the orbit of " + name + " lacks its " + element_label(f));
+    if (!v.count("mean") && !v.count("true"))
+      throw sentence_error("the orbit of " + name + " lacks its anomaly ('mean anomaly = Q' or 'true anomaly = Q')");
+    define_orbit(name, m[2].str(), elements_json(mjd2000_of(m[4].str(), m[5].str()), v));
+  }
+
+  static std::string element_label(const std::string& field) {
+    static const std::map<std::string, std::string> labels = {{"a", "semi-major axis ('a = Q')"},
+                                                              {"e", "eccentricity ('e = N')"},
+                                                              {"i", "inclination ('i = Q')"},
+                                                              {"raan", "ascending node ('node = Q')"},
+                                                              {"argp", "argument of perihelion"}};
+    return labels.at(field);
+  }
+
+  // Factor to the spec unit of an element: a in AU, angles in deg, e a pure number.
+  static double element_unit(const std::string& field, const std::string& unit) {
+    if (field == "e") {
+      if (!unit.empty()) throw sentence_error("the eccentricity is a pure number, not in '" + unit + "'");
+      return 1.0;
+    }
+    if (unit.empty())
+      throw sentence_error("the " + std::string(field == "a" ? "semi-major axis needs a length unit (AU, km)"
+                                                             : "angles need a unit (deg or rad)"));
+    if (field == "a") return unit_factor(Dimension::Length, unit) / helios::astro::AU_KM;
+    return unit_factor(Dimension::Angle, unit);
+  }
+
+  // ---- elements tables -------------------------------------------------------------------------
+
+  static std::vector<std::string> cells_of(const std::string& row) {
+    if (row.size() < 2 || row.back() != '|') throw sentence_error("a table line starts and ends with '|'");
+    std::vector<std::string> cells;
+    std::string cell;
+    for (std::size_t i = 1; i < row.size(); ++i) {
+      if (row[i] == '|') {
+        cells.push_back(trimmed(cell));
+        cell.clear();
+      } else {
+        cell += row[i];
+      }
+    }
+    return cells;
+  }
+
+  static bool is_table_header(const std::string& row) {
+    static const std::regex first = re(R"(\|\s*(?:body|name)\s*\|.*)");
+    return std::regex_match(row, first);
+  }
+
+  void table_line(const std::string& row) {
+    const std::vector<std::string> cells = cells_of(row);
+    if (is_table_header(row)) {
+      table = table_header(cells);
+      table_separator_allowed = true;
+      table_intro.reset();
+      return;
+    }
+    static const std::regex rule(R"(\s*:?-+:?\s*)");
+    const bool is_rule =
+        std::all_of(cells.begin(), cells.end(), [](const std::string& c) { return std::regex_match(c, rule); });
+    if (!table) throw sentence_error("a table row needs its header line just above it: " + std::string(kTableHeader));
+    if (is_rule) {
+      if (!table_separator_allowed) throw sentence_error("a rule line may only follow the table's header");
+      table_separator_allowed = false;
+      return;
+    }
+    table_separator_allowed = false;
+    if (cells.size() != 8)
+      throw sentence_error("the row has " + std::to_string(cells.size()) + " cells where the header has 8");
+    static const std::regex num_re("\\s*" + kNum + "\\s*");
+    for (std::size_t k = 1; k < cells.size(); ++k)
+      if (!std::regex_match(cells[k], num_re))
+        throw sentence_error("cell " + std::to_string(k + 1) + " '" + cells[k] + "' is not a number");
+    const TableColumns& t = *table;
+    std::map<std::string, double> v = {
+        {"a", number(cells[1]) * t.a_factor},           {"e", number(cells[2])},
+        {"i", number(cells[3]) * t.angle_factor[0]},    {"raan", number(cells[4]) * t.angle_factor[1]},
+        {"argp", number(cells[5]) * t.angle_factor[2]}, {t.anomaly, number(cells[6]) * t.angle_factor[3]}};
+    define_orbit(cells[0], table_about, elements_json(mjd2000_of(t.epoch_scale, cells[7]), v));
+  }
+
+  TableColumns table_header(const std::vector<std::string>& cells) {
+    const std::string layout = std::string("the header reads ") + kTableHeader +
+                               " (a in AU or km, angles in deg or rad, 'true anomaly' instead of 'mean anomaly', "
+                               "epoch in MJD or MJD2000)";
+    if (cells.size() != 8)
+      throw sentence_error("the header has " + std::to_string(cells.size()) + " columns, not 8: " + layout);
+    static const std::regex cell_re(R"(([^\[]*?)\s*(?:\[\s*([^\]]*?)\s*\])?)");
+    static const std::array<std::string, 8> expected = {"body", "a", "e", "i", "raan", "argp", "anomaly", "epoch"};
+    TableColumns t;
+    for (std::size_t k = 1; k < 8; ++k) {
+      std::smatch m;
+      std::regex_match(cells[k], m, cell_re);
+      const std::string key = lowercase(m[1].str()), unit = m[2].str();
+      std::string field = key == "epoch" ? "epoch" : element_field(key);
+      if (field == "mean" || field == "true") {
+        t.anomaly = field;
+        field = "anomaly";
+      }
+      if (field != expected[k])
+        throw sentence_error("column " + std::to_string(k + 1) + " is '" + cells[k] + "': " + layout);
+      if (field == "epoch") {
+        if (lowercase(unit) != "mjd" && lowercase(unit) != "mjd2000")
+          throw sentence_error("the epoch column must say [MJD] or [MJD2000], got '" + cells[k] + "'");
+        t.epoch_scale = unit;
+      } else if (field == "a") {
+        t.a_factor = element_unit("a", unit);
+      } else if (field == "e") {
+        element_unit("e", unit);
+      } else {
+        t.angle_factor[k - 3] = element_unit(field, unit);
+      }
+    }
+    return t;
+  }
+
+  // ---- events on the way ---------------------------------------------------------------------
+
+  static EpochRef epoch_ref(const std::string& scale, const std::string& value) {
+    if (lowercase(scale) == "day") return {number(value), false};
+    return {mjd2000_of(scale, value), true};
+  }
+
+  // "<verb> NAME between day N and day N[ in an unpowered gravity assist][, CLAUSE[ and CLAUSE]]".
+  void event(const std::string& kind, const std::string& rest) {
+    static const std::regex window_re =
+        re(R"((.+?) between (day|MJD2000|MJD) ()" + kNum + R"() and (day|MJD2000|MJD) ()" + kNum + R"()(.*))");
+    std::smatch m;
+    if (!std::regex_match(rest, m, window_re)) {
+      if (rest.find(" between ") != std::string::npos)
+        throw sentence_error(
+            "the window must read 'between day N and day N' (days after the epoch) or 'between "
+            "MJD2000 N and MJD2000 N'");
+      throw sentence_error(
+          "an event on the way needs its window ('... between day N and day N'); a rendezvous at "
+          "the end reads 'At the final time the spacecraft rendezvouses with NAME'");
+    }
+    Event e;
+    e.where = here;
+    e.kind = kind;
+    e.body = body_name(m[1].str());
+    e.lo = epoch_ref(m[2].str(), m[3].str());
+    e.hi = epoch_ref(m[4].str(), m[5].str());
+    std::string tail = m[6].str();
+    if (kind == "gravity_assist") {
+      static const std::regex ga_re = re(R"(\s*(?:in|as|for) an? (?:unpowered )?gravity assist(.*))");
+      std::smatch g;
+      if (std::regex_match(tail, g, ga_re)) tail = g[1].str();
+    }
+    if (!trimmed(tail).empty()) {
+      static const std::regex lead = re(R"(\s*(?:[;,]\s*(?:and\s+)?|and\s+)(.+))");
+      std::smatch l;
+      if (!std::regex_match(tail, l, lead))
+        throw sentence_error("cannot read '" + trimmed(tail) + "' after the window: " + clause_forms(kind));
+      for (const auto& part : clauses_of(l[1].str())) event_clause(e, part);
+    }
+    if (kind == "gravity_assist" && !e.mu) {
+      const std::string key = lowercase(e.body);
+      const auto mu = key == "sun" ? std::nullopt : known_mu(e.body);
+      if (!mu)
+        throw sentence_error("the gravitational parameter of " + e.body + " is not known: add '; " + e.body +
+                             " has a gravitational parameter of Q km^3/s^2'");
+      e.mu = *mu;
+    }
+    if (e.drop) e.drop_where = here;
+    events.push_back(e);
+  }
+
+  static std::string clause_forms(const std::string& kind) {
+    if (kind == "rendezvous")
+      return "a rendezvous takes 'stays there for Q', 'does not stay' and 'leaves a lander of Q'";
+    if (kind == "flyby") return "a flyby matches the position only and takes no further clause";
+    return "a gravity assist takes 'NAME has a gravitational parameter of Q' and 'the periapsis radius must be at "
+           "least Q'";
+  }
+
+  // The body a clause names ("at NAME", "NAME has ...") must be the event's.
+  static void same_body(const Event& e, const std::string& phrase) {
+    const std::string named = body_name(phrase);
+    if (lowercase(named) != lowercase(e.body) && lowercase(named) != "it")
+      throw sentence_error("the clause names " + named + " but the event is at " + e.body);
+  }
+
+  void event_clause(Event& e, const std::string& part) {
+    static const std::regex stay_re = re(R"(stays(?: there| at (.+?))? for )" + kQuantity);
+    static const std::regex no_stay_re = re(R"(does not stay(?: there)?)");
+    static const std::regex lander_re =
+        re(R"((?:leaves|drops|releases) (?:a|an) (?:lander|probe|payload|package) of )" + kQuantity +
+           R"((?: there| at (.+))?)");
+    static const std::regex mu_re = re(R"((.+?) has a gravitational parameter of )" + kQuantity);
+    static const std::regex rmin_re = re(
+        R"((?:(?:the )?(?:periapsis|pericenter|pericentre|closest approach) radius (?:must be|is) at least |(?:the )?(?:minimum|lowest) (?:periapsis|pericenter|pericentre) radius is ))" +
+        kQuantity);
+    std::smatch m;
+    const auto set = [&](std::optional<double>& slot, double value, const std::string& what) {
+      if (slot) throw sentence_error(what + " at " + e.body + " is given twice");
+      slot = value;
+    };
+    if (e.kind == "rendezvous" && std::regex_match(part, m, stay_re)) {
+      if (m[1].matched) same_body(e, m[1].str());
+      const double stay = quantity(m, 2, Dimension::Time);
+      if (stay < 0) throw sentence_error("the stay must not be negative, got " + m[2].str() + " " + m[3].str());
+      set(e.stay, stay, "the stay");
+    } else if (e.kind == "rendezvous" && std::regex_match(part, m, no_stay_re)) {
+      set(e.stay, 0.0, "the stay");
+    } else if (e.kind == "rendezvous" && std::regex_match(part, m, lander_re)) {
+      if (m[3].matched) same_body(e, m[3].str());
+      const double drop = quantity(m, 1, Dimension::Mass);
+      if (!(drop > 0)) throw sentence_error("the lander's mass must be positive, got " + m[1].str() + " " + m[2].str());
+      set(e.drop, drop, "the lander");
+    } else if (e.kind == "gravity_assist" && std::regex_match(part, m, mu_re)) {
+      same_body(e, m[1].str());
+      const double mu = quantity(m, 2, Dimension::GravParam);
+      if (!(mu > 0)) throw sentence_error("the gravitational parameter must be positive");
+      set(e.mu, mu, "the gravitational parameter");
+    } else if (e.kind == "gravity_assist" && std::regex_match(part, m, rmin_re)) {
+      const double r = quantity(m, 1, Dimension::Length);
+      if (!(r > 0)) throw sentence_error("the periapsis radius must be positive");
+      set(e.rmin, r, "the lowest periapsis radius");
+    } else {
+      throw sentence_error("cannot read '" + part + "': " + clause_forms(e.kind));
+    }
+  }
+
+  // "It leaves a lander of Q at NAME": the one rendezvous with NAME stated before.
+  void lander(double kg, const std::string& name) {
+    if (!(kg > 0)) throw sentence_error("the lander's mass must be positive");
+    Event* found = nullptr;
+    int rendezvous = 0, others = 0;
+    for (auto& e : events) {
+      if (lowercase(e.body) != lowercase(name)) continue;
+      if (e.kind == "rendezvous") {
+        ++rendezvous;
+        found = &e;
+      } else {
+        ++others;
+      }
+    }
+    if (rendezvous == 0)
+      throw sentence_error(others ? "only a rendezvous can leave a lander, and the spacecraft only passes " + name
+                                  : "no rendezvous with " + name + " is stated before this sentence");
+    if (rendezvous > 1)
+      throw sentence_error("the spacecraft rendezvouses with " + name + " " + std::to_string(rendezvous) +
+                           " times: put ', and leaves a lander of Q' in the rendezvous sentence meant");
+    if (found->drop) throw sentence_error("the lander at " + name + " is given twice");
+    found->drop = kg;
+    found->drop_where = here;
+  }
+
+  // ---- central body and spacecraft -----------------------------------------------------------
 
   // "gravitational parameter Q", "equatorial radius Q", "J2 coefficient N" in any order.
   void central(const std::string& name, const std::string& list) {
@@ -311,25 +877,6 @@ struct Builder {
     return {{"kind", "acceleration"}, {"name", name}, {"components", items}, {"unit", lowercase(unit)}};
   }
 
-  void epoch(const std::string& phrase) {
-    std::smatch m;
-    static const std::regex t_re = re(R"(t\s*=\s*)" + kQuantity);
-    static const std::regex mjd2000_re = re("MJD2000 (" + kNum + ")");
-    static const std::regex mjd_re = re("MJD (" + kNum + ")");
-    if (std::regex_match(phrase, m, t_re)) {
-      time["t0_days"] = quantity(m, 1, Dimension::Time);
-    } else if (std::regex_match(phrase, m, mjd2000_re)) {
-      time["t0_days"] = 0.0;
-      time["epoch_mjd2000"] = number(m[1].str());
-    } else if (std::regex_match(phrase, m, mjd_re)) {
-      time["t0_days"] = 0.0;
-      time["epoch_mjd2000"] = number(m[1].str()) - helios::astro::MJD_MINUS_MJD2000;
-    } else {
-      throw sentence_error("departure time '" + phrase +
-                           "' must read 't = VALUE UNIT', 'MJD VALUE' or 'MJD2000 VALUE'");
-    }
-  }
-
   void spacecraft_clauses(const std::string& list) {
     static const std::regex split(R"(\s*(?:,\s*and\s+|,\s*|\s+and\s+)\s*)");
     static const std::regex clause = re(R"((?:an? )?(maximum thrust|specific impulse|initial mass) of )" + kQuantity);
@@ -353,20 +900,133 @@ struct Builder {
       spacecraft[field] = value;
     }
   }
+
+  // ---- after the whole text ------------------------------------------------------------------
+
+  // A target's {"ref": NAME} as the body given by its orbit, else a planet with an ephemeris.
+  json resolve(const json& target, const Where& w) {
+    if (!target.contains("ref")) return target;
+    const std::string name = target["ref"];
+    for (auto& o : orbits)
+      if (lowercase(o.name) == lowercase(name)) {
+        o.used = true;
+        return {{"kind", "orbit"}, {"body", o.name}, {"elements", o.elements}};
+      }
+    if (is_planet(lowercase(name))) {
+      std::string body = lowercase(name);
+      body[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(body[0])));
+      return {{"kind", "body"}, {"body", body}, {"ephemeris", "jpl_lp"}};
+    }
+    fail(w, "unknown body '" + name + "': state its orbit ('" + name +
+                " moves on a Keplerian orbit about the Sun with a = Q, e = N, i = Q, node = Q, argument of "
+                "perihelion = Q and mean anomaly = Q at MJD N') or name a planet with an ephemeris (Earth, Mars, "
+                "Venus, Jupiter)");
+  }
+
+  // Checks that need the whole text: names, epochs, windows, landers.
+  void finish_events() {
+    const std::string central = central_body.value("name", "");
+    for (const auto& o : orbits) {
+      static const std::regex the = re(R"((?:the )?(.+))");
+      std::smatch m;
+      std::regex_match(o.about, m, the);
+      const std::string about = lowercase(m[1].str());
+      if (!o.about.empty() && about != "central body" && about != lowercase(central))
+        fail(o.where, "the orbit is about " + m[1].str() + " but the central body is " + central);
+    }
+    const bool has_epoch = time.contains("epoch_mjd2000");
+    const auto needs_epoch = [&](const json& target, const Where& w) {
+      if (has_epoch || (target["kind"] != "body" && target["kind"] != "orbit")) return;
+      fail(w, target["body"].get<std::string>() +
+                  " moves with time, so the text needs a calendar epoch: depart 'at MJD2000 N' (or 'at MJD N') or "
+                  "state 'The departure epoch is free between Q before and Q after MJD2000 N'");
+    };
+    departure->target = resolve(departure->target, departure->where);
+    needs_epoch(departure->target, departure->where);
+    for (auto& e : events) {
+      e.target = resolve(json{{"ref", e.body}}, e.where);
+      needs_epoch(e.target, e.where);
+    }
+    arrival->target = resolve(arrival->target, arrival->where);
+    needs_epoch(arrival->target, arrival->where);
+    for (const auto& o : orbits)
+      if (!o.used)
+        fail(o.where, "no sentence sends the spacecraft to " + o.name + ": remove its orbit or state the event");
+
+    const bool free_dep = time.value("departure", "") == "free";
+    if (free_dep && departure_at_t)
+      fail(departure->where,
+           "with a free departure epoch the departure reads 'from TARGET' or 'at MJD2000 N', "
+           "not 't = Q'");
+    if (free_dep && time["final_time"] == "free")
+      fail(free_departure_where,
+           "a free departure epoch needs a fixed total time of flight ('The total time of "
+           "flight is Q.')");
+
+    // Windows in days after the epoch, inside the flight, in order and apart.
+    const double epoch = has_epoch ? time["epoch_mjd2000"].get<double>() : 0.0;
+    const double start = free_dep ? time["t0_window_days"][0].get<double>() : 0.0;
+    const double tof =
+        time["final_time"] == "fixed" ? time["tof_days"].get<double>() : time["tof_max_days"].get<double>();
+    const double end = (free_dep ? time["t0_window_days"][1].get<double>() : 0.0) + tof;
+    const Event* previous = nullptr;
+    for (auto& e : events) {
+      e.window_lo = e.lo.absolute ? e.lo.value - epoch : e.lo.value;
+      e.window_hi = e.hi.absolute ? e.hi.value - epoch : e.hi.value;
+      const std::string window = "day " + num_text(e.window_lo) + " to day " + num_text(e.window_hi);
+      if (!(e.window_hi > e.window_lo)) fail(e.where, "its window, " + window + ", is empty");
+      if (!(e.window_lo > start && e.window_hi < end))
+        fail(e.where, "its window, " + window + ", must lie inside the flight: after day " + num_text(start) +
+                          " and before day " + num_text(end) + " (days count from the epoch)");
+      if (previous && e.window_lo < previous->window_hi)
+        fail(e.where, "its window, " + window + ", starts before the window of the event at " + previous->body +
+                          " (day " + num_text(previous->window_lo) + " to day " + num_text(previous->window_hi) +
+                          ") ends: state the events in the order they happen, with windows that do not overlap");
+      previous = &e;
+    }
+    double dropped = 0;
+    for (const auto& e : events) {
+      if (!e.drop) continue;
+      if (propulsion == "solar_sail") fail(e.drop_where, "a solar sail has no mass to leave behind");
+      dropped += *e.drop;
+      if (!(dropped < spacecraft["initial_mass_kg"].get<double>()))
+        fail(e.drop_where, "the landers weigh " + num_text(dropped) + " kg, not less than the initial mass");
+    }
+  }
+
+  json constraints() {
+    json out = json::array();
+    out.push_back({{"id", "departure"}, {"kind", "initial_state"}, {"at", "t0"}, {"target", departure->target}});
+    std::map<std::string, int> visits;
+    std::vector<std::string> ids;
+    for (const auto& e : events) {
+      const std::string base = lowercase(e.body);
+      int& n = visits[base];
+      std::string id = ++n == 1 ? base : base + "_" + std::to_string(n);
+      while (std::find(ids.begin(), ids.end(), id) != ids.end()) id = base + "_" + std::to_string(++n);
+      ids.push_back(id);
+      json c = {{"id", id},
+                {"kind", e.kind},
+                {"at", "interior"},
+                {"target", e.target},
+                {"window_days", json::array({e.window_lo, e.window_hi})}};
+      if (e.stay) c["stay_days"] = *e.stay;
+      if (e.drop) c["mass_drop_kg"] = *e.drop;
+      if (e.mu) c["body_mu_km3_s2"] = *e.mu;
+      if (e.rmin) c["min_periapsis_radius_km"] = *e.rmin;
+      out.push_back(c);
+    }
+    out.push_back({{"id", "arrival"}, {"kind", "rendezvous"}, {"at", "tf"}, {"target", arrival->target}});
+    return out;
+  }
 };
 
 }  // namespace
 
 json parse_problem_text(const std::string& text, const std::string& source) {
-  Builder b;
-  for (const auto& sentence : split_sentences(text)) {
-    try {
-      b.handle(sentence.text);
-    } catch (const sentence_error& e) {
-      throw input_error(source + ":" + std::to_string(sentence.line) + ": cannot use sentence \"" + sentence.text +
-                        "\": " + e.what());
-    }
-  }
+  Builder b(source);
+  for (const auto& item : split_sentences(text)) b.read(item);
+  if (b.table_intro) b.fail(*b.table_intro, "no table follows it (its header reads " + std::string(kTableHeader) + ")");
   const auto missing = [&](const std::string& what, const std::string& example) {
     throw input_error(source + ": the problem text never states " + what + " (add a sentence such as \"" + example +
                       "\")");
@@ -381,7 +1041,7 @@ json parse_problem_text(const std::string& text, const std::string& source) {
       if (!b.spacecraft.contains(field)) missing("the spacecraft's " + field, example);
   if (b.propulsion == "solar_sail" && b.seen.count("the spacecraft's engine"))
     throw input_error(source + ": the spacecraft is a solar sail, so it has no thrust, specific impulse or mass");
-  if (!b.seen.count("the departure")) missing("the departure", "The spacecraft departs at t = 0 days from the Earth.");
+  if (!b.seen.count("the departure")) missing("the departure", "The spacecraft departs at MJD2000 400 from Earth.");
   if (!b.time.contains("final_time")) missing("the time of flight", "The time of flight is 348.795 days.");
   for (const auto& p : b.perturbations)
     if (p["kind"] == "j2" && (!b.central_body.contains("j2") || !b.central_body.contains("radius_km")))
@@ -391,6 +1051,7 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   if (!b.seen.count("the final rendezvous"))
     missing("the final condition", "At the final time the spacecraft rendezvouses with Mars.");
   if (b.objective.is_null()) missing("the objective", "Minimize the fuel consumption.");
+  b.finish_events();
   if (!b.time.contains("t0_days")) b.time["t0_days"] = 0.0;
   json doc = io::artifact_header("spec", "helios-parse", "builtin");
   b.problem["source_file"] = source;
@@ -401,10 +1062,11 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   if (!b.perturbations.empty()) doc["dynamics"]["perturbations"] = b.perturbations;
   doc["objective"] = b.objective;
   json time = json::object();
-  for (const char* k : {"t0_days", "epoch_mjd2000", "final_time", "tof_days", "tof_min_days", "tof_max_days"})
+  for (const char* k : {"t0_days", "epoch_mjd2000", "departure", "t0_window_days", "final_time", "tof_days",
+                        "tof_min_days", "tof_max_days"})
     if (b.time.contains(k)) time[k] = b.time[k];
   doc["time"] = time;
-  doc["constraints"] = b.constraints;
+  doc["constraints"] = b.constraints();
   return doc;
 }
 

@@ -36,6 +36,15 @@ const Table& table(Dimension d) {
       {Dimension::GravParam, {"km^3/s^2", "km^3/s^2, m^3/s^2", {{"km^3/s^2", 1.0}, {"m^3/s^2", 1e-9}}}},
       {Dimension::Acceleration,
        {"mm/s^2", "mm/s^2, m/s^2, km/s^2", {{"mm/s^2", 1.0}, {"m/s^2", 1e3}, {"km/s^2", 1e6}}}},
+      {Dimension::Angle,
+       {"deg",
+        "deg, rad",
+        {{"deg", 1.0},
+         {"degree", 1.0},
+         {"degrees", 1.0},
+         {"rad", 1.0 / DEG_TO_RAD},
+         {"radian", 1.0 / DEG_TO_RAD},
+         {"radians", 1.0 / DEG_TO_RAD}}}},
   };
   return tables.at(d);
 }
@@ -57,6 +66,8 @@ std::string dimension_name(Dimension d) {
       return "mass";
     case Dimension::GravParam:
       return "gravitational parameter";
+    case Dimension::Angle:
+      return "angle";
   }
   return "?";
 }
