@@ -102,9 +102,17 @@ inline std::array<double, 6> ephemeris_state(const std::string& body, double t) 
           s[3] / problem::kSpeedUnitKmS, s[4] / problem::kSpeedUnitKmS, s[5] / problem::kSpeedUnitKmS};
 }
 
-// Time derivative of the ephemeris model itself (not the Kepler velocity it reports), as a free
-// event time's transversality condition needs: a fourth-order central difference.
+// Time derivative of the ephemeris model itself, as a free event time's transversality condition
+// needs. A body of problem::kOrbitBodies moves exactly on its Kepler orbit: (v, -mu r/|r|^3). A
+// JPL low-precision planet's elements drift, so its rate is not the Kepler velocity the model
+// reports: a fourth-order central difference.
 inline std::array<double, 6> ephemeris_rate(const std::string& body, double t) {
+  for (const auto& b : problem::kOrbitBodies)
+    if (body == b.name) {
+      const auto s = ephemeris_state(body, t);
+      const double r = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]), k = -problem::mu / (r * r * r);
+      return {s[3], s[4], s[5], k * s[0], k * s[1], k * s[2]};
+    }
   const double h = 1e-3 / problem::kTimeUnitDays;  // 1e-3 day: truncation ~1e-13, round-off ~1e-12
   const auto p1 = ephemeris_state(body, t + h), m1 = ephemeris_state(body, t - h);
   const auto p2 = ephemeris_state(body, t + 2 * h), m2 = ephemeris_state(body, t - 2 * h);
@@ -161,6 +169,7 @@ struct Settings {
 };
 
 struct Sample {
+  int arc;  // samples of one propagate() call share an arc; H may jump only between arcs
   double t;
   std::array<double, kNY> y;
   std::array<double, problem::kNumControls> control;
@@ -188,6 +197,7 @@ class Propagator {
   double max_step = INFINITY;  // limits steps when recording, for smooth plots
 
   void propagate(double t0, double t1, double* y, const Multipliers& mult) {
+    ++arc_;
     Mode mode = mode_at(y, mult);
     double t = t0;
     double h = std::min(t1 - t0, 1e-3 * (1 + std::fabs(t1 - t0)));
@@ -280,6 +290,7 @@ class Propagator {
   void record(double t, const double* y, Mode mode, const Multipliers& mult) {
     if (!samples) return;
     Sample s;
+    s.arc = arc_;
     s.t = t;
     std::copy(y, y + kNY, s.y.begin());
     control_in_mode(y, mode, mult, s.control.data());
@@ -290,6 +301,7 @@ class Propagator {
 
   const Settings& settings_;
   Dop853 stepper_;
+  int arc_ = 0;
 };
 
 // The shooting function of the RESIDUAL module, with the bookkeeping hybrd1 needs.
@@ -544,7 +556,16 @@ Result legs_homotopy_solve(const Settings& s, const LegPlan& plan, Guess&& initi
           if (tries > 0) initial_guess(rng, x.data());
           for (std::size_t j = 0; j < own.size(); ++j) z[j] = x[own[j]];
         } else {
-          for (auto& v : z) v = symmetric(rng);
+          // Like leg 0's guess: (lambda0, start costates) uniform on the sphere with lambda0 > 0,
+          // then scaled to leg 0's lambda0 (which this leg shares and cannot change).
+          double norm2 = 0;
+          for (auto& v : z) {
+            v = symmetric(rng);
+            norm2 += v * v;
+          }
+          const double lambda0 = 0.5 * (1 + symmetric(rng));
+          const double scale = x[plan.variables[0][0]] / lambda0;
+          for (auto& v : z) v *= scale * std::sqrt((1 - lambda0 * lambda0) / norm2);
         }
         int info = 0;
         double res = 0;

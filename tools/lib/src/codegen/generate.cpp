@@ -661,7 +661,7 @@ std::string assemble(const json& derivation, const std::string& modules, const s
       << "// regenerate it. Fixed runtime from templates/runtime, modules below marked generated or template.\n"
       << "#include <cminpack-1/cminpack.h>\n\n"
       << "#include <algorithm>\n#include <array>\n#include <chrono>\n#include <cmath>\n#include <cstdio>\n"
-      << "#include <fstream>\n#include <functional>\n#include <nlohmann/json.hpp>\n#include <random>\n#include <sstream>\n"
+      << "#include <fstream>\n#include <functional>\n#include <map>\n#include <nlohmann/json.hpp>\n#include <random>\n#include <sstream>\n"
       << "#include <stdexcept>\n#include <string>\n#include <vector>\n\n"
       << "#define HELIOS_ASTRO_EMBEDDED\n"
       << pasted("tools/lib/include/helios/astro/constants.hpp") << "\n"
