@@ -344,7 +344,7 @@ json solve(const SolveOptions& o) {
   static const std::vector<std::string> known = {
       "seed",           "max_attempts",    "time_limit_s",   "integrator_rtol", "integrator_atol",
       "hybrd_tol",      "accept_residual", "final_residual", "eps_start",       "eps_min",
-      "eps_first_ratio"};
+      "eps_first_ratio", "leg_attempts"};
   for (auto it = settings.begin(); it != settings.end(); ++it) {
     if (std::find(known.begin(), known.end(), it.key()) == known.end()) {
       std::string names;
@@ -412,8 +412,13 @@ json solve(const SolveOptions& o) {
     homotopy.push_back(step);
   }
   doc["homotopy"] = homotopy;
+  // How the solution was reached: the method, and for problems with interior events every leg
+  // solved alone (its guesses, residual and evaluations) before the legs were joined.
+  doc["method"] = r.value("method", "single shooting");
+  if (r.contains("legs")) doc["legs"] = r.at("legs");
   if (r.at("status") == "converged") {
     doc["tof_days"] = r.at("tof_days");
+    if (r.contains("departure_mjd2000")) doc["departure_mjd2000"] = r.at("departure_mjd2000");
     if (r.contains("final_mass_kg")) {  // a sail has no mass state
       const double mf = r.at("final_mass_kg"), m0 = r.at("initial_mass_kg");
       doc["final_mass_kg"] = mf;
