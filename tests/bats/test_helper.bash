@@ -164,3 +164,24 @@ contract_version() {
   [[ $output == "helios-$1 0.1.0" ]] || { echo "got: $output" >&2; return 1; }
   [[ -z $stderr ]]
 }
+
+# chain SCENARIO DIR [PROBLEM]: parse -> derive -> verify -> gen -> solve -> score into DIR
+chain() {
+  local s=$1 dir=$2 problem=${3:-$ROOT/scenarios/$1/problem.txt}
+  mkdir -p "$dir"
+  "$BIN/helios-parse" "$problem" -o "$dir/spec.json"
+  "$BIN/helios-derive" "$dir/spec.json" -o "$dir/derivation.json"
+  "$BIN/helios-verify" --advisory "$dir/derivation.json" -o "$dir/verify.json"
+  "$BIN/helios-gen" "$dir/derivation.json" -o "$dir/shoot.cpp"
+  "$BIN/helios-solve" "$dir/shoot.cpp" --settings "$ROOT/scenarios/$s/settings.json" --cache-dir "$BATS_FILE_TMPDIR/cache" \
+    --trajectory "$dir/trajectory.csv" --plots "$dir/" -o "$dir/solution.json"
+  "$BIN/helios-score" --reference "$ROOT/scenarios/$s/reference.json" --spec "$dir/spec.json" \
+    --derivation "$dir/derivation.json" --verify "$dir/verify.json" --solution "$dir/solution.json" -o "$dir/score.json"
+}
+
+# converged_and_verified DIR: verify passes, converged at max|F| < 1e-10, score 100
+converged_and_verified() {
+  assert_jq "$1/verify.json" '.verdict == "pass"'
+  assert_jq "$1/solution.json" '.status == "converged" and .max_residual < 1e-10 and .epsilon == 0'
+  assert_jq "$1/score.json" '.total == 100'
+}

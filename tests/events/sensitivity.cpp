@@ -1,0 +1,81 @@
+// Independent check of an interior event's conditions at a converged solution (tests/bats/events.bats).
+// Built against a generated shooting program (SHOOT_CPP, its main renamed), it re-solves the
+// problem with one condition replaced and compares finite differences of the optimal cost with
+// what the multipliers claim:
+//   epoch EVENT: with t_EVENT fixed at t* +- h the final mass is stationary at t* (the H-jump
+//     condition's claim): |m(t*+h) - m(t*-h)| must be small against the curvature term
+//     |m(t*+h) + m(t*-h) - 2 m(t*)|;
+//   psi ROW of EVENT: shifting the constraint c_ROW = 0 to c_ROW = d changes the optimal fuel by
+//     -nu_ROW/lambda0 per unit d (Phi = lambda0 J + nu^T c), so dm_f/dd = nu_ROW/lambda0.
+// usage: sensitivity RESULT.json epoch EVENT | psi EVENT ROW ; prints the two numbers compared.
+#define main generated_main
+#include SHOOT_CPP
+#undef main
+
+namespace {
+
+using namespace helios_rt;
+
+int index_of(const char* const* names, int n, const std::string& name) {
+  for (int i = 0; i < n; ++i)
+    if (name == names[i]) return i;
+  throw std::runtime_error("no variable or equation " + name);
+}
+
+// Final mass (normalized) after solving the problem with equation `row` replaced by `replaced`.
+double final_mass(std::vector<double> x, int row, const std::function<double(const double*, double)>& replaced) {
+  Settings s;
+  const Residual residual = [&](const double* z, double eps, Propagator& prop, double* F) {
+    shooting_function(z, eps, prop, F);
+    F[row] = replaced(z, F[row]);
+  };
+  Shooter shooter(s, residual);
+  int info = 0;
+  double res = 0;
+  if (!shooter.solve(x, 0.0, 1e-11, info, res)) throw std::runtime_error("the modified problem did not converge");
+  Propagator prop(s);
+  std::vector<Sample> samples;
+  prop.samples = &samples;
+  std::vector<double> F(problem::kNumVars);
+  shooting_function(x.data(), 0.0, prop, F.data());
+  return samples.back().y[problem::kMassIndex];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    if (argc < 4) throw std::runtime_error("usage: sensitivity RESULT.json epoch EVENT | psi EVENT ROW");
+    const nlohmann::json result = nlohmann::json::parse(std::ifstream(argv[1]));
+    std::vector<double> x;
+    for (const auto& v : result.at("x")) x.push_back(v.at("value").get<double>());
+    const std::string what = argv[2], event = argv[3];
+    const int nv = problem::kNumVars;
+    if (what == "epoch") {
+      const int frac = index_of(problem::kVariableNames, nv, "t_" + event + "_frac");
+      const int row = index_of(problem::kEquationNames, nv, "time_" + event);
+      const double h = 5e-4, star = x[frac];
+      const auto at = [&](double value) {
+        return final_mass(x, row, [&](const double* z, double) { return z[frac] - value; });
+      };
+      const double m0 = at(star), mp = at(star + h), mm = at(star - h);
+      std::printf("%.6e %.6e\n", std::fabs(mp - mm), std::fabs(mp + mm - 2 * m0));
+    } else if (what == "psi" && argc == 5) {
+      const int k = std::atoi(argv[4]);
+      const int row = index_of(problem::kEquationNames, nv, "psi_" + event + "_" + std::to_string(k));
+      const double nu = x[index_of(problem::kVariableNames, nv, "nu_" + event + "_" + std::to_string(k))];
+      const double lambda0 = x[index_of(problem::kVariableNames, nv, "lambda0")];
+      const double d = 1e-6;
+      const auto shifted = [&](double delta) {
+        return final_mass(x, row, [delta](const double*, double f) { return f - delta; });
+      };
+      std::printf("%.9e %.9e\n", (shifted(d) - shifted(-d)) / (2 * d), nu / lambda0);
+    } else {
+      throw std::runtime_error("usage: sensitivity RESULT.json epoch EVENT | psi EVENT ROW");
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sensitivity: %s\n", e.what());
+    return 1;
+  }
+}
