@@ -180,3 +180,15 @@ s11_derivation() {
   done < <(jq -r '.cases[] | [.file, .verdict + " " + (.fails | join(","))] | @tsv' "$corpus/manifest.json")
   ((n >= 40))
 }
+
+# ---- interior events and a sliding departure -------------------------------------------------
+
+@test "verify: a flyby and a sliding departure pass; H(t0) = 0 alone fails naming transversality_t0" {
+  "$BIN/helios-derive" "$ROOT/tests/verify-corpus/base/E-slide.spec.json" -o derivation.json
+  run -0 --separate-stderr "$BIN/helios-verify" derivation.json -o verify.json
+  assert_jq verify.json '[.checks[].id] | contains(["event_time:rock", "costate_jump:rock_rx", "transversality_t0"])'
+  jq '(.shooting.equations[] | select(.name == "transversality_t0") | .expression) = "H_t0"' derivation.json >h0.json
+  run -4 --separate-stderr "$BIN/helios-verify" h0.json -o verify.json
+  assert_jq verify.json '[.checks[] | select(.verdict == "fail") | .id] == ["transversality_t0"]'
+  assert_jq verify.json '.feedback | test("departure body.s motion is missing") and test("coupling with tf is missing")'
+}

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <set>
 #include <string>
 
@@ -387,6 +388,176 @@ TEST(Verify, RightHandSideWithTheOptimalControlSubstitutedPasses) {
   EXPECT_EQ(verify(d)["verdict"], "pass");
   costate_ode(d, "l_m")["rhs"] = "Tmax*u*sqrt(l_vx^2+l_vy^2+l_vz^2)/m^2";  // with the maximizing direction
   EXPECT_EQ(failed_ids(verify(d)), std::set<std::string>{"costate_ode:l_m"});
+}
+
+// ---- interior events and a sliding departure (specs in tests/verify-corpus/base/E-*.spec.json)
+
+json derive_spec(const std::string& name) {
+  return helios::pmp::derive_from_spec(
+      helios::io::read_json(HELIOS_SOURCE_DIR "/tests/verify-corpus/base/" + name + ".spec.json"));
+}
+
+const json& flyby() {
+  static const json derivation = derive_spec("E-flyby");
+  return derivation;
+}
+
+const json& stay() {
+  static const json derivation = derive_spec("E-stay");
+  return derivation;
+}
+
+const json& slide() {
+  static const json derivation = derive_spec("E-slide");
+  return derivation;
+}
+
+json& event_costate(json& d, const std::string& costate) {
+  for (auto& c : d["events"][0]["costate_map"])
+    if (c["costate"] == costate) return c;
+  throw std::runtime_error("no costate_map entry " + costate);
+}
+
+void drop(json& list, const std::string& name) {
+  for (auto it = list.begin(); it != list.end(); ++it)
+    if ((*it)["name"] == name) {
+      list.erase(it);
+      return;
+    }
+  throw std::runtime_error("nothing named " + name);
+}
+
+TEST(VerifyEvents, BuiltinEventDerivationsPassEveryCheck) {
+  for (const json* d : {&flyby(), &stay(), &slide()}) {
+    const json r = verify(*d);
+    EXPECT_EQ(r["verdict"], "pass") << r["feedback"];
+    for (const std::string id :
+         {"event_psi:rock", "event_multipliers:rock", "event_constraint:rock_1", "costate_jump:rock_rx",
+          "costate_jump:rock_m", "event_time:rock", "event_unknowns:rock", "equation_symbols", "shooting_variables"})
+      EXPECT_EQ(check(r, id)["verdict"], "pass") << id;
+  }
+  // The flyby's psi and its jumps are shown exactly; the stay's r, v costates are shooting variables.
+  const json f = verify(flyby());
+  for (const std::string id : {"event_psi:rock", "costate_jump:rock_rx", "event_time:rock"})
+    EXPECT_TRUE(check(f, id)["exact"].get<bool>()) << id;
+  EXPECT_EQ(check(verify(stay()), "costate_jump:rock_vz")["verdict"], "pass");
+  const json s = verify(slide());
+  EXPECT_EQ(check(s, "transversality_t0")["verdict"], "pass");
+  EXPECT_EQ(check(s, "t0_expression")["verdict"], "pass");
+}
+
+TEST(VerifyEvents, GravityAssistStationarityIsRecomputedFromPsi) {
+  json d = derive_spec("E-ga");
+  const auto t0 = std::chrono::steady_clock::now();
+  json r = verify(d);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
+  EXPECT_EQ(r["verdict"], "pass") << r["feedback"];
+  EXPECT_EQ(check(r, "event_stationarity:rock_delta_rock")["verdict"], "pass");
+  EXPECT_EQ(check(r, "costate_jump:rock_vx")["verdict"], "pass");  // a shooting variable with its jump row
+  // One term of dPhi/ddelta with the wrong sign: l_vx(t+) -> -l_vx(t+) in that equation only.
+  auto& e = equation(d, "stationarity_rock_delta_rock")["expression"];
+  std::string text = e;
+  for (std::size_t at = text.find("l_vx_rock_p"); at != std::string::npos; at = text.find("l_vx_rock_p", at + 14))
+    text.replace(at, 11, "(-l_vx_rock_p)");
+  e = text;
+  r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"event_stationarity:rock_delta_rock"});
+  EXPECT_TRUE(contains(check(r, "event_stationarity:rock_delta_rock")["feedback"],
+                       "the term(s) in l_vx_rock_p have the wrong sign"));
+}
+
+TEST(VerifyEvents, JumpWithTheWrongSignFails) {
+  json d = flyby();
+  event_costate(d, "l_ry")["expression"] = "l_ry_rock_m+nu_rock_2";  // lambda+ = lambda- + nu
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"costate_jump:rock_ry"});
+  const std::string fb = check(r, "costate_jump:rock_ry")["feedback"];
+  EXPECT_TRUE(contains(fb, "expected l_ry_rock_p = -nu_rock_2+l_ry_rock_m")) << fb;
+  EXPECT_TRUE(contains(fb, "the term(s) in nu_rock_2 have the wrong sign")) << fb;
+  // An equivalent form passes.
+  event_costate(d, "l_ry")["expression"] = "-(nu_rock_2-l_ry_rock_m)";
+  EXPECT_EQ(verify(d)["verdict"], "pass");
+}
+
+TEST(VerifyEvents, TimeConditionNeedsTheHJumpAndTheTargetsMotion) {
+  json d = flyby();
+  auto& e = equation(d, "time_rock")["expression"];
+  const std::string right = e;
+  e = "3*(" + right + ")";  // a multiple is the same condition
+  EXPECT_EQ(verify(d)["verdict"], "pass");
+  e = "-nu_rock_1*rock_rx_rate-nu_rock_2*rock_ry_rate-nu_rock_3*rock_rz_rate";  // no H jump
+  json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"event_time:rock"});
+  EXPECT_TRUE(contains(check(r, "event_time:rock")["feedback"], "the jump of the Hamiltonian")) << r["feedback"];
+  e = "H_rock_p-H_rock_m-nu_rock_1*rock_rx_rate-nu_rock_2*rock_ry_rate-nu_rock_3*rock_rz_rate";  // H jump's sign
+  r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"event_time:rock"});
+  EXPECT_TRUE(contains(check(r, "event_time:rock")["feedback"], "the jump of the Hamiltonian has the wrong sign"));
+  e = "H_rock_m-H_rock_p";  // no nu^T dpsi/dt
+  r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"event_time:rock"});
+  EXPECT_TRUE(contains(check(r, "event_time:rock")["feedback"], "nu^T dpsi/dt is missing")) << r["feedback"];
+}
+
+TEST(VerifyEvents, MappedCostateTreatedAsContinuousFails) {
+  json d = stay();
+  auto& c = event_costate(d, "l_vy");
+  c.erase("variable");
+  c["expression"] = "l_vy_rock_m";
+  drop(d["shooting"]["variables"], "l_vy_rock_p");
+  drop(d["shooting"]["equations"], "jump_rock_vy");
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), (std::set<std::string>{"costate_jump:rock_vy", "event_unknowns:rock"}));
+  const std::string fb = check(r, "costate_jump:rock_vy")["feedback"];
+  EXPECT_TRUE(contains(fb, "does not carry vy over")) << fb;
+  EXPECT_TRUE(contains(fb, "jump_rock_vy")) << fb;
+}
+
+TEST(VerifyEvents, CarriedCostateMustBeExplicit) {
+  json d = flyby();
+  auto& c = event_costate(d, "l_vx");
+  c.erase("expression");
+  c["variable"] = "l_vx_rock_p";
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"costate_jump:rock_vx"});
+  EXPECT_TRUE(contains(check(r, "costate_jump:rock_vx")["feedback"], "the map carries vx"));
+}
+
+TEST(VerifyEvents, LambdaMassDoesNotJumpAtAMassDrop) {
+  json d = stay();
+  event_costate(d, "l_m")["expression"] = "l_m_rock_m*m_rock_m/(m_rock_m-drop_rock)";
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"costate_jump:rock_m"});
+  EXPECT_TRUE(contains(check(r, "costate_jump:rock_m")["feedback"], "lambda_m does not jump"));
+}
+
+TEST(VerifyEvents, PsiStateMapAndMultipliersMustAgree) {
+  json d = stay();
+  for (auto& m : d["events"][0]["state_map"])
+    if (m["state"] == "m") m["expression"] = "m_rock_m";
+  EXPECT_EQ(failed_ids(verify(d)), std::set<std::string>{"event_psi:rock"});
+  d = flyby();
+  d["events"][0]["multipliers"][3] = "l_rx_rock_p";
+  EXPECT_EQ(failed_ids(verify(d)), std::set<std::string>{"event_multipliers:rock"});
+  d = flyby();
+  drop(d["shooting"]["equations"], "psi_rock_3");
+  EXPECT_EQ(failed_ids(verify(d)), (std::set<std::string>{"count", "event_constraint:rock_3"}));
+  d = flyby();
+  drop(d["shooting"]["variables"], "t_rock_frac");
+  EXPECT_TRUE(failed_ids(verify(d)).count("event_unknowns:rock"));
+}
+
+TEST(VerifyEvents, SlidingDepartureWithHt0AloneFails) {
+  json d = slide();
+  auto& e = equation(d, "transversality_t0")["expression"];
+  e = "-(" + e.get<std::string>() + ")";
+  EXPECT_EQ(verify(d)["verdict"], "pass");
+  e = "H_t0";  // the paper's condition
+  const json r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"transversality_t0"});
+  const std::string fb = check(r, "transversality_t0")["feedback"];
+  EXPECT_TRUE(contains(fb, "the departure body's motion is missing")) << fb;
+  EXPECT_TRUE(contains(fb, "the coupling with tf is missing")) << fb;
 }
 
 }  // namespace

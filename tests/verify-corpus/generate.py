@@ -4,7 +4,9 @@
 Seeds (tests/verify-corpus/seed/):
   S01.json         builtin derivation (helios-parse scenarios/S01/problem.txt | helios-derive -);
                    refreshed with --bin build/bin, else the committed copy is used
-Bases (tests/verify-corpus/base/, committed with the engine): builtin S05, S06, S11, S12.
+Bases (tests/verify-corpus/base/, committed with the engine): builtin S05, S06, S11, S12, and the
+  builtin derivations E-flyby, E-stay, E-ga, E-slide of the specs base/E-*.spec.json (interior events:
+  a flyby, a stay with a mass drop, a gravity assist; a sliding departure); refreshed with --bin.
   S05h.json        Earth J2 orbit transfer, fixed tf, minimum fuel        (written here)
   S06h.json        S05h with a coasting target under J2 (coast_dynamics)   (written here)
   S11h.json        solar sail, minimum time, free tf, Mars ephemeris       (written here)
@@ -296,6 +298,130 @@ def set_costates(d, model, form):
         costate(d, str(l))["rhs"] = form(-sp.diff(H, x))
 
 
+# --------------------------------------------------------------------------------------------
+# Interior events and a sliding departure (builtin derivations in base/E-*.json)
+
+EVENT_BASES = ["E-flyby", "E-stay", "E-ga", "E-slide"]
+
+
+def event(d, eid):
+    return find(d["events"], "id", eid)
+
+
+def cmap(d, eid, costate_name):
+    return find(event(d, eid)["costate_map"], "costate", costate_name)
+
+
+def sym(text):
+    return sp.sympify(text.replace("^", "**"))
+
+
+def event_cases(case, cases):
+    """Cases of the event checks: each broken one fails exactly the check of the condition it breaks."""
+    for name in ("E-flyby", "E-stay", "E-slide"):
+        case(f"{name}-builtin", name, {"E-flyby": "builtin: a flyby of an asteroid (position matched, free epoch)",
+                                       "E-stay": "builtin: rendezvous with a 20-day stay and a 100 kg mass drop",
+                                       "E-slide": "builtin: sliding departure from Earth with a flyby"}[name])
+    # The gravity assist's derivation is 4 MB (its time condition alone 2.7 MB): not copied.
+    cases.append({"file": "base/E-ga.json", "seed": "E-ga", "verdict": "pass", "fails": [],
+                  "note": "builtin: unpowered gravity assist (delta, phi free parameters of psi)"})
+
+    def flyby_forms(d):
+        ev = event(d, "rock")
+        for k in "xyz":
+            cmap(d, "rock", f"l_r{k}")["expression"] = f"l_r{k}_rock_m-nu_rock_{'xyz'.index(k) + 1}"
+        ev["multipliers"][3:] = [f"-1*{m[1:]}" for m in ev["multipliers"][3:]]
+        t = eq(d, "time_rock")
+        t["expression"] = f"-2*({t['expression']})"
+        for j in (1, 2, 3):
+            e = eq(d, f"psi_rock_{j}")
+            e["expression"] = g(-3 * sym(e["expression"]))
+    case("E-flyby-forms", "E-flyby", "flyby: costate jumps reordered, time condition and psi rows scaled/negated",
+         edit=flyby_forms)
+
+    def stay_forms(d):
+        for k in ["rx", "ry", "rz", "vx", "vy", "vz"]:
+            e = eq(d, f"jump_rock_{k}")
+            e["expression"] = g(-sym(e["expression"]))
+        cmap(d, "rock", "l_m")["expression"] = "(l_m_rock_m*m_rock_m)/m_rock_m"
+        t = eq(d, "time_rock")
+        t["expression"] = g(sp.factor_terms(sym(t["expression"])))
+    case("E-stay-forms", "E-stay", "stay: jump rows negated, l_m(t+) in another form, time condition regrouped",
+         edit=stay_forms)
+
+    # ---- broken
+    case("E-flyby-jump-sign", "E-flyby", "flyby: lambda(t+) = lambda(t-) + nu (the jump's sign flipped)",
+         ["costate_jump:rock_rx"], lambda d: cmap(d, "rock", "l_rx").update(expression="l_rx_rock_m+nu_rock_1"))
+
+    def time_without_h(d):
+        t = eq(d, "time_rock")
+        t["expression"] = g(sym(t["expression"]).subs({sp.Symbol("H_rock_m"): 0, sp.Symbol("H_rock_p"): 0}))
+    case("E-flyby-time-without-H", "E-flyby", "flyby: free-epoch condition without H(t-) - H(t+)",
+         ["event_time:rock"], time_without_h)
+
+    def time_h_sign(d):
+        t = eq(d, "time_rock")
+        hm, hp = sp.symbols("H_rock_m H_rock_p")
+        t["expression"] = g(sym(t["expression"]).subs({hm: hp, hp: hm}, simultaneous=True))
+    case("E-flyby-time-H-sign", "E-flyby", "flyby: free-epoch condition with H(t+) - H(t-)", ["event_time:rock"],
+         time_h_sign)
+    case("E-flyby-time-without-rates", "E-flyby", "flyby: free-epoch condition H(t-) - H(t+) = 0 without nu^T dpsi/dt",
+         ["event_time:rock"], lambda d: eq(d, "time_rock").update(expression="H_rock_m-H_rock_p"))
+    case("E-stay-time-without-rates", "E-stay",
+         "stay: free-epoch condition without nu^T dc/dt and lambda(t+)^T dg/dt (the body moves)",
+         ["event_time:rock"], lambda d: eq(d, "time_rock").update(expression="H_rock_m-H_rock_p"))
+
+    def multiplier_sign(d):
+        event(d, "rock")["multipliers"][4] = "l_ry_rock_p"
+    case("E-flyby-multiplier-sign", "E-flyby", "flyby: multiplier of ry+ - ry- written +lambda(t+)",
+         ["event_multipliers:rock"], multiplier_sign)
+
+    def drop_constraint(d):
+        drop_eq(d, "psi_rock_2")
+    case("E-flyby-dropped-constraint", "E-flyby", "flyby: the constraint ry(t-) = ry_Rock dropped",
+         ["count", "event_constraint:rock_2"], drop_constraint)
+
+    def continuous_v(d):
+        cmap(d, "rock", "l_vx").pop("variable")
+        cmap(d, "rock", "l_vx")["expression"] = "l_vx_rock_m"
+        d["shooting"]["variables"] = [v for v in d["shooting"]["variables"] if v["name"] != "l_vx_rock_p"]
+        drop_eq(d, "jump_rock_vx")
+    case("E-stay-continuous-costate", "E-stay",
+         "stay: lambda_vx treated as continuous although the stay maps vx to the body's (no variable, no jump row)",
+         ["costate_jump:rock_vx", "event_unknowns:rock"], continuous_v)
+    case("E-stay-mass-drop-jump", "E-stay", "stay: lambda_m jumping at the mass drop (scaled by the mass ratio)",
+         ["costate_jump:rock_m"],
+         lambda d: cmap(d, "rock", "l_m").update(expression="l_m_rock_m*m_rock_m/(m_rock_m-drop_rock)"))
+
+    def jump_row_sign(d):
+        e = eq(d, "jump_rock_vy")
+        e["expression"] = e["expression"].replace("-nu_rock_5", "+nu_rock_5")
+    case("E-stay-jump-row-sign", "E-stay", "stay: jump row of vy with +nu", ["costate_jump:rock_vy"], jump_row_sign)
+
+    def map_without_drop(d):
+        find(event(d, "rock")["state_map"], "state", "m")["expression"] = "m_rock_m"
+    case("E-stay-state-map-without-drop", "E-stay", "stay: state_map keeps the mass although psi drops it",
+         ["event_psi:rock"], map_without_drop)
+
+    def stationarity_sign(d):
+        e = eq(d, "stationarity_rock_delta_rock")
+        expr = sym(e["expression"])
+        lvx = sp.Symbol("l_vx_rock_p")
+        e["expression"] = g(expr - 2 * lvx * sp.diff(expr, lvx))
+    case("E-ga-stationarity-sign", "E-ga", "gravity assist: dPhi/ddelta with the l_vx(t+) term's sign flipped",
+         ["event_stationarity:rock_delta_rock"], stationarity_sign)
+
+    case("E-slide-H0-only", "E-slide", "sliding departure: H(t0) = 0 alone (the paper's condition)",
+         ["transversality_t0"], lambda d: eq(d, "transversality_t0").update(expression="H_t0"))
+
+    def slide_without_tf(d):
+        e = eq(d, "transversality_t0")
+        keep = [t for t in sp.Add.make_args(sym(e["expression"])) if not str(t).count("_tf")]
+        e["expression"] = g(sp.Add(*keep))
+    case("E-slide-without-tf", "E-slide", "sliding departure: -H(t0) + dPhi/dt0 without the tf terms",
+         ["transversality_t0"], slide_without_tf)
+
+
 def main():
     bin_dir = None
     if "--bin" in sys.argv:
@@ -320,6 +446,11 @@ def main():
     seeds = {"S01": s01, "S05h": S05, "S06h": S06, "S11h": S11, "S01f": S01F}
     for scenario in builtin:
         seeds[scenario] = json.loads((HERE / "base" / f"{scenario}.json").read_text())
+    for name in EVENT_BASES:
+        if bin_dir:
+            subprocess.run([str(bin_dir / "helios-derive"), str(HERE / "base" / f"{name}.spec.json"), "-o",
+                            str(HERE / "base" / f"{name}.json")], check=True)
+        seeds[name] = json.loads((HERE / "base" / f"{name}.json").read_text())
 
     cases = []
 
@@ -610,6 +741,8 @@ def main():
     case("S12-missing-SRP-mass-term", "S12", "S01 + SRP: l_m' without d(a_SRP)/dm (the plate's a = k/m)",
          ["costate_ode:l_m"], lambda d: without_float_terms(d, "l_m"))
     case("S12-flip-l_vz", "S12", "S01 + SRP: sign of l_vz' flipped", ["costate_ode:l_vz"], lambda d: flip(d, "l_vz"))
+
+    event_cases(case, cases)
 
     write(HERE / "manifest.json", {"description": "helios-verify accuracy corpus: expected verdict and the exact "
                                                   "set of failing checks of every case (generate.py)",

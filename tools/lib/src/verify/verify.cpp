@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <map>
@@ -84,7 +85,7 @@ class Compiled {
  public:
   Compiled() = default;
   Compiled(const ex& e, const std::map<std::string, int>& slots) { root_ = build(e, slots); }
-  double operator()(const Point& x) const { return root_ < 0 ? std::nan("") : eval(root_, x); }
+  double operator()(const Point& x) const { return root_ < 0 ? std::nan("") : eval(x); }
 
  private:
   enum class Op { Const, Var, Add, Mul, Pow, PowEx, Fn1, Fn2 };
@@ -97,10 +98,37 @@ class Compiled {
     std::vector<int> args;
   };
   std::vector<Node> nodes_;
+  std::vector<std::uint64_t> hashes_;  // structural hash of each node, independent of GiNaC's run-dependent order
+  std::map<std::uint64_t, std::vector<int>> by_hash_;  // equal subtrees share one node (a DAG)
   int root_ = -1;
 
-  int push(Node n) {
+  static std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
+    h ^= v + 0x9E3779B97F4A7C15ULL + (h << 6) + (h >> 2);
+    return h * 0x100000001B3ULL;
+  }
+  static std::uint64_t text_hash(const std::string& s) {
+    std::uint64_t h = 0xCBF29CE484222325ULL;
+    for (const char ch : s) h = (h ^ static_cast<unsigned char>(ch)) * 0x100000001B3ULL;
+    return h;
+  }
+  int push(Node n, std::uint64_t salt = 0) {
+    std::uint64_t h = mix(static_cast<std::uint64_t>(n.op) + 1, salt);
+    std::uint64_t bits = 0;
+    static_assert(sizeof bits == sizeof n.value, "double is 64 bits");
+    std::memcpy(&bits, &n.value, sizeof bits);
+    h = mix(h, bits);
+    h = mix(h, static_cast<std::uint64_t>(n.slot));
+    for (int a : n.args) h = mix(h, hashes_[static_cast<std::size_t>(a)]);
+    auto& same = by_hash_[h];
+    for (int i : same) {
+      const Node& m = nodes_[static_cast<std::size_t>(i)];
+      if (m.op == n.op && std::memcmp(&m.value, &n.value, sizeof bits) == 0 && m.slot == n.slot && m.f1 == n.f1 &&
+          m.f2 == n.f2 && m.args == n.args)
+        return i;
+    }
     nodes_.push_back(std::move(n));
+    hashes_.push_back(h);
+    same.push_back(static_cast<int>(nodes_.size()) - 1);
     return static_cast<int>(nodes_.size()) - 1;
   }
 
@@ -118,6 +146,7 @@ class Compiled {
 
   int build(const ex& e, const std::map<std::string, int>& slots) {
     Node n;
+    std::uint64_t salt = 0;
     if (GiNaC::is_a<numeric>(e) || GiNaC::is_a<GiNaC::constant>(e)) {
       const ex v = GiNaC::evalf(e);
       if (!GiNaC::is_a<numeric>(v) || !GiNaC::ex_to<numeric>(v).is_real())
@@ -134,13 +163,13 @@ class Compiled {
       return push(n);
     }
     if (GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e)) {
-      // GiNaC's operand order follows hash values that vary between runs; a fixed order keeps
-      // the rounding, and so every reported number, reproducible.
+      // GiNaC's operand order follows hash values that vary between runs; a fixed order (by a
+      // structural hash of the operands) keeps the rounding, and so every reported number, reproducible.
       n.op = GiNaC::is_a<GiNaC::add>(e) ? Op::Add : Op::Mul;
-      std::vector<std::pair<std::string, ex>> ops;
-      for (const auto& op : e) ops.emplace_back(print(op), op);
-      std::sort(ops.begin(), ops.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-      for (const auto& op : ops) n.args.push_back(build(op.second, slots));
+      for (const auto& op : e) n.args.push_back(build(op, slots));
+      std::sort(n.args.begin(), n.args.end(), [this](int a, int b) {
+        return hashes_[static_cast<std::size_t>(a)] < hashes_[static_cast<std::size_t>(b)];
+      });
       return push(n);
     }
     if (GiNaC::is_a<GiNaC::power>(e)) {
@@ -156,6 +185,7 @@ class Compiled {
     }
     if (GiNaC::is_a<GiNaC::function>(e)) {
       const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+      salt = text_hash(name);
       if (e.nops() == 1 && unary(name)) {
         n.op = Op::Fn1;
         n.f1 = unary(name);
@@ -166,38 +196,49 @@ class Compiled {
         throw std::invalid_argument("function " + name + " is not supported by the verifier");
       }
       for (const auto& op : e) n.args.push_back(build(op, slots));
-      return push(n);
+      return push(n, salt);
     }
     throw std::invalid_argument("cannot evaluate " + print(e));
   }
 
-  double eval(int i, const Point& x) const {
-    const Node& n = nodes_[static_cast<std::size_t>(i)];
-    switch (n.op) {
-      case Op::Const:
-        return n.value;
-      case Op::Var:
-        return x[static_cast<std::size_t>(n.slot)];
-      case Op::Add: {
-        double s = 0;
-        for (int a : n.args) s += eval(a, x);
-        return s;
+  // Children precede their parents in nodes_, so one pass in order evaluates every shared node once.
+  double eval(const Point& x) const {
+    std::vector<double> v(static_cast<std::size_t>(root_) + 1);
+    auto at = [&v](int a) { return v[static_cast<std::size_t>(a)]; };
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const Node& n = nodes_[i];
+      double r = std::nan("");
+      switch (n.op) {
+        case Op::Const:
+          r = n.value;
+          break;
+        case Op::Var:
+          r = x[static_cast<std::size_t>(n.slot)];
+          break;
+        case Op::Add:
+          r = 0;
+          for (int a : n.args) r += at(a);
+          break;
+        case Op::Mul:
+          r = 1;
+          for (int a : n.args) r *= at(a);
+          break;
+        case Op::Pow:
+          r = std::pow(at(n.args[0]), n.value);
+          break;
+        case Op::PowEx:
+          r = std::pow(at(n.args[0]), at(n.args[1]));
+          break;
+        case Op::Fn1:
+          r = n.f1(at(n.args[0]));
+          break;
+        case Op::Fn2:
+          r = n.f2(at(n.args[0]), at(n.args[1]));
+          break;
       }
-      case Op::Mul: {
-        double p = 1;
-        for (int a : n.args) p *= eval(a, x);
-        return p;
-      }
-      case Op::Pow:
-        return std::pow(eval(n.args[0], x), n.value);
-      case Op::PowEx:
-        return std::pow(eval(n.args[0], x), eval(n.args[1], x));
-      case Op::Fn1:
-        return n.f1(eval(n.args[0], x));
-      case Op::Fn2:
-        return n.f2(eval(n.args[0], x), eval(n.args[1], x));
+      v[i] = r;
     }
-    return std::nan("");
+    return v.back();
   }
 };
 
@@ -255,6 +296,7 @@ bool exact_equal(const ex& a, const ex& b) {
 
 // True if `a` is a constant nonzero multiple of `b`, shown exactly.
 bool exact_proportional(const ex& a, const ex& b) {
+  if (tree_size(a, kExactBudget) + tree_size(b, kExactBudget) > kExactBudget) return false;
   try {
     if (exact_equal(a, b) || exact_equal(a, -b)) return true;
     const ex r = GiNaC::normal(a / b);
@@ -426,6 +468,8 @@ struct Equation {
   bool ok = false;
   ex e;
   Compiled c;
+  std::vector<double> values;     // at the sample points
+  std::set<std::string> symbols;  // its free symbols
 };
 
 // The expected side of an equality: its symbolic form (printed in feedback, used by the exact
@@ -455,6 +499,8 @@ class Verifier {
     check_coast();
     check_endpoints();
     check_times();
+    check_events();
+    check_departure();
     check_shooting_shape();
     check_normalization();
     check_state_usage();
@@ -481,7 +527,8 @@ class Verifier {
   std::vector<std::string> tf_vars_;  // symbols of tf_expression declared by it (e.g. tf_frac)
   struct EventValue {
     std::string name, meaning;
-    bool hamiltonian = false;  // H at tf under the optimal control
+    bool hamiltonian = false;  // H under the optimal control at `at`
+    std::string at = "tf";     // t0, tf, or <event>_m / <event>_p (just before / after an interior event)
   };
   std::vector<EventValue> events_;
   // Uncontrolled dynamics of coasting targets.
@@ -600,9 +647,14 @@ class Verifier {
         v.name = io::require_string(e, "name", "derivation event_values");
         v.meaning = e.value("meaning", "");
         v.hamiltonian = e.value("kind", "") == "hamiltonian";
+        if (e.contains("at") && e["at"].is_string())
+          v.at = e["at"].get<std::string>();
+        else if (v.name.rfind("H_", 0) == 0 && v.name.size() > 2)
+          v.at = v.name.substr(2);
         declare(v.name, Kind::EventValue);
         events_.push_back(v);
       }
+    read_departure(times);
     if (!free_tf_) return;
     if (!times.contains("tf_expression") || !times["tf_expression"].is_string()) {
       tf_error_ = "times.tf_expression is missing: a free final time needs tf as an expression of a shooting variable";
@@ -621,6 +673,159 @@ class Verifier {
     }
     // An endpoint cost may name the final time itself (Mayer form of minimum time).
     if (!slots_.count("tf")) declare("tf", Kind::Free);
+  }
+
+  // ----- interior events and a sliding departure: reading
+
+  // A symbol the derivation introduces (event states, multipliers, fractions): declared once.
+  void declare_new(const std::string& name, Kind kind) {
+    if (!slots_.count(name)) declare(name, kind);
+  }
+  static bool is_identifier(const std::string& s) {
+    return !s.empty() && (std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_') &&
+           std::all_of(s.begin(), s.end(),
+                       [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; });
+  }
+  // Declares the identifiers of `text` that are not symbols yet (kind Free); returns them.
+  std::vector<std::string> declare_unknown(const std::string& text) {
+    std::vector<std::string> out;
+    for (const auto& name : identifiers(text))
+      if (!slots_.count(name) && name != "Pi" && name != "Euler" && name != "Catalan" && is_identifier(name)) {
+        declare(name, Kind::Free);
+        out.push_back(name);
+      }
+    return out;
+  }
+
+  // times.departure == "free": t0 = t0_expression(t0_frac), tf = tf_expression = t0 + the fixed total time.
+  void read_departure(const json& times) {
+    free_t0_ = times.value("departure", "fixed") == "free";
+    if (!free_t0_) return;
+    try {
+      for (const char* key : {"t0_expression", "tf_expression"}) {
+        if (!times.contains(key) || !times[key].is_string())
+          throw std::invalid_argument(std::string("times.") + key +
+                                      " is missing: a sliding departure needs t0 and tf " +
+                                      "as expressions of a shooting variable (t0_frac)");
+        const std::string text = times[key].get<std::string>();
+        for (const auto& name : declare_unknown(text)) t0_vars_.push_back(name);
+        (std::string(key) == "t0_expression" ? t0_expr_ : t0_tf_expr_) =
+            table_.parse(text, std::string("times.") + key);
+      }
+    } catch (const std::exception& e) {
+      t0_error_ = e.what();
+    }
+  }
+  bool free_t0_ = false;
+  std::string t0_error_;
+  ex t0_expr_, t0_tf_expr_;
+  std::vector<std::string> t0_vars_;
+
+  struct CostateEntry {
+    bool given = false, is_variable = false;
+    std::string variable, text;
+    ex expr;
+  };
+  struct Event {
+    std::string id, kind, error;
+    std::vector<ex> psi;
+    std::vector<std::string> psi_text, multiplier_text;
+    std::vector<ex> map;  // state_map, in state order
+    std::vector<std::string> map_text;
+    std::vector<CostateEntry> costate_map;  // in state order
+    std::vector<std::string> free_params;   // symbols psi or state_map introduce (Category C parameters)
+    std::vector<std::string> time_vars;     // symbols time.expression introduces (the epoch's fraction)
+    std::string time_text;
+    ex time_expr;
+    std::vector<double> window;
+    std::string Hm, Hp;  // event values: H just before / just after
+  };
+  std::vector<Event> interior_;
+
+  std::string before(const std::string& name, const std::string& id) const { return name + "_" + id + "_m"; }
+  std::string after(const std::string& name, const std::string& id) const { return name + "_" + id + "_p"; }
+
+  void read_interior_events() {
+    if (!d_.contains("events") || !d_["events"].is_array()) return;
+    std::size_t index = 0;
+    for (const auto& je : d_["events"]) {
+      Event e;
+      e.id = je.is_object() ? je.value("id", "") : "";
+      if (!is_identifier(e.id)) e.id = "#" + std::to_string(index);
+      ++index;
+      const std::string where = "events[" + e.id + "]";
+      try {
+        if (!is_identifier(e.id)) throw std::invalid_argument(where + " has no valid id");
+        e.kind = je.value("kind", "");
+        for (std::size_t i = 0; i < states_.size(); ++i) {
+          const Kind k = kinds_[static_cast<std::size_t>(slot(states_[i]))];
+          declare_new(before(states_[i], e.id), k);
+          declare_new(after(states_[i], e.id), k);
+          declare_new(before(costates_[i], e.id), Kind::Costate);
+          declare_new(after(costates_[i], e.id), Kind::Costate);
+        }
+        declare_new("t_" + e.id, Kind::Free);
+        for (const auto& v : events_)
+          if (v.hamiltonian && v.at == e.id + "_m")
+            e.Hm = v.name;
+          else if (v.hamiltonian && v.at == e.id + "_p")
+            e.Hp = v.name;
+        const json& time = io::require(je, "time", where);
+        e.time_text = io::require_string(time, "expression", where + ".time");
+        e.time_vars = declare_unknown(e.time_text);
+        e.time_expr = table_.parse(e.time_text, where + ".time.expression");
+        if (time.contains("window") && time["window"].is_array() && time["window"].size() == 2)
+          for (const auto& w : time["window"]) e.window.push_back(w.is_number() ? w.get<double>() : std::nan(""));
+        const json& mult = io::require(je, "multipliers", where);
+        for (const auto& m : mult) {
+          e.multiplier_text.push_back(m.is_string() ? m.get<std::string>() : "");
+          if (is_identifier(e.multiplier_text.back())) declare_new(e.multiplier_text.back(), Kind::Free);
+        }
+        const json& psi = io::require(je, "psi", where);
+        for (std::size_t j = 0; j < psi.size(); ++j) {
+          if (!psi[j].is_string())
+            throw std::invalid_argument(where + ".psi[" + std::to_string(j) + "] is not a string");
+          e.psi_text.push_back(psi[j].get<std::string>());
+          for (const auto& q : declare_unknown(e.psi_text.back())) e.free_params.push_back(q);
+          e.psi.push_back(table_.parse(e.psi_text.back(), where + ".psi[" + std::to_string(j) + "]"));
+        }
+        e.map.assign(states_.size(), ex(0));
+        e.map_text.assign(states_.size(), "");
+        for (const auto& m : io::require(je, "state_map", where)) {
+          const std::string s = io::require_string(m, "state", where + ".state_map");
+          const auto it = std::find(states_.begin(), states_.end(), s);
+          if (it == states_.end()) throw std::invalid_argument(where + ".state_map names '" + s + "', not a state");
+          const auto i = static_cast<std::size_t>(it - states_.begin());
+          e.map_text[i] = io::require_string(m, "expression", where + ".state_map[" + s + "]");
+          for (const auto& q : declare_unknown(e.map_text[i])) e.free_params.push_back(q);
+          e.map[i] = table_.parse(e.map_text[i], where + ".state_map[" + s + "]");
+        }
+        for (std::size_t i = 0; i < states_.size(); ++i)
+          if (e.map_text[i].empty())
+            throw std::invalid_argument(where + ".state_map has no entry for state " + states_[i]);
+        e.costate_map.assign(states_.size(), CostateEntry{});
+        for (const auto& m : io::require(je, "costate_map", where)) {
+          const std::string l = io::require_string(m, "costate", where + ".costate_map");
+          const auto it = std::find(costates_.begin(), costates_.end(), l);
+          if (it == costates_.end())
+            throw std::invalid_argument(where + ".costate_map names '" + l + "', not a costate");
+          CostateEntry& c = e.costate_map[static_cast<std::size_t>(it - costates_.begin())];
+          c.given = true;
+          if (m.contains("variable")) {
+            c.is_variable = true;
+            c.variable = io::require_string(m, "variable", where + ".costate_map[" + l + "]");
+            if (is_identifier(c.variable)) declare_new(c.variable, Kind::Costate);
+          } else {
+            c.text = io::require_string(m, "expression", where + ".costate_map[" + l + "]");
+            declare_unknown(c.text);
+            c.expr = table_.parse(c.text, where + ".costate_map[" + l + "]");
+          }
+        }
+      } catch (const std::exception& x) {
+        e.error = x.what();
+      }
+      interior_.push_back(e);
+    }
   }
 
   // coast_dynamics: the state symbols of the coasting target and their uncontrolled dynamics.
@@ -863,6 +1068,19 @@ class Verifier {
     return optimal_controls(q, true);
   }
 
+  // The point as seen at `label` (t0, tf, <event>_m, <event>_p): states and costates take their
+  // values there (where the derivation has such symbols), controls their optimum.
+  Point at_label(const Point& p, const std::string& label) const {
+    if (label == "tf") return at_tf(p);
+    Point q = p;
+    for (std::size_t i = 0; i < states_.size(); ++i)
+      for (const auto* name : {&states_[i], &costates_[i]}) {
+        const auto it = slots_.find(*name + "_" + label);
+        if (it != slots_.end()) q[static_cast<std::size_t>(slot(*name))] = p[static_cast<std::size_t>(it->second)];
+      }
+    return optimal_controls(q, true);
+  }
+
   // control_law.sail.definitions: named intermediate expressions (e.g. sail_A, sail_B, sail_alpha),
   // each in the problem's symbols and the earlier definitions; the sail law is read with them inlined.
   void read_sail_definitions() {
@@ -950,6 +1168,7 @@ class Verifier {
         if (c.contains("multipliers") && c["multipliers"].is_array())
           for (const auto& m : c["multipliers"])
             if (m.is_string() && !slots_.count(m.get<std::string>())) declare(m.get<std::string>(), Kind::Free);
+    read_interior_events();
 
     // The problem statement: dynamics, costs, endpoint constraints.
     const json& dyn = io::require(d, "dynamics", "derivation");
@@ -1061,10 +1280,11 @@ class Verifier {
       bool finite = true;
       for (const auto& c : statement) finite = finite && std::isfinite(c(p));
       if (!finite) continue;
-      // Event values are what the runtime evaluates: H_tf is H at the _tf values, optimal controls.
+      // Event values are what the runtime evaluates: H_tf is H at the _tf values, optimal controls;
+      // H_t0 at the _t0 values, H_<id>_m / H_<id>_p at the states and costates around an event.
       for (const auto& v : events_)
         if (v.hamiltonian) {
-          const double h = Hc_(at_tf(p));
+          const double h = Hc_(at_label(p, v.at));
           if (!std::isfinite(h)) finite = false;
           p[static_cast<std::size_t>(slot(v.name))] = h;
         }
@@ -1694,6 +1914,8 @@ class Verifier {
         e.text = eqs[k]["expression"].get<std::string>();
         e.e = table_.parse(e.text, where);
         e.c = compile(e.e);
+        for (const auto& p : points_) e.values.push_back(e.c(p));
+        for (auto& name : symbolic::free_symbols(e.e)) e.symbols.insert(std::move(name));
         e.ok = true;
       } catch (const std::exception& x) {
         e.error = x.what();
@@ -1704,14 +1926,18 @@ class Verifier {
 
   // The mismatch of `g` with k * `e` for the best constant k != 0 (k from the point of largest |e|).
   double proportional_mismatch(const Compiled& e, const Compiled& g) const {
+    std::vector<double> gv;
+    for (const auto& p : points_) gv.push_back(g(p));
+    return proportional_mismatch(e, gv);
+  }
+  double proportional_mismatch(const Compiled& e, const std::vector<double>& gv) const {
     double best = 0, k = std::nan("");
-    std::vector<double> ev, gv;
-    for (const auto& p : points_) {
-      ev.push_back(e(p));
-      gv.push_back(g(p));
+    std::vector<double> ev;
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      ev.push_back(e(points_[i]));
       if (std::isfinite(ev.back()) && std::fabs(ev.back()) > best) {
         best = std::fabs(ev.back());
-        k = gv.back() / ev.back();
+        k = gv[i] / ev.back();
       }
     }
     if (!(best > 0) || !std::isfinite(k) || std::fabs(k) < 1e-12) return 2.0;
@@ -1726,7 +1952,7 @@ class Verifier {
     double best = 2;
     for (const auto& eq : equations_) {
       if (!eq.ok) continue;
-      const double m = proportional_mismatch(ec, eq.c);
+      const double m = proportional_mismatch(ec, eq.values);
       if (m <= kTol) {
         c.max_rel = m;
         c.exact = exact_proportional(eq.e, expected);
@@ -1793,7 +2019,10 @@ class Verifier {
   // Time derivatives of the parameters that move with tf: an ephemeris component has its
   // ephemeris_rate partner (same body; the parameter named <name>_rate, else the same position
   // among that body's rates), a coasting target's component the coast dynamics.
-  std::map<std::string, ex> tf_rates(std::vector<std::string>& problems) const {
+  std::map<std::string, ex> tf_rates(std::vector<std::string>& problems) const { return rates_at("tf", problems); }
+
+  // The same for the parameters evaluated at `label` (t0, tf, an interior event's id, <id>_dep).
+  std::map<std::string, ex> rates_at(const std::string& label, std::vector<std::string>& problems) const {
     std::map<std::string, ex> rates;
     std::map<std::string, std::vector<std::string>> ephem, rate, coast;  // by body / constraint
     for (const auto& name : parameters_) {
@@ -1801,7 +2030,7 @@ class Verifier {
       if (it == sources_.end()) continue;
       const std::string& src = it->second;
       const auto a = src.find(':'), b = src.rfind(':');
-      if (a == std::string::npos || b == a || src.substr(b + 1) != "tf") continue;
+      if (a == std::string::npos || b == a || src.substr(b + 1) != label) continue;
       const std::string kind = src.substr(0, a), owner = src.substr(a + 1, b - a - 1);
       (kind == "ephemeris" ? ephem : kind == "ephemeris_rate" ? rate : coast)[owner].push_back(name);
     }
@@ -1814,8 +2043,9 @@ class Verifier {
         else if (r.size() == names.size())
           rates[names[k]] = sym(r[k]);
         else
-          problems.push_back("parameter " + names[k] + " (source ephemeris:" + body +
-                             ":tf) moves with tf but has no parameter with source ephemeris_rate:" + body + ":tf");
+          problems.push_back("parameter " + names[k] + " (source ephemeris:" + body + ":" + label + ") moves with " +
+                             (label == "tf" || label == "t0" ? label : "the epoch of " + label) +
+                             " but has no parameter with source ephemeris_rate:" + body + ":" + label);
       }
     }
     for (const auto& [owner, names] : coast) {
@@ -2032,6 +2262,687 @@ class Verifier {
   }
   std::set<std::string> fixed_at_t0_;
 
+  // ----- interior events and a sliding departure: checks
+
+  // sum_j nu_j dpsi_j with nu solved from rows i of sum_j nu_j dpsi_j/dx_i = rhs(i), the rows taken
+  // where the Jacobian of psi is best conditioned at a sample point.
+  ex nu_dot(const std::vector<ex>& psi, const std::vector<ex>& dpsi, const std::function<ex(std::size_t)>& rhs) const {
+    const std::size_t m = psi.size(), n = states_.size();
+    if (m == 0) return 0;
+    std::vector<std::vector<ex>> J(m, std::vector<ex>(n));
+    std::vector<std::vector<double>> Jn(m, std::vector<double>(n));
+    for (std::size_t j = 0; j < m; ++j)
+      for (std::size_t i = 0; i < n; ++i) {
+        J[j][i] = psi[j].diff(GiNaC::ex_to<symbol>(sym(states_[i])));
+        Jn[j][i] = compile(J[j][i])(points_[0]);
+      }
+    std::vector<std::size_t> rows;
+    for (std::size_t j = 0; j < m; ++j) {
+      std::size_t best = n;
+      for (std::size_t i = 0; i < n; ++i)
+        if (std::find(rows.begin(), rows.end(), i) == rows.end() &&
+            (best == n || std::fabs(Jn[j][i]) > std::fabs(Jn[j][best])))
+          best = i;
+      if (best == n || !(std::fabs(Jn[j][best]) > 1e-12))
+        throw std::invalid_argument("the constraints' psi are not independent in the states");
+      for (std::size_t k = j + 1; k < m; ++k) {
+        const double f = Jn[k][best] / Jn[j][best];
+        for (std::size_t i = 0; i < n; ++i) Jn[k][i] -= f * Jn[j][i];
+      }
+      rows.push_back(best);
+    }
+    const auto um = static_cast<unsigned>(m);
+    GiNaC::matrix M(um, um), b(um, 1), nu(um, 1);
+    for (unsigned r = 0; r < um; ++r) {
+      for (unsigned j = 0; j < um; ++j) M(r, j) = J[j][rows[r]];
+      b(r, 0) = rhs(rows[r]);
+      nu(r, 0) = symbol("helios_nu_" + std::to_string(r));
+    }
+    const GiNaC::matrix sol = M.solve(nu, b);
+    ex out = 0;
+    for (unsigned j = 0; j < um; ++j) out += sol(j, 0) * dpsi[j];
+    return out;
+  }
+
+  // Term-by-term comparison of two expressions linear in `basis` (multipliers, costates, event
+  // values), by evaluation: the given one may be any constant multiple of the expected one.
+  struct Linear {
+    std::vector<std::string> missing, flipped, wrong, extra;
+    bool rest_wrong = false;
+    bool ok() const { return missing.empty() && flipped.empty() && wrong.empty() && extra.empty() && !rest_wrong; }
+    bool has(const std::vector<std::string>& list, const std::string& name) const {
+      return std::find(list.begin(), list.end(), name) != list.end();
+    }
+    std::string text() const {
+      std::vector<std::string> parts;
+      if (!missing.empty()) parts.push_back("it lacks the term(s) in " + join(missing, ", "));
+      if (!flipped.empty()) parts.push_back("the term(s) in " + join(flipped, ", ") + " have the wrong sign");
+      if (!wrong.empty()) parts.push_back("the coefficient(s) of " + join(wrong, ", ") + " are wrong");
+      if (!extra.empty()) parts.push_back("it has unexpected term(s) in " + join(extra, ", "));
+      if (rest_wrong) parts.push_back("its part free of those symbols is wrong");
+      return join(parts, "; ");
+    }
+  };
+  // `anchor`: the basis symbol whose ratio wins a tie for the scale; `fixed`: the scale is 1 (an
+  // expression, not an equation).
+  Linear linear_compare(const ex& expected, const ex& given, const std::vector<ex>& basis, const ex& anchor = ex(0),
+                        bool fixed = false) const {
+    GiNaC::exmap zero;
+    for (const auto& b : basis) zero[b] = 0;
+    std::vector<ex> parts_e, parts_g;
+    std::vector<std::string> names;
+    for (const auto& b : basis) {
+      parts_e.push_back(expected.diff(GiNaC::ex_to<symbol>(b)).subs(zero));
+      parts_g.push_back(given.diff(GiNaC::ex_to<symbol>(b)).subs(zero));
+      names.push_back(print(b));
+    }
+    parts_e.push_back(expected.subs(zero));
+    parts_g.push_back(given.subs(zero));
+    const std::size_t P = parts_e.size();
+    std::vector<std::vector<double>> E(P), G(P);
+    for (std::size_t k = 0; k < P; ++k) {
+      const Compiled ce = compile(parts_e[k]), cg = compile(parts_g[k]);
+      for (const auto& p : points_) {
+        E[k].push_back(ce(p));
+        G[k].push_back(cg(p));
+      }
+    }
+    auto zero_all = [](const std::vector<double>& v) {
+      return std::all_of(v.begin(), v.end(), [](double x) { return rel_diff(x, 0) <= kTol; });
+    };
+    auto scaled = [](const std::vector<double>& g, const std::vector<double>& e, double k) {
+      for (std::size_t i = 0; i < g.size(); ++i)
+        if (rel_diff(g[i], k * e[i]) > kTol) return false;
+      return true;
+    };
+    // The scale: the candidate ratio that matches the most parts.
+    double scale = 1;
+    int best = fixed ? std::numeric_limits<int>::max() : -1;
+    std::vector<std::size_t> order;
+    for (std::size_t k = 0; k < P; ++k)
+      if (k < basis.size() && basis[k].is_equal(anchor))
+        order.insert(order.begin(), k);
+      else
+        order.push_back(k);
+    for (const std::size_t k : order) {
+      std::size_t at = 0;
+      for (std::size_t i = 1; i < E[k].size(); ++i)
+        if (std::fabs(E[k][i]) > std::fabs(E[k][at])) at = i;
+      if (E[k].empty() || !(std::fabs(E[k][at]) > 1e-12)) continue;
+      const double r = G[k][at] / E[k][at];
+      if (!std::isfinite(r) || std::fabs(r) < 1e-12) continue;
+      int count = 0;
+      for (std::size_t j = 0; j < P; ++j) count += !zero_all(E[j]) && scaled(G[j], E[j], r);
+      if (count > best) {
+        best = count;
+        scale = r;
+      }
+    }
+    Linear out;
+    for (std::size_t k = 0; k < P; ++k) {
+      const bool ez = zero_all(E[k]), gz = zero_all(G[k]);
+      const bool rest = k + 1 == P;
+      if (ez && gz) continue;
+      if (scaled(G[k], E[k], scale)) continue;
+      if (rest) {
+        out.rest_wrong = true;
+      } else if (gz) {
+        out.missing.push_back(names[k]);
+      } else if (ez) {
+        out.extra.push_back(names[k]);
+      } else if (scaled(G[k], E[k], -scale)) {
+        out.flipped.push_back(names[k]);
+      } else {
+        out.wrong.push_back(names[k]);
+      }
+    }
+    return out;
+  }
+
+  // An equation of shooting.equations equivalent to `expected` = 0 (a constant multiple), the one
+  // named `name` first; `resolve` rewrites an equation first (costates the map gives explicitly).
+  const Equation* matching_equation(const std::string& name, const ex& expected, Check& c,
+                                    const GiNaC::exmap& resolve) const {
+    const Compiled ec = compile(expected);
+    double best = 2;
+    std::vector<const Equation*> order;
+    for (const auto& eq : equations_)
+      if (eq.ok && eq.name == name)
+        order.insert(order.begin(), &eq);
+      else if (eq.ok)
+        order.push_back(&eq);
+    for (const auto* eq : order) {
+      bool uses = false;
+      for (const auto& [from, to] : resolve) uses = uses || eq->symbols.count(print(from));
+      const ex e = uses ? eq->e.subs(resolve) : eq->e;
+      const double m = uses ? proportional_mismatch(ec, compile(e)) : proportional_mismatch(ec, eq->values);
+      if (m <= kTol) {
+        c.max_rel = m;
+        c.exact = exact_proportional(e, expected);
+        return eq;
+      }
+      best = std::min(best, m);
+    }
+    c.max_rel = best;
+    return nullptr;
+  }
+  const Equation* named_equation(const std::string& name) const {
+    for (const auto& eq : equations_)
+      if (eq.ok && eq.name == name) return &eq;
+    return nullptr;
+  }
+  static std::string short_print(const ex& e) { return tree_size(e, 400) > 400 ? "(a long expression)" : print(e); }
+
+  // d e/dt through an explicit epoch symbol and the parameters that move with it.
+  ex time_derivative(const ex& e, const std::string& epoch, const std::map<std::string, ex>& rates) const {
+    ex d = slots_.count(epoch) ? e.diff(GiNaC::ex_to<symbol>(sym(epoch))) : ex(0);
+    for (const auto& [name, rate] : rates) d += e.diff(GiNaC::ex_to<symbol>(sym(name))) * rate;
+    return d;
+  }
+
+  void check_events() {
+    for (const auto& e : interior_) check_event(e);
+  }
+
+  void check_event(const Event& e) {
+    const std::string& id = e.id;
+    const std::string where = "events[" + id + "]";
+    if (!e.error.empty()) {
+      Check c = start("event:" + id, "events", "structural");
+      c.fail(e.error + ".");
+      checks_.push_back(c);
+      return;
+    }
+    const std::size_t n = states_.size();
+    std::vector<ex> xm, xp, lm, lp;
+    for (std::size_t i = 0; i < n; ++i) {
+      xm.push_back(sym(before(states_[i], id)));
+      xp.push_back(sym(after(states_[i], id)));
+      lm.push_back(sym(before(costates_[i], id)));
+      lp.push_back(sym(after(costates_[i], id)));
+    }
+    auto d = [](const ex& f, const ex& x) { return f.diff(GiNaC::ex_to<symbol>(x)); };
+    auto zero_at_points = [&](const ex& f) {
+      const Compiled cf = compile(f);
+      return std::all_of(points_.begin(), points_.end(), [&](const Point& p) { return rel_diff(cf(p), 0) <= kTol; });
+    };
+
+    // 1. psi = [c(t, x-, p); x+ - g(t + D, x-, p)]: rows without x+ are c, each state has one row x+_s - g_s.
+    Check ps = start("event_psi:" + id, "events", "random_points+exact");
+    ps.exact = true;
+    std::vector<std::size_t> c_rows;
+    std::vector<int> map_row(n, -1);
+    for (std::size_t r = 0; r < e.psi.size(); ++r) {
+      std::vector<std::size_t> plus;
+      for (std::size_t i = 0; i < n; ++i)
+        if (e.psi[r].has(xp[i])) plus.push_back(i);
+      if (plus.empty()) {
+        c_rows.push_back(r);
+      } else if (plus.size() > 1) {
+        ps.fail(where + ".psi[" + std::to_string(r) + "] = " + e.psi_text[r] + " involves " +
+                std::to_string(plus.size()) +
+                " states after the event; each row of the map part must be x+ - g(x-) for one state.");
+      } else if (map_row[plus[0]] >= 0) {
+        ps.fail(where + ".psi has two rows in " + print(xp[plus[0]]) + " (rows " + std::to_string(map_row[plus[0]]) +
+                " and " + std::to_string(r) + "); the map part has one row x+ - g(x-) per state.");
+      } else {
+        map_row[plus[0]] = static_cast<int>(r);
+      }
+    }
+    std::vector<ex> g(n), c;
+    for (const auto r : c_rows) c.push_back(e.psi[r]);
+    for (std::size_t s = 0; s < n && ps.pass; ++s) {
+      if (map_row[s] < 0) {
+        ps.fail(where + ".psi has no row " + print(xp[s]) + " - g_" + states_[s] + "(x-) for state " + states_[s] +
+                ": the map part of psi must give every state after the event.");
+        break;
+      }
+      const ex& row = e.psi[static_cast<std::size_t>(map_row[s])];
+      g[s] = tree_size(row, kExactBudget) > kExactBudget ? ex(xp[s] - row) : (xp[s] - row).expand();
+      if (!zero_at_points(d(row, xp[s]) - 1) || g[s].has(xp[s])) {
+        ps.fail(where + ".psi[" + std::to_string(map_row[s]) +
+                "] = " + e.psi_text[static_cast<std::size_t>(map_row[s])] + " must be " + print(xp[s]) +
+                " - g(x-) with coefficient 1 on " + print(xp[s]) + " (its multiplier is then -lambda_" + states_[s] +
+                "(t+)).");
+        break;
+      }
+      const Compiled cg = compile(g[s]), cm = compile(e.map[s]);
+      double worst = 0;
+      for (const auto& p : points_) worst = std::max(worst, rel_diff(cg(p), cm(p)));
+      ps.max_rel = std::max(ps.max_rel, worst);
+      if (worst > kTol && !exact_equal(g[s], e.map[s])) {
+        ps.fail(where + ".state_map[" + states_[s] + "] = " + e.map_text[s] + " is not the map of psi[" +
+                std::to_string(map_row[s]) + "] = " + e.psi_text[static_cast<std::size_t>(map_row[s])] +
+                ", which gives " + print(xp[s]) + " = " + short_print(g[s]) + " (relative difference " + num(worst) +
+                ").");
+      } else if (worst > kTol || tree_size(g[s], kExactBudget) > kExactBudget) {
+        ps.exact = ps.exact && worst <= kTol;
+      }
+    }
+    for (std::size_t j = 0; j < c.size() && ps.pass; ++j)
+      for (std::size_t i = 0; i < n; ++i)
+        if (e.psi[c_rows[j]].has(lm[i]) || e.psi[c_rows[j]].has(lp[i]))
+          ps.fail(where + ".psi[" + std::to_string(c_rows[j]) + "] = " + e.psi_text[c_rows[j]] +
+                  " involves a costate; psi constrains states, time and parameters only.");
+    ps.exact = ps.exact && ps.pass;
+    checks_.push_back(ps);
+    if (!ps.pass) return;
+
+    // 2. Multipliers: nu_<id>_j for the rows of c, -lambda(t+)_s for the row x+_s - g_s.
+    Check pm = start("event_multipliers:" + id, "events", "structural");
+    pm.exact = true;
+    std::vector<ex> nu;
+    if (e.multiplier_text.size() != e.psi.size()) {
+      pm.fail(where + ".multipliers has " + std::to_string(e.multiplier_text.size()) + " entries for " +
+              std::to_string(e.psi.size()) + " rows of psi: give one multiplier per row.");
+    } else {
+      std::set<std::string> seen;
+      for (std::size_t j = 0; j < c.size(); ++j) {
+        const std::string& m = e.multiplier_text[c_rows[j]];
+        const bool fresh = is_identifier(m) && kinds_[static_cast<std::size_t>(slot(m))] == Kind::Free &&
+                           std::find(e.free_params.begin(), e.free_params.end(), m) == e.free_params.end() &&
+                           std::find(e.time_vars.begin(), e.time_vars.end(), m) == e.time_vars.end();
+        if (!fresh || !seen.insert(m).second)
+          pm.fail(where + ".multipliers[" + std::to_string(c_rows[j]) + "] = '" + m +
+                  "' must be a new symbol (e.g. nu_" + id + "_" + std::to_string(j + 1) +
+                  "), the multiplier of psi row " + e.psi_text[c_rows[j]] + ".");
+        else
+          nu.push_back(sym(m));
+      }
+      for (std::size_t s = 0; s < n && pm.pass; ++s) {
+        const std::string& m = e.multiplier_text[static_cast<std::size_t>(map_row[s])];
+        bool ok = false;
+        try {
+          ok = (table_.parse(m, where + ".multipliers") + lp[s]).expand().is_zero();
+        } catch (const std::exception&) {
+        }
+        if (!ok)
+          pm.fail(where + ".multipliers[" + std::to_string(map_row[s]) + "] = '" + m + "' must be -" + print(lp[s]) +
+                  ": the multiplier of the row " + print(xp[s]) + " - g is -lambda_" + states_[s] +
+                  "(t+) (lambda(t+) = -dPhi/dx+).");
+      }
+    }
+    checks_.push_back(pm);
+    if (!pm.pass) return;
+
+    // 3. Each row of c is a shooting equation (Rule 0).
+    for (std::size_t j = 0; j < c.size(); ++j) {
+      Check k = start("event_constraint:" + id + "_" + std::to_string(j + 1), "events", "random_points+exact");
+      if (!matching_equation("psi_" + id + "_" + std::to_string(j + 1), c[j], k, {}))
+        k.fail("missing interior constraint " + e.psi_text[c_rows[j]] + " = 0 (" + where + ".psi[" +
+               std::to_string(c_rows[j]) + "] at " + id + "); add it to shooting.equations.");
+      checks_.push_back(k);
+    }
+
+    // 4. Costate jumps: lambda(t-)_s = nu^T dc/dx-_s + lambda(t+)^T dg/dx-_s. A state the map
+    //    carries (dg_s/dx- = unit row s) gets lambda(t+)_s explicitly, any other a shooting variable.
+    std::vector<bool> carried(n, true);
+    std::vector<std::vector<ex>> dg(n, std::vector<ex>(n));  // dg[k][s] = dg_k/dx-_s
+    for (std::size_t k = 0; k < n; ++k)
+      for (std::size_t s = 0; s < n; ++s) {
+        dg[k][s] = d(g[k], xm[s]);
+        if (carried[k] && !zero_at_points(dg[k][s] - (k == s ? 1 : 0))) carried[k] = false;
+      }
+    std::vector<ex> rows(n), explicit_lp(n);
+    GiNaC::exmap resolve;  // lambda(t+) of carried states -> their explicit value
+    for (std::size_t s = 0; s < n; ++s) {
+      ex row = lm[s];
+      for (std::size_t j = 0; j < c.size(); ++j) row -= nu[j] * d(c[j], xm[s]);
+      for (std::size_t k = 0; k < n; ++k)
+        if (!carried[k]) row -= lp[k] * dg[k][s];
+      rows[s] = row;
+      if (carried[s]) {
+        explicit_lp[s] = row;
+        resolve[lp[s]] = row;
+      }
+    }
+    std::vector<ex> basis_rows = nu;
+    for (std::size_t k = 0; k < n; ++k)
+      if (!carried[k]) basis_rows.push_back(lp[k]);
+    for (std::size_t s = 0; s < n; ++s) basis_rows.push_back(lm[s]);
+    for (std::size_t s = 0; s < n; ++s) {
+      const std::string cid = "costate_jump:" + id + "_" + states_[s];
+      const CostateEntry& entry = e.costate_map[s];
+      const std::string label = where + ".costate_map[" + costates_[s] + "]";
+      const std::string jump_rule =
+          print(lm[s]) + " = nu^T dc/d" + print(xm[s]) + " + lambda(t+)^T dg/d" + print(xm[s]);
+      if (!entry.given) {
+        Check k = start(cid, "events", "structural");
+        k.fail(label + " is missing: give lambda_" + states_[s] + " just after " + id + " (" + jump_rule + ").");
+        checks_.push_back(k);
+        continue;
+      }
+      if (carried[s]) {
+        if (entry.is_variable) {
+          Check k = start(cid, "events", "structural");
+          k.fail(label + " makes lambda_" + states_[s] + "(t+) a shooting variable, but the map carries " + states_[s] +
+                 " (dg_" + states_[s] + "/dx- is the unit row), so its jump row gives it explicitly: expected " +
+                 print(lp[s]) + " = " + short_print(explicit_lp[s]) + " (" + jump_rule + ").");
+          checks_.push_back(k);
+          continue;
+        }
+        Check k = equality(cid, "events", label, "lambda_" + states_[s] + "(t+) from " + jump_rule,
+                           {explicit_lp[s], compile(explicit_lp[s]), {}}, json(entry.text), false);
+        if (!k.pass) {
+          const Linear lc = linear_compare(explicit_lp[s], entry.expr, basis_rows, lm[s], true);
+          std::string why = lc.text();
+          if (!lc.flipped.empty() &&
+              std::any_of(nu.begin(), nu.end(), [&](const ex& v) { return lc.has(lc.flipped, print(v)); }))
+            why += " (lambda(t+) = lambda(t-) - nu^T dc/dx-: the jump subtracts the multipliers)";
+          else if (!lc.missing.empty() &&
+                   std::any_of(nu.begin(), nu.end(), [&](const ex& v) { return lc.has(lc.missing, print(v)); }))
+            why += " (psi constrains " + states_[s] + " at " + id + ", so its costate jumps by -nu^T dc/dx-)";
+          else {
+            bool in_c = false;
+            for (const auto& cj : c) in_c = in_c || cj.has(xm[s]);
+            why += " (the map carries " + states_[s] + " over, " + print(xp[s]) + " = " + short_print(g[s]) +
+                   " with dg/d" + print(xm[s]) + " = 1, " +
+                   (in_c ? std::string("so lambda_" + states_[s] + " jumps by -nu^T dc/dx- only")
+                         : std::string("and no row of c involves it, so lambda_" + states_[s] +
+                                       " does not jump: " + print(lp[s]) + " = " + print(lm[s]))) +
+                   ")";
+          }
+          k.feedback = label + " = " + entry.text + " is not the costate jump at " + id + ": expected " + print(lp[s]) +
+                       " = " + short_print(explicit_lp[s]) + " (" + jump_rule + ")" + (why.empty() ? "" : "; " + why) +
+                       ".";
+        }
+        checks_.push_back(k);
+        continue;
+      }
+      // Not carried: lambda(t+)_s is a shooting variable and the row an equation.
+      Check k = start(cid, "events", "random_points+exact");
+      const std::string row_text = short_print(rows[s]);
+      if (!entry.is_variable) {
+        k.fail(label + " = " + entry.text + " treats lambda_" + states_[s] + " as given across " + id +
+               ", but the map " + print(xp[s]) + " = " + short_print(g[s]) + " does not carry " + states_[s] +
+               " over (dg/dx- is not the unit row): lambda_" + states_[s] + "(t+) is unknown; make it the shooting " +
+               "variable " + print(lp[s]) + " (\"variable\") and add the jump row " + row_text +
+               " = 0 as equation jump_" + id + "_" + states_[s] + ".");
+        checks_.push_back(k);
+        continue;
+      }
+      if (entry.variable != print(lp[s])) {
+        k.fail(label + " names the variable '" + entry.variable + "'; lambda_" + states_[s] + " just after " + id +
+               " is the symbol " + print(lp[s]) + ".");
+        checks_.push_back(k);
+        continue;
+      }
+      const std::string ename = "jump_" + id + "_" + states_[s];
+      if (!matching_equation(ename, rows[s], k, resolve)) {
+        const Equation* meant = named_equation(ename);
+        if (meant) {
+          const Linear lc = linear_compare(rows[s], meant->e.subs(resolve), basis_rows, lm[s]);
+          k.fail("shooting equation '" + ename + "' (" + (meant->text.size() > 300 ? "..." : meant->text) +
+                 " = 0) is not the costate jump row " + jump_rule + ", i.e. " + row_text + " = 0" +
+                 (lc.ok() ? "" : ": " + lc.text()) + ".");
+        } else {
+          k.fail("missing costate jump row " + row_text + " = 0 at " + id + " (" + jump_rule + ", row " + states_[s] +
+                 "; lambda_" + states_[s] + "(t+) is the shooting variable " + print(lp[s]) +
+                 "); add it to shooting.equations as " + ename + ".");
+        }
+      }
+      checks_.push_back(k);
+    }
+
+    // 5. Free epoch: H(t-) - H(t+) + nu^T dc/dt + lambda(t+)^T dg/dt = 0, d/dt through the moving parameters.
+    std::vector<std::string> problems;
+    std::set<std::string> labels;
+    for (const auto& name : parameters_) {
+      const auto it = sources_.find(name);
+      if (it == sources_.end() || it->second.rfind("ephemeris_rate:", 0) == 0) continue;
+      bool used = false;
+      for (const auto& r : e.psi) used = used || r.has(sym(name));
+      if (used) labels.insert(it->second.substr(it->second.rfind(':') + 1));
+    }
+    std::map<std::string, ex> rates;
+    for (const auto& l : labels)
+      for (const auto& [name, rate] : rates_at(l, problems)) rates[name] = rate;
+    {
+      Check k = start("event_time:" + id, "events", "random_points+exact");
+      if (e.Hm.empty() || e.Hp.empty())
+        problems.push_back("event_values must declare H just before and just after " + id + " (kind hamiltonian, at " +
+                           id + "_m and " + id + "_p)");
+      if (!problems.empty()) {
+        k.max_rel = 2;
+        k.fail("cannot form the free-epoch condition of " + id + ": " + join(problems, "; ") + ".");
+      } else {
+        const std::string epoch = "t_" + id;
+        ex dphi = 0;
+        for (std::size_t j = 0; j < c.size(); ++j) dphi += nu[j] * time_derivative(c[j], epoch, rates);
+        for (std::size_t s = 0; s < n; ++s)
+          dphi += (carried[s] ? explicit_lp[s] : lp[s]) * time_derivative(g[s], epoch, rates);
+        const ex Hm = sym(e.Hm), Hp = sym(e.Hp);
+        const ex expected = Hm - Hp + dphi;
+        const std::string ename = "time_" + id;
+        const std::string want =
+            "H(t-) - H(t+) + nu^T dc/dt + lambda(t+)^T dg/dt = 0, i.e. " + short_print(expected) + " = 0";
+        if (!matching_equation(ename, expected, k, resolve)) {
+          const Equation* meant = named_equation(ename);
+          if (!meant)
+            for (const auto& eq : equations_)
+              if (eq.ok && !meant && (eq.e.has(Hm) || eq.e.has(Hp))) meant = &eq;
+          if (!meant) {
+            k.fail("missing free-epoch condition of " + id + " " + want + "; add it to shooting.equations as " + ename +
+                   ".");
+          } else {
+            std::vector<ex> basis{Hm, Hp};
+            basis.insert(basis.end(), nu.begin(), nu.end());
+            for (std::size_t s = 0; s < n; ++s)
+              if (!carried[s]) basis.push_back(lp[s]);
+            const ex given = meant->e.subs(resolve);
+            const Linear lc = linear_compare(expected, given, basis, nu.empty() ? ex(0) : nu[0]);
+            std::vector<std::string> why;
+            const std::string hm = print(Hm), hp = print(Hp);
+            if (!given.has(Hm) && !given.has(Hp))
+              why.push_back("the jump of the Hamiltonian H(t-) - H(t+) = " + hm + " - " + hp + " is missing");
+            else if (lc.has(lc.flipped, hm) && lc.has(lc.flipped, hp))
+              why.push_back("the jump of the Hamiltonian has the wrong sign: it must be H(t-) - H(t+) = " + hm + " - " +
+                            hp);
+            bool rate_missing = false;
+            for (const auto& name : lc.missing) rate_missing = rate_missing || (name != hm && name != hp);
+            if (rate_missing && !dphi.is_zero())
+              why.push_back("nu^T dpsi/dt is missing (" + short_print(dphi) + "): the target moves with the epoch " +
+                            "(parameters " +
+                            join(
+                                [&] {
+                                  std::vector<std::string> v;
+                                  for (const auto& [name, rate] : rates) v.push_back(name + "' = " + print(rate));
+                                  return v;
+                                }(),
+                                ", ") +
+                            ")");
+            if (why.empty() && !lc.ok()) why.push_back(lc.text());
+            k.fail("shooting equation '" + meant->name + "' (" + (meant->text.size() > 300 ? "..." : meant->text) +
+                   " = 0) is not the free-epoch condition of " + id + " " + want +
+                   (why.empty() ? "" : ": " + join(why, "; ")) + ".");
+          }
+        }
+      }
+      checks_.push_back(k);
+    }
+
+    // 6. Stationarity in the free parameters of psi (Category C): nu^T dc/dq + lambda(t+)^T dg/dq = 0.
+    std::vector<std::string> params;
+    for (const auto& q : e.free_params)
+      if (std::find(params.begin(), params.end(), q) == params.end()) params.push_back(q);
+    for (const auto& q : params) {
+      Check k = start("event_stationarity:" + id + "_" + q, "events", "random_points+exact");
+      ex expected = 0;
+      for (std::size_t j = 0; j < c.size(); ++j) expected += nu[j] * d(c[j], sym(q));
+      for (std::size_t s = 0; s < n; ++s) expected += (carried[s] ? explicit_lp[s] : lp[s]) * d(g[s], sym(q));
+      const std::string ename = "stationarity_" + id + "_" + q;
+      const std::string want = "dPhi/d" + q + " = nu^T dc/d" + q + " + lambda(t+)^T dg/d" + q + " = 0";
+      if (!matching_equation(ename, expected, k, resolve)) {
+        const Equation* meant = named_equation(ename);
+        if (meant) {
+          std::vector<ex> basis = nu;
+          for (std::size_t s = 0; s < n; ++s)
+            if (!carried[s]) basis.push_back(lp[s]);
+          const Linear lc = linear_compare(expected, meant->e.subs(resolve), basis);
+          k.fail("shooting equation '" + ename + "' is not the stationarity condition " + want + " of the free " +
+                 "parameter " + q + " of psi at " + id + (lc.ok() ? "" : ": " + lc.text()) + ".");
+        } else {
+          k.fail("missing stationarity condition " + want + " (" + q + " is a free parameter of psi at " + id + ": " +
+                 short_print(expected) + " = 0); add it to shooting.equations as " + ename + ".");
+        }
+      }
+      checks_.push_back(k);
+    }
+
+    // 7. The event's unknowns are shooting variables (Rule 0): its nu's, its epoch's fraction,
+    //    lambda(t+) of the states the map does not carry, and the free parameters of psi.
+    {
+      Check k = start("event_unknowns:" + id, "counts", "structural");
+      k.exact = true;
+      const std::set<std::string> vars(variables_.begin(), variables_.end());
+      std::vector<std::string> missing;
+      for (const auto& v : nu)
+        if (!vars.count(print(v))) missing.push_back(print(v) + " (multiplier of c)");
+      for (const auto& v : e.time_vars)
+        if (!vars.count(v)) missing.push_back(v + " (the epoch of " + id + ")");
+      for (std::size_t s = 0; s < n; ++s)
+        if (!carried[s] && !vars.count(print(lp[s])))
+          missing.push_back(print(lp[s]) + " (lambda_" + states_[s] + " after " + id + ", not carried by the map)");
+      for (const auto& q : params)
+        if (!vars.count(q)) missing.push_back(q + " (free parameter of psi)");
+      if (!missing.empty()) k.fail("shooting.variables lacks " + join(missing, ", ") + " for the event " + id + ".");
+      bool free_epoch = false;
+      for (const auto& name : symbolic::free_symbols(e.time_expr)) free_epoch = free_epoch || vars.count(name);
+      if (!free_epoch)
+        k.fail(where + ".time.expression = " + e.time_text + " depends on no shooting variable: the epoch of " + id +
+               " is free and must be an unknown of the shooting (Rule 0).");
+      else if (e.time_vars.size() == 1 && e.window.size() == 2) {
+        const ex lo = e.time_expr.subs(sym(e.time_vars[0]) == 0).evalf(),
+                 hi = e.time_expr.subs(sym(e.time_vars[0]) == 1).evalf();
+        if (!GiNaC::is_a<numeric>(lo) || !GiNaC::is_a<numeric>(hi) ||
+            rel_diff(GiNaC::ex_to<numeric>(lo).to_double(), e.window[0]) > 1e-9 ||
+            rel_diff(GiNaC::ex_to<numeric>(hi).to_double(), e.window[1]) > 1e-9)
+          k.fail(where + ".time.expression = " + e.time_text + " does not run over the window [" + num(e.window[0]) +
+                 ", " + num(e.window[1]) + "] as " + e.time_vars[0] + " goes from 0 to 1.");
+      }
+      checks_.push_back(k);
+    }
+  }
+
+  // Sliding departure: -H(t0) + nu0^T dpsi0/dt0 + H(tf) + dPhi/dtf = 0 (tf = t0 + tof moves with
+  // t0), nu0 from lambda(t0) = -nu0^T dpsi0/dx(t0), nu_f from lambda(tf) = lambda0 dphi/dx + nu_f^T dpsi_f/dx.
+  void check_departure() {
+    if (!free_t0_) return;
+    {
+      Check c = start("t0_expression", "counts", "structural");
+      c.exact = true;
+      const std::set<std::string> vars(variables_.begin(), variables_.end());
+      if (!t0_error_.empty()) {
+        c.fail(t0_error_ + ".");
+      } else {
+        std::vector<std::string> missing;
+        bool used = false;
+        for (const auto& name : symbolic::free_symbols(t0_expr_)) {
+          used = used || vars.count(name);
+          if (std::find(t0_vars_.begin(), t0_vars_.end(), name) != t0_vars_.end() && !vars.count(name))
+            missing.push_back(name);
+        }
+        const json& times = d_["times"];
+        if (!missing.empty() || !used) {
+          c.fail("times.t0_expression depends on no shooting variable" +
+                 (missing.empty() ? std::string() : " (" + join(missing, ", ") + " is not one)") +
+                 ": a sliding departure adds one shooting variable, t0_frac (Rule 0).");
+        } else if (times.contains("tf") && times["tf"].is_number()) {
+          const double tof = times["tf"].get<double>() - times.value("t0", 0.0);
+          const Compiled gap = compile(t0_tf_expr_ - t0_expr_);
+          for (const auto& p : points_)
+            if (rel_diff(gap(p), tof) > 1e-9) {
+              c.fail("times.tf_expression - times.t0_expression must be the fixed time of flight " + num(tof) +
+                     " (tf = t0 + tof moves with t0), got " + num(gap(p)) + ".");
+              break;
+            }
+        }
+      }
+      checks_.push_back(c);
+    }
+    Check c = start("transversality_t0", "transversality", "random_points+exact");
+    std::vector<std::string> problems;
+    const std::map<std::string, ex> r0 = rates_at("t0", problems), rf = rates_at("tf", problems);
+    std::string H0, Hf;
+    for (const auto& v : events_)
+      if (v.hamiltonian && v.at == "t0")
+        H0 = v.name;
+      else if (v.hamiltonian && v.at == "tf")
+        Hf = v.name;
+    if (H0.empty() || Hf.empty())
+      problems.push_back("event_values must declare the Hamiltonian at t0 and at tf (kind hamiltonian, at t0 / tf)");
+    GiNaC::exmap to_t0, to_tf;
+    for (std::size_t i = 0; i < states_.size(); ++i) {
+      to_t0[sym(states_[i])] = sym(states_[i] + "_t0");
+      to_t0[sym(costates_[i])] = sym(costates_[i] + "_t0");
+      to_tf[sym(states_[i])] = sym(states_[i] + "_tf");
+      to_tf[sym(costates_[i])] = sym(costates_[i] + "_tf");
+    }
+    ex depart, coupling, expected;
+    try {
+      if (!problems.empty()) throw std::invalid_argument(join(problems, "; "));
+      std::vector<ex> psi0, d0, psif, df;
+      for (const auto& k : constraints_)
+        for (const auto& e : k.psi) {
+          const auto& rates = k.at == "t0" ? r0 : rf;
+          const std::string epoch = k.at;
+          (k.at == "t0" ? psi0 : psif).push_back(e);
+          (k.at == "t0" ? d0 : df).push_back(time_derivative(e, epoch, rates));
+        }
+      const ex lambda0 = sym(multiplier_);
+      depart = -sym(H0) + nu_dot(psi0, d0, [&](std::size_t i) { return -sym(costates_[i]); }).subs(to_t0);
+      coupling = sym(Hf) + nu_dot(psif, df, [&](std::size_t i) {
+                             return sym(costates_[i]) - lambda0 * phi_.diff(GiNaC::ex_to<symbol>(sym(states_[i])));
+                           }).subs(to_tf);
+      if (slots_.count("tf")) coupling += lambda0 * phi_.diff(GiNaC::ex_to<symbol>(sym("tf"))).subs(to_tf);
+      depart = GiNaC::normal(depart).expand();
+      coupling = GiNaC::normal(coupling).expand();
+      expected = depart + coupling;
+    } catch (const std::exception& e) {
+      c.max_rel = 2;
+      c.fail("cannot form the sliding-departure condition -H(t0) + dPhi/dt0 + H(tf) + dPhi/dtf = 0: " +
+             std::string(e.what()) + ".");
+      checks_.push_back(c);
+      return;
+    }
+    const std::string want = "-H(t0) + nu0^T dpsi0/dt0 + H(tf) + nu_f^T dpsi_f/dtf = 0, i.e. " + print(expected) +
+                             " = 0 (t0 slides and tf = t0 + tof moves with it)";
+    if (!matching_equation("transversality_t0", expected, c, {})) {
+      const Equation* meant = named_equation("transversality_t0");
+      if (!meant)
+        for (const auto& eq : equations_)
+          if (eq.ok && !meant && eq.e.has(sym(H0))) meant = &eq;
+      if (!meant) {
+        c.fail("missing sliding-departure condition " + want + "; add it to shooting.equations as transversality_t0.");
+      } else {
+        std::vector<std::string> why;
+        bool motion = false, tf_side = meant->e.has(sym(Hf));
+        for (const auto& [name, rate] : r0)
+          for (const auto& s : symbolic::free_symbols(rate)) motion = motion || meant->e.has(sym(s));
+        for (const auto& l : costates_) tf_side = tf_side || meant->e.has(sym(l + "_tf"));
+        const ex motion_part = (depart + sym(H0)).expand();
+        if (!motion && !motion_part.is_zero())
+          why.push_back("the departure body's motion is missing (nu0^T dpsi0/dt0 = " + print(motion_part) +
+                        ": the departure state moves with t0)");
+        if (!tf_side)
+          why.push_back("the coupling with tf is missing (H(tf) + dPhi/dtf = " + print(coupling) +
+                        ": tf = t0 + tof moves with t0)");
+        if (why.empty()) {
+          std::vector<ex> basis{sym(H0), sym(Hf)};
+          for (const auto& l : costates_) {
+            basis.push_back(sym(l + "_t0"));
+            basis.push_back(sym(l + "_tf"));
+          }
+          const Linear lc = linear_compare(expected, meant->e, basis);
+          if (!lc.ok()) why.push_back(lc.text());
+        }
+        c.fail("shooting equation '" + meant->name + "' (" + meant->text + " = 0) is not the sliding-departure " +
+               "condition " + want + (why.empty() ? "" : ": " + join(why, "; ")) + ".");
+      }
+    }
+    checks_.push_back(c);
+  }
+
   void check_shooting_shape() {
     {
       Check c = start("count", "counts", "structural");
@@ -2071,6 +2982,17 @@ class Verifier {
       allowed.insert(parameters_.begin(), parameters_.end());
       allowed.insert(eps_);
       for (const auto& v : events_) allowed.insert(v.name);
+      // Around an interior event the shooting knows the states and costates just before and after
+      // it (it propagates arc by arc) and its epoch.
+      for (const auto& e : interior_) {
+        if (!e.error.empty()) continue;
+        allowed.insert("t_" + e.id);
+        for (std::size_t i = 0; i < states_.size(); ++i)
+          for (const auto& name : {states_[i], costates_[i]}) {
+            allowed.insert(before(name, e.id));
+            allowed.insert(after(name, e.id));
+          }
+      }
       for (std::size_t i = 0; i < states_.size(); ++i)
         for (const char* event : {"_t0", "_tf"}) {
           allowed.insert(states_[i] + event);
@@ -2136,6 +3058,9 @@ class Verifier {
       if (eq.name == "normalization") named = &eq;
       if (!eq.ok) continue;
       double err = 0;
+      // An equation free of the sphere's symbols cannot vanish on it and only on it.
+      if (std::none_of(sphere.begin(), sphere.end(), [&](const std::string& v) { return eq.symbols.count(v) > 0; }))
+        continue;
       if (test(eq.c, err)) {
         c.max_rel = err;
         c.exact = exact_equal(eq.e, expected) || exact_equal(eq.e, norm2 - 1);
