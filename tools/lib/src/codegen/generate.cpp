@@ -426,7 +426,7 @@ std::string residual_module(Context& c) {
     o << "  y[" << c.states.size() + i << "] = " << v << ";\n";
   }
   o << "  const Multipliers mult{" << d.at("multiplier").get<std::string>() << ", eps};\n"
-    << "  std::array<double, problem::kNumControls> control{};\n";
+    << "  [[maybe_unused]] std::array<double, problem::kNumControls> control{};\n";
   // Event values: H just before / after an event, under the optimal control.
   std::map<std::string, std::string> hamiltonian_at;
   for (const auto& e : d.value("event_values", json::array())) {
