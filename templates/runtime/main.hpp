@@ -26,6 +26,9 @@ inline Settings read_settings(const std::string& path) {
   return s;
 }
 
+// A residual as recorded: -1 where the evaluation failed (not finite).
+inline double recorded(double residual) { return std::isfinite(residual) ? residual : -1.0; }
+
 inline void write_atomic(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".part";
   {
@@ -112,7 +115,7 @@ inline int run(int argc, char** argv) {
   for (const auto& h : r.homotopy)
     hom.push_back({{"eps", h.eps},
                    {"converged", h.converged},
-                   {"max_residual", std::isfinite(h.max_residual) ? h.max_residual : -1.0},
+                   {"max_residual", recorded(h.max_residual)},
                    {"evaluations", h.evaluations}});
   j["homotopy"] = hom;
   j["method"] = r.method;
@@ -121,7 +124,7 @@ inline int run(int argc, char** argv) {
     for (const auto& l : r.legs)
       legs.push_back({{"leg", l.leg},
                       {"converged", l.converged},
-                      {"max_residual", std::isfinite(l.max_residual) ? l.max_residual : -1.0},
+                      {"max_residual", recorded(l.max_residual)},
                       {"evaluations", l.evaluations}});
     j["legs"] = legs;
   }

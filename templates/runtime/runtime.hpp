@@ -441,23 +441,33 @@ class Shooter {
   bool failed_ = false;
 };
 
-// Continuation in eps from a solution x at eps down to 0, with an adaptive step in log(eps) and
-// retreat on failure. True when eps = 0 is reached (x and res are then its solution).
+// One hybrd solve from x at eps, recorded in r: true if max|F| <= accept and x is admissible.
 template <class Admissible>
-bool continue_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& x, double eps, Result& r,
-                      Admissible&& admissible, double& res) {
+bool homotopy_step(Shooter& shooter, std::vector<double>& x, double eps, double accept, Result& r,
+                   Admissible&& admissible, int& info, double& res) {
+  ++r.iterations;
+  const bool ok = shooter.solve(x, eps, accept, info, res) && admissible(x.data());
+  r.homotopy.push_back({eps, ok, res, shooter.last_step_evaluations});
+  return ok;
+}
+
+// Solves at settings.eps_start from the guess x, then continues in eps down to 0 with an adaptive
+// step in log(eps) and retreat on failure. True when eps = 0 is reached (x and res are then its
+// solution).
+template <class Admissible>
+bool homotopy_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& x, Result& r, Admissible&& admissible,
+                      double& res) {
   int info = 0;
+  double eps = s.eps_start;
+  if (!homotopy_step(shooter, x, eps, s.accept_residual, r, admissible, info, res)) return false;
   double log_step = std::log(1.0 / s.eps_first_ratio);
   double zero_below = s.eps_min;  // eps at or below which the next step goes to eps = 0
   while (wall_seconds() <= s.time_limit_s) {
     const bool to_zero = eps <= zero_below;
     const double next = to_zero ? 0.0 : std::max(eps * std::exp(-log_step), 0.5 * zero_below);
     std::vector<double> trial = x;
-    ++r.iterations;
     const double accept = to_zero ? s.final_residual : s.accept_residual;
-    const bool ok = shooter.solve(trial, next, accept, info, res) && admissible(trial.data());
-    r.homotopy.push_back({next, ok, res, shooter.last_step_evaluations});
-    if (ok) {
+    if (homotopy_step(shooter, trial, next, accept, r, admissible, info, res)) {
       x = trial;
       eps = next;
       r.info = info;
@@ -489,12 +499,8 @@ Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& adm
     ++r.attempts;  // attempts started, each from a new seeded guess
     std::vector<double> x(problem::kNumVars);
     initial_guess(rng, x.data());
-    int info = 0;
     double res = 0;
-    ++r.iterations;
-    const bool started = shooter.solve(x, s.eps_start, s.accept_residual, info, res) && admissible(x.data());
-    r.homotopy.push_back({s.eps_start, started, res, shooter.last_step_evaluations});
-    if (started && continue_to_zero(s, shooter, x, s.eps_start, r, admissible, res)) {
+    if (homotopy_to_zero(s, shooter, x, r, admissible, res)) {
       r.status = "converged";
       r.x = x;
       r.F = shooter.last_F;
@@ -591,17 +597,11 @@ Result legs_homotopy_solve(const Settings& s, const LegPlan& plan, Guess&& initi
     Shooter shooter(s, multiple);
     std::vector<double> z(x);
     z.insert(z.end(), starts.begin(), starts.end());
-    int info = 0;
     double res = 0;
-    ++r.iterations;
-    const bool joined = shooter.solve(z, s.eps_start, s.accept_residual, info, res) && admissible(z.data());
-    r.homotopy.push_back({s.eps_start, joined, res, shooter.last_step_evaluations});
-    if (joined && continue_to_zero(s, shooter, z, s.eps_start, r, admissible, res)) {
+    if (homotopy_to_zero(s, shooter, z, r, admissible, res)) {
       x.assign(z.begin(), z.begin() + N);
-      ++r.iterations;
-      const bool polished = single.solve(x, 0.0, s.final_residual, info, res) && admissible(x.data());
-      r.homotopy.push_back({0.0, polished, res, single.last_step_evaluations});
-      if (polished) {
+      int info = 0;
+      if (homotopy_step(single, x, 0.0, s.final_residual, r, admissible, info, res)) {
         r.status = "converged";
         r.x = x;
         r.F = single.last_F;
