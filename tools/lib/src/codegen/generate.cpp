@@ -74,6 +74,14 @@ struct Context {
   }
   std::vector<std::string> events;
 
+  // The variables of the normalization equation (the sphere: lambda0 and lambda(t0)).
+  std::vector<std::string> sphere_variables() {
+    for (const auto& e : d.at("shooting").at("equations"))
+      if (e.at("name") == "normalization")
+        return symbolic::free_symbols(symbols.parse(e.at("expression"), "field /shooting/equations/normalization"));
+    return {};
+  }
+
   // C++ for a stored expression; parameters are read from namespace problem.
   std::string cpp(const std::string& text, const std::string& where) {
     GiNaC::ex e = symbols.parse(text, "field " + where);
@@ -281,12 +289,11 @@ std::string legs_block(Context& c, const std::vector<int>& leg_sizes) {
   const json& d = c.d;
   const auto& vars = d.at("shooting").at("variables");
   const json& events = d.at("events");
+  const std::vector<std::string> sphere = c.sphere_variables();
   std::vector<std::vector<int>> own(events.size() + 1);
   for (std::size_t i = 0; i < vars.size(); ++i) {
     const std::string name = vars[i].at("name");
-    if (name == d.at("multiplier") || (name.rfind("l_", 0) == 0 && name.size() > 3 &&
-                                        name.compare(name.size() - 3, 3, "_t0") == 0))
-      own[0].push_back(static_cast<int>(i));
+    if (index_of(sphere, name) >= 0) own[0].push_back(static_cast<int>(i));
     for (std::size_t k = 0; k < events.size(); ++k)
       if (name.rfind("nu_" + events[k].at("id").get<std::string>() + "_", 0) == 0)
         own[k].push_back(static_cast<int>(i));
@@ -549,11 +556,7 @@ std::string solve_module(Context& c) {
     << "  double norm2 = 0;\n";
   // The sphere holds the variables of the normalization equation; the others (a final-time
   // fraction) are drawn in (0, 1) and left alone.
-  std::vector<std::string> in_sphere;
-  for (const auto& e : d.at("shooting").at("equations"))
-    if (e.at("name") == "normalization")
-      in_sphere =
-          symbolic::free_symbols(c.symbols.parse(e.at("expression"), "field /shooting/equations/normalization"));
+  const std::vector<std::string> in_sphere = c.sphere_variables();
   std::vector<std::size_t> sphere;
   for (std::size_t i = 0; i < vars.size(); ++i) {
     const std::string name = vars[i].at("name");

@@ -567,10 +567,8 @@ json derive(const Problem& problem) {
     }
   }
   // lambda0 and lambda(t0) first (the sphere), then the events' variables, then the time fractions.
-  const auto rank = [](const json& v) {
-    const std::string name = v["name"];
-    if (name == "lambda0" || (name.rfind("l_", 0) == 0 && name.size() > 3 && name.substr(name.size() - 3) == "_t0"))
-      return 0;
+  const auto rank = [&](const json& v) {
+    if (norm2.has(S.get(v["name"].get<std::string>()))) return 0;
     return v.value("role", "") == "time_fraction" ? 2 : 1;
   };
   std::stable_sort(variables.begin(), variables.end(),
