@@ -58,7 +58,13 @@ inline nlohmann::json trajectory(const Settings& s, const Result& r, const std::
   csv << ",H,S\n";
   // H is constant on each arc (the dynamics are autonomous); it may jump at interior events.
   std::map<int, std::pair<double, double>> h_range;
+  std::map<int, std::pair<double, double>> arc_mass;  // first and last mass of each arc
   for (const auto& p : samples) {
+    if constexpr (problem::kMassIndex >= 0) {
+      auto& [first, last] = arc_mass.try_emplace(p.arc, p.y[problem::kMassIndex], 0.0).first->second;
+      last = p.y[problem::kMassIndex];
+      (void)first;
+    }
     csv << p.t * problem::kTimeUnitDays;
     for (int i = 0; i < problem::kNumStates; ++i) csv << ',' << p.y[i] * problem::kStateToPhysical[i];
     for (int i = 0; i < problem::kNumStates; ++i) csv << ',' << p.y[problem::kNumStates + i];
@@ -79,7 +85,18 @@ inline nlohmann::json trajectory(const Settings& s, const Result& r, const std::
   out["hamiltonian_drift"] = drift;  // the largest over the arcs
   out["samples"] = samples.size();
   const auto& last = samples.back();
+  out["initial_state"] = std::vector<double>(samples.front().y.begin(), samples.front().y.begin() + problem::kNumStates);
   out["final_state"] = std::vector<double>(last.y.begin(), last.y.begin() + problem::kNumStates);
+  if constexpr (problem::kMassIndex >= 0) {
+    // Delta-v by the rocket equation on each arc (a mass drop between arcs is not propellant).
+    double dv = 0, propellant = 0;
+    for (const auto& [arc, mass] : arc_mass) {
+      dv += problem::kExhaustVelocityMS * std::log(mass.first / mass.second);
+      propellant += mass.first - mass.second;
+    }
+    out["delta_v_m_s"] = dv;
+    out["propellant"] = propellant;
+  }
   out["t0"] = samples.front().t;
   out["tf"] = last.t;
   return out;
@@ -119,6 +136,18 @@ inline int run(int argc, char** argv) {
                    {"evaluations", h.evaluations}});
   j["homotopy"] = hom;
   j["method"] = r.method;
+  j["passes"] = r.passes;
+  if (!r.bounds.empty()) {
+    nlohmann::json bounds = nlohmann::json::array();
+    for (const auto& b : r.bounds)
+      bounds.push_back({{"name", b.name},
+                        {"meaning", b.meaning},
+                        {"first_pass_value", b.first_pass_value},
+                        {"active", b.active},
+                        {"value", b.value},
+                        {"multiplier", b.multiplier}});
+    j["bounds"] = bounds;
+  }
   if (!r.legs.empty()) {
     nlohmann::json legs = nlohmann::json::array();
     for (const auto& l : r.legs)
@@ -142,10 +171,12 @@ inline int run(int argc, char** argv) {
     if (problem::kEpochMjd2000 != 0)
       j["departure_mjd2000"] = problem::kEpochMjd2000 + path["t0"].get<double>() * problem::kTimeUnitDays;
     if constexpr (problem::kMassIndex >= 0) {
-      const double mf = j["trajectory"]["final_state"][problem::kMassIndex].get<double>();
+      const double m0 = path["initial_state"][problem::kMassIndex].get<double>();
+      const double mf = path["final_state"][problem::kMassIndex].get<double>();
       j["final_mass_kg"] = mf * problem::kMassUnitKg;
-      j["initial_mass_kg"] = problem::kMassUnitKg;
-      j["delta_v_m_s"] = problem::kExhaustVelocityMS * std::log(1.0 / mf);
+      j["initial_mass_kg"] = m0 * problem::kMassUnitKg;
+      j["delta_v_m_s"] = path["delta_v_m_s"];
+      j["propellant_kg"] = path["propellant"].get<double>() * problem::kMassUnitKg;
     }
   }
   write_atomic(result_path, j.dump(2) + "\n");

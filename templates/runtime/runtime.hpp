@@ -325,6 +325,13 @@ using Residual = std::function<void(const double* x, double eps, Propagator& pro
 struct LegPlan {
   std::vector<std::vector<int>> variables;
   std::vector<int> time_fractions, held_at_zero;
+  // An epoch's window bound: while it is active (pass 2), legs alone hold the epoch's fraction
+  // at the window's edge (0 or 1) instead of a guess inside.
+  struct WindowEdge {
+    int bound, fraction;
+    double edge;
+  };
+  std::vector<WindowEdge> window_edges;
 };
 
 struct HomotopyStep {
@@ -341,9 +348,47 @@ struct LegStep {
   int evaluations;
 };
 
+// A bound psi <= 0 of the derivation, solved in two passes: its row of the shooting function is
+// its multiplier (= 0) while inactive and psi itself (= 0) when active.
+struct Bound {
+  std::string name, meaning;
+  int multiplier;  // index of the bound's multiplier in x
+};
+
+struct BoundReport {
+  std::string name, meaning;
+  double first_pass_value;  // psi at the solution of pass 1 (bound inactive); > 0 is a violation
+  bool active;              // made active in pass 2
+  double value, multiplier;  // at the final solution
+};
+
+struct BoundState {
+  std::vector<char> active;
+  std::vector<double> value;
+};
+inline BoundState& bound_state() {
+  static BoundState state;
+  return state;
+}
+
+
+// Row k of the shooting function for bound k: records psi and returns it when the bound is
+// active, else the inactive expression (its multiplier).
+inline double bound_row(int k, double psi, double inactive) {
+  BoundState& b = bound_state();
+  if (static_cast<std::size_t>(k) >= b.value.size()) {
+    b.value.resize(k + 1, 0.0);
+    b.active.resize(k + 1, 0);
+  }
+  b.value[k] = psi;
+  return b.active[k] ? psi : inactive;
+}
+
 struct Result {
   std::string status = "not_converged";
   std::string method = "single shooting";
+  int passes = 1;
+  std::vector<BoundReport> bounds;
   std::vector<LegStep> legs;
   std::string detail;
   int info = 0;
@@ -538,10 +583,16 @@ Result legs_homotopy_solve(const Settings& s, const LegPlan& plan, Guess&& initi
     }
     ++r.attempts;
     std::vector<double> x(N), starts(static_cast<std::size_t>(events * n));
-    initial_guess(rng, x.data());
-    for (const int i : plan.held_at_zero) x[i] = 0;
-    if (r.attempts == 1)
-      for (const int i : plan.time_fractions) x[i] = 0.5;  // first attempt: the middle of every window
+    const auto guess = [&] {
+      initial_guess(rng, x.data());
+      for (const int i : plan.held_at_zero) x[i] = 0;
+      if (r.attempts == 1)
+        for (const int i : plan.time_fractions) x[i] = 0.5;  // first attempt: the middle of every window
+      const BoundState& bounds = bound_state();
+      for (const auto& w : plan.window_edges)
+        if (static_cast<std::size_t>(w.bound) < bounds.active.size() && bounds.active[w.bound]) x[w.fraction] = w.edge;
+    };
+    guess();
     bool legs_solved = true;
     for (int k = 0; k <= events && legs_solved; ++k) {
       const auto& own = plan.variables[k];
@@ -559,7 +610,7 @@ Result legs_homotopy_solve(const Settings& s, const LegPlan& plan, Guess&& initi
       for (int tries = 0; tries < s.leg_attempts && !solved; ++tries) {
         std::vector<double> z(m);
         if (k == 0) {
-          if (tries > 0) initial_guess(rng, x.data());
+          if (tries > 0) guess();
           for (std::size_t j = 0; j < own.size(); ++j) z[j] = x[own[j]];
         } else {
           // Like leg 0's guess: (lambda0, start costates) uniform on the sphere with lambda0 > 0,
@@ -581,7 +632,7 @@ Result legs_homotopy_solve(const Settings& s, const LegPlan& plan, Guess&& initi
           for (std::size_t j = 0; j < own.size(); ++j) x[own[j]] = z[j];
           if (k > 0)
             for (int i = 0; i < n; ++i) starts[(k - 1) * n + i] = z[own.size() + i];
-          solved = k > 0 || admissible(x.data());
+          solved = k > 0 || x[plan.variables[0][0]] > 0;  // lambda0 > 0; the rest is checked joined
         }
         r.legs.push_back({k, solved, res, shooter.last_step_evaluations});
       }
@@ -614,6 +665,73 @@ Result legs_homotopy_solve(const Settings& s, const LegPlan& plan, Guess&& initi
   if (r.status == "not_converged")
     r.detail = "no seeded attempt reached eps = 0 (" + std::to_string(r.attempts) + " attempts)";
   r.evaluations = evaluations + single.evaluations;
+  return r;
+}
+
+// Bounds psi <= 0 by passes over the active set: pass 1 solves with every bound inactive; while
+// the solution violates an inactive bound (psi > 0) or has a negative multiplier on an active one,
+// the next pass makes the violated bounds active, or else drops the active bound with the most
+// negative multiplier, and solves again from cold. Usually two passes; never the same set twice.
+template <class Solve>
+Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve&& solve) {
+  BoundState& state = bound_state();
+  state.active.assign(bounds.size(), 0);
+  state.value.assign(bounds.size(), 0.0);
+  const auto values_at = [&](const std::vector<double>& x) {
+    Propagator prop(s);
+    std::vector<double> F(problem::kNumVars);
+    shooting_function(x.data(), 0.0, prop, F.data());
+    return state.value;
+  };
+  std::vector<std::vector<char>> tried;
+  std::vector<double> first;
+  std::vector<std::string> steps;
+  Result r;
+  int attempts = 0, iterations = 0, evaluations = 0;
+  for (int pass = 1;; ++pass) {
+    tried.push_back(state.active);
+    r = solve(s);
+    attempts += r.attempts;
+    iterations += r.iterations;
+    evaluations += r.evaluations;
+    r.passes = pass;
+    if (r.status != "converged") break;
+    const std::vector<double> values = values_at(r.x);
+    if (pass == 1) first = values;
+    std::vector<char> next = state.active;
+    int drop = -1;
+    for (std::size_t k = 0; k < bounds.size(); ++k) {
+      if (!state.active[k] && values[k] > 0) next[k] = 1;
+      if (state.active[k] && r.x[bounds[k].multiplier] < 0 &&
+          (drop < 0 || r.x[bounds[k].multiplier] < r.x[bounds[drop].multiplier]))
+        drop = static_cast<int>(k);
+    }
+    if (next == state.active && drop >= 0) next[drop] = 0;
+    if (next == state.active) break;  // consistent: the inactive bounds hold, the active ones push
+    if (std::find(tried.begin(), tried.end(), next) != tried.end()) {
+      r.status = "not_converged";
+      r.detail = "the active set of the bounds cycles";
+      break;
+    }
+    for (std::size_t k = 0; k < bounds.size(); ++k)
+      if (next[k] != state.active[k]) steps.push_back((next[k] ? "+" : "-") + bounds[k].name);
+    state.active = next;
+  }
+  r.attempts = attempts;
+  r.iterations = iterations;
+  r.evaluations = evaluations;
+  if (r.passes > 1) {
+    std::string changes;
+    for (const auto& c : steps) changes += (changes.empty() ? "" : " ") + c;
+    r.method = std::to_string(r.passes) + " passes over the bounds' active set (" + changes + "): " + r.method;
+  }
+  if (first.empty()) first.assign(bounds.size(), 0.0);
+  const std::vector<double> last = r.status == "converged" ? values_at(r.x) : first;
+  for (std::size_t k = 0; k < bounds.size(); ++k) {
+    const bool active = state.active[k] != 0;
+    const double nu = r.status == "converged" ? r.x[bounds[k].multiplier] : 0.0;
+    r.bounds.push_back({bounds[k].name, bounds[k].meaning, first[k], active, last[k], nu});
+  }
   return r;
 }
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bats
 # Constraint-adaptive derivation (issue 3), end to end on the builtin backend: interior rendezvous
-# at free epochs (S03), a position-only flyby (S04), stays with a sliding departure (S07). Each
+# at free epochs (S03), a position-only flyby (S04), stays with a sliding departure (S07), minimum
+# initial mass with a lander and a flyby (S08) and with a bounded arrival speed (S09). Each
 # chain runs once in setup_file into $BATS_FILE_TMPDIR/<scenario>; the interior-event conditions
 # are then checked independently by re-solving with one condition replaced
 # (tests/events/sensitivity.cpp).
@@ -10,7 +11,7 @@ load test_helper
 setup_file() {
   require_tool parse derive verify gen solve score
   local s
-  for s in S03 S04 S07; do
+  for s in S03 S04 S07 S08 S09; do
     chain "$s" "$BATS_FILE_TMPDIR/$s" >"$BATS_FILE_TMPDIR/$s.log" 2>&1 || echo "$s chain failed" >>"$BATS_FILE_TMPDIR/failures"
   done
 }
@@ -34,34 +35,69 @@ sensitivity() {
   "$dir/sensitivity" "$dir/solution.json" "$@"
 }
 
-@test "events: S03 (three interior rendezvous) converges with the paper's 29 variables, score 100" {
+@test "events: S03 (three interior rendezvous) converges with the paper's 29 variables + 6 window bounds" {
   converged_and_verified "$BATS_FILE_TMPDIR/S03"
-  assert_jq "$BATS_FILE_TMPDIR/S03/derivation.json" '.shooting.variables | length == 29'
+  assert_jq "$BATS_FILE_TMPDIR/S03/derivation.json" '.shooting.variables | length == 35'
+  assert_jq "$BATS_FILE_TMPDIR/S03/derivation.json" '[.shooting.equations[] | select(.inequality)] | length == 6'
+  # every epoch inside its window: one pass, no bound active
+  assert_jq "$BATS_FILE_TMPDIR/S03/solution.json" '.passes == 1 and ([.bounds[] | select(.active)] | length == 0)'
   assert_jq "$BATS_FILE_TMPDIR/S03/derivation.json" '[.events[].kind] == ["rendezvous", "rendezvous", "rendezvous"]'
   assert_jq "$BATS_FILE_TMPDIR/S03/solution.json" '.method | startswith("legs")'
   assert_jq "$BATS_FILE_TMPDIR/S03/solution.json" '[.legs[] | select(.converged)] | length >= 4'
 }
 
-@test "events: S04 (flyby) converges with 12 variables; the flyby costs fuel against S01" {
+@test "events: S04 (flyby) converges with 12 variables + 2 window bounds; the flyby costs fuel against S01" {
   converged_and_verified "$BATS_FILE_TMPDIR/S04"
-  assert_jq "$BATS_FILE_TMPDIR/S04/derivation.json" '.shooting.variables | length == 12'
+  assert_jq "$BATS_FILE_TMPDIR/S04/derivation.json" '.shooting.variables | length == 14'
   # position only: three multipliers, the velocity and mass costates carried through unchanged
   assert_jq "$BATS_FILE_TMPDIR/S04/derivation.json" '.events[0].costate_map[3:] | map(.expression) == ["l_vx_ast_9482_m", "l_vy_ast_9482_m", "l_vz_ast_9482_m", "l_m_ast_9482_m"]'
   assert_jq "$BATS_FILE_TMPDIR/S04/solution.json" '.final_mass_kg < 603.94'
 }
 
-@test "events: S07 (stays, sliding departure) converges with 48 variables and a departure inside its window" {
+@test "events: S07 (stays, sliding departure) converges with 48 variables + 6 window bounds, every epoch in its window" {
   converged_and_verified "$BATS_FILE_TMPDIR/S07"
-  assert_jq "$BATS_FILE_TMPDIR/S07/derivation.json" '.shooting.variables | length == 48'
+  assert_jq "$BATS_FILE_TMPDIR/S07/derivation.json" '.shooting.variables | length == 54'
+  # unbounded, two epochs fall after their windows; the last pass holds one at its window's end
+  # with a multiplier >= 0, and every bound holds
+  assert_jq "$BATS_FILE_TMPDIR/S07/solution.json" '[.bounds[] | select(.first_pass_value > 0)] | length == 2'
+  assert_jq "$BATS_FILE_TMPDIR/S07/solution.json" '.passes >= 2 and ([.bounds[] | select(.active)] | length >= 1)'
+  assert_jq "$BATS_FILE_TMPDIR/S07/solution.json" 'all(.bounds[]; (.active | not) and .value <= 1e-12 or .active and .multiplier >= 0 and (.value | fabs) < 1e-12)'
+  assert_jq "$BATS_FILE_TMPDIR/S07/solution.json" 'all(.x[] | select(.name | test("^t_.*_frac$")); .value >= -1e-12 and .value <= 1 + 1e-12)'
   assert_jq "$BATS_FILE_TMPDIR/S07/solution.json" '.departure_mjd2000 > 10306.6 and .departure_mjd2000 < 10366.6'
   assert_jq "$BATS_FILE_TMPDIR/S07/solution.json" '(.tof_days - 981.1 | fabs) < 1e-9'
   # the sliding-t0 condition carries both ends' target motion, not H(t0) = 0 alone
   assert_jq "$BATS_FILE_TMPDIR/S07/derivation.json" '.shooting.equations[] | select(.name == "transversality_t0") | .expression | test("H_t0") and test("H_tf") and test("departure_rx_rate") and test("arrival_rx_rate")'
 }
 
-@test "events: H is constant on every arc of S03, S04 and S07 (it may jump only at events)" {
+@test "events: S08 finds the least initial mass: m0 = final mass + propellant + lander, lambda_m continuous" {
+  converged_and_verified "$BATS_FILE_TMPDIR/S08"
+  local d=$BATS_FILE_TMPDIR/S08/derivation.json sol=$BATS_FILE_TMPDIR/S08/solution.json
+  assert_jq "$d" '.shooting.variables | length == 45'
+  assert_jq "$d" '[.shooting.variables[] | select(.role == "initial_state") | .name] == ["m_t0"]'
+  assert_jq "$d" '.shooting.equations[] | select(.name == "transversality_m_t0") | .expression == "l_m_t0"'
+  assert_jq "$d" '.initial_values[] | select(.state == "m") | .value == "m_t0"'
+  # the lander: m+ = m- - drop, lambda_m carried through unchanged
+  assert_jq "$d" '.events[0].state_map[6].expression == "-drop_nikko+m_nikko_m" and .events[0].costate_map[6].expression == "l_m_nikko_m"'
+  assert_jq "$sol" '(.final_mass_kg - 1500 | fabs) < 1e-6'
+  assert_jq "$sol" '(.initial_mass_kg - .final_mass_kg - .propellant_kg - 50 | fabs) < 1e-6'
+  # the flyby is held at its window's end by an active bound with a multiplier > 0
+  assert_jq "$sol" '[.bounds[] | select(.active) | .name] == ["psi_ast_8648_5"] and all(.bounds[] | select(.active); .multiplier > 0)'
+}
+
+@test "events: S09's arrival-speed bound is violated free, then active with a positive multiplier" {
+  converged_and_verified "$BATS_FILE_TMPDIR/S09"
+  local d=$BATS_FILE_TMPDIR/S09/derivation.json sol=$BATS_FILE_TMPDIR/S09/solution.json
+  assert_jq "$d" '.shooting.variables | length == 40'
+  assert_jq "$d" '.shooting.equations[] | select(.name == "psi_arrival_4") | .inequality.multiplier == "nu_arrival_4"'
+  # with the bound, lambda_v(tf) = 2 nu (v - v_T): the velocity rows are transversality equations
+  assert_jq "$d" '.shooting.equations[] | select(.name == "transversality_vx") | .expression | test("nu_arrival_4")'
+  assert_jq "$sol" '.passes == 2'
+  assert_jq "$sol" '.bounds[] | select(.name == "psi_arrival_4") | .first_pass_value > 0 and .active and .multiplier > 0 and (.value | fabs) < 1e-12'
+}
+
+@test "events: H is constant on every arc of S03, S04, S07, S08 and S09 (it may jump only at events)" {
   local s
-  for s in S03 S04 S07; do
+  for s in S03 S04 S07 S08 S09; do
     assert_jq "$BATS_FILE_TMPDIR/$s/solution.json" '.hamiltonian_drift < 1e-9'
   done
 }

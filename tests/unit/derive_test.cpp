@@ -222,6 +222,52 @@ TEST(Derive, ThrottleLawMinimizesH) {
   }
 }
 
+TEST(Derive, MinimumInitialMassFreesM0WithItsTransversality) {
+  const json& d = derivation_of("S09");
+  const auto& vars = d["shooting"]["variables"];
+  int m0 = 0, lm0 = 0;
+  for (const auto& v : vars) {
+    m0 += v["name"] == "m_t0" && v["role"] == "initial_state" && v["range"][0] == 1.0 ? 1 : 0;
+    lm0 += v["name"] == "l_m_t0" ? 1 : 0;
+  }
+  EXPECT_EQ(m0, 1);
+  EXPECT_EQ(lm0, 1);
+  std::map<std::string, json> eqs;
+  for (const auto& e : d["shooting"]["equations"]) eqs[e["name"]] = e;
+  EXPECT_EQ(eqs.at("transversality_m_t0")["expression"], "l_m_t0");
+  // m(tf) is fixed (no lambda_m(tf) = 0), except for the last leg alone, where m0 is held.
+  EXPECT_EQ(eqs.count("transversality_m"), 0u);
+  EXPECT_EQ(eqs.at("psi_arrival_5")["expression"], "-1.0+m_tf");
+  EXPECT_EQ(eqs.at("psi_arrival_5")["alone_expression"], "l_m_tf");
+}
+
+TEST(Derive, BoundsAreRowsOfPsiWithTheirOwnMultipliers) {
+  const json& d = derivation_of("S09");
+  std::map<std::string, json> eqs;
+  for (const auto& e : d["shooting"]["equations"]) eqs[e["name"]] = e;
+  // |v - v_T|^2 - vmax^2 <= 0 at tf: lambda_v(tf) = 2 nu (v - v_T), nu a shooting variable.
+  const json& speed = eqs.at("psi_arrival_4");
+  EXPECT_EQ(speed["inequality"]["multiplier"], "nu_arrival_4");
+  EXPECT_EQ(speed["inequality"]["inactive_expression"], "nu_arrival_4");
+  SymbolTable t;
+  for (const char* name : {"l_vx_tf", "vx_tf", "arrival_vx", "nu_arrival_4"})
+    t.get(name);
+  const auto same = [&](const std::string& a, const std::string& b) {
+    return (t.parse(a, "a") - t.parse(b, "b")).expand().is_zero();
+  };
+  EXPECT_TRUE(same(eqs.at("transversality_vx")["expression"], "l_vx_tf - 2*nu_arrival_4*(vx_tf - arrival_vx)"));
+  // An epoch's window is two bounds on t (start - t <= 0, t - end <= 0); the free-epoch condition
+  // carries their multipliers with d psi/dt = -1 and +1.
+  const std::string start = eqs.at("psi_nikko_7")["expression"], end = eqs.at("psi_nikko_8")["expression"];
+  EXPECT_EQ(start.rfind("-t_nikko+", 0), 0u) << start;
+  EXPECT_NE(end.find("+t_nikko"), std::string::npos) << end;
+  EXPECT_EQ(eqs.at("psi_nikko_8")["inequality"]["held_when_active"],
+            json::parse(R"({"variable": "t_nikko_frac", "value": 1})"));
+  const std::string time = eqs.at("time_nikko")["expression"];
+  EXPECT_NE(time.find("-nu_nikko_7"), std::string::npos) << time;
+  EXPECT_NE(time.find("+nu_nikko_8"), std::string::npos) << time;
+}
+
 TEST(Derive, SailWithFuelObjectiveIsRefused) {
   const std::string path = kSource + "/scenarios/S11/problem.txt";
   json spec = helios::spec::parse_problem_text(helios::io::read_text(path), path);

@@ -393,7 +393,7 @@ TEST(ParseEvents, FlybyAndGravityAssist) {
   EXPECT_EQ(twice["constraints"][3]["id"], "nikko_2");
   // Errors.
   expect_error(tour(kNikko + kDeparture + "The spacecraft flies by Nikko between day 100 and day 200 and stays.\n"),
-               "a flyby matches the position only and takes no further clause");
+               "a flyby matches the position only and takes 'the relative speed must be at most Q'");
   expect_error(tour(kNikko + kDeparture + "The spacecraft swings by Nikko between day 100 and day 200.\n"),
                "the gravitational parameter of Nikko is not known: add '; Nikko has a gravitational parameter of Q "
                "km^3/s^2'");
@@ -405,6 +405,28 @@ TEST(ParseEvents, FlybyAndGravityAssist) {
                     "The spacecraft swings by Mars between day 300 and day 600; Venus has a gravitational parameter "
                     "of 324859 km^3/s^2.\n"),
                "the clause names Venus but the event is at Mars");
+}
+
+TEST(ParseEvents, MinimumInitialMassAndSpeedBounds) {
+  const std::string head = replaced(kHead, "an initial mass of 2000 kg", "a final mass of 1500 kg");
+  const json s = valid(head + kNikko + kDeparture +
+                       "The spacecraft flies by Nikko between day 100 and day 200, and the relative speed must be at "
+                       "most 3 km/s.\n"
+                       "At the final time the spacecraft flies by Mars with a relative speed of at most 0.5 km/s.\n"
+                       "Minimize the initial mass.\n");
+  EXPECT_EQ(s["objective"]["kind"], "minimum_initial_mass");
+  EXPECT_EQ(s["spacecraft"], json::parse(R"({"thrust_N": 0.3, "isp_s": 3000, "final_mass_kg": 1500})"));
+  EXPECT_EQ(s["constraints"][1]["max_relative_speed_km_s"], 3.0);
+  EXPECT_EQ(s["constraints"][2]["kind"], "flyby");
+  EXPECT_EQ(s["constraints"][2]["at"], "tf");
+  EXPECT_EQ(s["constraints"][2]["max_relative_speed_km_s"], 0.5);
+  // The objective decides which mass the text must state.
+  expect_error(head + kNikko + kDeparture + kEnd, "never states the spacecraft's initial_mass_kg");
+  expect_error(kHead + kNikko + kDeparture + "At the final time the spacecraft rendezvouses with Mars.\n" +
+                   "Minimize the initial mass.\n",
+               "never states the spacecraft's final_mass_kg");
+  expect_error(replaced(kHead, "2000 kg", "2000 kg and a final mass of 1500 kg") + kNikko + kDeparture + kEnd,
+               "state only the initial mass");
 }
 
 TEST(ParseEvents, FinalRendezvousWithABodyByElements) {

@@ -537,7 +537,9 @@ TEST(VerifyEvents, PsiStateMapAndMultipliersMustAgree) {
     if (m["state"] == "m") m["expression"] = "m_rock_m";
   EXPECT_EQ(failed_ids(verify(d)), std::set<std::string>{"event_psi:rock"});
   d = flyby();
-  d["events"][0]["multipliers"][3] = "l_rx_rock_p";
+  // The state map's multipliers follow c's (position and the window's two bounds): -lambda(t+).
+  auto& multipliers = d["events"][0]["multipliers"];
+  multipliers[multipliers.size() - d["states"].size()] = "l_rx_rock_p";
   EXPECT_EQ(failed_ids(verify(d)), std::set<std::string>{"event_multipliers:rock"});
   d = flyby();
   drop(d["shooting"]["equations"], "psi_rock_3");

@@ -330,7 +330,8 @@ def event_cases(case, cases):
         ev = event(d, "rock")
         for k in "xyz":
             cmap(d, "rock", f"l_r{k}")["expression"] = f"l_r{k}_rock_m-nu_rock_{'xyz'.index(k) + 1}"
-        ev["multipliers"][3:] = [f"-1*{m[1:]}" for m in ev["multipliers"][3:]]
+        first_map = len(ev["multipliers"]) - len(d["states"])  # after c's rows (position, window bounds)
+        ev["multipliers"][first_map:] = [f"-1*{m[1:]}" for m in ev["multipliers"][first_map:]]
         t = eq(d, "time_rock")
         t["expression"] = f"-2*({t['expression']})"
         for j in (1, 2, 3):
@@ -372,7 +373,8 @@ def event_cases(case, cases):
          ["event_time:rock"], lambda d: eq(d, "time_rock").update(expression="H_rock_m-H_rock_p"))
 
     def multiplier_sign(d):
-        event(d, "rock")["multipliers"][4] = "l_ry_rock_p"
+        ev = event(d, "rock")
+        ev["multipliers"][len(ev["multipliers"]) - len(d["states"]) + 1] = "l_ry_rock_p"
     case("E-flyby-multiplier-sign", "E-flyby", "flyby: multiplier of ry+ - ry- written +lambda(t+)",
          ["event_multipliers:rock"], multiplier_sign)
 

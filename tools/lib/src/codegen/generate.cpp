@@ -283,20 +283,30 @@ std::string event_time(const Context& c, const std::string& event) {
 }
 
 // The legs between events: which shooting variables each leg solves for alone (leg 0: lambda0,
-// lambda(t0) and the first event's multipliers; leg k: the next event's multipliers, besides its
-// start costates), and the single-shooting function as the plain case of shooting_legs.
+// lambda(t0) and the first event's multipliers; leg k: the next event's (or the final
+// constraint's) multipliers, besides its start costates), and the single-shooting function as the plain case of shooting_legs.
 std::string legs_block(Context& c, const std::vector<int>& leg_sizes) {
   const json& d = c.d;
   const auto& vars = d.at("shooting").at("variables");
   const json& events = d.at("events");
   const std::vector<std::string> sphere = c.sphere_variables();
+  std::string final_id;
+  for (const auto& k : d.at("constraints"))
+    if (k.at("at") == "tf") final_id = k.at("id");
+  // nu_<id>_<row>, exactly (an id may itself end in _<n>, as a second visit's does).
+  const auto multiplier_of = [](const std::string& name, const std::string& id) {
+    const std::string prefix = "nu_" + id + "_";
+    return name.size() > prefix.size() && name.rfind(prefix, 0) == 0 &&
+           name.find_first_not_of("0123456789", prefix.size()) == std::string::npos;
+  };
   std::vector<std::vector<int>> own(events.size() + 1);
   for (std::size_t i = 0; i < vars.size(); ++i) {
     const std::string name = vars[i].at("name");
     if (index_of(sphere, name) >= 0) own[0].push_back(static_cast<int>(i));
     for (std::size_t k = 0; k < events.size(); ++k)
-      if (name.rfind("nu_" + events[k].at("id").get<std::string>() + "_", 0) == 0)
-        own[k].push_back(static_cast<int>(i));
+      if (multiplier_of(name, events[k].at("id"))) own[k].push_back(static_cast<int>(i));
+    // The final constraint's multipliers left as variables (a bound's) belong to the last leg.
+    if (multiplier_of(name, final_id)) own[events.size()].push_back(static_cast<int>(i));
   }
   // Alone, a leg holds the time fractions at their guesses and the event's other variables (the
   // costates after a state map, Category-C parameters) at 0.
@@ -304,9 +314,10 @@ std::string legs_block(Context& c, const std::vector<int>& leg_sizes) {
   for (std::size_t i = 0; i < vars.size(); ++i) {
     bool owned = false;
     for (const auto& leg : own) owned = owned || std::find(leg.begin(), leg.end(), static_cast<int>(i)) != leg.end();
-    if (vars[i].value("role", "") == "time_fraction")
+    const std::string role = vars[i].value("role", "");
+    if (role == "time_fraction")
       fractions.push_back(static_cast<int>(i));
-    else if (!owned)
+    else if (!owned && role != "initial_state")  // an initial state stays at its guess
       zero.push_back(static_cast<int>(i));
   }
   const auto list = [](const std::vector<int>& v) {
@@ -323,7 +334,23 @@ std::string legs_block(Context& c, const std::vector<int>& leg_sizes) {
                                   " unknowns but " + std::to_string(leg_sizes[k]) + " equations");
     o << (k ? ", " : "") << list(own[k]);
   }
-  o << "}, " << list(fractions) << ", " << list(zero) << "};\n\n"
+  // Window bounds: bound index (the order of the bound rows), fraction variable, edge.
+  std::string edges;
+  int bound = 0;
+  for (const auto& eq : d.at("shooting").at("equations")) {
+    if (!eq.contains("inequality")) continue;
+    if (eq.at("inequality").contains("held_when_active")) {
+      const json& held = eq.at("inequality").at("held_when_active");
+      int k = -1;
+      for (std::size_t i = 0; i < vars.size(); ++i)
+        if (vars[i].at("name") == held.at("variable")) k = static_cast<int>(i);
+      if (k < 0) throw std::invalid_argument("field /shooting/equations: no variable " + held.at("variable").dump());
+      edges += std::string(edges.empty() ? "" : ", ") + "{" + std::to_string(bound) + ", " + std::to_string(k) + ", " +
+               number(held.at("value")) + "}";
+    }
+    ++bound;
+  }
+  o << "}, " << list(fractions) << ", " << list(zero) << ", {" << edges << "}};\n\n"
     << "void shooting_function(const double* x, double eps, Propagator& prop, double* F) {\n"
     << "  shooting_legs(x, eps, prop, F, nullptr);\n}\n\n";
   return o.str();
@@ -359,11 +386,20 @@ std::string residual_module(Context& c) {
       << "void shooting_legs(const double* x, double eps, Propagator& prop, double* F, const Legs* legs) {\n";
   else
     o << "void shooting_function(const double* x, double eps, Propagator& prop, double* F) {\n";
+  // Equation i's code; a bound's row goes through bound_row (its multiplier while inactive).
+  const auto equation_code = [&](std::size_t i, const std::string& field) {
+    const std::string where = "/shooting/equations/" + std::to_string(i);
+    const std::string code = c.cpp(eqs[i].at(field), where + "/" + field);
+    if (!eqs[i].contains("inequality")) return code;
+    int bound = 0;
+    for (std::size_t j = 0; j < i; ++j) bound += eqs[j].contains("inequality") ? 1 : 0;
+    return "bound_row(" + std::to_string(bound) + ", " + code + ", " +
+           c.cpp(eqs[i].at("inequality").at("inactive_expression"), where + "/inequality/inactive_expression") + ")";
+  };
   // The equation of each name, for the legs' own residuals.
-  const auto equation = [&](const std::string& name) {
+  const auto equation = [&](const std::string& name, const std::string& field = "expression") {
     for (std::size_t i = 0; i < eqs.size(); ++i)
-      if (eqs[i].at("name") == name)
-        return c.cpp(eqs[i].at("expression"), "/shooting/equations/" + std::to_string(i) + "/expression");
+      if (eqs[i].at("name") == name) return equation_code(i, eqs[i].contains(field) ? field : "expression");
     throw std::invalid_argument("field /shooting/equations: no equation " + name);
   };
   for (std::size_t i = 0; i < vars.size(); ++i)
@@ -468,7 +504,8 @@ std::string residual_module(Context& c) {
     int row = 0;
     if (k == 0) o << "    F[" << row++ << "] = " << equation("normalization") << ";\n";
     for (std::size_t j = 0; j < e.at("psi").size() - c.states.size(); ++j)
-      o << "    F[" << row++ << "] = " << equation("psi_" + id + "_" + std::to_string(j + 1)) << ";\n";
+      o << "    F[" << row++ << "] = " << equation("psi_" + id + "_" + std::to_string(j + 1), "alone_expression")
+        << ";\n";
     for (std::size_t i = 0; i < c.costates.size(); ++i) {
       const json& m = e.at("costate_map")[i];
       o << "    F[" << row++ << "] = "
@@ -525,14 +562,13 @@ std::string residual_module(Context& c) {
     int row = 0;
     for (std::size_t i = 0; i < eqs.size(); ++i)
       if (eqs[i].value("source", "") == final_id)
-        o << "    F[" << row++ << "] = " << equation(eqs[i].at("name")) << ";\n";
+        o << "    F[" << row++ << "] = " << equation(eqs[i].at("name"), "alone_expression") << ";\n";
     o << "    return;\n  }\n";
     leg_sizes.push_back(row);
   }
   for (std::size_t i = 0; i < eqs.size(); ++i) {
     const double scale = eqs[i].at("scale");
-    o << "  F[" << i << "] = ("
-      << c.cpp(eqs[i].at("expression"), "/shooting/equations/" + std::to_string(i) + "/expression") << ")";
+    o << "  F[" << i << "] = (" << equation_code(i, "expression") << ")";
     if (scale != 1.0) o << " / " << number(scale);
     o << ";  // " << eqs[i].at("meaning").get<std::string>() << "\n";
   }
@@ -562,9 +598,15 @@ std::string solve_module(Context& c) {
     const std::string name = vars[i].at("name");
     const bool normalized = index_of(in_sphere, name) >= 0;
     if (normalized) sphere.push_back(i);
-    // In (0, 1): the cost multiplier and time fractions; in (-1, 1): costates, multipliers, parameters.
+    // In (0, 1): the cost multiplier and time fractions; in (-1, 1): costates, multipliers,
+    // parameters; an initial state in its range.
     const std::string role = vars[i].value("role", normalized ? "costate" : "time_fraction");
     const bool positive = name == mult || role == "time_fraction";
+    if (role == "initial_state") {
+      const double lo = vars[i].at("range").at(0), hi = vars[i].at("range").at(1);
+      o << "  x[" << i << "] = " << number(lo) << " + positive(rng) * " << number(hi - lo) << ";\n";
+      continue;
+    }
     o << "  x[" << i << "] = " << (positive ? "positive(rng)" : "symmetric(rng)") << " * "
       << number(vars[i].at("scale")) << ";\n";
   }
@@ -585,9 +627,28 @@ std::string solve_module(Context& c) {
            }(),
            mult)
     << "] > 0; };\n"
-    << (d.contains("events") ? "  return legs_homotopy_solve(settings, kLegPlan, initial_guess, admissible);\n"
-                             : "  return homotopy_solve(settings, initial_guess, admissible);\n")
-    << "}\n\n}  // namespace helios_rt\n";
+    << "  const auto solve = [&](const Settings& s) { return "
+    << (d.contains("events") ? "legs_homotopy_solve(s, kLegPlan, initial_guess, admissible)"
+                             : "homotopy_solve(s, initial_guess, admissible)")
+    << "; };\n";
+  // Bounds psi <= 0, in the order of their rows (bound_row's index).
+  std::string bounds;
+  for (const auto& e : d.at("shooting").at("equations")) {
+    if (!e.contains("inequality")) continue;
+    const std::string nu = e.at("inequality").at("multiplier");
+    int k = -1;
+    for (std::size_t i = 0; i < vars.size(); ++i)
+      if (vars[i].at("name") == nu) k = static_cast<int>(i);
+    if (k < 0) throw std::invalid_argument("field /shooting/equations: bound multiplier " + nu + " is not a variable");
+    bounds += "      {" + json(e.at("name")).dump() + ", " + json(e.at("meaning")).dump() + ", " + std::to_string(k) +
+              "},\n";
+  }
+  if (bounds.empty())
+    o << "  return solve(settings);\n";
+  else
+    o << "  static const std::vector<Bound> bounds = {\n" << bounds << "  };\n"
+      << "  return two_pass_solve(settings, bounds, solve);\n";
+  o << "}\n\n}  // namespace helios_rt\n";
   return o.str();
 }
 

@@ -195,6 +195,39 @@ ex time_derivative(Problem& p, const ex& e) {
   return d;
 }
 
+double value_of(const Problem& p, const std::string& parameter) {
+  for (const auto& q : p.parameters)
+    if (q.name == parameter) return q.value;
+  throw std::logic_error("no parameter " + parameter);
+}
+
+// The shooting variable of a multiplier; a bound's multiplier is 0 while the bound is inactive.
+json multiplier_variable(const std::string& name, const std::string& meaning, bool inequality) {
+  return {{"name", name},
+          {"meaning", meaning + (inequality ? " (a bound: 0 while inactive, >= 0 when active)" : " = 0")},
+          {"role", "multiplier"},
+          {"scale", 1.0},
+          {"init", "uniform in (-1, 1)"}};
+}
+
+// The equation psi_j = 0 of a constraint row; a bound psi_j <= 0 is handled in two passes: while
+// inactive its multiplier is 0 (the equation is then `multiplier` = 0), when active psi_j = 0.
+json constraint_equation(const std::string& name, const std::string& expression, const std::string& meaning,
+                         const std::string& source, const std::string& multiplier, bool inequality) {
+  json eq = {{"name", name},
+             {"expression", expression},
+             {"meaning", meaning + (inequality ? ", active: = 0" : " = 0")},
+             {"scale", 1.0},
+             {"source", source}};
+  if (inequality)
+    eq["inequality"] = {{"sense", "expression <= 0"},
+                        {"multiplier", multiplier},
+                        {"inactive_expression", multiplier},
+                        {"rule", "pass 1: inactive (multiplier = 0); if the expression is > 0 at the solution, "
+                                 "pass 2 makes it active (expression = 0) and requires multiplier >= 0"}};
+  return eq;
+}
+
 // Conditions of an interior event from Phi = ... + nu_c^T c(t, x-, p) + nu_g^T (x+ - g(t + D, x-, p))
 // (Bryson-Ho): lambda(t+) = -dPhi/dx+ = -nu_g; lambda(t-) = dPhi/dx- = nu_c^T dc/dx- + lambda(t+)^T dg/dx-;
 // H(t-) - H(t+) + dPhi/dt = 0 for the free epoch; dPhi/dp = 0 for a free parameter p of psi.
@@ -220,11 +253,8 @@ json interior_event_conditions(Problem& p, const InteriorEvent& e, json& variabl
                        {"scale", 1.0},
                        {"init", "uniform in (0, 1)"}});
   for (std::size_t j = 0; j < nu.size(); ++j)
-    variables.push_back({{"name", nu[j].get_name()},
-                         {"meaning", "multiplier of " + e.id + ": " + e.c_names[j] + " = 0"},
-                         {"role", "multiplier"},
-                         {"scale", 1.0},
-                         {"init", "uniform in (-1, 1)"}});
+    variables.push_back(multiplier_variable(nu[j].get_name(), "multiplier of " + e.id + ": " + e.c_names[j],
+                                            e.c_inequality[j]));
   std::vector<bool> carried(n);
   for (std::size_t s = 0; s < n; ++s) {
     carried[s] = true;
@@ -246,14 +276,20 @@ json interior_event_conditions(Problem& p, const InteriorEvent& e, json& variabl
                          {"init", "uniform in (-1, 1)"}});
 
   json psi = json::array(), multipliers = json::array(), conditions = json::array();
+  const symbol epoch = S.get(event_time_name(e.id));
   for (std::size_t j = 0; j < e.c.size(); ++j) {
     psi.push_back(to_text(e.c[j]));
     multipliers.push_back(nu[j].get_name());
-    equations.push_back({{"name", "psi_" + e.id + "_" + std::to_string(j + 1)},
-                         {"expression", to_text(e.c[j])},
-                         {"meaning", e.kind + " at " + e.id + ": " + e.c_names[j] + " = 0"},
-                         {"scale", 1.0},
-                         {"source", e.id}});
+    json eq = constraint_equation("psi_" + e.id + "_" + std::to_string(j + 1), to_text(e.c[j]),
+                                  e.kind + " at " + e.id + ": " + e.c_names[j], e.id, nu[j].get_name(),
+                                  e.c_inequality[j]);
+    // A leg alone holds its epoch: at a guess inside the window while the window's bound is
+    // inactive, at the bound's edge while it is active (the bound's row is then its multiplier).
+    if (e.c[j].has(epoch)) {
+      eq["alone_expression"] = nu[j].get_name();
+      eq["inequality"]["held_when_active"] = {{"variable", frac}, {"value", e.c[j].diff(epoch).is_equal(-1) ? 0 : 1}};
+    }
+    equations.push_back(eq);
   }
   for (std::size_t s = 0; s < n; ++s) {
     psi.push_back(to_text(xp[s] - e.map[s]));
@@ -282,9 +318,11 @@ json interior_event_conditions(Problem& p, const InteriorEvent& e, json& variabl
                            {"source", e.id}});
     }
   }
-  // Time: H(t-) - H(t+) + nu^T dc/dt + lambda(t+)^T dg/dt = 0 (the map is evaluated at t + D).
+  // Time: H(t-) - H(t+) + nu^T dc/dt + lambda(t+)^T dg/dt = 0 (the map is evaluated at t + D);
+  // dc/dt is explicit (the window's bounds) and through the target's motion.
   ex time_condition = S.get("H_" + e.id + "_m") - S.get("H_" + e.id + "_p");
-  for (std::size_t j = 0; j < e.c.size(); ++j) time_condition += nu[j] * time_derivative(p, e.c[j]);
+  for (std::size_t j = 0; j < e.c.size(); ++j)
+    time_condition += nu[j] * (e.c[j].diff(epoch) + time_derivative(p, e.c[j]));
   for (std::size_t k = 0; k < n; ++k) time_condition += lp[k] * time_derivative(p, e.map[k]);
   equations.push_back({{"name", "time_" + e.id},
                        {"expression", to_text(tidy(time_condition))},
@@ -464,22 +502,31 @@ json derive(const Problem& problem) {
         c["time_condition"] = "-H(t0) + nu^T dpsi/dt0, added to the final time's terms (tf = t0 + tof)";
       }
     } else {
-      // lambda(tf) - lambda0 dphi/dx - nu^T dpsi/dx = 0; the multipliers of the states psi fixes
-      // are solved from their own rows (dpsi/dx_J invertible), the other rows remain.
+      // lambda(tf) - lambda0 dphi/dx - nu^T dpsi/dx = 0; the multipliers of the equality rows are
+      // solved from the rows of the states they fix (dpsi/dx_J invertible), the other rows remain.
+      // A bound's multiplier is a shooting variable (0 while the bound is inactive).
       if (final_constraint) throw std::invalid_argument("constraint '" + k.id + "': only one constraint at tf");
       final_constraint = true;
       json conditions = json::array();
       json eliminated = json::array();
       GiNaC::lst touched_rows, nus;
-      for (const auto& m : multipliers) nus.append(S.get(m.get<std::string>()));
+      for (std::size_t j = 0; j < k.psi.size(); ++j) {
+        if (!k.psi_inequality[j]) {
+          nus.append(S.get(multipliers[j].get<std::string>()));
+          continue;
+        }
+        variables.push_back(multiplier_variable(multipliers[j], "multiplier of " + k.id + ": " + k.psi_names[j], true));
+      }
+      std::map<std::string, ex> free_end;  // lambda_s(tf) - lambda0 dphi/dx_s: the row without psi
       for (std::size_t i = 0; i < p.states.size(); ++i) {
         const symbol x = S.get(p.states[i].name);
         ex row = S.get(at_event(costate_name(p.states[i].name), "tf")) - lambda0 * p.endpoint_cost.diff(x);
-        bool touched = false;
+        free_end[p.states[i].name] = row.subs(at_tf);
+        bool touched = false, bounded = false;
         for (std::size_t j = 0; j < k.psi.size(); ++j) {
           const ex d = k.psi[j].diff(x);
           if (d.is_zero()) continue;
-          touched = true;
+          (k.psi_inequality[j] ? bounded : touched) = true;
           row -= S.get(multipliers[j].get<std::string>()) * d;
         }
         conditions.push_back(to_text(row) + " = 0");
@@ -487,11 +534,12 @@ json derive(const Problem& problem) {
           eliminated.push_back(to_text(row) + " = 0");
           touched_rows.append(row.subs(at_tf) == 0);
         } else {
-          const ex eq = row.subs(at_tf);
+          const std::string& n = p.states[i].name;
           equations.push_back(
-              {{"name", "transversality_" + p.states[i].name},
-               {"expression", to_text(eq)},
-               {"meaning", "lambda_" + p.states[i].name + "(tf) = 0: " + p.states[i].name + "(tf) is free"},
+              {{"name", "transversality_" + n},
+               {"expression", to_text(row.subs(at_tf))},
+               {"meaning", bounded ? "lambda_" + n + "(tf) = nu^T dpsi/d" + n + ": " + n + "(tf) is free but for a bound"
+                                   : "lambda_" + n + "(tf) = 0: " + n + "(tf) is free"},
                {"scale", 1.0},
                {"source", k.id}});
         }
@@ -499,11 +547,14 @@ json derive(const Problem& problem) {
       c["conditions"] = conditions;
       c["eliminated_multipliers"] = eliminated;
       for (std::size_t j = 0; j < k.psi.size(); ++j) {
-        equations.push_back({{"name", "psi_" + k.id + "_" + std::to_string(j + 1)},
-                             {"expression", to_text(k.psi[j].subs(at_tf))},
-                             {"meaning", "rendezvous with " + k.id + ": " + k.psi_names[j] + " = 0 at tf"},
-                             {"scale", 1.0},
-                             {"source", k.id}});
+        json eq = constraint_equation("psi_" + k.id + "_" + std::to_string(j + 1), to_text(k.psi[j].subs(at_tf)),
+                                      k.kind + " at tf with " + k.id + ": " + k.psi_names[j], k.id,
+                                      multipliers[j], k.psi_inequality[j]);
+        // A state free at t0 is held at its guess while the last leg is solved alone, so the row
+        // fixing it at tf gives way to that leg's free-end condition.
+        if (p.free_initial_mass && !k.psi_inequality[j] && k.psi[j].has(S.get("m")))
+          eq["alone_expression"] = to_text(free_end.at("m"));
+        equations.push_back(eq);
       }
       if (p.free_final_time || p.free_departure) {
         // H(tf) + dPhi/dtf = 0 with Phi = lambda0 phi + nu^T psi: nu^T dpsi/dtf through the target's
@@ -562,6 +613,27 @@ json derive(const Problem& problem) {
                            {"scale", 1.0},
                            {"init", "uniform in (-1, 1), then normalized"}});
       norm2 += GiNaC::pow(S.get(lam0), 2);
+    } else if (s.name == "m" && p.free_initial_mass) {
+      // Minimum initial mass: m(t0) is a shooting variable, and with no cost on it (the running
+      // cost is the fuel) its transversality is lambda_m(t0) = -dPhi/dm(t0) = 0.
+      const double most = p.final_mass + value_of(p, "Tmax") / value_of(p, "c") * (p.tf - p.t0);
+      variables.push_back({{"name", at_event(s.name, "t0")},
+                           {"meaning", "initial mass (free: minimized)"},
+                           {"role", "initial_state"},
+                           {"scale", 1.0},
+                           {"range", {p.final_mass, most}},
+                           {"init", "uniform in (final mass, final mass + Tmax (tf - t0)/c)"}});
+      initial_values.push_back({{"state", s.name}, {"value", at_event(s.name, "t0")}});
+      variables.push_back({{"name", lam0},
+                           {"meaning", "costate of " + s.meaning + " at t0"},
+                           {"scale", 1.0},
+                           {"init", "uniform in (-1, 1), then normalized"}});
+      norm2 += GiNaC::pow(S.get(lam0), 2);
+      equations.push_back({{"name", "transversality_" + s.name + "_t0"},
+                           {"expression", lam0},
+                           {"meaning", "lambda_m(t0) = -dPhi/dm(t0) = 0: the initial mass is free"},
+                           {"scale", 1.0},
+                           {"source", "initial_mass"}});
     } else {
       throw std::invalid_argument("state " + s.name + " is free at t0: not supported by the builtin engine yet");
     }

@@ -198,6 +198,16 @@ std::vector<ex> target_state(Problem& p, const std::string& prefix, const json& 
   return state;
 }
 
+// A bound on the speed relative to a target, |v_rel|^2 - vmax^2 <= 0 (the square keeps it smooth
+// where v_rel = 0); vmax becomes the parameter vmax_<id>.
+ex speed_bound(Problem& p, const std::string& id, const std::vector<ex>& relative, double max_km_s) {
+  const std::string name = "vmax_" + id;
+  p.parameters.push_back({name, "highest speed relative to " + id, p.units.length_name + "/" + p.units.time_name,
+                          max_km_s / p.units.speed_km_s()});
+  const ex vmax = p.symbols.get(name);
+  return relative[0] * relative[0] + relative[1] * relative[1] + relative[2] * relative[2] - vmax * vmax;
+}
+
 // An interior event: conditions c on the arriving state and the map g to the leaving state.
 InteriorEvent interior_event(Problem& p, const json& c) {
   auto& S = p.symbols;
@@ -232,7 +242,24 @@ InteriorEvent interior_event(Problem& p, const json& c) {
   for (std::size_t j = 0; j < matched; ++j) {
     e.c.push_back(xm[j] - arrival[j]);
     e.c_names.push_back(kPositionVelocity[j] + " - " + to_text(arrival[j]));
+    e.c_inequality.push_back(false);
   }
+  if (c.contains("max_relative_speed_km_s")) {
+    if (e.kind != "flyby") throw std::invalid_argument(where + ": only a flyby has a relative speed to bound");
+    std::vector<ex> relative(3);
+    for (int i = 0; i < 3; ++i) relative[i] = xm[3 + i] - arrival[3 + i];
+    e.c.push_back(speed_bound(p, e.id, relative, c.at("max_relative_speed_km_s").get<double>()));
+    e.c_names.push_back("|v - v_" + e.id + "|^2 - vmax_" + e.id + "^2 (<= 0)");
+    e.c_inequality.push_back(true);
+  }
+  // The window bounds the epoch (two-pass): window_lo - t <= 0 and t - window_hi <= 0.
+  const ex t = S.get(event_time_name(e.id));
+  e.c.push_back(e.window_lo - t);
+  e.c_names.push_back("window start - " + event_time_name(e.id) + " (<= 0: not before the window)");
+  e.c_inequality.push_back(true);
+  e.c.push_back(t - e.window_hi);
+  e.c_names.push_back(event_time_name(e.id) + " - window end (<= 0: not after the window)");
+  e.c_inequality.push_back(true);
   e.map = xm;  // continuous unless changed below
   if (e.kind == "rendezvous" && e.duration > 0) {
     // After the stay the spacecraft leaves from the target's state at t_<id> + stay.
@@ -269,9 +296,17 @@ InteriorEvent interior_event(Problem& p, const json& c) {
     for (int i = 0; i < 3; ++i)
       e.map[3 + i] = arrival[3 + i] + GiNaC::cos(d) * vinf[i] +
                      GiNaC::sin(d) * (GiNaC::cos(f) * vn * w[i] + GiNaC::sin(f) * vw[i]) / wn;
-    if (c.contains("min_periapsis_radius_km"))
-      p.parameters.push_back({"rmin_" + e.id, "lowest periapsis radius of the swing-by at " + e.id, U.length_name,
+    if (c.contains("min_periapsis_radius_km")) {
+      // r_p = mu/v_inf^2 (1/sin(delta/2) - 1) >= r_min, written without the 1/sin singularity at
+      // delta = 0 and for either sign of delta: sin^2(delta/2) (1 + r_min v_inf^2/mu)^2 - 1 <= 0.
+      const std::string rmin = "rmin_" + e.id;
+      p.parameters.push_back({rmin, "lowest periapsis radius of the swing-by at " + e.id, U.length_name,
                               c.at("min_periapsis_radius_km").get<double>() / U.length_km});
+      const ex k = 1 + S.get(rmin) * vn * vn / S.get(mu_name);
+      e.c.push_back((1 - GiNaC::cos(d)) / 2 * k * k - 1);
+      e.c_names.push_back("sin(delta/2)^2 (1 + rmin v_inf^2/mu)^2 - 1 (<= 0: periapsis radius >= rmin)");
+      e.c_inequality.push_back(true);
+    }
   }
   return e;
 }
@@ -301,7 +336,16 @@ Problem build_problem(const json& spec) {
   const bool sail = p.propulsion == "solar_sail";
 
   const json& sc = spec.at("spacecraft");
-  if (!sail) p.units.mass_kg = sc.at("initial_mass_kg").get<double>();
+  // Minimum initial mass: m0 is unknown and the final (dry + payload) mass is given, so it sets the
+  // mass scale; otherwise m0 does.
+  p.free_initial_mass = p.objective == "minimum_initial_mass";
+  const std::string mass_field = p.free_initial_mass ? "final_mass_kg" : "initial_mass_kg";
+  if (!sail) {
+    if (!sc.contains(mass_field))
+      throw std::invalid_argument("field /spacecraft/" + mass_field + " is missing (objective " + p.objective + ")");
+    p.units.mass_kg = sc.at(mass_field).get<double>();
+  }
+  const std::string mass_unit = p.free_initial_mass ? "final mass" : "initial mass";
   const Units& U = p.units;
   const double mu =
       central.at("mu_km3_s2").get<double>() * U.time_s * U.time_s / (U.length_km * U.length_km * U.length_km);
@@ -328,12 +372,12 @@ Problem build_problem(const json& spec) {
     const double thrust = sc.at("thrust_N").get<double>() / U.force_N();
     const double exhaust = sc.at("isp_s").get<double>() * helios::astro::G0_M_S2 * 1e-3 / U.speed_km_s();
     if (!(thrust > 0) || !(exhaust > 0)) throw std::domain_error("field /spacecraft: thrust and Isp must be positive");
-    p.states.push_back({"m", "mass", "initial mass"});
+    p.states.push_back({"m", "mass", mass_unit});
     p.controls = {{"u", "throttle T/Tmax in [0, 1]", "throttle"},
                   {"ax", "thrust direction x (unit vector)", "direction"},
                   {"ay", "thrust direction y (unit vector)", "direction"},
                   {"az", "thrust direction z (unit vector)", "direction"}};
-    p.parameters.push_back({"Tmax", "maximum thrust", "initial mass*" + L + "/" + T + "^2", thrust});
+    p.parameters.push_back({"Tmax", "maximum thrust", mass_unit + "*" + L + "/" + T + "^2", thrust});
     p.parameters.push_back({"c", "exhaust velocity Isp*g0", L + "/" + T, exhaust});
   }
 
@@ -381,11 +425,13 @@ Problem build_problem(const json& spec) {
   p.f = {v[0], v[1], v[2], accel[0], accel[1], accel[2]};
   if (!sail) p.f.push_back(-S.get("Tmax") * S.get("u") / S.get("c"));
 
-  if (p.objective == "minimum_fuel") {
+  if (p.objective == "minimum_fuel" || p.objective == "minimum_initial_mass") {
     if (sail)
       throw std::invalid_argument("field /objective/kind: a solar sail uses no fuel; minimize the time instead");
     // Fuel (mass flow) with the quadratic homotopy term: eps = 1 is an energy-like problem,
     // eps = 0 the bang-bang fuel-optimal one (Bertrand & Epenoy; Jiang, Baoyin & Li 2012).
+    // With m(tf) fixed, the fuel m0 - m(tf) is m0 up to a constant: the same running cost
+    // minimizes the initial mass.
     const ex TM = S.get("Tmax"), C = S.get("c"), u = S.get("u");
     p.running_cost = TM / C * (u - eps * u * (1 - u));
   } else if (p.objective == "minimum_time") {
@@ -404,7 +450,7 @@ Problem build_problem(const json& spec) {
   } else {
     p.tf = time.at("tof_days").get<double>() * helios::astro::DAY_S / U.time_s;
   }
-  p.initial_mass = 1;
+  p.final_mass = 1;
   p.free_departure = time.value("departure", "fixed") == "free";
   if (p.free_departure) {
     if (p.free_final_time)
@@ -432,7 +478,7 @@ Problem build_problem(const json& spec) {
     k.kind = c.at("kind").get<std::string>();
     k.at = at;
     k.target = c.at("target");
-    if (k.kind != "initial_state" && k.kind != "rendezvous")
+    if (k.kind != "initial_state" && k.kind != "rendezvous" && !(k.kind == "flyby" && at == "tf"))
       throw std::invalid_argument("constraint '" + k.id + "': a " + k.kind + " is an interior event, not at " + at);
     if (k.target.at("kind") == "coasting" && p.free_departure)
       throw std::invalid_argument("constraint '" + k.id + "': a coasting target needs a fixed departure epoch");
@@ -440,26 +486,48 @@ Problem build_problem(const json& spec) {
     const bool moving = (k.at == "tf" && p.free_final_time) || p.free_departure;
     std::vector<ex> rates;
     const std::vector<ex> target = target_state(p, k.id, k.target, k.at, moving, rates);
-    for (std::size_t j = 0; j < kPositionVelocity.size(); ++j) {
+    const std::size_t matched = k.kind == "flyby" ? 3 : 6;  // a flyby matches position only
+    for (std::size_t j = 0; j < matched; ++j) {
       const std::string& n = kPositionVelocity[j];
       k.psi.push_back(S.get(n) - target[j]);
       k.psi_names.push_back(n + " - " + to_text(target[j]));
+      k.psi_inequality.push_back(false);
       k.fixed_states.push_back(n);
       k.psi_t.push_back(-rates[j]);
+    }
+    if (c.contains("max_relative_speed_km_s")) {
+      if (k.kind != "flyby")
+        throw std::invalid_argument("constraint '" + k.id + "': only a flyby has a relative speed to bound");
+      std::vector<ex> relative(3);
+      for (int i = 0; i < 3; ++i) relative[i] = S.get(kPositionVelocity[3 + i]) - target[3 + i];
+      ex rate = 0;
+      for (int i = 0; i < 3; ++i) rate += 2 * relative[i] * -rates[3 + i];
+      k.psi.push_back(speed_bound(p, k.id, relative, c.at("max_relative_speed_km_s").get<double>()));
+      k.psi_names.push_back("|v - v_" + k.id + "|^2 - vmax_" + k.id + "^2 (<= 0)");
+      k.psi_inequality.push_back(true);
+      k.psi_t.push_back(rate);
     }
     if (k.kind == "initial_state") {
       if (k.at != "t0") throw std::invalid_argument("constraint '" + k.id + "': an initial state must be at t0");
       if (k.target.at("kind") == "coasting")
         throw std::invalid_argument("constraint '" + k.id + "': a departure cannot coast");
-      if (p.has_state("m")) {
+      if (p.has_state("m") && !p.free_initial_mass) {
         // The spacecraft's initial mass is known: mass is fixed at t0 as well.
         k.psi.push_back(S.get("m") - 1);
         k.psi_names.push_back("m - 1");
+        k.psi_inequality.push_back(false);
         k.fixed_states.push_back("m");
         k.psi_t.push_back(0);
       }
     } else if (k.at != "tf") {
       throw std::invalid_argument("constraint '" + k.id + "': rendezvous is supported at tf only");
+    } else if (p.free_initial_mass) {
+      // Minimum initial mass: the final (dry + payload) mass is given.
+      k.psi.push_back(S.get("m") - p.final_mass);
+      k.psi_names.push_back("m - m_final");
+      k.psi_inequality.push_back(false);
+      k.fixed_states.push_back("m");
+      k.psi_t.push_back(0);
     }
     p.constraints.push_back(k);
   }

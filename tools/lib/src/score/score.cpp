@@ -261,7 +261,8 @@ json score_converge(const json& reference, const std::optional<json>& solution) 
   return dimension((converged ? kConvergeStatusMax : 0) + (small ? kConvergeResidualMax : 0), kConvergeMax, details);
 }
 
-// The quantity d5 scores: the final mass, or the time of flight where the reference gives that.
+// The quantity d5 scores: the initial mass (minimum-initial-mass problems), the final mass, or the
+// time of flight, whichever the reference gives.
 struct Accuracy {
   std::string id, key, unit, symbol;
   double ref = 0, tol = 0;
@@ -269,6 +270,9 @@ struct Accuracy {
 
 Accuracy accuracy_quantity(const json& reference) {
   const json& r = reference["result"];
+  if (r.contains("initial_mass_kg"))
+    return {"initial_mass", "initial_mass_kg", "kg", "m_0", r["initial_mass_kg"].get<double>(),
+            r["tolerance_kg"].get<double>()};
   if (r.contains("final_mass_kg"))
     return {
         "final_mass", "final_mass_kg", "kg", "m_f", r["final_mass_kg"].get<double>(), r["tolerance_kg"].get<double>()};
@@ -402,6 +406,12 @@ json score_run(const ScoreInputs& in) {
                      {"shooting_variables", shooting_variables ? json(*shooting_variables) : json(nullptr)},
                      {"reference_shooting_variables", ref["expected_shooting_variables"]},
                      {"status", status.empty() ? json(nullptr) : json(status)}};
+  if (const auto ref_m0 = number_at(ref, "/result/initial_mass_kg")) {
+    const auto m0 = number_at(in.solution, "/initial_mass_kg");
+    out["measured"]["initial_mass_kg"] = opt_number(m0);
+    out["measured"]["reference_initial_mass_kg"] = *ref_m0;
+    out["measured"]["error_initial_mass_kg"] = m0 ? json(std::fabs(*m0 - *ref_m0)) : json(nullptr);
+  }
   if (const auto ref_tof = number_at(ref, "/result/tof_days")) {
     const auto tof = number_at(in.solution, "/tof_days");
     out["measured"]["tof_days"] = opt_number(tof);

@@ -416,13 +416,15 @@ json solve(const SolveOptions& o) {
   // solved alone (its guesses, residual and evaluations) before the legs were joined.
   doc["method"] = r.value("method", "single shooting");
   if (r.contains("legs")) doc["legs"] = r.at("legs");
+  doc["passes"] = r.value("passes", 1);
+  if (r.contains("bounds")) doc["bounds"] = r.at("bounds");
   if (r.at("status") == "converged") {
     doc["tof_days"] = r.at("tof_days");
     if (r.contains("departure_mjd2000")) doc["departure_mjd2000"] = r.at("departure_mjd2000");
     if (r.contains("final_mass_kg")) {  // a sail has no mass state
-      const double mf = r.at("final_mass_kg"), m0 = r.at("initial_mass_kg");
-      doc["final_mass_kg"] = mf;
-      doc["propellant_kg"] = m0 - mf;
+      doc["initial_mass_kg"] = r.at("initial_mass_kg");
+      doc["final_mass_kg"] = r.at("final_mass_kg");
+      doc["propellant_kg"] = r.at("propellant_kg");  // a mass drop is not propellant
       doc["delta_v_m_s"] = r.at("delta_v_m_s");
     }
     doc["epsilon"] = r.at("epsilon");

@@ -306,16 +306,18 @@ struct Event {
   Where where;
   std::string kind, body;
   EpochRef lo, hi;
-  std::optional<double> stay, drop, mu, rmin;
+  std::optional<double> stay, drop, mu, rmin, max_speed;
   Where drop_where;
   json target;
   double window_lo = 0, window_hi = 0;
 };
 
-// The departure or the final rendezvous.
+// The departure or the final condition (a rendezvous, or a flyby with an optional speed bound).
 struct Endpoint {
   Where where;
   json target;
+  std::string kind = "rendezvous";
+  std::optional<double> max_speed;
 };
 
 // Columns of an elements table: unit factors of a and the angles, which anomaly, which epoch scale.
@@ -395,6 +397,10 @@ struct Builder {
         re(R"(Minimi[sz]e (?:the )?(?:time of flight|flight time|final time|transfer time))");
     static const std::regex arrive_re = re(
         R"(At the final time the spacecraft (?:rendezvouses|must rendezvous) with (.+)|The spacecraft (?:rendezvouses|must rendezvous) with (.+) at the final time)");
+    static const std::regex arrive_flyby_re = re(
+        R"(At the final time the spacecraft (?:flies|must fly) by (.+?)(?:,? with a relative speed of at most )" +
+        kQuantity + ")?");
+    static const std::regex initial_mass_re = re(R"(Minimi[sz]e (?:the )?(?:initial|launch|departure|wet) mass)");
     static const std::regex fuel_re =
         re(R"(Minimi[sz]e (?:the )?(?:fuel(?: consumption)?|propellant(?: mass)?|fuel use))");
     static const std::regex orbit_re = re(
@@ -455,7 +461,18 @@ struct Builder {
     } else if (std::regex_match(s, m, arrive_re)) {
       once("the final rendezvous");
       const std::string phrase = m[1].matched ? m[1].str() : m[2].str();
-      arrival = Endpoint{here, parse_target(phrase)};
+      arrival = Endpoint{here, parse_target(phrase), "rendezvous", std::nullopt};
+    } else if (std::regex_match(s, m, arrive_flyby_re)) {
+      once("the final rendezvous");
+      arrival = Endpoint{here, parse_target(m[1].str()), "flyby", std::nullopt};
+      if (m[2].matched) {
+        const double v = quantity(m, 2, Dimension::Speed);
+        if (!(v > 0)) throw sentence_error("the relative speed bound must be positive");
+        arrival->max_speed = v;
+      }
+    } else if (std::regex_match(s, m, initial_mass_re)) {
+      once("the objective");
+      objective = {{"kind", "minimum_initial_mass"}};
     } else if (std::regex_match(s, m, fuel_re)) {
       once("the objective");
       objective = {{"kind", "minimum_fuel"}};
@@ -498,7 +515,7 @@ struct Builder {
   void depart(const std::string& at, const std::string& target) {
     once("the departure");
     if (!at.empty()) epoch(at);
-    departure = Endpoint{here, parse_target(target)};
+    departure = Endpoint{here, parse_target(target), "initial_state", std::nullopt};
   }
 
   void set_epoch(double mjd2000) {
@@ -735,7 +752,8 @@ struct Builder {
   static std::string clause_forms(const std::string& kind) {
     if (kind == "rendezvous")
       return "a rendezvous takes 'stays there for Q', 'does not stay' and 'leaves a lander of Q'";
-    if (kind == "flyby") return "a flyby matches the position only and takes no further clause";
+    if (kind == "flyby")
+      return "a flyby matches the position only and takes 'the relative speed must be at most Q'";
     return "a gravity assist takes 'NAME has a gravitational parameter of Q' and 'the periapsis radius must be at "
            "least Q'";
   }
@@ -757,6 +775,8 @@ struct Builder {
     static const std::regex rmin_re = re(
         R"((?:(?:the )?(?:periapsis|pericenter|pericentre|closest approach) radius (?:must be|is) at least |(?:the )?(?:minimum|lowest) (?:periapsis|pericenter|pericentre) radius is ))" +
         kQuantity);
+    static const std::regex speed_re =
+        re(R"((?:(?:the )?relative speed (?:must be|is) at most |with a relative speed of at most ))" + kQuantity);
     std::smatch m;
     const auto set = [&](std::optional<double>& slot, double value, const std::string& what) {
       if (slot) throw sentence_error(what + " at " + e.body + " is given twice");
@@ -779,6 +799,10 @@ struct Builder {
       const double mu = quantity(m, 2, Dimension::GravParam);
       if (!(mu > 0)) throw sentence_error("the gravitational parameter must be positive");
       set(e.mu, mu, "the gravitational parameter");
+    } else if (e.kind == "flyby" && std::regex_match(part, m, speed_re)) {
+      const double v = quantity(m, 1, Dimension::Speed);
+      if (!(v > 0)) throw sentence_error("the relative speed bound must be positive");
+      set(e.max_speed, v, "the relative speed bound");
     } else if (e.kind == "gravity_assist" && std::regex_match(part, m, rmin_re)) {
       const double r = quantity(m, 1, Dimension::Length);
       if (!(r > 0)) throw sentence_error("the periapsis radius must be positive");
@@ -879,18 +903,21 @@ struct Builder {
 
   void spacecraft_clauses(const std::string& list) {
     static const std::regex split(R"(\s*(?:,\s*and\s+|,\s*|\s+and\s+)\s*)");
-    static const std::regex clause = re(R"((?:an? )?(maximum thrust|specific impulse|initial mass) of )" + kQuantity);
+    static const std::regex clause =
+        re(R"((?:an? )?(maximum thrust|specific impulse|initial mass|final mass) of )" + kQuantity);
     static const std::map<std::string, std::pair<std::string, Dimension>> fields = {
         {"maximum thrust", {"thrust_N", Dimension::Force}},
         {"specific impulse", {"isp_s", Dimension::Duration}},
-        {"initial mass", {"initial_mass_kg", Dimension::Mass}}};
+        {"initial mass", {"initial_mass_kg", Dimension::Mass}},
+        {"final mass", {"final_mass_kg", Dimension::Mass}}};
     for (std::sregex_token_iterator it(list.begin(), list.end(), split, -1), end; it != end; ++it) {
       const std::string part = *it;
       std::smatch m;
       if (!std::regex_match(part, m, clause))
         throw sentence_error(
             "cannot read '" + part +
-            "': expected 'a maximum thrust of Q', 'a specific impulse of Q' or 'an initial mass of Q'");
+            "': expected 'a maximum thrust of Q', 'a specific impulse of Q', 'an initial mass of Q' or 'a final "
+            "mass of Q'");
       const std::string key = lowercase(m[1].str());
       const auto& [field, dim] = fields.at(key);
       once("the " + key);
@@ -989,7 +1016,7 @@ struct Builder {
       if (!e.drop) continue;
       if (propulsion == "solar_sail") fail(e.drop_where, "a solar sail has no mass to leave behind");
       dropped += *e.drop;
-      if (!(dropped < spacecraft["initial_mass_kg"].get<double>()))
+      if (spacecraft.contains("initial_mass_kg") && !(dropped < spacecraft["initial_mass_kg"].get<double>()))
         fail(e.drop_where, "the landers weigh " + num_text(dropped) + " kg, not less than the initial mass");
     }
   }
@@ -1014,9 +1041,12 @@ struct Builder {
       if (e.drop) c["mass_drop_kg"] = *e.drop;
       if (e.mu) c["body_mu_km3_s2"] = *e.mu;
       if (e.rmin) c["min_periapsis_radius_km"] = *e.rmin;
+      if (e.max_speed) c["max_relative_speed_km_s"] = *e.max_speed;
       out.push_back(c);
     }
-    out.push_back({{"id", "arrival"}, {"kind", "rendezvous"}, {"at", "tf"}, {"target", arrival->target}});
+    json last = {{"id", "arrival"}, {"kind", arrival->kind}, {"at", "tf"}, {"target", arrival->target}};
+    if (arrival->max_speed) last["max_relative_speed_km_s"] = *arrival->max_speed;
+    out.push_back(last);
     return out;
   }
 };
@@ -1034,11 +1064,21 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   if (b.problem.is_null()) missing("its name", "Problem S01: Earth to Mars.");
   if (b.central_body.is_null()) missing("the central body", "The central body is the Sun.");
   if (b.propulsion == "low_thrust")
+  {
+    // Minimizing the initial mass needs the final mass instead of the initial one.
+    const bool find_m0 = b.objective.is_object() && b.objective.value("kind", "") == "minimum_initial_mass";
     for (const auto& [field, example] : std::vector<std::pair<std::string, std::string>>{
              {"thrust_N", "The spacecraft has a maximum thrust of 0.5 N."},
              {"isp_s", "The spacecraft has a specific impulse of 2000 s."},
-             {"initial_mass_kg", "The spacecraft has an initial mass of 1000 kg."}})
+             {find_m0 ? "final_mass_kg" : "initial_mass_kg",
+              find_m0 ? "The spacecraft has a final mass of 1500 kg." : "The spacecraft has an initial mass of 1000 kg."}})
       if (!b.spacecraft.contains(field)) missing("the spacecraft's " + field, example);
+    const std::string extra = find_m0 ? "initial_mass_kg" : "final_mass_kg";
+    if (b.spacecraft.contains(extra))
+      throw input_error(source + ": the spacecraft's " + extra + " is stated, but the objective " +
+                        (find_m0 ? "finds the initial mass from the final one" : "takes the initial mass") +
+                        ": state only the " + (find_m0 ? "final" : "initial") + " mass");
+  }
   if (b.propulsion == "solar_sail" && b.seen.count("the spacecraft's engine"))
     throw input_error(source + ": the spacecraft is a solar sail, so it has no thrust, specific impulse or mass");
   if (!b.seen.count("the departure")) missing("the departure", "The spacecraft departs at MJD2000 400 from Earth.");

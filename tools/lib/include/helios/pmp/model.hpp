@@ -43,10 +43,11 @@ struct Control {
 
 // psi(t_k, x(t_k), p) = 0 at t0 or tf, comparing states with target parameters.
 struct EndpointConstraint {
-  std::string id, kind, at;      // kind: initial_state | rendezvous; at: t0 | tf
+  std::string id, kind, at;      // kind: initial_state | rendezvous | flyby (position only); at: t0 | tf
   std::vector<GiNaC::ex> psi;    // in the state symbols (evaluated at `at`)
   std::vector<GiNaC::ex> psi_t;  // d psi / d t_k through the target's motion (0 for a fixed state)
   std::vector<std::string> psi_names;
+  std::vector<bool> psi_inequality;       // true: the row is a bound psi_j <= 0 (active only in pass 2)
   std::vector<std::string> fixed_states;  // states psi fixes (for meaning and counting)
   io::json target;                        // the spec's target, for the generator's ephemeris mode
 };
@@ -68,6 +69,7 @@ struct InteriorEvent {
   double window_lo = 0, window_hi = 0, duration = 0;
   std::vector<GiNaC::ex> c;
   std::vector<std::string> c_names;
+  std::vector<bool> c_inequality;            // true: the row is a bound c_j <= 0 (active only in pass 2)
   std::vector<GiNaC::ex> map;                // g, one per state
   std::vector<std::string> free_parameters;  // Category C parameters inside psi (found by stationarity)
   io::json target;
@@ -105,7 +107,10 @@ struct Problem {
   double tf_min = 0;         // normalized lower end of the final-time window
   double epoch_mjd2000 = 0;  // calendar epoch of t0, for ephemeris targets
   bool has_epoch = false;
-  double initial_mass = 1;  // normalized (the mass scale is m0, so 1)
+  // minimum_initial_mass: m(t0) is free (a shooting variable), m(tf) is fixed at final_mass; the
+  // mass scale is then the final mass. Otherwise the mass scale is m0 and m(t0) = 1.
+  bool free_initial_mass = false;
+  double final_mass = 1;
   bool has_state(const std::string& name) const;
 };
 
