@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Benchmark of the builtin backend, from a cold start (fresh output folder, empty compile cache):
 # per scenario the wall time of each stage, the solver's restarts, legs solved alone (problems with
-# interior events: every leg attempt before the legs were joined) and homotopy steps, and the
-# result; then a warm solve of the first scenario (compile cache hit) and, for the J2 scenarios,
+# interior events: every leg attempt before the legs were joined), homotopy steps, passes over the
+# bounds, and the result; then a warm solve of the first scenario (compile cache hit) and, for the J2 scenarios,
 # the m_f of the same problem without J2 (the J2 sentence removed).
 # usage: tests/bench/bench.sh [SCENARIO...]   (default: every scenario; run from the repository root; needs `make tools`)
 set -euo pipefail
@@ -38,19 +38,19 @@ chain() {
 }
 
 echo "HELIOS benchmark, builtin backend, $(nproc) cores, $(date -u +%FT%TZ)"
-printf '%-5s %7s %7s %7s %7s %8s %8s %8s %5s %5s %5s  %-13s %s\n' scen parse derive verify gen compile run solve \
-  rest legs homot status result
+printf '%-5s %7s %7s %7s %7s %8s %8s %8s %5s %5s %5s %4s  %-13s %s\n' scen parse derive verify gen compile run solve \
+  rest legs homot pass status result
 for s in "${scenarios[@]}"; do
   chain "$work/$s" "scenarios/$s/problem.txt" "scenarios/$s/settings.json"
   "$bin/helios-score" --reference "scenarios/$s/reference.json" --spec "$work/$s/spec.json" \
     --derivation "$work/$s/derivation.json" --verify "$work/$s/verify.json" --solution "$work/$s/solution.json" \
     -o "$work/$s/score.json"
-  printf '%-5s %7.3f %7.3f %7.3f %7.3f %8.3f %8.3f %8.3f %5s %5s %5s  %-13s %s\n' "$s" "$t_parse" "$t_derive" \
+  printf '%-5s %7.3f %7.3f %7.3f %7.3f %8.3f %8.3f %8.3f %5s %5s %5s %4s  %-13s %s\n' "$s" "$t_parse" "$t_derive" \
     "$t_verify" "$t_gen" "$(jq .timings.compile_s "$work/$s/solution.json")" "$(jq .timings.run_s "$work/$s/solution.json")" \
     "$t_solve" "$(jq '.restarts // "-"' "$work/$s/solution.json")" "$(jq '.legs // [] | length' "$work/$s/solution.json")" \
-    "$(jq '.homotopy | length' "$work/$s/solution.json")" \
+    "$(jq '.homotopy | length' "$work/$s/solution.json")" "$(jq '.passes // 1' "$work/$s/solution.json")" \
     "$(jq -r .status "$work/$s/solution.json")" \
-    "$(jq -r 'if .final_mass_kg then "m_f \(.final_mass_kg) kg" else "tof \(.tof_days) d" end + ", max|F| \(.max_residual)"' \
+    "$(jq -r 'if .final_mass_kg then "m0 \(.initial_mass_kg) kg, m_f \(.final_mass_kg) kg" else "tof \(.tof_days) d" end + ", max|F| \(.max_residual)"' \
       "$work/$s/solution.json"), verify $(jq -r .verdict "$work/$s/verify.json"), score $(jq .total "$work/$s/score.json")"
   front=$(echo "$t_parse + $t_derive + $t_verify" | bc -l)
   printf '      parse+derive+verify %.3f s (target < 1 s: ratio %.3f); verify %.3f s (target < 1 s: ratio %.3f); solve cold %.3f s (target < 30 s: ratio %.3f)\n' \
