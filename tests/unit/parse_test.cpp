@@ -407,6 +407,17 @@ TEST(ParseEvents, FlybyAndGravityAssist) {
                "the clause names Venus but the event is at Mars");
 }
 
+TEST(ParseEvents, AStayMustBeAbleToEndBeforeTheNextWindow) {
+  expect_error(tour(kNikko + kDeparture +
+                    "The spacecraft rendezvouses with Nikko between day 100 and day 200 and stays there for 300 "
+                    "days.\nThe spacecraft flies by Mars between day 300 and day 350.\n"),
+               "its window, day 300 to day 350, ends before the stay at Nikko can end (day 400 at the earliest)");
+  expect_error(tour(kNikko + kDeparture +
+                    "The spacecraft rendezvouses with Nikko between day 100 and day 200 and stays there for 900 "
+                    "days.\n"),
+               "the stay at Nikko cannot end before the final time (day 981.1)");
+}
+
 TEST(ParseEvents, MinimumInitialMassAndSpeedBounds) {
   const std::string head = replaced(kHead, "an initial mass of 2000 kg", "a final mass of 1500 kg");
   const json s = valid(head + kNikko + kDeparture +

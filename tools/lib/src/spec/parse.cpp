@@ -1009,8 +1009,15 @@ struct Builder {
         fail(e.where, "its window, " + window + ", starts before the window of the event at " + previous->body +
                           " (day " + num_text(previous->window_lo) + " to day " + num_text(previous->window_hi) +
                           ") ends: state the events in the order they happen, with windows that do not overlap");
+      if (previous && previous->stay && !(e.window_hi > previous->window_lo + *previous->stay))
+        fail(e.where, "its window, " + window + ", ends before the stay at " + previous->body +
+                          " can end (day " + num_text(previous->window_lo + *previous->stay) +
+                          " at the earliest): widen or move the windows");
       previous = &e;
     }
+    if (previous && previous->stay && !(end > previous->window_lo + *previous->stay))
+      fail(previous->where, "the stay at " + previous->body + " cannot end before the final time (day " +
+                                num_text(end) + ")");
     double dropped = 0;
     for (const auto& e : events) {
       if (!e.drop) continue;
