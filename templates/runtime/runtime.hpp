@@ -1084,6 +1084,34 @@ bool continuation_attempt(const Settings& s, const EventPlan& plan, Guess&& init
       last = &full;
       converged = homotopy_step(full, y, 0.0, s.final_residual, r, admissible, info, res);
     }
+    // A parameter that moves nothing at the solution (a swing-by's plane angle at delta = 0 or pi)
+    // leaves its stationarity row satisfied for any value: a coordinate pole, not an optimum.
+    const auto at_pole = [&](const std::vector<double>& z) {
+      std::vector<double> G0(N), G(N);
+      try {
+        shooting_function(z.data(), 0.0, prop, G0.data());
+        for (const auto& ev : plan.events)
+          for (const auto& [v, row] : ev.parameters) {
+            std::vector<double> moved = z;
+            moved[v] += 1e-4;
+            shooting_function(moved.data(), 0.0, prop, G.data());
+            double change = 0, size = 0;
+            for (int i = 0; i < N; ++i) {
+              bool own = false;
+              for (const auto& e2 : plan.events)
+                for (const auto& [v2, row2] : e2.parameters) own = own || i == row2;
+              if (own) continue;
+              change = std::max(change, std::fabs(G[i] - G0[i]));
+              size = std::max(size, std::fabs(G0[i]));
+            }
+            if (!(change > 1e-12 * (1 + size))) return true;
+          }
+      } catch (const numerical_error&) {
+        return true;
+      }
+      return false;
+    };
+    if (converged && has_parameters && at_pole(y)) converged = false;
     if (converged) {
       r.status = "converged";
       r.method = std::string("events off, then continuation onto the events' targets") +
