@@ -23,6 +23,7 @@ inline Settings read_settings(const std::string& path) {
   s.eps_min = j.value("eps_min", s.eps_min);
   s.eps_first_ratio = j.value("eps_first_ratio", s.eps_first_ratio);
   s.leg_attempts = j.value("leg_attempts", s.leg_attempts);
+  s.best_of = j.value("best_of", s.best_of);
   return s;
 }
 
@@ -147,6 +148,31 @@ inline int run(int argc, char** argv) {
                         {"value", b.value},
                         {"multiplier", b.multiplier}});
     j["bounds"] = bounds;
+  }
+  if (!r.optima.empty()) {
+    nlohmann::json optima = nlohmann::json::array();
+    for (const auto& o : r.optima) {
+      nlohmann::json entry = {{"attempt", o.attempt},
+                              {"method", o.method},
+                              {"objective", recorded(o.objective)},
+                              {"max_residual", recorded(o.max_residual)}};
+      if (problem::kMinimumFuel && problem::kMassIndex >= 0 && std::isfinite(o.objective))
+        entry["propellant_kg"] = o.objective * problem::kMassUnitKg;
+      else if (std::isfinite(o.objective))
+        entry["tof_days"] = o.objective * problem::kTimeUnitDays;
+      optima.push_back(entry);
+    }
+    j["optima"] = optima;
+  }
+  if (!r.continuation.empty()) {
+    nlohmann::json steps = nlohmann::json::array();
+    for (const auto& c : r.continuation)
+      steps.push_back({{"stage", c.stage},
+                       {"value", c.value},
+                       {"converged", c.converged},
+                       {"max_residual", recorded(c.max_residual)},
+                       {"evaluations", c.evaluations}});
+    j["continuation"] = steps;
   }
   if (!r.legs.empty()) {
     nlohmann::json legs = nlohmann::json::array();

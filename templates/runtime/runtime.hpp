@@ -165,6 +165,7 @@ struct Settings {
   double eps_min = 1e-6;  // below this the next step is eps = 0
   double eps_first_ratio = 0.5;
   int leg_attempts = 20;  // random guesses per leg before the attempt is abandoned
+  int best_of = 1;  // converged attempts compared (the best objective is kept): local optima differ
   int max_steps = 200000;  // integrator steps per arc
 };
 
@@ -371,7 +372,6 @@ inline BoundState& bound_state() {
   return state;
 }
 
-
 // Row k of the shooting function for bound k: records psi and returns it when the bound is
 // active, else the inactive expression (its multiplier).
 inline double bound_row(int k, double psi, double inactive) {
@@ -383,6 +383,25 @@ inline double bound_row(int k, double psi, double inactive) {
   b.value[k] = psi;
   return b.active[k] ? psi : inactive;
 }
+
+// One solve of the continuation onto the events (continuation_attempt): its stage ("events off",
+// "epochs", "targets", "parameters"), the stage's homotopy value (the guess number, 0, tau or
+// kappa) and the outcome.
+struct ContinuationStep {
+  std::string stage;
+  double value;
+  bool converged;
+  double max_residual;
+  int evaluations;
+};
+
+// A converged attempt and its objective (smaller is better: the propellant, or the flight time).
+struct Optimum {
+  int attempt;
+  std::string method;
+  double objective;  // normalized: the propellant or tf - t0
+  double max_residual;
+};
 
 struct Result {
   std::string status = "not_converged";
@@ -400,6 +419,8 @@ struct Result {
   int attempts = 0;
   int iterations = 0;
   std::vector<HomotopyStep> homotopy;
+  std::vector<ContinuationStep> continuation;
+  std::vector<Optimum> optima;  // every converged attempt, with settings.best_of > 1
 };
 
 inline std::string hybrd_meaning(int info) {
@@ -419,10 +440,20 @@ inline std::string hybrd_meaning(int info) {
   }
 }
 
+// How hybrd starts: hybrd1's choice (trust region 100 times the unscaled |x|) suits random guesses
+// and the eps steps; a continuation step starts next to its solution and takes the trust region
+// at |D x| with D the Jacobian's column norms (hybrd mode 1, factor 1), so it does not jump to
+// another branch.
+struct HybrdStart {
+  double factor = 100;
+  bool scaled = false;  // hybrd mode 1: D from the Jacobian's column norms; else D = 1 (mode 2)
+};
+constexpr HybrdStart kContinuationStart{1.0, true};
+
 class Shooter {
  public:
-  explicit Shooter(const Settings& s, Residual residual = shooting_function)
-      : settings_(s), prop_(s), residual_(std::move(residual)) {}
+  explicit Shooter(const Settings& s, Residual residual = shooting_function, HybrdStart start = {})
+      : settings_(s), prop_(s), residual_(std::move(residual)), start_(start) {}
 
   // hybrd1 from x at eps; true if max|F| <= accept. Returns the info code through `info`.
   bool solve(std::vector<double>& x, double eps, double accept, int& info, double& max_res) {
@@ -432,8 +463,19 @@ class Shooter {
     size_ = n;
     std::vector<double> F(n), wa(static_cast<std::size_t>(n * (3 * n + 13)) / 2 + 1);
     const int before = evaluations;
-    info = hybrd1(&Shooter::callback, this, n, x.data(), F.data(), settings_.hybrd_tol, wa.data(),
-                  static_cast<int>(wa.size()));
+    if (start_.factor == 100 && !start_.scaled) {
+      info = hybrd1(&Shooter::callback, this, n, x.data(), F.data(), settings_.hybrd_tol, wa.data(),
+                    static_cast<int>(wa.size()));
+    } else {  // hybrd1's call with the trust region's start changed
+      const int lr = n * (n + 1) / 2;
+      double* w = wa.data();
+      for (int j = 0; j < n; ++j) w[j] = 1;
+      int nfev = 0;
+      info = hybrd(&Shooter::callback, this, n, x.data(), F.data(), settings_.hybrd_tol, 200 * (n + 1), n - 1,
+                   n - 1, 0.0, w, start_.scaled ? 1 : 2, start_.factor, 0, &nfev, w + 6 * n + lr, n, w + 6 * n, lr,
+                   w + n, w + 2 * n, w + 3 * n, w + 4 * n, w + 5 * n);
+      if (info == 5) info = 4;
+    }
     if (failed_) info = -1;
     // hybrd1 returns the x of the smallest residual it saw; evaluate there for the record.
     if (!evaluate(x.data(), F.data())) {
@@ -481,6 +523,7 @@ class Shooter {
   const Settings& settings_;
   Propagator prop_;
   Residual residual_;
+  HybrdStart start_;
   int size_ = problem::kNumVars;
   double eps_ = 1;
   bool failed_ = false;
@@ -529,12 +572,78 @@ bool homotopy_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& 
   return false;
 }
 
+// The objective of a converged x (smaller is better): the propellant of a minimum-fuel or
+// minimum-initial-mass problem (summed over the arcs: a dropped lander is not propellant), the
+// flight time tf - t0 of a minimum-time one.
+inline double objective_of(const Settings& s, const std::vector<double>& x) {
+  Propagator prop(s);
+  std::vector<Sample> samples;
+  prop.samples = &samples;
+  std::vector<double> F(problem::kNumVars);
+  try {
+    shooting_function(x.data(), 0.0, prop, F.data());
+  } catch (const numerical_error&) {
+    return INFINITY;
+  }
+  if (samples.empty()) return INFINITY;
+  if (problem::kMinimumFuel && problem::kMassIndex >= 0) {
+    double propellant = 0;
+    for (std::size_t i = 1; i < samples.size(); ++i)
+      if (samples[i].arc == samples[i - 1].arc)
+        propellant += samples[i - 1].y[problem::kMassIndex] - samples[i].y[problem::kMassIndex];
+    return propellant;
+  }
+  return samples.back().t - samples.front().t;
+}
+
+// Local optima: with settings.best_of > 1 the restarts go on after a converged attempt until
+// best_of have converged, and the best objective is kept. `converged` is called after each attempt:
+// true when the search is over.
+class BestOf {
+ public:
+  explicit BestOf(const Settings& s) : settings_(s) {}
+  bool converged(Result& r) {
+    if (r.status != "converged") return false;
+    ++found_;
+    if (settings_.best_of <= 1) return true;
+    const double objective = objective_of(settings_, r.x);
+    r.optima.push_back({r.attempts, r.method, objective, r.max_residual});
+    if (objective < best_objective_) {
+      best_objective_ = objective;
+      best_ = r;
+    }
+    if (found_ >= settings_.best_of) return true;
+    r.status = "not_converged";
+    return false;
+  }
+  // After the loop: the best converged attempt, if any (also when time ran out after it).
+  void finish(Result& r) const {
+    if (settings_.best_of <= 1 || found_ == 0) return;
+    r.status = "converged";
+    r.detail.clear();
+    r.method = best_.method;
+    r.info = best_.info;
+    r.x = best_.x;
+    r.F = best_.F;
+    r.eps = best_.eps;
+    r.max_residual = best_.max_residual;
+  }
+  int found() const { return found_; }
+
+ private:
+  const Settings& settings_;
+  int found_ = 0;
+  double best_objective_ = INFINITY;
+  Result best_;
+};
+
 // Seeded random restarts, each continued in eps from settings.eps_start to 0.
 template <class Guess, class Admissible>
 Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& admissible) {
   Result r;
   Shooter shooter(s);
   std::mt19937_64 rng(s.seed);
+  BestOf best(s);
   while (r.attempts < s.max_attempts) {
     if (wall_seconds() > s.time_limit_s) {
       r.status = "timeout";
@@ -551,30 +660,121 @@ Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& adm
       r.F = shooter.last_F;
       r.eps = 0;
       r.max_residual = res;
-      break;
+      if (best.converged(r)) break;
     }
   }
+  best.finish(r);
   if (r.status == "not_converged")
     r.detail = "no seeded attempt reached eps = 0 (" + std::to_string(r.attempts) + " attempts)";
   r.evaluations = shooter.evaluations;
   return r;
 }
 
-// Problems with interior events (the RESIDUAL module's LegPlan): each attempt first
-// solves the legs one after the other at eps_start, each as if the trajectory ended at its event
-// (leg k starts from the state leg k-1 reached); from those, multiple shooting over all legs is
+// Problems with interior events (the RESIDUAL module's LegPlan): an attempt first solves the
+// legs one after the other at eps_start, each as if the trajectory ended at its event (leg k
+// starts from the state leg k-1 reached); from those, multiple shooting over all legs is
 // continued in eps to 0 and the solution is polished by single shooting. The legs are small
-// problems that converge from random guesses where the whole one rarely does.
+// problems that converge from random guesses where the whole one rarely does. True when the
+// attempt converged (r then holds the solution).
 template <class Guess, class Admissible>
-Result legs_homotopy_solve(const Settings& s, const LegPlan& plan, Guess&& initial_guess, Admissible&& admissible) {
+bool legs_attempt(const Settings& s, const LegPlan& plan, Guess&& initial_guess, Admissible&& admissible,
+                  std::mt19937_64& rng, Shooter& single, Result& r, int& evaluations) {
   constexpr int n = problem::kNumStates, N = problem::kNumVars;
   const int events = static_cast<int>(plan.variables.size()) - 1;
+  std::uniform_real_distribution<double> symmetric(-1.0, 1.0);
+  std::vector<double> x(N), starts(static_cast<std::size_t>(events * n));
+  const auto guess = [&] {
+    initial_guess(rng, x.data());
+    for (const int i : plan.held_at_zero) x[i] = 0;
+    if (r.attempts == 1)
+      for (const int i : plan.time_fractions) x[i] = 0.5;  // first attempt: the middle of every window
+    const BoundState& bounds = bound_state();
+    for (const auto& w : plan.window_edges)
+      if (static_cast<std::size_t>(w.bound) < bounds.active.size() && bounds.active[w.bound]) x[w.fraction] = w.edge;
+  };
+  guess();
+  bool legs_solved = true;
+  for (int k = 0; k <= events && legs_solved; ++k) {
+    const auto& own = plan.variables[k];
+    const int m = static_cast<int>(own.size()) + (k > 0 ? n : 0);
+    const Residual leg = [&, k](const double* z, double eps, Propagator& prop, double* F) {
+      std::vector<double> xx = x, st = starts;
+      for (std::size_t j = 0; j < own.size(); ++j) xx[own[j]] = z[j];
+      if (k > 0)
+        for (int i = 0; i < n; ++i) st[(k - 1) * n + i] = z[own.size() + i];
+      const Legs legs{k, st.data(), nullptr};
+      shooting_legs(xx.data(), eps, prop, F, &legs);
+    };
+    Shooter shooter(s, leg);
+    bool solved = false;
+    for (int tries = 0; tries < s.leg_attempts && !solved; ++tries) {
+      std::vector<double> z(m);
+      if (k == 0) {
+        if (tries > 0) guess();
+        for (std::size_t j = 0; j < own.size(); ++j) z[j] = x[own[j]];
+      } else {
+        // Like leg 0's guess: (lambda0, start costates) uniform on the sphere with lambda0 > 0,
+        // then scaled to leg 0's lambda0 (which this leg shares and cannot change).
+        double norm2 = 0;
+        for (auto& v : z) {
+          v = symmetric(rng);
+          norm2 += v * v;
+        }
+        const double lambda0 = 0.5 * (1 + symmetric(rng));
+        const double scale = x[plan.variables[0][0]] / lambda0;
+        for (auto& v : z) v *= scale * std::sqrt((1 - lambda0 * lambda0) / norm2);
+      }
+      int info = 0;
+      double res = 0;
+      ++r.iterations;
+      solved = shooter.solve(z, s.eps_start, s.accept_residual, info, res);
+      if (solved) {
+        for (std::size_t j = 0; j < own.size(); ++j) x[own[j]] = z[j];
+        if (k > 0)
+          for (int i = 0; i < n; ++i) starts[(k - 1) * n + i] = z[own.size() + i];
+        solved = k > 0 || x[plan.variables[0][0]] > 0;  // lambda0 > 0; the rest is checked joined
+      }
+      r.legs.push_back({k, solved, res, shooter.last_step_evaluations});
+    }
+    evaluations += shooter.evaluations;
+    legs_solved = solved;
+  }
+  if (!legs_solved) return false;
+  // Multiple shooting over [x, starts]: F = [the problem's equations, costate continuity].
+  const Residual multiple = [&](const double* z, double eps, Propagator& prop, double* F) {
+    const Legs legs{-1, z + N, F + N};
+    shooting_legs(z, eps, prop, F, &legs);
+  };
+  Shooter shooter(s, multiple);
+  std::vector<double> z(x);
+  z.insert(z.end(), starts.begin(), starts.end());
+  double res = 0;
+  bool converged = false;
+  if (homotopy_to_zero(s, shooter, z, r, admissible, res)) {
+    x.assign(z.begin(), z.begin() + N);
+    int info = 0;
+    if (homotopy_step(single, x, 0.0, s.final_residual, r, admissible, info, res)) {
+      r.status = "converged";
+      r.method = "legs, then multiple shooting, then single shooting";
+      r.x = x;
+      r.F = single.last_F;
+      r.eps = 0;
+      r.max_residual = res;
+      converged = true;
+    }
+  }
+  evaluations += shooter.evaluations;
+  return converged;
+}
+
+template <class Guess, class Admissible>
+Result legs_homotopy_solve(const Settings& s, const LegPlan& plan, Guess&& initial_guess, Admissible&& admissible) {
   Result r;
   r.method = "legs, then multiple shooting, then single shooting";
   std::mt19937_64 rng(s.seed);
-  std::uniform_real_distribution<double> symmetric(-1.0, 1.0);
   Shooter single(s);
   int evaluations = 0;
+  BestOf best(s);
   while (r.attempts < s.max_attempts && r.status == "not_converged") {
     if (wall_seconds() > s.time_limit_s) {
       r.status = "timeout";
@@ -582,98 +782,510 @@ Result legs_homotopy_solve(const Settings& s, const LegPlan& plan, Guess&& initi
       break;
     }
     ++r.attempts;
-    std::vector<double> x(N), starts(static_cast<std::size_t>(events * n));
-    const auto guess = [&] {
-      initial_guess(rng, x.data());
-      for (const int i : plan.held_at_zero) x[i] = 0;
-      if (r.attempts == 1)
-        for (const int i : plan.time_fractions) x[i] = 0.5;  // first attempt: the middle of every window
-      const BoundState& bounds = bound_state();
-      for (const auto& w : plan.window_edges)
-        if (static_cast<std::size_t>(w.bound) < bounds.active.size() && bounds.active[w.bound]) x[w.fraction] = w.edge;
-    };
-    guess();
-    bool legs_solved = true;
-    for (int k = 0; k <= events && legs_solved; ++k) {
-      const auto& own = plan.variables[k];
-      const int m = static_cast<int>(own.size()) + (k > 0 ? n : 0);
-      const Residual leg = [&, k](const double* z, double eps, Propagator& prop, double* F) {
-        std::vector<double> xx = x, st = starts;
-        for (std::size_t j = 0; j < own.size(); ++j) xx[own[j]] = z[j];
-        if (k > 0)
-          for (int i = 0; i < n; ++i) st[(k - 1) * n + i] = z[own.size() + i];
-        const Legs legs{k, st.data(), nullptr};
-        shooting_legs(xx.data(), eps, prop, F, &legs);
-      };
-      Shooter shooter(s, leg);
-      bool solved = false;
-      for (int tries = 0; tries < s.leg_attempts && !solved; ++tries) {
-        std::vector<double> z(m);
-        if (k == 0) {
-          if (tries > 0) guess();
-          for (std::size_t j = 0; j < own.size(); ++j) z[j] = x[own[j]];
-        } else {
-          // Like leg 0's guess: (lambda0, start costates) uniform on the sphere with lambda0 > 0,
-          // then scaled to leg 0's lambda0 (which this leg shares and cannot change).
-          double norm2 = 0;
-          for (auto& v : z) {
-            v = symmetric(rng);
-            norm2 += v * v;
-          }
-          const double lambda0 = 0.5 * (1 + symmetric(rng));
-          const double scale = x[plan.variables[0][0]] / lambda0;
-          for (auto& v : z) v *= scale * std::sqrt((1 - lambda0 * lambda0) / norm2);
-        }
-        int info = 0;
-        double res = 0;
-        ++r.iterations;
-        solved = shooter.solve(z, s.eps_start, s.accept_residual, info, res);
-        if (solved) {
-          for (std::size_t j = 0; j < own.size(); ++j) x[own[j]] = z[j];
-          if (k > 0)
-            for (int i = 0; i < n; ++i) starts[(k - 1) * n + i] = z[own.size() + i];
-          solved = k > 0 || x[plan.variables[0][0]] > 0;  // lambda0 > 0; the rest is checked joined
-        }
-        r.legs.push_back({k, solved, res, shooter.last_step_evaluations});
-      }
-      evaluations += shooter.evaluations;
-      legs_solved = solved;
-    }
-    if (!legs_solved) continue;
-    // Multiple shooting over [x, starts]: F = [the problem's equations, costate continuity].
-    const Residual multiple = [&](const double* z, double eps, Propagator& prop, double* F) {
-      const Legs legs{-1, z + N, F + N};
-      shooting_legs(z, eps, prop, F, &legs);
-    };
-    Shooter shooter(s, multiple);
-    std::vector<double> z(x);
-    z.insert(z.end(), starts.begin(), starts.end());
-    double res = 0;
-    if (homotopy_to_zero(s, shooter, z, r, admissible, res)) {
-      x.assign(z.begin(), z.begin() + N);
-      int info = 0;
-      if (homotopy_step(single, x, 0.0, s.final_residual, r, admissible, info, res)) {
-        r.status = "converged";
-        r.x = x;
-        r.F = single.last_F;
-        r.eps = 0;
-        r.max_residual = res;
-      }
-    }
-    evaluations += shooter.evaluations;
+    legs_attempt(s, plan, initial_guess, admissible, rng, single, r, evaluations);
+    if (best.converged(r)) break;
   }
+  best.finish(r);
   if (r.status == "not_converged")
     r.detail = "no seeded attempt reached eps = 0 (" + std::to_string(r.attempts) + " attempts)";
   r.evaluations = evaluations + single.evaluations;
   return r;
 }
 
+// The events' own shooting variables and rows (RESIDUAL module), for the continuation onto the
+// events. An event is passable when it is instantaneous and its state map is the identity with
+// its parameters at 0: the trajectory of the problem without it (its multipliers and parameters
+// 0, its epoch held) then solves every row of the event but its constraint c = 0.
+struct EventRows {
+  std::vector<std::array<int, 2>> constraints;  // {multiplier nu_j, row of c_j = 0}
+  std::array<int, 2> epoch{-1, -1};             // {epoch as a window fraction, row of its free-epoch condition}
+  std::vector<std::array<int, 2>> parameters;   // {Category-C parameter, row of its stationarity}
+  std::vector<std::array<int, 2>> costates;     // {costate just after the event, row of its jump}
+};
+
+struct EventPlan {
+  bool passable = false;  // every event passable
+  int multiplier = 0;     // lambda0
+  std::vector<int> sphere;  // the normalization's variables, lambda0 among them
+  std::vector<EventRows> events;
+};
+
+// Continuation in a homotopy parameter from `start` down to 0 (as homotopy_to_zero does in eps):
+// steps in log(value) that grow after a success and halve after a failure, the last step to 0
+// from below start * 1e-10. `step(value)` solves there from the last solution and keeps it on
+// success.
+template <class Step>
+bool continue_to_zero(const Settings& s, double start, Step&& step) {
+  if (!step(start)) return false;
+  double value = start, log_step = std::log(1.0 / s.eps_first_ratio), zero_below = start * 1e-10;
+  while (wall_seconds() <= s.time_limit_s) {
+    const bool to_zero = value <= zero_below;
+    const double next = to_zero ? 0.0 : std::max(value * std::exp(-log_step), 0.5 * zero_below);
+    if (step(next)) {
+      if (to_zero) return true;
+      value = next;
+      log_step = std::min(log_step * 1.5, std::log(20.0));
+    } else if (to_zero) {
+      zero_below *= 0.01;
+      if (zero_below < start * 1e-16) return false;
+    } else {
+      log_step *= 0.5;
+      if (log_step < std::log(1.02)) return false;
+    }
+  }
+  return false;
+}
+
+// One attempt of the continuation onto the events, all at eps_start:
+//   events off: the problem without its events (each event's rows held: nu = 0, parameters = 0,
+//     epoch = its reference) from a scale-free random guess: lambda0 = 1 and every other variable
+//     of the sphere of magnitude log-uniform in [1e-3, 1], random sign, then projected on the sphere;
+//   epochs: each event's reference epoch where that trajectory passes closest to the event's
+//     target (the first attempt from it) or uniform in its window (later attempts);
+//   targets: Newton homotopy F(x) - (1 - tau) F(x_off) = 0, tau 0 -> 1, with the parameters held at
+//     0; at tau = 0 the targets sit where the eventless trajectory passes, at tau = 1 they are the
+//     events' own;
+//   parameters: stationarity + kappa lambda0 p = 0 (the cost plus kappa/2 |p|^2), kappa from large
+//     to 0: the parameters leave 0 in the direction that lowers the cost (with p held at 0 a swing-by
+//     angle delta = 0 solves every row for any other angle, a coordinate pole, not a minimum);
+//   eps: single shooting continued from eps_start to 0.
+// True when it converged (r then holds the solution).
+template <class Guess, class Admissible>
+bool continuation_attempt(const Settings& s, const EventPlan& plan, Guess&& initial_guess, Admissible&& admissible,
+                          std::mt19937_64& rng, std::vector<double>& eventless, int& uses, Result& r,
+                          int& evaluations) {
+  constexpr int N = problem::kNumVars;
+  const double eps = s.eps_start;
+  const int nev = static_cast<int>(plan.events.size());
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> reference(static_cast<std::size_t>(nev), 0.5);
+  const auto hold_events = [&](const double* x, double* F) {
+    for (int k = 0; k < nev; ++k) {
+      const EventRows& e = plan.events[k];
+      for (const auto& [v, row] : e.constraints) F[row] = x[v];
+      if (e.epoch[0] >= 0) F[e.epoch[1]] = x[e.epoch[0]] - reference[k];
+      for (const auto& [v, row] : e.parameters) F[row] = x[v];
+    }
+  };
+  const auto snap = [&](std::vector<double>& x) {
+    for (int k = 0; k < nev; ++k) {
+      const EventRows& e = plan.events[k];
+      for (const auto& [v, row] : e.constraints) x[v] = 0;
+      if (e.epoch[0] >= 0) x[e.epoch[0]] = reference[k];
+      for (const auto& [v, row] : e.parameters) x[v] = 0;
+    }
+  };
+  // With the event off its jump rows read lambda(t-) - lambda(t+) = 0: the costates after it that are
+  // shooting variables are set to those before it (event by event, as each one moves the next).
+  Propagator prop(s);
+  std::vector<double> F(N);
+  const auto carry_costates = [&](std::vector<double>& x) {
+    for (int pass = 0; pass < nev; ++pass) {
+      try {
+        shooting_function(x.data(), eps, prop, F.data());
+      } catch (const numerical_error&) {
+        return;
+      }
+      for (const auto& e : plan.events)
+        for (const auto& [v, row] : e.costates)
+          if (std::isfinite(F[row])) x[v] += F[row];
+    }
+  };
+  const Residual off = [&](const double* x, double e, Propagator& prop, double* F) {
+    shooting_function(x, e, prop, F);
+    hold_events(x, F);
+  };
+  Shooter shooter_off(s, off, kContinuationStart);
+  const auto solve = [&](Shooter& shooter, std::vector<double>& x, const char* stage, double value) {
+    int info = 0;
+    double res = 0;
+    ++r.iterations;
+    const bool ok = shooter.solve(x, eps, s.accept_residual, info, res) && admissible(x.data());
+    r.continuation.push_back({stage, value, ok, res, shooter.last_step_evaluations});
+    return ok;
+  };
+  const auto done = [&](bool ok) {
+    evaluations += shooter_off.evaluations;
+    return ok;
+  };
+
+  // Events off, from scale-free random guesses, in the variables and rows of no event (the
+  // event's own are set from them: nu = 0, parameters 0, epochs at the reference, the costates
+  // after it carried over), once: later attempts start from the same eventless solution.
+  std::vector<int> own_variables, own_rows;
+  {
+    std::vector<bool> event_variable(N), event_row(N);
+    for (const auto& e : plan.events) {
+      for (const auto* pairs : {&e.constraints, &e.parameters, &e.costates})
+        for (const auto& [v, row] : *pairs) event_variable[v] = event_row[row] = true;
+      if (e.epoch[0] >= 0) event_variable[e.epoch[0]] = event_row[e.epoch[1]] = true;
+    }
+    for (int i = 0; i < N; ++i) {
+      if (!event_variable[i]) own_variables.push_back(i);
+      if (!event_row[i]) own_rows.push_back(i);
+    }
+  }
+  std::vector<double> x(N);
+  if (eventless.empty()) {
+    const bool reduced = own_variables.size() == own_rows.size();
+    std::vector<double> base(N);
+    const auto expand = [&](const double* z, std::vector<double>& xx) {
+      xx = base;
+      for (std::size_t j = 0; j < own_variables.size(); ++j) xx[own_variables[j]] = z[j];
+    };
+    const Residual eventless_residual = [&](const double* z, double e, Propagator& p, double* G) {
+      std::vector<double> xx, FF(N);
+      expand(z, xx);
+      for (int pass = 0; pass <= nev; ++pass) {
+        shooting_function(xx.data(), e, p, FF.data());
+        bool carried = false;
+        for (const auto& ev : plan.events)
+          for (const auto& [v, row] : ev.costates) {
+            xx[v] += FF[row];
+            carried = true;
+          }
+        if (!carried) break;
+      }
+      for (std::size_t j = 0; j < own_rows.size(); ++j) G[j] = FF[own_rows[j]];
+    };
+    Shooter shooter_eventless(s, eventless_residual, kContinuationStart);
+    bool off_solved = false;
+    for (int tries = 0; tries < s.leg_attempts && !off_solved; ++tries) {
+      initial_guess(rng, x.data());
+      double norm2 = 0;
+      for (const int i : plan.sphere) {
+        x[i] = i == plan.multiplier ? 1.0 : (unit(rng) < 0.5 ? -1.0 : 1.0) * std::pow(10.0, -3.0 + 3.0 * unit(rng));
+        norm2 += x[i] * x[i];
+      }
+      for (const int i : plan.sphere) x[i] /= std::sqrt(norm2);
+      snap(x);
+      carry_costates(x);
+      if (reduced) {
+        base = x;
+        std::vector<double> z(own_variables.size());
+        for (std::size_t j = 0; j < z.size(); ++j) z[j] = x[own_variables[j]];
+        int info = 0;
+        double res = 0;
+        ++r.iterations;
+        off_solved = shooter_eventless.solve(z, eps, s.accept_residual, info, res);
+        expand(z.data(), x);
+        carry_costates(x);
+        off_solved = off_solved && admissible(x.data());
+        r.continuation.push_back({"events off", static_cast<double>(tries), off_solved, res,
+                                  shooter_eventless.last_step_evaluations});
+      } else {
+        off_solved = solve(shooter_off, x, "events off", tries);
+      }
+    }
+    evaluations += shooter_eventless.evaluations;
+    if (!off_solved) return done(false);
+    eventless = x;
+  }
+  x = eventless;
+  const bool closest = uses++ == 0;
+
+  // Reference epochs: where the eventless trajectory passes closest to each target (its c rows
+  // are the offsets: the first attempt from the eventless solution), or at random (later ones).
+  const auto distance = [&](const std::vector<double>& z, int k) -> double {
+    try {
+      shooting_function(z.data(), eps, prop, F.data());
+    } catch (const numerical_error&) {
+      return INFINITY;
+    }
+    double d2 = 0;
+    for (const auto& [v, row] : plan.events[k].constraints) d2 += F[row] * F[row];
+    return std::isfinite(d2) ? d2 : INFINITY;
+  };
+  for (int k = 0; k < nev; ++k) {
+    const int v = plan.events[k].epoch[0];
+    if (v < 0) continue;
+    if (closest) {
+      std::vector<double> z = x;
+      double best = INFINITY;
+      for (int j = 0; j <= 40; ++j) {
+        z[v] = j / 40.0;
+        const double d = distance(z, k);
+        if (d < best) {
+          best = d;
+          reference[k] = z[v];
+        }
+      }
+    } else {
+      reference[k] = unit(rng);
+    }
+    x[v] = reference[k];
+  }
+  snap(x);
+  carry_costates(x);
+  if (!solve(shooter_off, x, "epochs", 0)) return done(false);
+  snap(x);  // exactly 0: a finite-difference step on a variable of 1e-80 would be lost
+
+  // Targets: the Newton homotopy from the eventless trajectory's offsets.
+  std::vector<double> F0(N);
+  try {
+    shooting_function(x.data(), eps, prop, F0.data());
+  } catch (const numerical_error&) {
+    return done(false);
+  }
+  double tau = 0;
+  const Residual targets = [&](const double* z, double e, Propagator& p, double* G) {
+    shooting_function(z, e, p, G);
+    for (int i = 0; i < N; ++i) G[i] -= (1 - tau) * F0[i];
+    for (const auto& ev : plan.events)
+      for (const auto& [v, row] : ev.parameters) G[row] = z[v];
+  };
+  Shooter shooter_targets(s, targets, kContinuationStart);
+  {
+    std::vector<double> previous = x;
+    double tau_previous = 0, step = 0.1;
+    bool reached = false;
+    while (!reached && wall_seconds() <= s.time_limit_s) {
+      const double from = tau, next = std::min(1.0, tau + step);
+      std::vector<double> trial = x;
+      tau = next;
+      bool solved = false;
+      if (from > 0) {  // secant predictor along the path; where the path bends, from x itself
+        for (int i = 0; i < N; ++i) trial[i] += (x[i] - previous[i]) / (from - tau_previous) * (next - from);
+        solved = solve(shooter_targets, trial, "targets", next);
+        if (!solved) trial = x;
+      }
+      if (solved || solve(shooter_targets, trial, "targets", next)) {
+        previous = x;
+        tau_previous = from;
+        x = trial;
+        reached = next >= 1.0;
+        step *= 1.5;
+      } else {
+        tau = from;
+        step *= 0.5;
+        if (step < 1e-3) break;
+      }
+    }
+    evaluations += shooter_targets.evaluations;
+    if (!reached) return done(false);
+  }
+
+  // Parameters: from 0 to stationarity, kappa from large to 0.
+  bool has_parameters = false;
+  double stationarity = 0;
+  try {
+    shooting_function(x.data(), eps, prop, F.data());
+  } catch (const numerical_error&) {
+    return done(false);
+  }
+  for (const auto& ev : plan.events)
+    for (const auto& [v, row] : ev.parameters) {
+      has_parameters = true;
+      stationarity = std::max(stationarity, std::fabs(F[row]));
+    }
+  if (has_parameters) {
+    double kappa = 0;
+    // The penalty's weight of each parameter: 1 on the first attempt from the eventless solution,
+    // log-uniform in [0.1, 10] on later ones, so that they follow other paths.
+    std::vector<double> weight(N, 1.0);
+    if (!closest)
+      for (auto& w : weight) w = std::pow(10.0, -1.0 + 2.0 * unit(rng));
+    const Residual penalized = [&](const double* z, double e, Propagator& p, double* G) {
+      shooting_function(z, e, p, G);
+      for (const auto& ev : plan.events)
+        for (const auto& [v, row] : ev.parameters) G[row] += kappa * weight[v] * z[plan.multiplier] * z[v];
+    };
+    Shooter shooter_parameters(s, penalized, kContinuationStart);
+    // The first kappa moves the parameters by about 1e-3.
+    const double start = stationarity > 0 ? stationarity / (1e-3 * x[plan.multiplier]) : 1.0;
+    // Secant predictor in log(kappa) from the last two solutions (the parameters move fast
+    // where kappa meets the cost's own curvature).
+    std::vector<double> previous;  // the solution before x on the path (none before the first kappa)
+    double log_previous = 0, log_current = 0;
+    bool on_path = false;  // x solves at log_current (before the first kappa it holds p = 0)
+    const bool ok = continue_to_zero(s, start, [&](double value) {
+      kappa = value;
+      std::vector<double> trial = x;
+      bool solved = false;
+      if (value > 0 && !previous.empty()) {
+        for (int i = 0; i < N; ++i)
+          trial[i] += (x[i] - previous[i]) * (std::log(value) - log_current) / (log_current - log_previous);
+        solved = solve(shooter_parameters, trial, "parameters", value);
+        if (!solved) trial = x;  // the path bends: from the last solution itself
+      }
+      if (!solved && !solve(shooter_parameters, trial, "parameters", value)) return false;
+      if (value > 0) {
+        if (on_path) {
+          previous = x;
+          log_previous = log_current;
+        }
+        log_current = std::log(value);
+        on_path = true;
+      }
+      x = trial;
+      return true;
+    });
+    evaluations += shooter_parameters.evaluations;
+    if (!ok) return done(false);
+  }
+
+  // eps to 0 on the whole problem (to the intermediate gate), then the polish to the final gate:
+  // hybrd1 from there, else once more from the continuation's start.
+  Settings to_zero = s;
+  to_zero.final_residual = std::max(s.final_residual, s.accept_residual);
+  Shooter full(s, shooting_function, kContinuationStart), polish(s);
+  double res = 0;
+  int info = 0;
+  bool converged = homotopy_to_zero(to_zero, full, x, r, admissible, res);
+  if (converged) {
+    std::vector<double> y = x;
+    Shooter* last = &polish;
+    converged = homotopy_step(polish, y, 0.0, s.final_residual, r, admissible, info, res);
+    if (!converged) {
+      y = x;
+      last = &full;
+      converged = homotopy_step(full, y, 0.0, s.final_residual, r, admissible, info, res);
+    }
+    // A parameter that moves nothing at the solution (a swing-by's plane angle at delta = 0 or pi)
+    // leaves its stationarity row satisfied for any value: a coordinate pole, not an optimum.
+    const auto at_pole = [&](const std::vector<double>& z) {
+      std::vector<double> G0(N), G(N);
+      try {
+        shooting_function(z.data(), 0.0, prop, G0.data());
+        for (const auto& ev : plan.events)
+          for (const auto& [v, row] : ev.parameters) {
+            std::vector<double> moved = z;
+            moved[v] += 1e-4;
+            shooting_function(moved.data(), 0.0, prop, G.data());
+            double change = 0, size = 0;
+            for (int i = 0; i < N; ++i) {
+              bool own = false;
+              for (const auto& e2 : plan.events)
+                for (const auto& [v2, row2] : e2.parameters) own = own || i == row2;
+              if (own) continue;
+              change = std::max(change, std::fabs(G[i] - G0[i]));
+              size = std::max(size, std::fabs(G0[i]));
+            }
+            if (!(change > 1e-12 * (1 + size))) return true;
+          }
+      } catch (const numerical_error&) {
+        return true;
+      }
+      return false;
+    };
+    if (converged && has_parameters && at_pole(y)) converged = false;
+    if (converged) {
+      r.status = "converged";
+      r.method = std::string("events off, then continuation onto the events' targets") +
+                 (has_parameters ? ", then their parameters" : "") + ", then eps continuation, then single shooting";
+      r.info = info;
+      r.x = y;
+      r.F = last->last_F;
+      r.eps = 0;
+      r.max_residual = res;
+    }
+  }
+  evaluations += full.evaluations + polish.evaluations;
+  return done(converged);
+}
+
+// Problems with interior events: when every event is passable, each attempt first continues from
+// the problem without its events onto them (continuation_attempt), and then tries the legs
+// (legs_attempt); otherwise the legs alone.
+template <class Guess, class Admissible>
+Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const EventPlan& events, Guess&& initial_guess,
+                             Admissible&& admissible) {
+  if (!events.passable) return legs_homotopy_solve(s, legs, initial_guess, admissible);
+  Result r;
+  r.method = "events off, then continuation onto the events; else legs, then multiple shooting";
+  std::mt19937_64 rng(s.seed);
+  Shooter single(s);
+  int evaluations = 0;
+  std::vector<double> eventless;  // the solution without the events, once found
+  int uses = 0;                   // attempts that started from it
+  BestOf best(s);
+  while (r.attempts < s.max_attempts && r.status == "not_converged") {
+    if (wall_seconds() > s.time_limit_s) {
+      r.status = "timeout";
+      r.detail = "time limit reached before convergence";
+      break;
+    }
+    ++r.attempts;
+    continuation_attempt(s, events, initial_guess, admissible, rng, eventless, uses, r, evaluations);
+    const bool continued = r.status == "converged";
+    if (best.converged(r)) break;
+    if (continued || wall_seconds() > s.time_limit_s) continue;
+    legs_attempt(s, legs, initial_guess, admissible, rng, single, r, evaluations);
+    if (best.converged(r)) break;
+  }
+  best.finish(r);
+  if (r.status == "not_converged")
+    r.detail = "no seeded attempt reached eps = 0 (" + std::to_string(r.attempts) + " attempts)";
+  r.evaluations = evaluations + single.evaluations;
+  return r;
+}
+
+// A pass over a new active set, warm from the last pass's solution x (eps = 0): x is smoothed
+// (eps raised step by step to eps_warm, each step a Newton solve from the last), the Newton
+// homotopy F(z) - sigma F(x) = 0 is followed from sigma = 1 (solved by x) to 0 at eps_warm, which
+// moves the bounds that changed from their old rows to their new ones, and eps is continued back
+// to 0. True when eps = 0 was reached (x is then the solution).
+template <class Admissible>
+bool bound_homotopy(const Settings& s, std::vector<double>& x, Result& r, Admissible&& admissible) {
+  Shooter plain(s, shooting_function, kContinuationStart);
+  const auto anything = [](const double*) { return true; };
+  double eps = 0;
+  for (double next = 1e-4; next <= s.eps_start * (1 + 1e-12); next *= 10) {
+    std::vector<double> trial = x;
+    int info = 0;
+    double res = 0;
+    if (!homotopy_step(plain, trial, next, s.accept_residual, r, anything, info, res)) break;
+    x = trial;
+    eps = next;
+  }
+  std::vector<double> start(problem::kNumVars);
+  {
+    Propagator prop(s);
+    try {
+      shooting_function(x.data(), eps, prop, start.data());
+    } catch (const numerical_error&) {
+      return false;
+    }
+  }
+  double sigma = 1;
+  const Residual shifted = [&](const double* z, double e, Propagator& p, double* F) {
+    shooting_function(z, e, p, F);
+    for (int i = 0; i < problem::kNumVars; ++i) F[i] -= sigma * start[i];
+  };
+  Shooter shooter(s, shifted, kContinuationStart);
+  const bool moved = continue_to_zero(s, 1.0, [&](double value) {
+    sigma = value;
+    std::vector<double> trial = x;
+    int info = 0;
+    double res = 0;
+    const bool ok = homotopy_step(shooter, trial, eps, s.accept_residual, r, anything, info, res);
+    if (ok) x = trial;
+    return ok;
+  });
+  r.evaluations += shooter.evaluations + plain.evaluations;
+  if (!moved) return false;
+  Settings down = s;
+  down.eps_start = eps;
+  double res = 0;
+  int info = 0;
+  Shooter single(s);
+  const bool reached = eps == 0 ? homotopy_step(single, x, 0.0, s.final_residual, r, admissible, info, res)
+                                : homotopy_to_zero(down, single, x, r, admissible, res);
+  r.evaluations += single.evaluations;
+  if (reached) {
+    r.max_residual = res;
+    r.F = single.last_F;
+  }
+  return reached;
+}
+
 // Bounds psi <= 0 by passes over the active set: pass 1 solves with every bound inactive; while
 // the solution violates an inactive bound (psi > 0) or has a negative multiplier on an active one,
 // the next pass makes the violated bounds active, or else drops the active bound with the most
-// negative multiplier, and solves again from cold. Usually two passes; never the same set twice.
-template <class Solve>
-Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve&& solve) {
+// negative multiplier, and solves again: first warm from the last solution (bound_homotopy), else
+// from cold. Usually two passes; never the same set twice.
+template <class Solve, class Admissible>
+Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve&& solve, Admissible&& admissible) {
   BoundState& state = bound_state();
   state.active.assign(bounds.size(), 0);
   state.value.assign(bounds.size(), 0.0);
@@ -685,16 +1297,34 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
   };
   std::vector<std::vector<char>> tried;
   std::vector<double> first;
-  std::vector<std::string> steps;
+  std::vector<std::string> steps, methods;
+  std::vector<LegStep> legs;  // every pass's records, in order
+  std::vector<HomotopyStep> homotopy;
+  std::vector<ContinuationStep> continuation;
   Result r;
   int attempts = 0, iterations = 0, evaluations = 0;
   for (int pass = 1;; ++pass) {
     tried.push_back(state.active);
-    r = solve(s);
+    Result warm;
+    warm.x = r.x;
+    warm.method = "warm from pass " + std::to_string(pass - 1) + " by a homotopy on the bounds' rows";
+    if (pass > 1 && bound_homotopy(s, warm.x, warm, admissible)) {
+      warm.status = "converged";
+      warm.eps = 0;
+      warm.attempts = 1;
+      r = warm;
+    } else {
+      if (pass > 1) evaluations += warm.evaluations;
+      r = solve(s);
+    }
     attempts += r.attempts;
     iterations += r.iterations;
     evaluations += r.evaluations;
     r.passes = pass;
+    methods.push_back("pass " + std::to_string(pass) + ": " + r.method);
+    legs.insert(legs.end(), r.legs.begin(), r.legs.end());
+    homotopy.insert(homotopy.end(), r.homotopy.begin(), r.homotopy.end());
+    continuation.insert(continuation.end(), r.continuation.begin(), r.continuation.end());
     if (r.status != "converged") break;
     const std::vector<double> values = values_at(r.x);
     if (pass == 1) first = values;
@@ -720,10 +1350,15 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
   r.attempts = attempts;
   r.iterations = iterations;
   r.evaluations = evaluations;
+  r.legs = legs;
+  r.homotopy = homotopy;
+  r.continuation = continuation;
   if (r.passes > 1) {
     std::string changes;
     for (const auto& c : steps) changes += (changes.empty() ? "" : " ") + c;
-    r.method = std::to_string(r.passes) + " passes over the bounds' active set (" + changes + "): " + r.method;
+    std::string each;
+    for (const auto& m : methods) each += (each.empty() ? "" : "; ") + m;
+    r.method = std::to_string(r.passes) + " passes over the bounds' active set (" + changes + "): " + each;
   }
   if (first.empty()) first.assign(bounds.size(), 0.0);
   const std::vector<double> last = r.status == "converged" ? values_at(r.x) : first;

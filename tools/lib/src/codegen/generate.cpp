@@ -136,6 +136,9 @@ std::string problem_block(Context& c) {
     << "constexpr int kThrottleIndex = " << c.throttle_index << ";\n"
     << "constexpr int kNumVars = " << d.at("shooting").at("variables").size() << ";\n"
     << "constexpr int kMassIndex = " << index_of(c.states, "m") << ";\n"
+    << "// The objective: the propellant (minimum fuel or minimum initial mass), else minimum time.\n"
+    << "constexpr bool kMinimumFuel = "
+    << (d.at("problem").value("objective", "") != "minimum_time" ? "true" : "false") << ";\n"
     << "constexpr double kT0 = " << number(d.at("times").at("t0")) << ";\n"
     << "// The final time, or the upper end of its window when it is free.\n"
     << "constexpr double kTf = "
@@ -282,6 +285,107 @@ std::string event_time(const Context& c, const std::string& event) {
   throw std::invalid_argument("field /parameters: unknown event '" + event + "' (t0, tf or an interior event)");
 }
 
+// The events' variables and rows for the continuation onto the events (runtime EventPlan): each
+// event's constraint rows psi_<id>_j with their multipliers, its free-epoch row time_<id> with the
+// epoch fraction, its parameters' stationarity rows. An event is passable when it is instantaneous
+// and its state map is the identity with its parameters at 0 (checked at random points); anything
+// not found makes the plan not passable (the runtime then solves by legs only).
+std::string event_plan_block(Context& c) {
+  const json& d = c.d;
+  const auto& vars = d.at("shooting").at("variables");
+  const auto& eqs = d.at("shooting").at("equations");
+  std::vector<std::string> var_names, eq_names;
+  for (const auto& v : vars) var_names.push_back(v.at("name"));
+  for (const auto& e : eqs) eq_names.push_back(e.at("name"));
+  const std::vector<std::string> sphere = c.sphere_variables();
+  bool passable = true;
+  std::ostringstream events;
+  for (const auto& e : d.at("events")) {
+    const std::string id = e.at("id");
+    const auto& psi = e.at("psi");
+    const auto& multipliers = e.at("multipliers");
+    const std::size_t nc = psi.size() >= c.states.size() ? psi.size() - c.states.size() : 0;
+    std::string constraints, parameters, costates;
+    // The costates after the event that are shooting variables, with their jump rows.
+    for (std::size_t i = 0; i < c.states.size() && i < e.at("costate_map").size(); ++i) {
+      const json& m = e.at("costate_map")[i];
+      if (!m.contains("variable")) continue;
+      const int v = index_of(var_names, m.at("variable").get<std::string>());
+      const int row = index_of(eq_names, "jump_" + id + "_" + c.states[i]);
+      if (v < 0 || row < 0) passable = false;
+      costates += (costates.empty() ? "{" : ", {") + std::to_string(v) + ", " + std::to_string(row) + "}";
+    }
+    for (std::size_t j = 0; j < nc && j < multipliers.size(); ++j) {
+      const int v = index_of(var_names, multipliers[j].get<std::string>());
+      const int row = index_of(eq_names, "psi_" + id + "_" + std::to_string(j + 1));
+      if (v < 0 || row < 0) passable = false;
+      constraints += (constraints.empty() ? "{" : ", {") + std::to_string(v) + ", " + std::to_string(row) + "}";
+    }
+    if (nc == 0 || multipliers.size() < nc) passable = false;
+    // The epoch fraction: the time_fraction variable of the event's time expression.
+    int epoch_var = -1;
+    for (const auto& name :
+         symbolic::free_symbols(c.symbols.parse(e.at("time").at("expression"), "field /events/time/expression"))) {
+      const int v = index_of(var_names, name);
+      if (v >= 0 && vars[v].value("role", "") == "time_fraction") epoch_var = v;
+    }
+    const int epoch_row = index_of(eq_names, "time_" + id);
+    if ((epoch_var < 0) != (epoch_row < 0)) passable = false;
+    // The event's parameters: role "parameter" variables its psi or state map depends on.
+    std::vector<std::string> used;
+    for (const auto& text : psi) {
+      const auto names = symbolic::free_symbols(c.symbols.parse(text, "field /events/psi"));
+      used.insert(used.end(), names.begin(), names.end());
+    }
+    std::vector<std::string> own_parameters;
+    for (std::size_t i = 0; i < vars.size(); ++i)
+      if (vars[i].value("role", "") == "parameter" && index_of(used, var_names[i]) >= 0) {
+        const int row = index_of(eq_names, "stationarity_" + id + "_" + var_names[i]);
+        if (row < 0) passable = false;
+        own_parameters.push_back(var_names[i]);
+        parameters += (parameters.empty() ? "{" : ", {") + std::to_string(i) + ", " + std::to_string(row) + "}";
+      }
+    // Instantaneous, and x+ = x- with the parameters at 0.
+    if (e.at("time").value("duration", 0.0) != 0.0) passable = false;
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> dist(0.3, 1.7);
+    for (int trial = 0; trial < 3 && passable; ++trial) {
+      symbolic::Values values;
+      for (const auto& [name, sym] : c.symbols.symtab()) values[name] = dist(rng) * (rng() % 2 ? 1 : -1);
+      for (const auto& q : own_parameters) values[q] = 0;
+      for (std::size_t i = 0; i < c.states.size() && passable; ++i) {
+        try {
+          const double after = symbolic::evaluate(
+              c.symbols.parse(e.at("state_map")[i].at("expression"), "field /events/state_map"), c.symbols, values);
+          const double before = values.at(c.states[i] + "_" + id + "_m");
+          if (std::fabs(after - before) > 1e-10 * (1 + std::fabs(after) + std::fabs(before))) passable = false;
+        } catch (const std::exception&) {
+          passable = false;
+        }
+      }
+    }
+    events << "{{" << constraints << "}, {" << epoch_var << ", " << epoch_row << "}, {" << parameters << "}, {"
+           << costates << "}}, ";
+  }
+  std::string sphere_list;
+  for (const auto& name : sphere) {
+    const int v = index_of(var_names, name);
+    if (v < 0) passable = false;
+    sphere_list += (sphere_list.empty() ? "" : ", ") + std::to_string(v);
+  }
+  const int multiplier = index_of(var_names, d.at("multiplier").get<std::string>());
+  if (multiplier < 0 || index_of(sphere, d.at("multiplier").get<std::string>()) < 0) passable = false;
+  std::string list = events.str();
+  if (list.size() >= 2) list.resize(list.size() - 2);
+  std::ostringstream o;
+  o << "// The events' variables and rows for the continuation onto the events: {passable, lambda0,\n"
+    << "// sphere, per event {{nu_j, row of c_j}...}, {epoch fraction, its row}, {{parameter, its row}...},\n"
+    << "// {{costate after the event, its jump row}...}}.\n"
+    << "const EventPlan kEventPlan = {" << (passable ? "true" : "false") << ", " << multiplier << ", {" << sphere_list
+    << "}, {" << list << "}};\n\n";
+  return o.str();
+}
+
 // The legs between events: which shooting variables each leg solves for alone (leg 0: lambda0,
 // lambda(t0) and the first event's multipliers; leg k: the next event's (or the final
 // constraint's) multipliers, besides its start costates), and the single-shooting function as the plain case of shooting_legs.
@@ -351,6 +455,7 @@ std::string legs_block(Context& c, const std::vector<int>& leg_sizes) {
     ++bound;
   }
   o << "}, " << list(fractions) << ", " << list(zero) << ", {" << edges << "}};\n\n"
+    << event_plan_block(c)
     << "void shooting_function(const double* x, double eps, Propagator& prop, double* F) {\n"
     << "  shooting_legs(x, eps, prop, F, nullptr);\n}\n\n";
   return o.str();
@@ -628,7 +733,7 @@ std::string solve_module(Context& c) {
            mult)
     << "] > 0; };\n"
     << "  const auto solve = [&](const Settings& s) { return "
-    << (d.contains("events") ? "legs_homotopy_solve(s, kLegPlan, initial_guess, admissible)"
+    << (d.contains("events") ? "events_homotopy_solve(s, kLegPlan, kEventPlan, initial_guess, admissible)"
                              : "homotopy_solve(s, initial_guess, admissible)")
     << "; };\n";
   // Bounds psi <= 0, in the order of their rows (bound_row's index).
@@ -647,7 +752,7 @@ std::string solve_module(Context& c) {
     o << "  return solve(settings);\n";
   else
     o << "  static const std::vector<Bound> bounds = {\n" << bounds << "  };\n"
-      << "  return two_pass_solve(settings, bounds, solve);\n";
+      << "  return two_pass_solve(settings, bounds, solve, admissible);\n";
   o << "}\n\n}  // namespace helios_rt\n";
   return o.str();
 }

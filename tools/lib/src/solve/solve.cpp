@@ -344,7 +344,7 @@ json solve(const SolveOptions& o) {
   static const std::vector<std::string> known = {
       "seed",           "max_attempts",    "time_limit_s",   "integrator_rtol", "integrator_atol",
       "hybrd_tol",      "accept_residual", "final_residual", "eps_start",       "eps_min",
-      "eps_first_ratio", "leg_attempts"};
+      "eps_first_ratio", "leg_attempts",    "best_of"};
   for (auto it = settings.begin(); it != settings.end(); ++it) {
     if (std::find(known.begin(), known.end(), it.key()) == known.end()) {
       std::string names;
@@ -413,11 +413,23 @@ json solve(const SolveOptions& o) {
   }
   doc["homotopy"] = homotopy;
   // How the solution was reached: the method, and for problems with interior events every leg
-  // solved alone (its guesses, residual and evaluations) before the legs were joined.
+  // solved alone (its guesses, residual and evaluations) before the legs were joined, and every
+  // solve of the continuation from the problem without its events onto them.
   doc["method"] = r.value("method", "single shooting");
   if (r.contains("legs")) doc["legs"] = r.at("legs");
   doc["passes"] = r.value("passes", 1);
   if (r.contains("bounds")) doc["bounds"] = r.at("bounds");
+  if (r.contains("optima")) doc["optima"] = r.at("optima");
+  if (r.contains("continuation")) {
+    json steps = json::array();
+    for (const auto& c : r.at("continuation")) {
+      json step = {{"stage", c.at("stage")}, {"value", c.at("value")}, {"converged", c.at("converged")},
+                   {"evaluations", c.at("evaluations")}};
+      if (c.at("max_residual").get<double>() >= 0) step["max_residual"] = c.at("max_residual");
+      steps.push_back(step);
+    }
+    doc["continuation"] = steps;
+  }
   if (r.at("status") == "converged") {
     doc["tof_days"] = r.at("tof_days");
     if (r.contains("departure_mjd2000")) doc["departure_mjd2000"] = r.at("departure_mjd2000");
