@@ -767,31 +767,6 @@ bool legs_attempt(const Settings& s, const LegPlan& plan, Guess&& initial_guess,
   return converged;
 }
 
-template <class Guess, class Admissible>
-Result legs_homotopy_solve(const Settings& s, const LegPlan& plan, Guess&& initial_guess, Admissible&& admissible) {
-  Result r;
-  r.method = "legs, then multiple shooting, then single shooting";
-  std::mt19937_64 rng(s.seed);
-  Shooter single(s);
-  int evaluations = 0;
-  BestOf best(s);
-  while (r.attempts < s.max_attempts && r.status == "not_converged") {
-    if (wall_seconds() > s.time_limit_s) {
-      r.status = "timeout";
-      r.detail = "time limit reached before convergence";
-      break;
-    }
-    ++r.attempts;
-    legs_attempt(s, plan, initial_guess, admissible, rng, single, r, evaluations);
-    if (best.converged(r)) break;
-  }
-  best.finish(r);
-  if (r.status == "not_converged")
-    r.detail = "no seeded attempt reached eps = 0 (" + std::to_string(r.attempts) + " attempts)";
-  r.evaluations = evaluations + single.evaluations;
-  return r;
-}
-
 // The events' own shooting variables and rows (RESIDUAL module), for the continuation onto the
 // events. An event is passable when it is instantaneous and its state map is the identity with
 // its parameters at 0: the trajectory of the problem without it (its multipliers and parameters
@@ -1190,9 +1165,9 @@ bool continuation_attempt(const Settings& s, const EventPlan& plan, Guess&& init
 template <class Guess, class Admissible>
 Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const EventPlan& events, Guess&& initial_guess,
                              Admissible&& admissible) {
-  if (!events.passable) return legs_homotopy_solve(s, legs, initial_guess, admissible);
   Result r;
-  r.method = "events off, then continuation onto the events; else legs, then multiple shooting";
+  r.method = events.passable ? "events off, then continuation onto the events; else legs, then multiple shooting"
+                             : "legs, then multiple shooting, then single shooting";
   std::mt19937_64 rng(s.seed);
   Shooter single(s);
   int evaluations = 0;
@@ -1206,10 +1181,12 @@ Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const Event
       break;
     }
     ++r.attempts;
-    continuation_attempt(s, events, initial_guess, admissible, rng, eventless, uses, r, evaluations);
-    const bool continued = r.status == "converged";
-    if (best.converged(r)) break;
-    if (continued || wall_seconds() > s.time_limit_s) continue;
+    if (events.passable) {
+      continuation_attempt(s, events, initial_guess, admissible, rng, eventless, uses, r, evaluations);
+      const bool continued = r.status == "converged";
+      if (best.converged(r)) break;
+      if (continued || wall_seconds() > s.time_limit_s) continue;
+    }
     legs_attempt(s, legs, initial_guess, admissible, rng, single, r, evaluations);
     if (best.converged(r)) break;
   }
