@@ -1273,7 +1273,7 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
     return state.value;
   };
   std::vector<std::vector<char>> tried;
-  std::vector<double> first;
+  std::vector<double> first, last;  // the bounds' values after pass 1 and after the last pass
   std::vector<std::string> steps, methods;
   std::vector<LegStep> legs;  // every pass's records, in order
   std::vector<HomotopyStep> homotopy;
@@ -1283,7 +1283,7 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
   for (int pass = 1;; ++pass) {
     tried.push_back(state.active);
     Result warm;
-    warm.x = r.x;
+    warm.x = r.x;  // the last pass's solution (pass > 1)
     warm.method = "warm from pass " + std::to_string(pass - 1) + " by a homotopy on the bounds' rows";
     if (pass > 1 && bound_homotopy(s, warm.x, warm, admissible)) {
       warm.status = "converged";
@@ -1291,7 +1291,7 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
       warm.attempts = 1;
       r = warm;
     } else {
-      if (pass > 1) evaluations += warm.evaluations;
+      evaluations += warm.evaluations;  // 0 unless the warm start was tried
       r = solve(s);
     }
     attempts += r.attempts;
@@ -1305,6 +1305,7 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
     if (r.status != "converged") break;
     const std::vector<double> values = values_at(r.x);
     if (pass == 1) first = values;
+    last = values;
     std::vector<char> next = state.active;
     int drop = -1;
     for (std::size_t k = 0; k < bounds.size(); ++k) {
@@ -1338,7 +1339,7 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
     r.method = std::to_string(r.passes) + " passes over the bounds' active set (" + changes + "): " + each;
   }
   if (first.empty()) first.assign(bounds.size(), 0.0);
-  const std::vector<double> last = r.status == "converged" ? values_at(r.x) : first;
+  if (r.status != "converged") last = first;
   for (std::size_t k = 0; k < bounds.size(); ++k) {
     const bool active = state.active[k] != 0;
     const double nu = r.status == "converged" ? r.x[bounds[k].multiplier] : 0.0;

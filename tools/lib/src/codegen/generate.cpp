@@ -24,6 +24,7 @@ struct Context {
   SymbolTable symbols;
   std::vector<std::string> states, costates, controls, parameters;
   std::vector<std::string> runtime_evaluated;  // parameters with a source: locals of RESIDUAL, not constants
+  std::vector<std::string> variables;          // the shooting variables' names, in x's order
   int throttle_index = -1;
   explicit Context(const json& derivation) : d(derivation) {
     for (const auto& s : d.at("states")) {
@@ -42,7 +43,10 @@ struct Context {
     symbols.get("t");
     if (d.contains("event_values"))
       for (const auto& e : d.at("event_values")) symbols.get(e.at("name").get<std::string>());
-    for (const auto& v : d.at("shooting").at("variables")) symbols.get(v.at("name").get<std::string>());
+    for (const auto& v : d.at("shooting").at("variables")) {
+      variables.push_back(v.at("name"));
+      symbols.get(variables.back());
+    }
     for (const char* kind : {"direction", "sail"})
       if (d.at("control_law").contains(kind))
         for (const auto& def : d.at("control_law").at(kind).value("definitions", json::array()))
@@ -294,8 +298,8 @@ std::string event_plan_block(Context& c) {
   const json& d = c.d;
   const auto& vars = d.at("shooting").at("variables");
   const auto& eqs = d.at("shooting").at("equations");
-  std::vector<std::string> var_names, eq_names;
-  for (const auto& v : vars) var_names.push_back(v.at("name"));
+  const std::vector<std::string>& var_names = c.variables;
+  std::vector<std::string> eq_names;
   for (const auto& e : eqs) eq_names.push_back(e.at("name"));
   const std::vector<std::string> sphere = c.sphere_variables();
   bool passable = true;
@@ -445,9 +449,7 @@ std::string legs_block(Context& c, const std::vector<int>& leg_sizes) {
     if (!eq.contains("inequality")) continue;
     if (eq.at("inequality").contains("held_when_active")) {
       const json& held = eq.at("inequality").at("held_when_active");
-      int k = -1;
-      for (std::size_t i = 0; i < vars.size(); ++i)
-        if (vars[i].at("name") == held.at("variable")) k = static_cast<int>(i);
+      const int k = index_of(c.variables, held.at("variable"));
       if (k < 0) throw std::invalid_argument("field /shooting/equations: no variable " + held.at("variable").dump());
       edges += std::string(edges.empty() ? "" : ", ") + "{" + std::to_string(bound) + ", " + std::to_string(k) + ", " +
                number(held.at("value")) + "}";
@@ -723,15 +725,7 @@ std::string solve_module(Context& c) {
     << "}\n\n"
     << "Result solve_problem(const Settings& settings) {\n"
     << "  // A minimum needs lambda0 > 0 (lambda0 = 0 would be an abnormal extremal).\n"
-    << "  const auto admissible = [](const double* x) { return x["
-    << index_of(
-           [&] {
-             std::vector<std::string> names;
-             for (const auto& v : vars) names.push_back(v.at("name"));
-             return names;
-           }(),
-           mult)
-    << "] > 0; };\n"
+    << "  const auto admissible = [](const double* x) { return x[" << index_of(c.variables, mult) << "] > 0; };\n"
     << "  const auto solve = [&](const Settings& s) { return "
     << (d.contains("events") ? "events_homotopy_solve(s, kLegPlan, kEventPlan, initial_guess, admissible)"
                              : "homotopy_solve(s, initial_guess, admissible)")
@@ -741,9 +735,7 @@ std::string solve_module(Context& c) {
   for (const auto& e : d.at("shooting").at("equations")) {
     if (!e.contains("inequality")) continue;
     const std::string nu = e.at("inequality").at("multiplier");
-    int k = -1;
-    for (std::size_t i = 0; i < vars.size(); ++i)
-      if (vars[i].at("name") == nu) k = static_cast<int>(i);
+    const int k = index_of(c.variables, nu);
     if (k < 0) throw std::invalid_argument("field /shooting/equations: bound multiplier " + nu + " is not a variable");
     bounds += "      {" + json(e.at("name")).dump() + ", " + json(e.at("meaning")).dump() + ", " + std::to_string(k) +
               "},\n";
