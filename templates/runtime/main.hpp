@@ -160,6 +160,18 @@ inline int run(int argc, char** argv) {
         entry["propellant_kg"] = o.objective * problem::kMassUnitKg;
       else if (std::isfinite(o.objective))
         entry["tof_days"] = o.objective * problem::kTimeUnitDays;
+      if (o.bounded_tried) {  // where the passes over the bounds led from this optimum
+        nlohmann::json bounded = {{"converged", std::isfinite(o.bounded_objective)}};
+        if (std::isfinite(o.bounded_objective)) {
+          bounded["objective"] = o.bounded_objective;
+          bounded["passes"] = o.bounded_passes;
+          if (problem::kMinimumFuel && problem::kMassIndex >= 0)
+            bounded["propellant_kg"] = o.bounded_objective * problem::kMassUnitKg;
+          else
+            bounded["tof_days"] = o.bounded_objective * problem::kTimeUnitDays;
+        }
+        entry["with_bounds"] = bounded;
+      }
       optima.push_back(entry);
     }
     j["optima"] = optima;

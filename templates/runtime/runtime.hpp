@@ -401,6 +401,12 @@ struct Optimum {
   std::string method;
   double objective;  // normalized: the propellant or tf - t0
   double max_residual;
+  std::vector<double> x, x_start;  // its solution, and the one at eps_start it was continued from
+  // With bounds: whether the passes over the active set started from this optimum, the objective
+  // they reached (NaN when they did not converge) and their number.
+  bool bounded_tried = false;
+  double bounded_objective = NAN;
+  int bounded_passes = 0;
 };
 
 struct Result {
@@ -412,6 +418,7 @@ struct Result {
   std::string detail;
   int info = 0;
   std::vector<double> x;
+  std::vector<double> x_start;  // the solution at settings.eps_start that eps was continued from to x
   std::vector<double> F;
   double eps = 1;
   double max_residual = 0;
@@ -541,13 +548,14 @@ bool homotopy_step(Shooter& shooter, std::vector<double>& x, double eps, double 
 
 // Solves at settings.eps_start from the guess x, then continues in eps down to 0 with an adaptive
 // step in log(eps) and retreat on failure. True when eps = 0 is reached (x and res are then its
-// solution).
+// solution; r.x_start the first N variables of the solution at eps_start).
 template <class Admissible>
 bool homotopy_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& x, Result& r, Admissible&& admissible,
                       double& res) {
   int info = 0;
   double eps = s.eps_start;
   if (!homotopy_step(shooter, x, eps, s.accept_residual, r, admissible, info, res)) return false;
+  r.x_start.assign(x.begin(), x.begin() + problem::kNumVars);
   double log_step = std::log(1.0 / s.eps_first_ratio);
   double zero_below = s.eps_min;  // eps at or below which the next step goes to eps = 0
   while (wall_seconds() <= s.time_limit_s) {
@@ -607,7 +615,7 @@ class BestOf {
     ++found_;
     if (settings_.best_of <= 1) return true;
     const double objective = objective_of(settings_, r.x);
-    r.optima.push_back({r.attempts, r.method, objective, r.max_residual});
+    r.optima.push_back({r.attempts, r.method, objective, r.max_residual, r.x, r.x_start});
     if (objective < best_objective_) {
       best_objective_ = objective;
       best_ = r;
@@ -624,6 +632,7 @@ class BestOf {
     r.method = best_.method;
     r.info = best_.info;
     r.x = best_.x;
+    r.x_start = best_.x_start;
     r.F = best_.F;
     r.eps = best_.eps;
     r.max_residual = best_.max_residual;
@@ -1197,24 +1206,10 @@ Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const Event
   return r;
 }
 
-// A pass over a new active set, warm from the last pass's solution x (eps = 0): x is smoothed
-// (eps raised step by step to eps_warm, each step a Newton solve from the last), the Newton
-// homotopy F(z) - sigma F(x) = 0 is followed from sigma = 1 (solved by x) to 0 at eps_warm, which
-// moves the bounds that changed from their old rows to their new ones, and eps is continued back
-// to 0. True when eps = 0 was reached (x is then the solution).
-template <class Admissible>
-bool bound_homotopy(const Settings& s, std::vector<double>& x, Result& r, Admissible&& admissible) {
-  Shooter plain(s, shooting_function, kContinuationStart);
-  const auto anything = [](const double*) { return true; };
-  double eps = 0;
-  for (double next = 1e-4; next <= s.eps_start * (1 + 1e-12); next *= 10) {
-    std::vector<double> trial = x;
-    int info = 0;
-    double res = 0;
-    if (!homotopy_step(plain, trial, next, s.accept_residual, r, anything, info, res)) break;
-    x = trial;
-    eps = next;
-  }
+// The Newton homotopy F(z) - sigma F(x) = 0 at eps, followed from sigma = 1 (solved by x) to 0:
+// it moves the rows that changed with the active set from their old form to their new one. True
+// when sigma = 0 was reached (x is then the solution at eps).
+inline bool shift_rows(const Settings& s, std::vector<double>& x, double eps, Result& r) {
   std::vector<double> start(problem::kNumVars);
   {
     Propagator prop(s);
@@ -1230,6 +1225,7 @@ bool bound_homotopy(const Settings& s, std::vector<double>& x, Result& r, Admiss
     for (int i = 0; i < problem::kNumVars; ++i) F[i] -= sigma * start[i];
   };
   Shooter shooter(s, shifted, kContinuationStart);
+  const auto anything = [](const double*) { return true; };
   const bool moved = continue_to_zero(s, 1.0, [&](double value) {
     sigma = value;
     std::vector<double> trial = x;
@@ -1239,73 +1235,101 @@ bool bound_homotopy(const Settings& s, std::vector<double>& x, Result& r, Admiss
     if (ok) x = trial;
     return ok;
   });
-  r.evaluations += shooter.evaluations + plain.evaluations;
-  if (!moved) return false;
-  Settings down = s;
-  down.eps_start = eps;
-  double res = 0;
-  int info = 0;
-  Shooter single(s);
-  const bool reached = eps == 0 ? homotopy_step(single, x, 0.0, s.final_residual, r, admissible, info, res)
-                                : homotopy_to_zero(down, single, x, r, admissible, res);
-  r.evaluations += single.evaluations;
-  if (reached) {
-    r.max_residual = res;
-    r.F = single.last_F;
-  }
-  return reached;
+  r.evaluations += shooter.evaluations;
+  return moved;
 }
 
-// Bounds psi <= 0 by passes over the active set: pass 1 solves with every bound inactive; while
-// the solution violates an inactive bound (psi > 0) or has a negative multiplier on an active one,
-// the next pass makes the violated bounds active, or else drops the active bound with the most
-// negative multiplier, and solves again: first warm from the last solution (bound_homotopy), else
-// from cold. Usually two passes; never the same set twice.
-template <class Solve, class Admissible>
-Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve&& solve, Admissible&& admissible) {
-  BoundState& state = bound_state();
-  state.active.assign(bounds.size(), 0);
-  state.value.assign(bounds.size(), 0.0);
-  const auto values_at = [&](const std::vector<double>& x) {
-    Propagator prop(s);
-    std::vector<double> F(problem::kNumVars);
-    shooting_function(x.data(), 0.0, prop, F.data());
-    return state.value;
+// A pass over a new active set, warm from the last pass's result `warm`:
+//   first from its solution x (eps = 0), smoothed (eps raised by decades to eps_start as far as
+//     each step, a Newton solve from the last, converges), the rows shifted there (shift_rows),
+//     and eps continued back to 0;
+//   else from its solution at eps_start (x_start), where the problem is smooth and a bound can
+//     move far (S10's periapsis radius by a factor of ten), shifted there and continued to 0.
+// True when eps = 0 was reached (warm.x is then the solution).
+template <class Admissible>
+bool bound_homotopy(const Settings& s, Result& warm, Admissible&& admissible) {
+  const auto to_zero = [&](std::vector<double>& x, double eps) {
+    double res = 0;
+    int info = 0;
+    Shooter single(s);
+    Settings down = s;
+    down.eps_start = eps;
+    const bool reached = eps == 0 ? homotopy_step(single, x, 0.0, s.final_residual, warm, admissible, info, res)
+                                  : homotopy_to_zero(down, single, x, warm, admissible, res);
+    warm.evaluations += single.evaluations;
+    if (reached) {
+      warm.max_residual = res;
+      warm.F = single.last_F;
+      warm.x = x;
+    }
+    return reached;
   };
-  std::vector<std::vector<char>> tried;
-  std::vector<double> first, last;  // the bounds' values after pass 1 and after the last pass
-  std::vector<std::string> steps, methods;
-  std::vector<LegStep> legs;  // every pass's records, in order
+  const std::vector<double> last_start = warm.x_start;
+  std::vector<double> x = warm.x;
+  double eps = 0;
+  {
+    Shooter plain(s, shooting_function, kContinuationStart);
+    const auto anything = [](const double*) { return true; };
+    for (double next = 1e-4; next <= s.eps_start * (1 + 1e-12); next *= 10) {
+      std::vector<double> trial = x;
+      int info = 0;
+      double res = 0;
+      if (!homotopy_step(plain, trial, next, s.accept_residual, warm, anything, info, res)) break;
+      x = trial;
+      eps = next;
+    }
+    warm.evaluations += plain.evaluations;
+  }
+  if (shift_rows(s, x, eps, warm) && to_zero(x, eps)) {
+    if (eps != s.eps_start) warm.x_start = last_start;  // to_zero set it at eps
+    return true;
+  }
+  if (last_start.empty()) return false;
+  x = last_start;
+  return shift_rows(s, x, s.eps_start, warm) && to_zero(x, s.eps_start);
+}
+
+// What the passes over the bounds' active set did, summed over every pass tried.
+struct PassLog {
+  int attempts = 0, iterations = 0, evaluations = 0;
+  std::vector<std::string> methods;  // each pass's method
+  std::vector<LegStep> legs;
   std::vector<HomotopyStep> homotopy;
   std::vector<ContinuationStep> continuation;
-  Result r;
-  int attempts = 0, iterations = 0, evaluations = 0;
-  for (int pass = 1;; ++pass) {
-    tried.push_back(state.active);
-    Result warm;
-    warm.x = r.x;  // the last pass's solution (pass > 1)
-    warm.method = "warm from pass " + std::to_string(pass - 1) + " by a homotopy on the bounds' rows";
-    if (pass > 1 && bound_homotopy(s, warm.x, warm, admissible)) {
-      warm.status = "converged";
-      warm.eps = 0;
-      warm.attempts = 1;
-      r = warm;
-    } else {
-      evaluations += warm.evaluations;  // 0 unless the warm start was tried
-      r = solve(s);
-    }
+  std::string from;  // which of pass 1's optima the passes start from ("" for its solution)
+  void add(const Result& r, int pass) {
     attempts += r.attempts;
     iterations += r.iterations;
     evaluations += r.evaluations;
-    r.passes = pass;
-    methods.push_back("pass " + std::to_string(pass) + ": " + r.method);
+    methods.push_back(from + "pass " + std::to_string(pass) + ": " + r.method);
     legs.insert(legs.end(), r.legs.begin(), r.legs.end());
     homotopy.insert(homotopy.end(), r.homotopy.begin(), r.homotopy.end());
     continuation.insert(continuation.end(), r.continuation.begin(), r.continuation.end());
-    if (r.status != "converged") break;
-    const std::vector<double> values = values_at(r.x);
-    if (pass == 1) first = values;
-    last = values;
+  }
+};
+
+// The bounds' values psi at x (eps = 0).
+inline std::vector<double> bound_values(const Settings& s, const std::vector<double>& x) {
+  Propagator prop(s);
+  std::vector<double> F(problem::kNumVars);
+  shooting_function(x.data(), 0.0, prop, F.data());
+  return bound_state().value;
+}
+
+// The passes after pass 1, from its converged solution r (every bound inactive): while r violates
+// an inactive bound (psi > 0) or has a negative multiplier on an active one, the next pass makes
+// the violated bounds active, or else drops the active bound with the most negative multiplier,
+// and solves again: warm from the last solution (bound_homotopy), else (when `cold` allows) from
+// cold. Never the same set twice. True when a consistent set was reached (r then holds its
+// solution, bound_state().active the set); `steps` lists the changes ("+name", "-name").
+template <class Solve, class Admissible>
+bool active_set_passes(const Settings& s, const std::vector<Bound>& bounds, Result& r, bool cold, Solve&& solve,
+                       Admissible&& admissible, PassLog& log, std::vector<std::string>& steps) {
+  BoundState& state = bound_state();
+  state.active.assign(bounds.size(), 0);
+  std::vector<std::vector<char>> tried{state.active};
+  for (int pass = 2;; ++pass) {
+    const std::vector<double> values = bound_values(s, r.x);
     std::vector<char> next = state.active;
     int drop = -1;
     for (std::size_t k = 0; k < bounds.size(); ++k) {
@@ -1315,34 +1339,132 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
         drop = static_cast<int>(k);
     }
     if (next == state.active && drop >= 0) next[drop] = 0;
-    if (next == state.active) break;  // consistent: the inactive bounds hold, the active ones push
+    if (next == state.active) return true;  // consistent: the inactive bounds hold, the active ones push
     if (std::find(tried.begin(), tried.end(), next) != tried.end()) {
       r.status = "not_converged";
       r.detail = "the active set of the bounds cycles";
-      break;
+      return false;
     }
+    tried.push_back(next);
     for (std::size_t k = 0; k < bounds.size(); ++k)
       if (next[k] != state.active[k]) steps.push_back((next[k] ? "+" : "-") + bounds[k].name);
     state.active = next;
+    Result warm;
+    warm.x = r.x;
+    warm.x_start = r.x_start;
+    warm.method = "warm from pass " + std::to_string(pass - 1) + " by a homotopy on the bounds' rows";
+    if (bound_homotopy(s, warm, admissible)) {
+      warm.status = "converged";
+      warm.eps = 0;
+      warm.attempts = 1;
+      r = warm;
+    } else if (cold) {
+      log.evaluations += warm.evaluations;
+      r = solve(s);
+    } else {
+      warm.method += " (did not converge)";
+      log.add(warm, pass);
+      r.status = "not_converged";
+      r.detail = "the warm homotopy on the bounds' rows did not converge";
+      return false;
+    }
+    log.add(r, pass);
+    r.passes = pass;
+    if (r.status != "converged") return false;
   }
-  r.attempts = attempts;
-  r.iterations = iterations;
-  r.evaluations = evaluations;
-  r.legs = legs;
-  r.homotopy = homotopy;
-  r.continuation = continuation;
+}
+
+// Bounds psi <= 0 by passes over the active set: pass 1 solves with every bound inactive, then
+// active_set_passes follows from its solution, warm. With best_of > 1 pass 1 keeps several local
+// optima, and the passes start from each of them (best first; one no better than a result already
+// found cannot lead to a better one), since the best optimum without the bounds need not lead to
+// the best one with them. The best consistent result is the solution. Only when no warm start
+// gets there do the passes run again from pass 1's solution with cold solves.
+template <class Solve, class Admissible>
+Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve&& solve, Admissible&& admissible) {
+  BoundState& state = bound_state();
+  state.active.assign(bounds.size(), 0);
+  state.value.assign(bounds.size(), 0.0);
+  PassLog log;
+  std::vector<std::string> steps;  // the active-set changes that led to the solution
+  Result r = solve(s);
+  log.add(r, 1);
+  std::vector<double> first(bounds.size(), 0.0);
+  bool consistent = false;
+  std::vector<char> final_set = state.active;
+  if (r.status == "converged") {
+    first = bound_values(s, r.x);
+    // The starts: pass 1's solution, then its other optima, best first.
+    std::vector<Optimum> own;  // pass 1's solution, when it kept no optima (best_of = 1)
+    if (r.optima.empty()) own.push_back({r.attempts, r.method, objective_of(s, r.x), r.max_residual, r.x, r.x_start});
+    std::vector<Optimum>& optima = own.empty() ? r.optima : own;
+    std::vector<std::size_t> order(optima.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      const bool a_solution = optima[a].x == r.x, b_solution = optima[b].x == r.x;
+      return a_solution != b_solution ? a_solution : optima[a].objective < optima[b].objective;
+    });
+    Result best = r;
+    double best_objective = INFINITY;
+    std::vector<double> started;  // the objectives of the optima started from (a repeat is skipped)
+    const auto same = [](double a, double b) { return std::fabs(a - b) <= 1e-9 * std::max(1.0, std::fabs(a)); };
+    for (const std::size_t i : order) {
+      Optimum& o = optima[i];
+      if (wall_seconds() > s.time_limit_s || o.objective >= best_objective ||
+          std::any_of(started.begin(), started.end(), [&](double v) { return same(v, o.objective); }))
+        continue;
+      started.push_back(o.objective);
+      o.bounded_tried = true;
+      Result from = r;
+      from.x = o.x;
+      from.x_start = o.x_start;
+      log.from = o.x == r.x ? "" : "from the optimum of attempt " + std::to_string(o.attempt) + ", ";
+      std::vector<std::string> changes;
+      if (!active_set_passes(s, bounds, from, false, solve, admissible, log, changes)) continue;
+      o.bounded_objective = objective_of(s, from.x);
+      o.bounded_passes = from.passes;
+      if (o.bounded_objective < best_objective) {
+        best_objective = o.bounded_objective;
+        best = from;
+        final_set = state.active;
+        steps = changes;
+        consistent = true;
+      }
+    }
+    if (!consistent && wall_seconds() <= s.time_limit_s) {
+      log.from = "cold: ";
+      best = r;
+      steps.clear();
+      consistent = active_set_passes(s, bounds, best, true, solve, admissible, log, steps);
+      final_set = state.active;
+    }
+    std::vector<Optimum> kept = std::move(r.optima);
+    r = best;
+    r.optima = std::move(kept);
+    if (!consistent) {
+      r.status = "not_converged";
+      if (r.detail.empty()) r.detail = "no pass over the bounds' active set converged";
+    }
+  }
+  state.active = final_set;
+  r.attempts = log.attempts;
+  r.iterations = log.iterations;
+  r.evaluations = log.evaluations;
+  r.legs = log.legs;
+  r.homotopy = log.homotopy;
+  r.continuation = log.continuation;
   if (r.passes > 1) {
     std::string changes;
     for (const auto& c : steps) changes += (changes.empty() ? "" : " ") + c;
     std::string each;
-    for (const auto& m : methods) each += (each.empty() ? "" : "; ") + m;
+    for (const auto& m : log.methods) each += (each.empty() ? "" : "; ") + m;
     r.method = std::to_string(r.passes) + " passes over the bounds' active set (" + changes + "): " + each;
   }
-  if (first.empty()) first.assign(bounds.size(), 0.0);
-  if (r.status != "converged") last = first;
+  const bool converged = r.status == "converged";
+  const std::vector<double> last = converged ? bound_values(s, r.x) : first;
   for (std::size_t k = 0; k < bounds.size(); ++k) {
     const bool active = state.active[k] != 0;
-    const double nu = r.status == "converged" ? r.x[bounds[k].multiplier] : 0.0;
+    const double nu = converged ? r.x[bounds[k].multiplier] : 0.0;
     r.bounds.push_back({bounds[k].name, bounds[k].meaning, first[k], active, last[k], nu});
   }
   return r;
