@@ -1,7 +1,8 @@
 #!/usr/bin/env bats
 # Constraint-adaptive derivation (issue 3), end to end on the builtin backend: interior rendezvous
 # at free epochs (S03), a position-only flyby (S04), stays with a sliding departure (S07), minimum
-# initial mass with a lander and a flyby (S08) and with a bounded arrival speed (S09). Each
+# initial mass with a lander and a flyby (S08) and with a bounded arrival speed (S09), a Mars
+# gravity assist with a periapsis bound (S10). Each
 # chain runs once in setup_file into $BATS_FILE_TMPDIR/<scenario>; the interior-event conditions
 # are then checked independently by re-solving with one condition replaced
 # (tests/events/sensitivity.cpp).
@@ -11,7 +12,7 @@ load test_helper
 setup_file() {
   require_tool parse derive verify gen solve score
   local s
-  for s in S03 S04 S07 S08 S09; do
+  for s in S03 S04 S07 S08 S09 S10; do
     chain "$s" "$BATS_FILE_TMPDIR/$s" >"$BATS_FILE_TMPDIR/$s.log" 2>&1 || echo "$s chain failed" >>"$BATS_FILE_TMPDIR/failures"
   done
 }
@@ -99,9 +100,32 @@ sensitivity() {
   assert_jq "$sol" '.bounds[] | select(.name == "psi_arrival_4") | .first_pass_value > 0 and .active and .multiplier > 0 and (.value | fabs) < 1e-12'
 }
 
-@test "events: H is constant on every arc of S03, S04, S07, S08 and S09 (it may jump only at events)" {
+@test "events: S10's swing-by passes below Mars free, then its periapsis bound is active with a positive multiplier" {
+  converged_and_verified "$BATS_FILE_TMPDIR/S10"
+  local d=$BATS_FILE_TMPDIR/S10/derivation.json sol=$BATS_FILE_TMPDIR/S10/solution.json
+  assert_jq "$d" '.shooting.variables | length == 20'
+  assert_jq "$d" '[.shooting.variables[] | select(.role == "parameter") | .name] == ["delta_mars", "phi_mars"]'
+  assert_jq "$d" '.shooting.equations[] | select(.name == "psi_mars_6") | .inequality.multiplier == "nu_mars_6"'
+  assert_jq "$sol" '.passes == 2'
+  assert_jq "$sol" '.bounds[] | select(.name == "psi_mars_6") | .first_pass_value > 0 and .active and .multiplier > 0 and (.value | fabs) < 1e-10'
+  # the passes start from each of pass 1's optima; the solution is the best place they led to
+  assert_jq "$sol" '([.optima[] | select(.with_bounds.converged) | .with_bounds.propellant_kg] | min) as $best | ($best - .propellant_kg | fabs) < 1e-3'
+}
+
+@test "events: S10's periapsis multiplier is the sensitivity of the final mass to the bound; the flyby epoch is stationary" {
+  local fd claim first curvature
+  # a shift of 1e-3: the rows of the 2201-day legs carry integration noise near 1e-11
+  read -r fd claim < <(sensitivity S10 psi mars 6 1e-3)
+  echo "finite difference $fd, nu/lambda0 $claim"
+  awk -v a="$fd" -v b="$claim" 'BEGIN { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; exit !(d <= 1e-5 * m) }'
+  read -r first curvature < <(sensitivity S10 epoch mars)
+  echo "|m(t+h) - m(t-h)| = $first, |m(t+h) + m(t-h) - 2 m(t)| = $curvature"
+  awk -v a="$first" -v b="$curvature" 'BEGIN { exit !(a <= 0.01 * b) }'
+}
+
+@test "events: H is constant on every arc of S03, S04, S07, S08, S09 and S10 (it may jump only at events)" {
   local s
-  for s in S03 S04 S07 S08 S09; do
+  for s in S03 S04 S07 S08 S09 S10; do
     assert_jq "$BATS_FILE_TMPDIR/$s/solution.json" '.hamiltonian_drift < 1e-9'
   done
 }

@@ -6,8 +6,11 @@
 //     condition's claim): |m(t*+h) - m(t*-h)| must be small against the curvature term
 //     |m(t*+h) + m(t*-h) - 2 m(t*)|;
 //   psi ROW of EVENT: shifting the constraint c_ROW = 0 to c_ROW = d changes the optimal fuel by
-//     -nu_ROW/lambda0 per unit d (Phi = lambda0 J + nu^T c), so dm_f/dd = nu_ROW/lambda0.
-// usage: sensitivity RESULT.json epoch EVENT | psi EVENT ROW ; prints the two numbers compared.
+//     -nu_ROW/lambda0 per unit d (Phi = lambda0 J + nu^T c), so dm_f/dd = nu_ROW/lambda0; an active
+//     bound's row (psi_ROW <= 0 held at 0) the same way.
+// The shift of a psi row is 1e-6 unless given (a larger one where the rows carry more integration
+// noise: S10's 2201-day legs).
+// usage: sensitivity RESULT.json epoch EVENT | psi EVENT ROW [SHIFT]; prints the two numbers compared.
 #define main generated_main
 #include SHOOT_CPP
 #undef main
@@ -29,10 +32,10 @@ double final_mass(std::vector<double> x, int row, const std::function<double(con
     shooting_function(z, eps, prop, F);
     F[row] = replaced(z, F[row]);
   };
-  Shooter shooter(s, residual);
+  Shooter shooter(s, residual, kContinuationStart);  // a step next to a solution
   int info = 0;
   double res = 0;
-  if (!shooter.solve(x, 0.0, 1e-11, info, res)) throw std::runtime_error("the modified problem did not converge");
+  if (!shooter.solve(x, 0.0, s.final_residual, info, res)) throw std::runtime_error("the modified problem did not converge");
   Propagator prop(s);
   std::vector<Sample> samples;
   prop.samples = &samples;
@@ -45,10 +48,16 @@ double final_mass(std::vector<double> x, int row, const std::function<double(con
 
 int main(int argc, char** argv) {
   try {
-    if (argc < 4) throw std::runtime_error("usage: sensitivity RESULT.json epoch EVENT | psi EVENT ROW");
+    if (argc < 4) throw std::runtime_error("usage: sensitivity RESULT.json epoch EVENT | psi EVENT ROW [SHIFT]");
     const nlohmann::json result = nlohmann::json::parse(std::ifstream(argv[1]));
     std::vector<double> x;
     for (const auto& v : result.at("x")) x.push_back(v.at("value").get<double>());
+    // The bounds as the solution left them: an active bound's row is its psi, an inactive one's its multiplier.
+    BoundState& bounds = bound_state();
+    for (const auto& b : result.value("bounds", nlohmann::json::array())) {
+      bounds.active.push_back(b.at("active").get<bool>() ? 1 : 0);
+      bounds.value.push_back(0.0);
+    }
     const std::string what = argv[2], event = argv[3];
     const int nv = problem::kNumVars;
     if (what == "epoch") {
@@ -60,18 +69,18 @@ int main(int argc, char** argv) {
       };
       const double m0 = at(star), mp = at(star + h), mm = at(star - h);
       std::printf("%.6e %.6e\n", std::fabs(mp - mm), std::fabs(mp + mm - 2 * m0));
-    } else if (what == "psi" && argc == 5) {
+    } else if (what == "psi" && (argc == 5 || argc == 6)) {
       const int k = std::atoi(argv[4]);
       const int row = index_of(problem::kEquationNames, nv, "psi_" + event + "_" + std::to_string(k));
       const double nu = x[index_of(problem::kVariableNames, nv, "nu_" + event + "_" + std::to_string(k))];
       const double lambda0 = x[index_of(problem::kVariableNames, nv, "lambda0")];
-      const double d = 1e-6;
+      const double d = argc == 6 ? std::atof(argv[5]) : 1e-6;
       const auto shifted = [&](double delta) {
         return final_mass(x, row, [delta](const double*, double f) { return f - delta; });
       };
       std::printf("%.9e %.9e\n", (shifted(d) - shifted(-d)) / (2 * d), nu / lambda0);
     } else {
-      throw std::runtime_error("usage: sensitivity RESULT.json epoch EVENT | psi EVENT ROW");
+      throw std::runtime_error("usage: sensitivity RESULT.json epoch EVENT | psi EVENT ROW [SHIFT]");
     }
     return 0;
   } catch (const std::exception& e) {
