@@ -372,6 +372,17 @@ def event_cases(case, cases):
          "stay: free-epoch condition without nu^T dc/dt and lambda(t+)^T dg/dt (the body moves)",
          ["event_time:rock"], lambda d: eq(d, "time_rock").update(expression="H_rock_m-H_rock_p"))
 
+    def time_without_window(d):
+        t = eq(d, "time_rock")
+        t["expression"] = g(sym(t["expression"]).subs({sp.Symbol("nu_rock_4"): 0, sp.Symbol("nu_rock_5"): 0}))
+    case("E-flyby-time-without-window-bounds", "E-flyby",
+         "flyby: free-epoch condition without the window bounds' -nu_4 + nu_5 (d(window start - t)/dt = -1)",
+         ["event_time:rock"], time_without_window)
+    case("E-flyby-bound-inactive-form", "E-flyby", "flyby: the window bound's inactive equation nu_4 - 1 = 0",
+         ["bound:psi_rock_4"], lambda d: eq(d, "psi_rock_4")["inequality"].update(inactive_expression="nu_rock_4-1"))
+    case("E-flyby-bound-multiplier", "E-flyby", "flyby: the window end's bound names the window start's multiplier",
+         ["bound:psi_rock_5"], lambda d: eq(d, "psi_rock_5")["inequality"].update(multiplier="nu_rock_4"))
+
     def multiplier_sign(d):
         ev = event(d, "rock")
         ev["multipliers"][len(ev["multipliers"]) - len(d["states"]) + 1] = "l_ry_rock_p"

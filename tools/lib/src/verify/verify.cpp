@@ -460,7 +460,8 @@ struct Check {
 
 struct Constraint {
   std::string id, at;
-  std::vector<ex> psi;  // in the state symbols
+  std::vector<ex> psi;                  // in the state symbols
+  std::vector<std::string> multipliers;  // nu of each row, as written (may be empty)
 };
 
 struct Equation {
@@ -1195,6 +1196,8 @@ class Verifier {
         const json& psi = io::require(c, "psi", "derivation constraint " + k.id);
         for (std::size_t j = 0; j < psi.size(); ++j)
           k.psi.push_back(statement(psi[j], "constraints[" + k.id + "].psi[" + std::to_string(j) + "]").subs(to_state));
+        for (const auto& m : c.value("multipliers", json::array()))
+          k.multipliers.push_back(m.is_string() ? m.get<std::string>() : "");
         constraints_.push_back(k);
       }
     }
@@ -1895,6 +1898,40 @@ class Verifier {
     }
   }
 
+  // The field `key` of the shooting equation `name` as written, or null.
+  const json* equation_field(const std::string& name, const std::string& key) const {
+    if (!d_.contains("shooting") || !d_["shooting"].is_object() || !d_["shooting"].contains("equations")) return nullptr;
+    for (const auto& eq : d_["shooting"]["equations"])
+      if (eq.is_object() && eq.value("name", "") == name && eq.contains(key)) return &eq[key];
+    return nullptr;
+  }
+
+  // A bound psi_j <= 0 (the row `name`, multiplier nu): the solver makes it inactive (its equation
+  // nu = 0) or active (psi_j = 0), so the inequality must name the row's own multiplier, and the
+  // inactive equation must be that multiplier; the sense is psi_j <= 0 (nu >= 0 when active).
+  void check_bound(const std::string& name, const json& bound, const ex& nu) {
+    Check k = start("bound:" + name, "events", "structural");
+    const std::string where = "shooting.equations[" + name + "].inequality";
+    const std::string multiplier = bound.is_object() ? bound.value("multiplier", "") : "";
+    if (!bound.is_object() || bound.value("sense", "") != "expression <= 0") {
+      k.fail(where + ".sense must be 'expression <= 0' (the bound psi <= 0, its multiplier >= 0 when active).");
+    } else if (multiplier != print(nu)) {
+      k.fail(where + ".multiplier = '" + multiplier + "' is not " + print(nu) + ", the multiplier of the row " + name + ".");
+    } else {
+      bool inactive_ok = false;
+      std::string got = "(none)";
+      try {
+        got = bound.at("inactive_expression").get<std::string>();
+        inactive_ok = (table_.parse(got, where + ".inactive_expression") - nu).expand().is_zero();
+      } catch (const std::exception&) {
+      }
+      if (!inactive_ok)
+        k.fail(where + ".inactive_expression = '" + got + "' must be " + print(nu) +
+               ": an inactive bound's equation is its multiplier = 0.");
+    }
+    checks_.push_back(k);
+  }
+
   // ----- shooting system
 
   void read_shooting() {
@@ -2000,6 +2037,11 @@ class Verifier {
                       "missing endpoint condition " + print(expected) + " = 0 (constraints[" + k.id + "].psi[" +
                           std::to_string(j) + "] at tf); add it to shooting.equations.");
         checks_.push_back(c);
+        const std::string name = "psi_" + k.id + "_" + std::to_string(j + 1);
+        if (const json* bound = equation_field(name, "inequality")) {
+          const std::string nu = j < k.multipliers.size() ? k.multipliers[j] : "";
+          if (is_identifier(nu)) check_bound(name, *bound, sym(nu));
+        }
       }
     }
     // Initial state not fixed by a constraint: lambda(t0) = 0 (the endpoint cost is at tf).
@@ -2536,11 +2578,13 @@ class Verifier {
 
     // 3. Each row of c is a shooting equation (Rule 0).
     for (std::size_t j = 0; j < c.size(); ++j) {
+      const std::string name = "psi_" + id + "_" + std::to_string(j + 1);
       Check k = start("event_constraint:" + id + "_" + std::to_string(j + 1), "events", "random_points+exact");
-      if (!matching_equation("psi_" + id + "_" + std::to_string(j + 1), c[j], k, {}))
+      if (!matching_equation(name, c[j], k, {}))
         k.fail("missing interior constraint " + e.psi_text[c_rows[j]] + " = 0 (" + where + ".psi[" +
                std::to_string(c_rows[j]) + "] at " + id + "); add it to shooting.equations.");
       checks_.push_back(k);
+      if (const json* bound = equation_field(name, "inequality")) check_bound(name, *bound, nu[j]);
     }
 
     // 4. Costate jumps: lambda(t-)_s = nu^T dc/dx-_s + lambda(t+)^T dg/dx-_s. A state the map
