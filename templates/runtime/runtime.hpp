@@ -1379,7 +1379,8 @@ bool active_set_passes(const Settings& s, const std::vector<Bound>& bounds, Resu
 // optima, and the passes start from each of them (best first; one no better than a result already
 // found cannot lead to a better one), since the best optimum without the bounds need not lead to
 // the best one with them. The best consistent result is the solution. Only when no warm start
-// gets there do the passes run again from pass 1's solution with cold solves.
+// gets there do the passes run again from pass 1's solution, now with a cold solve where the warm
+// one fails.
 template <class Solve, class Admissible>
 Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve&& solve, Admissible&& admissible) {
   BoundState& state = bound_state();
