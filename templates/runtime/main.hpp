@@ -151,24 +151,26 @@ inline int run(int argc, char** argv) {
   }
   if (!r.optima.empty()) {
     nlohmann::json optima = nlohmann::json::array();
+    // A finite objective in named units: the propellant, or the flight time.
+    const auto in_units = [](nlohmann::json& to, double objective) {
+      if (!std::isfinite(objective)) return;
+      if (problem::kMinimumFuel && problem::kMassIndex >= 0)
+        to["propellant_kg"] = objective * problem::kMassUnitKg;
+      else
+        to["tof_days"] = objective * problem::kTimeUnitDays;
+    };
     for (const auto& o : r.optima) {
       nlohmann::json entry = {{"attempt", o.attempt},
                               {"method", o.method},
                               {"objective", recorded(o.objective)},
                               {"max_residual", recorded(o.max_residual)}};
-      if (problem::kMinimumFuel && problem::kMassIndex >= 0 && std::isfinite(o.objective))
-        entry["propellant_kg"] = o.objective * problem::kMassUnitKg;
-      else if (std::isfinite(o.objective))
-        entry["tof_days"] = o.objective * problem::kTimeUnitDays;
+      in_units(entry, o.objective);
       if (o.bounded_tried) {  // where the passes over the bounds led from this optimum
         nlohmann::json bounded = {{"converged", std::isfinite(o.bounded_objective)}};
         if (std::isfinite(o.bounded_objective)) {
           bounded["objective"] = o.bounded_objective;
           bounded["passes"] = o.bounded_passes;
-          if (problem::kMinimumFuel && problem::kMassIndex >= 0)
-            bounded["propellant_kg"] = o.bounded_objective * problem::kMassUnitKg;
-          else
-            bounded["tof_days"] = o.bounded_objective * problem::kTimeUnitDays;
+          in_units(bounded, o.bounded_objective);
         }
         entry["with_bounds"] = bounded;
       }
