@@ -23,7 +23,12 @@ inline Settings read_settings(const std::string& path) {
   s.eps_min = j.value("eps_min", s.eps_min);
   s.eps_first_ratio = j.value("eps_first_ratio", s.eps_first_ratio);
   s.leg_attempts = j.value("leg_attempts", s.leg_attempts);
-  s.best_of = j.value("best_of", s.best_of);
+  s.search_starts = j.value("search_starts", s.search_starts);
+  s.search_saturation = j.value("search_saturation", s.search_saturation);
+  s.search_continued = j.value("search_continued", s.search_continued);
+  s.search_attempts = j.value("search_attempts", s.search_attempts);
+  s.search_time_s = j.value("search_time_s", s.search_time_s);
+  s.threads = j.value("threads", s.threads);
   return s;
 }
 
@@ -103,6 +108,77 @@ inline nlohmann::json trajectory(const Settings& s, const Result& r, const std::
   return out;
 }
 
+// A finite objective in named units: the propellant, or the flight time.
+inline void objective_in_units(nlohmann::json& to, double objective) {
+  if (!std::isfinite(objective)) return;
+  if (problem::kMinimumFuel && problem::kMassIndex >= 0)
+    to["propellant_kg"] = objective * problem::kMassUnitKg;
+  else
+    to["tof_days"] = objective * problem::kTimeUnitDays;
+}
+
+// The global search as solution.json records it (schemas/solution.schema.json, "search").
+inline nlohmann::json search_record(const SearchRecord& rec) {
+  nlohmann::json at_start = nlohmann::json::array(), extremals = nlohmann::json::array();
+  for (std::size_t i = 0; i < rec.start_extremals.size(); ++i) {
+    const StartExtremal& e = rec.start_extremals[i];
+    nlohmann::json entry = {{"id", i},
+                            {"cost", recorded(e.shape.cost)},
+                            {"revolutions", e.shape.revolutions},
+                            {"mode_changes", e.shape.switches},
+                            {"reached", e.reached},
+                            {"first_start", e.first_start},
+                            {"max_residual", recorded(e.max_residual)},
+                            {"continued", e.continued}};
+    if (std::isfinite(e.shape.cost)) {  // the smoothed problem's cost, in the objective's unit
+      if (problem::kMinimumFuel && problem::kMassIndex >= 0)
+        entry["cost_kg"] = e.shape.cost * problem::kMassUnitKg;
+      else
+        entry["cost_days"] = e.shape.cost * problem::kTimeUnitDays;
+    }
+    if (e.arrived >= 0) entry["arrived_at"] = e.arrived;
+    at_start.push_back(entry);
+  }
+  for (std::size_t i = 0; i < rec.extremals.size(); ++i) {
+    const Extremal& e = rec.extremals[i];
+    nlohmann::json entry = {{"id", i},
+                            {"objective", recorded(e.shape.cost)},
+                            {"revolutions", e.shape.revolutions},
+                            {"switches", e.shape.switches},
+                            {"reached", e.reached},
+                            {"first_start", e.first_start},
+                            {"from", e.from},
+                            {"max_residual", recorded(e.max_residual)},
+                            {"method", e.method}};
+    objective_in_units(entry, e.shape.cost);
+    if (e.bounded_tried) {  // where the passes over the bounds led from this extremal
+      nlohmann::json bounded = {{"converged", std::isfinite(e.bounded_objective)}};
+      if (std::isfinite(e.bounded_objective)) {
+        bounded["objective"] = e.bounded_objective;
+        bounded["passes"] = e.bounded_passes;
+        objective_in_units(bounded, e.bounded_objective);
+      }
+      entry["with_bounds"] = bounded;
+    }
+    extremals.push_back(entry);
+  }
+  nlohmann::json out = {{"method", rec.method},
+                        {"threads", rec.threads},
+                        {"starts", rec.starts},
+                        {"converged_at_eps_start", rec.converged_start},
+                        {"continued", rec.continued},
+                        {"converged_at_eps_0", rec.converged_final},
+                        {"seconds", rec.seconds},
+                        {"cut_by_time", rec.cut_by_time},
+                        {"extremals_at_eps_start", at_start},
+                        {"extremals", extremals}};
+  if (rec.returned >= 0) {
+    out["returned"] = rec.returned;
+    out["reason"] = rec.reason;
+  }
+  return out;
+}
+
 inline int run(int argc, char** argv) {
   std::string settings_path, result_path = "result.json", trajectory_path = "trajectory.csv";
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -149,35 +225,7 @@ inline int run(int argc, char** argv) {
                         {"multiplier", b.multiplier}});
     j["bounds"] = bounds;
   }
-  if (!r.optima.empty()) {
-    nlohmann::json optima = nlohmann::json::array();
-    // A finite objective in named units: the propellant, or the flight time.
-    const auto in_units = [](nlohmann::json& to, double objective) {
-      if (!std::isfinite(objective)) return;
-      if (problem::kMinimumFuel && problem::kMassIndex >= 0)
-        to["propellant_kg"] = objective * problem::kMassUnitKg;
-      else
-        to["tof_days"] = objective * problem::kTimeUnitDays;
-    };
-    for (const auto& o : r.optima) {
-      nlohmann::json entry = {{"attempt", o.attempt},
-                              {"method", o.method},
-                              {"objective", recorded(o.objective)},
-                              {"max_residual", recorded(o.max_residual)}};
-      in_units(entry, o.objective);
-      if (o.bounded_tried) {  // where the passes over the bounds led from this optimum
-        nlohmann::json bounded = {{"converged", std::isfinite(o.bounded_objective)}};
-        if (std::isfinite(o.bounded_objective)) {
-          bounded["objective"] = o.bounded_objective;
-          bounded["passes"] = o.bounded_passes;
-          in_units(bounded, o.bounded_objective);
-        }
-        entry["with_bounds"] = bounded;
-      }
-      optima.push_back(entry);
-    }
-    j["optima"] = optima;
-  }
+  j["search"] = search_record(r.search);
   if (!r.continuation.empty()) {
     nlohmann::json steps = nlohmann::json::array();
     for (const auto& c : r.continuation)

@@ -165,7 +165,17 @@ struct Settings {
   double eps_min = 1e-6;  // below this the next step is eps = 0
   double eps_first_ratio = 0.5;
   int leg_attempts = 20;  // random guesses per leg before the attempt is abandoned
-  int best_of = 1;  // converged attempts compared (the best objective is kept): local optima differ
+  // The global search (search.hpp): at most search_starts starts at eps_start, fewer once the
+  // chance that another converged start finds a new extremal is below search_saturation (0:
+  // always all); how many of the lowest-cost distinct extremals are continued to eps = 0
+  // (problems without interior events); complete attempts (problems with them); its own time
+  // budget (0: only time_limit_s) and threads (0: the cores).
+  int search_starts = 64;
+  double search_saturation = 0.05;
+  int search_continued = 4;
+  int search_attempts = 4;
+  double search_time_s = 0;
+  int threads = 0;
   int max_steps = 200000;  // integrator steps per arc
 };
 
@@ -227,8 +237,10 @@ class Propagator {
       const int ng = stay_functions(y, mode, mult, g_old.data());
       stay_functions(ynew.data(), mode, mult, g_new.data());
       int crossed = -1;
+      double b = h;  // the switch lies in (0, b] of the step
       for (int k = 0; k < ng; ++k)
         if (g_old[k] >= 0 && g_new[k] < 0) crossed = k;
+      if (crossed < 0 && ng > 0) crossed = dip(t, y, f0.data(), h, ynew.data(), fnew.data(), mode, mult, b, g_new);
       if (crossed < 0) {
         t = last ? t1 : t + h;
         std::copy(ynew.begin(), ynew.end(), y);
@@ -237,7 +249,7 @@ class Propagator {
         continue;
       }
       // Locate the switch on the frozen-mode step (Illinois regula falsi in the step length).
-      double a = 0, b = h, ga = g_old[crossed], gb = g_new[crossed];
+      double a = 0, ga = g_old[crossed], gb = g_new[crossed];
       double hs = b;
       int side = 0;
       for (int it = 0; it < 100 && b - a > 4e-16 * (1 + std::fabs(t)); ++it) {
@@ -276,11 +288,49 @@ class Propagator {
         control_in_mode(y, mode, mult, control.data());
         switches->push_back({t, control[problem::kThrottleIndex]});
       }
-      h = std::max(h - hs, 1e-6 * (1 + std::fabs(t1 - t0)));
+      // The new mode's stay function starts at round-off from 0: a long first step that ends past
+      // the next switch would bracket that round-off instead. A short one moves clear of it, and
+      // the step control grows the steps again.
+      h = 1e-6 * (1 + std::fabs(t1 - t0));
     }
   }
 
  private:
+  // A mode that ends and resumes inside one step (a short arc whose switches the step's ends do
+  // not show; missing it makes the shooting function jump where the arc appears): the stay
+  // functions on the step's cubic Hermite interpolant at kDipPoints - 1 interior points, and where
+  // one is negative, the real sub-step there to confirm it. Returns the stay function that
+  // changes sign (-1: none), with b and g_at_b the sub-step's length and the stay functions at
+  // its end.
+  static constexpr int kDipPoints = 12;
+  int dip(double t, const double* y, const double* f0, double h, const double* y1, const double* f1, Mode mode,
+          const Multipliers& mult, double& b, std::array<double, 2>& g_at_b) {
+    std::array<double, kNY> yi{}, fi{};
+    std::array<double, 2> g{};
+    for (int j = 1; j < kDipPoints; ++j) {
+      const double th = static_cast<double>(j) / kDipPoints, th2 = th * th, th3 = th2 * th;
+      const double h00 = 2 * th3 - 3 * th2 + 1, h10 = th3 - 2 * th2 + th, h01 = -2 * th3 + 3 * th2, h11 = th3 - th2;
+      for (int i = 0; i < kNY; ++i) yi[i] = h00 * y[i] + h10 * h * f0[i] + h01 * y1[i] + h11 * h * f1[i];
+      const int ng = stay_functions(yi.data(), mode, mult, g.data());
+      for (int k = 0; k < ng; ++k) {
+        if (g[k] >= 0) continue;
+        auto rhs = [&](double tt, const double* yy, double* dy) {
+          std::array<double, problem::kNumControls> control{};
+          control_in_mode(yy, mode, mult, control.data());
+          dynamics(tt, yy, control.data(), mult, dy);
+        };
+        stepper_.step(rhs, t, y, f0, th * h, yi.data(), fi.data(), settings_.atol, settings_.rtol);
+        stay_functions(yi.data(), mode, mult, g.data());
+        if (g[k] < 0) {
+          b = th * h;
+          g_at_b = g;
+          return k;
+        }
+      }
+    }
+    return -1;
+  }
+
   static Mode next_mode(Mode mode, int crossed, const Multipliers& mult) {
     const bool bang = mult.eps == 0;
     if (mode == kOff) return bang ? kFull : kInterior;
@@ -368,7 +418,7 @@ struct BoundState {
   std::vector<double> value;
 };
 inline BoundState& bound_state() {
-  static BoundState state;
+  thread_local BoundState state;  // each search thread its own (search.hpp's parallel_for)
   return state;
 }
 
@@ -395,18 +445,60 @@ struct ContinuationStep {
   int evaluations;
 };
 
-// A converged attempt and its objective (smaller is better: the propellant, or the flight time).
-struct Optimum {
-  int attempt;
+// What tells one extremal from another (search.hpp's shape_of): the revolutions about the
+// central body (the angle the position sweeps about the initial angular momentum, over 2 pi), the
+// throttle's mode changes (at eps = 0 its bang-bang switches), and the cost at its eps: the
+// propellant of the smoothed problem (the integral of u - eps u (1 - u), in propellant units) for
+// a throttle, else the flight time. At eps = 0 the cost is the objective.
+struct Shape {
+  double revolutions = 0;
+  int switches = 0;
+  double cost = INFINITY;
+};
+
+// A distinct solution at eps_start, and how many starts reached it.
+struct StartExtremal {
+  std::vector<double> x;
+  Shape shape;
+  double max_residual = 0;
+  int first_start = 0, reached = 0;
+  bool continued = false;
+  int arrived = -1;  // the extremal at eps = 0 it was continued to (-1: none)
+};
+
+// A distinct extremal at eps = 0 (it satisfies the problem's own necessary conditions), with the
+// solve that reached it first. With bounds: whether the passes over the active set started from
+// it, the objective they reached (NaN when they did not converge) and their number.
+struct Extremal {
+  std::vector<double> x, x_start, F;
+  Shape shape;
+  double max_residual = 0;
+  int info = 0;
+  int first_start = 0, reached = 0;  // the first start (or attempt) that reached it, and how many did
+  std::vector<int> from;             // the eps_start extremals (or attempts) that led to it
   std::string method;
-  double objective;  // normalized: the propellant or tf - t0
-  double max_residual;
-  std::vector<double> x, x_start;  // its solution, and the one at eps_start it was continued from
-  // With bounds: whether the passes over the active set started from this optimum, the objective
-  // they reached (NaN when they did not converge) and their number.
+  std::vector<HomotopyStep> homotopy;
+  std::vector<LegStep> legs;
+  std::vector<ContinuationStep> continuation;
   bool bounded_tried = false;
   double bounded_objective = NAN;
   int bounded_passes = 0;
+};
+
+// What the global search did (search.hpp), for solution.json.
+struct SearchRecord {
+  std::string method;
+  int threads = 1;
+  int starts = 0;           // starts (or complete attempts) drawn
+  int converged_start = 0;  // starts converged at eps_start (problems without events)
+  int continued = 0;        // eps_start extremals continued to eps = 0
+  int converged_final = 0;  // solves that reached eps = 0
+  double seconds = 0;
+  bool cut_by_time = false;
+  std::vector<StartExtremal> start_extremals;
+  std::vector<Extremal> extremals;
+  int returned = -1;  // index into extremals
+  std::string reason;
 };
 
 struct Result {
@@ -427,7 +519,7 @@ struct Result {
   int iterations = 0;
   std::vector<HomotopyStep> homotopy;
   std::vector<ContinuationStep> continuation;
-  std::vector<Optimum> optima;  // every converged attempt, with settings.best_of > 1
+  SearchRecord search;
 };
 
 inline std::string hybrd_meaning(int info) {
@@ -546,12 +638,18 @@ bool homotopy_step(Shooter& shooter, std::vector<double>& x, double eps, double 
   return ok;
 }
 
+// Any step of a continuation stays on its branch (see homotopy_to_zero's on_branch).
+struct AnyBranch {
+  bool operator()(const std::vector<double>&, const std::vector<double>&, double) const { return true; }
+};
+
 // Solves at settings.eps_start from the guess x, then continues in eps down to 0 with an adaptive
-// step in log(eps) and retreat on failure. True when eps = 0 is reached (x and res are then its
-// solution; r.x_start the first N variables of the solution at eps_start).
-template <class Admissible>
+// step in log(eps) and retreat on failure. A step whose solution `on_branch(from, to, eps)` rejects
+// (hybrd jumped to another extremal's branch) counts as failed. True when eps = 0 is reached (x
+// and res are then its solution; r.x_start the first N variables of the solution at eps_start).
+template <class Admissible, class OnBranch = AnyBranch>
 bool homotopy_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& x, Result& r, Admissible&& admissible,
-                      double& res) {
+                      double& res, OnBranch&& on_branch = OnBranch{}) {
   int info = 0;
   double eps = s.eps_start;
   if (!homotopy_step(shooter, x, eps, s.accept_residual, r, admissible, info, res)) return false;
@@ -563,7 +661,9 @@ bool homotopy_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& 
     const double next = to_zero ? 0.0 : std::max(eps * std::exp(-log_step), 0.5 * zero_below);
     std::vector<double> trial = x;
     const double accept = to_zero ? s.final_residual : s.accept_residual;
-    if (homotopy_step(shooter, trial, next, accept, r, admissible, info, res)) {
+    bool ok = homotopy_step(shooter, trial, next, accept, r, admissible, info, res);
+    if (ok && !on_branch(x, trial, next)) ok = r.homotopy.back().converged = false;
+    if (ok) {
       x = trial;
       eps = next;
       r.info = info;
@@ -602,81 +702,6 @@ inline double objective_of(const Settings& s, const std::vector<double>& x) {
     return propellant;
   }
   return samples.back().t - samples.front().t;
-}
-
-// Local optima: with settings.best_of > 1 the restarts go on after a converged attempt until
-// best_of have converged, and the best objective is kept. `converged` is called after each attempt:
-// true when the search is over.
-class BestOf {
- public:
-  explicit BestOf(const Settings& s) : settings_(s) {}
-  bool converged(Result& r) {
-    if (r.status != "converged") return false;
-    ++found_;
-    if (settings_.best_of <= 1) return true;
-    const double objective = objective_of(settings_, r.x);
-    r.optima.push_back({r.attempts, r.method, objective, r.max_residual, r.x, r.x_start});
-    if (objective < best_objective_) {
-      best_objective_ = objective;
-      best_ = r;
-    }
-    if (found_ >= settings_.best_of) return true;
-    r.status = "not_converged";
-    return false;
-  }
-  // After the loop: the best converged attempt, if any (also when time ran out after it).
-  void finish(Result& r) const {
-    if (settings_.best_of <= 1 || found_ == 0) return;
-    r.status = "converged";
-    r.detail.clear();
-    r.method = best_.method;
-    r.info = best_.info;
-    r.x = best_.x;
-    r.x_start = best_.x_start;
-    r.F = best_.F;
-    r.eps = best_.eps;
-    r.max_residual = best_.max_residual;
-  }
-  int found() const { return found_; }
-
- private:
-  const Settings& settings_;
-  int found_ = 0;
-  double best_objective_ = INFINITY;
-  Result best_;
-};
-
-// Seeded random restarts, each continued in eps from settings.eps_start to 0.
-template <class Guess, class Admissible>
-Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& admissible) {
-  Result r;
-  Shooter shooter(s);
-  std::mt19937_64 rng(s.seed);
-  BestOf best(s);
-  while (r.attempts < s.max_attempts) {
-    if (wall_seconds() > s.time_limit_s) {
-      r.status = "timeout";
-      r.detail = "time limit reached before convergence";
-      break;
-    }
-    ++r.attempts;  // attempts started, each from a new seeded guess
-    std::vector<double> x(problem::kNumVars);
-    initial_guess(rng, x.data());
-    double res = 0;
-    if (homotopy_to_zero(s, shooter, x, r, admissible, res)) {
-      r.status = "converged";
-      r.x = x;
-      r.F = shooter.last_F;
-      r.eps = 0;
-      r.max_residual = res;
-      if (best.converged(r)) break;
-    }
-  }
-  best.finish(r);
-  if (r.status == "not_converged")
-    r.detail = "no seeded attempt reached eps = 0 (" + std::to_string(r.attempts) + " attempts)";
-  r.evaluations = shooter.evaluations;
-  return r;
 }
 
 // Problems with interior events (the RESIDUAL module's LegPlan): an attempt first solves the
@@ -1168,44 +1193,6 @@ bool continuation_attempt(const Settings& s, const EventPlan& plan, Guess&& init
   return done(converged);
 }
 
-// Problems with interior events: when every event is passable, each attempt first continues from
-// the problem without its events onto them (continuation_attempt), and then tries the legs
-// (legs_attempt); otherwise the legs alone.
-template <class Guess, class Admissible>
-Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const EventPlan& events, Guess&& initial_guess,
-                             Admissible&& admissible) {
-  Result r;
-  r.method = events.passable ? "events off, then continuation onto the events; else legs, then multiple shooting"
-                             : "legs, then multiple shooting, then single shooting";
-  std::mt19937_64 rng(s.seed);
-  Shooter single(s);
-  int evaluations = 0;
-  std::vector<double> eventless;  // the solution without the events, once found
-  int uses = 0;                   // attempts that started from it
-  BestOf best(s);
-  while (r.attempts < s.max_attempts && r.status == "not_converged") {
-    if (wall_seconds() > s.time_limit_s) {
-      r.status = "timeout";
-      r.detail = "time limit reached before convergence";
-      break;
-    }
-    ++r.attempts;
-    if (events.passable) {
-      continuation_attempt(s, events, initial_guess, admissible, rng, eventless, uses, r, evaluations);
-      const bool continued = r.status == "converged";
-      if (best.converged(r)) break;
-      if (continued || wall_seconds() > s.time_limit_s) continue;
-    }
-    legs_attempt(s, legs, initial_guess, admissible, rng, single, r, evaluations);
-    if (best.converged(r)) break;
-  }
-  best.finish(r);
-  if (r.status == "not_converged")
-    r.detail = "no seeded attempt reached eps = 0 (" + std::to_string(r.attempts) + " attempts)";
-  r.evaluations = evaluations + single.evaluations;
-  return r;
-}
-
 // The Newton homotopy F(z) - sigma F(x) = 0 at eps, followed from sigma = 1 (solved by x) to 0:
 // it moves the rows that changed with the active set from their old form to their new one. True
 // when sigma = 0 was reached (x is then the solution at eps).
@@ -1296,7 +1283,7 @@ struct PassLog {
   std::vector<LegStep> legs;
   std::vector<HomotopyStep> homotopy;
   std::vector<ContinuationStep> continuation;
-  std::string from;  // which of pass 1's optima the passes start from ("" for its solution)
+  std::string from;  // which of pass 1's extremals the passes start from ("" for its solution)
   void add(const Result& r, int pass) {
     attempts += r.attempts;
     iterations += r.iterations;
@@ -1375,10 +1362,10 @@ bool active_set_passes(const Settings& s, const std::vector<Bound>& bounds, Resu
 }
 
 // Bounds psi <= 0 by passes over the active set: pass 1 solves with every bound inactive, then
-// active_set_passes follows from its solution, warm. With best_of > 1 pass 1 keeps several local
-// optima, and the passes start from each of them (best first; one no better than a result already
-// found cannot lead to a better one), since the best optimum without the bounds need not lead to
-// the best one with them. The best consistent result is the solution. Only when no warm start
+// active_set_passes follows from its solution, warm. Pass 1's search keeps its distinct extremals,
+// and the passes start from each of them (best first; one no better than a result already found
+// cannot lead to a better one), since the best extremal without the bounds need not lead to the
+// best one with them. The best consistent result is the solution. Only when no warm start
 // gets there do the passes run again from pass 1's solution, now with a cold solve where the warm
 // one fails.
 template <class Solve, class Admissible>
@@ -1395,31 +1382,35 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
   std::vector<char> final_set = state.active;
   if (r.status == "converged") {
     first = bound_values(s, r.x);
-    // The starts: pass 1's solution, then its other optima, best first.
-    std::vector<Optimum> own;  // pass 1's solution, when it kept no optima (best_of = 1)
-    if (r.optima.empty()) own.push_back({r.attempts, r.method, objective_of(s, r.x), r.max_residual, r.x, r.x_start});
-    std::vector<Optimum>& optima = own.empty() ? r.optima : own;
-    std::vector<std::size_t> order(optima.size());
+    // The starts: pass 1's distinct extremals, its solution first, then the others by objective.
+    std::vector<Extremal>& extremals = r.search.extremals;
+    if (extremals.empty()) {  // a solve without a search record (an llm-written SOLVE module)
+      Extremal own;
+      own.x = r.x;
+      own.x_start = r.x_start;
+      own.shape.cost = objective_of(s, r.x);
+      own.reached = 1;
+      own.method = r.method;
+      extremals.push_back(own);
+      r.search.returned = 0;
+    }
+    std::vector<std::size_t> order(extremals.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      const bool a_solution = optima[a].x == r.x, b_solution = optima[b].x == r.x;
-      return a_solution != b_solution ? a_solution : optima[a].objective < optima[b].objective;
+      const bool a_solution = static_cast<int>(a) == r.search.returned, b_solution = static_cast<int>(b) == r.search.returned;
+      return a_solution != b_solution ? a_solution : extremals[a].shape.cost < extremals[b].shape.cost;
     });
     Result best = r;
     double best_objective = INFINITY;
-    std::vector<double> started;  // the objectives of the optima started from (a repeat is skipped)
-    const auto same = [](double a, double b) { return std::fabs(a - b) <= 1e-9 * std::max(1.0, std::fabs(a)); };
+    int best_from = r.search.returned;
     for (const std::size_t i : order) {
-      Optimum& o = optima[i];
-      if (wall_seconds() > s.time_limit_s || o.objective >= best_objective ||
-          std::any_of(started.begin(), started.end(), [&](double v) { return same(v, o.objective); }))
-        continue;
-      started.push_back(o.objective);
+      Extremal& o = extremals[i];
+      if (wall_seconds() > s.time_limit_s || o.shape.cost >= best_objective) continue;
       o.bounded_tried = true;
       Result from = r;
       from.x = o.x;
       from.x_start = o.x_start;
-      log.from = o.x == r.x ? "" : "from the optimum of attempt " + std::to_string(o.attempt) + ", ";
+      log.from = static_cast<int>(i) == r.search.returned ? "" : "from extremal " + std::to_string(i) + ", ";
       std::vector<std::string> changes;
       if (!active_set_passes(s, bounds, from, false, solve, admissible, log, changes)) continue;
       o.bounded_objective = objective_of(s, from.x);
@@ -1427,6 +1418,7 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
       if (o.bounded_objective < best_objective) {
         best_objective = o.bounded_objective;
         best = from;
+        best_from = static_cast<int>(i);
         final_set = state.active;
         steps = changes;
         consistent = true;
@@ -1439,9 +1431,14 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
       consistent = active_set_passes(s, bounds, best, true, solve, admissible, log, steps);
       final_set = state.active;
     }
-    std::vector<Optimum> kept = std::move(r.optima);
+    SearchRecord record = std::move(r.search);
     r = best;
-    r.optima = std::move(kept);
+    r.search = std::move(record);
+    if (consistent) {
+      r.search.returned = best_from;
+      r.search.reason = "the lowest objective with the bounds reached from the " +
+                        std::to_string(r.search.extremals.size()) + " distinct extremals of pass 1";
+    }
     if (!consistent) {
       r.status = "not_converged";
       if (r.detail.empty()) r.detail = "no pass over the bounds' active set converged";

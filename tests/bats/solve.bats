@@ -30,7 +30,10 @@ setup() {
 
 @test "solve: S01 end to end converges to the paper's final mass" {
   [[ $(cat "$E2E/status") == 0 ]] || { cat "$E2E/stderr" >&2; false; }
-  [[ ! -s $E2E/stderr && ! -s $E2E/stdout ]]
+  # nothing on stdout; on stderr only the tool's progress lines
+  [[ ! -s $E2E/stdout ]]
+  grep -q '^helios-solve: search: ' "$E2E/stderr"
+  ! grep -v '^helios-solve: ' "$E2E/stderr"
   local sol="$E2E/solution.json"
   assert_jq "$sol" '.schema == "helios/solution" and .problem.id == "S01"'
   assert_jq "$sol" '.status == "converged"'

@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # Benchmark of the builtin backend, from a cold start (fresh output folder, empty compile cache):
-# per scenario the wall time of each stage, the solver's restarts, legs solved alone (problems with
-# interior events: every leg attempt before the legs were joined), homotopy steps, passes over the
-# bounds, and the result; then a warm solve of the first scenario (compile cache hit) and, for the J2 scenarios,
-# the m_f of the same problem without J2 (the J2 sentence removed).
+# per scenario the wall time of each stage, the global search's cost (starts or attempts, distinct
+# extremals at eps = 0, its wall time), legs solved alone (problems with interior events: every
+# leg attempt before the legs were joined), homotopy steps of the returned solution, passes over
+# the bounds, and the result; then a warm solve of the first scenario (compile cache hit), for the
+# J2 scenarios the m_f of the same problem without J2 (the J2 sentence removed), and S13's search
+# over seeds 1-5 (median cold solve; target <= 60 s on 2 cores), with the start strategies
+# compared at equal cost (tests/bench/search_methods.cpp).
 # usage: tests/bench/bench.sh [SCENARIO...]   (default: every scenario; run from the repository root; needs `make tools`)
 set -euo pipefail
 bin=build/bin
@@ -38,16 +41,17 @@ chain() {
 }
 
 echo "HELIOS benchmark, builtin backend, $(nproc) cores, $(date -u +%FT%TZ)"
-printf '%-5s %7s %7s %7s %7s %8s %8s %8s %5s %5s %5s %4s  %-13s %s\n' scen parse derive verify gen compile run solve \
-  rest legs homot pass status result
+printf '%-5s %7s %7s %7s %7s %8s %8s %8s %6s %4s %8s %5s %5s %4s  %-13s %s\n' scen parse derive verify gen compile run solve \
+  starts ext search_s legs homot pass status result
 for s in "${scenarios[@]}"; do
   chain "$work/$s" "scenarios/$s/problem.txt" "scenarios/$s/settings.json"
   "$bin/helios-score" --reference "scenarios/$s/reference.json" --spec "$work/$s/spec.json" \
     --derivation "$work/$s/derivation.json" --verify "$work/$s/verify.json" --solution "$work/$s/solution.json" \
     -o "$work/$s/score.json"
-  printf '%-5s %7.3f %7.3f %7.3f %7.3f %8.3f %8.3f %8.3f %5s %5s %5s %4s  %-13s %s\n' "$s" "$t_parse" "$t_derive" \
+  printf '%-5s %7.3f %7.3f %7.3f %7.3f %8.3f %8.3f %8.3f %6s %4s %8.3f %5s %5s %4s  %-13s %s\n' "$s" "$t_parse" "$t_derive" \
     "$t_verify" "$t_gen" "$(jq .timings.compile_s "$work/$s/solution.json")" "$(jq .timings.run_s "$work/$s/solution.json")" \
-    "$t_solve" "$(jq '.restarts // "-"' "$work/$s/solution.json")" "$(jq '.legs // [] | length' "$work/$s/solution.json")" \
+    "$t_solve" "$(jq '.search.starts // "-"' "$work/$s/solution.json")" "$(jq '.search.extremals // [] | length' "$work/$s/solution.json")" \
+    "$(jq '.search.seconds // 0' "$work/$s/solution.json")" "$(jq '.legs // [] | length' "$work/$s/solution.json")" \
     "$(jq '.homotopy | length' "$work/$s/solution.json")" "$(jq '.passes // 1' "$work/$s/solution.json")" \
     "$(jq -r .status "$work/$s/solution.json")" \
     "$(jq -r 'if .final_mass_kg then "m0 \(.initial_mass_kg) kg, m_f \(.final_mass_kg) kg" else "tof \(.tof_days) d" end + ", max|F| \(.max_residual)"' \
@@ -70,3 +74,22 @@ for s in "${scenarios[@]}"; do
   jq -rn --slurpfile on "$work/$s/solution.json" --slurpfile off "$work/$s-noJ2/solution.json" --arg s "$s" \
     '"\($s) J2 on: m_f \($on[0].final_mass_kg) kg, J2 off: \($off[0].final_mass_kg) kg (\($off[0].status)), difference \(($on[0].final_mass_kg - $off[0].final_mass_kg) * 1000) g"'
 done
+
+# S13: the search over seeds 1-5, each a cold solve (its own empty compile cache), and the start
+# strategies at equal cost.
+if [[ " ${scenarios[*]} " == *" S13 "* ]]; then
+  times=()
+  for seed in 1 2 3 4 5; do
+    jq ".seed = $seed" scenarios/S13/settings.json >"$work/S13-seed$seed.json"
+    rm -rf "$work/S13/cache-seed"
+    t=$(seconds "$bin/helios-solve" --quiet "$work/S13/shoot.cpp" --settings "$work/S13-seed$seed.json" \
+      --cache-dir "$work/S13/cache-seed" --trajectory "$work/S13/trajectory-seed.csv" -o "$work/S13/solution-seed$seed.json")
+    times+=("$t")
+    jq -r --arg seed "$seed" --arg t "$t" '"S13 seed \($seed): m_f \(.final_mass_kg) kg, max|F| \(.max_residual), \(.search.starts) starts, \(.search.extremals | length) extremals at eps = 0 (\([.search.extremals[].propellant_kg | . * 1000 | round / 1000])) kg of propellant, cold solve \($t) s"' \
+      "$work/S13/solution-seed$seed.json"
+  done
+  median=$(printf '%s\n' "${times[@]}" | sort -g | sed -n 3p)
+  printf 'S13 median cold solve over seeds 1-5: %.3f s (target <= 60 s: ratio %.3f)\n' "$median" "$(ratio "$median" 60)"
+  g++ -std=c++17 -O2 -pthread -DSHOOT_CPP="\"$work/S13/shoot.cpp\"" tests/bench/search_methods.cpp -o "$work/search_methods" -lcminpack
+  "$work/search_methods" 10 6000
+fi

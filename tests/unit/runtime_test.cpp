@@ -151,6 +151,43 @@ TEST(Runtime, SwitchTimesAreLocatedToRoundOff) {
   EXPECT_LT(std::fabs(s0), 1e-12);
 }
 
+// NOTE: a throttle arc shorter than an integrator step has both switches inside that step, where
+// the step's ends do not show them (Propagator::dip looks inside). Here lambda0 is bisected to
+// where the switching function first touches zero (above it no switch, below it a first short
+// burn), and just below that the burn lasts less than the integrator's steps (~6 days here). Propagated with steps of at most 1e-5 year
+// (5 minutes) the burn is seen at the step ends; unlimited steps must find the same two switches.
+TEST(Runtime, ShortArcsInsideOneStepAreFound) {
+  helios_rt::Settings settings;
+  int short_arcs = 0;
+  for (unsigned seed = 1; seed <= 10; ++seed) {
+    const auto switches_with = [&](double lambda0, double max_step) {
+      std::vector<helios_rt::Switch> found;
+      helios_rt::Propagator prop(settings);
+      prop.switches = &found;
+      prop.max_step = max_step;
+      auto y = random_extremal_start(seed);
+      prop.propagate(0.0, 0.5, y.data(), Multipliers{lambda0, 0.0});
+      return found;
+    };
+    double hi = 5.0, lo = hi;  // lambda0: none at hi (the engine off throughout), switches at lo
+    if (!switches_with(hi, 1e-4).empty()) continue;
+    while (lo > 1e-3 && switches_with(lo, 1e-4).empty()) hi = lo, lo *= 0.9;
+    for (int it = 0; it < 40; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (switches_with(mid, 1e-4).empty() ? hi : lo) = mid;
+    }
+    for (double below : {1e-3, 1e-4, 1e-5}) {
+      const double lambda0 = lo * (1 - below);
+      const auto fine = switches_with(lambda0, 1e-5), free_steps = switches_with(lambda0, INFINITY);
+      if (fine.size() != 2) break;  // the first burn starts at the end of the span, not inside it
+      ASSERT_EQ(free_steps.size(), fine.size()) << "seed " << seed << ", 1 - lambda0/lambda0* = " << below;
+      for (std::size_t k = 0; k < fine.size(); ++k) EXPECT_NEAR(fine[k].t, free_steps[k].t, 1e-9);
+      short_arcs += fine[1].t - fine[0].t < 5e-3;  // shorter than 2 days: less than a step here
+    }
+  }
+  EXPECT_GT(short_arcs, 0) << "the test must exercise arcs shorter than a step";
+}
+
 TEST(Runtime, EphemerisModeIsJplLpInNormalizedUnits) {
   const auto n = helios_rt::ephemeris_state("Mars", 0.5);
   const auto s = helios::astro::jpl_lp_state(helios::astro::Planet::Mars, 400.0 + 0.5 * 365.25);

@@ -1,5 +1,7 @@
 // helios-solve: shoot.cpp -> solution.json (+ trajectory.csv and plots).
+#include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include "helios/io/cli.hpp"
 #include "helios/io/error.hpp"
@@ -18,11 +20,14 @@ int main(int argc, char** argv) {
        {"time-limit", "", "SECONDS", "wall-clock limit of the run", "600"},
        {"memory-limit", "", "MB", "address-space limit of the run", "4096"},
        {"backend", "", "NAME", "backend label recorded in the solution (builtin or llm)", "builtin"},
-       {"compile-only", "", "", "only compile (into the cache) and write a compile report instead", ""}},
+       {"compile-only", "", "", "only compile (into the cache) and write a compile report instead", ""},
+       {"quiet", "", "", "no progress lines on stderr", ""}},
       {"SHOOT"},
       "Compiles with g++ -O2 (skipped when the cache holds the same source and compiler), runs the\n"
       "program in a child with CPU, memory, file-size and wall-clock limits, and writes solution.json.\n"
       "A failed compile or run is recorded in the artifact's status; the tool still exits 0.\n"
+      "The run is a global search (many starts, the distinct extremals compared, the best kept); its\n"
+      "progress goes to stderr, one line per stage or every few seconds (--quiet: none).\n"
       "With --compile-only it writes a compile report (schemas/compile.schema.json: ok, errors,\n"
       "diagnostics) for a gen <-> compile repair round; a failed compile still exits 0.",
       "helios-solve runs/builtin/S01/shoot.cpp --settings scenarios/S01/settings.json "
@@ -37,6 +42,8 @@ int main(int argc, char** argv) {
     o.backend = helios::cli::backend_option(args, {"builtin", "llm"});
     o.time_limit_s = helios::cli::positive_option(args, "time-limit");
     o.memory_limit_mb = helios::cli::positive_option(args, "memory-limit");
+    if (!args.has("quiet"))
+      o.progress = [](const std::string& line) { std::fprintf(stderr, "helios-solve: %s\n", line.c_str()); };
     if (args.has("compile-only")) {
       helios::io::write_artifact("compile", helios::solve::compile_report(o), args.output);
       return 0;

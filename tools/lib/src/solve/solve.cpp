@@ -1,6 +1,7 @@
 #include "helios/solve/solve.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
@@ -9,6 +10,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -142,17 +144,46 @@ int kill_leftovers(pid_t group) {
 
 }  // namespace
 
+// Collects a program's stderr: the first 64 KiB as text, and each complete line, cleaned, to
+// on_line as it arrives.
+class StderrLines {
+ public:
+  StderrLines(std::string& text, const std::function<void(const std::string&)>& on_line)
+      : text_(text), on_line_(on_line) {}
+  void add(const char* data, std::size_t n) {
+    if (text_.size() < 65536) text_.append(data, std::min(n, 65536 - text_.size()));
+    if (!on_line_) return;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (data[i] == '\n') {
+        flush();
+        continue;
+      }
+      if (line_.size() < 300) line_ += std::isprint(static_cast<unsigned char>(data[i])) ? data[i] : '?';
+    }
+  }
+  void flush() {
+    if (on_line_ && !line_.empty()) on_line_(line_);
+    line_.clear();
+  }
+
+ private:
+  std::string& text_;
+  const std::function<void(const std::string&)>& on_line_;
+  std::string line_;
+};
+
 RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s, double memory_limit_mb,
-                      const std::string& workdir) {
+                      const std::string& workdir, const std::function<void(const std::string&)>& on_line) {
   RunResult r;
   const auto start = std::chrono::steady_clock::now();
-  char err_template[] = "/tmp/helios-stderr-XXXXXX";
-  const int err_fd = ::mkstemp(err_template);
-  if (err_fd < 0) throw std::runtime_error(std::string("cannot create a temp file: ") + std::strerror(errno));
-  ::unlink(err_template);
+  int err_pipe[2];
+  if (::pipe2(err_pipe, O_CLOEXEC) != 0)
+    throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
   // Orphans of the program (a daemonized or setsid() child) are reparented to us, so none escapes.
   ::prctl(PR_SET_CHILD_SUBREAPER, 1);
   const rlim_t nproc = static_cast<rlim_t>(processes_of_user() + kMaxChildProcesses);
+  // The CPU limit counts every thread's time, and the search runs one per core.
+  const rlim_t cores = std::max(1u, std::thread::hardware_concurrency());
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
@@ -162,9 +193,9 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
     if (::getppid() != parent) _exit(126);
     // Its own process group, so a timeout kills everything it started.
     ::setpgid(0, 0);
-    ::dup2(err_fd, 2);
+    ::dup2(err_pipe[1], 2);
     if (!workdir.empty() && ::chdir(workdir.c_str()) != 0) _exit(126);
-    const rlim_t cpu = static_cast<rlim_t>(std::ceil(wall_limit_s)) + 5;
+    const rlim_t cpu = static_cast<rlim_t>(std::ceil(wall_limit_s)) * cores + 5;
     const rlim_t mem = static_cast<rlim_t>(memory_limit_mb * 1024 * 1024);
     const rlim_t fsize = 512ull * 1024 * 1024;
     const struct rlimit cpu_limit = {cpu, cpu}, mem_limit = {mem, mem}, file_limit = {fsize, fsize};
@@ -181,7 +212,15 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
     ::execv(args[0], args.data());
     _exit(127);
   }
+  ::close(err_pipe[1]);
+  ::fcntl(err_pipe[0], F_SETFL, O_NONBLOCK);
   ::setpgid(pid, pid);  // also from the parent, so the group exists before any kill
+  StderrLines lines(r.stderr_text, on_line);
+  char buf[4096];
+  const auto drain = [&] {
+    ssize_t n;
+    while ((n = ::read(err_pipe[0], buf, sizeof buf)) > 0) lines.add(buf, static_cast<std::size_t>(n));
+  };
   int status = 0;
   while (true) {
     const pid_t done = ::waitpid(pid, &status, WNOHANG);
@@ -193,25 +232,24 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
       r.timed_out = true;
       break;
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    struct pollfd p = {err_pipe[0], POLLIN, 0};
+    ::poll(&p, 1, 20);
+    drain();
   }
   r.leftover_processes = kill_leftovers(pid);
   r.seconds = seconds_since(start);
   if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
-  ::lseek(err_fd, 0, SEEK_SET);
-  char buf[4096];
-  ssize_t n;
-  while ((n = ::read(err_fd, buf, sizeof buf)) > 0 && r.stderr_text.size() < 65536)
-    r.stderr_text.append(buf, static_cast<std::size_t>(n));
-  ::close(err_fd);
+  drain();
+  lines.flush();
+  ::close(err_pipe[0]);
   return r;
 }
 
 CompileResult compile_cached(const std::string& source, const std::string& compiler, const std::string& cache_dir) {
   CompileResult c;
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<std::string> flags = {"-std=c++17", "-O2", "-Wall", "-Wextra"};
+  const std::vector<std::string> flags = {"-std=c++17", "-O2", "-pthread", "-Wall", "-Wextra"};
   std::string flag_text;
   for (const auto& f : flags) flag_text += " " + f;
   c.command = compiler + flag_text + " shoot.cpp -o shoot -lcminpack";
@@ -344,7 +382,8 @@ json solve(const SolveOptions& o) {
   static const std::vector<std::string> known = {
       "seed",           "max_attempts",    "time_limit_s",   "integrator_rtol", "integrator_atol",
       "hybrd_tol",      "accept_residual", "final_residual", "eps_start",       "eps_min",
-      "eps_first_ratio", "leg_attempts",    "best_of"};
+      "eps_first_ratio", "leg_attempts",    "search_starts", "search_saturation", "search_continued", "search_attempts",
+      "search_time_s",  "threads"};
   for (auto it = settings.begin(); it != settings.end(); ++it) {
     if (std::find(known.begin(), known.end(), it.key()) == known.end()) {
       std::string names;
@@ -371,6 +410,8 @@ json solve(const SolveOptions& o) {
   doc["settings"] = settings;
   doc["timings"] = {{"compile_s", c.seconds}, {"run_s", 0.0}, {"total_s", seconds_since(start)}};
   if (!c.ok) return doc;
+  if (o.progress)
+    o.progress(c.cached ? "compiled program from the cache" : "compiled in " + limit_text(c.seconds) + " s");
 
   const fs::path out_dir = fs::path(o.trajectory_path).parent_path();
   const std::string tag = std::to_string(::getpid());
@@ -383,7 +424,8 @@ json solve(const SolveOptions& o) {
   const RunResult run =
       run_limited({fs::absolute(c.binary).string(), "--settings", fs::absolute(settings_tmp).string(), "--result",
                    fs::absolute(result_tmp).string(), "--trajectory", fs::absolute(traj_tmp).string()},
-                  o.time_limit_s, o.memory_limit_mb, fs::absolute(out_dir.empty() ? fs::path(".") : out_dir).string());
+                  o.time_limit_s, o.memory_limit_mb, fs::absolute(out_dir.empty() ? fs::path(".") : out_dir).string(),
+                  o.progress);
   doc["timings"]["run_s"] = run.seconds;
   if (run.timed_out || run.exit_code != 0 || !fs::exists(result_tmp)) {
     doc["status"] = run.timed_out ? "timeout" : "crashed";
@@ -419,7 +461,7 @@ json solve(const SolveOptions& o) {
   if (r.contains("legs")) doc["legs"] = r.at("legs");
   doc["passes"] = r.value("passes", 1);
   if (r.contains("bounds")) doc["bounds"] = r.at("bounds");
-  if (r.contains("optima")) doc["optima"] = r.at("optima");
+  if (r.contains("search")) doc["search"] = r.at("search");
   if (r.contains("continuation")) {
     json steps = json::array();
     for (const auto& c : r.at("continuation")) {

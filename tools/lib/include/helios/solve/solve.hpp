@@ -1,6 +1,7 @@
 #pragma once
 // helios-solve: compile a shooting program (cached by content hash), run it under resource
 // limits, and collect solution.json, trajectory.csv and the plots.
+#include <functional>
 #include <string>
 
 #include "helios/io/json_io.hpp"
@@ -18,6 +19,9 @@ struct SolveOptions {
   std::string compiler = "g++";
   double time_limit_s = 600;  // wall clock for the run (the program also stops itself)
   double memory_limit_mb = 4096;
+  // Receives each line the program writes on stderr as it comes (its search progress), and the
+  // stage's own progress lines; empty: quiet.
+  std::function<void(const std::string&)> progress;
 };
 
 struct CompileResult {
@@ -42,9 +46,11 @@ struct RunResult {
 // Runs argv (argv[0] a path) in a child with CPU, address-space, file-size, core and process-count
 // limits and a wall-clock limit, in its own process group with `workdir` (if not empty) as its
 // working directory. On return nothing it started is left running: the group and any orphan
-// (helios-solve is a child subreaper) are killed.
+// (helios-solve is a child subreaper) are killed. Each line of the program's stderr goes to
+// `on_line` (if set) as it is written, its control bytes replaced by '?', at most 300 bytes.
 RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s, double memory_limit_mb,
-                      const std::string& workdir = "");
+                      const std::string& workdir = "",
+                      const std::function<void(const std::string&)>& on_line = nullptr);
 
 // Draws the 3-D trajectory coloured by the control, and the control panel versus time, with
 // gnuplot: throttle + mass (throttle_mass.png) for an engine, the cone angle (cone_angle.png) for

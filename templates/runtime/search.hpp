@@ -1,0 +1,495 @@
+// ---------------------------------------------------------------------------------------------
+// HELIOS shooting runtime, global search (templates/runtime/search.hpp): pasted after
+// runtime.hpp. A converged shooting solution is an extremal, not necessarily the optimum: on
+// multi-revolution transfers the extremal a random start reaches is a matter of chance. So the
+// solve is a search:
+//   1. starts: search_starts seeded guesses, each solved at eps_start (eps = 1: the smooth,
+//      energy-like problem), in parallel on `threads` threads;
+//   2. the converged ones are told apart by what makes them different (revolutions about the
+//      central body, throttle mode changes, the shooting variables) and ranked by their own cost
+//      at eps_start;
+//   3. the search_continued lowest-cost distinct extremals are continued in eps to 0 (then the
+//      next ones, while none has arrived), and the distinct extremals at eps = 0 are compared:
+//      the lowest objective is returned.
+// Problems with interior events search the same way over search_attempts complete attempts
+// (each a continuation onto the events or a solve by legs, events_homotopy_solve). Start k draws
+// its guess from a generator seeded by (seed, k), and the outcomes are merged in start order, so
+// the search is deterministic for a given seed whatever the thread count, unless its time budget
+// (search_time_s, time_limit_s) cuts it, which the record says.
+// ---------------------------------------------------------------------------------------------
+namespace helios_rt {
+
+// The generator of start k: SplitMix64 of (seed, k), so a start's guess does not depend on which
+// thread runs it or on how many starts came before.
+inline std::mt19937_64 start_generator(unsigned seed, int k) {
+  std::uint64_t z = (static_cast<std::uint64_t>(seed) << 32) + static_cast<std::uint64_t>(k) + 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return std::mt19937_64(z ^ (z >> 31));
+}
+
+// Runs work(k) for k = 0 .. n-1 on up to `threads` threads (each index once; work must not throw).
+// The active set of the bounds is thread-local: each worker starts with the caller's.
+template <class Work>
+void parallel_for(int n, int threads, Work&& work) {
+  std::atomic<int> next{0};
+  const BoundState bounds = bound_state();
+  const auto loop = [&](bool worker) {
+    if (worker) bound_state() = bounds;
+    for (int k; (k = next++) < n;) work(k);
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::min(threads, n); ++t) {
+    try {
+      pool.emplace_back(loop, true);
+    } catch (const std::system_error&) {
+      break;  // no more threads to be had (a process limit): the others share the work
+    }
+  }
+  loop(false);
+  for (auto& t : pool) t.join();
+}
+
+// One line on stderr per stage and at most one every two seconds in between, so a user waiting
+// for a long search sees it working.
+class Progress {
+ public:
+  void stage(const std::string& line) { print(line, true); }
+  void tick(const std::string& line) { print(line, false); }
+
+ private:
+  void print(const std::string& line, bool always) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const double now = wall_seconds();
+    if (!always && now - last_ < 2.0) return;
+    last_ = now;
+    std::fprintf(stderr, "search: %s (%.1f s)\n", line.c_str(), now);
+    std::fflush(stderr);
+  }
+  std::mutex mutex_;
+  double last_ = -INFINITY;
+};
+
+// The Shape of a converged x at eps.
+inline Shape shape_of(const Settings& s, const std::vector<double>& x, double eps) {
+  Shape out;
+  Propagator prop(s);
+  std::vector<Sample> samples;
+  std::vector<Switch> switches;
+  prop.samples = &samples;
+  prop.switches = &switches;
+  prop.max_step = (problem::kTf - problem::kT0) / 1000;
+  std::vector<double> F(problem::kNumVars);
+  try {
+    shooting_function(x.data(), eps, prop, F.data());
+  } catch (const numerical_error&) {
+    return out;
+  }
+  if (samples.size() < 2) return out;
+  out.switches = static_cast<int>(switches.size());
+  const auto& y0 = samples.front().y;
+  std::array<double, 3> h{y0[1] * y0[5] - y0[2] * y0[4], y0[2] * y0[3] - y0[0] * y0[5], y0[0] * y0[4] - y0[1] * y0[3]};
+  double hn = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+  if (!(hn > 0)) h = {0, 0, 1}, hn = 1;
+  double swept = 0, smoothed = 0, burned = 0, propellant = 0;
+  for (std::size_t i = 1; i < samples.size(); ++i) {
+    const auto &a = samples[i - 1].y, &b = samples[i].y;
+    const double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];
+    swept += std::atan2((cx * h[0] + cy * h[1] + cz * h[2]) / hn, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+    if constexpr (problem::kThrottleIndex >= 0 && problem::kMassIndex >= 0) {
+      if (samples[i].arc != samples[i - 1].arc) continue;
+      const double dt = samples[i].t - samples[i - 1].t;
+      const double ua = samples[i - 1].control[problem::kThrottleIndex], ub = samples[i].control[problem::kThrottleIndex];
+      smoothed += 0.5 * dt * (ua - eps * ua * (1 - ua) + ub - eps * ub * (1 - ub));
+      burned += 0.5 * dt * (ua + ub);
+      propellant += a[problem::kMassIndex] - b[problem::kMassIndex];
+    }
+  }
+  out.revolutions = swept / (2 * M_PI);
+  if (problem::kMinimumFuel && problem::kThrottleIndex >= 0 && problem::kMassIndex >= 0)
+    out.cost = burned > 0 ? propellant * smoothed / burned : 0.0;  // the mass flow is proportional to u
+  else
+    out.cost = samples.back().t - samples.front().t;
+  return out;
+}
+
+// Two converged solutions are one extremal when their structure agrees (revolutions, switches)
+// and their shooting variables or their cost do.
+inline bool same_extremal(const std::vector<double>& xa, const Shape& a, const std::vector<double>& xb,
+                          const Shape& b) {
+  if (a.switches != b.switches || std::fabs(a.revolutions - b.revolutions) > 1e-3) return false;
+  double dx = 0, size = 1;
+  for (std::size_t i = 0; i < xa.size(); ++i) {
+    dx = std::max(dx, std::fabs(xa[i] - xb[i]));
+    size = std::max(size, std::fabs(xa[i]));
+  }
+  return dx <= 1e-6 * size || std::fabs(a.cost - b.cost) <= 1e-9 * std::max(1e-3, std::fabs(a.cost));
+}
+
+// Adds a converged solution to the distinct ones (`list` of StartExtremal or Extremal); returns
+// its index.
+template <class List>
+int merge_extremal(List& list, const std::vector<double>& x, const Shape& shape, int start,
+                   typename List::value_type&& entry) {
+  for (std::size_t i = 0; i < list.size(); ++i)
+    if (same_extremal(list[i].x, list[i].shape, x, shape)) {
+      ++list[i].reached;
+      return static_cast<int>(i);
+    }
+  entry.x = x;
+  entry.shape = shape;
+  entry.first_start = start;
+  entry.reached = 1;
+  list.push_back(std::move(entry));
+  return static_cast<int>(list.size()) - 1;
+}
+
+// The returned extremal: the lowest objective (the first reached among equals).
+inline void choose_best(SearchRecord& rec, const std::string& what) {
+  rec.returned = -1;
+  for (std::size_t i = 0; i < rec.extremals.size(); ++i)
+    if (rec.returned < 0 || rec.extremals[i].shape.cost < rec.extremals[rec.returned].shape.cost)
+      rec.returned = static_cast<int>(i);
+  if (rec.returned < 0) return;
+  const std::size_t n = rec.extremals.size();
+  rec.reason = n == 1 ? "the only extremal reached at eps = 0 " + what
+                      : "the lowest objective of the " + std::to_string(n) + " distinct extremals reached at eps = 0 " +
+                            what;
+}
+
+// Copies the returned extremal into r.
+inline void take_extremal(Result& r) {
+  const Extremal& e = r.search.extremals[r.search.returned];
+  r.status = "converged";
+  r.detail.clear();
+  r.method = e.method;
+  r.info = e.info;
+  r.x = e.x;
+  r.x_start = e.x_start;
+  r.F = e.F;
+  r.eps = 0;
+  r.max_residual = e.max_residual;
+  r.homotopy = e.homotopy;
+  r.legs = e.legs;
+  r.continuation = e.continuation;
+}
+
+// An objective in named units for the progress lines.
+inline std::string objective_text(double objective) {
+  char buf[64];
+  if (problem::kMinimumFuel && problem::kMassIndex >= 0)
+    std::snprintf(buf, sizeof buf, "%.6g kg of propellant", objective * problem::kMassUnitKg);
+  else
+    std::snprintf(buf, sizeof buf, "%.6g days", objective * problem::kTimeUnitDays);
+  return buf;
+}
+
+// Starts are drawn and merged in batches of this many.
+constexpr int kSearchBatch = 8;
+
+inline int search_threads(const Settings& s) {
+  if (s.threads > 0) return s.threads;
+  return static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
+}
+
+inline bool search_time_left(const Settings& s, double started) {
+  return wall_seconds() <= s.time_limit_s && (s.search_time_s <= 0 || wall_seconds() - started <= s.search_time_s);
+}
+
+// Problems without interior events: the multi-start search at eps_start, the lowest-cost distinct
+// extremals continued to eps = 0, the best kept (see the top of this file). `initial_guess(rng, x)`
+// draws a start.
+template <class Guess, class Admissible>
+Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& admissible) {
+  constexpr int N = problem::kNumVars;
+  Result r;
+  SearchRecord& rec = r.search;
+  rec.threads = search_threads(s);
+  rec.method = "multi-start at eps = " + std::to_string(s.eps_start).substr(0, 4) +
+               ", the lowest-cost distinct extremals continued to eps = 0";
+  const double started = wall_seconds();
+  Progress progress;
+  std::atomic<int> done{0}, converged{0};
+  int evaluations = 0;
+  std::mutex count;
+
+  // 1. Starts [from, to) at eps_start, merged in start order.
+  struct StartRun {
+    bool ok = false;
+    std::vector<double> x;
+    Shape shape;
+    double res = INFINITY;
+  };
+  const auto run_starts = [&](int from, int to) {
+    std::vector<StartRun> runs(static_cast<std::size_t>(to - from));
+    parallel_for(to - from, rec.threads, [&](int i) {
+      if (!search_time_left(s, started)) return;
+      StartRun& run = runs[i];
+      std::mt19937_64 rng = start_generator(s.seed, from + i);
+      run.x.assign(N, 0.0);
+      initial_guess(rng, run.x.data());
+      Shooter shooter(s);
+      int info = 0;
+      run.ok = shooter.solve(run.x, s.eps_start, s.accept_residual, info, run.res) && admissible(run.x.data());
+      if (run.ok) {
+        run.shape = shape_of(s, run.x, s.eps_start);
+        ++converged;
+      }
+      {
+        const std::lock_guard<std::mutex> lock(count);
+        evaluations += shooter.evaluations;
+      }
+      progress.tick(std::to_string(++done) + " starts at eps = " + std::to_string(s.eps_start).substr(0, 4) + ", " +
+                    std::to_string(converged.load()) + " converged");
+    });
+    for (int i = 0; i < to - from; ++i) {
+      if (runs[i].x.empty()) {
+        rec.cut_by_time = true;
+        continue;
+      }
+      ++rec.starts;
+      if (!runs[i].ok) continue;
+      ++rec.converged_start;
+      StartExtremal entry;
+      entry.max_residual = runs[i].res;
+      merge_extremal(rec.start_extremals, runs[i].x, runs[i].shape, from + i, std::move(entry));
+    }
+    progress.tick(std::to_string(rec.starts) + " starts at eps = " + std::to_string(s.eps_start).substr(0, 4) + ": " +
+                  std::to_string(rec.converged_start) + " converged, " + std::to_string(rec.start_extremals.size()) +
+                  " distinct extremals");
+  };
+
+  // 2. Continues the given eps_start extremals to eps = 0, merged in the order given.
+  const auto continue_extremals = [&](const std::vector<int>& which) {
+    std::vector<Extremal> arrived(which.size());
+    std::vector<char> ok(which.size(), 0);
+    parallel_for(static_cast<int>(which.size()), rec.threads, [&](int i) {
+      if (!search_time_left(s, started)) return;
+      // Each eps step starts hybrd's trust region next to the last solution, so that the path
+      // stays on its extremal's branch instead of jumping to another one.
+      Shooter shooter(s, shooting_function, kContinuationStart);
+      Result path;
+      std::vector<double> x = rec.start_extremals[which[i]].x;
+      double res = 0;
+      // A step must keep the branch's revolutions: hybrd can land on another extremal's branch
+      // (seen on S13: from the 3-revolution branch to the 4-revolution one), and the path would
+      // then report that extremal as this one's continuation.
+      double revolutions = rec.start_extremals[which[i]].shape.revolutions;
+      const auto on_branch = [&](const std::vector<double>&, const std::vector<double>& to, double eps) {
+        const double now = shape_of(s, to, eps).revolutions;
+        if (std::fabs(now - revolutions) > 0.25) return false;
+        revolutions = now;
+        return true;
+      };
+      ok[i] = homotopy_to_zero(s, shooter, x, path, admissible, res, on_branch);
+      if (ok[i]) {
+        Extremal& e = arrived[i];
+        e.x = x;
+        e.x_start = path.x_start;
+        e.F = shooter.last_F;
+        e.max_residual = res;
+        e.info = path.info;
+        e.homotopy = path.homotopy;
+        e.shape = shape_of(s, x, 0.0);
+        e.shape.cost = objective_of(s, x);
+        e.method = "single shooting, eps continuation from the extremal at eps_start of start " +
+                   std::to_string(rec.start_extremals[which[i]].first_start);
+      }
+      const std::lock_guard<std::mutex> lock(count);
+      evaluations += shooter.evaluations;
+    });
+    for (std::size_t i = 0; i < which.size(); ++i) {
+      StartExtremal& from = rec.start_extremals[which[i]];
+      from.continued = true;
+      ++rec.continued;
+      if (!ok[i]) continue;
+      ++rec.converged_final;
+      const int k = merge_extremal(rec.extremals, arrived[i].x, arrived[i].shape, from.first_start, std::move(arrived[i]));
+      Extremal& e = rec.extremals[k];
+      e.reached += from.reached - 1;  // every start that reached `from` led here
+      e.from.push_back(which[i]);
+      from.arrived = k;
+    }
+    const double best = [&] {
+      double b = INFINITY;
+      for (const auto& e : rec.extremals) b = std::min(b, e.shape.cost);
+      return b;
+    }();
+    progress.stage(std::to_string(rec.continued) + " continued to eps = 0: " + std::to_string(rec.extremals.size()) +
+                   " distinct extremals" + (std::isfinite(best) ? ", best " + objective_text(best) : ""));
+  };
+  // The untried eps_start extremals, lowest cost first.
+  const auto untried = [&] {
+    std::vector<int> order;
+    for (std::size_t i = 0; i < rec.start_extremals.size(); ++i)
+      if (!rec.start_extremals[i].continued) order.push_back(static_cast<int>(i));
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+      return rec.start_extremals[a].shape.cost < rec.start_extremals[b].shape.cost;
+    });
+    return order;
+  };
+
+  // Good-Turing: the chance that the next converged start reaches an extremal not seen yet is
+  // about the share of converged starts whose extremal was reached once.
+  const auto unseen = [&] {
+    int once = 0;
+    for (const auto& e : rec.start_extremals) once += e.reached == 1;
+    return rec.converged_start > 0 ? static_cast<double>(once) / rec.converged_start : 1.0;
+  };
+  int next_start = 0;
+  bool first_round = true;
+  while (search_time_left(s, started) && next_start < s.max_attempts) {
+    // Starts in batches of kSearchBatch (merged in order, so the stop does not depend on the
+    // threads) until search_starts, or the extremals at eps_start look complete: at least
+    // kSearchBatch converged and the chance of a new one below search_saturation.
+    const int limit = std::min(s.max_attempts, first_round ? std::max(1, s.search_starts)
+                                                           : next_start + std::max(rec.threads, s.search_starts / 4));
+    while (next_start < limit && search_time_left(s, started)) {
+      const int to = std::min(limit, next_start + kSearchBatch);
+      run_starts(next_start, to);
+      next_start = to;
+      if (rec.converged_start >= kSearchBatch && unseen() < s.search_saturation) break;
+    }
+    progress.stage(std::to_string(rec.starts) + " starts at eps = " + std::to_string(s.eps_start).substr(0, 4) + ": " +
+                   std::to_string(rec.converged_start) + " converged, " + std::to_string(rec.start_extremals.size()) +
+                   " distinct extremals");
+    // The most promising first; while none arrives, the next ones, a thread's worth at a time.
+    std::vector<int> order = untried();
+    std::size_t taken = 0;
+    while (taken < order.size() && search_time_left(s, started)) {
+      const std::size_t count_now = first_round ? std::max(1, s.search_continued) : rec.threads;
+      const std::size_t end = std::min(order.size(), taken + count_now);
+      continue_extremals(std::vector<int>(order.begin() + taken, order.begin() + end));
+      taken = end;
+      first_round = false;
+      if (!rec.extremals.empty()) break;
+    }
+    first_round = false;
+    if (!rec.extremals.empty()) break;
+  }
+  rec.seconds = wall_seconds() - started;
+  r.attempts = rec.starts;
+  r.evaluations = evaluations;
+  r.iterations = rec.starts + rec.continued;
+  choose_best(rec, "from " + std::to_string(rec.continued) + " of " + std::to_string(rec.start_extremals.size()) +
+                       " distinct extremals at eps_start, found by " + std::to_string(rec.starts) + " starts");
+  if (rec.returned >= 0) {
+    take_extremal(r);
+    progress.stage("returned extremal " + std::to_string(rec.returned) + ": " + rec.reason);
+  } else if (!search_time_left(s, started) && wall_seconds() > s.time_limit_s) {
+    r.status = "timeout";
+    r.detail = "time limit reached before convergence";
+  } else {
+    r.detail = "no start reached eps = 0 (" + std::to_string(rec.starts) + " starts, " +
+               std::to_string(rec.converged_start) + " converged at eps_start)";
+  }
+  return r;
+}
+
+// Problems with interior events: search_attempts complete attempts, each first the continuation
+// onto the events from the problem without them when every event is passable (attempt 0 finds the
+// eventless solution, later ones start from it), then the legs; the converged ones are told apart
+// and the best kept. More attempts follow while none has converged.
+template <class Guess, class Admissible>
+Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const EventPlan& events, Guess&& initial_guess,
+                             Admissible&& admissible) {
+  Result r;
+  SearchRecord& rec = r.search;
+  rec.threads = search_threads(s);
+  rec.method = events.passable ? "complete attempts: events off, then continuation onto the events; else legs, then "
+                                 "multiple shooting"
+                               : "complete attempts: legs, then multiple shooting, then single shooting";
+  r.method = rec.method;
+  const double started = wall_seconds();
+  Progress progress;
+  std::vector<double> eventless;  // the solution without the events, once found by attempt 0
+  int evaluations = 0;
+  std::mutex count;
+  std::atomic<int> done{0};
+  const auto attempt = [&](int k, Result& a, std::vector<double>& own_eventless) {
+    std::mt19937_64 rng = start_generator(s.seed, k);
+    Shooter single(s);
+    a.attempts = k + 1;
+    int attempt_evaluations = 0;
+    if (events.passable) {
+      int uses = own_eventless.empty() ? 0 : 1;  // the first from the eventless path: epochs where it passes closest
+      continuation_attempt(s, events, initial_guess, admissible, rng, own_eventless, uses, a, attempt_evaluations);
+    }
+    if (a.status != "converged" && search_time_left(s, started))
+      legs_attempt(s, legs, initial_guess, admissible, rng, single, a, attempt_evaluations);
+    const std::lock_guard<std::mutex> lock(count);
+    evaluations += attempt_evaluations + single.evaluations;
+  };
+  const auto merge = [&](int k, Result& a) {
+    ++rec.starts;
+    if (a.status != "converged") return;
+    ++rec.converged_final;
+    Extremal entry;
+    entry.F = a.F;
+    entry.x_start = a.x_start;
+    entry.max_residual = a.max_residual;
+    entry.info = a.info;
+    entry.method = a.method;
+    entry.homotopy = std::move(a.homotopy);
+    entry.legs = std::move(a.legs);
+    entry.continuation = std::move(a.continuation);
+    Shape shape = shape_of(s, a.x, 0.0);
+    shape.cost = objective_of(s, a.x);
+    const int i = merge_extremal(rec.extremals, a.x, shape, k, std::move(entry));
+    rec.extremals[i].from.push_back(k);
+  };
+  const auto report = [&] {
+    double best = INFINITY;
+    for (const auto& e : rec.extremals) best = std::min(best, e.shape.cost);
+    progress.stage(std::to_string(rec.starts) + " attempts: " + std::to_string(rec.converged_final) + " converged, " +
+                   std::to_string(rec.extremals.size()) + " distinct extremals" +
+                   (std::isfinite(best) ? ", best " + objective_text(best) : ""));
+  };
+  int next = 0;
+  if (search_time_left(s, started) && s.max_attempts > 0) {
+    Result a;
+    attempt(0, a, eventless);
+    merge(0, a);
+    next = 1;
+    report();
+  }
+  while (search_time_left(s, started) && next < s.max_attempts &&
+         (next < s.search_attempts || rec.extremals.empty())) {
+    const int to = std::min(s.max_attempts, next < s.search_attempts ? s.search_attempts : next + rec.threads);
+    std::vector<Result> results(static_cast<std::size_t>(to - next));
+    std::vector<char> ran(results.size(), 0);
+    parallel_for(to - next, rec.threads, [&](int i) {
+      if (!search_time_left(s, started)) return;
+      std::vector<double> own = eventless;
+      attempt(next + i, results[i], own);
+      ran[i] = 1;
+      progress.tick(std::to_string(rec.starts + ++done) + " attempts");
+    });
+    for (int i = 0; i < to - next; ++i) {
+      if (ran[i])
+        merge(next + i, results[i]);
+      else
+        rec.cut_by_time = true;
+    }
+    done = 0;
+    next = to;
+    report();
+  }
+  rec.seconds = wall_seconds() - started;
+  r.attempts = rec.starts;
+  r.evaluations = evaluations;
+  r.iterations = rec.starts;
+  choose_best(rec, "from " + std::to_string(rec.starts) + " complete attempts");
+  if (rec.returned >= 0) {
+    take_extremal(r);
+    progress.stage("returned extremal " + std::to_string(rec.returned) + ": " + rec.reason);
+  } else if (wall_seconds() > s.time_limit_s) {
+    r.status = "timeout";
+    r.detail = "time limit reached before convergence";
+  } else {
+    r.detail = "no attempt reached eps = 0 (" + std::to_string(rec.starts) + " attempts)";
+  }
+  return r;
+}
+
+}  // namespace helios_rt
