@@ -386,10 +386,11 @@ Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& adm
   return r;
 }
 
-// Problems with interior events: search_attempts complete attempts, each first the continuation
-// onto the events from the problem without them when every event is passable (attempt 0 finds the
-// eventless solution, later ones start from it), then the legs; the converged ones are told apart
-// and the best kept. More attempts follow while none has converged.
+// Problems with interior events: search_attempts complete attempts, independent of one another.
+// Each first continues onto the events from its own solution of the problem without them when
+// every event is passable (the epochs where that solution passes closest to the targets), then
+// tries the legs. The converged ones are told apart and the
+// best kept; more attempts follow while none has converged.
 template <class Guess, class Admissible>
 Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const EventPlan& events, Guess&& initial_guess,
                              Admissible&& admissible) {
@@ -402,18 +403,18 @@ Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const Event
   r.method = rec.method;
   const double started = wall_seconds();
   Progress progress;
-  std::vector<double> eventless;  // the solution without the events, once found by attempt 0
   int evaluations = 0;
   std::mutex count;
   std::atomic<int> done{0};
-  const auto attempt = [&](int k, Result& a, std::vector<double>& own_eventless) {
+  const auto attempt = [&](int k, Result& a) {
     std::mt19937_64 rng = start_generator(s.seed, k);
     Shooter single(s);
-    a.attempts = k + 1;
+    a.attempts = k + 1;  // legs_attempt: attempt 1 starts in the middle of every window
     int attempt_evaluations = 0;
     if (events.passable) {
-      int uses = own_eventless.empty() ? 0 : 1;  // the first from the eventless path: epochs where it passes closest
-      continuation_attempt(s, events, initial_guess, admissible, rng, own_eventless, uses, a, attempt_evaluations);
+      std::vector<double> eventless;
+      int uses = 0;  // epochs where its eventless solution passes closest (converges more often than drawn ones)
+      continuation_attempt(s, events, initial_guess, admissible, rng, eventless, uses, a, attempt_evaluations);
     }
     if (a.status != "converged" && search_time_left(s, started))
       legs_attempt(s, legs, initial_guess, admissible, rng, single, a, attempt_evaluations);
@@ -438,21 +439,7 @@ Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const Event
     const int i = merge_extremal(rec.extremals, a.x, shape, k, std::move(entry));
     rec.extremals[i].from.push_back(k);
   };
-  const auto report = [&] {
-    double best = INFINITY;
-    for (const auto& e : rec.extremals) best = std::min(best, e.shape.cost);
-    progress.stage(std::to_string(rec.starts) + " attempts: " + std::to_string(rec.converged_final) + " converged, " +
-                   std::to_string(rec.extremals.size()) + " distinct extremals" +
-                   (std::isfinite(best) ? ", best " + objective_text(best) : ""));
-  };
   int next = 0;
-  if (search_time_left(s, started) && s.max_attempts > 0) {
-    Result a;
-    attempt(0, a, eventless);
-    merge(0, a);
-    next = 1;
-    report();
-  }
   while (search_time_left(s, started) && next < s.max_attempts &&
          (next < s.search_attempts || rec.extremals.empty())) {
     const int to = std::min(s.max_attempts, next < s.search_attempts ? s.search_attempts : next + rec.threads);
@@ -460,10 +447,9 @@ Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const Event
     std::vector<char> ran(results.size(), 0);
     parallel_for(to - next, rec.threads, [&](int i) {
       if (!search_time_left(s, started)) return;
-      std::vector<double> own = eventless;
-      attempt(next + i, results[i], own);
+      attempt(next + i, results[i]);
       ran[i] = 1;
-      progress.tick(std::to_string(rec.starts + ++done) + " attempts");
+      progress.tick(std::to_string(next + ++done) + " attempts done");
     });
     for (int i = 0; i < to - next; ++i) {
       if (ran[i])
@@ -473,7 +459,11 @@ Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const Event
     }
     done = 0;
     next = to;
-    report();
+    double best = INFINITY;
+    for (const auto& e : rec.extremals) best = std::min(best, e.shape.cost);
+    progress.stage(std::to_string(rec.starts) + " attempts: " + std::to_string(rec.converged_final) + " converged, " +
+                   std::to_string(rec.extremals.size()) + " distinct extremals" +
+                   (std::isfinite(best) ? ", best " + objective_text(best) : ""));
   }
   rec.seconds = wall_seconds() - started;
   r.attempts = rec.starts;
