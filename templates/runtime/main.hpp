@@ -47,14 +47,9 @@ inline void write_atomic(const std::string& path, const std::string& text) {
 
 // Re-propagates the solution, recording samples and switches, and writes the trajectory CSV.
 inline nlohmann::json trajectory(const Settings& s, const Result& r, const std::string& csv_path) {
-  Propagator prop(s);
-  std::vector<Sample> samples;
-  std::vector<Switch> switches;
-  prop.samples = &samples;
-  prop.switches = &switches;
-  prop.max_step = (problem::kTf - problem::kT0) / 500;
-  std::vector<double> F(problem::kNumVars);
-  shooting_function(r.x.data(), r.eps, prop, F.data());
+  const RecordedPath path = recorded_path(s, r.x, r.eps, (problem::kTf - problem::kT0) / 500);
+  const std::vector<Sample>& samples = path.samples;
+  const std::vector<Switch>& switches = path.switches;
   std::ostringstream csv;
   csv.precision(15);
   csv << "t_days";

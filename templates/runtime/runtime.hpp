@@ -680,16 +680,30 @@ bool homotopy_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& 
   return false;
 }
 
+// A solution re-propagated with every step recorded (steps of at most max_step) and every switch;
+// throws numerical_error where the integration fails.
+struct RecordedPath {
+  std::vector<Sample> samples;
+  std::vector<Switch> switches;
+};
+inline RecordedPath recorded_path(const Settings& s, const std::vector<double>& x, double eps, double max_step) {
+  RecordedPath path;
+  Propagator prop(s);
+  prop.samples = &path.samples;
+  prop.switches = &path.switches;
+  prop.max_step = max_step;
+  std::vector<double> F(problem::kNumVars);
+  shooting_function(x.data(), eps, prop, F.data());
+  return path;
+}
+
 // The objective of a converged x (smaller is better): the propellant of a minimum-fuel or
 // minimum-initial-mass problem (summed over the arcs: a dropped lander is not propellant), the
 // flight time tf - t0 of a minimum-time one.
 inline double objective_of(const Settings& s, const std::vector<double>& x) {
-  Propagator prop(s);
   std::vector<Sample> samples;
-  prop.samples = &samples;
-  std::vector<double> F(problem::kNumVars);
   try {
-    shooting_function(x.data(), 0.0, prop, F.data());
+    samples = recorded_path(s, x, 0.0, INFINITY).samples;
   } catch (const numerical_error&) {
     return INFINITY;
   }

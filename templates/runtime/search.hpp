@@ -3,8 +3,9 @@
 // runtime.hpp. A converged shooting solution is an extremal, not necessarily the optimum: on
 // multi-revolution transfers the extremal a random start reaches is a matter of chance. So the
 // solve is a search:
-//   1. starts: search_starts seeded guesses, each solved at eps_start (eps = 1: the smooth,
-//      energy-like problem), in parallel on `threads` threads;
+//   1. starts: seeded guesses, each solved at eps_start (eps = 1: the smooth, energy-like
+//      problem), in batches on `threads` threads, until search_starts or until the distinct
+//      extremals look complete (a Good-Turing estimate below search_saturation);
 //   2. the converged ones are told apart by what makes them different (revolutions about the
 //      central body, throttle mode changes, the shooting variables) and ranked by their own cost
 //      at eps_start;
@@ -70,23 +71,18 @@ class Progress {
   double last_ = -INFINITY;
 };
 
-// The Shape of a converged x at eps.
+// The Shape of a converged x at eps (the first three states are the position).
 inline Shape shape_of(const Settings& s, const std::vector<double>& x, double eps) {
   Shape out;
-  Propagator prop(s);
-  std::vector<Sample> samples;
-  std::vector<Switch> switches;
-  prop.samples = &samples;
-  prop.switches = &switches;
-  prop.max_step = (problem::kTf - problem::kT0) / 1000;
-  std::vector<double> F(problem::kNumVars);
+  RecordedPath path;
   try {
-    shooting_function(x.data(), eps, prop, F.data());
+    path = recorded_path(s, x, eps, (problem::kTf - problem::kT0) / 1000);
   } catch (const numerical_error&) {
     return out;
   }
+  const std::vector<Sample>& samples = path.samples;
   if (samples.size() < 2) return out;
-  out.switches = static_cast<int>(switches.size());
+  out.switches = static_cast<int>(path.switches.size());
   const auto& y0 = samples.front().y;
   std::array<double, 3> h{y0[1] * y0[5] - y0[2] * y0[4], y0[2] * y0[3] - y0[0] * y0[5], y0[0] * y0[4] - y0[1] * y0[3]};
   double hn = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
@@ -279,6 +275,9 @@ Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& adm
         const double now = shape_of(s, to, eps).revolutions;
         if (std::fabs(now - revolutions) > 0.25) return false;
         revolutions = now;
+        char line[96];
+        std::snprintf(line, sizeof line, "continuing the extremal at eps_start %d: eps = %.3g", which[i], eps);
+        progress.tick(line);
         return true;
       };
       ok[i] = homotopy_to_zero(s, shooter, x, path, admissible, res, on_branch);

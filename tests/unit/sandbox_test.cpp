@@ -4,9 +4,11 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "helios/solve/solve.hpp"
 
@@ -29,6 +31,29 @@ TEST(Sandbox, RunsInTheGivenWorkingDirectory) {
   std::string where;
   std::getline(in, where);
   EXPECT_EQ(fs::canonical(where), fs::canonical(dir));
+  fs::remove_all(dir);
+}
+
+// The search's progress: each stderr line reaches the caller while the program still runs, its
+// control bytes replaced (a program cannot drive the user's terminal), and the text is kept too.
+TEST(Sandbox, StderrLinesAreForwardedAsTheyComeCleaned) {
+  const fs::path dir = fresh_dir("lines");
+  std::vector<std::string> lines;
+  std::vector<double> arrived;
+  const auto start = std::chrono::steady_clock::now();
+  const auto r = helios::solve::run_limited(
+      {"/bin/sh", "-c", "printf 'one\\n' >&2; sleep 0.5; printf '\\033[31mtwo\\nthree' >&2"}, 10, 512, dir.string(),
+      [&](const std::string& line) {
+        lines.push_back(line);
+        arrived.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      });
+  EXPECT_EQ(r.exit_code, 0);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0], "one");
+  EXPECT_EQ(lines[1], "?[31mtwo");
+  EXPECT_EQ(lines[2], "three");  // the last line without its newline, at the end
+  EXPECT_LT(arrived[0], arrived[1] - 0.3) << "the first line came while the program slept";
+  EXPECT_EQ(r.stderr_text, "one\n\033[31mtwo\nthree");
   fs::remove_all(dir);
 }
 
