@@ -36,7 +36,7 @@ chain() {
   t_derive=$(seconds "$bin/helios-derive" "$dir/spec.json" -o "$dir/derivation.json")
   t_verify=$(seconds "$bin/helios-verify" --advisory "$dir/derivation.json" -o "$dir/verify.json")
   t_gen=$(seconds "$bin/helios-gen" "$dir/derivation.json" -o "$dir/shoot.cpp")
-  t_solve=$(seconds "$bin/helios-solve" "$dir/shoot.cpp" --settings "$settings" --cache-dir "$dir/cache" \
+  t_solve=$(seconds "$bin/helios-solve" --quiet "$dir/shoot.cpp" --settings "$settings" --cache-dir "$dir/cache" \
     --trajectory "$dir/trajectory.csv" -o "$dir/solution.json")
 }
 
@@ -62,7 +62,7 @@ for s in "${scenarios[@]}"; do
 done
 
 first=${scenarios[0]}
-t_warm=$(seconds "$bin/helios-solve" "$work/$first/shoot.cpp" --settings "scenarios/$first/settings.json" \
+t_warm=$(seconds "$bin/helios-solve" --quiet "$work/$first/shoot.cpp" --settings "scenarios/$first/settings.json" \
   --cache-dir "$work/$first/cache" --trajectory "$work/$first/trajectory2.csv" -o "$work/$first/solution2.json")
 printf 'warm solve of %s (cached binary): %.3f s\n' "$first" "$t_warm"
 

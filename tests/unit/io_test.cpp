@@ -3,9 +3,12 @@
 
 #include <cmath>
 #include <filesystem>
+#include <regex>
+#include <set>
 #include <string>
 
 #include "helios/io/cli.hpp"
+#include "helios/io/embedded.hpp"
 #include "helios/io/error.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/io/schema.hpp"
@@ -92,6 +95,38 @@ TEST(Io, SchemaViolationNamesThePath) {
   } catch (const helios::input_error& e) {
     EXPECT_NE(std::string(e.what()).find("spec.json: spec schema violation at "), std::string::npos) << e.what();
   }
+}
+
+// The settings schema is the one list of solver settings: exactly the keys the runtime reads.
+TEST(Io, SettingsSchemaListsExactlyTheKeysTheRuntimeReads) {
+  const std::string runtime = helios::embedded::file("templates/runtime/main.hpp");
+  std::set<std::string> read;
+  const std::regex key(R"re(j\.value\("([a-z_0-9]+)")re");
+  for (auto it = std::sregex_iterator(runtime.begin(), runtime.end(), key); it != std::sregex_iterator(); ++it)
+    read.insert((*it)[1]);
+  const auto listed = helios::io::schema_properties("settings");
+  EXPECT_EQ(read, std::set<std::string>(listed.begin(), listed.end()));
+  EXPECT_GE(listed.size(), 18u);
+}
+
+// Types and ranges: a seed beyond 32 bits, a ratio of 0 (an eps continuation that never moves)
+// and a fractional count are refused naming the field.
+TEST(Io, SettingsOutOfRangeAreRefusedNamingTheField) {
+  const auto refused = [](const json& settings) -> std::string {
+    try {
+      helios::io::validate("settings", settings, "settings.json");
+    } catch (const helios::input_error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(refused(json::parse(R"({"seed": 7, "search_starts": 64, "threads": 0, "eps_first_ratio": 0.5})")), "");
+  EXPECT_NE(refused(json::parse(R"({"seed": 1e30})")).find("settings.json: settings schema violation at /seed"),
+            std::string::npos);
+  EXPECT_NE(refused(json::parse(R"({"eps_first_ratio": 0})")).find("at /eps_first_ratio"), std::string::npos);
+  EXPECT_NE(refused(json::parse(R"({"max_attempts": 2.5})")).find("at /max_attempts"), std::string::npos);
+  EXPECT_NE(refused(json::parse(R"({"max_attempts": 1e12})")).find("at /max_attempts"), std::string::npos);
+  EXPECT_NE(refused(json::parse(R"({"seed": "1"})")).find("at /seed"), std::string::npos);
 }
 
 TEST(Io, CliRejectsUnknownOptionsAndCountsInputs) {

@@ -72,6 +72,14 @@ void validate(const std::string& kind, const json& doc, const std::string& sourc
   throw input_error(source + ": " + kind + " schema violation at " + where + ": " + last.description);
 }
 
+std::vector<std::string> schema_properties(const std::string& kind) {
+  // ordered_json keeps the schema's own order, so error messages list the keys as documented.
+  const auto doc = nlohmann::ordered_json::parse(embedded::file("schemas/" + kind + ".schema.json"));
+  std::vector<std::string> names;
+  for (const auto& [name, property] : doc.at("properties").items()) names.push_back(name);
+  return names;
+}
+
 json read_artifact(const std::string& kind, const std::string& path) {
   json doc = read_json(path);
   const std::string name = path == "-" ? "<stdin>" : path;

@@ -378,22 +378,17 @@ json solve(const SolveOptions& o) {
   json settings = json::object();
   if (!o.settings_path.empty()) settings = io::read_json(o.settings_path);
   if (!settings.is_object()) throw input_error(o.settings_path + ": settings must be a JSON object");
-  // The runtime reads these (templates/runtime/main.hpp); anything else is a typo, not a no-op.
-  static const std::vector<std::string> known = {
-      "seed",           "max_attempts",    "time_limit_s",   "integrator_rtol", "integrator_atol",
-      "hybrd_tol",      "accept_residual", "final_residual", "eps_start",       "eps_min",
-      "eps_first_ratio", "leg_attempts",    "search_starts", "search_saturation", "search_continued", "search_attempts",
-      "search_time_s",  "threads"};
+  // schemas/settings.schema.json lists the keys the runtime reads (templates/runtime/main.hpp) with
+  // their types and ranges; anything else is a typo, not a no-op.
+  static const std::vector<std::string> known = io::schema_properties("settings");
   for (auto it = settings.begin(); it != settings.end(); ++it) {
     if (std::find(known.begin(), known.end(), it.key()) == known.end()) {
       std::string names;
       for (const auto& k : known) names += (names.empty() ? "" : ", ") + k;
       throw input_error(o.settings_path + ": field /" + it.key() + " is not a solver setting (known: " + names + ")");
     }
-    if (!it.value().is_number() || !(it.value().get<double>() >= 0))
-      throw input_error(o.settings_path + ": field /" + it.key() + " must be a non-negative number, got " +
-                        it.value().dump());
   }
+  io::validate("settings", settings, o.settings_path);
   // The program stops itself a little before the wall-clock kill.
   const double own_limit = std::max(1.0, o.time_limit_s - 5);
   settings["time_limit_s"] = std::min(settings.value("time_limit_s", own_limit), own_limit);

@@ -16,6 +16,10 @@ const std::vector<std::string>& artifact_kinds();
 // "<source>: <kind> schema violation at <json path>: <reason>". `source` names the file.
 void validate(const std::string& kind, const json& doc, const std::string& source);
 
+// The property names of the schema of `kind` (its top-level "properties"), in the schema's order:
+// for a kind whose schema is the one list of its keys (settings).
+std::vector<std::string> schema_properties(const std::string& kind);
+
 // Reads `path`, validates it as `kind` (including schema name and version) and returns it.
 json read_artifact(const std::string& kind, const std::string& path);
 
