@@ -33,7 +33,9 @@ inline Settings read_settings(const std::string& path) {
 }
 
 // A residual as recorded: -1 where the evaluation failed (not finite).
-inline double recorded(double residual) { return std::isfinite(residual) ? residual : -1.0; }
+inline double recorded(double residual) {
+  return std::isfinite(residual) ? residual : -1.0;
+}
 
 inline void write_atomic(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".part";
@@ -86,7 +88,8 @@ inline nlohmann::json trajectory(const Settings& s, const Result& r, const std::
   out["hamiltonian_drift"] = drift;  // the largest over the arcs
   out["samples"] = samples.size();
   const auto& last = samples.back();
-  out["initial_state"] = std::vector<double>(samples.front().y.begin(), samples.front().y.begin() + problem::kNumStates);
+  out["initial_state"] =
+      std::vector<double>(samples.front().y.begin(), samples.front().y.begin() + problem::kNumStates);
   out["final_state"] = std::vector<double>(last.y.begin(), last.y.begin() + problem::kNumStates);
   if constexpr (problem::kMassIndex >= 0) {
     // Delta-v by the rocket equation on each arc (a mass drop between arcs is not propellant).

@@ -408,8 +408,8 @@ struct Bound {
 
 struct BoundReport {
   std::string name, meaning;
-  double first_pass_value;  // psi at the solution of pass 1 (bound inactive); > 0 is a violation
-  bool active;              // made active in pass 2
+  double first_pass_value;   // psi at the solution of pass 1 (bound inactive); > 0 is a violation
+  bool active;               // made active in pass 2
   double value, multiplier;  // at the final solution
 };
 
@@ -570,9 +570,9 @@ class Shooter {
       double* w = wa.data();
       for (int j = 0; j < n; ++j) w[j] = 1;
       int nfev = 0;
-      info = hybrd(&Shooter::callback, this, n, x.data(), F.data(), settings_.hybrd_tol, 200 * (n + 1), n - 1,
-                   n - 1, 0.0, w, start_.scaled ? 1 : 2, start_.factor, 0, &nfev, w + 6 * n + lr, n, w + 6 * n, lr,
-                   w + n, w + 2 * n, w + 3 * n, w + 4 * n, w + 5 * n);
+      info = hybrd(&Shooter::callback, this, n, x.data(), F.data(), settings_.hybrd_tol, 200 * (n + 1), n - 1, n - 1,
+                   0.0, w, start_.scaled ? 1 : 2, start_.factor, 0, &nfev, w + 6 * n + lr, n, w + 6 * n, lr, w + n,
+                   w + 2 * n, w + 3 * n, w + 4 * n, w + 5 * n);
       if (info == 5) info = 4;
     }
     if (failed_) info = -1;
@@ -827,8 +827,8 @@ struct EventRows {
 };
 
 struct EventPlan {
-  bool passable = false;  // every event passable
-  int multiplier = 0;     // lambda0
+  bool passable = false;    // every event passable
+  int multiplier = 0;       // lambda0
   std::vector<int> sphere;  // the normalization's variables, lambda0 among them
   std::vector<EventRows> events;
 };
@@ -994,8 +994,8 @@ bool continuation_attempt(const Settings& s, const EventPlan& plan, Guess&& init
         expand(z.data(), x);
         carry_costates(x);
         off_solved = off_solved && admissible(x.data());
-        r.continuation.push_back({"events off", static_cast<double>(tries), off_solved, res,
-                                  shooter_eventless.last_step_evaluations});
+        r.continuation.push_back(
+            {"events off", static_cast<double>(tries), off_solved, res, shooter_eventless.last_step_evaluations});
       } else {
         off_solved = solve(shooter_off, x, "events off", tries);
       }
@@ -1411,7 +1411,8 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
     std::vector<std::size_t> order(extremals.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      const bool a_solution = static_cast<int>(a) == r.search.returned, b_solution = static_cast<int>(b) == r.search.returned;
+      const bool a_solution = static_cast<int>(a) == r.search.returned,
+                 b_solution = static_cast<int>(b) == r.search.returned;
       return a_solution != b_solution ? a_solution : extremals[a].shape.cost < extremals[b].shape.cost;
     });
     Result best = r;

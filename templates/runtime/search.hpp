@@ -95,7 +95,8 @@ inline Shape shape_of(const Settings& s, const std::vector<double>& x, double ep
     if constexpr (problem::kThrottleIndex >= 0 && problem::kMassIndex >= 0) {
       if (samples[i].arc != samples[i - 1].arc) continue;
       const double dt = samples[i].t - samples[i - 1].t;
-      const double ua = samples[i - 1].control[problem::kThrottleIndex], ub = samples[i].control[problem::kThrottleIndex];
+      const double ua = samples[i - 1].control[problem::kThrottleIndex],
+                   ub = samples[i].control[problem::kThrottleIndex];
       smoothed += 0.5 * dt * (ua - eps * ua * (1 - ua) + ub - eps * ub * (1 - ub));
       burned += 0.5 * dt * (ua + ub);
       propellant += a[problem::kMassIndex] - b[problem::kMassIndex];
@@ -148,9 +149,9 @@ inline void choose_best(SearchRecord& rec, const std::string& what) {
       rec.returned = static_cast<int>(i);
   if (rec.returned < 0) return;
   const std::size_t n = rec.extremals.size();
-  rec.reason = n == 1 ? "the only extremal reached at eps = 0 " + what
-                      : "the lowest objective of the " + std::to_string(n) + " distinct extremals reached at eps = 0 " +
-                            what;
+  rec.reason =
+      n == 1 ? "the only extremal reached at eps = 0 " + what
+             : "the lowest objective of the " + std::to_string(n) + " distinct extremals reached at eps = 0 " + what;
 }
 
 // Copies the returned extremal into r.
@@ -303,7 +304,8 @@ Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& adm
       ++rec.continued;
       if (!ok[i]) continue;
       ++rec.converged_final;
-      const int k = merge_extremal(rec.extremals, arrived[i].x, arrived[i].shape, from.first_start, std::move(arrived[i]));
+      const int k =
+          merge_extremal(rec.extremals, arrived[i].x, arrived[i].shape, from.first_start, std::move(arrived[i]));
       Extremal& e = rec.extremals[k];
       e.reached += from.reached - 1;  // every start that reached `from` led here
       e.from.push_back(which[i]);
@@ -439,8 +441,7 @@ Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const Event
     rec.extremals[i].from.push_back(k);
   };
   int next = 0;
-  while (search_time_left(s, started) && next < s.max_attempts &&
-         (next < s.search_attempts || rec.extremals.empty())) {
+  while (search_time_left(s, started) && next < s.max_attempts && (next < s.search_attempts || rec.extremals.empty())) {
     const int to = std::min(s.max_attempts, next < s.search_attempts ? s.search_attempts : next + rec.threads);
     std::vector<Result> results(static_cast<std::size_t>(to - next));
     std::vector<char> ran(results.size(), 0);

@@ -116,9 +116,12 @@ Tally de_starts(const Settings& s, unsigned seed, int budget) {
   while (evaluations < budget / 2) {
     for (int m = 0; m < members; ++m) {
       int a, b, c;
-      do a = pick(rng); while (a == m);
-      do b = pick(rng); while (b == m || b == a);
-      do c = pick(rng); while (c == m || c == a || c == b);
+      do a = pick(rng);
+      while (a == m);
+      do b = pick(rng);
+      while (b == m || b == a);
+      do c = pick(rng);
+      while (c == m || c == a || c == b);
       std::vector<double> trial = pop[m];
       const int forced = dim(rng);
       for (int i = 0; i < N; ++i)

@@ -154,8 +154,8 @@ TEST(Runtime, SwitchTimesAreLocatedToRoundOff) {
 // NOTE: a throttle arc shorter than an integrator step has both switches inside that step, where
 // the step's ends do not show them (Propagator::dip looks inside). Here lambda0 is bisected to
 // where the switching function first touches zero (above it no switch, below it a first short
-// burn), and just below that the burn lasts less than the integrator's steps (~6 days here). Propagated with steps of at most 1e-5 year
-// (5 minutes) the burn is seen at the step ends; unlimited steps must find the same two switches.
+// burn), and just below that the burn lasts less than the integrator's steps (~6 days here). Propagated with steps of
+// at most 1e-5 year (5 minutes) the burn is seen at the step ends; unlimited steps must find the same two switches.
 TEST(Runtime, ShortArcsInsideOneStepAreFound) {
   helios_rt::Settings settings;
   int short_arcs = 0;

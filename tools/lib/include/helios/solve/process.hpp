@@ -1,0 +1,21 @@
+#pragma once
+// Small process helpers shared by helios-solve's units (compile, sandbox, plots, solve).
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace helios::solve {
+
+// Seconds since `start` on the steady clock.
+double seconds_since(std::chrono::steady_clock::time_point start);
+
+// The combined stdout and stderr of a shell-free command (argv[0] looked up on PATH).
+std::string capture(const std::vector<std::string>& argv);
+
+// The text up to its first newline.
+std::string first_line(const std::string& s);
+
+// A number of seconds as text ("%g").
+std::string limit_text(double seconds);
+
+}  // namespace helios::solve

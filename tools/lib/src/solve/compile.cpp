@@ -1,0 +1,93 @@
+// The compile step: g++ into a cache keyed by the SHA-256 of source, command and compiler.
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "helios/io/error.hpp"
+#include "helios/io/json_io.hpp"
+#include "helios/io/schema.hpp"
+#include "helios/io/sha256.hpp"
+#include "helios/solve/process.hpp"
+#include "helios/solve/solve.hpp"
+
+namespace helios::solve {
+namespace {
+
+namespace fs = std::filesystem;
+using io::json;
+
+int count_warnings(const std::string& diagnostics) {
+  int n = 0;
+  for (std::size_t pos = diagnostics.find("warning:"); pos != std::string::npos;
+       pos = diagnostics.find("warning:", pos + 1))
+    ++n;
+  return n;
+}
+
+}  // namespace
+
+CompileResult compile_cached(const std::string& source, const std::string& compiler, const std::string& cache_dir) {
+  CompileResult c;
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<std::string> flags = {"-std=c++17", "-O2", "-pthread", "-Wall", "-Wextra"};
+  std::string flag_text;
+  for (const auto& f : flags) flag_text += " " + f;
+  c.command = compiler + flag_text + " shoot.cpp -o shoot -lcminpack";
+  // The key covers the source, the command and the compiler's identity.
+  c.sha256 = io::sha256_hex(source + "\n" + c.command + "\n" + first_line(capture({compiler, "--version"})));
+  const fs::path dir = fs::path(cache_dir) / c.sha256;
+  c.binary = (dir / "shoot").string();
+  if (fs::exists(c.binary)) {
+    c.ok = c.cached = true;
+    std::ifstream log((dir / "compile.log").string());
+    c.diagnostics.assign(std::istreambuf_iterator<char>(log), std::istreambuf_iterator<char>());
+    c.warnings = count_warnings(c.diagnostics);
+    c.seconds = seconds_since(start);
+    return c;
+  }
+  fs::create_directories(dir);
+  const std::string src = (dir / "shoot.cpp").string();
+  io::write_text_atomic(src, source);
+  const std::string tmp_bin = (dir / (".shoot.tmp." + std::to_string(::getpid()))).string();
+  const io::TempFiles guard({tmp_bin});
+  std::vector<std::string> argv = {compiler};
+  argv.insert(argv.end(), flags.begin(), flags.end());
+  argv.insert(argv.end(), {src, "-o", tmp_bin, "-lcminpack"});
+  // Compilers live on PATH: resolve through a shell-free execvp in capture().
+  c.diagnostics = capture(argv);
+  c.warnings = count_warnings(c.diagnostics);
+  c.ok = fs::exists(tmp_bin);
+  if (c.ok) {
+    io::write_text_atomic((dir / "compile.log").string(), c.diagnostics);
+    fs::rename(tmp_bin, c.binary);
+  }
+  c.seconds = seconds_since(start);
+  return c;
+}
+
+json compile_report(const SolveOptions& o) {
+  const std::string source = io::read_text(o.source_path);
+  const CompileResult c = compile_cached(source, o.compiler, o.cache_dir);
+  json doc = io::artifact_header("compile", "helios-solve", o.backend);
+  doc["source"] = o.source_path == "-" ? "<stdin>" : o.source_path;
+  doc["ok"] = c.ok;
+  doc["cached"] = c.cached;
+  doc["source_sha256"] = c.sha256;
+  doc["command"] = c.command;
+  doc["warnings"] = c.warnings;
+  int errors = 0;
+  for (std::size_t pos = c.diagnostics.find("error:"); pos != std::string::npos;
+       pos = c.diagnostics.find("error:", pos + 1))
+    ++errors;
+  doc["errors"] = errors;
+  doc["diagnostics"] = c.diagnostics.substr(0, 16000);
+  doc["timings"] = {{"compile_s", c.seconds}};
+  return doc;
+}
+
+}  // namespace helios::solve

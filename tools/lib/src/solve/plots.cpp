@@ -1,0 +1,93 @@
+// The plots of a trajectory, drawn with gnuplot.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "helios/io/json_io.hpp"
+#include "helios/solve/process.hpp"
+#include "helios/solve/solve.hpp"
+
+namespace helios::solve {
+namespace {
+
+namespace fs = std::filesystem;
+using io::json;
+
+// The trajectory CSV's header and first data row, to pick the plots' units and panels.
+std::pair<std::vector<std::string>, std::vector<double>> csv_head(const std::string& csv_path) {
+  std::ifstream in(csv_path);
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  std::vector<std::string> columns;
+  std::vector<double> values;
+  std::stringstream hs(header), rs(row);
+  for (std::string c; std::getline(hs, c, ',');) columns.push_back(c);
+  for (std::string v; std::getline(rs, v, ',');) values.push_back(std::atof(v.c_str()));
+  return {columns, values};
+}
+
+}  // namespace
+
+json plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title) {
+  const auto [columns, first] = csv_head(csv_path);
+  const auto has = [&](const std::string& c) { return std::find(columns.begin(), columns.end(), c) != columns.end(); };
+  const bool engine = has("u") && has("m_kg");
+  const bool heliocentric = first.size() > 3 && std::hypot(first[1], first[2], first[3]) > 1e7;
+  const std::string length = heliocentric ? "AU" : "km", scale = heliocentric ? "149597870.691" : "1.0";
+  // Cone angle between the sail normal and the Sun line, in degrees.
+  const std::string cone =
+      "(acos((column('nx')*$2 + column('ny')*$3 + column('nz')*$4)/sqrt($2**2 + $3**2 + $4**2))*180/pi)";
+  const std::string colour = engine ? "(column('u'))" : cone;
+  const std::string panel = engine ? "throttle_mass" : "cone_angle";
+  const std::string traj_png = prefix + "trajectory.png", panel_png = prefix + panel + ".png";
+  const std::string tmp1 = prefix + ".trajectory.png.tmp", tmp2 = prefix + "." + panel + ".png.tmp";
+  const io::TempFiles guard({tmp1, tmp2});
+  std::string script = "set datafile separator ','\nset terminal pngcairo size 1000,800 noenhanced\n";
+  script += "set output '" + tmp1 + "'\nset title '" + title +
+            ": trajectory (colour = " + (engine ? "throttle" : "cone angle") + ")'\n";
+  script += "set xlabel 'x [" + length + "]'\nset ylabel 'y [" + length + "]'\nset zlabel 'z [" + length + "]'\n";
+  script += "set view equal xy\nset ticslevel 0\nset grid\nset palette defined (0 '#2b6cb0', 1 '#e53e3e')\n";
+  script +=
+      engine ? "set cbrange [0:1]\nset cblabel 'throttle u'\n" : "set cbrange [0:90]\nset cblabel 'cone angle [deg]'\n";
+  script += "L = " + scale + "\nsplot '" + csv_path + "' every ::1 using ($2/L):($3/L):($4/L):" + colour +
+            " with lines lw 2 palette title 'spacecraft', '< echo 0,0,0' using 1:2:3 with points pt 7 ps 2 lc rgb "
+            "'#d69e2e' title 'central body'\n";
+  script += "set output '" + tmp2 + "'\nset xlabel 'time [days]'\nunset zlabel\n";
+  if (engine)
+    script += "set title '" + title +
+              ": throttle and mass'\nset ylabel 'throttle u'\nset y2label 'mass [kg]'\n"
+              "set yrange [-0.05:1.05]\nset y2tics\nset ytics nomirror\nplot '" +
+              csv_path +
+              "' every ::1 using 1:(column('u')) with lines lw 2 lc rgb '#e53e3e' title 'throttle', "
+              "'' every ::1 using 1:(column('m_kg')) axes x1y2 with lines lw 2 lc rgb '#2b6cb0' title 'mass'\n";
+  else
+    script += "set title '" + title + ": sail cone angle'\nset ylabel 'cone angle [deg]'\nset yrange [0:90]\nplot '" +
+              csv_path + "' every ::1 using 1:" + cone + " with lines lw 2 lc rgb '#e53e3e' title 'cone angle'\n";
+  char script_path[] = "/tmp/helios-plot-XXXXXX";
+  const int fd = ::mkstemp(script_path);
+  if (fd < 0) throw std::runtime_error("cannot create a gnuplot script file");
+  if (::write(fd, script.data(), script.size()) != static_cast<ssize_t>(script.size())) {
+    ::close(fd);
+    throw std::runtime_error("cannot write the gnuplot script");
+  }
+  ::close(fd);
+  const std::string out = capture({"gnuplot", script_path});
+  ::unlink(script_path);
+  if (!fs::exists(tmp1) || !fs::exists(tmp2))
+    throw std::runtime_error("gnuplot did not draw the plots (is gnuplot installed?): " + first_line(out));
+  fs::rename(tmp1, traj_png);
+  fs::rename(tmp2, panel_png);
+  return {{"trajectory_plot", fs::path(traj_png).filename().string()},
+          {panel + "_plot", fs::path(panel_png).filename().string()}};
+}
+
+}  // namespace helios::solve

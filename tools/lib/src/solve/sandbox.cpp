@@ -1,0 +1,199 @@
+// The sandboxed run of a generated program: resource limits, its own process group, nothing left
+// running, and its stderr forwarded line by line.
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "helios/solve/process.hpp"
+#include "helios/solve/solve.hpp"
+
+namespace helios::solve {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Processes the program may add to the user's count (RLIMIT_NPROC): it needs none.
+constexpr long kMaxChildProcesses = 16;
+
+// Processes whose parent is this process, from /proc (the orphans a subreaper inherits).
+std::vector<pid_t> children_of_self() {
+  std::vector<pid_t> out;
+  const std::string self = std::to_string(::getpid());
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator("/proc", ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(entry.path() / "stat");
+    std::string line;
+    if (!std::getline(stat, line)) continue;
+    // pid (comm) state ppid ...: comm may hold spaces, so read after the last ')'.
+    const auto close = line.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(line.substr(close + 1));
+    std::string state, ppid;
+    rest >> state >> ppid;
+    if (ppid == self) out.push_back(static_cast<pid_t>(std::stol(name)));
+  }
+  return out;
+}
+
+// Number of processes of the real user (RLIMIT_NPROC counts them all).
+long processes_of_user() {
+  long n = 0;
+  const uid_t uid = ::getuid();
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator("/proc", ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
+    struct stat st;
+    if (::stat(entry.path().c_str(), &st) == 0 && st.st_uid == uid) ++n;
+  }
+  return n;
+}
+
+// Kills whatever the program left behind: its process group, then (as a child subreaper) every
+// orphan reparented to us, including those that left the group with setsid(). Returns how many.
+int kill_leftovers(pid_t group) {
+  int killed = 0;
+  ::kill(-group, SIGKILL);
+  for (int quiet = 0, round = 0; quiet < 3 && round < 200; ++round) {
+    const auto stray = children_of_self();
+    if (stray.empty()) {
+      ++quiet;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      continue;
+    }
+    quiet = 0;
+    for (const pid_t p : stray) {
+      ::kill(p, SIGKILL);
+      ::waitpid(p, nullptr, 0);
+      ++killed;
+    }
+  }
+  while (::waitpid(-1, nullptr, WNOHANG) > 0) {
+  }
+  return killed;
+}
+
+// Collects a program's stderr: the first 64 KiB as text, and each complete line, cleaned, to
+// on_line as it arrives.
+class StderrLines {
+ public:
+  StderrLines(std::string& text, const std::function<void(const std::string&)>& on_line)
+      : text_(text), on_line_(on_line) {}
+  void add(const char* data, std::size_t n) {
+    if (text_.size() < 65536) text_.append(data, std::min(n, 65536 - text_.size()));
+    if (!on_line_) return;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (data[i] == '\n') {
+        flush();
+        continue;
+      }
+      if (line_.size() < 300) line_ += std::isprint(static_cast<unsigned char>(data[i])) ? data[i] : '?';
+    }
+  }
+  void flush() {
+    if (on_line_ && !line_.empty()) on_line_(line_);
+    line_.clear();
+  }
+
+ private:
+  std::string& text_;
+  const std::function<void(const std::string&)>& on_line_;
+  std::string line_;
+};
+
+}  // namespace
+
+RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s, double memory_limit_mb,
+                      const std::string& workdir, const std::function<void(const std::string&)>& on_line) {
+  RunResult r;
+  const auto start = std::chrono::steady_clock::now();
+  int err_pipe[2];
+  if (::pipe2(err_pipe, O_CLOEXEC) != 0)
+    throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
+  // Orphans of the program (a daemonized or setsid() child) are reparented to us, so none escapes.
+  ::prctl(PR_SET_CHILD_SUBREAPER, 1);
+  const rlim_t nproc = static_cast<rlim_t>(processes_of_user() + kMaxChildProcesses);
+  // The CPU limit counts every thread's time, and the search runs one per core.
+  const rlim_t cores = std::max(1u, std::thread::hardware_concurrency());
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
+  if (pid == 0) {
+    // The child dies with helios-solve, so an interrupted run leaves no orphan writing files.
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) _exit(126);
+    // Its own process group, so a timeout kills everything it started.
+    ::setpgid(0, 0);
+    ::dup2(err_pipe[1], 2);
+    if (!workdir.empty() && ::chdir(workdir.c_str()) != 0) _exit(126);
+    const rlim_t cpu = static_cast<rlim_t>(std::ceil(wall_limit_s)) * cores + 5;
+    const rlim_t mem = static_cast<rlim_t>(memory_limit_mb * 1024 * 1024);
+    const rlim_t fsize = 512ull * 1024 * 1024;
+    const struct rlimit cpu_limit = {cpu, cpu}, mem_limit = {mem, mem}, file_limit = {fsize, fsize};
+    const struct rlimit no_core = {0, 0}, proc_limit = {nproc, nproc};
+    ::setrlimit(RLIMIT_CPU, &cpu_limit);
+    ::setrlimit(RLIMIT_AS, &mem_limit);
+    ::setrlimit(RLIMIT_FSIZE, &file_limit);
+    ::setrlimit(RLIMIT_CORE, &no_core);
+    // NOTE: the kernel does not apply RLIMIT_NPROC to root; kill_leftovers() is the bound there.
+    ::setrlimit(RLIMIT_NPROC, &proc_limit);
+    std::vector<char*> args;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    ::execv(args[0], args.data());
+    _exit(127);
+  }
+  ::close(err_pipe[1]);
+  ::fcntl(err_pipe[0], F_SETFL, O_NONBLOCK);
+  ::setpgid(pid, pid);  // also from the parent, so the group exists before any kill
+  StderrLines lines(r.stderr_text, on_line);
+  char buf[4096];
+  const auto drain = [&] {
+    ssize_t n;
+    while ((n = ::read(err_pipe[0], buf, sizeof buf)) > 0) lines.add(buf, static_cast<std::size_t>(n));
+  };
+  int status = 0;
+  while (true) {
+    const pid_t done = ::waitpid(pid, &status, WNOHANG);
+    if (done == pid) break;
+    if (seconds_since(start) > wall_limit_s) {
+      ::kill(-pid, SIGKILL);
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      r.timed_out = true;
+      break;
+    }
+    struct pollfd p = {err_pipe[0], POLLIN, 0};
+    ::poll(&p, 1, 20);
+    drain();
+  }
+  r.leftover_processes = kill_leftovers(pid);
+  r.seconds = seconds_since(start);
+  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
+  drain();
+  lines.flush();
+  ::close(err_pipe[0]);
+  return r;
+}
+
+}  // namespace helios::solve
