@@ -18,6 +18,8 @@
 // the search is deterministic for a given seed whatever the thread count, unless its time budget
 // (search_time_s, time_limit_s) cuts it, which the record says.
 // ---------------------------------------------------------------------------------------------
+#pragma once
+
 namespace helios_rt {
 
 // The generator of start k: SplitMix64 of (seed, k), so a start's guess does not depend on which

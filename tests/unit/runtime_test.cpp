@@ -6,11 +6,18 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <mutex>
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <system_error>
+#include <thread>
 #include <vector>
 
 #include "dop853.hpp"
@@ -26,6 +33,9 @@ constexpr int kNumVars = 8;
 constexpr int kMassIndex = 6;
 constexpr bool kMinimumFuel = true;
 constexpr double kTimeUnitDays = 365.25;
+constexpr double kMassUnitKg = 1000.0;
+constexpr double kT0 = 0.0;
+constexpr double kTf = 348.795 / 365.25;
 constexpr double kLengthUnitKm = 149597870.691;
 constexpr double kSpeedUnitKmS = 149597870.691 / 31557600.0;
 constexpr double kEpochMjd2000 = 400.0;

@@ -814,6 +814,17 @@ std::string problem_block(const json& derivation) {
   return problem_block(c);
 }
 
+std::string runtime_source() {
+  std::istringstream umbrella(embedded::file("templates/runtime/runtime.hpp"));
+  std::string line, out;
+  const std::string include = "#include \"";
+  while (std::getline(umbrella, line))
+    if (line.rfind(include, 0) == 0)
+      out += pasted("templates/runtime/" + line.substr(include.size(), line.find('"', include.size()) - include.size())) +
+             "\n";
+  return out;
+}
+
 std::string assemble(const json& derivation, const std::string& modules, const std::string& origin) {
   Context c(derivation);
   std::ostringstream src;
@@ -831,9 +842,7 @@ std::string assemble(const json& derivation, const std::string& modules, const s
       << pasted("tools/lib/include/helios/astro/ephemeris.hpp") << "\n"
       << pasted("templates/runtime/dop853.hpp") << "\n"
       << problem_block(c) << "\n"
-      << embedded::file("templates/runtime/runtime.hpp") << "\n"
-      << embedded::file("templates/runtime/search.hpp") << "\n"
-      << modules << embedded::file("templates/runtime/main.hpp");
+      << runtime_source() << modules << embedded::file("templates/runtime/main.hpp");
   return src.str();
 }
 

@@ -269,8 +269,7 @@ std::string generate(const GenRequest& r, const CallInfo& call) {
       system_message("code generator"),
       {"user", fill(prompt("codegen.txt"), {{"DERIVATION_JSON", pretty(r.derivation)},
                                             {"PROBLEM_BLOCK", block},
-                                            {"RUNTIME", embedded::file("templates/runtime/runtime.hpp") + "\n" +
-                                                            embedded::file("templates/runtime/search.hpp")}})}};
+                                            {"RUNTIME", codegen::runtime_source()}})}};
   if (repair) {
     if (!r.compile_report) throw usage_error("--previous needs --compile-report (how the previous program compiled)");
     const json previous = modules_of(*r.previous_source);

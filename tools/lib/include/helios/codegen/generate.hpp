@@ -29,6 +29,10 @@ GeneratedProgram generate(const io::json& derivation, const GenOptions& options)
 // The PROBLEM block (namespace problem: sizes, names, units, constant parameters) of a derivation.
 std::string problem_block(const io::json& derivation);
 
+// The fixed shooting runtime as it goes into a program: the headers templates/runtime/runtime.hpp
+// includes, in its order, each pasted whole.
+std::string runtime_source();
+
 // The whole program around `modules` (C++ defining DYNAMICS, SWITCH, RESIDUAL and SOLVE in
 // namespace helios_rt): headers, astro code, integrator, PROBLEM block, runtime, modules, entry
 // point. `origin` names the generator in the first comment line (builtin, or llm and the model).

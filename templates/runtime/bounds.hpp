@@ -1,0 +1,284 @@
+// ---------------------------------------------------------------------------------------------
+// HELIOS shooting runtime, bounds (templates/runtime/bounds.hpp): bounds psi <= 0: passes over the active set, warm from the last pass.
+// ---------------------------------------------------------------------------------------------
+#pragma once
+
+namespace helios_rt {
+
+// The Newton homotopy F(z) - sigma F(x) = 0 at eps, followed from sigma = 1 (solved by x) to 0:
+// it moves the rows that changed with the active set from their old form to their new one. True
+// when sigma = 0 was reached (x is then the solution at eps).
+inline bool shift_rows(const Settings& s, std::vector<double>& x, double eps, Result& r) {
+  std::vector<double> start(problem::kNumVars);
+  {
+    Propagator prop(s);
+    try {
+      shooting_function(x.data(), eps, prop, start.data());
+    } catch (const numerical_error&) {
+      return false;
+    }
+  }
+  double sigma = 1;
+  const Residual shifted = [&](const double* z, double e, Propagator& p, double* F) {
+    shooting_function(z, e, p, F);
+    for (int i = 0; i < problem::kNumVars; ++i) F[i] -= sigma * start[i];
+  };
+  Shooter shooter(s, shifted, kContinuationStart);
+  const auto anything = [](const double*) { return true; };
+  const bool moved = continue_to_zero(s, 1.0, [&](double value) {
+    sigma = value;
+    std::vector<double> trial = x;
+    int info = 0;
+    double res = 0;
+    const bool ok = homotopy_step(shooter, trial, eps, s.accept_residual, r, anything, info, res);
+    if (ok) x = trial;
+    return ok;
+  });
+  r.evaluations += shooter.evaluations;
+  return moved;
+}
+
+// A pass over a new active set, warm from the last pass's result `warm`:
+//   first from its solution x (eps = 0), smoothed (eps raised by decades to eps_start as far as
+//     each step, a Newton solve from the last, converges), the rows shifted there (shift_rows),
+//     and eps continued back to 0;
+//   else from its solution at eps_start (x_start), where the problem is smooth and a bound can
+//     move far (S10's periapsis radius by a factor of ten), shifted there and continued to 0.
+// True when eps = 0 was reached (warm.x is then the solution).
+template <class Admissible>
+bool bound_homotopy(const Settings& s, Result& warm, Admissible&& admissible) {
+  const auto to_zero = [&](std::vector<double>& x, double eps) {
+    double res = 0;
+    int info = 0;
+    Shooter single(s);
+    Settings down = s;
+    down.eps_start = eps;
+    const bool reached = eps == 0 ? homotopy_step(single, x, 0.0, s.final_residual, warm, admissible, info, res)
+                                  : homotopy_to_zero(down, single, x, warm, admissible, res);
+    warm.evaluations += single.evaluations;
+    if (reached) {
+      warm.max_residual = res;
+      warm.F = single.last_F;
+      warm.x = x;
+    }
+    return reached;
+  };
+  const std::vector<double> last_start = warm.x_start;
+  std::vector<double> x = warm.x;
+  double eps = 0;
+  {
+    Shooter plain(s, shooting_function, kContinuationStart);
+    const auto anything = [](const double*) { return true; };
+    for (double next = 1e-4; next <= s.eps_start * (1 + 1e-12); next *= 10) {
+      std::vector<double> trial = x;
+      int info = 0;
+      double res = 0;
+      if (!homotopy_step(plain, trial, next, s.accept_residual, warm, anything, info, res)) break;
+      x = trial;
+      eps = next;
+    }
+    warm.evaluations += plain.evaluations;
+  }
+  if (shift_rows(s, x, eps, warm) && to_zero(x, eps)) {
+    if (eps != s.eps_start) warm.x_start = last_start;  // to_zero set it at eps
+    return true;
+  }
+  if (last_start.empty()) return false;
+  x = last_start;
+  return shift_rows(s, x, s.eps_start, warm) && to_zero(x, s.eps_start);
+}
+
+// What the passes over the bounds' active set did, summed over every pass tried.
+struct PassLog {
+  int attempts = 0, iterations = 0, evaluations = 0;
+  std::vector<std::string> methods;  // each pass's method
+  std::vector<LegStep> legs;
+  std::vector<HomotopyStep> homotopy;
+  std::vector<ContinuationStep> continuation;
+  std::string from;  // which of pass 1's extremals the passes start from ("" for its solution)
+  void add(const Result& r, int pass) {
+    attempts += r.attempts;
+    iterations += r.iterations;
+    evaluations += r.evaluations;
+    methods.push_back(from + "pass " + std::to_string(pass) + ": " + r.method);
+    legs.insert(legs.end(), r.legs.begin(), r.legs.end());
+    homotopy.insert(homotopy.end(), r.homotopy.begin(), r.homotopy.end());
+    continuation.insert(continuation.end(), r.continuation.begin(), r.continuation.end());
+  }
+};
+
+// The bounds' values psi at x (eps = 0).
+inline std::vector<double> bound_values(const Settings& s, const std::vector<double>& x) {
+  Propagator prop(s);
+  std::vector<double> F(problem::kNumVars);
+  shooting_function(x.data(), 0.0, prop, F.data());
+  return bound_state().value;
+}
+
+// The passes after pass 1, from its converged solution r (every bound inactive): while r violates
+// an inactive bound (psi > 0) or has a negative multiplier on an active one, the next pass makes
+// the violated bounds active, or else drops the active bound with the most negative multiplier,
+// and solves again: warm from the last solution (bound_homotopy), else (when `cold` allows) from
+// cold. Never the same set twice. True when a consistent set was reached (r then holds its
+// solution, bound_state().active the set); `steps` lists the changes ("+name", "-name").
+template <class Solve, class Admissible>
+bool active_set_passes(const Settings& s, const std::vector<Bound>& bounds, Result& r, bool cold, Solve&& solve,
+                       Admissible&& admissible, PassLog& log, std::vector<std::string>& steps) {
+  BoundState& state = bound_state();
+  state.active.assign(bounds.size(), 0);
+  std::vector<std::vector<char>> tried{state.active};
+  for (int pass = 2;; ++pass) {
+    const std::vector<double> values = bound_values(s, r.x);
+    std::vector<char> next = state.active;
+    int drop = -1;
+    for (std::size_t k = 0; k < bounds.size(); ++k) {
+      if (!state.active[k] && values[k] > 0) next[k] = 1;
+      if (state.active[k] && r.x[bounds[k].multiplier] < 0 &&
+          (drop < 0 || r.x[bounds[k].multiplier] < r.x[bounds[drop].multiplier]))
+        drop = static_cast<int>(k);
+    }
+    if (next == state.active && drop >= 0) next[drop] = 0;
+    if (next == state.active) return true;  // consistent: the inactive bounds hold, the active ones push
+    if (std::find(tried.begin(), tried.end(), next) != tried.end()) {
+      r.status = "not_converged";
+      r.detail = "the active set of the bounds cycles";
+      return false;
+    }
+    tried.push_back(next);
+    for (std::size_t k = 0; k < bounds.size(); ++k)
+      if (next[k] != state.active[k]) steps.push_back((next[k] ? "+" : "-") + bounds[k].name);
+    state.active = next;
+    Result warm;
+    warm.x = r.x;
+    warm.x_start = r.x_start;
+    warm.method = "warm from pass " + std::to_string(pass - 1) + " by a homotopy on the bounds' rows";
+    if (bound_homotopy(s, warm, admissible)) {
+      warm.status = "converged";
+      warm.eps = 0;
+      warm.attempts = 1;
+      r = warm;
+    } else if (cold) {
+      log.evaluations += warm.evaluations;
+      r = solve(s);
+    } else {
+      warm.method += " (did not converge)";
+      log.add(warm, pass);
+      r.status = "not_converged";
+      r.detail = "the warm homotopy on the bounds' rows did not converge";
+      return false;
+    }
+    log.add(r, pass);
+    r.passes = pass;
+    if (r.status != "converged") return false;
+  }
+}
+
+// Bounds psi <= 0 by passes over the active set: pass 1 solves with every bound inactive, then
+// active_set_passes follows from its solution, warm. Pass 1's search keeps its distinct extremals,
+// and the passes start from each of them (best first; one no better than a result already found
+// cannot lead to a better one), since the best extremal without the bounds need not lead to the
+// best one with them. The best consistent result is the solution. Only when no warm start
+// gets there do the passes run again from pass 1's solution, now with a cold solve where the warm
+// one fails.
+template <class Solve, class Admissible>
+Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve&& solve, Admissible&& admissible) {
+  BoundState& state = bound_state();
+  state.active.assign(bounds.size(), 0);
+  state.value.assign(bounds.size(), 0.0);
+  PassLog log;
+  std::vector<std::string> steps;  // the active-set changes that led to the solution
+  Result r = solve(s);
+  log.add(r, 1);
+  std::vector<double> first(bounds.size(), 0.0);
+  bool consistent = false;
+  std::vector<char> final_set = state.active;
+  if (r.status == "converged") {
+    first = bound_values(s, r.x);
+    // The starts: pass 1's distinct extremals, its solution first, then the others by objective.
+    std::vector<Extremal>& extremals = r.search.extremals;
+    if (extremals.empty()) {  // a solve without a search record (an llm-written SOLVE module)
+      Extremal own;
+      own.x = r.x;
+      own.x_start = r.x_start;
+      own.shape.cost = objective_of(s, r.x);
+      own.reached = 1;
+      own.method = r.method;
+      extremals.push_back(own);
+      r.search.returned = 0;
+    }
+    std::vector<std::size_t> order(extremals.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      const bool a_solution = static_cast<int>(a) == r.search.returned,
+                 b_solution = static_cast<int>(b) == r.search.returned;
+      return a_solution != b_solution ? a_solution : extremals[a].shape.cost < extremals[b].shape.cost;
+    });
+    Result best = r;
+    double best_objective = INFINITY;
+    int best_from = r.search.returned;
+    for (const std::size_t i : order) {
+      Extremal& o = extremals[i];
+      if (wall_seconds() > s.time_limit_s || o.shape.cost >= best_objective) continue;
+      o.bounded_tried = true;
+      Result from = r;
+      from.x = o.x;
+      from.x_start = o.x_start;
+      log.from = static_cast<int>(i) == r.search.returned ? "" : "from extremal " + std::to_string(i) + ", ";
+      std::vector<std::string> changes;
+      if (!active_set_passes(s, bounds, from, false, solve, admissible, log, changes)) continue;
+      o.bounded_objective = objective_of(s, from.x);
+      o.bounded_passes = from.passes;
+      if (o.bounded_objective < best_objective) {
+        best_objective = o.bounded_objective;
+        best = from;
+        best_from = static_cast<int>(i);
+        final_set = state.active;
+        steps = changes;
+        consistent = true;
+      }
+    }
+    if (!consistent && wall_seconds() <= s.time_limit_s) {
+      log.from = "cold: ";
+      best = r;
+      steps.clear();
+      consistent = active_set_passes(s, bounds, best, true, solve, admissible, log, steps);
+      final_set = state.active;
+    }
+    SearchRecord record = std::move(r.search);
+    r = best;
+    r.search = std::move(record);
+    if (consistent) {
+      r.search.returned = best_from;
+      r.search.reason = "the lowest objective with the bounds reached from the " +
+                        std::to_string(r.search.extremals.size()) + " distinct extremals of pass 1";
+    }
+    if (!consistent) {
+      r.status = "not_converged";
+      if (r.detail.empty()) r.detail = "no pass over the bounds' active set converged";
+    }
+  }
+  state.active = final_set;
+  r.attempts = log.attempts;
+  r.iterations = log.iterations;
+  r.evaluations = log.evaluations;
+  r.legs = log.legs;
+  r.homotopy = log.homotopy;
+  r.continuation = log.continuation;
+  if (r.passes > 1) {
+    std::string changes;
+    for (const auto& c : steps) changes += (changes.empty() ? "" : " ") + c;
+    std::string each;
+    for (const auto& m : log.methods) each += (each.empty() ? "" : "; ") + m;
+    r.method = std::to_string(r.passes) + " passes over the bounds' active set (" + changes + "): " + each;
+  }
+  const bool converged = r.status == "converged";
+  const std::vector<double> last = converged ? bound_values(s, r.x) : first;
+  for (std::size_t k = 0; k < bounds.size(); ++k) {
+    const bool active = state.active[k] != 0;
+    const double nu = converged ? r.x[bounds[k].multiplier] : 0.0;
+    r.bounds.push_back({bounds[k].name, bounds[k].meaning, first[k], active, last[k], nu});
+  }
+  return r;
+}
+
+}  // namespace helios_rt

@@ -1,0 +1,86 @@
+// ---------------------------------------------------------------------------------------------
+// HELIOS shooting runtime, controls (templates/runtime/controls.hpp): the modules' prototypes (DYNAMICS, SWITCH) and the throttle modes: the optimal control in each mode and the functions that stay positive while it holds.
+// ---------------------------------------------------------------------------------------------
+#pragma once
+
+namespace helios_rt {
+
+constexpr int kNY = 2 * problem::kNumStates;  // states then costates
+
+struct Multipliers {
+  double lambda0 = 1;
+  double eps = 1;
+};
+
+// DYNAMICS module: state and costate right-hand sides and H at time t for a given control vector.
+void dynamics(double t, const double* y, const double* control, const Multipliers& mult, double* dy);
+double hamiltonian(double t, const double* y, const double* control, const Multipliers& mult);
+// SWITCH module: the continuous controls (all but the throttle) and dH/du at u = 0 and u = 1.
+// A problem without a throttle (kThrottleIndex < 0) has one mode and no throttle_slopes.
+void direction_control(const double* y, double* control);
+void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper);
+
+// Throttle modes. With eps > 0, H is strictly convex in u: u = 0 where dH/du(0) >= 0, u = 1 where
+// dH/du(1) <= 0, otherwise u solves dH/du = 0. At eps = 0 both slopes equal the switching function.
+enum Mode { kOff = 0, kInterior = 1, kFull = 2 };
+
+inline Mode mode_at(const double* y, const Multipliers& mult) {
+  if constexpr (problem::kThrottleIndex < 0) {
+    return kFull;
+  } else {
+    double s0 = 0, s1 = 0;
+    throttle_slopes(y, mult, s0, s1);
+    if (s0 >= 0) return kOff;
+    if (s1 <= 0) return kFull;
+    return kInterior;
+  }
+}
+
+inline void control_in_mode(const double* y, Mode mode, const Multipliers& mult, double* control) {
+  direction_control(y, control);
+  if constexpr (problem::kThrottleIndex >= 0) {
+    double u = mode == kFull ? 1.0 : 0.0;
+    if (mode == kInterior) {
+      double s0 = 0, s1 = 0;
+      throttle_slopes(y, mult, s0, s1);
+      u = std::min(1.0, std::max(0.0, s0 / (s0 - s1)));
+    }
+    control[problem::kThrottleIndex] = u;
+  }
+}
+
+// The switching function at eps = 0 (0 without a throttle), recorded in the trajectory.
+inline double switching_value(const double* y, const Multipliers& mult) {
+  if constexpr (problem::kThrottleIndex < 0) {
+    return 0.0;
+  } else {
+    double s0 = 0, s1 = 0;
+    throttle_slopes(y, Multipliers{mult.lambda0, 0.0}, s0, s1);
+    return s0;
+  }
+}
+
+// Functions that stay positive while `mode` holds; a sign change is a switch.
+inline int stay_functions(const double* y, Mode mode, const Multipliers& mult, double* g) {
+  if constexpr (problem::kThrottleIndex < 0) {
+    return 0;
+  } else {
+    double s0 = 0, s1 = 0;
+    throttle_slopes(y, mult, s0, s1);
+    switch (mode) {
+      case kOff:
+        g[0] = s0;
+        return 1;
+      case kFull:
+        g[0] = -s1;
+        return 1;
+      case kInterior:
+        g[0] = -s0;
+        g[1] = s1;
+        return 2;
+    }
+    return 0;
+  }
+}
+
+}  // namespace helios_rt

@@ -1,0 +1,124 @@
+// ---------------------------------------------------------------------------------------------
+// HELIOS shooting runtime, shooter (templates/runtime/shooter.hpp): the shooter: hybrd on the shooting function, and one recorded homotopy step.
+// ---------------------------------------------------------------------------------------------
+#pragma once
+
+namespace helios_rt {
+
+inline std::string hybrd_meaning(int info) {
+  switch (info) {
+    case 0:
+      return "improper input parameters";
+    case 1:
+      return "relative error between two consecutive iterates is at most tol";
+    case 2:
+      return "number of calls to fcn has reached 200*(n+1)";
+    case 3:
+      return "tol is too small; no further improvement in x is possible";
+    case 4:
+      return "iteration is not making good progress";
+    default:
+      return "stopped by the shooting function (integration failure or time limit)";
+  }
+}
+
+// How hybrd starts: hybrd1's choice (trust region 100 times the unscaled |x|) suits random guesses
+// and the eps steps; a continuation step starts next to its solution and takes the trust region
+// at |D x| with D the Jacobian's column norms (hybrd mode 1, factor 1), so it does not jump to
+// another branch.
+struct HybrdStart {
+  double factor = 100;
+  bool scaled = false;  // hybrd mode 1: D from the Jacobian's column norms; else D = 1 (mode 2)
+};
+constexpr HybrdStart kContinuationStart{1.0, true};
+
+class Shooter {
+ public:
+  explicit Shooter(const Settings& s, Residual residual = shooting_function, HybrdStart start = {})
+      : settings_(s), prop_(s), residual_(std::move(residual)), start_(start) {}
+
+  // hybrd1 from x at eps; true if max|F| <= accept. Returns the info code through `info`.
+  bool solve(std::vector<double>& x, double eps, double accept, int& info, double& max_res) {
+    eps_ = eps;
+    failed_ = false;
+    const int n = static_cast<int>(x.size());
+    size_ = n;
+    std::vector<double> F(n), wa(static_cast<std::size_t>(n * (3 * n + 13)) / 2 + 1);
+    const int before = evaluations;
+    if (start_.factor == 100 && !start_.scaled) {
+      info = hybrd1(&Shooter::callback, this, n, x.data(), F.data(), settings_.hybrd_tol, wa.data(),
+                    static_cast<int>(wa.size()));
+    } else {  // hybrd1's call with the trust region's start changed
+      const int lr = n * (n + 1) / 2;
+      double* w = wa.data();
+      for (int j = 0; j < n; ++j) w[j] = 1;
+      int nfev = 0;
+      info = hybrd(&Shooter::callback, this, n, x.data(), F.data(), settings_.hybrd_tol, 200 * (n + 1), n - 1, n - 1,
+                   0.0, w, start_.scaled ? 1 : 2, start_.factor, 0, &nfev, w + 6 * n + lr, n, w + 6 * n, lr, w + n,
+                   w + 2 * n, w + 3 * n, w + 4 * n, w + 5 * n);
+      if (info == 5) info = 4;
+    }
+    if (failed_) info = -1;
+    // hybrd1 returns the x of the smallest residual it saw; evaluate there for the record.
+    if (!evaluate(x.data(), F.data())) {
+      max_res = INFINITY;
+      return false;
+    }
+    max_res = 0;
+    for (double f : F) max_res = std::max(max_res, std::fabs(f));
+    last_F = F;
+    last_step_evaluations = evaluations - before;
+    return std::isfinite(max_res) && max_res <= accept;
+  }
+
+  bool evaluate(const double* x, double* F) {
+    try {
+      residual_(x, eps_, prop_, F);
+      ++evaluations;
+      for (int i = 0; i < size_; ++i)
+        if (!std::isfinite(F[i])) return false;
+      return true;
+    } catch (const numerical_error&) {
+      return false;
+    }
+  }
+
+  int evaluations = 0;
+  int last_step_evaluations = 0;
+  std::vector<double> last_F;
+  Propagator& propagator() { return prop_; }
+
+ private:
+  static int callback(void* self, int n, const double* x, double* F, int) {
+    auto* me = static_cast<Shooter*>(self);
+    if (wall_seconds() > me->settings_.time_limit_s) {
+      me->failed_ = true;
+      return -1;
+    }
+    if (!me->evaluate(x, F)) {
+      // A failed integration is a large residual, so hybrd backs off instead of stopping.
+      for (int i = 0; i < n; ++i) F[i] = 1e6;
+    }
+    return 0;
+  }
+
+  const Settings& settings_;
+  Propagator prop_;
+  Residual residual_;
+  HybrdStart start_;
+  int size_ = problem::kNumVars;
+  double eps_ = 1;
+  bool failed_ = false;
+};
+
+// One hybrd solve from x at eps, recorded in r: true if max|F| <= accept and x is admissible.
+template <class Admissible>
+bool homotopy_step(Shooter& shooter, std::vector<double>& x, double eps, double accept, Result& r,
+                   Admissible&& admissible, int& info, double& res) {
+  ++r.iterations;
+  const bool ok = shooter.solve(x, eps, accept, info, res) && admissible(x.data());
+  r.homotopy.push_back({eps, ok, res, shooter.last_step_evaluations});
+  return ok;
+}
+
+}  // namespace helios_rt
