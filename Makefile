@@ -72,20 +72,30 @@ $(TOOLS_STAMP): $(BUILD)/build.ninja $(TOOL_SOURCES)
 	cmake --build $(BUILD) --target $(addprefix helios-,$(TOOLS))
 	touch $@
 
-tools: $(TOOLS_STAMP)
+# Each artifact depends on the tool that writes it through that tool's content stamp, which
+# changes only when the tool's bytes do: a rebuild that leaves a tool the same (a touched source,
+# an edit of another tool) re-runs nothing it made.
+$(BUILD)/stamps/helios-%: $(TOOLS_STAMP)
+	@mkdir -p $(@D)
+	@sha256sum <$(BIN)/helios-$* >$@.new && if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
+TOOL_STAMP = $(BUILD)/stamps/helios-$(1)
+# Named here, so make does not take them for intermediate files and delete them.
+TOOL_STAMPS := $(foreach t,$(TOOLS),$(call TOOL_STAMP,$(t)))
 
-$(RUNS)/%/spec.json: scenarios/%/problem.txt $(TOOLS_STAMP)
+tools: $(TOOLS_STAMP) $(TOOL_STAMPS)
+
+$(RUNS)/%/spec.json: scenarios/%/problem.txt $(call TOOL_STAMP,parse)
 	@mkdir -p $(@D)
 	$(BIN)/helios-parse --backend $(PARSE_BACKEND) $< -o $@
 
-$(RUNS)/%/verify.json: $(RUNS)/%/derivation.json $(TOOLS_STAMP)
+$(RUNS)/%/verify.json: $(RUNS)/%/derivation.json $(call TOOL_STAMP,verify)
 	$(BIN)/helios-verify $(VERIFY_FLAGS) $< -o $@
 
 ifeq ($(BACKEND),builtin)
-$(RUNS)/%/derivation.json: $(RUNS)/%/spec.json $(TOOLS_STAMP)
+$(RUNS)/%/derivation.json: $(RUNS)/%/spec.json $(call TOOL_STAMP,derive)
 	$(BIN)/helios-derive $< -o $@
 
-$(RUNS)/%/shoot.cpp: $(RUNS)/%/derivation.json $(RUNS)/%/verify.json $(TOOLS_STAMP)
+$(RUNS)/%/shoot.cpp: $(RUNS)/%/derivation.json $(RUNS)/%/verify.json $(call TOOL_STAMP,gen)
 	$(BIN)/helios-gen $< -o $@
 else
 # Static pattern rules over the explicit list of every scenario's rounds: each round is its own
@@ -94,16 +104,16 @@ else
 LLM_SCENARIOS := $(sort $(SCENARIOS) $(scenario))
 each_run = $(foreach s,$(LLM_SCENARIOS),$(RUNS)/$(s)/$(1))
 
-$(call each_run,derivation.r1.json): $(RUNS)/%/derivation.r1.json: $(RUNS)/%/spec.json $(TOOLS_STAMP)
+$(call each_run,derivation.r1.json): $(RUNS)/%/derivation.r1.json: $(RUNS)/%/spec.json $(call TOOL_STAMP,derive)
 	$(BIN)/helios-derive --backend llm --round 1 $< -o $@
 
 # Verification of a round is advisory: its failed checks are the next round's feedback.
 define derive_round
-$(call each_run,verify.r$(2).json): $(RUNS)/%/verify.r$(2).json: $(RUNS)/%/derivation.r$(2).json $(TOOLS_STAMP)
+$(call each_run,verify.r$(2).json): $(RUNS)/%/verify.r$(2).json: $(RUNS)/%/derivation.r$(2).json $(call TOOL_STAMP,verify)
 	$(BIN)/helios-verify --advisory $$< -o $$@
 
 $(call each_run,derivation.r$(1).json): $(RUNS)/%/derivation.r$(1).json: $(RUNS)/%/spec.json \
-    $(RUNS)/%/derivation.r$(2).json $(RUNS)/%/verify.r$(2).json $(TOOLS_STAMP)
+    $(RUNS)/%/derivation.r$(2).json $(RUNS)/%/verify.r$(2).json $(call TOOL_STAMP,derive)
 	$(BIN)/helios-derive --backend llm --round $(1) --previous $$(@D)/derivation.r$(2).json \
 	  --feedback $$(@D)/verify.r$(2).json $$< -o $$@
 endef
@@ -113,15 +123,15 @@ $(foreach k,$(wordlist 2,$(DERIVE_ROUNDS),$(derive_rounds)),$(eval $(call derive
 $(call each_run,derivation.json): $(RUNS)/%/derivation.json: $(RUNS)/%/derivation.r$(DERIVE_ROUNDS).json
 	ln -sfn $(<F) $@
 
-$(call each_run,shoot.r1.cpp): $(RUNS)/%/shoot.r1.cpp: $(RUNS)/%/derivation.json $(RUNS)/%/verify.json $(TOOLS_STAMP)
+$(call each_run,shoot.r1.cpp): $(RUNS)/%/shoot.r1.cpp: $(RUNS)/%/derivation.json $(RUNS)/%/verify.json $(call TOOL_STAMP,gen)
 	$(BIN)/helios-gen --backend llm --round 1 $< -o $@
 
 define gen_round
-$(call each_run,compile.r$(2).json): $(RUNS)/%/compile.r$(2).json: $(RUNS)/%/shoot.r$(2).cpp $(TOOLS_STAMP)
+$(call each_run,compile.r$(2).json): $(RUNS)/%/compile.r$(2).json: $(RUNS)/%/shoot.r$(2).cpp $(call TOOL_STAMP,solve)
 	$(BIN)/helios-solve --backend llm --compile-only --cache-dir $(CACHE) $$< -o $$@
 
 $(call each_run,shoot.r$(1).cpp): $(RUNS)/%/shoot.r$(1).cpp: $(RUNS)/%/derivation.json \
-    $(RUNS)/%/shoot.r$(2).cpp $(RUNS)/%/compile.r$(2).json $(TOOLS_STAMP)
+    $(RUNS)/%/shoot.r$(2).cpp $(RUNS)/%/compile.r$(2).json $(call TOOL_STAMP,gen)
 	$(BIN)/helios-gen --backend llm --round $(1) --previous $$(@D)/shoot.r$(2).cpp \
 	  --compile-report $$(@D)/compile.r$(2).json $$< -o $$@
 endef
@@ -132,22 +142,22 @@ $(call each_run,shoot.cpp): $(RUNS)/%/shoot.cpp: $(RUNS)/%/shoot.r$(GEN_ROUNDS).
 endif
 
 # trajectory.csv and the plots are written before solution.json, which marks the stage done.
-$(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp scenarios/%/settings.json $(TOOLS_STAMP)
+$(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp scenarios/%/settings.json $(call TOOL_STAMP,solve)
 	$(LAUNCH) $(BIN)/helios-solve --backend $(BACKEND) $< --settings scenarios/$*/settings.json --cache-dir $(CACHE) \
 	  --time-limit $(SOLVE_TIME_LIMIT) --trajectory $(@D)/trajectory.csv --plots $(@D)/ -o $@
 
 $(RUNS)/%/score.json: scenarios/%/reference.json $(RUNS)/%/spec.json $(RUNS)/%/derivation.json \
-                      $(RUNS)/%/verify.json $(RUNS)/%/solution.json $(TOOLS_STAMP)
+                      $(RUNS)/%/verify.json $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
 	$(BIN)/helios-score --reference $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
 	  --verify $(@D)/verify.json --solution $(@D)/solution.json -o $@
 
 # This backend's table, and the paper's three tables over every run folder under $(RUNS_ROOT).
 scoreboard: $(RUNS)/scoreboard.md $(RUNS_ROOT)/scoreboard.md
-$(RUNS)/scoreboard.md: $(wildcard $(RUNS)/S*/score.json) $(TOOLS_STAMP)
+$(RUNS)/scoreboard.md: $(wildcard $(RUNS)/S*/score.json) $(call TOOL_STAMP,score)
 	$(BIN)/helios-score --scoreboard $(RUNS) -o $@
 
 $(RUNS_ROOT)/scoreboard.md: $(wildcard $(RUNS_ROOT)/*/*/score.json $(RUNS_ROOT)/*/*/*.transcript.json \
-                              $(RUNS_ROOT)/*/*/compile.r*.json) $(TOOLS_STAMP)
+                              $(RUNS_ROOT)/*/*/compile.r*.json) $(call TOOL_STAMP,score)
 	$(BIN)/helios-score --tables $(RUNS_ROOT) -o $@
 
 unit: $(TOOLS_STAMP)

@@ -160,6 +160,21 @@ assert_not_ran() {
   run -0 pmake -q
 }
 
+@test "pipeline: a rebuilt tool whose bytes did not change re-runs nothing (touch score.cpp)" {
+  ensure_built
+  local before
+  before="$(snapshot "${ARTIFACTS[@]}")"
+  sleep 0.05 # past the file system's timestamp granularity
+  touch "$ROOT/tools/lib/src/score/score.cpp"
+  # without -o: the tools are rebuilt (the library and every tool relinked), byte for byte the same
+  run -0 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
+    make --no-print-directory -C "$ROOT" scenario=T01 CACHE="$MAKE_CACHE"
+  [[ $output == *"Linking CXX executable bin/helios-score"* ]] || { echo "the tools were not rebuilt: $output" >&2; false; }
+  assert_not_ran parse derive verify gen solve score
+  [[ $(snapshot "${ARTIFACTS[@]}") == "$before" ]]
+  run -0 pmake -q
+}
+
 @test "pipeline: a deleted solution.json is remade (make -q reports it)" {
   ensure_built
   local before_early
