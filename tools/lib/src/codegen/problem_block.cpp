@@ -1,0 +1,91 @@
+// The PROBLEM block: the problem's constants, names and units in namespace problem.
+#include "context.hpp"
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace helios::codegen::detail {
+namespace {
+
+// Physical column name and factor of each state (normalized -> SI-ish named unit).
+std::pair<std::string, double> physical(const json& units, const json& state) {
+  const std::string unit = state.value("unit", "");
+  const std::string name = state.at("name");
+  const double L = units.at("length_km"), T = units.at("time_s"), M = units.at("mass_kg");
+  if (unit == units.at("length").get<std::string>()) return {name + "_km", L};
+  if (unit == units.at("length").get<std::string>() + "/" + units.at("time").get<std::string>())
+    return {name + "_km_s", L / T};
+  if (unit == "initial mass") return {name + "_kg", M};
+  return {name, 1.0};
+}
+
+}  // namespace
+
+std::string problem_block(Context& c) {
+  const json& d = c.d;
+  std::ostringstream o;
+  const auto& units = d.at("units");
+  o << "// ----- PROBLEM (generated) -----------------------------------------------------------------\n"
+    << "namespace problem {\n"
+    << "const char* const kProblemId = \"" << d.at("problem").at("id").get<std::string>() << "\";\n"
+    << "constexpr int kNumStates = " << c.states.size() << ";\n"
+    << "constexpr int kNumControls = " << c.controls.size() << ";\n"
+    << "constexpr int kThrottleIndex = " << c.throttle_index << ";\n"
+    << "constexpr int kNumVars = " << d.at("shooting").at("variables").size() << ";\n"
+    << "constexpr int kMassIndex = " << index_of(c.states, "m") << ";\n"
+    << "// The objective: the propellant (minimum fuel or minimum initial mass), else minimum time.\n"
+    << "constexpr bool kMinimumFuel = " << (d.at("problem").value("objective", "") != "minimum_time" ? "true" : "false")
+    << ";\n"
+    << "constexpr double kT0 = " << number(d.at("times").at("t0")) << ";\n"
+    << "// The final time, or the upper end of its window when it is free.\n"
+    << "constexpr double kTf = "
+    << number(d.at("times").contains("tf") ? d.at("times").at("tf") : d.at("times").at("tf_window")[1]) << ";\n"
+    << "constexpr double kHomotopyStart = " << number(d.at("homotopy").at("start")) << ";\n"
+    << "constexpr double kTimeUnitDays = " << number(units.at("time_s").get<double>() / 86400.0) << ";\n"
+    << "constexpr double kLengthUnitKm = " << number(units.at("length_km")) << ";\n"
+    << "constexpr double kSpeedUnitKmS = "
+    << number(units.at("length_km").get<double>() / units.at("time_s").get<double>()) << ";\n"
+    << "constexpr double kEpochMjd2000 = " << number(d.at("times").value("epoch_mjd2000", 0.0)) << ";\n"
+    << "constexpr double kMassUnitKg = " << number(units.at("mass_kg")) << ";\n";
+  double exhaust = 0;
+  for (const auto& p : d.at("parameters"))
+    if (p.at("name") == "c")
+      exhaust =
+          p.at("value").get<double>() * units.at("length_km").get<double>() * 1e3 / units.at("time_s").get<double>();
+  o << "constexpr double kExhaustVelocityMS = " << number(exhaust) << ";\n";
+  std::vector<std::string> columns;
+  std::string factors;
+  for (const auto& s : d.at("states")) {
+    const auto [col, f] = physical(units, s);
+    columns.push_back(col);
+    factors += (factors.empty() ? "" : ", ") + number(f);
+  }
+  std::vector<std::string> vars, eqs;
+  for (const auto& v : d.at("shooting").at("variables")) vars.push_back(v.at("name"));
+  for (const auto& e : d.at("shooting").at("equations")) eqs.push_back(e.at("name"));
+  o << "const char* const kStateNames[] = {" << quoted_list(c.states) << "};\n"
+    << "const char* const kStateColumns[] = {" << quoted_list(columns) << "};\n"
+    << "constexpr double kStateToPhysical[] = {" << factors << "};\n"
+    << "const char* const kControlNames[] = {" << quoted_list(c.controls) << "};\n"
+    << "const char* const kVariableNames[] = {" << quoted_list(vars) << "};\n"
+    << "const char* const kEquationNames[] = {" << quoted_list(eqs) << "};\n";
+  o << "struct OrbitBody {\n  const char* name;\n  helios::astro::Elements elements;  // normalized a, rad\n"
+    << "  double epoch;  // normalized time of the elements\n};\n"
+    << "inline const std::vector<OrbitBody> kOrbitBodies = {\n";
+  for (const auto& b : d.value("bodies", json::array())) {
+    const json& el = b.at("elements");
+    o << "    {\"" << b.at("name").get<std::string>() << "\", {" << number(el.at("a")) << ", " << number(el.at("e"))
+      << ", " << number(el.at("i_rad")) << ", " << number(el.at("raan_rad")) << ", " << number(el.at("argp_rad"))
+      << ", " << number(el.at("mean_anomaly_rad")) << "}, " << number(b.at("epoch")) << "},\n";
+  }
+  o << "};\n";
+  for (const auto& p : d.at("parameters"))
+    if (!p.contains("source"))
+      o << "constexpr double " << p.at("name").get<std::string>() << " = " << number(p.at("value")) << ";  // "
+        << p.at("meaning").get<std::string>() << " [" << p.value("unit", "") << "]\n";
+  o << "}  // namespace problem\n";
+  return o.str();
+}
+
+}  // namespace helios::codegen::detail
