@@ -195,198 +195,241 @@ inline bool search_time_left(const Settings& s, double started) {
   return wall_seconds() <= s.time_limit_s && (s.search_time_s <= 0 || wall_seconds() - started <= s.search_time_s);
 }
 
-// Problems without interior events: the multi-start search at eps_start, the lowest-cost distinct
-// extremals continued to eps = 0, the best kept (see the top of this file). `initial_guess(rng, x)`
-// draws a start.
-template <class Guess, class Admissible>
-Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& admissible) {
-  constexpr int N = problem::kNumVars;
-  Result r;
-  SearchRecord& rec = r.search;
-  rec.threads = search_threads(s);
-  rec.method = "multi-start at eps = " + std::to_string(s.eps_start).substr(0, 4) +
-               ", the lowest-cost distinct extremals continued to eps = 0";
-  const double started = wall_seconds();
-  Progress progress;
-  std::atomic<int> done{0}, converged{0};
-  int evaluations = 0;
-  std::mutex count;
+// The best objective among the distinct extremals at eps = 0 (INFINITY: none yet).
+inline double best_objective(const SearchRecord& rec) {
+  double best = INFINITY;
+  for (const auto& e : rec.extremals) best = std::min(best, e.shape.cost);
+  return best;
+}
 
-  // 1. Starts [from, to) at eps_start, merged in start order.
+// After a search: the best extremal into r, else why there is none (`what_failed`, or the time).
+inline void finish_search(const Settings& s, Result& r, double started, const std::string& how,
+                          const std::string& what_failed, Progress& progress) {
+  SearchRecord& rec = r.search;
+  rec.seconds = wall_seconds() - started;
+  choose_best(rec, how);
+  if (rec.returned >= 0) {
+    take_extremal(r);
+    progress.stage("returned extremal " + std::to_string(rec.returned) + ": " + rec.reason);
+  } else if (wall_seconds() > s.time_limit_s) {
+    r.status = "timeout";
+    r.detail = "time limit reached before convergence";
+  } else {
+    r.detail = what_failed;
+  }
+}
+
+// Problems without interior events: the multi-start search at eps_start, the lowest-cost distinct
+// extremals continued to eps = 0, the best kept (see the top of this file).
+template <class Guess, class Admissible>
+class MultiStart {
+ public:
+  MultiStart(const Settings& s, Guess& guess, Admissible& admissible)
+      : s_(s), guess_(guess), admissible_(admissible), rec_(r_.search), started_(wall_seconds()) {
+    rec_.threads = search_threads(s);
+    rec_.method = "multi-start at eps = " + eps_text() + ", the lowest-cost distinct extremals continued to eps = 0";
+  }
+
+  Result solve() {
+    int next_start = 0;
+    bool first_round = true;
+    while (time_left() && next_start < s_.max_attempts) {
+      next_start = explore(next_start, first_round);
+      // The most promising first; while none arrives, the next ones, a thread's worth at a time.
+      const std::vector<int> order = untried();
+      for (std::size_t taken = 0; taken < order.size() && time_left() && rec_.extremals.empty();) {
+        const std::size_t end =
+            std::min(order.size(), taken + (first_round ? std::max(1, s_.search_continued) : rec_.threads));
+        continue_extremals(std::vector<int>(order.begin() + taken, order.begin() + end));
+        taken = end;
+        first_round = false;
+      }
+      first_round = false;
+      if (!rec_.extremals.empty()) break;
+    }
+    r_.attempts = rec_.starts;
+    r_.evaluations = evaluations_;
+    r_.iterations = rec_.starts + rec_.continued;
+    finish_search(s_, r_, started_,
+                  "from " + std::to_string(rec_.continued) + " of " + std::to_string(rec_.start_extremals.size()) +
+                      " distinct extremals at eps_start, found by " + std::to_string(rec_.starts) + " starts",
+                  "no start reached eps = 0 (" + std::to_string(rec_.starts) + " starts, " +
+                      std::to_string(rec_.converged_start) + " converged at eps_start)",
+                  progress_);
+    return r_;
+  }
+
+ private:
   struct StartRun {
     bool ok = false;
-    std::vector<double> x;
+    std::vector<double> x;  // empty: not run (the time ran out)
     Shape shape;
     double res = INFINITY;
   };
-  const auto run_starts = [&](int from, int to) {
+
+  std::string eps_text() const { return std::to_string(s_.eps_start).substr(0, 4); }
+  bool time_left() const { return search_time_left(s_, started_); }
+  void count(int evaluations) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    evaluations_ += evaluations;
+  }
+
+  // Starts from next_start in batches of kSearchBatch (merged in order, so the stop does not
+  // depend on the threads) until search_starts (the first round; later rounds a quarter of it),
+  // or until the extremals at eps_start look complete: at least kSearchBatch converged and the
+  // chance of a new one below search_saturation. Returns the next start.
+  int explore(int next_start, bool first_round) {
+    const int limit =
+        std::min(s_.max_attempts, first_round ? std::max(1, s_.search_starts)
+                                              : next_start + std::max(rec_.threads, s_.search_starts / 4));
+    while (next_start < limit && time_left()) {
+      const int to = std::min(limit, next_start + kSearchBatch);
+      run_starts(next_start, to);
+      next_start = to;
+      if (rec_.converged_start >= kSearchBatch && unseen() < s_.search_saturation) break;
+    }
+    progress_.stage(std::to_string(rec_.starts) + " starts at eps = " + eps_text() + ": " +
+                    std::to_string(rec_.converged_start) + " converged, " +
+                    std::to_string(rec_.start_extremals.size()) + " distinct extremals");
+    return next_start;
+  }
+
+  // Good-Turing: the chance that the next converged start reaches an extremal not seen yet is
+  // about the share of converged starts whose extremal was reached once.
+  double unseen() const {
+    int once = 0;
+    for (const auto& e : rec_.start_extremals) once += e.reached == 1;
+    return rec_.converged_start > 0 ? static_cast<double>(once) / rec_.converged_start : 1.0;
+  }
+
+  // Start k at eps_start.
+  StartRun start(int k) {
+    StartRun run;
+    std::mt19937_64 rng = start_generator(s_.seed, k);
+    run.x.assign(problem::kNumVars, 0.0);
+    guess_(rng, run.x.data());
+    Shooter shooter(s_);
+    int info = 0;
+    run.ok = shooter.solve(run.x, s_.eps_start, s_.accept_residual, info, run.res) && admissible_(run.x.data());
+    if (run.ok) run.shape = shape_of(s_, run.x, s_.eps_start);
+    count(shooter.evaluations);
+    return run;
+  }
+
+  // Starts [from, to), in parallel, merged in start order into the distinct eps_start extremals.
+  void run_starts(int from, int to) {
     std::vector<StartRun> runs(static_cast<std::size_t>(to - from));
-    parallel_for(to - from, rec.threads, [&](int i) {
-      if (!search_time_left(s, started)) return;
-      StartRun& run = runs[i];
-      std::mt19937_64 rng = start_generator(s.seed, from + i);
-      run.x.assign(N, 0.0);
-      initial_guess(rng, run.x.data());
-      Shooter shooter(s);
-      int info = 0;
-      run.ok = shooter.solve(run.x, s.eps_start, s.accept_residual, info, run.res) && admissible(run.x.data());
-      if (run.ok) {
-        run.shape = shape_of(s, run.x, s.eps_start);
-        ++converged;
-      }
-      {
-        const std::lock_guard<std::mutex> lock(count);
-        evaluations += shooter.evaluations;
-      }
-      progress.tick(std::to_string(++done) + " starts at eps = " + std::to_string(s.eps_start).substr(0, 4) + ", " +
-                    std::to_string(converged.load()) + " converged");
+    std::atomic<int> converged{0};
+    parallel_for(to - from, rec_.threads, [&](int i) {
+      if (!time_left()) return;
+      runs[i] = start(from + i);
+      converged += runs[i].ok;
+      progress_.tick(std::to_string(rec_.starts + i + 1) + " starts at eps = " + eps_text() + ", " +
+                     std::to_string(rec_.converged_start + converged.load()) + " converged");
     });
     for (int i = 0; i < to - from; ++i) {
       if (runs[i].x.empty()) {
-        rec.cut_by_time = true;
+        rec_.cut_by_time = true;
         continue;
       }
-      ++rec.starts;
+      ++rec_.starts;
       if (!runs[i].ok) continue;
-      ++rec.converged_start;
+      ++rec_.converged_start;
       StartExtremal entry;
       entry.max_residual = runs[i].res;
-      merge_extremal(rec.start_extremals, runs[i].x, runs[i].shape, from + i, std::move(entry));
+      merge_extremal(rec_.start_extremals, runs[i].x, runs[i].shape, from + i, std::move(entry));
     }
-    progress.tick(std::to_string(rec.starts) + " starts at eps = " + std::to_string(s.eps_start).substr(0, 4) + ": " +
-                  std::to_string(rec.converged_start) + " converged, " + std::to_string(rec.start_extremals.size()) +
-                  " distinct extremals");
-  };
+  }
 
-  // 2. Continues the given eps_start extremals to eps = 0, merged in the order given.
-  const auto continue_extremals = [&](const std::vector<int>& which) {
+  // The eps_start extremal `which` continued to eps = 0: true with `e` filled when it arrived.
+  // Each eps step starts hybrd's trust region next to the last solution and must keep the
+  // branch's revolutions: hybrd can land on another extremal's branch (seen on S13: from the
+  // 3-revolution branch to the 4-revolution one), and the path would then report that extremal as
+  // this one's continuation.
+  bool continue_one(int which, Extremal& e) {
+    const StartExtremal& from = rec_.start_extremals[which];
+    Shooter shooter(s_, shooting_function, kContinuationStart);
+    Result path;
+    std::vector<double> x = from.x;
+    double res = 0, revolutions = from.shape.revolutions;
+    const auto on_branch = [&](const std::vector<double>&, const std::vector<double>& to, double eps) {
+      const double now = shape_of(s_, to, eps).revolutions;
+      if (std::fabs(now - revolutions) > 0.25) return false;
+      revolutions = now;
+      char line[96];
+      std::snprintf(line, sizeof line, "continuing the extremal at eps_start %d: eps = %.3g", which, eps);
+      progress_.tick(line);
+      return true;
+    };
+    const bool ok = homotopy_to_zero(s_, shooter, x, path, admissible_, res, on_branch);
+    count(shooter.evaluations);
+    if (!ok) return false;
+    e.x = x;
+    e.x_start = path.x_start;
+    e.F = shooter.last_F;
+    e.max_residual = res;
+    e.info = path.info;
+    e.homotopy = path.homotopy;
+    e.shape = shape_of(s_, x, 0.0);
+    e.shape.cost = objective_of(s_, x);
+    e.method =
+        "single shooting, eps continuation from the extremal at eps_start of start " + std::to_string(from.first_start);
+    return true;
+  }
+
+  // Continues the given eps_start extremals to eps = 0 in parallel, merged in the order given.
+  void continue_extremals(const std::vector<int>& which) {
     std::vector<Extremal> arrived(which.size());
     std::vector<char> ok(which.size(), 0);
-    parallel_for(static_cast<int>(which.size()), rec.threads, [&](int i) {
-      if (!search_time_left(s, started)) return;
-      // Each eps step starts hybrd's trust region next to the last solution, so that the path
-      // stays on its extremal's branch instead of jumping to another one.
-      Shooter shooter(s, shooting_function, kContinuationStart);
-      Result path;
-      std::vector<double> x = rec.start_extremals[which[i]].x;
-      double res = 0;
-      // A step must keep the branch's revolutions: hybrd can land on another extremal's branch
-      // (seen on S13: from the 3-revolution branch to the 4-revolution one), and the path would
-      // then report that extremal as this one's continuation.
-      double revolutions = rec.start_extremals[which[i]].shape.revolutions;
-      const auto on_branch = [&](const std::vector<double>&, const std::vector<double>& to, double eps) {
-        const double now = shape_of(s, to, eps).revolutions;
-        if (std::fabs(now - revolutions) > 0.25) return false;
-        revolutions = now;
-        char line[96];
-        std::snprintf(line, sizeof line, "continuing the extremal at eps_start %d: eps = %.3g", which[i], eps);
-        progress.tick(line);
-        return true;
-      };
-      ok[i] = homotopy_to_zero(s, shooter, x, path, admissible, res, on_branch);
-      if (ok[i]) {
-        Extremal& e = arrived[i];
-        e.x = x;
-        e.x_start = path.x_start;
-        e.F = shooter.last_F;
-        e.max_residual = res;
-        e.info = path.info;
-        e.homotopy = path.homotopy;
-        e.shape = shape_of(s, x, 0.0);
-        e.shape.cost = objective_of(s, x);
-        e.method = "single shooting, eps continuation from the extremal at eps_start of start " +
-                   std::to_string(rec.start_extremals[which[i]].first_start);
-      }
-      const std::lock_guard<std::mutex> lock(count);
-      evaluations += shooter.evaluations;
+    parallel_for(static_cast<int>(which.size()), rec_.threads, [&](int i) {
+      if (time_left()) ok[i] = continue_one(which[i], arrived[i]);
     });
     for (std::size_t i = 0; i < which.size(); ++i) {
-      StartExtremal& from = rec.start_extremals[which[i]];
+      StartExtremal& from = rec_.start_extremals[which[i]];
       from.continued = true;
-      ++rec.continued;
+      ++rec_.continued;
       if (!ok[i]) continue;
-      ++rec.converged_final;
+      ++rec_.converged_final;
       const int k =
-          merge_extremal(rec.extremals, arrived[i].x, arrived[i].shape, from.first_start, std::move(arrived[i]));
-      Extremal& e = rec.extremals[k];
+          merge_extremal(rec_.extremals, arrived[i].x, arrived[i].shape, from.first_start, std::move(arrived[i]));
+      Extremal& e = rec_.extremals[k];
       e.reached += from.reached - 1;  // every start that reached `from` led here
       e.from.push_back(which[i]);
       from.arrived = k;
     }
-    const double best = [&] {
-      double b = INFINITY;
-      for (const auto& e : rec.extremals) b = std::min(b, e.shape.cost);
-      return b;
-    }();
-    progress.stage(std::to_string(rec.continued) + " continued to eps = 0: " + std::to_string(rec.extremals.size()) +
-                   " distinct extremals" + (std::isfinite(best) ? ", best " + objective_text(best) : ""));
-  };
-  // The untried eps_start extremals, lowest cost first.
-  const auto untried = [&] {
+    const double best = best_objective(rec_);
+    progress_.stage(std::to_string(rec_.continued) + " continued to eps = 0: " + std::to_string(rec_.extremals.size()) +
+                    " distinct extremals" + (std::isfinite(best) ? ", best " + objective_text(best) : ""));
+  }
+
+  // The eps_start extremals not continued yet, lowest cost first.
+  std::vector<int> untried() const {
     std::vector<int> order;
-    for (std::size_t i = 0; i < rec.start_extremals.size(); ++i)
-      if (!rec.start_extremals[i].continued) order.push_back(static_cast<int>(i));
+    for (std::size_t i = 0; i < rec_.start_extremals.size(); ++i)
+      if (!rec_.start_extremals[i].continued) order.push_back(static_cast<int>(i));
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-      return rec.start_extremals[a].shape.cost < rec.start_extremals[b].shape.cost;
+      return rec_.start_extremals[a].shape.cost < rec_.start_extremals[b].shape.cost;
     });
     return order;
-  };
+  }
 
-  // Good-Turing: the chance that the next converged start reaches an extremal not seen yet is
-  // about the share of converged starts whose extremal was reached once.
-  const auto unseen = [&] {
-    int once = 0;
-    for (const auto& e : rec.start_extremals) once += e.reached == 1;
-    return rec.converged_start > 0 ? static_cast<double>(once) / rec.converged_start : 1.0;
-  };
-  int next_start = 0;
-  bool first_round = true;
-  while (search_time_left(s, started) && next_start < s.max_attempts) {
-    // Starts in batches of kSearchBatch (merged in order, so the stop does not depend on the
-    // threads) until search_starts, or the extremals at eps_start look complete: at least
-    // kSearchBatch converged and the chance of a new one below search_saturation.
-    const int limit = std::min(s.max_attempts, first_round ? std::max(1, s.search_starts)
-                                                           : next_start + std::max(rec.threads, s.search_starts / 4));
-    while (next_start < limit && search_time_left(s, started)) {
-      const int to = std::min(limit, next_start + kSearchBatch);
-      run_starts(next_start, to);
-      next_start = to;
-      if (rec.converged_start >= kSearchBatch && unseen() < s.search_saturation) break;
-    }
-    progress.stage(std::to_string(rec.starts) + " starts at eps = " + std::to_string(s.eps_start).substr(0, 4) + ": " +
-                   std::to_string(rec.converged_start) + " converged, " + std::to_string(rec.start_extremals.size()) +
-                   " distinct extremals");
-    // The most promising first; while none arrives, the next ones, a thread's worth at a time.
-    std::vector<int> order = untried();
-    std::size_t taken = 0;
-    while (taken < order.size() && search_time_left(s, started)) {
-      const std::size_t count_now = first_round ? std::max(1, s.search_continued) : rec.threads;
-      const std::size_t end = std::min(order.size(), taken + count_now);
-      continue_extremals(std::vector<int>(order.begin() + taken, order.begin() + end));
-      taken = end;
-      first_round = false;
-      if (!rec.extremals.empty()) break;
-    }
-    first_round = false;
-    if (!rec.extremals.empty()) break;
-  }
-  rec.seconds = wall_seconds() - started;
-  r.attempts = rec.starts;
-  r.evaluations = evaluations;
-  r.iterations = rec.starts + rec.continued;
-  choose_best(rec, "from " + std::to_string(rec.continued) + " of " + std::to_string(rec.start_extremals.size()) +
-                       " distinct extremals at eps_start, found by " + std::to_string(rec.starts) + " starts");
-  if (rec.returned >= 0) {
-    take_extremal(r);
-    progress.stage("returned extremal " + std::to_string(rec.returned) + ": " + rec.reason);
-  } else if (!search_time_left(s, started) && wall_seconds() > s.time_limit_s) {
-    r.status = "timeout";
-    r.detail = "time limit reached before convergence";
-  } else {
-    r.detail = "no start reached eps = 0 (" + std::to_string(rec.starts) + " starts, " +
-               std::to_string(rec.converged_start) + " converged at eps_start)";
-  }
-  return r;
+  const Settings& s_;
+  Guess& guess_;
+  Admissible& admissible_;
+  Result r_;
+  SearchRecord& rec_;
+  const double started_;
+  Progress progress_;
+  std::mutex mutex_;
+  int evaluations_ = 0;
+};
+
+// Problems without interior events: the global search (MultiStart). `initial_guess(rng, x)` draws
+// a start.
+template <class Guess, class Admissible>
+Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& admissible) {
+  return MultiStart<std::remove_reference_t<Guess>, std::remove_reference_t<Admissible>>(s, initial_guess, admissible)
+      .solve();
 }
 
 // Problems with interior events: search_attempts complete attempts, independent of one another.
@@ -461,26 +504,16 @@ Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const Event
     }
     done = 0;
     next = to;
-    double best = INFINITY;
-    for (const auto& e : rec.extremals) best = std::min(best, e.shape.cost);
+    const double best = best_objective(rec);
     progress.stage(std::to_string(rec.starts) + " attempts: " + std::to_string(rec.converged_final) + " converged, " +
                    std::to_string(rec.extremals.size()) + " distinct extremals" +
                    (std::isfinite(best) ? ", best " + objective_text(best) : ""));
   }
-  rec.seconds = wall_seconds() - started;
   r.attempts = rec.starts;
   r.evaluations = evaluations;
   r.iterations = rec.starts;
-  choose_best(rec, "from " + std::to_string(rec.starts) + " complete attempts");
-  if (rec.returned >= 0) {
-    take_extremal(r);
-    progress.stage("returned extremal " + std::to_string(rec.returned) + ": " + rec.reason);
-  } else if (wall_seconds() > s.time_limit_s) {
-    r.status = "timeout";
-    r.detail = "time limit reached before convergence";
-  } else {
-    r.detail = "no attempt reached eps = 0 (" + std::to_string(rec.starts) + " attempts)";
-  }
+  finish_search(s, r, started, "from " + std::to_string(rec.starts) + " complete attempts",
+                "no attempt reached eps = 0 (" + std::to_string(rec.starts) + " attempts)", progress);
   return r;
 }
 
