@@ -1,5 +1,6 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, bounds (templates/runtime/bounds.hpp): bounds psi <= 0: passes over the active set, warm from the last pass.
+// HELIOS shooting runtime, bounds (templates/runtime/bounds.hpp): bounds psi <= 0: passes over the
+// active set, warm from the last pass.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 

@@ -1,5 +1,6 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, continuation (templates/runtime/continuation.hpp): problems with passable events: the continuation from the problem without them onto them.
+// HELIOS shooting runtime, continuation (templates/runtime/continuation.hpp): problems with
+// passable events: the continuation from the problem without them onto them.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 

@@ -1,5 +1,7 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, controls (templates/runtime/controls.hpp): the modules' prototypes (DYNAMICS, SWITCH) and the throttle modes: the optimal control in each mode and the functions that stay positive while it holds.
+// HELIOS shooting runtime, controls (templates/runtime/controls.hpp): the modules' prototypes
+// (DYNAMICS, SWITCH) and the throttle modes: the optimal control in each mode and the functions
+// that stay positive while it holds.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 

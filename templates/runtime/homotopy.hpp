@@ -1,5 +1,6 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, homotopy (templates/runtime/homotopy.hpp): continuation in eps (and in any homotopy parameter) down to 0, and the objective of a solution.
+// HELIOS shooting runtime, homotopy (templates/runtime/homotopy.hpp): continuation in eps (and in
+// any homotopy parameter) down to 0, and the objective of a solution.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 

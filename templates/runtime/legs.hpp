@@ -1,5 +1,6 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, legs (templates/runtime/legs.hpp): problems with interior events: the legs solved alone, joined by multiple shooting.
+// HELIOS shooting runtime, legs (templates/runtime/legs.hpp): problems with interior events: the
+// legs solved alone, joined by multiple shooting.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 

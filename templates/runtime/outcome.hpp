@@ -1,5 +1,6 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, outcome (templates/runtime/outcome.hpp): what a solve records: homotopy, leg and continuation steps, the search's extremals, the result.
+// HELIOS shooting runtime, outcome (templates/runtime/outcome.hpp): what a solve records: homotopy,
+// leg and continuation steps, the search's extremals, the result.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 

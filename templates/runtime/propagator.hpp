@@ -1,5 +1,6 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, propagator (templates/runtime/propagator.hpp): the propagator: DOP853 under the optimal control, one mode at a time, switches located to round-off.
+// HELIOS shooting runtime, propagator (templates/runtime/propagator.hpp): the propagator: DOP853
+// under the optimal control, one mode at a time, switches located to round-off.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 

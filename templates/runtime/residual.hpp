@@ -1,5 +1,6 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, residual (templates/runtime/residual.hpp): the RESIDUAL module's interface: the shooting function, by legs for events, and the rows of the bounds.
+// HELIOS shooting runtime, residual (templates/runtime/residual.hpp): the RESIDUAL module's
+// interface: the shooting function, by legs for events, and the rows of the bounds.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 

@@ -1,5 +1,6 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, settings (templates/runtime/settings.hpp): the solver settings (schemas/settings.schema.json lists them) and the wall clock.
+// HELIOS shooting runtime, settings (templates/runtime/settings.hpp): the solver settings
+// (schemas/settings.schema.json lists them) and the wall clock.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 

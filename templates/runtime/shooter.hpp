@@ -1,5 +1,6 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, shooter (templates/runtime/shooter.hpp): the shooter: hybrd on the shooting function, and one recorded homotopy step.
+// HELIOS shooting runtime, shooter (templates/runtime/shooter.hpp): the shooter: hybrd on the
+// shooting function, and one recorded homotopy step.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 

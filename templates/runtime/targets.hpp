@@ -1,5 +1,6 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, targets (templates/runtime/targets.hpp): where the targets are: the ephemeris model, its rate, and a coasting target's state.
+// HELIOS shooting runtime, targets (templates/runtime/targets.hpp): where the targets are: the
+// ephemeris model, its rate, and a coasting target's state.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 
