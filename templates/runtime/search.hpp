@@ -31,15 +31,26 @@ inline std::mt19937_64 start_generator(unsigned seed, int k) {
   return std::mt19937_64(z ^ (z >> 31));
 }
 
-// Runs work(k) for k = 0 .. n-1 on up to `threads` threads (each index once; work must not throw).
-// The active set of the bounds is thread-local: each worker starts with the caller's.
+// Runs work(k) for k = 0 .. n-1 on up to `threads` threads, each index once. The active set of
+// the bounds is thread-local: each worker starts with the caller's. The first exception a work
+// item throws stops the others' next items and is rethrown here.
 template <class Work>
 void parallel_for(int n, int threads, Work&& work) {
   std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
   const BoundState bounds = bound_state();
   const auto loop = [&](bool worker) {
     if (worker) bound_state() = bounds;
-    for (int k; (k = next++) < n;) work(k);
+    for (int k; (k = next++) < n;) {
+      try {
+        work(k);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        next = n;
+      }
+    }
   };
   std::vector<std::thread> pool;
   for (int t = 1; t < std::min(threads, n); ++t) {
@@ -51,6 +62,7 @@ void parallel_for(int n, int threads, Work&& work) {
   }
   loop(false);
   for (auto& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
 }
 
 // One line on stderr per stage and at most one every two seconds in between, so a user waiting

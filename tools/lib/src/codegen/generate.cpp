@@ -101,7 +101,7 @@ std::string assemble(const json& derivation, const std::string& modules, const s
   body << "#include <cminpack-1/cminpack.h>\n\n"
        << "#include <algorithm>\n#include <array>\n#include <atomic>\n#include <chrono>\n#include <cmath>\n#include "
           "<cstdint>\n"
-       << "#include <cstdio>\n#include <fstream>\n#include <functional>\n#include <map>\n#include <mutex>\n"
+       << "#include <cstdio>\n#include <exception>\n#include <fstream>\n#include <functional>\n#include <map>\n#include <mutex>\n"
        << "#include <nlohmann/json.hpp>\n#include <random>\n#include <sstream>\n#include <stdexcept>\n#include "
           "<string>\n"
        << "#include <system_error>\n#include <thread>\n#include <vector>\n\n"
