@@ -376,139 +376,181 @@ struct Builder {
     }
   }
 
+  // A sentence of the controlled English: the first rule whose pattern matches it whole applies.
+  struct SentenceRule {
+    std::regex pattern;
+    void (Builder::*apply)(const std::smatch&);
+  };
+
   void handle(const std::string& s) {
+    static const std::vector<SentenceRule> rules = {
+        {re(R"(Problem ([A-Za-z0-9_-]+)\s*:\s*(.+))"), &Builder::on_problem},
+        {re(R"(The central body is (?:the )?([A-Za-z]+)(?: with (.+))?)"), &Builder::on_central},
+        {re(R"(The spacecraft is an ideal (?:flat )?solar sail with (?:a )?characteristic acceleration (?:of )?)" +
+            kQuantity + " at " + kQuantity),
+         &Builder::on_sail},
+        {re(R"(The dynamics include the J2 (?:perturbation|term) of the central body)"), &Builder::on_j2},
+        {re(R"(The dynamics include (?:a|an) (?:perturbing|additional) acceleration ([A-Za-z][A-Za-z0-9_]*) of \[(.+)\]\s*()" +
+            kUnit + ")"),
+         &Builder::on_accel},
+        {re(R"(The (?:total )?time of flight is free,? (?:at most )" + kQuantity + "|between " + kQuantity + " and " +
+            kQuantity + ")"),
+         &Builder::on_free_tof},
+        {re(R"(The spacecraft has (.+))"), &Builder::on_has},
+        {re(R"(The spacecraft departs from (.+) at ((?:t\s*=|MJD2000 |MJD ).+))"), &Builder::on_depart_from},
+        {re(R"(The spacecraft departs(?: at (.+?))? from (.+))"), &Builder::on_depart},
+        {re(R"(The (?:total )?time of flight is (?:fixed at )?)" + kQuantity), &Builder::on_tof},
+        {re(R"(At the final time the spacecraft (?:rendezvouses|must rendezvous) with (.+)|The spacecraft (?:rendezvouses|must rendezvous) with (.+) at the final time)"),
+         &Builder::on_arrive},
+        {re(R"(At the final time the spacecraft (?:flies|must fly) by (.+?)(?:,? with a relative speed of at most )" +
+            kQuantity + ")?"),
+         &Builder::on_arrive_flyby},
+        {re(R"(Minimi[sz]e (?:the )?(?:initial|launch|departure|wet) mass)"), &Builder::on_initial_mass},
+        {re(R"(Minimi[sz]e (?:the )?(?:fuel(?: consumption)?|propellant(?: mass)?|fuel use))"), &Builder::on_fuel},
+        {re(R"(Minimi[sz]e (?:the )?(?:time of flight|flight time|final time|transfer time))"), &Builder::on_time},
+        {re(R"((?:the (?:asteroid|comet|planet|moon|body|object) )?(.+?) moves on an? (?:Keplerian )?orbit (?:about|around) (the central body|(?:the )?[A-Za-z][A-Za-z0-9_]*) with (.+?)(?: at (?:the )?(?:epoch )?(MJD2000|MJD) ()" +
+            kNum + "))?"),
+         &Builder::on_orbit},
+        {re(R"(The (?:following )?(?:bodies|asteroids|comets|planets|targets) move on (?:Keplerian )?orbits (?:about|around) (the central body|(?:the )?[A-Za-z][A-Za-z0-9_]*)(?: with (?:these|the following) elements)?\s*:?)"),
+         &Builder::on_intro},
+        {re(R"(The departure (?:epoch|date) is free,? between )" + kQuantity + " (before|after) and " + kQuantity +
+            " (before|after) (MJD2000|MJD) (" + kNum + ")"),
+         &Builder::on_free_dep},
+        {re(R"(The departure (?:epoch|date) is free,? within )" + kQuantity + " (?:of|around) (MJD2000|MJD) (" + kNum +
+            ")"),
+         &Builder::on_free_dep_within},
+        {re(R"(The spacecraft (rendezvouses with|must rendezvous with|flies by|must fly by|swings by|must swing by) (.+))"),
+         &Builder::on_event},
+        {re(R"((?:It|The spacecraft) (?:leaves|drops|releases) (?:a|an) (?:lander|probe|payload|package) of )" +
+            kQuantity + " at (.+)"),
+         &Builder::on_drop},
+    };
     std::smatch m;
-    static const std::regex problem_re = re(R"(Problem ([A-Za-z0-9_-]+)\s*:\s*(.+))");
-    static const std::regex central_re = re(R"(The central body is (?:the )?([A-Za-z]+)(?: with (.+))?)");
-    static const std::regex has_re = re(R"(The spacecraft has (.+))");
-    static const std::regex depart_from_re = re(R"(The spacecraft departs from (.+) at ((?:t\s*=|MJD2000 |MJD ).+))");
-    static const std::regex depart_re = re(R"(The spacecraft departs(?: at (.+?))? from (.+))");
-    static const std::regex tof_re = re(R"(The (?:total )?time of flight is (?:fixed at )?)" + kQuantity);
-    static const std::regex free_tof_re = re(R"(The (?:total )?time of flight is free,? (?:at most )" + kQuantity +
-                                             "|between " + kQuantity + " and " + kQuantity + ")");
-    static const std::regex sail_re =
-        re(R"(The spacecraft is an ideal (?:flat )?solar sail with (?:a )?characteristic acceleration (?:of )?)" +
-           kQuantity + " at " + kQuantity);
-    static const std::regex j2_re = re(R"(The dynamics include the J2 (?:perturbation|term) of the central body)");
-    static const std::regex accel_re = re(
-        R"(The dynamics include (?:a|an) (?:perturbing|additional) acceleration ([A-Za-z][A-Za-z0-9_]*) of \[(.+)\]\s*()" +
-        kUnit + ")");
-    static const std::regex time_re =
-        re(R"(Minimi[sz]e (?:the )?(?:time of flight|flight time|final time|transfer time))");
-    static const std::regex arrive_re = re(
-        R"(At the final time the spacecraft (?:rendezvouses|must rendezvous) with (.+)|The spacecraft (?:rendezvouses|must rendezvous) with (.+) at the final time)");
-    static const std::regex arrive_flyby_re = re(
-        R"(At the final time the spacecraft (?:flies|must fly) by (.+?)(?:,? with a relative speed of at most )" +
-        kQuantity + ")?");
-    static const std::regex initial_mass_re = re(R"(Minimi[sz]e (?:the )?(?:initial|launch|departure|wet) mass)");
-    static const std::regex fuel_re =
-        re(R"(Minimi[sz]e (?:the )?(?:fuel(?: consumption)?|propellant(?: mass)?|fuel use))");
-    static const std::regex orbit_re = re(
-        R"((?:the (?:asteroid|comet|planet|moon|body|object) )?(.+?) moves on an? (?:Keplerian )?orbit (?:about|around) (the central body|(?:the )?[A-Za-z][A-Za-z0-9_]*) with (.+?)(?: at (?:the )?(?:epoch )?(MJD2000|MJD) ()" +
-        kNum + "))?");
-    static const std::regex intro_re = re(
-        R"(The (?:following )?(?:bodies|asteroids|comets|planets|targets) move on (?:Keplerian )?orbits (?:about|around) (the central body|(?:the )?[A-Za-z][A-Za-z0-9_]*)(?: with (?:these|the following) elements)?\s*:?)");
-    static const std::regex free_dep_re =
-        re(R"(The departure (?:epoch|date) is free,? between )" + kQuantity + " (before|after) and " + kQuantity +
-           " (before|after) (MJD2000|MJD) (" + kNum + ")");
-    static const std::regex free_dep_within_re = re(R"(The departure (?:epoch|date) is free,? within )" + kQuantity +
-                                                    " (?:of|around) (MJD2000|MJD) (" + kNum + ")");
-    static const std::regex event_re = re(
-        R"(The spacecraft (rendezvouses with|must rendezvous with|flies by|must fly by|swings by|must swing by) (.+))");
-    static const std::regex drop_re =
-        re(R"((?:It|The spacecraft) (?:leaves|drops|releases) (?:a|an) (?:lander|probe|payload|package) of )" +
-           kQuantity + " at (.+)");
-    if (std::regex_match(s, m, problem_re)) {
-      once("the problem name");
-      problem = {{"id", m[1].str()}, {"title", m[2].str()}};
-    } else if (std::regex_match(s, m, central_re)) {
-      once("the central body");
-      central(m[1].str(), m[2].matched ? m[2].str() : "");
-    } else if (std::regex_match(s, m, sail_re)) {
-      once("the propulsion");
-      propulsion = "solar_sail";
-      const double ac = quantity(m, 1, Dimension::Acceleration);
-      const double ref = quantity(m, 3, Dimension::Length) / helios::astro::AU_KM;
-      if (ac <= 0 || ref <= 0) throw sentence_error("the characteristic acceleration and distance must be positive");
-      spacecraft["sail_characteristic_acceleration_mm_s2"] = ac;
-      spacecraft["sail_reference_distance_AU"] = ref;
-    } else if (std::regex_match(s, m, j2_re)) {
-      once("the J2 perturbation");
-      perturbations.push_back({{"kind", "j2"}});
-    } else if (std::regex_match(s, m, accel_re)) {
-      once("the acceleration " + m[1].str());
-      perturbations.push_back(user_acceleration(m[1].str(), m[2].str(), m[3].str()));
-    } else if (std::regex_match(s, m, free_tof_re)) {
-      once("the time of flight");
-      const double lo = m[1].matched ? 0.0 : quantity(m, 3, Dimension::Time);
-      const double hi = m[1].matched ? quantity(m, 1, Dimension::Time) : quantity(m, 5, Dimension::Time);
-      if (!(lo >= 0 && hi > lo)) throw sentence_error("the time-of-flight window must satisfy 0 <= min < max");
-      time["final_time"] = "free";
-      time["tof_min_days"] = lo;
-      time["tof_max_days"] = hi;
-    } else if (std::regex_match(s, m, has_re)) {
-      spacecraft_clauses(m[1].str());
-    } else if (std::regex_match(s, m, depart_from_re)) {
-      depart(m[2].str(), m[1].str());
-    } else if (std::regex_match(s, m, depart_re)) {
-      depart(m[1].matched ? m[1].str() : "", m[2].str());
-    } else if (std::regex_match(s, m, tof_re)) {
-      once("the time of flight");
-      const double tof = quantity(m, 1, Dimension::Time);
-      if (tof <= 0) throw sentence_error("time of flight must be positive, got " + m[1].str() + " " + m[2].str());
-      time["tof_days"] = tof;
-      time["final_time"] = "fixed";
-    } else if (std::regex_match(s, m, arrive_re)) {
-      once("the final rendezvous");
-      const std::string phrase = m[1].matched ? m[1].str() : m[2].str();
-      arrival = Endpoint{here, parse_target(phrase), "rendezvous", std::nullopt};
-    } else if (std::regex_match(s, m, arrive_flyby_re)) {
-      once("the final rendezvous");
-      arrival = Endpoint{here, parse_target(m[1].str()), "flyby", std::nullopt};
-      if (m[2].matched) {
-        const double v = quantity(m, 2, Dimension::Speed);
-        if (!(v > 0)) throw sentence_error("the relative speed bound must be positive");
-        arrival->max_speed = v;
-      }
-    } else if (std::regex_match(s, m, initial_mass_re)) {
-      once("the objective");
-      objective = {{"kind", "minimum_initial_mass"}};
-    } else if (std::regex_match(s, m, fuel_re)) {
-      once("the objective");
-      objective = {{"kind", "minimum_fuel"}};
-    } else if (std::regex_match(s, m, time_re)) {
-      once("the objective");
-      objective = {{"kind", "minimum_time"}};
-    } else if (std::regex_match(s, m, orbit_re)) {
-      orbit_sentence(m);
-    } else if (std::regex_match(s, m, intro_re)) {
-      table_intro = here;
-      table_about = m[1].str();
-    } else if (std::regex_match(s, m, free_dep_re)) {
-      once("the departure window");
-      const double a = quantity(m, 1, Dimension::Time), b = quantity(m, 4, Dimension::Time);
-      if (a < 0 || b < 0) throw sentence_error("say 'N days before' or 'N days after' with N >= 0");
-      const double lo = lowercase(m[3].str()) == "before" ? -a : a;
-      const double hi = lowercase(m[6].str()) == "before" ? -b : b;
-      if (!(hi > lo)) throw sentence_error("the departure window is empty: its start must come before its end");
-      free_departure(lo, hi, mjd2000_of(m[7].str(), m[8].str()));
-    } else if (std::regex_match(s, m, free_dep_within_re)) {
-      once("the departure window");
-      const double a = quantity(m, 1, Dimension::Time);
-      if (!(a > 0)) throw sentence_error("the departure window's half-width must be positive");
-      free_departure(-a, a, mjd2000_of(m[3].str(), m[4].str()));
-    } else if (std::regex_match(s, m, event_re)) {
-      const std::string verb = lowercase(m[1].str());
-      event(verb.find("rendezvous") != std::string::npos ? "rendezvous"
-            : verb.find("fl") != std::string::npos       ? "flyby"
-                                                         : "gravity_assist",
-            m[2].str());
-    } else if (std::regex_match(s, m, drop_re)) {
-      lander(quantity(m, 1, Dimension::Mass), body_name(m[3].str()));
-    } else {
-      throw sentence_error("it matches no form of the controlled English (see README.md, 'Controlled English')");
+    for (const auto& rule : rules)
+      if (std::regex_match(s, m, rule.pattern)) return (this->*rule.apply)(m);
+    throw sentence_error("it matches no form of the controlled English (see README.md, 'Controlled English')");
+  }
+
+  // ---- one handler per sentence form (handle's rules, in their order) ---------------------------
+
+  void on_problem(const std::smatch& m) {
+    once("the problem name");
+    problem = {{"id", m[1].str()}, {"title", m[2].str()}};
+  }
+
+  void on_central(const std::smatch& m) {
+    once("the central body");
+    central(m[1].str(), m[2].matched ? m[2].str() : "");
+  }
+
+  void on_sail(const std::smatch& m) {
+    once("the propulsion");
+    propulsion = "solar_sail";
+    const double ac = quantity(m, 1, Dimension::Acceleration);
+    const double ref = quantity(m, 3, Dimension::Length) / helios::astro::AU_KM;
+    if (ac <= 0 || ref <= 0) throw sentence_error("the characteristic acceleration and distance must be positive");
+    spacecraft["sail_characteristic_acceleration_mm_s2"] = ac;
+    spacecraft["sail_reference_distance_AU"] = ref;
+  }
+
+  void on_j2(const std::smatch&) {
+    once("the J2 perturbation");
+    perturbations.push_back({{"kind", "j2"}});
+  }
+
+  void on_accel(const std::smatch& m) {
+    once("the acceleration " + m[1].str());
+    perturbations.push_back(user_acceleration(m[1].str(), m[2].str(), m[3].str()));
+  }
+
+  void on_free_tof(const std::smatch& m) {
+    once("the time of flight");
+    const double lo = m[1].matched ? 0.0 : quantity(m, 3, Dimension::Time);
+    const double hi = m[1].matched ? quantity(m, 1, Dimension::Time) : quantity(m, 5, Dimension::Time);
+    if (!(lo >= 0 && hi > lo)) throw sentence_error("the time-of-flight window must satisfy 0 <= min < max");
+    time["final_time"] = "free";
+    time["tof_min_days"] = lo;
+    time["tof_max_days"] = hi;
+  }
+
+  void on_has(const std::smatch& m) { spacecraft_clauses(m[1].str()); }
+
+  void on_depart_from(const std::smatch& m) { depart(m[2].str(), m[1].str()); }
+
+  void on_depart(const std::smatch& m) { depart(m[1].matched ? m[1].str() : "", m[2].str()); }
+
+  void on_tof(const std::smatch& m) {
+    once("the time of flight");
+    const double tof = quantity(m, 1, Dimension::Time);
+    if (tof <= 0) throw sentence_error("time of flight must be positive, got " + m[1].str() + " " + m[2].str());
+    time["tof_days"] = tof;
+    time["final_time"] = "fixed";
+  }
+
+  void on_arrive(const std::smatch& m) {
+    once("the final rendezvous");
+    const std::string phrase = m[1].matched ? m[1].str() : m[2].str();
+    arrival = Endpoint{here, parse_target(phrase), "rendezvous", std::nullopt};
+  }
+
+  void on_arrive_flyby(const std::smatch& m) {
+    once("the final rendezvous");
+    arrival = Endpoint{here, parse_target(m[1].str()), "flyby", std::nullopt};
+    if (m[2].matched) {
+      const double v = quantity(m, 2, Dimension::Speed);
+      if (!(v > 0)) throw sentence_error("the relative speed bound must be positive");
+      arrival->max_speed = v;
     }
   }
+
+  void on_initial_mass(const std::smatch&) {
+    once("the objective");
+    objective = {{"kind", "minimum_initial_mass"}};
+  }
+
+  void on_fuel(const std::smatch&) {
+    once("the objective");
+    objective = {{"kind", "minimum_fuel"}};
+  }
+
+  void on_time(const std::smatch&) {
+    once("the objective");
+    objective = {{"kind", "minimum_time"}};
+  }
+
+  void on_orbit(const std::smatch& m) { orbit_sentence(m); }
+
+  void on_intro(const std::smatch& m) {
+    table_intro = here;
+    table_about = m[1].str();
+  }
+
+  void on_free_dep(const std::smatch& m) {
+    once("the departure window");
+    const double a = quantity(m, 1, Dimension::Time), b = quantity(m, 4, Dimension::Time);
+    if (a < 0 || b < 0) throw sentence_error("say 'N days before' or 'N days after' with N >= 0");
+    const double lo = lowercase(m[3].str()) == "before" ? -a : a;
+    const double hi = lowercase(m[6].str()) == "before" ? -b : b;
+    if (!(hi > lo)) throw sentence_error("the departure window is empty: its start must come before its end");
+    free_departure(lo, hi, mjd2000_of(m[7].str(), m[8].str()));
+  }
+
+  void on_free_dep_within(const std::smatch& m) {
+    once("the departure window");
+    const double a = quantity(m, 1, Dimension::Time);
+    if (!(a > 0)) throw sentence_error("the departure window's half-width must be positive");
+    free_departure(-a, a, mjd2000_of(m[3].str(), m[4].str()));
+  }
+
+  void on_event(const std::smatch& m) {
+    const std::string verb = lowercase(m[1].str());
+    event(verb.find("rendezvous") != std::string::npos ? "rendezvous"
+          : verb.find("fl") != std::string::npos       ? "flyby"
+                                                       : "gravity_assist",
+          m[2].str());
+  }
+
+  void on_drop(const std::smatch& m) { lander(quantity(m, 1, Dimension::Mass), body_name(m[3].str())); }
 
   // ---- departure and epochs -------------------------------------------------------------------
 
@@ -752,8 +794,7 @@ struct Builder {
   static std::string clause_forms(const std::string& kind) {
     if (kind == "rendezvous")
       return "a rendezvous takes 'stays there for Q', 'does not stay' and 'leaves a lander of Q'";
-    if (kind == "flyby")
-      return "a flyby matches the position only and takes 'the relative speed must be at most Q'";
+    if (kind == "flyby") return "a flyby matches the position only and takes 'the relative speed must be at most Q'";
     return "a gravity assist takes 'NAME has a gravitational parameter of Q' and 'the periapsis radius must be at "
            "least Q'";
   }
@@ -1010,14 +1051,14 @@ struct Builder {
                           " (day " + num_text(previous->window_lo) + " to day " + num_text(previous->window_hi) +
                           ") ends: state the events in the order they happen, with windows that do not overlap");
       if (previous && previous->stay && !(e.window_hi > previous->window_lo + *previous->stay))
-        fail(e.where, "its window, " + window + ", ends before the stay at " + previous->body +
-                          " can end (day " + num_text(previous->window_lo + *previous->stay) +
+        fail(e.where, "its window, " + window + ", ends before the stay at " + previous->body + " can end (day " +
+                          num_text(previous->window_lo + *previous->stay) +
                           " at the earliest): widen or move the windows");
       previous = &e;
     }
     if (previous && previous->stay && !(end > previous->window_lo + *previous->stay))
-      fail(previous->where, "the stay at " + previous->body + " cannot end before the final time (day " +
-                                num_text(end) + ")");
+      fail(previous->where,
+           "the stay at " + previous->body + " cannot end before the final time (day " + num_text(end) + ")");
     double dropped = 0;
     for (const auto& e : events) {
       if (!e.drop) continue;
@@ -1070,15 +1111,15 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   };
   if (b.problem.is_null()) missing("its name", "Problem S01: Earth to Mars.");
   if (b.central_body.is_null()) missing("the central body", "The central body is the Sun.");
-  if (b.propulsion == "low_thrust")
-  {
+  if (b.propulsion == "low_thrust") {
     // Minimizing the initial mass needs the final mass instead of the initial one.
     const bool find_m0 = b.objective.is_object() && b.objective.value("kind", "") == "minimum_initial_mass";
-    for (const auto& [field, example] : std::vector<std::pair<std::string, std::string>>{
-             {"thrust_N", "The spacecraft has a maximum thrust of 0.5 N."},
-             {"isp_s", "The spacecraft has a specific impulse of 2000 s."},
-             {find_m0 ? "final_mass_kg" : "initial_mass_kg",
-              find_m0 ? "The spacecraft has a final mass of 1500 kg." : "The spacecraft has an initial mass of 1000 kg."}})
+    for (const auto& [field, example] :
+         std::vector<std::pair<std::string, std::string>>{{"thrust_N", "The spacecraft has a maximum thrust of 0.5 N."},
+                                                          {"isp_s", "The spacecraft has a specific impulse of 2000 s."},
+                                                          {find_m0 ? "final_mass_kg" : "initial_mass_kg",
+                                                           find_m0 ? "The spacecraft has a final mass of 1500 kg."
+                                                                   : "The spacecraft has an initial mass of 1000 kg."}})
       if (!b.spacecraft.contains(field)) missing("the spacecraft's " + field, example);
     const std::string extra = find_m0 ? "initial_mass_kg" : "final_mass_kg";
     if (b.spacecraft.contains(extra))
