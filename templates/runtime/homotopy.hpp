@@ -1,6 +1,6 @@
 // ---------------------------------------------------------------------------------------------
 // HELIOS shooting runtime, homotopy (templates/runtime/homotopy.hpp): continuation in eps (and in
-// any homotopy parameter) down to 0, and the objective of a solution.
+// any homotopy parameter) down to 0, and the shape and objective of a solution.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 
@@ -8,11 +8,11 @@ namespace helios_rt {
 
 // Any step of a continuation stays on its branch (see homotopy_to_zero's on_branch).
 struct AnyBranch {
-  bool operator()(const std::vector<double>&, const std::vector<double>&, double) const { return true; }
+  bool operator()(const std::vector<double>&, double) const { return true; }
 };
 
 // Solves at settings.eps_start from the guess x, then continues in eps down to 0 with an adaptive
-// step in log(eps) and retreat on failure. A step whose solution `on_branch(from, to, eps)` rejects
+// step in log(eps) and retreat on failure. A step whose solution `on_branch(to, eps)` rejects
 // (hybrd jumped to another extremal's branch) counts as failed. True when eps = 0 is reached (x
 // and res are then its solution; r.x_start the first N variables of the solution at eps_start).
 template <class Admissible, class OnBranch = AnyBranch>
@@ -30,7 +30,7 @@ bool homotopy_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& 
     std::vector<double> trial = x;
     const double accept = to_zero ? s.final_residual : s.accept_residual;
     bool ok = homotopy_step(shooter, trial, next, accept, r, admissible, info, res);
-    if (ok && !on_branch(x, trial, next)) ok = r.homotopy.back().converged = false;
+    if (ok && !on_branch(trial, next)) ok = r.homotopy.back().converged = false;
     if (ok) {
       x = trial;
       eps = next;
@@ -65,25 +65,62 @@ inline RecordedPath recorded_path(const Settings& s, const std::vector<double>& 
   return path;
 }
 
-// The objective of a converged x (smaller is better): the propellant of a minimum-fuel or
-// minimum-initial-mass problem (summed over the arcs: a dropped lander is not propellant), the
-// flight time tf - t0 of a minimum-time one.
-inline double objective_of(const Settings& s, const std::vector<double>& x) {
-  std::vector<Sample> samples;
+// The objective is the propellant (minimum fuel, minimum initial mass), else the flight time.
+constexpr bool kObjectiveIsPropellant = problem::kMinimumFuel && problem::kMassIndex >= 0;
+
+// A normalized objective in its named unit: kg of propellant, or days.
+inline double objective_in_named_unit(double objective) {
+  return objective * (kObjectiveIsPropellant ? problem::kMassUnitKg : problem::kTimeUnitDays);
+}
+
+// The Shape of a converged x at eps (the first three states are the position). At eps = 0 its
+// cost is the objective: the propellant summed over the arcs (a dropped lander is not
+// propellant), or the flight time.
+inline Shape shape_of(const Settings& s, const std::vector<double>& x, double eps) {
+  Shape out;
+  RecordedPath path;
   try {
-    samples = recorded_path(s, x, 0.0, INFINITY).samples;
+    path = recorded_path(s, x, eps, (problem::kTf - problem::kT0) / 1000);
   } catch (const numerical_error&) {
-    return INFINITY;
+    return out;
   }
-  if (samples.empty()) return INFINITY;
-  if (problem::kMinimumFuel && problem::kMassIndex >= 0) {
-    double propellant = 0;
-    for (std::size_t i = 1; i < samples.size(); ++i)
-      if (samples[i].arc == samples[i - 1].arc)
-        propellant += samples[i - 1].y[problem::kMassIndex] - samples[i].y[problem::kMassIndex];
-    return propellant;
+  const std::vector<Sample>& samples = path.samples;
+  if (samples.size() < 2) return out;
+  out.switches = static_cast<int>(path.switches.size());
+  const auto& y0 = samples.front().y;
+  std::array<double, 3> h{y0[1] * y0[5] - y0[2] * y0[4], y0[2] * y0[3] - y0[0] * y0[5], y0[0] * y0[4] - y0[1] * y0[3]};
+  double hn = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+  if (!(hn > 0)) h = {0, 0, 1}, hn = 1;
+  double swept = 0, smoothed = 0, burned = 0, propellant = 0;
+  for (std::size_t i = 1; i < samples.size(); ++i) {
+    const auto &a = samples[i - 1].y, &b = samples[i].y;
+    const double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];
+    swept += std::atan2((cx * h[0] + cy * h[1] + cz * h[2]) / hn, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+    if constexpr (kObjectiveIsPropellant) {
+      if (samples[i].arc != samples[i - 1].arc) continue;
+      propellant += a[problem::kMassIndex] - b[problem::kMassIndex];
+      if constexpr (problem::kThrottleIndex >= 0) {
+        const double dt = samples[i].t - samples[i - 1].t;
+        const double ua = samples[i - 1].control[problem::kThrottleIndex],
+                     ub = samples[i].control[problem::kThrottleIndex];
+        smoothed += 0.5 * dt * (ua - eps * ua * (1 - ua) + ub - eps * ub * (1 - ub));
+        burned += 0.5 * dt * (ua + ub);
+      }
+    }
   }
-  return samples.back().t - samples.front().t;
+  out.revolutions = swept / (2 * M_PI);
+  if (!kObjectiveIsPropellant)
+    out.cost = samples.back().t - samples.front().t;
+  else if (eps == 0)
+    out.cost = propellant;
+  else
+    out.cost = burned > 0 ? propellant * smoothed / burned : 0.0;  // the mass flow is proportional to u
+  return out;
+}
+
+// The objective of a converged x (smaller is better).
+inline double objective_of(const Settings& s, const std::vector<double>& x) {
+  return shape_of(s, x, 0.0).cost;
 }
 
 // Continuation in a homotopy parameter from `start` down to 0 (as homotopy_to_zero does in eps):

@@ -106,13 +106,11 @@ inline nlohmann::json trajectory(const Settings& s, const Result& r, const std::
   return out;
 }
 
-// A finite objective in named units: the propellant, or the flight time.
-inline void objective_in_units(nlohmann::json& to, double objective) {
-  if (!std::isfinite(objective)) return;
-  if (problem::kMinimumFuel && problem::kMassIndex >= 0)
-    to["propellant_kg"] = objective * problem::kMassUnitKg;
-  else
-    to["tof_days"] = objective * problem::kTimeUnitDays;
+// A finite objective in named units: the propellant under `mass_key`, or the flight time under
+// `time_key`.
+inline void objective_in_units(nlohmann::json& to, double objective, const char* mass_key = "propellant_kg",
+                               const char* time_key = "tof_days") {
+  if (std::isfinite(objective)) to[kObjectiveIsPropellant ? mass_key : time_key] = objective_in_named_unit(objective);
 }
 
 // The global search as solution.json records it (schemas/solution.schema.json, "search").
@@ -128,12 +126,7 @@ inline nlohmann::json search_record(const SearchRecord& rec) {
                             {"first_start", e.first_start},
                             {"max_residual", recorded(e.max_residual)},
                             {"continued", e.continued}};
-    if (std::isfinite(e.shape.cost)) {  // the smoothed problem's cost, in the objective's unit
-      if (problem::kMinimumFuel && problem::kMassIndex >= 0)
-        entry["cost_kg"] = e.shape.cost * problem::kMassUnitKg;
-      else
-        entry["cost_days"] = e.shape.cost * problem::kTimeUnitDays;
-    }
+    objective_in_units(entry, e.shape.cost, "cost_kg", "cost_days");  // the smoothed problem's cost
     if (e.arrived >= 0) entry["arrived_at"] = e.arrived;
     at_start.push_back(entry);
   }

@@ -85,45 +85,6 @@ class Progress {
   double last_ = -INFINITY;
 };
 
-// The Shape of a converged x at eps (the first three states are the position).
-inline Shape shape_of(const Settings& s, const std::vector<double>& x, double eps) {
-  Shape out;
-  RecordedPath path;
-  try {
-    path = recorded_path(s, x, eps, (problem::kTf - problem::kT0) / 1000);
-  } catch (const numerical_error&) {
-    return out;
-  }
-  const std::vector<Sample>& samples = path.samples;
-  if (samples.size() < 2) return out;
-  out.switches = static_cast<int>(path.switches.size());
-  const auto& y0 = samples.front().y;
-  std::array<double, 3> h{y0[1] * y0[5] - y0[2] * y0[4], y0[2] * y0[3] - y0[0] * y0[5], y0[0] * y0[4] - y0[1] * y0[3]};
-  double hn = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-  if (!(hn > 0)) h = {0, 0, 1}, hn = 1;
-  double swept = 0, smoothed = 0, burned = 0, propellant = 0;
-  for (std::size_t i = 1; i < samples.size(); ++i) {
-    const auto &a = samples[i - 1].y, &b = samples[i].y;
-    const double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];
-    swept += std::atan2((cx * h[0] + cy * h[1] + cz * h[2]) / hn, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
-    if constexpr (problem::kThrottleIndex >= 0 && problem::kMassIndex >= 0) {
-      if (samples[i].arc != samples[i - 1].arc) continue;
-      const double dt = samples[i].t - samples[i - 1].t;
-      const double ua = samples[i - 1].control[problem::kThrottleIndex],
-                   ub = samples[i].control[problem::kThrottleIndex];
-      smoothed += 0.5 * dt * (ua - eps * ua * (1 - ua) + ub - eps * ub * (1 - ub));
-      burned += 0.5 * dt * (ua + ub);
-      propellant += a[problem::kMassIndex] - b[problem::kMassIndex];
-    }
-  }
-  out.revolutions = swept / (2 * M_PI);
-  if (problem::kMinimumFuel && problem::kThrottleIndex >= 0 && problem::kMassIndex >= 0)
-    out.cost = burned > 0 ? propellant * smoothed / burned : 0.0;  // the mass flow is proportional to u
-  else
-    out.cost = samples.back().t - samples.front().t;
-  return out;
-}
-
 // Two converged solutions are one extremal when their structure agrees (revolutions, switches)
 // and their shooting variables or their cost do.
 inline bool same_extremal(const std::vector<double>& xa, const Shape& a, const std::vector<double>& xb,
@@ -155,12 +116,17 @@ int merge_extremal(List& list, const std::vector<double>& x, const Shape& shape,
   return static_cast<int>(list.size()) - 1;
 }
 
-// The returned extremal: the lowest objective (the first reached among equals).
-inline void choose_best(SearchRecord& rec, const std::string& what) {
-  rec.returned = -1;
+// The extremal at eps = 0 with the lowest objective, the first reached among equals (-1: none).
+inline int best_index(const SearchRecord& rec) {
+  int best = -1;
   for (std::size_t i = 0; i < rec.extremals.size(); ++i)
-    if (rec.returned < 0 || rec.extremals[i].shape.cost < rec.extremals[rec.returned].shape.cost)
-      rec.returned = static_cast<int>(i);
+    if (best < 0 || rec.extremals[i].shape.cost < rec.extremals[best].shape.cost) best = static_cast<int>(i);
+  return best;
+}
+
+// The returned extremal: the best, and why.
+inline void choose_best(SearchRecord& rec, const std::string& what) {
+  rec.returned = best_index(rec);
   if (rec.returned < 0) return;
   const std::size_t n = rec.extremals.size();
   rec.reason =
@@ -188,10 +154,8 @@ inline void take_extremal(Result& r) {
 // An objective in named units for the progress lines.
 inline std::string objective_text(double objective) {
   char buf[64];
-  if (problem::kMinimumFuel && problem::kMassIndex >= 0)
-    std::snprintf(buf, sizeof buf, "%.6g kg of propellant", objective * problem::kMassUnitKg);
-  else
-    std::snprintf(buf, sizeof buf, "%.6g days", objective * problem::kTimeUnitDays);
+  std::snprintf(buf, sizeof buf, kObjectiveIsPropellant ? "%.6g kg of propellant" : "%.6g days",
+                objective_in_named_unit(objective));
   return buf;
 }
 
@@ -209,9 +173,8 @@ inline bool search_time_left(const Settings& s, double started) {
 
 // The best objective among the distinct extremals at eps = 0 (INFINITY: none yet).
 inline double best_objective(const SearchRecord& rec) {
-  double best = INFINITY;
-  for (const auto& e : rec.extremals) best = std::min(best, e.shape.cost);
-  return best;
+  const int best = best_index(rec);
+  return best < 0 ? INFINITY : rec.extremals[best].shape.cost;
 }
 
 // After a search: the best extremal into r, else why there is none (`what_failed`, or the time).
@@ -364,7 +327,7 @@ class MultiStart {
     Result path;
     std::vector<double> x = from.x;
     double res = 0, revolutions = from.shape.revolutions;
-    const auto on_branch = [&](const std::vector<double>&, const std::vector<double>& to, double eps) {
+    const auto on_branch = [&](const std::vector<double>& to, double eps) {
       const double now = shape_of(s_, to, eps).revolutions;
       if (std::fabs(now - revolutions) > 0.25) return false;
       revolutions = now;
@@ -382,8 +345,7 @@ class MultiStart {
     e.max_residual = res;
     e.info = path.info;
     e.homotopy = path.homotopy;
-    e.shape = shape_of(s_, x, 0.0);
-    e.shape.cost = objective_of(s_, x);
+    e.shape = shape_of(s_, x, 0.0);  // its cost is the objective
     e.method =
         "single shooting, eps continuation from the extremal at eps_start of start " + std::to_string(from.first_start);
     return true;
@@ -492,9 +454,7 @@ Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const Event
     entry.homotopy = std::move(a.homotopy);
     entry.legs = std::move(a.legs);
     entry.continuation = std::move(a.continuation);
-    Shape shape = shape_of(s, a.x, 0.0);
-    shape.cost = objective_of(s, a.x);
-    const int i = merge_extremal(rec.extremals, a.x, shape, k, std::move(entry));
+    const int i = merge_extremal(rec.extremals, a.x, shape_of(s, a.x, 0.0), k, std::move(entry));
     rec.extremals[i].from.push_back(k);
   };
   int next = 0;

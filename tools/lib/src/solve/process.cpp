@@ -11,6 +11,17 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+void exec_or_exit(const std::vector<std::string>& argv, bool search_path) {
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  if (search_path)
+    ::execvp(args[0], args.data());
+  else
+    ::execv(args[0], args.data());
+  _exit(127);
+}
+
 std::string capture(const std::vector<std::string>& argv) {
   int pipefd[2];
   if (::pipe(pipefd) != 0) return "";
@@ -19,11 +30,7 @@ std::string capture(const std::vector<std::string>& argv) {
     ::dup2(pipefd[1], 1);
     ::dup2(pipefd[1], 2);
     ::close(pipefd[0]);
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    ::execvp(args[0], args.data());
-    _exit(127);
+    exec_or_exit(argv, true);
   }
   ::close(pipefd[1]);
   std::string out;

@@ -156,11 +156,7 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
     ::setrlimit(RLIMIT_CORE, &no_core);
     // NOTE: the kernel does not apply RLIMIT_NPROC to root; kill_leftovers() is the bound there.
     ::setrlimit(RLIMIT_NPROC, &proc_limit);
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    ::execv(args[0], args.data());
-    _exit(127);
+    exec_or_exit(argv, false);
   }
   ::close(err_pipe[1]);
   ::fcntl(err_pipe[0], F_SETFL, O_NONBLOCK);

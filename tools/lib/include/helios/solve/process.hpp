@@ -9,6 +9,10 @@ namespace helios::solve {
 // Seconds since `start` on the steady clock.
 double seconds_since(std::chrono::steady_clock::time_point start);
 
+// In a forked child: replaces it with argv (argv[0] a path, or looked up on PATH when
+// `search_path`); exits 127 when that fails.
+[[noreturn]] void exec_or_exit(const std::vector<std::string>& argv, bool search_path);
+
 // The combined stdout and stderr of a shell-free command (argv[0] looked up on PATH).
 std::string capture(const std::vector<std::string>& argv);
 
