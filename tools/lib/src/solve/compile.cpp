@@ -21,11 +21,10 @@ namespace {
 namespace fs = std::filesystem;
 using io::json;
 
-int count_warnings(const std::string& diagnostics) {
+// How often the compiler's diagnostics say `kind` ("warning:", "error:").
+int count_of(const std::string& diagnostics, const std::string& kind) {
   int n = 0;
-  for (std::size_t pos = diagnostics.find("warning:"); pos != std::string::npos;
-       pos = diagnostics.find("warning:", pos + 1))
-    ++n;
+  for (std::size_t pos = diagnostics.find(kind); pos != std::string::npos; pos = diagnostics.find(kind, pos + 1)) ++n;
   return n;
 }
 
@@ -46,7 +45,7 @@ CompileResult compile_cached(const std::string& source, const std::string& compi
     c.ok = c.cached = true;
     std::ifstream log((dir / "compile.log").string());
     c.diagnostics.assign(std::istreambuf_iterator<char>(log), std::istreambuf_iterator<char>());
-    c.warnings = count_warnings(c.diagnostics);
+    c.warnings = count_of(c.diagnostics, "warning:");
     c.seconds = seconds_since(start);
     return c;
   }
@@ -60,7 +59,7 @@ CompileResult compile_cached(const std::string& source, const std::string& compi
   argv.insert(argv.end(), {src, "-o", tmp_bin, "-lcminpack"});
   // Compilers live on PATH: resolve through a shell-free execvp in capture().
   c.diagnostics = capture(argv);
-  c.warnings = count_warnings(c.diagnostics);
+  c.warnings = count_of(c.diagnostics, "warning:");
   c.ok = fs::exists(tmp_bin);
   if (c.ok) {
     io::write_text_atomic((dir / "compile.log").string(), c.diagnostics);
@@ -80,11 +79,7 @@ json compile_report(const SolveOptions& o) {
   doc["source_sha256"] = c.sha256;
   doc["command"] = c.command;
   doc["warnings"] = c.warnings;
-  int errors = 0;
-  for (std::size_t pos = c.diagnostics.find("error:"); pos != std::string::npos;
-       pos = c.diagnostics.find("error:", pos + 1))
-    ++errors;
-  doc["errors"] = errors;
+  doc["errors"] = count_of(c.diagnostics, "error:");
   doc["diagnostics"] = c.diagnostics.substr(0, 16000);
   doc["timings"] = {{"compile_s", c.seconds}};
   return doc;
