@@ -33,6 +33,11 @@ syntax_check() {
   assert_dir_empty out
 }
 
+@test "gen: shoot.cpp opens with a map of its parts, each line number at that part's banner" {
+  s01_shoot
+  assert_file_map shoot.cpp "modules DYNAMICS + SWITCH" "module RESIDUAL" "module SOLVE"
+}
+
 @test "gen: --backend other than builtin -> exit 2" {
   s01_derivation
   run -2 --separate-stderr "$BIN/helios-gen" --backend nope derivation.json

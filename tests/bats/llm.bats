@@ -97,6 +97,8 @@ script() {
   cmp "$RUN/shoot.r2.cpp" "$RUN/shoot.r4.cpp"
   [[ ! -e $RUN/shoot.r3.transcript.json && ! -e $RUN/shoot.r4.transcript.json ]]
   [[ $(readlink "$RUN/shoot.cpp") == shoot.r4.cpp ]]
+  # the model's modules are in the program's map like the builtin ones
+  assert_file_map "$RUN/shoot.r2.cpp" "module DYNAMICS" "module SWITCH" "module RESIDUAL" "module SOLVE"
 }
 
 @test "llm: the solve converges to the builtin m_f and scores 100" {

@@ -133,6 +133,26 @@ assert_png() {
   [[ $magic == 89504e470d0a1a0a ]] || { echo "$1 does not start with the PNG magic (got $magic)" >&2; return 1; }
 }
 
+# assert_file_map SHOOT_CPP NAME...: the program's opening map lists the PROBLEM block, each NAME
+# (a module) and the entry point, every line number pointing at that part's banner, and the runtime.
+assert_file_map() {
+  local src="$1" name line
+  shift
+  [[ $(sed -n 3p "$src") == "// Map (line numbers of this file):" ]] || { echo "no map at line 3 of $src" >&2; return 1; }
+  for name in "PROBLEM (generated)" "$@"; do
+    line=$(sed -n '4,20p' "$src" | awk -v n="$name" 'index($0, "  " n) { print $2; exit }')
+    [[ -n $line ]] || { echo "the map lists no '$name'" >&2; sed -n '3,12p' "$src" >&2; return 1; }
+    local banner
+    banner=$(sed -n "${line}p" "$src")
+    [[ $banner =~ ^//\ (-----|=====\ HELIOS\ LLM\ MODULE:)\  && $banner == *"${name#module }"* ]] ||
+      { echo "map line $line for '$name' is: $banner" >&2; return 1; }
+  done
+  line=$(sed -n '4,20p' "$src" | awk 'index($0, "entry point") { print $2; exit }')
+  sed -n "$((line + 1))p" "$src" | grep -q "^// HELIOS shooting runtime, entry point" ||
+    { echo "the map's entry point line $line is wrong" >&2; return 1; }
+  grep -qE '^//   runtime SHA-256 [0-9a-f]{64}$' "$src"
+}
+
 # ---- the contract every tool shares (used by each tool's file) -------------------------------
 
 # contract_no_args TOOL

@@ -62,61 +62,63 @@ std::string runtime_source() {
 
 namespace {
 
-// The map a program opens with: where each part starts (line numbers of the whole file), the
-// shared runtime's range and its SHA-256.
-std::string file_map(const std::string& body, int first_line, const std::string& runtime_sha256) {
-  std::vector<std::pair<std::string, int>> parts;  // name, line within body (0-based)
-  int runtime_first = -1, runtime_last = -1;
-  std::istringstream in(body);
-  std::string line;
-  for (int k = 0; std::getline(in, line); ++k) {
-    if (line.rfind("// ----- ", 0) == 0 || line.rfind("// ===== HELIOS LLM MODULE: ", 0) == 0) {
-      std::string name = line.substr(9);
-      name = name.substr(0, name.find(" ---"));
-      if (name.size() > 5 && name.compare(name.size() - 5, 5, " =====") == 0) name.resize(name.size() - 6);
-      parts.emplace_back(name, k);
-      if (runtime_first >= 0 && runtime_last < 0) runtime_last = k - 1;
-    } else if (line.rfind("// HELIOS shooting runtime, entry point", 0) == 0) {
-      parts.emplace_back("entry point (templates/runtime/main.hpp)", k);
-    } else if (runtime_first < 0 && line.rfind("// HELIOS shooting runtime, ", 0) == 0) {
-      runtime_first = k;
-    }
-  }
-  const int header = static_cast<int>(parts.size()) + 3;  // the map's own lines
-  const auto at = [&](int k) { return std::to_string(first_line + header + k); };
-  std::ostringstream o;
-  o << "// Map (line numbers of this file):\n";
-  for (const auto& [name, k] : parts) o << "//   " << at(k) << "  " << name << "\n";
-  o << "//   runtime (templates/runtime, shared by every program): lines " << at(runtime_first - 1) << "-"
-    << at(runtime_last) << "\n";
-  o << "//   runtime SHA-256 " << runtime_sha256 << "\n";
-  return o.str();
+// The lines `text` spans.
+int line_count(const std::string& text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
 }
 
+// The modules in `modules` by their banners ("// ----- module X ---", or the llm backend's
+// "// ===== HELIOS LLM MODULE: X ====="): name and line, 0-based within modules.
+std::vector<std::pair<std::string, int>> module_lines(const std::string& modules) {
+  static const std::string builtin = "// ----- ", llm = "// ===== HELIOS LLM MODULE: ";
+  std::vector<std::pair<std::string, int>> out;
+  std::istringstream in(modules);
+  std::string line;
+  for (int k = 0; std::getline(in, line); ++k) {
+    if (line.rfind(builtin, 0) == 0)
+      out.emplace_back(line.substr(builtin.size(), line.find(" ---", builtin.size()) - builtin.size()), k);
+    else if (line.rfind(llm, 0) == 0)
+      out.emplace_back("module " + line.substr(llm.size(), line.find(" =====", llm.size()) - llm.size()), k);
+  }
+  return out;
+}
 }  // namespace
 
 std::string assemble(const json& derivation, const std::string& modules, const std::string& origin) {
   Context c(derivation);
-  std::ostringstream body;
-  body << "#include <cminpack-1/cminpack.h>\n\n"
-       << "#include <algorithm>\n#include <array>\n#include <atomic>\n#include <chrono>\n#include <cmath>\n#include "
-          "<cstdint>\n"
-       << "#include <cstdio>\n#include <exception>\n#include <fstream>\n#include <functional>\n#include <map>\n#include <mutex>\n"
-       << "#include <nlohmann/json.hpp>\n#include <random>\n#include <sstream>\n#include <stdexcept>\n#include "
-          "<string>\n"
-       << "#include <system_error>\n#include <thread>\n#include <vector>\n\n"
-       << "#define HELIOS_ASTRO_EMBEDDED\n"
-       << pasted("tools/lib/include/helios/astro/constants.hpp") << "\n"
-       << pasted("tools/lib/include/helios/astro/kepler.hpp") << "\n"
-       << pasted("tools/lib/include/helios/astro/ephemeris.hpp") << "\n"
-       << pasted("templates/runtime/dop853.hpp") << "\n"
-       << problem_block(c) << "\n"
-       << runtime_source() << modules << embedded::file("templates/runtime/main.hpp");
+  std::ostringstream prelude;
+  prelude << "#include <cminpack-1/cminpack.h>\n\n"
+          << "#include <algorithm>\n#include <array>\n#include <atomic>\n#include <chrono>\n#include <cmath>\n#include "
+             "<cstdint>\n"
+          << "#include <cstdio>\n#include <exception>\n#include <fstream>\n#include <functional>\n#include "
+             "<map>\n#include <mutex>\n"
+          << "#include <nlohmann/json.hpp>\n#include <random>\n#include <sstream>\n#include <stdexcept>\n#include "
+             "<string>\n"
+          << "#include <system_error>\n#include <thread>\n#include <vector>\n\n"
+          << "#define HELIOS_ASTRO_EMBEDDED\n"
+          << pasted("tools/lib/include/helios/astro/constants.hpp") << "\n"
+          << pasted("tools/lib/include/helios/astro/kepler.hpp") << "\n"
+          << pasted("tools/lib/include/helios/astro/ephemeris.hpp") << "\n"
+          << pasted("templates/runtime/dop853.hpp") << "\n";
+  const std::string problem = problem_block(c) + "\n", runtime = runtime_source();
+  // The map a program opens with: where each part starts (line numbers of the whole file), the
+  // shared runtime's lines and its SHA-256.
+  const auto modules_at = module_lines(modules);
+  const int header = 2 + 1 + 1 + static_cast<int>(modules_at.size()) + 1 + 2;  // the lines before prelude
+  const int problem_line = header + line_count(prelude.str()) + 1, runtime_line = problem_line + line_count(problem);
+  const int modules_line = runtime_line + line_count(runtime);
+  std::ostringstream map;
+  map << "// Map (line numbers of this file):\n"
+      << "//   " << problem_line << "  PROBLEM (generated)\n";
+  for (const auto& [name, k] : modules_at) map << "//   " << modules_line + k << "  " << name << "\n";
+  map << "//   " << modules_line + line_count(modules) << "  entry point (templates/runtime/main.hpp)\n"
+      << "//   runtime (templates/runtime, shared by every program): lines " << runtime_line << "-" << modules_line - 1
+      << "\n//   runtime SHA-256 " << io::sha256_hex(runtime) << "\n";
   std::ostringstream src;
   src << "// Shooting program for problem " << derivation.at("problem").at("id").get<std::string>()
       << ", generated by helios-gen " << HELIOS_VERSION << " (" << origin << ") from its derivation. Do not edit:\n"
       << "// regenerate it. Fixed runtime from templates/runtime, modules below marked generated or template.\n"
-      << file_map(body.str(), 3, io::sha256_hex(runtime_source())) << body.str();
+      << map.str() << prelude.str() << problem << runtime << modules << embedded::file("templates/runtime/main.hpp");
   return src.str();
 }
 
