@@ -34,6 +34,11 @@ TOOLS := parse derive verify gen solve score
 TOOL_BINS := $(addprefix $(BIN)/helios-,$(TOOLS))
 TOOL_SOURCES := CMakeLists.txt $(shell find tools templates schemas prompts cmake -type f -not -name '*.sh')
 TOOLS_STAMP := $(BUILD)/tools.stamp
+# The llm backend reads its prompts at run time (they are not compiled into the tools): from the
+# project's prompts/, each a prerequisite of the llm rules that send it, and of no builtin rule.
+HELIOS_PROMPTS_DIR ?= $(CURDIR)/prompts
+export HELIOS_PROMPTS_DIR
+LLM_PROMPT = $(if $(filter llm,$(2)),$(HELIOS_PROMPTS_DIR)/$(1))
 
 ifeq ($(filter $(BACKEND),builtin llm),)
   $(error BACKEND=$(BACKEND) is not a backend of this build (use builtin or llm))
@@ -69,7 +74,7 @@ $(BUILD)/build.ninja: CMakeLists.txt | deps
 
 # The tools are rebuilt when any library, tool, template or schema source changes.
 $(TOOLS_STAMP): $(BUILD)/build.ninja $(TOOL_SOURCES)
-	cmake --build $(BUILD) --target $(addprefix helios-,$(TOOLS))
+	cmake --build $(BUILD) --target $(addprefix helios-,$(TOOLS)) helios-prompts
 	touch $@
 
 # Each artifact depends on the tool that writes it through that tool's content stamp, which
@@ -84,7 +89,7 @@ TOOL_STAMPS := $(foreach t,$(TOOLS),$(call TOOL_STAMP,$(t)))
 
 tools: $(TOOLS_STAMP) $(TOOL_STAMPS)
 
-$(RUNS)/%/spec.json: scenarios/%/problem.txt $(call TOOL_STAMP,parse)
+$(RUNS)/%/spec.json: scenarios/%/problem.txt $(call TOOL_STAMP,parse) $(call LLM_PROMPT,parse.txt,$(PARSE_BACKEND))
 	@mkdir -p $(@D)
 	$(BIN)/helios-parse --backend $(PARSE_BACKEND) $< -o $@
 
@@ -104,7 +109,8 @@ else
 LLM_SCENARIOS := $(sort $(SCENARIOS) $(scenario))
 each_run = $(foreach s,$(LLM_SCENARIOS),$(RUNS)/$(s)/$(1))
 
-$(call each_run,derivation.r1.json): $(RUNS)/%/derivation.r1.json: $(RUNS)/%/spec.json $(call TOOL_STAMP,derive)
+$(call each_run,derivation.r1.json): $(RUNS)/%/derivation.r1.json: $(RUNS)/%/spec.json $(call TOOL_STAMP,derive) \
+    $(HELIOS_PROMPTS_DIR)/pmp_derive.txt
 	$(BIN)/helios-derive --backend llm --round 1 $< -o $@
 
 # Verification of a round is advisory: its failed checks are the next round's feedback.
@@ -113,7 +119,7 @@ $(call each_run,verify.r$(2).json): $(RUNS)/%/verify.r$(2).json: $(RUNS)/%/deriv
 	$(BIN)/helios-verify --advisory $$< -o $$@
 
 $(call each_run,derivation.r$(1).json): $(RUNS)/%/derivation.r$(1).json: $(RUNS)/%/spec.json \
-    $(RUNS)/%/derivation.r$(2).json $(RUNS)/%/verify.r$(2).json $(call TOOL_STAMP,derive)
+    $(RUNS)/%/derivation.r$(2).json $(RUNS)/%/verify.r$(2).json $(call TOOL_STAMP,derive) $(HELIOS_PROMPTS_DIR)/pmp_derive.txt
 	$(BIN)/helios-derive --backend llm --round $(1) --previous $$(@D)/derivation.r$(2).json \
 	  --feedback $$(@D)/verify.r$(2).json $$< -o $$@
 endef
@@ -123,7 +129,8 @@ $(foreach k,$(wordlist 2,$(DERIVE_ROUNDS),$(derive_rounds)),$(eval $(call derive
 $(call each_run,derivation.json): $(RUNS)/%/derivation.json: $(RUNS)/%/derivation.r$(DERIVE_ROUNDS).json
 	ln -sfn $(<F) $@
 
-$(call each_run,shoot.r1.cpp): $(RUNS)/%/shoot.r1.cpp: $(RUNS)/%/derivation.json $(RUNS)/%/verify.json $(call TOOL_STAMP,gen)
+$(call each_run,shoot.r1.cpp): $(RUNS)/%/shoot.r1.cpp: $(RUNS)/%/derivation.json $(RUNS)/%/verify.json $(call TOOL_STAMP,gen) \
+    $(HELIOS_PROMPTS_DIR)/codegen.txt
 	$(BIN)/helios-gen --backend llm --round 1 $< -o $@
 
 define gen_round
@@ -131,7 +138,7 @@ $(call each_run,compile.r$(2).json): $(RUNS)/%/compile.r$(2).json: $(RUNS)/%/sho
 	$(BIN)/helios-solve --backend llm --compile-only --cache-dir $(CACHE) $$< -o $$@
 
 $(call each_run,shoot.r$(1).cpp): $(RUNS)/%/shoot.r$(1).cpp: $(RUNS)/%/derivation.json \
-    $(RUNS)/%/shoot.r$(2).cpp $(RUNS)/%/compile.r$(2).json $(call TOOL_STAMP,gen)
+    $(RUNS)/%/shoot.r$(2).cpp $(RUNS)/%/compile.r$(2).json $(call TOOL_STAMP,gen) $(HELIOS_PROMPTS_DIR)/codegen.txt $(HELIOS_PROMPTS_DIR)/repair.txt
 	$(BIN)/helios-gen --backend llm --round $(1) --previous $$(@D)/shoot.r$(2).cpp \
 	  --compile-report $$(@D)/compile.r$(2).json $$< -o $$@
 endef

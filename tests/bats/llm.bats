@@ -132,6 +132,22 @@ script() {
   [[ $output == *"Nothing to be done"* ]] || { echo "$output" >&2; false; }
 }
 
+@test "llm: a prompt edit re-runs the llm rules that send it and no builtin rule" {
+  local prompts="$BATS_TEST_TMPDIR/prompts"
+  cp -a "$ROOT/prompts" "$prompts"
+  run -0 lmake -q scenario=S01 BACKEND=builtin HELIOS_PROMPTS_DIR="$prompts"
+  run -0 lmake -q scenario=S01 BACKEND=llm HELIOS_PROMPTS_DIR="$prompts"
+  sleep 0.05 # past the file system's timestamp granularity
+  touch "$prompts/pmp_derive.txt"
+  run -0 lmake -q scenario=S01 BACKEND=builtin HELIOS_PROMPTS_DIR="$prompts"
+  run -0 lmake -n scenario=S01 BACKEND=llm HELIOS_PROMPTS_DIR="$prompts"
+  [[ $output == *"helios-derive --backend llm --round 1 "* && $output != *"helios-parse"* ]] || { echo "$output" >&2; false; }
+  touch "$prompts/parse.txt"
+  run -0 lmake -q scenario=S01 BACKEND=builtin HELIOS_PROMPTS_DIR="$prompts"
+  run -0 lmake -n scenario=S01 BACKEND=llm HELIOS_PROMPTS_DIR="$prompts"
+  [[ $output == *"helios-parse --backend llm"* ]] || { echo "$output" >&2; false; }
+}
+
 @test "llm: an interrupted run resumes at the first missing round and redoes nothing before it" {
   local copy="$BATS_TEST_TMPDIR/runs"
   mkdir -p "$copy/llm"

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -24,6 +25,10 @@ namespace {
 namespace fs = std::filesystem;
 using helios::io::json;
 using namespace helios::llm;
+
+// This executable lives in build/, not build/bin/, so the prompts beside the tools are not where
+// prompts_dir() looks by default: read the project's own prompts/.
+const bool kPromptsFromSource = setenv("HELIOS_PROMPTS_DIR", HELIOS_SOURCE_DIR "/prompts", 1) == 0;
 
 // A chat-completions server whose n-th request (0-based) is answered by handlers[n].
 class ScriptedServer {
@@ -133,6 +138,19 @@ TEST(LlmPrompt, EveryShippedPromptHasItsPlaceholders) {
   for (const char* rule :
        {"Rule 0", "Rule B ", "Rule B2", "Rule G1", "Rule G2", "Rule G3", "Rule G4", "Rule G5", "Rule G6"})
     EXPECT_NE(prompt("pmp_derive.txt").find(rule), std::string::npos) << rule;
+}
+
+TEST(LlmPrompt, AMissingPromptNamesItsPathAndWhereThePromptsAreRead) {
+  ASSERT_TRUE(kPromptsFromSource);
+  EXPECT_EQ(prompts_dir(), fs::path(HELIOS_SOURCE_DIR "/prompts"));
+  try {
+    prompt("no-such-prompt.txt");
+    FAIL() << "no error";
+  } catch (const helios::input_error& e) {
+    EXPECT_NE(std::string(e.what()).find(HELIOS_SOURCE_DIR "/prompts/no-such-prompt.txt: no such prompt"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(LlmClient, BackoffDoublesAndRetryAfterIsHonouredWithinTheCap) {

@@ -126,10 +126,24 @@ std::string modules_source(const json& modules) {
 
 }  // namespace
 
+std::filesystem::path prompts_dir() {
+  if (const char* dir = std::getenv("HELIOS_PROMPTS_DIR"); dir && *dir) return dir;
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec)
+    throw input_error("cannot locate the llm prompts (/proc/self/exe: " + ec.message() +
+                      "); set HELIOS_PROMPTS_DIR to the project's prompts/ folder");
+  return exe.parent_path().parent_path() / "share" / "helios" / "prompts";
+}
+
 std::string prompt(const std::string& name) {
-  const char* dir = std::getenv("HELIOS_PROMPTS_DIR");
-  if (dir && *dir) return io::read_text((std::filesystem::path(dir) / name).string());
-  return embedded::file("prompts/" + name);
+  const std::filesystem::path path = prompts_dir() / name;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw input_error(path.string() +
+                      ": no such prompt (the llm backend reads prompts/ from share/helios/prompts beside "
+                      "the tools, or from HELIOS_PROMPTS_DIR)");
+  return io::read_text(path.string());
 }
 
 std::string fill(std::string text, const std::vector<std::pair<std::string, std::string>>& values) {
@@ -265,11 +279,10 @@ std::string generate(const GenRequest& r, const CallInfo& call) {
   const bool repair = r.previous_source.has_value();
   Conversation conv(client,
                     {call.transcript_path, "helios-gen", repair ? "repair" : "codegen", call.artifact, call.round});
-  std::vector<Message> messages = {
-      system_message("code generator"),
-      {"user", fill(prompt("codegen.txt"), {{"DERIVATION_JSON", pretty(r.derivation)},
-                                            {"PROBLEM_BLOCK", block},
-                                            {"RUNTIME", codegen::runtime_source()}})}};
+  std::vector<Message> messages = {system_message("code generator"),
+                                   {"user", fill(prompt("codegen.txt"), {{"DERIVATION_JSON", pretty(r.derivation)},
+                                                                         {"PROBLEM_BLOCK", block},
+                                                                         {"RUNTIME", codegen::runtime_source()}})}};
   if (repair) {
     if (!r.compile_report) throw usage_error("--previous needs --compile-report (how the previous program compiled)");
     const json previous = modules_of(*r.previous_source);

@@ -2,6 +2,7 @@
 // The llm backend of helios-parse, helios-derive and helios-gen (design.md section 2): prompts
 // from prompts/, a conversation per artifact with its transcript, replies schema-checked, and the
 // refinement rounds (derive <-> verify, gen <-> compile) one round per call.
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -10,8 +11,12 @@
 
 namespace helios::llm {
 
-// The text of prompts/NAME (embedded at build time; HELIOS_PROMPTS_DIR, when set, is read
-// instead, so prompts can be tried without a rebuild).
+// Where the prompts are read from: HELIOS_PROMPTS_DIR when set, else share/helios/prompts beside
+// the tools' bin/ (the build copies prompts/ there). They are data, not compiled in, so editing a
+// prompt changes no tool's bytes and re-runs only the llm backend's rules.
+std::filesystem::path prompts_dir();
+
+// The text of the prompt NAME (e.g. "parse.txt") in prompts_dir(); input_error when it is missing.
 std::string prompt(const std::string& name);
 
 // Replaces every {{KEY}} of `text`; throws std::logic_error for a key the text lacks or a
