@@ -175,6 +175,27 @@ assert_not_ran() {
   run -0 pmake -q
 }
 
+@test "pipeline: an edit of score.cpp rebuilds the tools and re-runs helios-score alone" {
+  ensure_built
+  local score="$ROOT/tools/lib/src/score/score.cpp" saved="$BATS_TEST_TMPDIR/score.cpp" before
+  cp -p "$score" "$saved"
+  before="$(snapshot "${ARTIFACTS[@]:0:5}")"
+  # A real change of helios-score's bytes (an unreferenced constant, no change of behaviour); no
+  # other tool links the score module, so their bytes and stamps stay the same.
+  printf '\nnamespace helios::score {\nextern const char kPipelineProbe[];\nconst char kPipelineProbe[] = "%s";\n}\n' \
+    "$BATS_TEST_NAME" >>"$score"
+  run env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
+    make --no-print-directory -C "$ROOT" scenario=T01 CACHE="$MAKE_CACHE"
+  local status_edit=$status output_edit=$output
+  cat "$saved" >"$score" # a new mtime: make rebuilds the tools from the restored source
+  run -0 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES make --no-print-directory -C "$ROOT" tools
+  status=$status_edit output=$output_edit
+  ((status == 0)) || { echo "$output" >&2; false; }
+  assert_ran score
+  assert_not_ran parse derive verify gen solve
+  [[ $(snapshot "${ARTIFACTS[@]:0:5}") == "$before" ]]
+}
+
 @test "pipeline: a deleted solution.json is remade (make -q reports it)" {
   ensure_built
   local before_early
