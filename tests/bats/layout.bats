@@ -1,0 +1,47 @@
+#!/usr/bin/env bats
+# README.md's "Layout" section against the tree: it names every top-level entry of the repository
+# and every library area, and every path it names exists.
+
+load test_helper
+
+# The paths column of the Layout block (what stands before a run of three or more spaces), one
+# path per line; a {a,b} group is expanded, a <placeholder> stands for any name (a glob's *).
+layout_paths() {
+  awk '/^## Layout/ { inside = 1; next } inside && /^```/ { if (fence++) exit; next } inside && fence' "$ROOT/README.md" |
+    sed -E 's/ {3,}.*//' | tr ' ' '\n' | sed -e 's/,$//' -e '/^$/d' |
+    while read -r path; do
+      if [[ $path =~ ^(.*)\{([^}]*)\}(.*)$ ]]; then
+        local alt a
+        IFS=, read -ra alt <<<"${BASH_REMATCH[2]}"
+        for a in "${alt[@]}"; do echo "${BASH_REMATCH[1]}$a${BASH_REMATCH[3]}"; done
+      else
+        echo "$path"
+      fi
+    done | sed -E 's#<[^>]*>#*#g'
+}
+
+@test "layout: every path README's Layout names exists" {
+  local paths path missing=()
+  paths="$(layout_paths)"
+  [[ $(wc -l <<<"$paths") -ge 10 ]] || { echo "no Layout block found: $paths" >&2; false; }
+  while read -r path; do
+    compgen -G "$ROOT/$path" >/dev/null || missing+=("$path")
+  done <<<"$paths"
+  ((${#missing[@]} == 0)) || { echo "named in the Layout but missing: ${missing[*]}" >&2; false; }
+}
+
+@test "layout: README's Layout names every top-level entry and every library area" {
+  local paths entry unnamed=()
+  paths="$(layout_paths)"
+  for entry in $(git -C "$ROOT" ls-files | cut -d/ -f1 | sort -u); do
+    [[ $entry == .gitignore || $entry == .clang-format ]] && continue
+    grep -q -F -x -e "$entry" -e "$entry/" <<<"$(sed -E 's#^([^/]+/?).*#\1#' <<<"$paths")" || unnamed+=("$entry")
+  done
+  local area areas
+  areas="$(awk '/^## Layout/,0' "$ROOT/README.md" | grep -m1 'libhelios:')"
+  for area in "$ROOT"/tools/lib/src/*/; do
+    area="$(basename "$area")"
+    [[ $areas == *" $area"[,\ ]* || $areas == *" $area" ]] || unnamed+=("tools/lib/src/$area")
+  done
+  ((${#unnamed[@]} == 0)) || { echo "in the tree but not in README's Layout: ${unnamed[*]}" >&2; false; }
+}
