@@ -68,6 +68,24 @@ TEST(Io, MalformedJsonNamesTheFileAndByte) {
   fs::remove_all(dir);
 }
 
+TEST(Io, JsonBeyondItsDepthIsRefusedBeforeParsingStringsAside) {
+  using helios::io::json_depth_exceeded_at;
+  using helios::io::kMaxJsonDepth;
+  // 58,000 levels overflowed the stack; brackets inside strings are not nesting.
+  const std::string deep = std::string(58000, '[') + std::string(58000, ']');
+  EXPECT_EQ(json_depth_exceeded_at(deep, kMaxJsonDepth), std::size_t(kMaxJsonDepth));
+  const std::string at_limit = std::string(kMaxJsonDepth, '[') + std::string(kMaxJsonDepth, ']');
+  EXPECT_EQ(json_depth_exceeded_at(at_limit, kMaxJsonDepth), std::string::npos);
+  EXPECT_EQ(json_depth_exceeded_at(R"({"a": "[[[[\"[[[", "b": [1]})", 2), std::string::npos);
+  EXPECT_NO_THROW(helios::io::parse_json_text(at_limit, "x.json"));
+  try {
+    helios::io::parse_json_text(deep, "x.json");
+    FAIL();
+  } catch (const helios::input_error& e) {
+    EXPECT_STREQ(e.what(), "x.json: JSON nested deeper than 256 levels at byte 257; the limit is 256");
+  }
+}
+
 TEST(Io, ReadArtifactChecksKindAndVersion) {
   const fs::path dir = fresh_dir("kind");
   const std::string path = (dir / "x.json").string();

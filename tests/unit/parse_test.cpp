@@ -83,6 +83,44 @@ TEST(Parse, UnusableSentenceIsQuotedWithItsLine) {
             "English (see README.md, 'Controlled English')");
 }
 
+TEST(Parse, TextBeyondItsBoundsIsRefusedBeforeAnyPatternIsMatched) {
+  using helios::spec::kMaxProblemBytes;
+  using helios::spec::kMaxSentenceChars;
+  // A 30 kB sentence overflowed std::regex's recursion; now it is one line naming the limit.
+  const std::string long_sentence = "The spacecraft has a maximum thrust of 0" + std::string(30000, '0') + ".5 N.";
+  EXPECT_EQ(error_of(long_sentence),
+            "problem.txt:1: the line is longer than 4096 characters, the limit of a line or sentence");
+  std::string wrapped;  // the same length over many short lines: the sentence bound still holds
+  for (int k = 0; k < 400; ++k) wrapped += "very very very very long\n";
+  EXPECT_EQ(error_of("The spacecraft is " + wrapped + "."),
+            "problem.txt:1: the sentence is longer than 4096 characters, the limit of a line or sentence");
+  EXPECT_EQ(error_of(std::string(kMaxProblemBytes + 1, '\n')),
+            "problem.txt: the problem text is 1048577 bytes; the limit is 1048576");
+  EXPECT_EQ(kMaxSentenceChars, 4096u);
+}
+
+TEST(Parse, BinaryOrMisencodedTextNamesTheLineAndNeverEchoesTheByte) {
+  EXPECT_EQ(error_of("Problem S01: Earth to Mars.\nThe central body is the Sun" + std::string(1, '\0') + ".\n"),
+            "problem.txt:2: control byte 0x00 in the problem text (is it a binary file?)");
+  EXPECT_EQ(error_of("Problem S01: \x1b[31mred.\n"),
+            "problem.txt:1: control byte 0x1B in the problem text (is it a binary file?)");
+  for (const char* bad : {"\xff", "\xc3", "\xc0\xaf", "\xe0\x80\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80"})
+    EXPECT_EQ(error_of(std::string("Problem S01: ") + bad + ".\n"),
+              "problem.txt:1: the problem text is not valid UTF-8")
+        << bad;
+  // Valid UTF-8 outside ASCII is read as text (and then judged by the grammar).
+  EXPECT_NE(error_of("Problem S01: Erde \xe2\x86\x92 Mars.\n").find("never states the central body"),
+            std::string::npos);
+}
+
+TEST(Parse, ANumberOutsideTheRangeOfADoubleIsAnErrorAtItsSentence) {
+  for (const char* n : {"1e400", "1e-400"}) {
+    const std::string err = error_of(replaced(s01_text(), "0.5 N", std::string(n) + " N"));
+    EXPECT_NE(err.find(std::string("the number ") + n + " is outside the range of a double"), std::string::npos) << err;
+    EXPECT_EQ(err.rfind("problem.txt:", 0), 0u) << err;
+  }
+}
+
 TEST(Parse, WrongUnitNamesTheUnit) {
   const std::string err = error_of(replaced(s01_text(), "0.5 N", "0.5 kg"));
   EXPECT_NE(err.find("unit 'kg' is not a force unit (use N, mN)"), std::string::npos) << err;

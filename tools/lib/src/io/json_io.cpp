@@ -104,15 +104,44 @@ std::string read_text(const std::string& path) {
   return all.str();
 }
 
-json read_json(const std::string& path) {
-  const std::string text = read_text(path);
-  const std::string name = path == "-" ? "<stdin>" : path;
+std::size_t json_depth_exceeded_at(const std::string& text, int limit) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > limit) return i;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return std::string::npos;
+}
+
+json parse_json_text(const std::string& text, const std::string& name) {
+  if (text.size() > kMaxJsonBytes)
+    throw input_error(name + ": the JSON document is " + std::to_string(text.size()) + " bytes; the limit is " +
+                      std::to_string(kMaxJsonBytes));
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw input_error(name + ": empty input, expected JSON");
+  if (const std::size_t at = json_depth_exceeded_at(text, kMaxJsonDepth); at != std::string::npos)
+    throw input_error(name + ": JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels at byte " +
+                      std::to_string(at + 1) + "; the limit is " + std::to_string(kMaxJsonDepth));
   try {
     return json::parse(text);
   } catch (const json::parse_error& e) {
     throw input_error(name + ": malformed JSON at byte " + std::to_string(e.byte) + ", fix the file or regenerate it");
   }
+}
+
+json read_json(const std::string& path) {
+  return parse_json_text(read_text(path), path == "-" ? "<stdin>" : path);
 }
 
 void write_text_atomic(const std::string& path, const std::string& text) {

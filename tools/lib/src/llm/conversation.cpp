@@ -83,6 +83,9 @@ std::string extract_json_text(const std::string& content) {
 json parse_reply_json(const std::string& content) {
   const std::string text = extract_json_text(content);
   if (text.empty()) throw reply_error("your reply is empty; reply with one JSON object in a ```json fence");
+  if (io::json_depth_exceeded_at(text, io::kMaxJsonDepth) != std::string::npos)
+    throw reply_error("your reply nests JSON deeper than " + std::to_string(io::kMaxJsonDepth) +
+                      " levels; reply with the artifact's JSON object as its schema shapes it");
   try {
     return json::parse(text);
   } catch (const json::parse_error& e) {

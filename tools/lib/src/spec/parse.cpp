@@ -96,7 +96,57 @@ std::vector<Sentence> split_sentences(const std::string& text) {
 }
 
 double number(const std::string& s) {
-  return std::stod(s);
+  try {
+    return std::stod(s);
+  } catch (const std::out_of_range&) {
+    throw sentence_error("the number " + s + " is outside the range of a double (magnitudes 2.3e-308 to 1.8e308)");
+  }
+}
+
+// The length of the UTF-8 sequence that starts with byte c, 0 when c cannot start one.
+int utf8_length(unsigned char c) {
+  if (c < 0x80) return 1;
+  if (c >= 0xC2 && c <= 0xDF) return 2;
+  if (c >= 0xE0 && c <= 0xEF) return 3;
+  if (c >= 0xF0 && c <= 0xF4) return 4;
+  return 0;
+}
+
+// Refuses a text the sentence reader must not see: too large, not UTF-8, a NUL or control byte, a
+// line over the sentence bound. The byte is named by its code, never echoed.
+void check_text(const std::string& text, const std::string& source) {
+  if (text.size() > kMaxProblemBytes)
+    throw input_error(source + ": the problem text is " + std::to_string(text.size()) + " bytes; the limit is " +
+                      std::to_string(kMaxProblemBytes));
+  int line = 1;
+  std::size_t line_start = 0;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const auto at = [&] { return source + ":" + std::to_string(line) + ": "; };
+    if (c == '\n') {
+      ++line;
+      line_start = ++i;
+      continue;
+    }
+    if (i - line_start >= kMaxSentenceChars)
+      throw input_error(at() + "the line is longer than " + std::to_string(kMaxSentenceChars) +
+                        " characters, the limit of a line or sentence");
+    if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7F) {
+      char code[8];
+      std::snprintf(code, sizeof code, "0x%02X", c);
+      throw input_error(at() + "control byte " + code + " in the problem text (is it a binary file?)");
+    }
+    const int n = utf8_length(c);
+    bool valid = n > 0 && i + n <= text.size();
+    for (int k = 1; valid && k < n; ++k) valid = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
+    if (valid && n > 2) {  // no overlong form, no UTF-16 surrogate, nothing above U+10FFFF
+      const auto second = static_cast<unsigned char>(text[i + 1]);
+      valid = !(c == 0xE0 && second < 0xA0) && !(c == 0xED && second > 0x9F) && !(c == 0xF0 && second < 0x90) &&
+              !(c == 0xF4 && second > 0x8F);
+    }
+    if (!valid) throw input_error(at() + "the problem text is not valid UTF-8");
+    i += n;
+  }
 }
 
 double quantity(const std::smatch& m, std::size_t idx, Dimension d) {
@@ -1102,8 +1152,14 @@ struct Builder {
 }  // namespace
 
 json parse_problem_text(const std::string& text, const std::string& source) {
+  check_text(text, source);
   Builder b(source);
-  for (const auto& item : split_sentences(text)) b.read(item);
+  for (const auto& item : split_sentences(text)) {
+    if (item.text.size() > kMaxSentenceChars)
+      throw input_error(source + ":" + std::to_string(item.line) + ": the sentence is longer than " +
+                        std::to_string(kMaxSentenceChars) + " characters, the limit of a line or sentence");
+    b.read(item);
+  }
   if (b.table_intro) b.fail(*b.table_intro, "no table follows it (its header reads " + std::string(kTableHeader) + ")");
   const auto missing = [&](const std::string& what, const std::string& example) {
     throw input_error(source + ": the problem text never states " + what + " (add a sentence such as \"" + example +

@@ -1,5 +1,6 @@
 #pragma once
 // Reading and atomic writing of JSON artifacts.
+#include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -10,6 +11,19 @@ using json = nlohmann::ordered_json;
 
 // Whole text of `path` ("-" reads stdin). Throws input_error naming the file.
 std::string read_text(const std::string& path);
+
+// Bounds of every JSON document the tools read (README "Limits"): checked before parsing, since a
+// deep nesting exhausts the stack of the recursive code that walks a document afterwards.
+inline constexpr std::size_t kMaxJsonBytes = std::size_t{64} << 20;
+inline constexpr int kMaxJsonDepth = 256;
+
+// The first byte offset at which `text` nests arrays and objects deeper than `limit` (strings
+// skipped), or std::string::npos.
+std::size_t json_depth_exceeded_at(const std::string& text, int limit);
+
+// Parses `text` as JSON, `name` naming it in errors. Throws input_error "NAME: ..." for a document
+// beyond the bounds above or malformed JSON.
+json parse_json_text(const std::string& text, const std::string& name);
 
 // Parses `path` ("-" = stdin) as JSON. Throws input_error "FILE: malformed JSON at byte N: ...".
 json read_json(const std::string& path);

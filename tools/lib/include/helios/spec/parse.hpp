@@ -27,6 +27,7 @@
 // anything else is an error at the sentence naming it. Days count from the epoch. Events get the
 // ids lowercase(NAME) (then NAME_2, ...), are written in the text's order, and their windows must
 // not overlap and must lie inside the flight. Constraints are written departure, events, arrival.
+#include <cstddef>
 #include <string>
 
 #include "helios/io/json_io.hpp"
@@ -37,8 +38,15 @@ namespace helios::spec {
 // velocity vx, vy, vz [km/s], mass m [kg], time t [s since departure].
 inline constexpr const char* kAccelerationVariables[] = {"x", "y", "z", "r", "vx", "vy", "vz", "m", "t"};
 
+// Bounds of a problem text (README "Limits"): beyond them the text is refused with one line naming
+// the file, the line and the limit, before any pattern is matched (std::regex recurses per
+// character, so an unbounded sentence would overflow the stack).
+inline constexpr std::size_t kMaxProblemBytes = 1 << 20;  // the whole text
+inline constexpr std::size_t kMaxSentenceChars = 4096;    // one sentence or one table line
+
 // Reads a problem text into a spec artifact (header included). `source` names the file in errors:
-// "<source>:<line>: cannot use sentence \"...\": <why>". Throws input_error.
+// "<source>:<line>: cannot use sentence \"...\": <why>". Throws input_error, also for a text that is
+// not UTF-8, holds a NUL or another control byte (tab, CR and LF aside), or exceeds a bound above.
 io::json parse_problem_text(const std::string& text, const std::string& source);
 
 }  // namespace helios::spec
