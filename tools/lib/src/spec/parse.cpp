@@ -99,7 +99,7 @@ double number(const std::string& s) {
   try {
     return std::stod(s);
   } catch (const std::out_of_range&) {
-    throw sentence_error("the number " + s + " is outside the range of a double (magnitudes 2.3e-308 to 1.8e308)");
+    throw sentence_error("the number " + s + " is outside the range of a double (magnitudes 2.2e-308 to 1.8e308)");
   }
 }
 
