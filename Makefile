@@ -172,6 +172,7 @@ unit: $(TOOLS_STAMP)
 	ctest --test-dir $(BUILD) --output-on-failure -j2
 
 bats: $(TOOLS_STAMP)
+	cmake --build $(BUILD) --target json-patch
 	tests/run-bats.sh tests/bats
 
 test: unit bats

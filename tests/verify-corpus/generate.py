@@ -14,8 +14,10 @@ Bases (tests/verify-corpus/base/, committed with the engine): builtin S05, S06, 
 The hand-written seeds take their derivatives from SymPy, a different CAS from the verifier's
 GiNaC, and follow the derivation format of schemas/derivation.schema.json.
 
-Cases (tests/verify-corpus/cases/*.json) are seeds rewritten in equivalent algebraic forms (must
-pass) or deliberately broken (must fail exactly the listed checks); manifest.json lists them.
+Cases are seeds and bases rewritten in equivalent algebraic forms (must pass) or deliberately broken
+(must fail exactly the listed checks). Each is stored as an RFC 6902 JSON Patch against its seed or
+base (tests/verify-corpus/cases/<name>.patch.json, see diff()); a case that is its base unchanged has
+no patch. manifest.json lists them: name, base, patch, expected verdict and failing checks.
 Run from anywhere: python3 tests/verify-corpus/generate.py [--bin build/bin]. Needs sympy.
 """
 import copy
@@ -38,6 +40,38 @@ def g(e):
 
 def write(path, doc):
     path.write_text(json.dumps(doc, indent=2) + "\n")
+
+
+def pointer(path):
+    """RFC 6901 JSON Pointer of a path of keys and indices."""
+    return "".join("/" + str(k).replace("~", "~0").replace("/", "~1") for k in path)
+
+
+def diff(a, b, path=()):
+    """RFC 6902 JSON Patch that turns `a` into `b`: the leaves that differ are replaced, object keys
+    removed or added, an array is replaced whole only when its length changed, an object only when
+    its keys' order could not be kept (added keys are appended)."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        common = [k for k in a if k in b]
+        if list(b) != common + [k for k in b if k not in a]:
+            return [{"op": "replace", "path": pointer(path), "value": b}]
+        ops = [{"op": "remove", "path": pointer(path + (k,))} for k in a if k not in b]
+        for k in b:
+            if k in a:
+                ops += diff(a[k], b[k], path + (k,))
+            else:
+                ops.append({"op": "add", "path": pointer(path + (k,)), "value": b[k]})
+        return ops
+    if isinstance(a, list) and isinstance(b, list) and len(a) == len(b):
+        return [op for i, (x, y) in enumerate(zip(a, b)) for op in diff(x, y, path + (i,))]
+    if type(a) is type(b) and a == b:
+        return []
+    return [{"op": "replace", "path": pointer(path), "value": b}]
+
+
+def write_patch(path, ops):
+    """A patch with one operation a line."""
+    path.write_text("[\n" + ",\n".join("  " + json.dumps(op) for op in ops) + "\n]\n")
 
 
 # --------------------------------------------------------------------------------------------
@@ -316,15 +350,13 @@ def sym(text):
     return sp.sympify(text.replace("^", "**"))
 
 
-def event_cases(case, cases):
+def event_cases(case):
     """Cases of the event checks: each broken one fails exactly the check of the condition it breaks."""
-    for name in ("E-flyby", "E-stay", "E-slide"):
-        case(f"{name}-builtin", name, {"E-flyby": "builtin: a flyby of an asteroid (position matched, free epoch)",
-                                       "E-stay": "builtin: rendezvous with a 20-day stay and a 100 kg mass drop",
-                                       "E-slide": "builtin: sliding departure from Earth with a flyby"}[name])
-    # The gravity assist's derivation is 4 MB (its time condition alone 2.7 MB): not copied.
-    cases.append({"file": "base/E-ga.json", "seed": "E-ga", "verdict": "pass", "fails": [],
-                  "note": "builtin: unpowered gravity assist (delta, phi free parameters of psi)"})
+    for name, note in (("E-flyby", "a flyby of an asteroid (position matched, free epoch)"),
+                       ("E-stay", "rendezvous with a 20-day stay and a 100 kg mass drop"),
+                       ("E-ga", "unpowered gravity assist (delta, phi free parameters of psi)"),
+                       ("E-slide", "sliding departure from Earth with a flyby")):
+        case(f"{name}-builtin", name, "builtin: " + note)
 
     def flyby_forms(d):
         ev = event(d, "rock")
@@ -456,24 +488,27 @@ def main():
     S01F = s01f(s01)
     for name, doc in (("S05h", S05), ("S06h", S06), ("S11h", S11), ("S01f", S01F)):
         write(seed_dir / f"{name}.json", doc)
-    seeds = {"S01": s01, "S05h": S05, "S06h": S06, "S11h": S11, "S01f": S01F}
-    for scenario in builtin:
-        seeds[scenario] = json.loads((HERE / "base" / f"{scenario}.json").read_text())
     for name in EVENT_BASES:
         if bin_dir:
             subprocess.run([str(bin_dir / "helios-derive"), str(HERE / "base" / f"{name}.spec.json"), "-o",
                             str(HERE / "base" / f"{name}.json")], check=True)
-        seeds[name] = json.loads((HERE / "base" / f"{name}.json").read_text())
+    # Every case is a patch against one of these files, as committed.
+    bases = {name: f"seed/{name}.json" for name in ("S01", "S05h", "S06h", "S11h", "S01f")}
+    bases.update({name: f"base/{name}.json" for name in builtin + EVENT_BASES})
+    seeds = {name: json.loads((HERE / path).read_text()) for name, path in bases.items()}
 
     cases = []
 
     def case(name, seed, note, fails=(), edit=None):
-        d = copy.deepcopy(seeds[seed])
+        entry = {"name": name, "base": bases[seed]}
         if edit:
+            d = copy.deepcopy(seeds[seed])
             edit(d)
-        write(case_dir / f"{name}.json", d)
-        cases.append({"file": f"cases/{name}.json", "seed": seed, "verdict": "fail" if fails else "pass",
-                      "fails": sorted(fails), "note": note})
+            ops = diff(seeds[seed], d)
+            assert ops, name
+            write_patch(case_dir / f"{name}.patch.json", ops)
+            entry["patch"] = f"cases/{name}.patch.json"
+        cases.append(entry | {"verdict": "fail" if fails else "pass", "fails": sorted(fails), "note": note})
 
     # ---- correct derivations, in different but equivalent forms
     case("S01-builtin", "S01", "builtin derivation as produced")
@@ -755,7 +790,7 @@ def main():
          ["costate_ode:l_m"], lambda d: without_float_terms(d, "l_m"))
     case("S12-flip-l_vz", "S12", "S01 + SRP: sign of l_vz' flipped", ["costate_ode:l_vz"], lambda d: flip(d, "l_vz"))
 
-    event_cases(case, cases)
+    event_cases(case)
 
     write(HERE / "manifest.json", {"description": "helios-verify accuracy corpus: expected verdict and the exact "
                                                   "set of failing checks of every case (generate.py)",
