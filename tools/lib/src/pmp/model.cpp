@@ -172,8 +172,8 @@ std::vector<ex> target_state(Problem& p, const std::string& prefix, const json& 
           {name, what + " of " + body + " (" + model + ") at " + event, unit, 0.0, "ephemeris:" + body + ":" + event});
       if (moving) {
         const std::string rname = name + "_rate";
-        p.parameters.push_back({rname, "time derivative of " + name + " (of the ephemeris model)", unit + "/" + T,
-                                0.0, "ephemeris_rate:" + body + ":" + event});
+        p.parameters.push_back({rname, "time derivative of " + name + " (of the ephemeris model)", unit + "/" + T, 0.0,
+                                "ephemeris_rate:" + body + ":" + event});
         rate = S.get(rname);
       }
     } else {
@@ -208,16 +208,14 @@ ex speed_bound(Problem& p, const std::string& id, const std::vector<ex>& relativ
   return relative[0] * relative[0] + relative[1] * relative[1] + relative[2] * relative[2] - vmax * vmax;
 }
 
-// An interior event: conditions c on the arriving state and the map g to the leaving state.
-InteriorEvent interior_event(Problem& p, const json& c) {
-  auto& S = p.symbols;
-  const Units& U = p.units;
+// An interior event's identity and window; throws for what the engine cannot formulate.
+InteriorEvent event_window(const Problem& p, const json& c) {
   InteriorEvent e;
   e.id = c.at("id");
   e.kind = c.at("kind");
   e.target = c.at("target");
   const std::string where = "constraint '" + e.id + "'";
-  const double day = helios::astro::DAY_S / U.time_s;
+  const double day = helios::astro::DAY_S / p.units.time_s;
   e.window_lo = c.at("window_days")[0].get<double>() * day;
   e.window_hi = c.at("window_days")[1].get<double>() * day;
   if (!(e.window_hi > e.window_lo)) throw std::invalid_argument(where + ": field window_days is empty");
@@ -227,7 +225,84 @@ InteriorEvent interior_event(Problem& p, const json& c) {
   if (e.window_lo <= (p.free_departure ? p.t0_min : p.t0) || e.window_hi >= tf_max)
     throw std::invalid_argument(where + ": its window must lie inside the time of flight");
   e.duration = c.value("stay_days", 0.0) * day;
-  const double drop = c.value("mass_drop_kg", 0.0) / U.mass_kg;
+  return e;
+}
+
+// The conditions c on the arriving state x-: it meets the target (a flyby or swing-by in
+// position only), a flyby's bounded relative speed, and the window as two bounds on the epoch
+// (two-pass): window_lo - t <= 0 and t - window_hi <= 0.
+void arrival_conditions(Problem& p, const json& c, InteriorEvent& e, const std::vector<ex>& xm,
+                        const std::vector<ex>& arrival) {
+  const std::size_t matched = e.kind == "rendezvous" ? 6 : 3;
+  for (std::size_t j = 0; j < matched; ++j) {
+    e.c.push_back(xm[j] - arrival[j]);
+    e.c_names.push_back(kPositionVelocity[j] + " - " + to_text(arrival[j]));
+    e.c_inequality.push_back(false);
+  }
+  if (c.contains("max_relative_speed_km_s")) {
+    if (e.kind != "flyby")
+      throw std::invalid_argument("constraint '" + e.id + "': only a flyby has a relative speed to bound");
+    std::vector<ex> relative(3);
+    for (int i = 0; i < 3; ++i) relative[i] = xm[3 + i] - arrival[3 + i];
+    e.c.push_back(speed_bound(p, e.id, relative, c.at("max_relative_speed_km_s").get<double>()));
+    e.c_names.push_back("|v - v_" + e.id + "|^2 - vmax_" + e.id + "^2 (<= 0)");
+    e.c_inequality.push_back(true);
+  }
+  const ex t = p.symbols.get(event_time_name(e.id));
+  e.c.push_back(e.window_lo - t);
+  e.c_names.push_back("window start - " + event_time_name(e.id) + " (<= 0: not before the window)");
+  e.c_inequality.push_back(true);
+  e.c.push_back(t - e.window_hi);
+  e.c_names.push_back(event_time_name(e.id) + " - window end (<= 0: not after the window)");
+  e.c_inequality.push_back(true);
+}
+
+// Unpowered patched-conic swing-by: the excess velocity v_inf = v- - v_body keeps its size and
+// turns by delta, at azimuth phi about v_inf measured from the ecliptic-parallel normal w:
+//   v_inf+ = cos(delta) v_inf + sin(delta) (cos(phi) |v_inf| w/|w| + sin(phi) v_inf x w/|w|),
+//   w = z x v_inf. delta and phi are free parameters of psi (Category C).
+void gravity_assist(Problem& p, const json& c, InteriorEvent& e, const std::vector<ex>& xm,
+                    const std::vector<ex>& arrival) {
+  auto& S = p.symbols;
+  const Units& U = p.units;
+  const std::string where = "constraint '" + e.id + "'";
+  if (!c.contains("body_mu_km3_s2")) throw std::invalid_argument(where + ": field body_mu_km3_s2 is missing");
+  const std::string mu_name = "mu_" + e.id, delta = "delta_" + e.id, phi = "phi_" + e.id;
+  p.parameters.push_back(
+      {mu_name, "gravitational parameter of the swing-by body " + e.id, U.length_name + "^3/" + U.time_name + "^2",
+       c.at("body_mu_km3_s2").get<double>() * U.time_s * U.time_s / (U.length_km * U.length_km * U.length_km)});
+  const ex d = S.get(delta), f = S.get(phi);
+  e.free_parameters = {delta, phi};
+  std::vector<ex> vinf(3);
+  for (int i = 0; i < 3; ++i) vinf[i] = xm[3 + i] - arrival[3 + i];
+  const auto cross = [](const std::vector<ex>& a, const std::vector<ex>& b) {
+    return std::vector<ex>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  };
+  const std::vector<ex> w = cross({0, 0, 1}, vinf), vw = cross(vinf, w);
+  const ex wn = GiNaC::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  const ex vn = GiNaC::sqrt(vinf[0] * vinf[0] + vinf[1] * vinf[1] + vinf[2] * vinf[2]);
+  for (int i = 0; i < 3; ++i)
+    e.map[3 + i] = arrival[3 + i] + GiNaC::cos(d) * vinf[i] +
+                   GiNaC::sin(d) * (GiNaC::cos(f) * vn * w[i] + GiNaC::sin(f) * vw[i]) / wn;
+  if (c.contains("min_periapsis_radius_km")) {
+    // r_p = mu/v_inf^2 (1/sin(delta/2) - 1) >= r_min, written without the 1/sin singularity at
+    // delta = 0 and for either sign of delta: sin^2(delta/2) (1 + r_min v_inf^2/mu)^2 - 1 <= 0.
+    const std::string rmin = "rmin_" + e.id;
+    p.parameters.push_back({rmin, "lowest periapsis radius of the swing-by at " + e.id, U.length_name,
+                            c.at("min_periapsis_radius_km").get<double>() / U.length_km});
+    const ex k = 1 + S.get(rmin) * vn * vn / S.get(mu_name);
+    e.c.push_back((1 - GiNaC::cos(d)) / 2 * k * k - 1);
+    e.c_names.push_back("sin(delta/2)^2 (1 + rmin v_inf^2/mu)^2 - 1 (<= 0: periapsis radius >= rmin)");
+    e.c_inequality.push_back(true);
+  }
+}
+
+// An interior event: conditions c on the arriving state and the map g to the leaving state.
+InteriorEvent interior_event(Problem& p, const json& c) {
+  auto& S = p.symbols;
+  InteriorEvent e = event_window(p, c);
+  const std::string where = "constraint '" + e.id + "'";
+  const double drop = c.value("mass_drop_kg", 0.0) / p.units.mass_kg;
   if ((e.duration > 0 || drop > 0) && e.kind != "rendezvous")
     throw std::invalid_argument(where + ": only a rendezvous has a stay or a mass drop");
   if (drop > 0 && !p.has_state("m")) throw std::invalid_argument(where + ": a mass drop needs a mass state");
@@ -238,28 +313,7 @@ InteriorEvent interior_event(Problem& p, const json& c) {
   for (const auto& s : p.states) xm.push_back(S.get(before_event(s.name, e.id)));
   for (const auto& s : p.states) S.get(after_event(s.name, e.id));
   S.get(event_time_name(e.id));
-  const std::size_t matched = e.kind == "rendezvous" ? 6 : 3;  // a flyby or swing-by matches position only
-  for (std::size_t j = 0; j < matched; ++j) {
-    e.c.push_back(xm[j] - arrival[j]);
-    e.c_names.push_back(kPositionVelocity[j] + " - " + to_text(arrival[j]));
-    e.c_inequality.push_back(false);
-  }
-  if (c.contains("max_relative_speed_km_s")) {
-    if (e.kind != "flyby") throw std::invalid_argument(where + ": only a flyby has a relative speed to bound");
-    std::vector<ex> relative(3);
-    for (int i = 0; i < 3; ++i) relative[i] = xm[3 + i] - arrival[3 + i];
-    e.c.push_back(speed_bound(p, e.id, relative, c.at("max_relative_speed_km_s").get<double>()));
-    e.c_names.push_back("|v - v_" + e.id + "|^2 - vmax_" + e.id + "^2 (<= 0)");
-    e.c_inequality.push_back(true);
-  }
-  // The window bounds the epoch (two-pass): window_lo - t <= 0 and t - window_hi <= 0.
-  const ex t = S.get(event_time_name(e.id));
-  e.c.push_back(e.window_lo - t);
-  e.c_names.push_back("window start - " + event_time_name(e.id) + " (<= 0: not before the window)");
-  e.c_inequality.push_back(true);
-  e.c.push_back(t - e.window_hi);
-  e.c_names.push_back(event_time_name(e.id) + " - window end (<= 0: not after the window)");
-  e.c_inequality.push_back(true);
+  arrival_conditions(p, c, e, xm, arrival);
   e.map = xm;  // continuous unless changed below
   if (e.kind == "rendezvous" && e.duration > 0) {
     // After the stay the spacecraft leaves from the target's state at t_<id> + stay.
@@ -272,55 +326,18 @@ InteriorEvent interior_event(Problem& p, const json& c) {
     const std::size_t m = 6;
     e.map[m] = xm[m] - S.get(name);
   }
-  if (e.kind == "gravity_assist") {
-    // Unpowered patched-conic swing-by: the excess velocity v_inf = v- - v_body keeps its size and
-    // turns by delta, at azimuth phi about v_inf measured from the ecliptic-parallel normal w:
-    //   v_inf+ = cos(delta) v_inf + sin(delta) (cos(phi) |v_inf| w/|w| + sin(phi) v_inf x w/|w|),
-    //   w = z x v_inf. delta and phi are free parameters of psi (Category C).
-    if (!c.contains("body_mu_km3_s2")) throw std::invalid_argument(where + ": field body_mu_km3_s2 is missing");
-    const std::string mu_name = "mu_" + e.id, delta = "delta_" + e.id, phi = "phi_" + e.id;
-    p.parameters.push_back({mu_name, "gravitational parameter of the swing-by body " + e.id,
-                            U.length_name + "^3/" + U.time_name + "^2",
-                            c.at("body_mu_km3_s2").get<double>() * U.time_s * U.time_s /
-                                (U.length_km * U.length_km * U.length_km)});
-    const ex d = S.get(delta), f = S.get(phi);
-    e.free_parameters = {delta, phi};
-    std::vector<ex> vinf(3);
-    for (int i = 0; i < 3; ++i) vinf[i] = xm[3 + i] - arrival[3 + i];
-    const auto cross = [](const std::vector<ex>& a, const std::vector<ex>& b) {
-      return std::vector<ex>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    };
-    const std::vector<ex> w = cross({0, 0, 1}, vinf), vw = cross(vinf, w);
-    const ex wn = GiNaC::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-    const ex vn = GiNaC::sqrt(vinf[0] * vinf[0] + vinf[1] * vinf[1] + vinf[2] * vinf[2]);
-    for (int i = 0; i < 3; ++i)
-      e.map[3 + i] = arrival[3 + i] + GiNaC::cos(d) * vinf[i] +
-                     GiNaC::sin(d) * (GiNaC::cos(f) * vn * w[i] + GiNaC::sin(f) * vw[i]) / wn;
-    if (c.contains("min_periapsis_radius_km")) {
-      // r_p = mu/v_inf^2 (1/sin(delta/2) - 1) >= r_min, written without the 1/sin singularity at
-      // delta = 0 and for either sign of delta: sin^2(delta/2) (1 + r_min v_inf^2/mu)^2 - 1 <= 0.
-      const std::string rmin = "rmin_" + e.id;
-      p.parameters.push_back({rmin, "lowest periapsis radius of the swing-by at " + e.id, U.length_name,
-                              c.at("min_periapsis_radius_km").get<double>() / U.length_km});
-      const ex k = 1 + S.get(rmin) * vn * vn / S.get(mu_name);
-      e.c.push_back((1 - GiNaC::cos(d)) / 2 * k * k - 1);
-      e.c_names.push_back("sin(delta/2)^2 (1 + rmin v_inf^2/mu)^2 - 1 (<= 0: periapsis radius >= rmin)");
-      e.c_inequality.push_back(true);
-    }
-  }
+  if (e.kind == "gravity_assist") gravity_assist(p, c, e, xm, arrival);
   return e;
 }
 
-}  // namespace
-
-Problem build_problem(const json& spec) {
-  Problem p;
+// The problem's name, its dynamics model (with its perturbations) and its objective and units;
+// returns whether J2 is one of the perturbations.
+bool describe(Problem& p, const json& spec) {
   p.id = spec.at("problem").at("id").get<std::string>();
   const json& dyn = spec.at("dynamics");
   p.propulsion = dyn.at("propulsion").get<std::string>();
-  const json perturbations = dyn.value("perturbations", json::array());
   bool j2 = false;
-  for (const auto& q : perturbations) {
+  for (const auto& q : dyn.value("perturbations", json::array())) {
     if (q.at("kind") == "j2") {
       j2 = true;
       p.perturbations.push_back("j2");
@@ -331,11 +348,16 @@ Problem build_problem(const json& spec) {
   p.dynamics_model = dyn.at("model").get<std::string>() + (j2 ? "_j2" : "") + "_" +
                      dyn.at("coordinates").get<std::string>() + "_" + p.propulsion;
   p.objective = spec.at("objective").at("kind").get<std::string>();
-  const json& central = spec.at("central_body");
-  p.units = units_for(central);
-  const bool sail = p.propulsion == "solar_sail";
+  p.units = units_for(spec.at("central_body"));
+  return j2;
+}
 
+// The states, controls and parameters: position and velocity in the central body's field, and
+// a sail's normal, or a thruster's throttle and direction with the mass it burns.
+void spacecraft(Problem& p, const json& spec, bool j2) {
+  const json& central = spec.at("central_body");
   const json& sc = spec.at("spacecraft");
+  const bool sail = p.propulsion == "solar_sail";
   // Minimum initial mass: m0 is unknown and the final (dry + payload) mass is given, so it sets the
   // mass scale; otherwise m0 does.
   p.free_initial_mass = p.objective == "minimum_initial_mass";
@@ -380,7 +402,11 @@ Problem build_problem(const json& spec) {
     p.parameters.push_back({"Tmax", "maximum thrust", mass_unit + "*" + L + "/" + T + "^2", thrust});
     p.parameters.push_back({"c", "exhaust velocity Isp*g0", L + "/" + T, exhaust});
   }
+}
 
+// The symbols of the model, in a fixed order: GiNaC orders terms by the symbols' creation, so
+// this order fixes the text of every expression derived from them.
+void register_symbols(Problem& p) {
   auto& S = p.symbols;
   for (const auto& s : p.states) {
     S.get(s.name);
@@ -390,7 +416,14 @@ Problem build_problem(const json& spec) {
   for (const auto& q : p.parameters) S.get(q.name);
   S.get("lambda0");
   S.get("t");
-  const ex eps = S.get("eps");
+  S.get("eps");
+}
+
+// f(x, u): gravity (with J2), the sail's or the thruster's acceleration, the user's
+// accelerations, and the thruster's mass flow; the coast dynamics for coasting targets.
+void dynamics(Problem& p, const json& perturbations, bool j2) {
+  auto& S = p.symbols;
+  const bool sail = p.propulsion == "solar_sail";
   const std::vector<ex> r = {S.get("rx"), S.get("ry"), S.get("rz")}, v = {S.get("vx"), S.get("vy"), S.get("vz")};
   const ex MU = S.get("mu");
   ex J2sym, Rsym;
@@ -424,15 +457,19 @@ Problem build_problem(const json& spec) {
     }
   p.f = {v[0], v[1], v[2], accel[0], accel[1], accel[2]};
   if (!sail) p.f.push_back(-S.get("Tmax") * S.get("u") / S.get("c"));
+}
 
+// The running cost L (no endpoint cost).
+void objective(Problem& p) {
+  auto& S = p.symbols;
   if (p.objective == "minimum_fuel" || p.objective == "minimum_initial_mass") {
-    if (sail)
+    if (p.propulsion == "solar_sail")
       throw std::invalid_argument("field /objective/kind: a solar sail uses no fuel; minimize the time instead");
     // Fuel (mass flow) with the quadratic homotopy term: eps = 1 is an energy-like problem,
     // eps = 0 the bang-bang fuel-optimal one (Bertrand & Epenoy; Jiang, Baoyin & Li 2012).
     // With m(tf) fixed, the fuel m0 - m(tf) is m0 up to a constant: the same running cost
     // minimizes the initial mass.
-    const ex TM = S.get("Tmax"), C = S.get("c"), u = S.get("u");
+    const ex TM = S.get("Tmax"), C = S.get("c"), u = S.get("u"), eps = S.get("eps");
     p.running_cost = TM / C * (u - eps * u * (1 - u));
   } else if (p.objective == "minimum_time") {
     p.running_cost = 1;
@@ -440,15 +477,18 @@ Problem build_problem(const json& spec) {
     throw std::invalid_argument("field /objective/kind: " + p.objective + " is not supported");
   }
   p.endpoint_cost = 0;
+}
 
-  const json& time = spec.at("time");
+// t0 = 0 and tf (or its window), a sliding departure's window and the calendar epoch.
+void times(Problem& p, const json& time) {
+  const double time_s = p.units.time_s;
   p.t0 = 0;
   p.free_final_time = time.at("final_time") == "free";
   if (p.free_final_time) {
-    p.tf_min = time.at("tof_min_days").get<double>() * helios::astro::DAY_S / U.time_s;
-    p.tf = time.at("tof_max_days").get<double>() * helios::astro::DAY_S / U.time_s;
+    p.tf_min = time.at("tof_min_days").get<double>() * helios::astro::DAY_S / time_s;
+    p.tf = time.at("tof_max_days").get<double>() * helios::astro::DAY_S / time_s;
   } else {
-    p.tf = time.at("tof_days").get<double>() * helios::astro::DAY_S / U.time_s;
+    p.tf = time.at("tof_days").get<double>() * helios::astro::DAY_S / time_s;
   }
   p.final_mass = 1;
   p.free_departure = time.value("departure", "fixed") == "free";
@@ -457,79 +497,90 @@ Problem build_problem(const json& spec) {
       throw std::invalid_argument("field /time/departure: a free departure needs a fixed total time of flight");
     if (!time.contains("t0_window_days") || !time.contains("epoch_mjd2000"))
       throw std::invalid_argument("field /time: a free departure needs t0_window_days and epoch_mjd2000");
-    p.t0_min = time.at("t0_window_days")[0].get<double>() * helios::astro::DAY_S / U.time_s;
-    p.t0_max = time.at("t0_window_days")[1].get<double>() * helios::astro::DAY_S / U.time_s;
-    if (!(p.t0_max > p.t0_min))
-      throw std::invalid_argument("field /time/t0_window_days: the window is empty");
+    p.t0_min = time.at("t0_window_days")[0].get<double>() * helios::astro::DAY_S / time_s;
+    p.t0_max = time.at("t0_window_days")[1].get<double>() * helios::astro::DAY_S / time_s;
+    if (!(p.t0_max > p.t0_min)) throw std::invalid_argument("field /time/t0_window_days: the window is empty");
   }
   if (time.contains("epoch_mjd2000")) {
     p.epoch_mjd2000 = time.at("epoch_mjd2000").get<double>();
     p.has_epoch = true;
   }
+}
 
+// psi(t_k, x(t_k), p) of an endpoint constraint: the state meets the target (a flyby in
+// position only), a flyby's bounded relative speed, and the mass where it is known.
+EndpointConstraint endpoint_constraint(Problem& p, const json& c) {
+  auto& S = p.symbols;
+  EndpointConstraint k;
+  k.id = c.at("id").get<std::string>();
+  k.kind = c.at("kind").get<std::string>();
+  k.at = c.at("at").get<std::string>();
+  k.target = c.at("target");
+  const std::string where = "constraint '" + k.id + "'";
+  if (k.kind != "initial_state" && k.kind != "rendezvous" && !(k.kind == "flyby" && k.at == "tf"))
+    throw std::invalid_argument(where + ": a " + k.kind + " is an interior event, not at " + k.at);
+  if (k.target.at("kind") == "coasting" && p.free_departure)
+    throw std::invalid_argument(where + ": a coasting target needs a fixed departure epoch");
+  // The event moves when its own time is free, or with a sliding departure (tf = t0 + tof).
+  const bool moving = (k.at == "tf" && p.free_final_time) || p.free_departure;
+  std::vector<ex> rates;
+  const std::vector<ex> target = target_state(p, k.id, k.target, k.at, moving, rates);
+  const std::size_t matched = k.kind == "flyby" ? 3 : 6;  // a flyby matches position only
+  for (std::size_t j = 0; j < matched; ++j) {
+    const std::string& n = kPositionVelocity[j];
+    k.psi.push_back(S.get(n) - target[j]);
+    k.psi_names.push_back(n + " - " + to_text(target[j]));
+    k.psi_inequality.push_back(false);
+    k.fixed_states.push_back(n);
+    k.psi_t.push_back(-rates[j]);
+  }
+  if (c.contains("max_relative_speed_km_s")) {
+    if (k.kind != "flyby") throw std::invalid_argument(where + ": only a flyby has a relative speed to bound");
+    std::vector<ex> relative(3);
+    for (int i = 0; i < 3; ++i) relative[i] = S.get(kPositionVelocity[3 + i]) - target[3 + i];
+    ex rate = 0;
+    for (int i = 0; i < 3; ++i) rate += 2 * relative[i] * -rates[3 + i];
+    k.psi.push_back(speed_bound(p, k.id, relative, c.at("max_relative_speed_km_s").get<double>()));
+    k.psi_names.push_back("|v - v_" + k.id + "|^2 - vmax_" + k.id + "^2 (<= 0)");
+    k.psi_inequality.push_back(true);
+    k.psi_t.push_back(rate);
+  }
+  const auto fix_mass = [&](const ex& value, const std::string& name) {
+    k.psi.push_back(S.get("m") - value);
+    k.psi_names.push_back(name);
+    k.psi_inequality.push_back(false);
+    k.fixed_states.push_back("m");
+    k.psi_t.push_back(0);
+  };
+  if (k.kind == "initial_state") {
+    if (k.at != "t0") throw std::invalid_argument(where + ": an initial state must be at t0");
+    if (k.target.at("kind") == "coasting") throw std::invalid_argument(where + ": a departure cannot coast");
+    // The spacecraft's initial mass is known: mass is fixed at t0 as well.
+    if (p.has_state("m") && !p.free_initial_mass) fix_mass(1, "m - 1");
+  } else if (k.at != "tf") {
+    throw std::invalid_argument(where + ": rendezvous is supported at tf only");
+  } else if (p.free_initial_mass) {
+    // Minimum initial mass: the final (dry + payload) mass is given.
+    fix_mass(p.final_mass, "m - m_final");
+  }
+  return k;
+}
+
+}  // namespace
+
+Problem build_problem(const json& spec) {
+  Problem p;
+  const bool j2 = describe(p, spec);
+  spacecraft(p, spec, j2);
+  register_symbols(p);
+  dynamics(p, spec.at("dynamics").value("perturbations", json::array()), j2);
+  objective(p);
+  times(p, spec.at("time"));
   for (const auto& c : spec.at("constraints")) {
-    const std::string at = c.at("at");
-    if (at == "interior") {
+    if (c.at("at") == "interior")
       p.events.push_back(interior_event(p, c));
-      continue;
-    }
-    EndpointConstraint k;
-    k.id = c.at("id").get<std::string>();
-    k.kind = c.at("kind").get<std::string>();
-    k.at = at;
-    k.target = c.at("target");
-    if (k.kind != "initial_state" && k.kind != "rendezvous" && !(k.kind == "flyby" && at == "tf"))
-      throw std::invalid_argument("constraint '" + k.id + "': a " + k.kind + " is an interior event, not at " + at);
-    if (k.target.at("kind") == "coasting" && p.free_departure)
-      throw std::invalid_argument("constraint '" + k.id + "': a coasting target needs a fixed departure epoch");
-    // The event moves when its own time is free, or with a sliding departure (tf = t0 + tof).
-    const bool moving = (k.at == "tf" && p.free_final_time) || p.free_departure;
-    std::vector<ex> rates;
-    const std::vector<ex> target = target_state(p, k.id, k.target, k.at, moving, rates);
-    const std::size_t matched = k.kind == "flyby" ? 3 : 6;  // a flyby matches position only
-    for (std::size_t j = 0; j < matched; ++j) {
-      const std::string& n = kPositionVelocity[j];
-      k.psi.push_back(S.get(n) - target[j]);
-      k.psi_names.push_back(n + " - " + to_text(target[j]));
-      k.psi_inequality.push_back(false);
-      k.fixed_states.push_back(n);
-      k.psi_t.push_back(-rates[j]);
-    }
-    if (c.contains("max_relative_speed_km_s")) {
-      if (k.kind != "flyby")
-        throw std::invalid_argument("constraint '" + k.id + "': only a flyby has a relative speed to bound");
-      std::vector<ex> relative(3);
-      for (int i = 0; i < 3; ++i) relative[i] = S.get(kPositionVelocity[3 + i]) - target[3 + i];
-      ex rate = 0;
-      for (int i = 0; i < 3; ++i) rate += 2 * relative[i] * -rates[3 + i];
-      k.psi.push_back(speed_bound(p, k.id, relative, c.at("max_relative_speed_km_s").get<double>()));
-      k.psi_names.push_back("|v - v_" + k.id + "|^2 - vmax_" + k.id + "^2 (<= 0)");
-      k.psi_inequality.push_back(true);
-      k.psi_t.push_back(rate);
-    }
-    if (k.kind == "initial_state") {
-      if (k.at != "t0") throw std::invalid_argument("constraint '" + k.id + "': an initial state must be at t0");
-      if (k.target.at("kind") == "coasting")
-        throw std::invalid_argument("constraint '" + k.id + "': a departure cannot coast");
-      if (p.has_state("m") && !p.free_initial_mass) {
-        // The spacecraft's initial mass is known: mass is fixed at t0 as well.
-        k.psi.push_back(S.get("m") - 1);
-        k.psi_names.push_back("m - 1");
-        k.psi_inequality.push_back(false);
-        k.fixed_states.push_back("m");
-        k.psi_t.push_back(0);
-      }
-    } else if (k.at != "tf") {
-      throw std::invalid_argument("constraint '" + k.id + "': rendezvous is supported at tf only");
-    } else if (p.free_initial_mass) {
-      // Minimum initial mass: the final (dry + payload) mass is given.
-      k.psi.push_back(S.get("m") - p.final_mass);
-      k.psi_names.push_back("m - m_final");
-      k.psi_inequality.push_back(false);
-      k.fixed_states.push_back("m");
-      k.psi_t.push_back(0);
-    }
-    p.constraints.push_back(k);
+    else
+      p.constraints.push_back(endpoint_constraint(p, c));
   }
   for (std::size_t i = 1; i < p.events.size(); ++i)
     if (p.events[i].window_lo < p.events[i - 1].window_lo)
