@@ -7,6 +7,7 @@
 #include <string>
 
 #include "helios/io/schema.hpp"
+#include "helios/pmp/derivation.hpp"
 #include "helios/spec/parse.hpp"
 #include "helios/symbolic/expr.hpp"
 #include "test_helpers.hpp"
@@ -250,8 +251,7 @@ TEST(Derive, BoundsAreRowsOfPsiWithTheirOwnMultipliers) {
   EXPECT_EQ(speed["inequality"]["multiplier"], "nu_arrival_4");
   EXPECT_EQ(speed["inequality"]["inactive_expression"], "nu_arrival_4");
   SymbolTable t;
-  for (const char* name : {"l_vx_tf", "vx_tf", "arrival_vx", "nu_arrival_4"})
-    t.get(name);
+  for (const char* name : {"l_vx_tf", "vx_tf", "arrival_vx", "nu_arrival_4"}) t.get(name);
   const auto same = [&](const std::string& a, const std::string& b) {
     return (t.parse(a, "a") - t.parse(b, "b")).expand().is_zero();
   };
@@ -273,6 +273,69 @@ TEST(Derive, SailWithFuelObjectiveIsRefused) {
   json spec = helios::spec::parse_problem_text(helios::io::read_text(path), path);
   spec["objective"]["kind"] = "minimum_fuel";
   EXPECT_THROW(helios::pmp::derive_from_spec(spec), std::invalid_argument);
+}
+
+helios::pmp::Problem problem_of(const std::string& scenario) {
+  const std::string path = kSource + "/scenarios/" + scenario + "/problem.txt";
+  return helios::pmp::build_problem(helios::spec::parse_problem_text(helios::io::read_text(path), path));
+}
+
+// The typed derivation's canonical system, exactly (not numerically): x' = dH/dlambda is the
+// dynamics and lambda' = -dH/dx, with H = lambda0 L + lambda^T f.
+TEST(Derivation, CanonicalSystemIsThePartialsOfH) {
+  for (const char* scenario : {"S01", "S05", "S11"}) {
+    const helios::pmp::Derivation d = helios::pmp::derive_conditions(problem_of(scenario));
+    auto S = d.problem.symbols;
+    GiNaC::ex H = S.get("lambda0") * d.problem.running_cost;
+    for (std::size_t i = 0; i < d.problem.states.size(); ++i)
+      H += S.get(helios::pmp::costate_name(d.problem.states[i].name)) * d.problem.f[i];
+    EXPECT_TRUE((d.hamiltonian - H).expand().is_zero()) << scenario;
+    ASSERT_EQ(d.costate_odes.size(), d.problem.states.size());
+    for (std::size_t i = 0; i < d.problem.states.size(); ++i) {
+      const std::string& x = d.problem.states[i].name;
+      EXPECT_TRUE((d.state_odes[i] - d.problem.f[i]).expand().is_zero()) << scenario << " " << x;
+      EXPECT_TRUE((d.costate_odes[i] + d.hamiltonian.diff(S.get(x))).expand().is_zero()) << scenario << " " << x;
+    }
+  }
+}
+
+// S01's control law: the primer vector for the direction, a smoothed throttle whose switching
+// function is dH/du at u = 0 and eps = 0; a square shooting system; the artifact is its text.
+TEST(Derivation, S01ControlLawAndShootingSystem) {
+  const helios::pmp::Problem problem = problem_of("S01");
+  const helios::pmp::Derivation d = helios::pmp::derive_conditions(problem);
+  EXPECT_EQ(d.control.direction.costate_block, "l_vx, l_vy, l_vz");
+  EXPECT_FALSE(d.control.sail.has_value());
+  ASSERT_TRUE(d.control.throttle.has_value());
+  EXPECT_TRUE(d.smoothed);
+  auto S = d.problem.symbols;
+  const GiNaC::ex dHdu = d.hamiltonian.diff(S.get("u"));
+  GiNaC::exmap on_law = {{S.get("u"), 0}, {S.get("eps"), 0}};
+  for (std::size_t j = 0; j < 3; ++j) on_law[S.get(d.control.direction.controls[j])] = d.control.direction.law[j];
+  const GiNaC::ex difference = dHdu.subs(on_law) - d.control.throttle->switching;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> value(0.2, 1.5);
+  Values at;
+  for (const auto& name : helios::symbolic::free_symbols(difference)) at[name] = value(rng);
+  EXPECT_TRUE(IsClose(helios::symbolic::evaluate(difference, S, at), 0, 1e-14, 0));
+  EXPECT_EQ(d.shooting.variables.size(), d.shooting.equations.size());
+  EXPECT_EQ(d.shooting.variables.front().name, "lambda0");
+  EXPECT_EQ(d.shooting.equations.back().name, "normalization");
+  EXPECT_EQ(helios::pmp::derivation_json(d).dump(), helios::pmp::derive(problem).dump());
+}
+
+// A rendezvous with a 30-day stay (S07) leaves from the target's state: the position and
+// velocity costates after it are shooting variables with jump rows, the mass's is explicit.
+TEST(Derivation, CostatesAfterAStayAreShootingVariables) {
+  const helios::pmp::Derivation d = helios::pmp::derive_conditions(problem_of("S07"));
+  ASSERT_EQ(d.events.size(), 3u);
+  for (const auto& e : d.events) {
+    ASSERT_EQ(e.costate_map.size(), 7u);
+    EXPECT_EQ(e.psi.size(), e.multipliers.size());
+    for (std::size_t s = 0; s < 6; ++s) EXPECT_TRUE(e.costate_map[s].shooting_variable) << e.event.id << " " << s;
+    EXPECT_FALSE(e.costate_map[6].shooting_variable) << e.event.id;
+  }
+  EXPECT_EQ(d.shooting.variables.size(), d.shooting.equations.size());
 }
 
 }  // namespace

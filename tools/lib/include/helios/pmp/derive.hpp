@@ -2,11 +2,13 @@
 // The builtin symbolic PMP engine (design.md section 4): from a problem to the Hamiltonian,
 // state/costate ODEs, optimal control law, transversality conditions and the shooting system.
 #include "helios/io/json_io.hpp"
+#include "helios/pmp/derivation.hpp"
 #include "helios/pmp/model.hpp"
 
 namespace helios::pmp {
 
-// Derives the necessary conditions of `problem` and returns the derivation artifact.
+// Derives the necessary conditions of `problem` and returns the derivation artifact
+// (derivation_json of derive_conditions).
 io::json derive(const Problem& problem);
 
 // The derivation's "units" and "times" for `problem` (normalized scales; t0, tf or, when tf is

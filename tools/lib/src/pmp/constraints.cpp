@@ -1,0 +1,297 @@
+// The constraints of a problem from its spec: the targets' states as parameters (ephemerides,
+// Keplerian orbits, coasting or fixed states), endpoint constraints psi and interior events.
+#include "constraints.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "helios/astro/constants.hpp"
+#include "helios/symbolic/expr.hpp"
+
+namespace helios::pmp {
+namespace {
+
+using GiNaC::ex;
+using io::json;
+using symbolic::to_text;
+
+const std::vector<std::string> kPositionVelocity = {"rx", "ry", "rz", "vx", "vy", "vz"};
+
+// Registers a body on a Keplerian orbit (once per name) so the runtime can propagate it.
+void add_orbit_body(Problem& p, const std::string& name, const json& el) {
+  for (const auto& b : p.orbit_bodies)
+    if (b.name == name) return;
+  using namespace helios::astro;
+  OrbitBody b;
+  b.name = name;
+  b.elements.a = el.at("a_AU").get<double>() * AU_KM / p.units.length_km;
+  b.elements.e = el.at("e").get<double>();
+  b.elements.i = el.at("i_deg").get<double>() * DEG_TO_RAD;
+  b.elements.raan = el.at("raan_deg").get<double>() * DEG_TO_RAD;
+  b.elements.argp = el.at("argp_deg").get<double>() * DEG_TO_RAD;
+  if (el.contains("mean_anomaly_deg")) {
+    b.elements.mean_anomaly = el.at("mean_anomaly_deg").get<double>() * DEG_TO_RAD;
+  } else {
+    // True to mean anomaly through the eccentric anomaly.
+    const double nu = el.at("true_anomaly_deg").get<double>() * DEG_TO_RAD, e = b.elements.e;
+    const double E = 2 * std::atan2(std::sqrt(1 - e) * std::sin(nu / 2), std::sqrt(1 + e) * std::cos(nu / 2));
+    b.elements.mean_anomaly = E - e * std::sin(E);
+  }
+  b.epoch = (el.at("epoch_mjd2000").get<double>() - p.epoch_mjd2000) * DAY_S / p.units.time_s;
+  p.orbit_bodies.push_back(b);
+}
+
+// The target's position and velocity at `event` (t0, tf, an interior event's id or <id>_dep) as
+// parameters <prefix>_rx ... <prefix>_vz; `rates` gets their time derivatives, 0 unless `moving`.
+std::vector<ex> target_state(Problem& p, const std::string& prefix, const json& target, const std::string& event,
+                             bool moving, std::vector<ex>& rates) {
+  auto& S = p.symbols;
+  const Units& U = p.units;
+  const std::string L = U.length_name, T = U.time_name;
+  const std::string kind = target.at("kind");
+  if ((kind == "body" || kind == "orbit") && !p.has_epoch)
+    throw std::invalid_argument("field /time/epoch_mjd2000 is missing but target '" + prefix +
+                                "' follows a body's motion");
+  if (kind == "orbit") add_orbit_body(p, target.at("body"), target.at("elements"));
+  std::vector<ex> state;
+  rates.clear();
+  for (std::size_t j = 0; j < kPositionVelocity.size(); ++j) {
+    const std::string& n = kPositionVelocity[j];
+    const bool is_pos = j < 3;
+    const int i = static_cast<int>(j % 3);
+    const std::string unit = is_pos ? L : L + "/" + T;
+    const std::string name = prefix + "_" + n;
+    const std::string what = std::string(is_pos ? "position " : "velocity ") + n[1];
+    state.push_back(S.get(name));
+    ex rate = 0;
+    if (kind == "fixed_state") {
+      const double value = is_pos ? target.at("position_km")[i].get<double>() / U.length_km
+                                  : target.at("velocity_km_s")[i].get<double>() / U.speed_km_s();
+      p.parameters.push_back({name, what + " of target " + prefix, unit, value});
+    } else if (kind == "body" || kind == "orbit") {
+      const std::string body = target.at("body").get<std::string>();
+      const std::string model = kind == "body" ? "JPL low-precision ephemeris" : "Keplerian orbit";
+      p.parameters.push_back(
+          {name, what + " of " + body + " (" + model + ") at " + event, unit, 0.0, "ephemeris:" + body + ":" + event});
+      if (moving) {
+        const std::string rname = name + "_rate";
+        p.parameters.push_back({rname, "time derivative of " + name + " (of the ephemeris model)", unit + "/" + T, 0.0,
+                                "ephemeris_rate:" + body + ":" + event});
+        rate = S.get(rname);
+      }
+    } else {
+      const std::string start = name + "_0";
+      const double value = is_pos ? target.at("position_km")[i].get<double>() / U.length_km
+                                  : target.at("velocity_km_s")[i].get<double>() / U.speed_km_s();
+      p.parameters.push_back({start, what + " of coasting target " + prefix + " at t0", unit, value});
+      S.get(start);
+      p.parameters.push_back({name, what + " of coasting target " + prefix + " at " + event + " (propagated unpowered)",
+                              unit, 0.0, "coast:" + prefix + ":" + event});
+    }
+    rates.push_back(rate);
+  }
+  if (kind == "coasting" && moving) {
+    // A coasting target moves by the coast dynamics at its own state.
+    GiNaC::exmap at_target;
+    for (std::size_t i = 0; i < kPositionVelocity.size(); ++i) at_target[S.get(kPositionVelocity[i])] = state[i];
+    for (std::size_t j = 0; j < kPositionVelocity.size(); ++j) rates[j] = p.coast_f[j].subs(at_target);
+  }
+  for (std::size_t j = 0; j < state.size(); ++j)
+    if (!rates[j].is_zero()) p.parameter_rates[GiNaC::ex_to<GiNaC::symbol>(state[j]).get_name()] = rates[j];
+  return state;
+}
+
+// A bound on the speed relative to a target, |v_rel|^2 - vmax^2 <= 0 (the square keeps it smooth
+// where v_rel = 0); vmax becomes the parameter vmax_<id>.
+ex speed_bound(Problem& p, const std::string& id, const std::vector<ex>& relative, double max_km_s) {
+  const std::string name = "vmax_" + id;
+  p.parameters.push_back({name, "highest speed relative to " + id, p.units.length_name + "/" + p.units.time_name,
+                          max_km_s / p.units.speed_km_s()});
+  const ex vmax = p.symbols.get(name);
+  return relative[0] * relative[0] + relative[1] * relative[1] + relative[2] * relative[2] - vmax * vmax;
+}
+
+// An interior event's identity and window; throws for what the engine cannot formulate.
+InteriorEvent event_window(const Problem& p, const json& c) {
+  InteriorEvent e;
+  e.id = c.at("id");
+  e.kind = c.at("kind");
+  e.target = c.at("target");
+  const std::string where = "constraint '" + e.id + "'";
+  const double day = helios::astro::DAY_S / p.units.time_s;
+  e.window_lo = c.at("window_days")[0].get<double>() * day;
+  e.window_hi = c.at("window_days")[1].get<double>() * day;
+  if (!(e.window_hi > e.window_lo)) throw std::invalid_argument(where + ": field window_days is empty");
+  if (e.target.at("kind") == "coasting" || e.target.at("kind") == "fixed_state")
+    throw std::invalid_argument(where + ": an interior event needs a moving body (an ephemeris or an orbit)");
+  const double tf_max = p.free_departure ? p.t0_max + p.tf : p.tf;
+  if (e.window_lo <= (p.free_departure ? p.t0_min : p.t0) || e.window_hi >= tf_max)
+    throw std::invalid_argument(where + ": its window must lie inside the time of flight");
+  e.duration = c.value("stay_days", 0.0) * day;
+  return e;
+}
+
+// The conditions c on the arriving state x-: it meets the target (a flyby or swing-by in
+// position only), a flyby's bounded relative speed, and the window as two bounds on the epoch
+// (two-pass): window_lo - t <= 0 and t - window_hi <= 0.
+void arrival_conditions(Problem& p, const json& c, InteriorEvent& e, const std::vector<ex>& xm,
+                        const std::vector<ex>& arrival) {
+  const std::size_t matched = e.kind == "rendezvous" ? 6 : 3;
+  for (std::size_t j = 0; j < matched; ++j) {
+    e.c.push_back(xm[j] - arrival[j]);
+    e.c_names.push_back(kPositionVelocity[j] + " - " + to_text(arrival[j]));
+    e.c_inequality.push_back(false);
+  }
+  if (c.contains("max_relative_speed_km_s")) {
+    if (e.kind != "flyby")
+      throw std::invalid_argument("constraint '" + e.id + "': only a flyby has a relative speed to bound");
+    std::vector<ex> relative(3);
+    for (int i = 0; i < 3; ++i) relative[i] = xm[3 + i] - arrival[3 + i];
+    e.c.push_back(speed_bound(p, e.id, relative, c.at("max_relative_speed_km_s").get<double>()));
+    e.c_names.push_back("|v - v_" + e.id + "|^2 - vmax_" + e.id + "^2 (<= 0)");
+    e.c_inequality.push_back(true);
+  }
+  const ex t = p.symbols.get(event_time_name(e.id));
+  e.c.push_back(e.window_lo - t);
+  e.c_names.push_back("window start - " + event_time_name(e.id) + " (<= 0: not before the window)");
+  e.c_inequality.push_back(true);
+  e.c.push_back(t - e.window_hi);
+  e.c_names.push_back(event_time_name(e.id) + " - window end (<= 0: not after the window)");
+  e.c_inequality.push_back(true);
+}
+
+// Unpowered patched-conic swing-by: the excess velocity v_inf = v- - v_body keeps its size and
+// turns by delta, at azimuth phi about v_inf measured from the ecliptic-parallel normal w:
+//   v_inf+ = cos(delta) v_inf + sin(delta) (cos(phi) |v_inf| w/|w| + sin(phi) v_inf x w/|w|),
+//   w = z x v_inf. delta and phi are free parameters of psi (Category C).
+void gravity_assist(Problem& p, const json& c, InteriorEvent& e, const std::vector<ex>& xm,
+                    const std::vector<ex>& arrival) {
+  auto& S = p.symbols;
+  const Units& U = p.units;
+  const std::string where = "constraint '" + e.id + "'";
+  if (!c.contains("body_mu_km3_s2")) throw std::invalid_argument(where + ": field body_mu_km3_s2 is missing");
+  const std::string mu_name = "mu_" + e.id, delta = "delta_" + e.id, phi = "phi_" + e.id;
+  p.parameters.push_back(
+      {mu_name, "gravitational parameter of the swing-by body " + e.id, U.length_name + "^3/" + U.time_name + "^2",
+       c.at("body_mu_km3_s2").get<double>() * U.time_s * U.time_s / (U.length_km * U.length_km * U.length_km)});
+  const ex d = S.get(delta), f = S.get(phi);
+  e.free_parameters = {delta, phi};
+  std::vector<ex> vinf(3);
+  for (int i = 0; i < 3; ++i) vinf[i] = xm[3 + i] - arrival[3 + i];
+  const auto cross = [](const std::vector<ex>& a, const std::vector<ex>& b) {
+    return std::vector<ex>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  };
+  const std::vector<ex> w = cross({0, 0, 1}, vinf), vw = cross(vinf, w);
+  const ex wn = GiNaC::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  const ex vn = GiNaC::sqrt(vinf[0] * vinf[0] + vinf[1] * vinf[1] + vinf[2] * vinf[2]);
+  for (int i = 0; i < 3; ++i)
+    e.map[3 + i] = arrival[3 + i] + GiNaC::cos(d) * vinf[i] +
+                   GiNaC::sin(d) * (GiNaC::cos(f) * vn * w[i] + GiNaC::sin(f) * vw[i]) / wn;
+  if (c.contains("min_periapsis_radius_km")) {
+    // r_p = mu/v_inf^2 (1/sin(delta/2) - 1) >= r_min, written without the 1/sin singularity at
+    // delta = 0 and for either sign of delta: sin^2(delta/2) (1 + r_min v_inf^2/mu)^2 - 1 <= 0.
+    const std::string rmin = "rmin_" + e.id;
+    p.parameters.push_back({rmin, "lowest periapsis radius of the swing-by at " + e.id, U.length_name,
+                            c.at("min_periapsis_radius_km").get<double>() / U.length_km});
+    const ex k = 1 + S.get(rmin) * vn * vn / S.get(mu_name);
+    e.c.push_back((1 - GiNaC::cos(d)) / 2 * k * k - 1);
+    e.c_names.push_back("sin(delta/2)^2 (1 + rmin v_inf^2/mu)^2 - 1 (<= 0: periapsis radius >= rmin)");
+    e.c_inequality.push_back(true);
+  }
+}
+
+}  // namespace
+
+// An interior event: conditions c on the arriving state and the map g to the leaving state.
+InteriorEvent interior_event(Problem& p, const json& c) {
+  auto& S = p.symbols;
+  InteriorEvent e = event_window(p, c);
+  const std::string where = "constraint '" + e.id + "'";
+  const double drop = c.value("mass_drop_kg", 0.0) / p.units.mass_kg;
+  if ((e.duration > 0 || drop > 0) && e.kind != "rendezvous")
+    throw std::invalid_argument(where + ": only a rendezvous has a stay or a mass drop");
+  if (drop > 0 && !p.has_state("m")) throw std::invalid_argument(where + ": a mass drop needs a mass state");
+
+  std::vector<ex> rates;
+  const std::vector<ex> arrival = target_state(p, e.id, e.target, e.id, true, rates);
+  std::vector<ex> xm;
+  for (const auto& s : p.states) xm.push_back(S.get(before_event(s.name, e.id)));
+  for (const auto& s : p.states) S.get(after_event(s.name, e.id));
+  S.get(event_time_name(e.id));
+  arrival_conditions(p, c, e, xm, arrival);
+  e.map = xm;  // continuous unless changed below
+  if (e.kind == "rendezvous" && e.duration > 0) {
+    // After the stay the spacecraft leaves from the target's state at t_<id> + stay.
+    const std::vector<ex> departure = target_state(p, e.id + "_dep", e.target, e.id + "_dep", true, rates);
+    for (std::size_t j = 0; j < 6; ++j) e.map[j] = departure[j];
+  }
+  if (drop > 0) {
+    const std::string name = "drop_" + e.id;
+    p.parameters.push_back({name, "mass left at " + e.id, "initial mass", drop});
+    const std::size_t m = 6;
+    e.map[m] = xm[m] - S.get(name);
+  }
+  if (e.kind == "gravity_assist") gravity_assist(p, c, e, xm, arrival);
+  return e;
+}
+
+// psi(t_k, x(t_k), p) of an endpoint constraint: the state meets the target (a flyby in
+// position only), a flyby's bounded relative speed, and the mass where it is known.
+EndpointConstraint endpoint_constraint(Problem& p, const json& c) {
+  auto& S = p.symbols;
+  EndpointConstraint k;
+  k.id = c.at("id").get<std::string>();
+  k.kind = c.at("kind").get<std::string>();
+  k.at = c.at("at").get<std::string>();
+  k.target = c.at("target");
+  const std::string where = "constraint '" + k.id + "'";
+  if (k.kind != "initial_state" && k.kind != "rendezvous" && !(k.kind == "flyby" && k.at == "tf"))
+    throw std::invalid_argument(where + ": a " + k.kind + " is an interior event, not at " + k.at);
+  if (k.target.at("kind") == "coasting" && p.free_departure)
+    throw std::invalid_argument(where + ": a coasting target needs a fixed departure epoch");
+  // The event moves when its own time is free, or with a sliding departure (tf = t0 + tof).
+  const bool moving = (k.at == "tf" && p.free_final_time) || p.free_departure;
+  std::vector<ex> rates;
+  const std::vector<ex> target = target_state(p, k.id, k.target, k.at, moving, rates);
+  const std::size_t matched = k.kind == "flyby" ? 3 : 6;  // a flyby matches position only
+  for (std::size_t j = 0; j < matched; ++j) {
+    const std::string& n = kPositionVelocity[j];
+    k.psi.push_back(S.get(n) - target[j]);
+    k.psi_names.push_back(n + " - " + to_text(target[j]));
+    k.psi_inequality.push_back(false);
+    k.fixed_states.push_back(n);
+    k.psi_t.push_back(-rates[j]);
+  }
+  if (c.contains("max_relative_speed_km_s")) {
+    if (k.kind != "flyby") throw std::invalid_argument(where + ": only a flyby has a relative speed to bound");
+    std::vector<ex> relative(3);
+    for (int i = 0; i < 3; ++i) relative[i] = S.get(kPositionVelocity[3 + i]) - target[3 + i];
+    ex rate = 0;
+    for (int i = 0; i < 3; ++i) rate += 2 * relative[i] * -rates[3 + i];
+    k.psi.push_back(speed_bound(p, k.id, relative, c.at("max_relative_speed_km_s").get<double>()));
+    k.psi_names.push_back("|v - v_" + k.id + "|^2 - vmax_" + k.id + "^2 (<= 0)");
+    k.psi_inequality.push_back(true);
+    k.psi_t.push_back(rate);
+  }
+  const auto fix_mass = [&](const ex& value, const std::string& name) {
+    k.psi.push_back(S.get("m") - value);
+    k.psi_names.push_back(name);
+    k.psi_inequality.push_back(false);
+    k.fixed_states.push_back("m");
+    k.psi_t.push_back(0);
+  };
+  if (k.kind == "initial_state") {
+    if (k.at != "t0") throw std::invalid_argument(where + ": an initial state must be at t0");
+    if (k.target.at("kind") == "coasting") throw std::invalid_argument(where + ": a departure cannot coast");
+    // The spacecraft's initial mass is known: mass is fixed at t0 as well.
+    if (p.has_state("m") && !p.free_initial_mass) fix_mass(1, "m - 1");
+  } else if (k.at != "tf") {
+    throw std::invalid_argument(where + ": rendezvous is supported at tf only");
+  } else if (p.free_initial_mass) {
+    // Minimum initial mass: the final (dry + payload) mass is given.
+    fix_mass(p.final_mass, "m - m_final");
+  }
+  return k;
+}
+
+}  // namespace helios::pmp

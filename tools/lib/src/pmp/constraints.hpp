@@ -1,0 +1,16 @@
+#pragma once
+// The constraints of a problem, built from the spec's entries (constraints.cpp). Both add the
+// targets' states to the problem's parameters and symbols, so build_problem calls them in the
+// spec's order.
+#include "helios/io/json_io.hpp"
+#include "helios/pmp/model.hpp"
+
+namespace helios::pmp {
+
+// psi(t_k, x(t_k), p) of an endpoint constraint (at t0 or tf).
+EndpointConstraint endpoint_constraint(Problem& p, const io::json& constraint);
+
+// An interior event: conditions c on the arriving state and the map g to the leaving state.
+InteriorEvent interior_event(Problem& p, const io::json& constraint);
+
+}  // namespace helios::pmp

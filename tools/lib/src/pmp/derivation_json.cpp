@@ -1,0 +1,285 @@
+// The derivation artifact (schemas/derivation.schema.json) of a typed Derivation: expressions as
+// GiNaC text, every condition and shooting row with what it means.
+#include <algorithm>
+
+#include "helios/io/schema.hpp"
+#include "helios/pmp/derive.hpp"
+
+namespace helios::pmp {
+namespace {
+
+using io::json;
+using symbolic::to_text;
+
+json texts(const std::vector<GiNaC::ex>& v) {
+  json out = json::array();
+  for (const auto& e : v) out.push_back(to_text(e));
+  return out;
+}
+
+json named_list(const std::vector<Named>& v, bool with_value) {
+  json out = json::array();
+  for (const auto& n : v) {
+    json e = {{"name", n.name}, {"meaning", n.meaning}, {"unit", n.unit}};
+    if (with_value) e["value"] = n.value;
+    if (!n.source.empty()) e["source"] = n.source;
+    out.push_back(e);
+  }
+  return out;
+}
+
+json direction_json(const DirectionLaw& d) {
+  return {{"controls", d.controls},
+          {"law", texts(d.law)},
+          {"dH_da", texts(d.gradient)},
+          {"reason", d.costate_block.empty()
+                         ? "H is linear in the unit vector a, so a* = -g/|g| with g = dH/da minimizes it"
+                         : "H is linear in the unit vector a with dH/da = k*(" + d.costate_block +
+                               "), k > 0: a* = -lambda/|lambda| (primer vector) minimizes it"}};
+}
+
+json sail_json(const SailLaw& s) {
+  json definitions = json::array();
+  for (const auto& [name, e] : s.definitions) definitions.push_back({{"name", name}, {"expression", to_text(e)}});
+  return {{"controls", s.controls},
+          {"definitions", definitions},
+          {"cone_angle", to_text(s.cone_angle)},
+          {"law", texts(s.law)},
+          {"stationarity", s.stationarity},
+          {"admissible", "|n| = 1, n.rhat >= 0 (the sail cannot push toward the Sun)"},
+          {"reason",
+           "n = cos(alpha) rhat + sin(alpha) s: H is linear in the unit vector s normal to rhat, so s* = "
+           "-lambda_v_perp/|lambda_v_perp|; then dH/dalpha = 0 is a quadratic in tan(alpha) whose non-negative root "
+           "minimizes H on [0, pi/2]"}};
+}
+
+json throttle_json(const ThrottleLaw& t, bool smoothed) {
+  return {{"control", t.control},
+          {"bounds", json::array({0, 1})},
+          {"switching_function", to_text(t.switching)},
+          {"dH_du_at_lower", to_text(t.at_lower)},
+          {"dH_du_at_upper", to_text(t.at_upper)},
+          {"d2H_du2", to_text(t.second)},
+          {"interior", to_text(t.interior)},
+          {"smoothing", smoothed ? "quadratic" : "none"},
+          {"law",
+           "u = 0 where dH_du_at_lower >= 0, u = 1 where dH_du_at_upper <= 0, otherwise u = interior (dH/du = 0); "
+           "at eps = 0: u = 1 if switching_function < 0 else 0 (bang-bang)"}};
+}
+
+json control_law_json(const ControlLaw& law, bool smoothed) {
+  json control = json::object();
+  if (!law.direction.controls.empty()) control["direction"] = direction_json(law.direction);
+  if (law.sail) control["sail"] = sail_json(*law.sail);
+  if (law.throttle) control["throttle"] = throttle_json(*law.throttle, smoothed);
+  return control;
+}
+
+json constraint_json(const EndpointConditions& c) {
+  const EndpointConstraint& k = c.constraint;
+  json out = {{"id", k.id}, {"kind", k.kind}, {"at", k.at}, {"target", k.target}};
+  out["psi"] = texts(k.psi);
+  out["multipliers"] = c.multipliers;
+  if (k.at == "t0") {
+    out["conditions"] = json::array({"x(t0) is fixed for " + std::to_string(k.fixed_states.size()) +
+                                     " states, so their costates at t0 are free (shooting variables)"});
+  } else {
+    json conditions = json::array(), eliminated = json::array();
+    for (const auto& row : c.transversality) conditions.push_back(to_text(row) + " = 0");
+    for (const auto& row : c.eliminated) eliminated.push_back(to_text(row) + " = 0");
+    out["conditions"] = conditions;
+    out["eliminated_multipliers"] = eliminated;
+  }
+  if (!c.time_condition.empty()) out["time_condition"] = c.time_condition;
+  return out;
+}
+
+json event_json(const Problem& p, const EventConditions& c) {
+  const InteriorEvent& e = c.event;
+  json conditions = json::array(), state_map = json::array(), costate_map = json::array();
+  for (std::size_t s = 0; s < p.states.size(); ++s) {
+    const std::string& x = p.states[s].name;
+    const std::string xm = before_event(x, e.id);
+    conditions.push_back(before_event(costate_name(x), e.id) + " = nu^T dc/d" + xm + " + lambda(t+)^T dg/d" + xm);
+    state_map.push_back({{"state", x}, {"expression", to_text(e.map[s])}});
+    const CostateAfterEvent& l = c.costate_map[s];
+    costate_map.push_back(
+        {{"costate", l.costate}, {l.shooting_variable ? "variable" : "expression", to_text(l.value)}});
+  }
+  conditions.push_back("lambda(t+) = -nu_g (the multipliers of x+ - g)");
+  conditions.push_back("H(t-) - H(t+) + nu_c^T dc/dt + lambda(t+)^T dg/dt = 0 (free epoch)");
+  for (const auto& q : e.free_parameters) conditions.push_back("nu_c^T dc/d" + q + " + lambda(t+)^T dg/d" + q + " = 0");
+  return {{"id", e.id},
+          {"kind", e.kind},
+          {"target", e.target},
+          {"time",
+           {{"symbol", c.time_symbol},
+            {"window", {e.window_lo, e.window_hi}},
+            {"expression", to_text(c.time)},
+            {"duration", e.duration}}},
+          {"psi", texts(c.psi)},
+          {"multipliers", c.multipliers},
+          {"conditions", conditions},
+          {"state_map", state_map},
+          {"costate_map", costate_map}};
+}
+
+json variable_json(const ShootingVariable& v) {
+  json out = {{"name", v.name}, {"meaning", v.meaning}};
+  if (!v.role.empty()) out["role"] = v.role;
+  out["scale"] = 1.0;
+  if (v.range) out["range"] = {v.range->first, v.range->second};
+  out["init"] = v.init;
+  return out;
+}
+
+json equation_json(const ShootingEquation& q) {
+  json out = {{"name", q.name},
+              {"expression", to_text(q.expression)},
+              {"meaning", q.meaning},
+              {"scale", 1.0},
+              {"source", q.source}};
+  if (q.inequality) {
+    out["inequality"] = {{"sense", "expression <= 0"},
+                         {"multiplier", q.multiplier},
+                         {"inactive_expression", q.multiplier},
+                         {"rule",
+                          "pass 1: inactive (multiplier = 0); if the expression is > 0 at the solution, "
+                          "pass 2 makes it active (expression = 0) and requires multiplier >= 0"}};
+    if (q.held_when_active)
+      out["inequality"]["held_when_active"] = {{"variable", q.held_when_active->variable},
+                                               {"value", q.held_when_active->value}};
+  }
+  if (q.alone_expression) out["alone_expression"] = to_text(*q.alone_expression);
+  return out;
+}
+
+json homotopy_json(bool smoothed) {
+  if (smoothed)
+    return {{"symbol", "eps"},
+            {"start", 1.0},
+            {"end", 0.0},
+            {"meaning", "quadratic smoothing of the throttle: eps = 1 energy-like, eps = 0 fuel-optimal bang-bang"}};
+  return {{"symbol", "eps"},
+          {"start", 0.0},
+          {"end", 0.0},
+          {"meaning", "none: H does not contain eps (no smoothing is needed or used)"}};
+}
+
+json bodies_json(const std::vector<OrbitBody>& orbit_bodies) {
+  json bodies = json::array();
+  for (const auto& b : orbit_bodies)
+    bodies.push_back({{"name", b.name},
+                      {"model", "kepler"},
+                      {"epoch", b.epoch},
+                      {"elements",
+                       {{"a", b.elements.a},
+                        {"e", b.elements.e},
+                        {"i_rad", b.elements.i},
+                        {"raan_rad", b.elements.raan},
+                        {"argp_rad", b.elements.argp},
+                        {"mean_anomaly_rad", b.elements.mean_anomaly}}},
+                      {"meaning", "Keplerian orbit about the central body (normalized a and epoch)"}});
+  return bodies;
+}
+
+// The problem as the derivation sees it: states with their costates, controls, parameters,
+// the dynamics and the bodies the runtime propagates.
+void problem_sections(const Derivation& d, json& doc) {
+  const Problem& p = d.problem;
+  doc["problem"] = {{"id", p.id},
+                    {"dynamics_model", p.dynamics_model},
+                    {"objective", p.objective},
+                    {"perturbations", p.perturbations}};
+  doc["units"] = units_of(p);
+  doc["times"] = times_of(p);
+  json states = named_list(p.states, false);
+  for (auto& s : states) s["costate"] = costate_name(s["name"].get<std::string>());
+  doc["states"] = states;
+  json controls = json::array();
+  for (const auto& c : p.controls) controls.push_back({{"name", c.name}, {"meaning", c.meaning}, {"kind", c.kind}});
+  doc["controls"] = controls;
+  doc["parameters"] = named_list(p.parameters, true);
+  doc["homotopy"] = homotopy_json(d.smoothed);
+  doc["multiplier"] = "lambda0";
+  doc["dynamics"] = {{"state_rhs", texts(p.f)},
+                     {"running_cost", to_text(p.running_cost)},
+                     {"endpoint_cost", to_text(p.endpoint_cost)}};
+  const bool coasting = std::any_of(p.parameters.begin(), p.parameters.end(),
+                                    [](const Named& q) { return q.source.rfind("coast:", 0) == 0; });
+  if (coasting) doc["coast_dynamics"] = {{"states", {"rx", "ry", "rz", "vx", "vy", "vz"}}, {"rhs", texts(p.coast_f)}};
+  if (!d.hamiltonian_values.empty()) {
+    json values = json::array();
+    for (const auto& h : d.hamiltonian_values)
+      values.push_back({{"name", "H_" + h.at}, {"kind", "hamiltonian"}, {"at", h.at}, {"meaning", h.meaning}});
+    doc["event_values"] = values;
+  }
+  if (!p.orbit_bodies.empty()) doc["bodies"] = bodies_json(p.orbit_bodies);
+}
+
+}  // namespace
+
+json derivation_json(const Derivation& d) {
+  const Problem& p = d.problem;
+  json doc = io::artifact_header("derivation", "helios-derive", "builtin");
+  problem_sections(d, doc);
+  if (!d.events.empty()) {
+    json events = json::array();
+    for (const auto& e : d.events) events.push_back(event_json(p, e));
+    doc["events"] = events;
+  }
+  doc["hamiltonian"] = to_text(d.hamiltonian);
+  json state_odes = json::array(), costate_odes = json::array();
+  for (std::size_t i = 0; i < p.states.size(); ++i) {
+    state_odes.push_back({{"state", p.states[i].name}, {"rhs", to_text(d.state_odes[i])}});
+    costate_odes.push_back({{"costate", costate_name(p.states[i].name)}, {"rhs", to_text(d.costate_odes[i])}});
+  }
+  doc["state_odes"] = state_odes;
+  doc["costate_odes"] = costate_odes;
+  doc["control_law"] = control_law_json(d.control, d.smoothed);
+  json initial_values = json::array();
+  for (const auto& v : d.initial_values) initial_values.push_back({{"state", v.state}, {"value", to_text(v.value)}});
+  doc["initial_values"] = initial_values;
+  json constraints = json::array();
+  for (const auto& c : d.constraints) constraints.push_back(constraint_json(c));
+  doc["constraints"] = constraints;
+  json variables = json::array(), equations = json::array();
+  for (const auto& v : d.shooting.variables) variables.push_back(variable_json(v));
+  for (const auto& q : d.shooting.equations) equations.push_back(equation_json(q));
+  doc["shooting"] = {{"variables", variables}, {"equations", equations}};
+  return doc;
+}
+
+json units_of(const Problem& p) {
+  return {{"length", p.units.length_name},
+          {"length_km", p.units.length_km},
+          {"time", p.units.time_name},
+          {"time_s", p.units.time_s},
+          {"mass_kg", p.units.mass_kg}};
+}
+
+json times_of(const Problem& p) {
+  json times;
+  if (p.free_final_time) {
+    const GiNaC::symbol tf_frac("tf_frac");
+    times = {{"t0", p.t0},
+             {"final_time", "free"},
+             {"tf_window", {p.tf_min, p.tf}},
+             {"tf_expression", to_text(p.tf_min + (p.tf - p.tf_min) * tf_frac)}};
+  } else {
+    times = {{"t0", p.t0}, {"tf", p.tf}, {"final_time", "fixed"}};
+  }
+  if (p.free_departure) {
+    // The departure slides in its window; the total time of flight stays fixed.
+    const GiNaC::symbol t0_frac("t0_frac");
+    const GiNaC::ex t0 = p.t0_min + (p.t0_max - p.t0_min) * t0_frac;
+    times["departure"] = "free";
+    times["t0_window"] = {p.t0_min, p.t0_max};
+    times["t0_expression"] = to_text(t0);
+    times["tf_expression"] = to_text(t0 + (p.tf - p.t0));
+  }
+  if (p.has_epoch) times["epoch_mjd2000"] = p.epoch_mjd2000;
+  return times;
+}
+
+}  // namespace helios::pmp
