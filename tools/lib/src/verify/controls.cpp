@@ -14,6 +14,7 @@ namespace {
 
 constexpr int kRandomDirections = 48;   // random unit vectors tried against a* at each point
 constexpr int kRandomSailNormals = 64;  // random admissible sail normals tried against n* at each point
+const char* const kAdmissibleSet = "the admissible hemisphere |n| = 1, n.r_hat >= 0";
 
 class ControlFamily : public Family {
  public:
@@ -156,45 +157,10 @@ class ControlFamily : public Family {
   void check_direction() {
     if (ctx.directions.empty()) return;
     Check c = start("control_direction", "control", "random_points+exact");
-    const std::string names = "(" + join(ctx.directions, ", ") + ")";
     const std::string advice = "a* = -g/|g| with g = dH/da = " + gradient_text() + " minimizes H over unit vectors";
-    const json* dir = nullptr;
-    if (ctx.derivation.contains("control_law") && ctx.derivation["control_law"].is_object() &&
-        ctx.derivation["control_law"].contains("direction"))
-      dir = &ctx.derivation["control_law"]["direction"];
-    if (!dir || !dir->is_object()) {
-      c.fail("control_law.direction is missing: give the law of the thrust direction " + names + "; " + advice + ".");
-      checks.push_back(c);
-      return;
-    }
-    const json controls = dir->value("controls", json::array());
-    std::vector<std::string> listed;
-    for (const auto& x : controls) listed.push_back(x.is_string() ? x.get<std::string>() : x.dump());
-    if (listed != ctx.directions) {
-      c.fail("control_law.direction.controls is (" + join(listed, ", ") + "), expected " + names +
-             " (the controls of kind direction, in order).");
-      checks.push_back(c);
-      return;
-    }
-    const json law_text = dir->value("law", json::array());
-    if (!law_text.is_array() || law_text.size() != ctx.directions.size()) {
-      c.fail("control_law.direction.law must give one expression per direction control " + names + "; " + advice + ".");
-      checks.push_back(c);
-      return;
-    }
     std::vector<ex> law;
     std::vector<Compiled> lc;
-    try {
-      for (std::size_t j = 0; j < ctx.directions.size(); ++j) {
-        const std::string where = "control_law.direction.law[" + ctx.directions[j] + "]";
-        if (!law_text[j].is_string()) throw std::invalid_argument(where + ": not an expression string");
-        law.push_back(ctx.symbols.parse(law_text[j].get<std::string>(), where));
-        for (const auto& a : ctx.directions)
-          if (law.back().has(ctx.sym(a))) throw std::invalid_argument(where + " depends on the direction control " + a);
-        lc.push_back(ctx.compile(law.back()));
-      }
-    } catch (const std::exception& e) {
-      c.fail(std::string(e.what()) + "; " + advice + ".");
+    if (!read_direction_law(c, advice, law, lc)) {
       checks.push_back(c);
       return;
     }
@@ -257,6 +223,47 @@ class ControlFamily : public Family {
     checks.push_back(c);
   }
 
+  // The direction law as written and compiled; false (c failed) where it is missing, lists other
+  // controls or cannot be read.
+  bool read_direction_law(Check& c, const std::string& advice, std::vector<ex>& law, std::vector<Compiled>& lc) const {
+    const std::string names = "(" + join(ctx.directions, ", ") + ")";
+    const json* dir = nullptr;
+    if (ctx.derivation.contains("control_law") && ctx.derivation["control_law"].is_object() &&
+        ctx.derivation["control_law"].contains("direction"))
+      dir = &ctx.derivation["control_law"]["direction"];
+    if (!dir || !dir->is_object()) {
+      c.fail("control_law.direction is missing: give the law of the thrust direction " + names + "; " + advice + ".");
+      return false;
+    }
+    const json controls = dir->value("controls", json::array());
+    std::vector<std::string> listed;
+    for (const auto& x : controls) listed.push_back(x.is_string() ? x.get<std::string>() : x.dump());
+    if (listed != ctx.directions) {
+      c.fail("control_law.direction.controls is (" + join(listed, ", ") + "), expected " + names +
+             " (the controls of kind direction, in order).");
+      return false;
+    }
+    const json law_text = dir->value("law", json::array());
+    if (!law_text.is_array() || law_text.size() != ctx.directions.size()) {
+      c.fail("control_law.direction.law must give one expression per direction control " + names + "; " + advice + ".");
+      return false;
+    }
+    try {
+      for (std::size_t j = 0; j < ctx.directions.size(); ++j) {
+        const std::string where = "control_law.direction.law[" + ctx.directions[j] + "]";
+        if (!law_text[j].is_string()) throw std::invalid_argument(where + ": not an expression string");
+        law.push_back(ctx.symbols.parse(law_text[j].get<std::string>(), where));
+        for (const auto& a : ctx.directions)
+          if (law.back().has(ctx.sym(a))) throw std::invalid_argument(where + " depends on the direction control " + a);
+        lc.push_back(ctx.compile(law.back()));
+      }
+    } catch (const std::exception& e) {
+      c.fail(std::string(e.what()) + "; " + advice + ".");
+      return false;
+    }
+    return true;
+  }
+
   // The sail law: n* admissible (|n*| = 1, n*.r_hat >= 0), stationary on the unit sphere (the
   // tangential part of dH/dn vanishes, so dH/dalpha = 0 in the plane of r_hat and n*), and the
   // minimum of H over the hemisphere (against the verifier's own numerical minimizer and random
@@ -265,14 +272,31 @@ class ControlFamily : public Family {
     if (ctx.sails.empty()) return;
     Check c = start("control_sail", "control", "random_points");
     Check ca = start("control_sail_cone_angle", "control", "random_points");
+    std::vector<Compiled> lc;
+    Compiled cone;
+    const std::string error = read_sail_law(lc, cone);
+    if (!error.empty()) {
+      c.max_rel = ca.max_rel = 2;
+      c.fail(error + ".");
+      ca.fail(error + ".");
+      checks.push_back(c);
+      checks.push_back(ca);
+      return;
+    }
+    const std::vector<Vec3> laws = check_sail_law(c, lc);
+    check_cone_angle(c, ca, cone, laws);
+    checks.push_back(c);
+    checks.push_back(ca);
+  }
+
+  // The sail law and its cone angle as written, compiled; the reason they cannot be read, else "".
+  std::string read_sail_law(std::vector<Compiled>& lc, Compiled& cone) const {
     const std::string names = "(" + join(ctx.sails, ", ") + ")";
-    const std::string set = "the admissible hemisphere |n| = 1, n.r_hat >= 0";
+    const std::string set = kAdmissibleSet;
     const json* sail = nullptr;
     if (ctx.derivation.contains("control_law") && ctx.derivation["control_law"].is_object() &&
         ctx.derivation["control_law"].contains("sail"))
       sail = &ctx.derivation["control_law"]["sail"];
-    std::vector<Compiled> lc;
-    Compiled cone;
     std::string error;
     try {
       if (!sail || !sail->is_object())
@@ -302,14 +326,13 @@ class ControlFamily : public Family {
     } catch (const std::exception& e) {
       error = e.what();
     }
-    if (!error.empty()) {
-      c.max_rel = ca.max_rel = 2;
-      c.fail(error + ".");
-      ca.fail(error + ".");
-      checks.push_back(c);
-      checks.push_back(ca);
-      return;
-    }
+    return error;
+  }
+
+  // The law n* at each sample point against H (unit, admissible, minimal, stationary); returns n*
+  // at each point.
+  std::vector<Vec3> check_sail_law(Check& c, const std::vector<Compiled>& lc) const {
+    const std::string set = kAdmissibleSet;
     std::mt19937_64 rng(0x8CB92BA72F3D8DD7ULL ^ ctx.options.seed);
     double unit_err = 0, adm_err = 0, worse = 0, stat_err = 0;
     std::string unit_msg, adm_msg, worse_msg, stat_msg;
@@ -375,8 +398,12 @@ class ControlFamily : public Family {
     } else if (stat_err > kTol) {
       c.fail(stat_msg);
     }
-    // The cone angle: against the law once verified, else against the verifier's own minimizer
-    // where that is an interior stationary point resolved to full precision.
+    return laws;
+  }
+
+  // The cone angle: against the law once verified, else against the verifier's own minimizer
+  // where that is an interior stationary point resolved to full precision.
+  void check_cone_angle(const Check& c, Check& ca, const Compiled& cone, const std::vector<Vec3>& laws) const {
     const double tol = c.pass ? kTol : 1e-6;
     for (std::size_t i = 0; i < ctx.points.size(); ++i) {
       const Point& p = ctx.points[i];
@@ -392,8 +419,36 @@ class ControlFamily : public Family {
                 std::string(c.pass ? "sail law" : "sail normal minimizing H") + ": at a sample point it gives " +
                 num(got) + " rad, expected " + num(want) + " rad.");
     }
-    checks.push_back(c);
-    checks.push_back(ca);
+  }
+
+  // What the throttle's checks share: the law as written, dH/du and d2H/du2 (Hu_star: dH/du with
+  // a* substituted), and the interior law as written (or why it cannot be read).
+  struct ThrottleParts {
+    const json* t = nullptr;
+    symbol u, eps;
+    GiNaC::exmap astar;
+    ex Hu, Huu, Hu_star;
+    Compiled Hu_c, Huu_c;
+    ex interior;
+    Compiled interior_c;
+    std::string interior_error;
+  };
+
+  // A point with the direction at a* (full thrust), the throttle at `uval` (NaN: the point's own)
+  // and, with `eps0`, the homotopy parameter at 0.
+  std::function<Point(const Point&)> throttle_point(double uval, bool eps0) const {
+    const int us = ctx.slot(ctx.throttle), es = ctx.slot(ctx.eps);
+    return [this, us, es, uval, eps0](const Point& p) {
+      Point q = ctx.with_direction(p, 1.0);
+      if (!std::isnan(uval)) q[static_cast<std::size_t>(us)] = uval;
+      if (eps0) q[static_cast<std::size_t>(es)] = 0;
+      return q;
+    };
+  }
+  // The field `name` of control_law.throttle, or null.
+  static const json& law_field(const json& t, const char* name) {
+    static const json none;
+    return t.contains(name) ? t[name] : none;
   }
 
   void check_throttle() {
@@ -411,163 +466,168 @@ class ControlFamily : public Family {
       checks.push_back(c);
       return;
     }
-    const symbol& u = GiNaC::ex_to<symbol>(ctx.sym(ctx.throttle));
-    const symbol& eps = GiNaC::ex_to<symbol>(ctx.sym(ctx.eps));
-    const int us = ctx.slot(ctx.throttle), es = ctx.slot(ctx.eps);
-    GiNaC::exmap astar;
-    for (std::size_t j = 0; j < ctx.directions.size(); ++j) astar[ctx.sym(ctx.directions[j])] = direction_law[j];
-    const ex Hu = ctx.hamiltonian.diff(u), Huu = Hu.diff(u);
-    const ex Hu_star = Hu.subs(astar);
-    const Compiled Hu_c = ctx.compile(Hu), Huu_c = ctx.compile(Huu);
-    auto at = [this, us, es](double uval, bool eps0) {
-      return [this, us, es, uval, eps0](const Point& p) {
-        Point q = ctx.with_direction(p, 1.0);
-        if (!std::isnan(uval)) q[static_cast<std::size_t>(us)] = uval;
-        if (eps0) q[static_cast<std::size_t>(es)] = 0;
-        return q;
-      };
-    };
+    ThrottleParts parts;
+    parts.t = t;
+    parts.u = GiNaC::ex_to<symbol>(ctx.sym(ctx.throttle));
+    parts.eps = GiNaC::ex_to<symbol>(ctx.sym(ctx.eps));
+    for (std::size_t j = 0; j < ctx.directions.size(); ++j) parts.astar[ctx.sym(ctx.directions[j])] = direction_law[j];
+    parts.Hu = ctx.hamiltonian.diff(parts.u);
+    parts.Huu = parts.Hu.diff(parts.u);
+    parts.Hu_star = parts.Hu.subs(parts.astar);
+    parts.Hu_c = ctx.compile(parts.Hu);
+    parts.Huu_c = ctx.compile(parts.Huu);
+    try {
+      const json& it = law_field(*t, "interior");
+      if (!it.is_string()) throw std::invalid_argument("control_law.throttle.interior: not an expression string");
+      parts.interior = ctx.symbols.parse(it.get<std::string>(), "control_law.throttle.interior");
+      parts.interior_c = ctx.compile(parts.interior);
+    } catch (const std::exception& e) {
+      parts.interior_error = e.what();
+    }
+    check_throttle_derivatives(parts);
+    check_throttle_convexity(parts);
+    if (!parts.Huu.expand().is_zero()) check_throttle_interior(parts);  // a smooth law: dH/du = 0 inside
+    check_throttle_law(parts);
+  }
+
+  // The switching function and dH/du at both ends of [0, 1] (and d2H/du2 where given).
+  void check_throttle_derivatives(const ThrottleParts& parts) {
+    auto& [t, u, eps, astar, Hu, Huu, Hu_star, Hu_c, Huu_c, interior, interior_c, interior_error] = parts;
     const std::string a_note = ctx.directions.empty() ? "" : " with a* substituted";
     std::vector<std::string> no_u_a = ctx.directions, no_u_a_eps = ctx.directions;
     no_u_a.push_back(ctx.throttle);
     no_u_a_eps.push_back(ctx.throttle);
     no_u_a_eps.push_back(ctx.eps);
-    const json none;
-    auto field = [&](const char* name) -> const json& { return t->contains(name) ? (*t)[name] : none; };
-
     checks.push_back(equality("throttle_switching", "control", "control_law.throttle.switching_function",
                               "dH/d" + ctx.throttle + " at " + ctx.eps + " = 0" + a_note,
-                              {Hu_star.subs(GiNaC::lst{u == 0, eps == 0}), Hu_c, at(0, true)},
-                              field("switching_function"), true, no_u_a_eps));
+                              {Hu_star.subs(GiNaC::lst{u == 0, eps == 0}), Hu_c, throttle_point(0, true)},
+                              law_field(*t, "switching_function"), true, no_u_a_eps));
     checks.push_back(equality("throttle_dH_du_at_lower", "control", "control_law.throttle.dH_du_at_lower",
                               "dH/d" + ctx.throttle + " at " + ctx.throttle + " = 0" + a_note,
-                              {Hu_star.subs(u == 0), Hu_c, at(0, false)}, field("dH_du_at_lower"), true, no_u_a));
+                              {Hu_star.subs(u == 0), Hu_c, throttle_point(0, false)}, law_field(*t, "dH_du_at_lower"),
+                              true, no_u_a));
     checks.push_back(equality("throttle_dH_du_at_upper", "control", "control_law.throttle.dH_du_at_upper",
                               "dH/d" + ctx.throttle + " at " + ctx.throttle + " = 1" + a_note,
-                              {Hu_star.subs(u == 1), Hu_c, at(1, false)}, field("dH_du_at_upper"), true, no_u_a));
+                              {Hu_star.subs(u == 1), Hu_c, throttle_point(1, false)}, law_field(*t, "dH_du_at_upper"),
+                              true, no_u_a));
     if (t->contains("d2H_du2"))
-      checks.push_back(
-          equality("throttle_d2H_du2", "control", "control_law.throttle.d2H_du2", "d2H/d" + ctx.throttle + "2" + a_note,
-                   {Huu.subs(astar), Huu_c, at(std::nan(""), false)}, field("d2H_du2"), true, ctx.directions));
+      checks.push_back(equality("throttle_d2H_du2", "control", "control_law.throttle.d2H_du2",
+                                "d2H/d" + ctx.throttle + "2" + a_note,
+                                {Huu.subs(astar), Huu_c, throttle_point(std::nan(""), false)}, law_field(*t, "d2H_du2"),
+                                true, ctx.directions));
+  }
 
-    // Convexity: dH/du = 0 must be a minimum (lambda0 > 0, eps > 0 at every sample point).
-    {
-      Check c = start("throttle_convexity", "control", "random_points");
+  // Convexity: dH/du = 0 must be a minimum (lambda0 > 0, eps > 0 at every sample point).
+  void check_throttle_convexity(const ThrottleParts& parts) {
+    auto& [t, u, eps, astar, Hu, Huu, Hu_star, Hu_c, Huu_c, interior, interior_c, interior_error] = parts;
+    Check c = start("throttle_convexity", "control", "random_points");
+    for (const auto& p : ctx.points) {
+      const double v = Huu_c(throttle_point(std::nan(""), false)(p));
+      const double viol = std::isfinite(v) ? std::max(0.0, -v) / (1 + std::fabs(v)) : 2.0;
+      if (viol > c.max_rel) c.max_rel = viol;
+      if (viol > kTol)
+        c.fail("d2H/d" + ctx.throttle + "2 = " + print(tidy(Huu.subs(astar))) + " is " + num(v) +
+               " < 0 at a sample point with " + ctx.multiplier + " > 0, " + ctx.eps +
+               " > 0: dH/du = 0 is then a maximum of H; the " + ctx.eps +
+               " smoothing in running_cost must make H convex in " + ctx.throttle + ".");
+    }
+    checks.push_back(c);
+  }
+
+  // Interior law: dH/du = 0 there.
+  void check_throttle_interior(const ThrottleParts& parts) {
+    auto& [t, u, eps, astar, Hu, Huu, Hu_star, Hu_c, Huu_c, interior, interior_c, interior_error] = parts;
+    Check c = start("throttle_interior", "control", "random_points+exact");
+    if (!interior_error.empty()) {
+      c.max_rel = 2;
+      c.fail(interior_error + "; expected the " + ctx.throttle + " solving " + print(tidy(Hu_star)) + " = 0.");
+    } else {
+      double worst = 0, wv = 0, wu = 0;
       for (const auto& p : ctx.points) {
-        const double v = Huu_c(at(std::nan(""), false)(p));
-        const double viol = std::isfinite(v) ? std::max(0.0, -v) / (1 + std::fabs(v)) : 2.0;
-        if (viol > c.max_rel) c.max_rel = viol;
-        if (viol > kTol)
-          c.fail("d2H/d" + ctx.throttle + "2 = " + print(tidy(Huu.subs(astar))) + " is " + num(v) +
-                 " < 0 at a sample point with " + ctx.multiplier + " > 0, " + ctx.eps +
-                 " > 0: dH/du = 0 is then a maximum of H; the " + ctx.eps +
-                 " smoothing in running_cost must make H convex in " + ctx.throttle + ".");
+        const double ui = interior_c(p);
+        const double r = Hu_c(throttle_point(ui, false)(p));
+        const double scale =
+            std::max(std::fabs(Hu_c(throttle_point(0, false)(p))), std::fabs(Hu_c(throttle_point(1, false)(p))));
+        const double rel = std::isfinite(r) && std::isfinite(scale) ? std::fabs(r) / (1 + scale) : 2.0;
+        if (rel > worst) {
+          worst = rel;
+          wv = r;
+          wu = ui;
+        }
       }
-      checks.push_back(c);
+      c.max_rel = worst;
+      c.exact = exact_equal(Hu_star.subs(u == interior), 0);
+      c.pass = worst <= kTol || c.exact;
+      if (!c.pass)
+        c.fail("control_law.throttle.interior = " + law_field(*t, "interior").get<std::string>() +
+               " does not solve dH/d" + ctx.throttle + " = " + print(tidy(Hu_star)) +
+               " = 0: at a sample point it gives " + ctx.throttle + " = " + num(wu) + " where dH/d" + ctx.throttle +
+               " = " + num(wv) + ".");
     }
+    checks.push_back(c);
+  }
 
-    // Interior law: dH/du = 0 there.
-    const bool smooth = !Huu.expand().is_zero();
-    ex interior;
-    Compiled interior_c;
-    std::string interior_error;
+  // The clamped law minimizes H over a grid of u in [0, 1].
+  void check_throttle_law(const ThrottleParts& parts) {
+    auto& [t, u, eps, astar, Hu, Huu, Hu_star, Hu_c, Huu_c, interior, interior_c, interior_error] = parts;
+    const int us = ctx.slot(ctx.throttle);
+    Check c = start("throttle_law", "control", "random_points");
+    const json bounds = law_field(*t, "bounds");
+    const bool bounds_ok = bounds.is_array() && bounds.size() == 2 && bounds[0].is_number() && bounds[1].is_number() &&
+                           bounds[0].get<double>() == 0 && bounds[1].get<double>() == 1;
+    Compiled lo, hi;
+    std::string error = interior_error;
     try {
-      const json& it = field("interior");
-      if (!it.is_string()) throw std::invalid_argument("control_law.throttle.interior: not an expression string");
-      interior = ctx.symbols.parse(it.get<std::string>(), "control_law.throttle.interior");
-      interior_c = ctx.compile(interior);
+      for (const bool lower_end : {true, false}) {
+        const char* name = lower_end ? "dH_du_at_lower" : "dH_du_at_upper";
+        const json& f = law_field(*t, name);
+        const std::string where = std::string("control_law.throttle.") + name;
+        if (!f.is_string()) throw std::invalid_argument(where + ": not an expression string");
+        (lower_end ? lo : hi) = ctx.compile(ctx.symbols.parse(f.get<std::string>(), where));
+      }
     } catch (const std::exception& e) {
-      interior_error = e.what();
+      if (error.empty()) error = e.what();
     }
-    if (smooth) {
-      Check c = start("throttle_interior", "control", "random_points+exact");
-      if (!interior_error.empty()) {
-        c.max_rel = 2;
-        c.fail(interior_error + "; expected the " + ctx.throttle + " solving " + print(tidy(Hu_star)) + " = 0.");
-      } else {
-        double worst = 0, wv = 0, wu = 0;
-        for (const auto& p : ctx.points) {
-          const double ui = interior_c(p);
-          const double r = Hu_c(at(ui, false)(p));
-          const double scale = std::max(std::fabs(Hu_c(at(0, false)(p))), std::fabs(Hu_c(at(1, false)(p))));
-          const double rel = std::isfinite(r) && std::isfinite(scale) ? std::fabs(r) / (1 + scale) : 2.0;
-          if (rel > worst) {
-            worst = rel;
-            wv = r;
-            wu = ui;
-          }
+    const std::string control = t->value("control", "");
+    if (control != ctx.throttle) {
+      c.fail("control_law.throttle.control is '" + control + "', expected '" + ctx.throttle +
+             "' (the control of kind throttle).");
+    } else if (!bounds_ok) {
+      c.fail("control_law.throttle.bounds must be [0, 1] (the throttle is T/Tmax).");
+    } else if (!error.empty()) {
+      c.max_rel = 2;
+      c.fail("cannot evaluate the throttle law: " + error + ".");
+    } else {
+      for (const auto& p : ctx.points) {
+        const double s0 = lo(p), s1 = hi(p);
+        const double ustar = s0 >= 0 ? 0.0 : (s1 <= 0 ? 1.0 : interior_c(p));
+        const Point q = ctx.with_direction(p, 1.0);
+        auto H_at = [&](double uv) {
+          Point r = q;
+          r[static_cast<std::size_t>(us)] = uv;
+          return ctx.hamiltonian_compiled(r);
+        };
+        const double hs = H_at(ustar);
+        if (!std::isfinite(ustar) || ustar < -kTol || ustar > 1 + kTol || !std::isfinite(hs)) {
+          c.max_rel = 2;
+          c.fail("the throttle law (u = 0 if dH_du_at_lower >= 0, 1 if dH_du_at_upper <= 0, else interior) gives " +
+                 ctx.throttle + " = " + num(ustar) + " outside [0, 1] at a sample point.");
+          break;
         }
-        c.max_rel = worst;
-        c.exact = exact_equal(Hu_star.subs(u == interior), 0);
-        c.pass = worst <= kTol || c.exact;
-        if (!c.pass)
-          c.fail("control_law.throttle.interior = " + field("interior").get<std::string>() + " does not solve dH/d" +
-                 ctx.throttle + " = " + print(tidy(Hu_star)) + " = 0: at a sample point it gives " + ctx.throttle +
-                 " = " + num(wu) + " where dH/d" + ctx.throttle + " = " + num(wv) + ".");
-      }
-      checks.push_back(c);
-    }
-
-    // The clamped law minimizes H over a grid of u in [0, 1].
-    {
-      Check c = start("throttle_law", "control", "random_points");
-      const json bounds = field("bounds");
-      const bool bounds_ok = bounds.is_array() && bounds.size() == 2 && bounds[0].is_number() &&
-                             bounds[1].is_number() && bounds[0].get<double>() == 0 && bounds[1].get<double>() == 1;
-      Compiled lo, hi;
-      std::string error = interior_error;
-      try {
-        for (const bool lower_end : {true, false}) {
-          const char* name = lower_end ? "dH_du_at_lower" : "dH_du_at_upper";
-          const json& f = field(name);
-          const std::string where = std::string("control_law.throttle.") + name;
-          if (!f.is_string()) throw std::invalid_argument(where + ": not an expression string");
-          (lower_end ? lo : hi) = ctx.compile(ctx.symbols.parse(f.get<std::string>(), where));
-        }
-      } catch (const std::exception& e) {
-        if (error.empty()) error = e.what();
-      }
-      const std::string control = t->value("control", "");
-      if (control != ctx.throttle) {
-        c.fail("control_law.throttle.control is '" + control + "', expected '" + ctx.throttle +
-               "' (the control of kind throttle).");
-      } else if (!bounds_ok) {
-        c.fail("control_law.throttle.bounds must be [0, 1] (the throttle is T/Tmax).");
-      } else if (!error.empty()) {
-        c.max_rel = 2;
-        c.fail("cannot evaluate the throttle law: " + error + ".");
-      } else {
-        for (const auto& p : ctx.points) {
-          const double s0 = lo(p), s1 = hi(p);
-          const double ustar = s0 >= 0 ? 0.0 : (s1 <= 0 ? 1.0 : interior_c(p));
-          const Point q = ctx.with_direction(p, 1.0);
-          auto H_at = [&](double uv) {
-            Point r = q;
-            r[static_cast<std::size_t>(us)] = uv;
-            return ctx.hamiltonian_compiled(r);
-          };
-          const double hs = H_at(ustar);
-          if (!std::isfinite(ustar) || ustar < -kTol || ustar > 1 + kTol || !std::isfinite(hs)) {
-            c.max_rel = 2;
-            c.fail("the throttle law (u = 0 if dH_du_at_lower >= 0, 1 if dH_du_at_upper <= 0, else interior) gives " +
-                   ctx.throttle + " = " + num(ustar) + " outside [0, 1] at a sample point.");
-            break;
-          }
-          for (int k = 0; k <= kThrottleGrid; ++k) {
-            const double uk = static_cast<double>(k) / kThrottleGrid, hk = H_at(uk);
-            const double v = (hs - hk) / (1 + std::max(std::fabs(hs), std::fabs(hk)));
-            if (v > c.max_rel) c.max_rel = v;
-            if (v > kTol)
-              c.fail(
-                  "the throttle law (u = 0 if dH_du_at_lower >= 0, 1 if dH_du_at_upper <= 0, else interior) does not "
-                  "minimize H over " +
-                  ctx.throttle + " in [0, 1]: at a sample point it gives " + ctx.throttle + " = " + num(ustar) +
-                  " with H = " + num(hs) + ", but " + ctx.throttle + " = " + num(uk) + " gives H = " + num(hk) + ".");
-          }
+        for (int k = 0; k <= kThrottleGrid; ++k) {
+          const double uk = static_cast<double>(k) / kThrottleGrid, hk = H_at(uk);
+          const double v = (hs - hk) / (1 + std::max(std::fabs(hs), std::fabs(hk)));
+          if (v > c.max_rel) c.max_rel = v;
+          if (v > kTol)
+            c.fail(
+                "the throttle law (u = 0 if dH_du_at_lower >= 0, 1 if dH_du_at_upper <= 0, else interior) does not "
+                "minimize H over " +
+                ctx.throttle + " in [0, 1]: at a sample point it gives " + ctx.throttle + " = " + num(ustar) +
+                " with H = " + num(hs) + ", but " + ctx.throttle + " = " + num(uk) + " gives H = " + num(hk) + ".");
         }
       }
-      checks.push_back(c);
     }
+    checks.push_back(c);
   }
 };
 

@@ -19,35 +19,65 @@ class EventFamily : public Family {
   }
 
  private:
+  // What the seven steps of an event's check share: the symbols just before and after it, psi
+  // split into the constraints c and the map x+ = g(x-), the multipliers of c, the states the map
+  // carries and the costate jump rows. Each step fills its part; the later ones read them.
+  struct EventParts {
+    EventParts(const Event& event, std::size_t states)
+        : e(event), id(event.id), where("events[" + event.id + "]"), n(states) {}
+    const Event& e;
+    const std::string& id;
+    std::string where;
+    std::size_t n;
+    std::vector<ex> xm, xp, lm, lp;   // states and costates just before / after
+    std::vector<std::size_t> c_rows;  // the rows of psi that are c
+    std::vector<int> map_row;         // the row x+_s - g_s of each state
+    std::vector<ex> g, c;
+    std::vector<ex> nu;                 // the multipliers of c
+    std::vector<bool> carried;          // dg_s/dx- is the unit row s
+    std::vector<ex> rows, explicit_lp;  // the jump rows; lambda(t+) of the carried states
+    GiNaC::exmap resolve;               // lambda(t+) of carried states -> their explicit value
+    std::vector<ex> basis_rows;
+    std::vector<std::string> params;  // the free parameters of psi, once each
+  };
+
+  static ex derivative(const ex& f, const ex& x) { return f.diff(GiNaC::ex_to<symbol>(x)); }
+  bool zero_at_points(const ex& f) const {
+    const Compiled cf = ctx.compile(f);
+    return std::all_of(ctx.points.begin(), ctx.points.end(),
+                       [&](const Point& p) { return rel_diff(cf(p), 0) <= kTol; });
+  }
+
   void check_event(const Event& e) {
-    const std::string& id = e.id;
-    const std::string where = "events[" + id + "]";
     if (!e.error.empty()) {
-      Check c = start("event:" + id, "events", "structural");
+      Check c = start("event:" + e.id, "events", "structural");
       c.fail(e.error + ".");
       checks.push_back(c);
       return;
     }
-    const std::size_t n = ctx.states.size();
-    std::vector<ex> xm, xp, lm, lp;
-    for (std::size_t i = 0; i < n; ++i) {
-      xm.push_back(ctx.sym(ctx.before(ctx.states[i], id)));
-      xp.push_back(ctx.sym(ctx.after(ctx.states[i], id)));
-      lm.push_back(ctx.sym(ctx.before(ctx.costates[i], id)));
-      lp.push_back(ctx.sym(ctx.after(ctx.costates[i], id)));
+    EventParts parts(e, ctx.states.size());
+    for (std::size_t i = 0; i < parts.n; ++i) {
+      parts.xm.push_back(ctx.sym(ctx.before(ctx.states[i], e.id)));
+      parts.xp.push_back(ctx.sym(ctx.after(ctx.states[i], e.id)));
+      parts.lm.push_back(ctx.sym(ctx.before(ctx.costates[i], e.id)));
+      parts.lp.push_back(ctx.sym(ctx.after(ctx.costates[i], e.id)));
     }
-    auto d = [](const ex& f, const ex& x) { return f.diff(GiNaC::ex_to<symbol>(x)); };
-    auto zero_at_points = [&](const ex& f) {
-      const Compiled cf = ctx.compile(f);
-      return std::all_of(ctx.points.begin(), ctx.points.end(),
-                         [&](const Point& p) { return rel_diff(cf(p), 0) <= kTol; });
-    };
+    if (!check_event_psi(parts) || !check_event_multipliers(parts)) return;
+    check_event_constraints(parts);
+    costate_jump_rows(parts);
+    for (std::size_t s = 0; s < parts.n; ++s) check_costate_jump(parts, s);
+    check_event_time(parts);
+    check_event_stationarity(parts);
+    check_event_unknowns(parts);
+  }
 
-    // 1. psi = [c(t, x-, p); x+ - g(t + D, x-, p)]: rows without x+ are c, each state has one row x+_s - g_s.
+  // 1. psi = [c(t, x-, p); x+ - g(t + D, x-, p)]: rows without x+ are c, each state has one row x+_s - g_s.
+  bool check_event_psi(EventParts& parts) {
+    auto& [e, id, where, n, xm, xp, lm, lp, c_rows, map_row, g, c, nu, carried, rows, explicit_lp, resolve, basis_rows,
+           params] = parts;
     Check ps = start("event_psi:" + id, "events", "random_points+exact");
     ps.exact = true;
-    std::vector<std::size_t> c_rows;
-    std::vector<int> map_row(n, -1);
+    map_row.assign(n, -1);
     for (std::size_t r = 0; r < e.psi.size(); ++r) {
       std::vector<std::size_t> plus;
       for (std::size_t i = 0; i < n; ++i)
@@ -65,7 +95,7 @@ class EventFamily : public Family {
         map_row[plus[0]] = static_cast<int>(r);
       }
     }
-    std::vector<ex> g(n), c;
+    g.resize(n);
     for (const auto r : c_rows) c.push_back(e.psi[r]);
     for (std::size_t s = 0; s < n && ps.pass; ++s) {
       if (map_row[s] < 0) {
@@ -75,7 +105,7 @@ class EventFamily : public Family {
       }
       const ex& row = e.psi[static_cast<std::size_t>(map_row[s])];
       g[s] = tree_size(row, kExactBudget) > kExactBudget ? ex(xp[s] - row) : (xp[s] - row).expand();
-      if (!zero_at_points(d(row, xp[s]) - 1) || g[s].has(xp[s])) {
+      if (!zero_at_points(derivative(row, xp[s]) - 1) || g[s].has(xp[s])) {
         ps.fail(where + ".psi[" + std::to_string(map_row[s]) +
                 "] = " + e.psi_text[static_cast<std::size_t>(map_row[s])] + " must be " + print(xp[s]) +
                 " - g(x-) with coefficient 1 on " + print(xp[s]) + " (its multiplier is then -lambda_" + ctx.states[s] +
@@ -102,12 +132,15 @@ class EventFamily : public Family {
                   " involves a costate; psi constrains states, time and parameters only.");
     ps.exact = ps.exact && ps.pass;
     checks.push_back(ps);
-    if (!ps.pass) return;
+    return ps.pass;
+  }
 
-    // 2. Multipliers: nu_<id>_j for the rows of c, -lambda(t+)_s for the row x+_s - g_s.
+  // 2. Multipliers: nu_<id>_j for the rows of c, -lambda(t+)_s for the row x+_s - g_s.
+  bool check_event_multipliers(EventParts& parts) {
+    auto& [e, id, where, n, xm, xp, lm, lp, c_rows, map_row, g, c, nu, carried, rows, explicit_lp, resolve, basis_rows,
+           params] = parts;
     Check pm = start("event_multipliers:" + id, "events", "structural");
     pm.exact = true;
-    std::vector<ex> nu;
     if (e.multiplier_text.size() != e.psi.size()) {
       pm.fail(where + ".multipliers has " + std::to_string(e.multiplier_text.size()) + " entries for " +
               std::to_string(e.psi.size()) + " rows of psi: give one multiplier per row.");
@@ -139,9 +172,13 @@ class EventFamily : public Family {
       }
     }
     checks.push_back(pm);
-    if (!pm.pass) return;
+    return pm.pass;
+  }
 
-    // 3. Each row of c is a shooting equation (Rule 0).
+  // 3. Each row of c is a shooting equation (Rule 0).
+  void check_event_constraints(EventParts& parts) {
+    auto& [e, id, where, n, xm, xp, lm, lp, c_rows, map_row, g, c, nu, carried, rows, explicit_lp, resolve, basis_rows,
+           params] = parts;
     for (std::size_t j = 0; j < c.size(); ++j) {
       const std::string name = "psi_" + id + "_" + std::to_string(j + 1);
       Check k = start("event_constraint:" + id + "_" + std::to_string(j + 1), "events", "random_points+exact");
@@ -151,21 +188,25 @@ class EventFamily : public Family {
       checks.push_back(k);
       if (const json* bound = equation_field(name, "inequality")) check_bound(name, *bound, nu[j]);
     }
+  }
 
-    // 4. Costate jumps: lambda(t-)_s = nu^T dc/dx-_s + lambda(t+)^T dg/dx-_s. A state the map
-    //    carries (dg_s/dx- = unit row s) gets lambda(t+)_s explicitly, any other a shooting variable.
-    std::vector<bool> carried(n, true);
+  // 4. Costate jumps: lambda(t-)_s = nu^T dc/dx-_s + lambda(t+)^T dg/dx-_s. A state the map
+  //    carries (dg_s/dx- = unit row s) gets lambda(t+)_s explicitly, any other a shooting variable.
+  void costate_jump_rows(EventParts& parts) {
+    auto& [e, id, where, n, xm, xp, lm, lp, c_rows, map_row, g, c, nu, carried, rows, explicit_lp, resolve, basis_rows,
+           params] = parts;
+    carried.assign(n, true);
     std::vector<std::vector<ex>> dg(n, std::vector<ex>(n));  // dg[k][s] = dg_k/dx-_s
     for (std::size_t k = 0; k < n; ++k)
       for (std::size_t s = 0; s < n; ++s) {
-        dg[k][s] = d(g[k], xm[s]);
+        dg[k][s] = derivative(g[k], xm[s]);
         if (carried[k] && !zero_at_points(dg[k][s] - (k == s ? 1 : 0))) carried[k] = false;
       }
-    std::vector<ex> rows(n), explicit_lp(n);
-    GiNaC::exmap resolve;  // lambda(t+) of carried states -> their explicit value
+    rows.resize(n);
+    explicit_lp.resize(n);
     for (std::size_t s = 0; s < n; ++s) {
       ex row = lm[s];
-      for (std::size_t j = 0; j < c.size(); ++j) row -= nu[j] * d(c[j], xm[s]);
+      for (std::size_t j = 0; j < c.size(); ++j) row -= nu[j] * derivative(c[j], xm[s]);
       for (std::size_t k = 0; k < n; ++k)
         if (!carried[k]) row -= lp[k] * dg[k][s];
       rows[s] = row;
@@ -174,97 +215,103 @@ class EventFamily : public Family {
         resolve[lp[s]] = row;
       }
     }
-    std::vector<ex> basis_rows = nu;
+    basis_rows = nu;
     for (std::size_t k = 0; k < n; ++k)
       if (!carried[k]) basis_rows.push_back(lp[k]);
     for (std::size_t s = 0; s < n; ++s) basis_rows.push_back(lm[s]);
-    for (std::size_t s = 0; s < n; ++s) {
-      const std::string cid = "costate_jump:" + id + "_" + ctx.states[s];
-      const CostateEntry& entry = e.costate_map[s];
-      const std::string label = where + ".costate_map[" + ctx.costates[s] + "]";
-      const std::string jump_rule =
-          print(lm[s]) + " = nu^T dc/d" + print(xm[s]) + " + lambda(t+)^T dg/d" + print(xm[s]);
-      if (!entry.given) {
+  }
+
+  // 4b. The costate jump of the state s: given explicitly where the map carries s, else a row.
+  void check_costate_jump(EventParts& parts, std::size_t s) {
+    auto& [e, id, where, n, xm, xp, lm, lp, c_rows, map_row, g, c, nu, carried, rows, explicit_lp, resolve, basis_rows,
+           params] = parts;
+    const std::string cid = "costate_jump:" + id + "_" + ctx.states[s];
+    const CostateEntry& entry = e.costate_map[s];
+    const std::string label = where + ".costate_map[" + ctx.costates[s] + "]";
+    const std::string jump_rule = print(lm[s]) + " = nu^T dc/d" + print(xm[s]) + " + lambda(t+)^T dg/d" + print(xm[s]);
+    if (!entry.given) {
+      Check k = start(cid, "events", "structural");
+      k.fail(label + " is missing: give lambda_" + ctx.states[s] + " just after " + id + " (" + jump_rule + ").");
+      checks.push_back(k);
+      return;
+    }
+    if (carried[s]) {
+      if (entry.is_variable) {
         Check k = start(cid, "events", "structural");
-        k.fail(label + " is missing: give lambda_" + ctx.states[s] + " just after " + id + " (" + jump_rule + ").");
+        k.fail(label + " makes lambda_" + ctx.states[s] + "(t+) a shooting variable, but the map carries " +
+               ctx.states[s] + " (dg_" + ctx.states[s] +
+               "/dx- is the unit row), so its jump row gives it explicitly: expected " + print(lp[s]) + " = " +
+               short_print(explicit_lp[s]) + " (" + jump_rule + ").");
         checks.push_back(k);
-        continue;
+        return;
       }
-      if (carried[s]) {
-        if (entry.is_variable) {
-          Check k = start(cid, "events", "structural");
-          k.fail(label + " makes lambda_" + ctx.states[s] + "(t+) a shooting variable, but the map carries " +
-                 ctx.states[s] + " (dg_" + ctx.states[s] +
-                 "/dx- is the unit row), so its jump row gives it explicitly: expected " + print(lp[s]) + " = " +
-                 short_print(explicit_lp[s]) + " (" + jump_rule + ").");
-          checks.push_back(k);
-          continue;
+      Check k = equality(cid, "events", label, "lambda_" + ctx.states[s] + "(t+) from " + jump_rule,
+                         {explicit_lp[s], ctx.compile(explicit_lp[s]), {}}, json(entry.text), false);
+      if (!k.pass) {
+        const Linear lc = linear_compare(explicit_lp[s], entry.expr, basis_rows, lm[s], true);
+        std::string why = lc.text();
+        if (!lc.flipped.empty() &&
+            std::any_of(nu.begin(), nu.end(), [&](const ex& v) { return lc.has(lc.flipped, print(v)); }))
+          why += " (lambda(t+) = lambda(t-) - nu^T dc/dx-: the jump subtracts the multipliers)";
+        else if (!lc.missing.empty() &&
+                 std::any_of(nu.begin(), nu.end(), [&](const ex& v) { return lc.has(lc.missing, print(v)); }))
+          why += " (psi constrains " + ctx.states[s] + " at " + id + ", so its costate jumps by -nu^T dc/dx-)";
+        else {
+          bool in_c = false;
+          for (const auto& cj : c) in_c = in_c || cj.has(xm[s]);
+          why += " (the map carries " + ctx.states[s] + " over, " + print(xp[s]) + " = " + short_print(g[s]) +
+                 " with dg/d" + print(xm[s]) + " = 1, " +
+                 (in_c ? std::string("so lambda_" + ctx.states[s] + " jumps by -nu^T dc/dx- only")
+                       : std::string("and no row of c involves it, so lambda_" + ctx.states[s] +
+                                     " does not jump: " + print(lp[s]) + " = " + print(lm[s]))) +
+                 ")";
         }
-        Check k = equality(cid, "events", label, "lambda_" + ctx.states[s] + "(t+) from " + jump_rule,
-                           {explicit_lp[s], ctx.compile(explicit_lp[s]), {}}, json(entry.text), false);
-        if (!k.pass) {
-          const Linear lc = linear_compare(explicit_lp[s], entry.expr, basis_rows, lm[s], true);
-          std::string why = lc.text();
-          if (!lc.flipped.empty() &&
-              std::any_of(nu.begin(), nu.end(), [&](const ex& v) { return lc.has(lc.flipped, print(v)); }))
-            why += " (lambda(t+) = lambda(t-) - nu^T dc/dx-: the jump subtracts the multipliers)";
-          else if (!lc.missing.empty() &&
-                   std::any_of(nu.begin(), nu.end(), [&](const ex& v) { return lc.has(lc.missing, print(v)); }))
-            why += " (psi constrains " + ctx.states[s] + " at " + id + ", so its costate jumps by -nu^T dc/dx-)";
-          else {
-            bool in_c = false;
-            for (const auto& cj : c) in_c = in_c || cj.has(xm[s]);
-            why += " (the map carries " + ctx.states[s] + " over, " + print(xp[s]) + " = " + short_print(g[s]) +
-                   " with dg/d" + print(xm[s]) + " = 1, " +
-                   (in_c ? std::string("so lambda_" + ctx.states[s] + " jumps by -nu^T dc/dx- only")
-                         : std::string("and no row of c involves it, so lambda_" + ctx.states[s] +
-                                       " does not jump: " + print(lp[s]) + " = " + print(lm[s]))) +
-                   ")";
-          }
-          k.feedback = label + " = " + entry.text + " is not the costate jump at " + id + ": expected " + print(lp[s]) +
-                       " = " + short_print(explicit_lp[s]) + " (" + jump_rule + ")" + (why.empty() ? "" : "; " + why) +
-                       ".";
-        }
-        checks.push_back(k);
-        continue;
-      }
-      // Not carried: lambda(t+)_s is a shooting variable and the row an equation.
-      Check k = start(cid, "events", "random_points+exact");
-      const std::string row_text = short_print(rows[s]);
-      if (!entry.is_variable) {
-        k.fail(label + " = " + entry.text + " treats lambda_" + ctx.states[s] + " as given across " + id +
-               ", but the map " + print(xp[s]) + " = " + short_print(g[s]) + " does not carry " + ctx.states[s] +
-               " over (dg/dx- is not the unit row): lambda_" + ctx.states[s] +
-               "(t+) is unknown; make it the shooting " + "variable " + print(lp[s]) +
-               " (\"variable\") and add the jump row " + row_text + " = 0 as equation jump_" + id + "_" +
-               ctx.states[s] + ".");
-        checks.push_back(k);
-        continue;
-      }
-      if (entry.variable != print(lp[s])) {
-        k.fail(label + " names the variable '" + entry.variable + "'; lambda_" + ctx.states[s] + " just after " + id +
-               " is the symbol " + print(lp[s]) + ".");
-        checks.push_back(k);
-        continue;
-      }
-      const std::string ename = "jump_" + id + "_" + ctx.states[s];
-      if (!matching_equation(ename, rows[s], k, resolve)) {
-        const Equation* meant = named_equation(ename);
-        if (meant) {
-          const Linear lc = linear_compare(rows[s], meant->e.subs(resolve), basis_rows, lm[s]);
-          k.fail("shooting equation '" + ename + "' (" + (meant->text.size() > 300 ? "..." : meant->text) +
-                 " = 0) is not the costate jump row " + jump_rule + ", i.e. " + row_text + " = 0" +
-                 (lc.ok() ? "" : ": " + lc.text()) + ".");
-        } else {
-          k.fail("missing costate jump row " + row_text + " = 0 at " + id + " (" + jump_rule + ", row " +
-                 ctx.states[s] + "; lambda_" + ctx.states[s] + "(t+) is the shooting variable " + print(lp[s]) +
-                 "); add it to shooting.equations as " + ename + ".");
-        }
+        k.feedback = label + " = " + entry.text + " is not the costate jump at " + id + ": expected " + print(lp[s]) +
+                     " = " + short_print(explicit_lp[s]) + " (" + jump_rule + ")" + (why.empty() ? "" : "; " + why) +
+                     ".";
       }
       checks.push_back(k);
+      return;
     }
+    // Not carried: lambda(t+)_s is a shooting variable and the row an equation.
+    Check k = start(cid, "events", "random_points+exact");
+    const std::string row_text = short_print(rows[s]);
+    if (!entry.is_variable) {
+      k.fail(label + " = " + entry.text + " treats lambda_" + ctx.states[s] + " as given across " + id +
+             ", but the map " + print(xp[s]) + " = " + short_print(g[s]) + " does not carry " + ctx.states[s] +
+             " over (dg/dx- is not the unit row): lambda_" + ctx.states[s] + "(t+) is unknown; make it the shooting " +
+             "variable " + print(lp[s]) + " (\"variable\") and add the jump row " + row_text +
+             " = 0 as equation jump_" + id + "_" + ctx.states[s] + ".");
+      checks.push_back(k);
+      return;
+    }
+    if (entry.variable != print(lp[s])) {
+      k.fail(label + " names the variable '" + entry.variable + "'; lambda_" + ctx.states[s] + " just after " + id +
+             " is the symbol " + print(lp[s]) + ".");
+      checks.push_back(k);
+      return;
+    }
+    const std::string ename = "jump_" + id + "_" + ctx.states[s];
+    if (!matching_equation(ename, rows[s], k, resolve)) {
+      const Equation* meant = named_equation(ename);
+      if (meant) {
+        const Linear lc = linear_compare(rows[s], meant->e.subs(resolve), basis_rows, lm[s]);
+        k.fail("shooting equation '" + ename + "' (" + (meant->text.size() > 300 ? "..." : meant->text) +
+               " = 0) is not the costate jump row " + jump_rule + ", i.e. " + row_text + " = 0" +
+               (lc.ok() ? "" : ": " + lc.text()) + ".");
+      } else {
+        k.fail("missing costate jump row " + row_text + " = 0 at " + id + " (" + jump_rule + ", row " + ctx.states[s] +
+               "; lambda_" + ctx.states[s] + "(t+) is the shooting variable " + print(lp[s]) +
+               "); add it to shooting.equations as " + ename + ".");
+      }
+    }
+    checks.push_back(k);
+  }
 
-    // 5. Free epoch: H(t-) - H(t+) + nu^T dc/dt + lambda(t+)^T dg/dt = 0, d/dt through the moving parameters.
+  // 5. Free epoch: H(t-) - H(t+) + nu^T dc/dt + lambda(t+)^T dg/dt = 0, d/dt through the moving parameters.
+  void check_event_time(EventParts& parts) {
+    auto& [e, id, where, n, xm, xp, lm, lp, c_rows, map_row, g, c, nu, carried, rows, explicit_lp, resolve, basis_rows,
+           params] = parts;
     std::vector<std::string> problems;
     std::set<std::string> labels;
     for (const auto& name : ctx.parameters) {
@@ -340,16 +387,20 @@ class EventFamily : public Family {
       }
       checks.push_back(k);
     }
+  }
 
-    // 6. Stationarity in the free parameters of psi (Category C): nu^T dc/dq + lambda(t+)^T dg/dq = 0.
-    std::vector<std::string> params;
+  // 6. Stationarity in the free parameters of psi (Category C): nu^T dc/dq + lambda(t+)^T dg/dq = 0.
+  void check_event_stationarity(EventParts& parts) {
+    auto& [e, id, where, n, xm, xp, lm, lp, c_rows, map_row, g, c, nu, carried, rows, explicit_lp, resolve, basis_rows,
+           params] = parts;
     for (const auto& q : e.free_params)
       if (std::find(params.begin(), params.end(), q) == params.end()) params.push_back(q);
     for (const auto& q : params) {
       Check k = start("event_stationarity:" + id + "_" + q, "events", "random_points+exact");
       ex expected = 0;
-      for (std::size_t j = 0; j < c.size(); ++j) expected += nu[j] * d(c[j], ctx.sym(q));
-      for (std::size_t s = 0; s < n; ++s) expected += (carried[s] ? explicit_lp[s] : lp[s]) * d(g[s], ctx.sym(q));
+      for (std::size_t j = 0; j < c.size(); ++j) expected += nu[j] * derivative(c[j], ctx.sym(q));
+      for (std::size_t s = 0; s < n; ++s)
+        expected += (carried[s] ? explicit_lp[s] : lp[s]) * derivative(g[s], ctx.sym(q));
       const std::string ename = "stationarity_" + id + "_" + q;
       const std::string want = "dPhi/d" + q + " = nu^T dc/d" + q + " + lambda(t+)^T dg/d" + q + " = 0";
       if (!matching_equation(ename, expected, k, resolve)) {
@@ -368,9 +419,13 @@ class EventFamily : public Family {
       }
       checks.push_back(k);
     }
+  }
 
-    // 7. The event's unknowns are shooting variables (Rule 0): its nu's, its epoch's fraction,
-    //    lambda(t+) of the states the map does not carry, and the free parameters of psi.
+  // 7. The event's unknowns are shooting variables (Rule 0): its nu's, its epoch's fraction,
+  //    lambda(t+) of the states the map does not carry, and the free parameters of psi.
+  void check_event_unknowns(EventParts& parts) {
+    auto& [e, id, where, n, xm, xp, lm, lp, c_rows, map_row, g, c, nu, carried, rows, explicit_lp, resolve, basis_rows,
+           params] = parts;
     {
       Check k = start("event_unknowns:" + id, "counts", "structural");
       k.exact = true;
@@ -404,42 +459,50 @@ class EventFamily : public Family {
     }
   }
 
-  // Sliding departure: -H(t0) + nu0^T dpsi0/dt0 + H(tf) + dPhi/dtf = 0 (tf = t0 + tof moves with
-  // t0), nu0 from lambda(t0) = -nu0^T dpsi0/dx(t0), nu_f from lambda(tf) = lambda0 dphi/dx + nu_f^T dpsi_f/dx.
+  // A sliding departure (times.departure free): its times and its transversality condition.
   void check_departure() {
     if (!ctx.free_t0) return;
-    {
-      Check c = start("t0_expression", "counts", "structural");
-      c.exact = true;
-      const std::set<std::string> vars(ctx.variables.begin(), ctx.variables.end());
-      if (!ctx.t0_error.empty()) {
-        c.fail(ctx.t0_error + ".");
-      } else {
-        std::vector<std::string> missing;
-        bool used = false;
-        for (const auto& name : symbolic::free_symbols(ctx.t0_expr)) {
-          used = used || vars.count(name);
-          if (std::find(ctx.t0_vars.begin(), ctx.t0_vars.end(), name) != ctx.t0_vars.end() && !vars.count(name))
-            missing.push_back(name);
-        }
-        const json& times = ctx.derivation["times"];
-        if (!missing.empty() || !used) {
-          c.fail("times.t0_expression depends on no shooting variable" +
-                 (missing.empty() ? std::string() : " (" + join(missing, ", ") + " is not one)") +
-                 ": a sliding departure adds one shooting variable, t0_frac (Rule 0).");
-        } else if (times.contains("tf") && times["tf"].is_number()) {
-          const double tof = times["tf"].get<double>() - times.value("t0", 0.0);
-          const Compiled gap = ctx.compile(ctx.t0_tf_expr - ctx.t0_expr);
-          for (const auto& p : ctx.points)
-            if (rel_diff(gap(p), tof) > 1e-9) {
-              c.fail("times.tf_expression - times.t0_expression must be the fixed time of flight " + num(tof) +
-                     " (tf = t0 + tof moves with t0), got " + num(gap(p)) + ".");
-              break;
-            }
-        }
+    check_t0_expression();
+    check_sliding_departure();
+  }
+
+  // times.t0_expression: t0 slides with a shooting variable, tf = t0 + the fixed time of flight.
+  void check_t0_expression() {
+    Check c = start("t0_expression", "counts", "structural");
+    c.exact = true;
+    const std::set<std::string> vars(ctx.variables.begin(), ctx.variables.end());
+    if (!ctx.t0_error.empty()) {
+      c.fail(ctx.t0_error + ".");
+    } else {
+      std::vector<std::string> missing;
+      bool used = false;
+      for (const auto& name : symbolic::free_symbols(ctx.t0_expr)) {
+        used = used || vars.count(name);
+        if (std::find(ctx.t0_vars.begin(), ctx.t0_vars.end(), name) != ctx.t0_vars.end() && !vars.count(name))
+          missing.push_back(name);
       }
-      checks.push_back(c);
+      const json& times = ctx.derivation["times"];
+      if (!missing.empty() || !used) {
+        c.fail("times.t0_expression depends on no shooting variable" +
+               (missing.empty() ? std::string() : " (" + join(missing, ", ") + " is not one)") +
+               ": a sliding departure adds one shooting variable, t0_frac (Rule 0).");
+      } else if (times.contains("tf") && times["tf"].is_number()) {
+        const double tof = times["tf"].get<double>() - times.value("t0", 0.0);
+        const Compiled gap = ctx.compile(ctx.t0_tf_expr - ctx.t0_expr);
+        for (const auto& p : ctx.points)
+          if (rel_diff(gap(p), tof) > 1e-9) {
+            c.fail("times.tf_expression - times.t0_expression must be the fixed time of flight " + num(tof) +
+                   " (tf = t0 + tof moves with t0), got " + num(gap(p)) + ".");
+            break;
+          }
+      }
     }
+    checks.push_back(c);
+  }
+
+  // Sliding departure: -H(t0) + nu0^T dpsi0/dt0 + H(tf) + dPhi/dtf = 0 (tf = t0 + tof moves with
+  // t0), nu0 from lambda(t0) = -nu0^T dpsi0/dx(t0), nu_f from lambda(tf) = lambda0 dphi/dx + nu_f^T dpsi_f/dx.
+  void check_sliding_departure() {
     Check c = start("transversality_t0", "transversality", "random_points+exact");
     std::vector<std::string> problems;
     const std::map<std::string, ex> r0 = rates_at("t0", problems), rf = rates_at("tf", problems);
