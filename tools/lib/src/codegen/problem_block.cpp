@@ -25,7 +25,6 @@ std::pair<std::string, double> physical(const json& units, const json& state) {
 std::string problem_block(Context& c) {
   const json& d = c.d;
   std::ostringstream o;
-  const auto& units = d.at("units");
   o << "// ----- PROBLEM (generated) -----------------------------------------------------------------\n"
     << "namespace problem {\n"
     << "const char* const kProblemId = \"" << d.at("problem").at("id").get<std::string>() << "\";\n"
@@ -42,22 +41,18 @@ std::string problem_block(Context& c) {
     << "constexpr double kTf = "
     << number(d.at("times").contains("tf") ? d.at("times").at("tf") : d.at("times").at("tf_window")[1]) << ";\n"
     << "constexpr double kHomotopyStart = " << number(d.at("homotopy").at("start")) << ";\n"
-    << "constexpr double kTimeUnitDays = " << number(units.at("time_s").get<double>() / 86400.0) << ";\n"
-    << "constexpr double kLengthUnitKm = " << number(units.at("length_km")) << ";\n"
-    << "constexpr double kSpeedUnitKmS = "
-    << number(units.at("length_km").get<double>() / units.at("time_s").get<double>()) << ";\n"
+    << "constexpr double kTimeUnitDays = " << number(c.units.time_s / 86400.0) << ";\n"
+    << "constexpr double kLengthUnitKm = " << number(c.units.length_km) << ";\n"
+    << "constexpr double kSpeedUnitKmS = " << number(c.units.length_km / c.units.time_s) << ";\n"
     << "constexpr double kEpochMjd2000 = " << number(d.at("times").value("epoch_mjd2000", 0.0)) << ";\n"
-    << "constexpr double kMassUnitKg = " << number(units.at("mass_kg")) << ";\n";
-  double exhaust = 0;
-  for (const auto& p : d.at("parameters"))
-    if (p.at("name") == "c")
-      exhaust =
-          p.at("value").get<double>() * units.at("length_km").get<double>() * 1e3 / units.at("time_s").get<double>();
-  o << "constexpr double kExhaustVelocityMS = " << number(exhaust) << ";\n";
+    << "constexpr double kMassUnitKg = " << number(c.units.mass_kg) << ";\n";
+  const derivation::Quantity* exhaust = c.exhaust_velocity();
+  o << "constexpr double kExhaustVelocityMS = " << number(exhaust ? c.units.to_si(exhaust->value, exhaust->unit) : 0.0)
+    << ";\n";
   std::vector<std::string> columns;
   std::string factors;
   for (const auto& s : d.at("states")) {
-    const auto [col, f] = physical(units, s);
+    const auto [col, f] = physical(d.at("units"), s);
     columns.push_back(col);
     factors += (factors.empty() ? "" : ", ") + number(f);
   }
