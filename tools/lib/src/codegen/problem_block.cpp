@@ -8,16 +8,14 @@
 namespace helios::codegen::detail {
 namespace {
 
-// Physical column name and factor of each state (normalized -> SI-ish named unit).
-std::pair<std::string, double> physical(const json& units, const json& state) {
-  const std::string unit = state.value("unit", "");
-  const std::string name = state.at("name");
-  const double L = units.at("length_km"), T = units.at("time_s"), M = units.at("mass_kg");
-  if (unit == units.at("length").get<std::string>()) return {name + "_km", L};
-  if (unit == units.at("length").get<std::string>() + "/" + units.at("time").get<std::string>())
-    return {name + "_km_s", L / T};
-  if (unit == "initial mass") return {name + "_kg", M};
-  return {name, 1.0};
+// The column name and factor of a state in the trajectory's physical units (km, km/s, kg), by its
+// unit; a state of any other unit keeps its normalized value.
+std::pair<std::string, double> physical(const derivation::Units& units, const derivation::Quantity& state) {
+  const double to_km_s_kg = derivation::Units::factor(state.unit, units.length_km, units.time_s, units.mass_kg);
+  if (state.unit == derivation::Unit{1, 0, 0}) return {state.name + "_km", to_km_s_kg};
+  if (state.unit == derivation::Unit{1, -1, 0}) return {state.name + "_km_s", to_km_s_kg};
+  if (state.unit == derivation::Unit{0, 0, 1}) return {state.name + "_kg", to_km_s_kg};
+  return {state.name, 1.0};
 }
 
 }  // namespace
@@ -51,8 +49,8 @@ std::string problem_block(Context& c) {
     << ";\n";
   std::vector<std::string> columns;
   std::string factors;
-  for (const auto& s : d.at("states")) {
-    const auto [col, f] = physical(d.at("units"), s);
+  for (const auto& s : c.state_quantities) {
+    const auto [col, f] = physical(c.units, s);
     columns.push_back(col);
     factors += (factors.empty() ? "" : ", ") + number(f);
   }
