@@ -1,3 +1,4 @@
+// Reading the derivation into the Context and drawing the sample points.
 #include "context.hpp"
 
 #include <algorithm>
@@ -16,6 +17,7 @@ std::string lower(std::string s) {
   return s;
 }
 
+// The kind of a state: from its meaning, else from its name.
 Kind state_kind(const std::string& name, const std::string& meaning) {
   const std::string m = lower(meaning);
   if (m.find("mass") != std::string::npos || name == "m" || name == "mass") return Kind::Mass;
@@ -46,6 +48,7 @@ std::vector<std::string> identifiers(const std::string& text) {
   return out;
 }
 
+// A standard normal draw (Box-Muller).
 double gaussian(std::mt19937_64& rng) {
   const double u1 = (static_cast<double>(rng() >> 11) + 0.5) * 0x1.0p-53, u2 = uniform(rng, 0, 1);
   return std::sqrt(-2 * std::log(u1)) * std::cos(6.283185307179586 * u2);

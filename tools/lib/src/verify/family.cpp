@@ -1,3 +1,4 @@
+// What several check families use: equalities, the shooting equations, moving epochs.
 #include "family.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// The sail normal's geometry and the verifier's own minimizer of H over the hemisphere.
 #include "sail.hpp"
 
 #include <algorithm>
