@@ -1,11 +1,13 @@
 #pragma once
 // What the generator's modules share (internal to tools/lib/src/codegen): the derivation read once
-// into a Context (symbols, names, the shooting variables), and small text helpers.
+// into a Context (symbols, names, units, the shooting variables: a derivation::Reader), and small
+// text helpers.
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "helios/derivation/reader.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/symbolic/expr.hpp"
 
@@ -17,64 +19,9 @@ using symbolic::SymbolTable;
 // The index of `name` in v, -1 when absent.
 int index_of(const std::vector<std::string>& v, const std::string& name);
 
-struct Context {
-  const json& d;
-  SymbolTable symbols;
-  std::vector<std::string> states, costates, controls, parameters;
-  std::vector<std::string> runtime_evaluated;  // parameters with a source: locals of RESIDUAL, not constants
-  std::vector<std::string> variables;          // the shooting variables' names, in x's order
-  int throttle_index = -1;
-  explicit Context(const json& derivation) : d(derivation) {
-    for (const auto& s : d.at("states")) {
-      states.push_back(s.at("name"));
-      costates.push_back(s.at("costate"));
-    }
-    for (const auto& c : d.at("controls")) {
-      controls.push_back(c.at("name"));
-      if (c.at("kind") == "throttle") throttle_index = static_cast<int>(controls.size()) - 1;
-    }
-    for (const auto& p : d.at("parameters")) {
-      parameters.push_back(p.at("name"));
-      if (p.contains("source")) runtime_evaluated.push_back(p.at("name"));
-    }
-    const std::string mult = d.at("multiplier");
-    symbols.get("t");
-    if (d.contains("event_values"))
-      for (const auto& e : d.at("event_values")) symbols.get(e.at("name").get<std::string>());
-    for (const auto& v : d.at("shooting").at("variables")) {
-      variables.push_back(v.at("name"));
-      symbols.get(variables.back());
-    }
-    for (const char* kind : {"direction", "sail"})
-      if (d.at("control_law").contains(kind))
-        for (const auto& def : d.at("control_law").at(kind).value("definitions", json::array()))
-          symbols.get(def.at("name").get<std::string>());
-    for (const auto& n : states) symbols.get(n);
-    for (const auto& n : costates) symbols.get(n);
-    for (const auto& n : controls) symbols.get(n);
-    for (const auto& n : parameters) symbols.get(n);
-    symbols.get(mult);
-    symbols.get(d.at("homotopy").at("symbol").get<std::string>());
-    for (const auto& n : states) {
-      symbols.get(n + "_tf");
-      symbols.get(n + "_t0");
-    }
-    for (const auto& n : costates) {
-      symbols.get(n + "_tf");
-      symbols.get(n + "_t0");
-    }
-    for (const auto& e : d.value("events", json::array())) {
-      const std::string id = e.at("id");
-      events.push_back(id);
-      symbols.get("t_" + id);
-      for (const auto* names : {&states, &costates})
-        for (const auto& n : *names) {
-          symbols.get(n + "_" + id + "_m");
-          symbols.get(n + "_" + id + "_p");
-        }
-    }
-  }
-  std::vector<std::string> events;
+// The derivation as read (names, symbols, units) and the generator's helpers over it.
+struct Context : derivation::Reader {
+  explicit Context(const json& derivation) : Reader(derivation) {}
 
   // The variables of the normalization equation (the sphere: lambda0 and lambda(t0)).
   std::vector<std::string> sphere_variables() {

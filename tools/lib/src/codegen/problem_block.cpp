@@ -8,16 +8,14 @@
 namespace helios::codegen::detail {
 namespace {
 
-// Physical column name and factor of each state (normalized -> SI-ish named unit).
-std::pair<std::string, double> physical(const json& units, const json& state) {
-  const std::string unit = state.value("unit", "");
-  const std::string name = state.at("name");
-  const double L = units.at("length_km"), T = units.at("time_s"), M = units.at("mass_kg");
-  if (unit == units.at("length").get<std::string>()) return {name + "_km", L};
-  if (unit == units.at("length").get<std::string>() + "/" + units.at("time").get<std::string>())
-    return {name + "_km_s", L / T};
-  if (unit == "initial mass") return {name + "_kg", M};
-  return {name, 1.0};
+// The column name and factor of a state in the trajectory's physical units (km, km/s, kg), by its
+// unit; a state of any other unit keeps its normalized value.
+std::pair<std::string, double> physical(const derivation::Units& units, const derivation::Quantity& state) {
+  const double to_km_s_kg = derivation::Units::factor(state.unit, units.length_km, units.time_s, units.mass_kg);
+  if (state.unit == derivation::Unit{1, 0, 0}) return {state.name + "_km", to_km_s_kg};
+  if (state.unit == derivation::Unit{1, -1, 0}) return {state.name + "_km_s", to_km_s_kg};
+  if (state.unit == derivation::Unit{0, 0, 1}) return {state.name + "_kg", to_km_s_kg};
+  return {state.name, 1.0};
 }
 
 }  // namespace
@@ -25,7 +23,6 @@ std::pair<std::string, double> physical(const json& units, const json& state) {
 std::string problem_block(Context& c) {
   const json& d = c.d;
   std::ostringstream o;
-  const auto& units = d.at("units");
   o << "// ----- PROBLEM (generated) -----------------------------------------------------------------\n"
     << "namespace problem {\n"
     << "const char* const kProblemId = \"" << d.at("problem").at("id").get<std::string>() << "\";\n"
@@ -42,22 +39,18 @@ std::string problem_block(Context& c) {
     << "constexpr double kTf = "
     << number(d.at("times").contains("tf") ? d.at("times").at("tf") : d.at("times").at("tf_window")[1]) << ";\n"
     << "constexpr double kHomotopyStart = " << number(d.at("homotopy").at("start")) << ";\n"
-    << "constexpr double kTimeUnitDays = " << number(units.at("time_s").get<double>() / 86400.0) << ";\n"
-    << "constexpr double kLengthUnitKm = " << number(units.at("length_km")) << ";\n"
-    << "constexpr double kSpeedUnitKmS = "
-    << number(units.at("length_km").get<double>() / units.at("time_s").get<double>()) << ";\n"
+    << "constexpr double kTimeUnitDays = " << number(c.units.time_s / 86400.0) << ";\n"
+    << "constexpr double kLengthUnitKm = " << number(c.units.length_km) << ";\n"
+    << "constexpr double kSpeedUnitKmS = " << number(c.units.length_km / c.units.time_s) << ";\n"
     << "constexpr double kEpochMjd2000 = " << number(d.at("times").value("epoch_mjd2000", 0.0)) << ";\n"
-    << "constexpr double kMassUnitKg = " << number(units.at("mass_kg")) << ";\n";
-  double exhaust = 0;
-  for (const auto& p : d.at("parameters"))
-    if (p.at("name") == "c")
-      exhaust =
-          p.at("value").get<double>() * units.at("length_km").get<double>() * 1e3 / units.at("time_s").get<double>();
-  o << "constexpr double kExhaustVelocityMS = " << number(exhaust) << ";\n";
+    << "constexpr double kMassUnitKg = " << number(c.units.mass_kg) << ";\n";
+  const derivation::Quantity* exhaust = c.exhaust_velocity();
+  o << "constexpr double kExhaustVelocityMS = " << number(exhaust ? c.units.to_si(exhaust->value, exhaust->unit) : 0.0)
+    << ";\n";
   std::vector<std::string> columns;
   std::string factors;
-  for (const auto& s : d.at("states")) {
-    const auto [col, f] = physical(units, s);
+  for (const auto& s : c.state_quantities) {
+    const auto [col, f] = physical(c.units, s);
     columns.push_back(col);
     factors += (factors.empty() ? "" : ", ") + number(f);
   }
