@@ -99,6 +99,39 @@ TEST(DerivationReader, AStateOfAnUnreadableUnitNamesTheFileAndField) {
   }
 }
 
+// The message of the input_error reading `d` throws, "" when it reads.
+std::string read_error(const json& d, bool parse_units = true) {
+  try {
+    const Reader r(d, "x.json", parse_units);
+  } catch (const helios::input_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(DerivationReader, ReadsStrictlyWhatAModelMayHaveWrittenWrong) {
+  json d = derivation_of("S01");
+  d["states"][2].erase("costate");
+  EXPECT_EQ(read_error(d), "x.json: field /states/2/costate is missing");
+  d = derivation_of("S01");
+  d["controls"][1]["kind"] = "throttle";
+  EXPECT_EQ(read_error(d), "x.json: more than one throttle control (u, ax)");
+  d = derivation_of("S01");
+  d["controls"][2]["kind"] = "gimbal";
+  EXPECT_EQ(read_error(d), "x.json: control ay has unknown kind 'gimbal'");
+  d = derivation_of("S01");
+  d["parameters"][0]["value"] = "39.5";
+  EXPECT_EQ(read_error(d), "x.json: field /parameters/0/value must be a number, got \"39.5\"");
+  d = derivation_of("S01");
+  d["states"] = json::array();
+  EXPECT_EQ(read_error(d), "x.json: field states must be a non-empty array");
+  // The verifier reads the names without the units (it checks the mathematics, not unit texts).
+  d = derivation_of("S01");
+  d["states"][6]["unit"] = "tonne";
+  EXPECT_NE(read_error(d), "");
+  EXPECT_EQ(read_error(d, false), "");
+}
+
 TEST(DerivationReader, ASailHasNoExhaustVelocity) {
   const json d = derivation_of("S11");
   EXPECT_EQ(Reader(d).exhaust_velocity(), nullptr);

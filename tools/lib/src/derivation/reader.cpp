@@ -31,15 +31,26 @@ int split_power(std::string& name, const std::string& where, const std::string& 
   return static_cast<int>(n);
 }
 
-Quantity quantity(const json& q, const Units& units, const std::string& where) {
+// A state (value_required false) or a parameter of `file`; `where` is its JSON pointer. Its unit is parsed
+// over `units` unless that is null.
+Quantity quantity(const json& q, const Units* units, const std::string& file, const std::string& where,
+                  bool value_required) {
   Quantity out;
-  out.name = q.at("name").get<std::string>();
+  out.name = io::require_string(q, "name", where);
   out.meaning = q.value("meaning", "");
   out.unit_text = q.value("unit", "1");
-  out.unit = units.parse(out.unit_text, where + "/unit");
-  out.value = q.value("value", 0.0);
+  if (units) out.unit = units->parse(out.unit_text, file + ": field " + where + "/unit");
+  out.value = value_required ? io::require_number(q, "value", where) : q.value("value", 0.0);
   out.source = q.contains("source") && q.at("source").is_string() ? q.at("source").get<std::string>() : "";
   return out;
+}
+
+// The array `key` of `obj` (an empty one when absent); an error when it is something else.
+const json& array_or_empty(const json& obj, const char* key, const std::string& where) {
+  static const json kEmpty = json::array();
+  if (!obj.is_object() || !obj.contains(key)) return kEmpty;
+  if (!obj.at(key).is_array()) throw std::invalid_argument("field " + where + "/" + key + " must be an array");
+  return obj.at(key);
 }
 
 }  // namespace
@@ -81,39 +92,73 @@ double Units::to_si(double value, const Unit& u) const {
   return value;
 }
 
-Reader::Reader(const json& derivation, const std::string& file) : d(derivation) {
-  const json& u = d.at("units");
-  units.length = u.at("length").get<std::string>();
-  units.time = u.at("time").get<std::string>();
-  units.length_km = u.at("length_km").get<double>();
-  units.time_s = u.at("time_s").get<double>();
-  units.mass_kg = u.at("mass_kg").get<double>();
-  const std::string at = file + ": field ";
-  for (std::size_t i = 0; i < d.at("states").size(); ++i) {
-    const json& s = d.at("states")[i];
-    state_quantities.push_back(quantity(s, units, at + "/states/" + std::to_string(i)));
-    states.push_back(s.at("name"));
-    costates.push_back(s.at("costate"));
+Reader::Reader(const json& derivation, const std::string& file, bool parse_units) : d(derivation) {
+  const Units* unit_base = parse_units ? &units : nullptr;
+  try {
+    read_names(file);
+    const json& state_list = d.at("states");
+    for (std::size_t i = 0; i < state_list.size(); ++i)
+      state_quantities.push_back(quantity(state_list[i], unit_base, file, "/states/" + std::to_string(i), false));
+    const json& parameter_list = d.at("parameters");
+    for (std::size_t i = 0; i < parameter_list.size(); ++i)
+      parameter_quantities.push_back(
+          quantity(parameter_list[i], unit_base, file, "/parameters/" + std::to_string(i), true));
+  } catch (const std::invalid_argument& e) {  // io::require*: "field <pointer> is missing" and the like
+    throw input_error(file + ": " + e.what());
   }
-  for (const auto& c : d.at("controls")) {
-    controls.push_back(c.at("name"));
-    if (c.at("kind") == "throttle") throttle_index = static_cast<int>(controls.size()) - 1;
-  }
-  for (std::size_t i = 0; i < d.at("parameters").size(); ++i) {
-    parameter_quantities.push_back(quantity(d.at("parameters")[i], units, at + "/parameters/" + std::to_string(i)));
-    parameters.push_back(parameter_quantities.back().name);
-    if (parameter_quantities.back().runtime_evaluated()) runtime_evaluated.push_back(parameters.back());
-  }
-  multiplier = d.at("multiplier").get<std::string>();
-  homotopy = d.at("homotopy").at("symbol").get<std::string>();
-  for (const auto& e : d.value("event_values", json::array())) event_values.push_back(e.at("name"));
-  for (const auto& v : d.at("shooting").at("variables")) variables.push_back(v.at("name"));
-  for (const char* kind : {"direction", "sail"})
-    if (d.at("control_law").contains(kind))
-      for (const auto& def : d.at("control_law").at(kind).value("definitions", json::array()))
-        definitions.push_back(def.at("name"));
-  for (const auto& e : d.value("events", json::array())) events.push_back(e.at("id"));
+  register_symbols();
+}
 
+void Reader::read_names(const std::string& file) {
+  if (!d.is_object()) throw input_error(file + ": not a JSON object");
+  const json& u = io::require(d, "units", "");
+  units.length = io::require_string(u, "length", "/units");
+  units.time = io::require_string(u, "time", "/units");
+  units.length_km = io::require_number(u, "length_km", "/units");
+  units.time_s = io::require_number(u, "time_s", "/units");
+  units.mass_kg = io::require_number(u, "mass_kg", "/units");
+  const json& state_list = io::require(d, "states", "");
+  if (!state_list.is_array() || state_list.empty())
+    throw input_error(file + ": field states must be a non-empty array");
+  for (std::size_t i = 0; i < state_list.size(); ++i) {
+    const std::string where = "/states/" + std::to_string(i);
+    states.push_back(io::require_string(state_list[i], "name", where));
+    costates.push_back(io::require_string(state_list[i], "costate", where));
+  }
+  const json& control_list = io::require(d, "controls", "");
+  for (std::size_t i = 0; i < control_list.size(); ++i) {
+    const std::string where = "/controls/" + std::to_string(i);
+    const std::string name = io::require_string(control_list[i], "name", where);
+    const std::string kind = io::require_string(control_list[i], "kind", where);
+    if (kind != "throttle" && kind != "direction" && kind != "sail_normal")
+      throw input_error(file + ": control " + name + " has unknown kind '" + kind + "'");
+    if (kind == "throttle" && throttle_index >= 0)
+      throw input_error(file + ": more than one throttle control (" + controls[std::size_t(throttle_index)] + ", " +
+                        name + ")");
+    if (kind == "throttle") throttle_index = static_cast<int>(controls.size());
+    controls.push_back(name);
+    control_kinds.push_back(kind);
+  }
+  for (const auto& p : array_or_empty(d, "parameters", "")) {
+    parameters.push_back(io::require_string(p, "name", "/parameters"));
+    if (p.contains("source") && p.at("source").is_string()) runtime_evaluated.push_back(parameters.back());
+  }
+  multiplier = io::require_string(d, "multiplier", "");
+  homotopy = io::require_string(io::require(d, "homotopy", ""), "symbol", "/homotopy");
+  for (const auto& e : array_or_empty(d, "event_values", ""))
+    event_values.push_back(io::require_string(e, "name", "/event_values"));
+  if (d.contains("shooting"))
+    for (const auto& v : array_or_empty(d.at("shooting"), "variables", "/shooting"))
+      variables.push_back(io::require_string(v, "name", "/shooting/variables"));
+  if (d.contains("control_law") && d.at("control_law").is_object())
+    for (const char* kind : {"direction", "sail"})
+      if (d.at("control_law").contains(kind))
+        for (const auto& def : array_or_empty(d.at("control_law").at(kind), "definitions", "/control_law"))
+          definitions.push_back(io::require_string(def, "name", "/control_law/" + std::string(kind) + "/definitions"));
+  for (const auto& e : array_or_empty(d, "events", "")) events.push_back(io::require_string(e, "id", "/events"));
+}
+
+void Reader::register_symbols() {
   // The symbols, in a fixed order: GiNaC orders the terms of a printed expression by the order in
   // which its symbols were made, so the generated code depends on it.
   symbols.get("t");

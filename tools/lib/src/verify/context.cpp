@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "helios/derivation/reader.hpp"
 #include "helios/io/error.hpp"
 #include "sail.hpp"
 
@@ -166,46 +167,27 @@ std::vector<std::string> Context::declare_unknown(const std::string& text) {
 
 // The names and kinds of the states, costates, controls and parameters, the cost multiplier and
 // the homotopy parameter, each declared with its values at t0 and tf where it has them.
+// The names through the one reader of a derivation (helios/derivation/reader.hpp), declared here in
+// the verifier's own order: states with their t0/tf values, costates, controls, parameters.
 void Context::read_names() {
-  const json& d = derivation;
-  const json& state_list = io::require(d, "states", "derivation");
-  const json& control_list = io::require(d, "controls", "derivation");
-  const json& parameter_list = io::require(d, "parameters", "derivation");
-  multiplier = io::require_string(d, "multiplier", "derivation");
-  eps = io::require_string(io::require(d, "homotopy", "derivation"), "symbol", "derivation homotopy");
-  if (!state_list.is_array() || state_list.empty())
-    throw input_error("derivation: field states must be a non-empty array");
-  for (const auto& s : state_list) {
-    const std::string name = io::require_string(s, "name", "derivation states");
-    states.push_back(name);
-    costates.push_back(io::require_string(s, "costate", "derivation state " + name));
-    const Kind k = state_kind(name, s.value("meaning", ""));
-    declare(name, k);
-    declare(name + "_t0", k);
-    declare(name + "_tf", k);
+  const derivation::Reader names(derivation, "derivation", /*parse_units=*/false);
+  multiplier = names.multiplier;
+  eps = names.homotopy;
+  states = names.states;
+  costates = names.costates;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const Kind k = state_kind(states[i], names.state_quantities[i].meaning);
+    for (const char* suffix : {"", "_t0", "_tf"}) declare(states[i] + suffix, k);
   }
-  for (const auto& c : costates) {
-    declare(c, Kind::Costate);
-    declare(c + "_t0", Kind::Costate);
-    declare(c + "_tf", Kind::Costate);
-  }
-  for (const auto& c : control_list) {
-    const std::string name = io::require_string(c, "name", "derivation controls");
-    const std::string kind = io::require_string(c, "kind", "derivation control " + name);
-    if (kind == "throttle") {
-      if (!throttle.empty())
-        throw input_error("derivation: more than one throttle control (" + throttle + ", " + name + ")");
-      throttle = name;
-      declare(name, Kind::Throttle);
-    } else if (kind == "direction") {
-      directions.push_back(name);
-      declare(name, Kind::Direction);
-    } else if (kind == "sail_normal") {
-      sails.push_back(name);
-      declare(name, Kind::Sail);
-    } else {
-      throw input_error("derivation: control " + name + " has unknown kind '" + kind + "'");
-    }
+  for (const auto& c : costates)
+    for (const char* suffix : {"", "_t0", "_tf"}) declare(c + suffix, Kind::Costate);
+  for (std::size_t i = 0; i < names.controls.size(); ++i) {
+    const std::string& name = names.controls[i];
+    const std::string& kind = names.control_kinds[i];
+    if (kind == "throttle") throttle = name;
+    if (kind == "direction") directions.push_back(name);
+    if (kind == "sail_normal") sails.push_back(name);
+    declare(name, kind == "throttle" ? Kind::Throttle : kind == "direction" ? Kind::Direction : Kind::Sail);
   }
   for (std::size_t i = 0; i < states.size(); ++i)
     if (kinds[static_cast<std::size_t>(slot(states[i]))] == Kind::Position) positions.push_back(i);
@@ -213,13 +195,10 @@ void Context::read_names() {
     throw input_error(
         "derivation: a sail normal needs three controls of kind sail_normal and three position states, got " +
         std::to_string(sails.size()) + " and " + std::to_string(positions.size()));
-  for (const auto& p : parameter_list) {
-    const std::string name = io::require_string(p, "name", "derivation parameters");
-    parameters.push_back(name);
-    const bool sourced = p.contains("source") && p["source"].is_string();
-    declare(name, sourced ? Kind::Sourced : Kind::Parameter,
-            io::require_number(p, "value", "derivation parameter " + name));
-    if (sourced) sources[name] = p["source"].get<std::string>();
+  for (const auto& p : names.parameter_quantities) {
+    parameters.push_back(p.name);
+    declare(p.name, p.runtime_evaluated() ? Kind::Sourced : Kind::Parameter, p.value);
+    if (p.runtime_evaluated()) sources[p.name] = p.source;
   }
   declare(multiplier, Kind::Multiplier);
   declare(eps, Kind::Homotopy);

@@ -53,14 +53,18 @@ struct Quantity {
 
 class Reader {
  public:
-  // Reads `derivation` (already validated against its schema); `file` names it in error messages.
-  // Throws input_error "<file>: field <pointer>: ..." for a unit it cannot read.
-  explicit Reader(const io::json& derivation, const std::string& file = "derivation");
+  // Reads `derivation` strictly (it need not have passed its schema: the verifier reads what a
+  // model wrote); `file` names it in error messages. Throws input_error "<file>: field <pointer> ..."
+  // for a missing or mistyped field, a control of unknown kind, two throttles, or a unit it cannot read.
+  // With parse_units false the units stay text (Quantity::unit is dimensionless): the verifier
+  // checks the mathematics of a derivation, not how it names its units.
+  explicit Reader(const io::json& derivation, const std::string& file = "derivation", bool parse_units = true);
 
   const io::json& d;
   Units units;
   std::vector<Quantity> state_quantities, parameter_quantities;
   std::vector<std::string> states, costates, controls, parameters;
+  std::vector<std::string> control_kinds;      // by control: throttle, direction or sail_normal
   std::vector<std::string> runtime_evaluated;  // parameters with a source, in order
   std::vector<std::string> events;             // interior events' ids
   std::vector<std::string> variables;          // the shooting variables, in x's order
@@ -76,6 +80,10 @@ class Reader {
   // The parameter whose meaning names it the exhaust velocity, checked to be a speed; null when
   // the problem has none (a sail).
   const Quantity* exhaust_velocity() const;
+
+ private:
+  void read_names(const std::string& file);
+  void register_symbols();
 };
 
 }  // namespace helios::derivation
