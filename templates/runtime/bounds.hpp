@@ -174,6 +174,58 @@ bool active_set_passes(const Settings& s, const std::vector<Bound>& bounds, Resu
   }
 }
 
+// The starts of the passes over the bounds: pass 1's distinct extremals (r.search's), its
+// solution first, then the others by objective. A solve without a search record (an llm-written
+// SOLVE module) has its solution as the only one.
+inline std::vector<std::size_t> pass_one_starts(const Settings& s, Result& r) {
+  std::vector<Extremal>& extremals = r.search.extremals;
+  if (extremals.empty()) {
+    Extremal own;
+    own.x = r.x;
+    own.x_start = r.x_start;
+    own.shape.cost = objective_of(s, r.x);
+    own.reached = 1;
+    own.method = r.method;
+    extremals.push_back(own);
+    r.search.returned = 0;
+  }
+  std::vector<std::size_t> order(extremals.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const bool a_solution = static_cast<int>(a) == r.search.returned,
+               b_solution = static_cast<int>(b) == r.search.returned;
+    return a_solution != b_solution ? a_solution : extremals[a].shape.cost < extremals[b].shape.cost;
+  });
+  return order;
+}
+
+// What every pass tried did, into the result r of the last: the counts and steps summed, the
+// passes' methods with the active-set changes that led to r (`steps`), and each bound's report
+// (`first`: its values after pass 1; the active set is bound_state()'s).
+inline void record_passes(const Settings& s, const std::vector<Bound>& bounds, const std::vector<double>& first,
+                          const PassLog& log, const std::vector<std::string>& steps, Result& r) {
+  r.attempts = log.attempts;
+  r.iterations = log.iterations;
+  r.evaluations = log.evaluations;
+  r.legs = log.legs;
+  r.homotopy = log.homotopy;
+  r.continuation = log.continuation;
+  if (r.passes > 1) {
+    std::string changes;
+    for (const auto& c : steps) changes += (changes.empty() ? "" : " ") + c;
+    std::string each;
+    for (const auto& m : log.methods) each += (each.empty() ? "" : "; ") + m;
+    r.method = std::to_string(r.passes) + " passes over the bounds' active set (" + changes + "): " + each;
+  }
+  const bool converged = r.status == "converged";
+  const std::vector<double> last = converged ? bound_values(s, r.x) : first;
+  for (std::size_t k = 0; k < bounds.size(); ++k) {
+    const bool active = bound_state().active[k] != 0;
+    const double nu = converged ? r.x[bounds[k].multiplier] : 0.0;
+    r.bounds.push_back({bounds[k].name, bounds[k].meaning, first[k], active, last[k], nu});
+  }
+}
+
 // Bounds psi <= 0 by passes over the active set: pass 1 solves with every bound inactive, then
 // active_set_passes follows from its solution, warm. Pass 1's search keeps its distinct extremals,
 // and the passes start from each of them (best first; one no better than a result already found
@@ -195,25 +247,8 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
   std::vector<char> final_set = state.active;
   if (r.status == "converged") {
     first = bound_values(s, r.x);
-    // The starts: pass 1's distinct extremals, its solution first, then the others by objective.
     std::vector<Extremal>& extremals = r.search.extremals;
-    if (extremals.empty()) {  // a solve without a search record (an llm-written SOLVE module)
-      Extremal own;
-      own.x = r.x;
-      own.x_start = r.x_start;
-      own.shape.cost = objective_of(s, r.x);
-      own.reached = 1;
-      own.method = r.method;
-      extremals.push_back(own);
-      r.search.returned = 0;
-    }
-    std::vector<std::size_t> order(extremals.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      const bool a_solution = static_cast<int>(a) == r.search.returned,
-                 b_solution = static_cast<int>(b) == r.search.returned;
-      return a_solution != b_solution ? a_solution : extremals[a].shape.cost < extremals[b].shape.cost;
-    });
+    const std::vector<std::size_t> order = pass_one_starts(s, r);
     Result best = r;
     double best_objective = INFINITY;
     int best_from = r.search.returned;
@@ -259,26 +294,7 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve
     }
   }
   state.active = final_set;
-  r.attempts = log.attempts;
-  r.iterations = log.iterations;
-  r.evaluations = log.evaluations;
-  r.legs = log.legs;
-  r.homotopy = log.homotopy;
-  r.continuation = log.continuation;
-  if (r.passes > 1) {
-    std::string changes;
-    for (const auto& c : steps) changes += (changes.empty() ? "" : " ") + c;
-    std::string each;
-    for (const auto& m : log.methods) each += (each.empty() ? "" : "; ") + m;
-    r.method = std::to_string(r.passes) + " passes over the bounds' active set (" + changes + "): " + each;
-  }
-  const bool converged = r.status == "converged";
-  const std::vector<double> last = converged ? bound_values(s, r.x) : first;
-  for (std::size_t k = 0; k < bounds.size(); ++k) {
-    const bool active = state.active[k] != 0;
-    const double nu = converged ? r.x[bounds[k].multiplier] : 0.0;
-    r.bounds.push_back({bounds[k].name, bounds[k].meaning, first[k], active, last[k], nu});
-  }
+  record_passes(s, bounds, first, log, steps, r);
   return r;
 }
 

@@ -24,7 +24,9 @@ struct EventPlan {
   std::vector<EventRows> events;
 };
 
-// One attempt of the continuation onto the events, all at eps_start:
+// One attempt of the continuation onto the events, all at eps_start, as five stages that each
+// solve from the point the last one reached (x: the shooting variables, and `reference`: each
+// event's held epoch as a window fraction):
 //   events off: the problem without its events (each event's rows held: nu = 0, parameters = 0,
 //     epoch = its reference) from a scale-free random guess: lambda0 = 1 and every other variable
 //     of the sphere of magnitude log-uniform in [1e-3, 1], random sign, then projected on the sphere;
@@ -37,84 +39,123 @@ struct EventPlan {
 //     to 0: the parameters leave 0 in the direction that lowers the cost (with p held at 0 a swing-by
 //     angle delta = 0 solves every row for any other angle, a coordinate pole, not a minimum);
 //   eps: single shooting continued from eps_start to 0.
-// True when it converged (r then holds the solution).
+// Every solve of the first four is recorded in r.continuation, the last one's in r.homotopy.
 template <class Guess, class Admissible>
-bool continuation_attempt(const Settings& s, const EventPlan& plan, Guess&& initial_guess, Admissible&& admissible,
-                          std::mt19937_64& rng, std::vector<double>& eventless, int& uses, Result& r,
-                          int& evaluations) {
-  constexpr int N = problem::kNumVars;
-  const double eps = s.eps_start;
-  const int nev = static_cast<int>(plan.events.size());
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<double> reference(static_cast<std::size_t>(nev), 0.5);
-  const auto hold_events = [&](const double* x, double* F) {
-    for (int k = 0; k < nev; ++k) {
-      const EventRows& e = plan.events[k];
+class EventContinuation {
+ public:
+  static constexpr int N = problem::kNumVars;
+
+  EventContinuation(const Settings& s, const EventPlan& plan, Guess& initial_guess, Admissible& admissible,
+                    std::mt19937_64& rng, Result& r)
+      : s_(s),
+        plan_(plan),
+        initial_guess_(initial_guess),
+        admissible_(admissible),
+        rng_(rng),
+        r_(r),
+        eps_(s.eps_start),
+        nev_(static_cast<int>(plan.events.size())),
+        reference_(static_cast<std::size_t>(nev_), 0.5),
+        prop_(s),
+        F_(N),
+        off_(
+            s, [this](const double* x, double e, Propagator& p, double* F) { held_off(x, e, p, F); },
+            kContinuationStart) {}
+
+  // The stages in order. `eventless` is the events-off solution (solved here when empty, else
+  // reused); `uses` counts the attempts from it: the first places the epochs closest to the
+  // targets. True when it converged (r then holds the solution).
+  bool run(std::vector<double>& eventless, int& uses) {
+    if (eventless.empty()) {
+      if (!events_off()) return false;
+      eventless = x_;
+    }
+    x_ = eventless;
+    const bool closest = uses++ == 0;
+    return epochs(closest) && targets() && parameters(closest) && eps_to_zero();
+  }
+
+  // The function evaluations of every stage run.
+  int evaluations() const { return evaluations_ + off_.evaluations; }
+
+ private:
+  // The problem with its events off: each event's rows hold its variables at their off values.
+  void held_off(const double* x, double eps, Propagator& prop, double* F) const {
+    shooting_function(x, eps, prop, F);
+    for (int k = 0; k < nev_; ++k) {
+      const EventRows& e = plan_.events[k];
       for (const auto& [v, row] : e.constraints) F[row] = x[v];
-      if (e.epoch[0] >= 0) F[e.epoch[1]] = x[e.epoch[0]] - reference[k];
+      if (e.epoch[0] >= 0) F[e.epoch[1]] = x[e.epoch[0]] - reference_[k];
       for (const auto& [v, row] : e.parameters) F[row] = x[v];
     }
-  };
-  const auto snap = [&](std::vector<double>& x) {
-    for (int k = 0; k < nev; ++k) {
-      const EventRows& e = plan.events[k];
+  }
+
+  // Sets each event's variables to their off values: nu = 0, parameters 0, epochs at the reference.
+  void snap(std::vector<double>& x) const {
+    for (int k = 0; k < nev_; ++k) {
+      const EventRows& e = plan_.events[k];
       for (const auto& [v, row] : e.constraints) x[v] = 0;
-      if (e.epoch[0] >= 0) x[e.epoch[0]] = reference[k];
+      if (e.epoch[0] >= 0) x[e.epoch[0]] = reference_[k];
       for (const auto& [v, row] : e.parameters) x[v] = 0;
     }
-  };
+  }
+
   // With the event off its jump rows read lambda(t-) - lambda(t+) = 0: the costates after it that are
   // shooting variables are set to those before it (event by event, as each one moves the next).
-  Propagator prop(s);
-  std::vector<double> F(N);
-  const auto carry_costates = [&](std::vector<double>& x) {
-    for (int pass = 0; pass < nev; ++pass) {
+  void carry_costates(std::vector<double>& x) {
+    for (int pass = 0; pass < nev_; ++pass) {
       try {
-        shooting_function(x.data(), eps, prop, F.data());
+        shooting_function(x.data(), eps_, prop_, F_.data());
       } catch (const numerical_error&) {
         return;
       }
-      for (const auto& e : plan.events)
+      for (const auto& e : plan_.events)
         for (const auto& [v, row] : e.costates)
-          if (std::isfinite(F[row])) x[v] += F[row];
+          if (std::isfinite(F_[row])) x[v] += F_[row];
     }
-  };
-  const Residual off = [&](const double* x, double e, Propagator& prop, double* F) {
-    shooting_function(x, e, prop, F);
-    hold_events(x, F);
-  };
-  Shooter shooter_off(s, off, kContinuationStart);
-  const auto solve = [&](Shooter& shooter, std::vector<double>& x, const char* stage, double value) {
+  }
+
+  // One recorded solve of a stage at eps_start: true when it converged to an admissible x.
+  bool solve(Shooter& shooter, std::vector<double>& x, const char* stage, double value) {
     int info = 0;
     double res = 0;
-    ++r.iterations;
-    const bool ok = shooter.solve(x, eps, s.accept_residual, info, res) && admissible(x.data());
-    r.continuation.push_back({stage, value, ok, res, shooter.last_step_evaluations});
+    ++r_.iterations;
+    const bool ok = shooter.solve(x, eps_, s_.accept_residual, info, res) && admissible_(x.data());
+    r_.continuation.push_back({stage, value, ok, res, shooter.last_step_evaluations});
     return ok;
-  };
-  const auto done = [&](bool ok) {
-    evaluations += shooter_off.evaluations;
-    return ok;
-  };
+  }
+
+  // A scale-free random guess with the events off (see the stages above).
+  void draw_eventless_guess() {
+    initial_guess_(rng_, x_.data());
+    double norm2 = 0;
+    for (const int i : plan_.sphere) {
+      x_[i] = i == plan_.multiplier ? 1.0 : (unit_(rng_) < 0.5 ? -1.0 : 1.0) * std::pow(10.0, -3.0 + 3.0 * unit_(rng_));
+      norm2 += x_[i] * x_[i];
+    }
+    for (const int i : plan_.sphere) x_[i] /= std::sqrt(norm2);
+    snap(x_);
+    carry_costates(x_);
+  }
 
   // Events off, from scale-free random guesses, in the variables and rows of no event (the
   // event's own are set from them: nu = 0, parameters 0, epochs at the reference, the costates
-  // after it carried over), once: later attempts start from the same eventless solution.
-  std::vector<int> own_variables, own_rows;
-  {
-    std::vector<bool> event_variable(N), event_row(N);
-    for (const auto& e : plan.events) {
-      for (const auto* pairs : {&e.constraints, &e.parameters, &e.costates})
-        for (const auto& [v, row] : *pairs) event_variable[v] = event_row[row] = true;
-      if (e.epoch[0] >= 0) event_variable[e.epoch[0]] = event_row[e.epoch[1]] = true;
+  // after it carried over); when those are not as many, in all of them with the event's rows held.
+  bool events_off() {
+    std::vector<int> own_variables, own_rows;
+    {
+      std::vector<bool> event_variable(N), event_row(N);
+      for (const auto& e : plan_.events) {
+        for (const auto* pairs : {&e.constraints, &e.parameters, &e.costates})
+          for (const auto& [v, row] : *pairs) event_variable[v] = event_row[row] = true;
+        if (e.epoch[0] >= 0) event_variable[e.epoch[0]] = event_row[e.epoch[1]] = true;
+      }
+      for (int i = 0; i < N; ++i) {
+        if (!event_variable[i]) own_variables.push_back(i);
+        if (!event_row[i]) own_rows.push_back(i);
+      }
     }
-    for (int i = 0; i < N; ++i) {
-      if (!event_variable[i]) own_variables.push_back(i);
-      if (!event_row[i]) own_rows.push_back(i);
-    }
-  }
-  std::vector<double> x(N);
-  if (eventless.empty()) {
+    x_.assign(N, 0.0);
     const bool reduced = own_variables.size() == own_rows.size();
     std::vector<double> base(N);
     const auto expand = [&](const double* z, std::vector<double>& xx) {
@@ -124,10 +165,10 @@ bool continuation_attempt(const Settings& s, const EventPlan& plan, Guess&& init
     const Residual eventless_residual = [&](const double* z, double e, Propagator& p, double* G) {
       std::vector<double> xx, FF(N);
       expand(z, xx);
-      for (int pass = 0; pass <= nev; ++pass) {
+      for (int pass = 0; pass <= nev_; ++pass) {
         shooting_function(xx.data(), e, p, FF.data());
         bool carried = false;
-        for (const auto& ev : plan.events)
+        for (const auto& ev : plan_.events)
           for (const auto& [v, row] : ev.costates) {
             xx[v] += FF[row];
             carried = true;
@@ -136,111 +177,107 @@ bool continuation_attempt(const Settings& s, const EventPlan& plan, Guess&& init
       }
       for (std::size_t j = 0; j < own_rows.size(); ++j) G[j] = FF[own_rows[j]];
     };
-    Shooter shooter_eventless(s, eventless_residual, kContinuationStart);
+    Shooter shooter_eventless(s_, eventless_residual, kContinuationStart);
     bool off_solved = false;
-    for (int tries = 0; tries < s.leg_attempts && !off_solved; ++tries) {
-      initial_guess(rng, x.data());
-      double norm2 = 0;
-      for (const int i : plan.sphere) {
-        x[i] = i == plan.multiplier ? 1.0 : (unit(rng) < 0.5 ? -1.0 : 1.0) * std::pow(10.0, -3.0 + 3.0 * unit(rng));
-        norm2 += x[i] * x[i];
+    for (int tries = 0; tries < s_.leg_attempts && !off_solved; ++tries) {
+      draw_eventless_guess();
+      if (!reduced) {
+        off_solved = solve(off_, x_, "events off", tries);
+        continue;
       }
-      for (const int i : plan.sphere) x[i] /= std::sqrt(norm2);
-      snap(x);
-      carry_costates(x);
-      if (reduced) {
-        base = x;
-        std::vector<double> z(own_variables.size());
-        for (std::size_t j = 0; j < z.size(); ++j) z[j] = x[own_variables[j]];
-        int info = 0;
-        double res = 0;
-        ++r.iterations;
-        off_solved = shooter_eventless.solve(z, eps, s.accept_residual, info, res);
-        expand(z.data(), x);
-        carry_costates(x);
-        off_solved = off_solved && admissible(x.data());
-        r.continuation.push_back(
-            {"events off", static_cast<double>(tries), off_solved, res, shooter_eventless.last_step_evaluations});
-      } else {
-        off_solved = solve(shooter_off, x, "events off", tries);
-      }
+      base = x_;
+      std::vector<double> z(own_variables.size());
+      for (std::size_t j = 0; j < z.size(); ++j) z[j] = x_[own_variables[j]];
+      int info = 0;
+      double res = 0;
+      ++r_.iterations;
+      off_solved = shooter_eventless.solve(z, eps_, s_.accept_residual, info, res);
+      expand(z.data(), x_);
+      carry_costates(x_);
+      off_solved = off_solved && admissible_(x_.data());
+      r_.continuation.push_back(
+          {"events off", static_cast<double>(tries), off_solved, res, shooter_eventless.last_step_evaluations});
     }
-    evaluations += shooter_eventless.evaluations;
-    if (!off_solved) return done(false);
-    eventless = x;
+    evaluations_ += shooter_eventless.evaluations;
+    return off_solved;
   }
-  x = eventless;
-  const bool closest = uses++ == 0;
 
-  // Reference epochs: where the eventless trajectory passes closest to each target (its c rows
-  // are the offsets: the first attempt from the eventless solution), or at random (later ones).
-  const auto distance = [&](const std::vector<double>& z, int k) -> double {
+  // The squared offset of event k's target from trajectory z (its c rows; INFINITY where z fails).
+  double target_offset(const std::vector<double>& z, int k) {
     try {
-      shooting_function(z.data(), eps, prop, F.data());
+      shooting_function(z.data(), eps_, prop_, F_.data());
     } catch (const numerical_error&) {
       return INFINITY;
     }
     double d2 = 0;
-    for (const auto& [v, row] : plan.events[k].constraints) d2 += F[row] * F[row];
+    for (const auto& [v, row] : plan_.events[k].constraints) d2 += F_[row] * F_[row];
     return std::isfinite(d2) ? d2 : INFINITY;
-  };
-  for (int k = 0; k < nev; ++k) {
-    const int v = plan.events[k].epoch[0];
-    if (v < 0) continue;
-    if (closest) {
-      std::vector<double> z = x;
-      double best = INFINITY;
-      for (int j = 0; j <= 40; ++j) {
-        z[v] = j / 40.0;
-        const double d = distance(z, k);
-        if (d < best) {
-          best = d;
-          reference[k] = z[v];
-        }
-      }
-    } else {
-      reference[k] = unit(rng);
-    }
-    x[v] = reference[k];
   }
-  snap(x);
-  carry_costates(x);
-  if (!solve(shooter_off, x, "epochs", 0)) return done(false);
-  snap(x);  // exactly 0: a finite-difference step on a variable of 1e-80 would be lost
 
-  // Targets: the Newton homotopy from the eventless trajectory's offsets.
-  std::vector<double> F0(N);
-  try {
-    shooting_function(x.data(), eps, prop, F0.data());
-  } catch (const numerical_error&) {
-    return done(false);
+  // Reference epochs: where the eventless trajectory passes closest to each target (on 41 points
+  // of its window: the first attempt from the eventless solution), or at random (later ones).
+  bool epochs(bool closest) {
+    for (int k = 0; k < nev_; ++k) {
+      const int v = plan_.events[k].epoch[0];
+      if (v < 0) continue;
+      if (closest) {
+        std::vector<double> z = x_;
+        double best = INFINITY;
+        for (int j = 0; j <= 40; ++j) {
+          z[v] = j / 40.0;
+          const double d = target_offset(z, k);
+          if (d < best) {
+            best = d;
+            reference_[k] = z[v];
+          }
+        }
+      } else {
+        reference_[k] = unit_(rng_);
+      }
+      x_[v] = reference_[k];
+    }
+    snap(x_);
+    carry_costates(x_);
+    if (!solve(off_, x_, "epochs", 0)) return false;
+    snap(x_);  // exactly 0: a finite-difference step on a variable of 1e-80 would be lost
+    return true;
   }
-  double tau = 0;
-  const Residual targets = [&](const double* z, double e, Propagator& p, double* G) {
-    shooting_function(z, e, p, G);
-    for (int i = 0; i < N; ++i) G[i] -= (1 - tau) * F0[i];
-    for (const auto& ev : plan.events)
-      for (const auto& [v, row] : ev.parameters) G[row] = z[v];
-  };
-  Shooter shooter_targets(s, targets, kContinuationStart);
-  {
-    std::vector<double> previous = x;
+
+  // Targets: the Newton homotopy from the eventless trajectory's offsets F0, tau 0 -> 1 in
+  // adaptive steps, each from a secant predictor along the path, or where the path bends from x
+  // itself.
+  bool targets() {
+    std::vector<double> F0(N);
+    try {
+      shooting_function(x_.data(), eps_, prop_, F0.data());
+    } catch (const numerical_error&) {
+      return false;
+    }
+    double tau = 0;
+    const Residual toward_targets = [&](const double* z, double e, Propagator& p, double* G) {
+      shooting_function(z, e, p, G);
+      for (int i = 0; i < N; ++i) G[i] -= (1 - tau) * F0[i];
+      for (const auto& ev : plan_.events)
+        for (const auto& [v, row] : ev.parameters) G[row] = z[v];
+    };
+    Shooter shooter(s_, toward_targets, kContinuationStart);
+    std::vector<double> previous = x_;
     double tau_previous = 0, step = 0.1;
     bool reached = false;
-    while (!reached && wall_seconds() <= s.time_limit_s) {
+    while (!reached && wall_seconds() <= s_.time_limit_s) {
       const double from = tau, next = std::min(1.0, tau + step);
-      std::vector<double> trial = x;
+      std::vector<double> trial = x_;
       tau = next;
       bool solved = false;
-      if (from > 0) {  // secant predictor along the path; where the path bends, from x itself
-        for (int i = 0; i < N; ++i) trial[i] += (x[i] - previous[i]) / (from - tau_previous) * (next - from);
-        solved = solve(shooter_targets, trial, "targets", next);
-        if (!solved) trial = x;
+      if (from > 0) {
+        for (int i = 0; i < N; ++i) trial[i] += (x_[i] - previous[i]) / (from - tau_previous) * (next - from);
+        solved = solve(shooter, trial, "targets", next);
+        if (!solved) trial = x_;
       }
-      if (solved || solve(shooter_targets, trial, "targets", next)) {
-        previous = x;
+      if (solved || solve(shooter, trial, "targets", next)) {
+        previous = x_;
         tau_previous = from;
-        x = trial;
+        x_ = trial;
         reached = next >= 1.0;
         step *= 1.5;
       } else {
@@ -249,127 +286,163 @@ bool continuation_attempt(const Settings& s, const EventPlan& plan, Guess&& init
         if (step < 1e-3) break;
       }
     }
-    evaluations += shooter_targets.evaluations;
-    if (!reached) return done(false);
+    evaluations_ += shooter.evaluations;
+    return reached;
   }
 
-  // Parameters: from 0 to stationarity, kappa from large to 0.
-  bool has_parameters = false;
-  double stationarity = 0;
-  try {
-    shooting_function(x.data(), eps, prop, F.data());
-  } catch (const numerical_error&) {
-    return done(false);
-  }
-  for (const auto& ev : plan.events)
-    for (const auto& [v, row] : ev.parameters) {
-      has_parameters = true;
-      stationarity = std::max(stationarity, std::fabs(F[row]));
+  // Parameters: from 0 to stationarity, kappa from large to 0 (none: nothing to do).
+  bool parameters(bool closest) {
+    double stationarity = 0;
+    try {
+      shooting_function(x_.data(), eps_, prop_, F_.data());
+    } catch (const numerical_error&) {
+      return false;
     }
-  if (has_parameters) {
+    for (const auto& ev : plan_.events)
+      for (const auto& [v, row] : ev.parameters) {
+        has_parameters_ = true;
+        stationarity = std::max(stationarity, std::fabs(F_[row]));
+      }
+    if (!has_parameters_) return true;
     double kappa = 0;
     // The penalty's weight of each parameter: 1 on the first attempt from the eventless solution,
     // log-uniform in [0.1, 10] on later ones, so that they follow other paths.
     std::vector<double> weight(N, 1.0);
     if (!closest)
-      for (auto& w : weight) w = std::pow(10.0, -1.0 + 2.0 * unit(rng));
+      for (auto& w : weight) w = std::pow(10.0, -1.0 + 2.0 * unit_(rng_));
     const Residual penalized = [&](const double* z, double e, Propagator& p, double* G) {
       shooting_function(z, e, p, G);
-      for (const auto& ev : plan.events)
-        for (const auto& [v, row] : ev.parameters) G[row] += kappa * weight[v] * z[plan.multiplier] * z[v];
+      for (const auto& ev : plan_.events)
+        for (const auto& [v, row] : ev.parameters) G[row] += kappa * weight[v] * z[plan_.multiplier] * z[v];
     };
-    Shooter shooter_parameters(s, penalized, kContinuationStart);
+    Shooter shooter(s_, penalized, kContinuationStart);
     // The first kappa moves the parameters by about 1e-3.
-    const double start = stationarity > 0 ? stationarity / (1e-3 * x[plan.multiplier]) : 1.0;
+    const double start = stationarity > 0 ? stationarity / (1e-3 * x_[plan_.multiplier]) : 1.0;
     // Secant predictor in log(kappa) from the last two solutions (the parameters move fast
     // where kappa meets the cost's own curvature).
     std::vector<double> previous;  // the solution before x on the path (none before the first kappa)
     double log_previous = 0, log_current = 0;
     bool on_path = false;  // x solves at log_current (before the first kappa it holds p = 0)
-    const bool ok = continue_to_zero(s, start, [&](double value) {
+    const bool ok = continue_to_zero(s_, start, [&](double value) {
       kappa = value;
-      std::vector<double> trial = x;
+      std::vector<double> trial = x_;
       bool solved = false;
       if (value > 0 && !previous.empty()) {
         for (int i = 0; i < N; ++i)
-          trial[i] += (x[i] - previous[i]) * (std::log(value) - log_current) / (log_current - log_previous);
-        solved = solve(shooter_parameters, trial, "parameters", value);
-        if (!solved) trial = x;  // the path bends: from the last solution itself
+          trial[i] += (x_[i] - previous[i]) * (std::log(value) - log_current) / (log_current - log_previous);
+        solved = solve(shooter, trial, "parameters", value);
+        if (!solved) trial = x_;  // the path bends: from the last solution itself
       }
-      if (!solved && !solve(shooter_parameters, trial, "parameters", value)) return false;
+      if (!solved && !solve(shooter, trial, "parameters", value)) return false;
       if (value > 0) {
         if (on_path) {
-          previous = x;
+          previous = x_;
           log_previous = log_current;
         }
         log_current = std::log(value);
         on_path = true;
       }
-      x = trial;
+      x_ = trial;
       return true;
     });
-    evaluations += shooter_parameters.evaluations;
-    if (!ok) return done(false);
+    evaluations_ += shooter.evaluations;
+    return ok;
+  }
+
+  // A parameter that moves nothing at the solution z (a swing-by's plane angle at delta = 0 or
+  // pi) leaves its stationarity row satisfied for any value: a coordinate pole, not an optimum.
+  bool at_pole(const std::vector<double>& z) {
+    std::vector<double> G0(N), G(N);
+    try {
+      shooting_function(z.data(), 0.0, prop_, G0.data());
+      for (const auto& ev : plan_.events)
+        for (const auto& [v, row] : ev.parameters) {
+          std::vector<double> moved = z;
+          moved[v] += 1e-4;
+          shooting_function(moved.data(), 0.0, prop_, G.data());
+          double change = 0, size = 0;
+          for (int i = 0; i < N; ++i) {
+            bool own = false;
+            for (const auto& e2 : plan_.events)
+              for (const auto& [v2, row2] : e2.parameters) own = own || i == row2;
+            if (own) continue;
+            change = std::max(change, std::fabs(G[i] - G0[i]));
+            size = std::max(size, std::fabs(G0[i]));
+          }
+          if (!(change > 1e-12 * (1 + size))) return true;
+        }
+    } catch (const numerical_error&) {
+      return true;
+    }
+    return false;
   }
 
   // eps to 0 on the whole problem (to the intermediate gate), then the polish to the final gate:
-  // hybrd1 from there, else once more from the continuation's start.
-  Settings to_zero = s;
-  to_zero.final_residual = std::max(s.final_residual, s.accept_residual);
-  Shooter full(s, shooting_function, kContinuationStart), polish(s);
-  double res = 0;
-  int info = 0;
-  bool converged = homotopy_to_zero(to_zero, full, x, r, admissible, res);
-  if (converged) {
-    std::vector<double> y = x;
-    Shooter* last = &polish;
-    converged = homotopy_step(polish, y, 0.0, s.final_residual, r, admissible, info, res);
-    if (!converged) {
-      y = x;
-      last = &full;
-      converged = homotopy_step(full, y, 0.0, s.final_residual, r, admissible, info, res);
-    }
-    // A parameter that moves nothing at the solution (a swing-by's plane angle at delta = 0 or pi)
-    // leaves its stationarity row satisfied for any value: a coordinate pole, not an optimum.
-    const auto at_pole = [&](const std::vector<double>& z) {
-      std::vector<double> G0(N), G(N);
-      try {
-        shooting_function(z.data(), 0.0, prop, G0.data());
-        for (const auto& ev : plan.events)
-          for (const auto& [v, row] : ev.parameters) {
-            std::vector<double> moved = z;
-            moved[v] += 1e-4;
-            shooting_function(moved.data(), 0.0, prop, G.data());
-            double change = 0, size = 0;
-            for (int i = 0; i < N; ++i) {
-              bool own = false;
-              for (const auto& e2 : plan.events)
-                for (const auto& [v2, row2] : e2.parameters) own = own || i == row2;
-              if (own) continue;
-              change = std::max(change, std::fabs(G[i] - G0[i]));
-              size = std::max(size, std::fabs(G0[i]));
-            }
-            if (!(change > 1e-12 * (1 + size))) return true;
-          }
-      } catch (const numerical_error&) {
-        return true;
-      }
-      return false;
-    };
-    if (converged && has_parameters && at_pole(y)) converged = false;
+  // hybrd1 from there, else once more from the continuation's start. Fills r when it converged.
+  bool eps_to_zero() {
+    Settings to_zero = s_;
+    to_zero.final_residual = std::max(s_.final_residual, s_.accept_residual);
+    Shooter full(s_, shooting_function, kContinuationStart), polish(s_);
+    double res = 0;
+    int info = 0;
+    bool converged = homotopy_to_zero(to_zero, full, x_, r_, admissible_, res);
     if (converged) {
-      r.status = "converged";
-      r.method = std::string("events off, then continuation onto the events' targets") +
-                 (has_parameters ? ", then their parameters" : "") + ", then eps continuation, then single shooting";
-      r.info = info;
-      r.x = y;
-      r.F = last->last_F;
-      r.eps = 0;
-      r.max_residual = res;
+      std::vector<double> y = x_;
+      Shooter* last = &polish;
+      converged = homotopy_step(polish, y, 0.0, s_.final_residual, r_, admissible_, info, res);
+      if (!converged) {
+        y = x_;
+        last = &full;
+        converged = homotopy_step(full, y, 0.0, s_.final_residual, r_, admissible_, info, res);
+      }
+      if (converged && has_parameters_ && at_pole(y)) converged = false;
+      if (converged) {
+        r_.status = "converged";
+        r_.method = std::string("events off, then continuation onto the events' targets") +
+                    (has_parameters_ ? ", then their parameters" : "") +
+                    ", then eps continuation, then single shooting";
+        r_.info = info;
+        r_.x = y;
+        r_.F = last->last_F;
+        r_.eps = 0;
+        r_.max_residual = res;
+      }
     }
+    evaluations_ += full.evaluations + polish.evaluations;
+    return converged;
   }
-  evaluations += full.evaluations + polish.evaluations;
-  return done(converged);
+
+  const Settings& s_;
+  const EventPlan& plan_;
+  Guess& initial_guess_;
+  Admissible& admissible_;
+  std::mt19937_64& rng_;
+  Result& r_;
+  const double eps_;  // every stage but the last solves at eps_start
+  const int nev_;
+  std::uniform_real_distribution<double> unit_{0.0, 1.0};
+  std::vector<double> x_;          // the point on the path: the last stage's solution
+  std::vector<double> reference_;  // each event's held epoch (window fraction) while it is off
+  bool has_parameters_ = false;    // the events have Category-C parameters (the parameters stage ran)
+  Propagator prop_;                // the stages' own evaluations outside a solve
+  std::vector<double> F_;
+  Shooter off_;  // the problem with its events off (held_off)
+  int evaluations_ = 0;
+};
+
+// One attempt of the continuation onto the events (EventContinuation), from `eventless` (the
+// attempt's events-off solution: solved here when empty); `uses` counts the attempts from it. True
+// when it converged (r then holds the solution); its function evaluations are added to
+// `evaluations`.
+template <class Guess, class Admissible>
+bool continuation_attempt(const Settings& s, const EventPlan& plan, Guess&& initial_guess, Admissible&& admissible,
+                          std::mt19937_64& rng, std::vector<double>& eventless, int& uses, Result& r,
+                          int& evaluations) {
+  EventContinuation<std::remove_reference_t<Guess>, std::remove_reference_t<Admissible>> attempt(s, plan, initial_guess,
+                                                                                                 admissible, rng, r);
+  const bool converged = attempt.run(eventless, uses);
+  evaluations += attempt.evaluations();
+  return converged;
 }
 
 }  // namespace helios_rt

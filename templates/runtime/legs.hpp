@@ -6,6 +6,40 @@
 
 namespace helios_rt {
 
+// The legs solved alone joined: from their variables x and each later leg's start state
+// (`starts`), multiple shooting over [x, starts] (F = [the problem's equations, costate
+// continuity]) continued in eps to 0, then polished by single shooting. True when it converged (r
+// then holds the solution).
+template <class Admissible>
+bool join_legs(const Settings& s, std::vector<double> x, const std::vector<double>& starts, Admissible& admissible,
+               Shooter& single, Result& r, int& evaluations) {
+  constexpr int N = problem::kNumVars;
+  const Residual multiple = [&](const double* z, double eps, Propagator& prop, double* F) {
+    const Legs legs{-1, z + N, F + N};
+    shooting_legs(z, eps, prop, F, &legs);
+  };
+  Shooter shooter(s, multiple);
+  std::vector<double> z(x);
+  z.insert(z.end(), starts.begin(), starts.end());
+  double res = 0;
+  bool converged = false;
+  if (homotopy_to_zero(s, shooter, z, r, admissible, res)) {
+    x.assign(z.begin(), z.begin() + N);
+    int info = 0;
+    if (homotopy_step(single, x, 0.0, s.final_residual, r, admissible, info, res)) {
+      r.status = "converged";
+      r.method = "legs, then multiple shooting, then single shooting";
+      r.x = x;
+      r.F = single.last_F;
+      r.eps = 0;
+      r.max_residual = res;
+      converged = true;
+    }
+  }
+  evaluations += shooter.evaluations;
+  return converged;
+}
+
 // Problems with interior events (the RESIDUAL module's LegPlan): an attempt first solves the
 // legs one after the other at eps_start, each as if the trajectory ended at its event (leg k
 // starts from the state leg k-1 reached); from those, multiple shooting over all legs is
@@ -75,32 +109,7 @@ bool legs_attempt(const Settings& s, const LegPlan& plan, Guess&& initial_guess,
     evaluations += shooter.evaluations;
     legs_solved = solved;
   }
-  if (!legs_solved) return false;
-  // Multiple shooting over [x, starts]: F = [the problem's equations, costate continuity].
-  const Residual multiple = [&](const double* z, double eps, Propagator& prop, double* F) {
-    const Legs legs{-1, z + N, F + N};
-    shooting_legs(z, eps, prop, F, &legs);
-  };
-  Shooter shooter(s, multiple);
-  std::vector<double> z(x);
-  z.insert(z.end(), starts.begin(), starts.end());
-  double res = 0;
-  bool converged = false;
-  if (homotopy_to_zero(s, shooter, z, r, admissible, res)) {
-    x.assign(z.begin(), z.begin() + N);
-    int info = 0;
-    if (homotopy_step(single, x, 0.0, s.final_residual, r, admissible, info, res)) {
-      r.status = "converged";
-      r.method = "legs, then multiple shooting, then single shooting";
-      r.x = x;
-      r.F = single.last_F;
-      r.eps = 0;
-      r.max_residual = res;
-      converged = true;
-    }
-  }
-  evaluations += shooter.evaluations;
-  return converged;
+  return legs_solved && join_legs(s, x, starts, admissible, single, r, evaluations);
 }
 
 }  // namespace helios_rt

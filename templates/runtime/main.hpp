@@ -1,7 +1,8 @@
 // ---------------------------------------------------------------------------------------------
 // HELIOS shooting runtime, entry point (templates/runtime/main.hpp).
-// usage: shoot --settings SETTINGS.json --result RESULT.json --trajectory TRAJECTORY.csv
-// Writes RESULT.json (normalized and physical numbers) and the trajectory of the final solution.
+// usage: shoot --settings SETTINGS.json --outcome OUTCOME.json --trajectory TRAJECTORY.csv
+// Writes OUTCOME.json (solution.json's keys but helios-solve's own: normalized and physical
+// numbers) and the trajectory of the final solution.
 // ---------------------------------------------------------------------------------------------
 namespace helios_rt {
 
@@ -47,11 +48,21 @@ inline void write_atomic(const std::string& path, const std::string& text) {
   if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot rename " + tmp);
 }
 
+// What the re-propagated solution says: its switches, the largest drift of H over an arc, the
+// states and times at its ends, and (with a mass state) the propellant and delta-v summed over the
+// arcs.
+struct TrajectorySummary {
+  std::vector<Switch> switches;
+  double hamiltonian_drift = 0;
+  std::vector<double> initial_state, final_state;
+  double t0 = 0, tf = 0;
+  double delta_v_m_s = 0, propellant = 0;
+};
+
 // Re-propagates the solution, recording samples and switches, and writes the trajectory CSV.
-inline nlohmann::json trajectory(const Settings& s, const Result& r, const std::string& csv_path) {
+inline TrajectorySummary trajectory(const Settings& s, const Result& r, const std::string& csv_path) {
   const RecordedPath path = recorded_path(s, r.x, r.eps, (problem::kTf - problem::kT0) / 500);
   const std::vector<Sample>& samples = path.samples;
-  const std::vector<Switch>& switches = path.switches;
   std::ostringstream csv;
   csv.precision(15);
   csv << "t_days";
@@ -78,72 +89,68 @@ inline nlohmann::json trajectory(const Settings& s, const Result& r, const std::
     hi = std::max(hi, p.H);
   }
   write_atomic(csv_path, csv.str());
-  nlohmann::json out;
-  nlohmann::json sw = nlohmann::json::array();
-  for (const auto& w : switches)
-    sw.push_back({{"t_days", w.t * problem::kTimeUnitDays}, {"throttle_after", w.throttle_after}});
-  out["switches"] = sw;
-  double drift = 0;
-  for (const auto& [arc, range] : h_range) drift = std::max(drift, range.second - range.first);
-  out["hamiltonian_drift"] = drift;  // the largest over the arcs
-  out["samples"] = samples.size();
+  TrajectorySummary out;
+  out.switches = path.switches;
+  for (const auto& [arc, range] : h_range)
+    out.hamiltonian_drift = std::max(out.hamiltonian_drift, range.second - range.first);
+  const auto& first = samples.front();
   const auto& last = samples.back();
-  out["initial_state"] =
-      std::vector<double>(samples.front().y.begin(), samples.front().y.begin() + problem::kNumStates);
-  out["final_state"] = std::vector<double>(last.y.begin(), last.y.begin() + problem::kNumStates);
-  if constexpr (problem::kMassIndex >= 0) {
-    // Delta-v by the rocket equation on each arc (a mass drop between arcs is not propellant).
-    double dv = 0, propellant = 0;
-    for (const auto& [arc, mass] : arc_mass) {
-      dv += problem::kExhaustVelocityMS * std::log(mass.first / mass.second);
-      propellant += mass.first - mass.second;
-    }
-    out["delta_v_m_s"] = dv;
-    out["propellant"] = propellant;
+  out.initial_state.assign(first.y.begin(), first.y.begin() + problem::kNumStates);
+  out.final_state.assign(last.y.begin(), last.y.begin() + problem::kNumStates);
+  // Delta-v by the rocket equation on each arc (a mass drop between arcs is not propellant).
+  for (const auto& [arc, mass] : arc_mass) {
+    out.delta_v_m_s += problem::kExhaustVelocityMS * std::log(mass.first / mass.second);
+    out.propellant += mass.first - mass.second;
   }
-  out["t0"] = samples.front().t;
-  out["tf"] = last.t;
+  out.t0 = first.t;
+  out.tf = last.t;
   return out;
 }
 
 // A finite objective in named units: the propellant under `mass_key`, or the flight time under
 // `time_key`.
-inline void objective_in_units(nlohmann::json& to, double objective, const char* mass_key = "propellant_kg",
+inline void objective_in_units(nlohmann::ordered_json& to, double objective, const char* mass_key = "propellant_kg",
                                const char* time_key = "tof_days") {
   if (std::isfinite(objective)) to[kObjectiveIsPropellant ? mass_key : time_key] = objective_in_named_unit(objective);
 }
 
-// The global search as solution.json records it (schemas/solution.schema.json, "search").
-inline nlohmann::json search_record(const SearchRecord& rec) {
-  nlohmann::json at_start = nlohmann::json::array(), extremals = nlohmann::json::array();
-  for (std::size_t i = 0; i < rec.start_extremals.size(); ++i) {
-    const StartExtremal& e = rec.start_extremals[i];
-    nlohmann::json entry = {{"id", i},
-                            {"cost", recorded(e.shape.cost)},
-                            {"revolutions", e.shape.revolutions},
-                            {"mode_changes", e.shape.switches},
-                            {"reached", e.reached},
-                            {"first_start", e.first_start},
-                            {"max_residual", recorded(e.max_residual)},
-                            {"continued", e.continued}};
+// The distinct extremals at eps_start as solution.json records them ("search", "extremals_at_eps_start").
+inline nlohmann::ordered_json start_extremals_record(const std::vector<StartExtremal>& list) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const StartExtremal& e = list[i];
+    nlohmann::ordered_json entry = {{"id", i},
+                                    {"cost", recorded(e.shape.cost)},
+                                    {"revolutions", e.shape.revolutions},
+                                    {"mode_changes", e.shape.switches},
+                                    {"reached", e.reached},
+                                    {"first_start", e.first_start},
+                                    {"max_residual", recorded(e.max_residual)},
+                                    {"continued", e.continued}};
     objective_in_units(entry, e.shape.cost, "cost_kg", "cost_days");  // the smoothed problem's cost
     if (e.arrived >= 0) entry["arrived_at"] = e.arrived;
-    at_start.push_back(entry);
+    out.push_back(entry);
   }
-  for (std::size_t i = 0; i < rec.extremals.size(); ++i) {
-    const Extremal& e = rec.extremals[i];
-    nlohmann::json entry = {{"id", i},
-                            {"objective", recorded(e.shape.cost)},
-                            {"revolutions", e.shape.revolutions},
-                            {"switches", e.shape.switches},
-                            {"reached", e.reached},
-                            {"first_start", e.first_start},
-                            {"from", e.from},
-                            {"max_residual", recorded(e.max_residual)},
-                            {"method", e.method}};
+  return out;
+}
+
+// The distinct extremals at eps = 0 as solution.json records them ("search", "extremals").
+inline nlohmann::ordered_json extremals_record(const std::vector<Extremal>& list) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Extremal& e = list[i];
+    nlohmann::ordered_json entry = {{"id", i},
+                                    {"objective", recorded(e.shape.cost)},
+                                    {"revolutions", e.shape.revolutions},
+                                    {"switches", e.shape.switches},
+                                    {"reached", e.reached},
+                                    {"first_start", e.first_start},
+                                    {"from", e.from},
+                                    {"max_residual", recorded(e.max_residual)},
+                                    {"method", e.method}};
     objective_in_units(entry, e.shape.cost);
     if (e.bounded_tried) {  // where the passes over the bounds led from this extremal
-      nlohmann::json bounded = {{"converged", std::isfinite(e.bounded_objective)}};
+      nlohmann::ordered_json bounded = {{"converged", std::isfinite(e.bounded_objective)}};
       if (std::isfinite(e.bounded_objective)) {
         bounded["objective"] = e.bounded_objective;
         bounded["passes"] = e.bounded_passes;
@@ -151,18 +158,23 @@ inline nlohmann::json search_record(const SearchRecord& rec) {
       }
       entry["with_bounds"] = bounded;
     }
-    extremals.push_back(entry);
+    out.push_back(entry);
   }
-  nlohmann::json out = {{"method", rec.method},
-                        {"threads", rec.threads},
-                        {"starts", rec.starts},
-                        {"converged_at_eps_start", rec.converged_start},
-                        {"continued", rec.continued},
-                        {"converged_at_eps_0", rec.converged_final},
-                        {"seconds", rec.seconds},
-                        {"cut_by_time", rec.cut_by_time},
-                        {"extremals_at_eps_start", at_start},
-                        {"extremals", extremals}};
+  return out;
+}
+
+// The global search as solution.json records it (schemas/solution.schema.json, "search").
+inline nlohmann::ordered_json search_record(const SearchRecord& rec) {
+  nlohmann::ordered_json out = {{"method", rec.method},
+                                {"threads", rec.threads},
+                                {"starts", rec.starts},
+                                {"converged_at_eps_start", rec.converged_start},
+                                {"continued", rec.continued},
+                                {"converged_at_eps_0", rec.converged_final},
+                                {"seconds", rec.seconds},
+                                {"cut_by_time", rec.cut_by_time},
+                                {"extremals_at_eps_start", start_extremals_record(rec.start_extremals)},
+                                {"extremals", extremals_record(rec.extremals)}};
   if (rec.returned >= 0) {
     out["returned"] = rec.returned;
     out["reason"] = rec.reason;
@@ -170,14 +182,99 @@ inline nlohmann::json search_record(const SearchRecord& rec) {
   return out;
 }
 
+// The solves that led to the result, as solution.json records them: the homotopy and
+// continuation steps (max_residual only where the evaluation was finite), the legs, the bounds.
+inline void steps_record(const Result& r, nlohmann::ordered_json& out) {
+  out["homotopy"] = nlohmann::ordered_json::array();
+  for (const auto& h : r.homotopy) {
+    nlohmann::ordered_json step = {{"eps", h.eps}, {"converged", h.converged}, {"evaluations", h.evaluations}};
+    if (std::isfinite(h.max_residual)) step["max_residual"] = h.max_residual;
+    out["homotopy"].push_back(step);
+  }
+  out["method"] = r.method;
+  if (!r.legs.empty()) {
+    out["legs"] = nlohmann::ordered_json::array();
+    for (const auto& l : r.legs)
+      out["legs"].push_back({{"leg", l.leg},
+                             {"converged", l.converged},
+                             {"max_residual", recorded(l.max_residual)},
+                             {"evaluations", l.evaluations}});
+  }
+  out["passes"] = r.passes;
+  if (!r.bounds.empty()) {
+    out["bounds"] = nlohmann::ordered_json::array();
+    for (const auto& b : r.bounds)
+      out["bounds"].push_back({{"name", b.name},
+                               {"meaning", b.meaning},
+                               {"first_pass_value", b.first_pass_value},
+                               {"active", b.active},
+                               {"value", b.value},
+                               {"multiplier", b.multiplier}});
+  }
+  out["search"] = search_record(r.search);
+  if (!r.continuation.empty()) {
+    out["continuation"] = nlohmann::ordered_json::array();
+    for (const auto& c : r.continuation) {
+      nlohmann::ordered_json step = {
+          {"stage", c.stage}, {"value", c.value}, {"converged", c.converged}, {"evaluations", c.evaluations}};
+      if (std::isfinite(c.max_residual)) step["max_residual"] = c.max_residual;
+      out["continuation"].push_back(step);
+    }
+  }
+}
+
+// A converged solution as solution.json records it: the physical results (from its re-propagation,
+// which also writes the trajectory CSV), then the normalized ones.
+inline void solution_record(const Settings& s, const Result& r, const std::string& trajectory_path,
+                            nlohmann::ordered_json& out) {
+  const TrajectorySummary path = trajectory(s, r, trajectory_path);
+  out["tof_days"] = (path.tf - path.t0) * problem::kTimeUnitDays;
+  if (problem::kEpochMjd2000 != 0) out["departure_mjd2000"] = problem::kEpochMjd2000 + path.t0 * problem::kTimeUnitDays;
+  if constexpr (problem::kMassIndex >= 0) {  // a sail has no mass state
+    out["initial_mass_kg"] = path.initial_state[problem::kMassIndex] * problem::kMassUnitKg;
+    out["final_mass_kg"] = path.final_state[problem::kMassIndex] * problem::kMassUnitKg;
+    out["propellant_kg"] = path.propellant * problem::kMassUnitKg;  // a mass drop is not propellant
+    out["delta_v_m_s"] = path.delta_v_m_s;
+  }
+  out["epsilon"] = r.eps;
+  out["max_residual"] = r.max_residual;
+  nlohmann::ordered_json x = nlohmann::ordered_json::array(), F = nlohmann::ordered_json::array();
+  for (int i = 0; i < problem::kNumVars; ++i) F.push_back({{"name", problem::kEquationNames[i]}, {"value", r.F[i]}});
+  for (int i = 0; i < problem::kNumVars; ++i) x.push_back({{"name", problem::kVariableNames[i]}, {"value", r.x[i]}});
+  out["residuals"] = F;
+  out["x"] = x;
+  out["switches"] = nlohmann::ordered_json::array();
+  for (const auto& w : path.switches)
+    out["switches"].push_back({{"t_days", w.t * problem::kTimeUnitDays}, {"throttle_after", w.throttle_after}});
+  out["hamiltonian_drift"] = path.hamiltonian_drift;
+}
+
+// The outcome of the solve under schemas/solution.schema.json's keys: every key but those
+// helios-solve alone knows (the artifact's header, the compile, the settings, the timings, the
+// files), which it adds.
+inline nlohmann::ordered_json outcome_record(const Settings& s, const Result& r, const std::string& trajectory_path) {
+  nlohmann::ordered_json out;
+  out["problem"] = {{"id", problem::kProblemId}};
+  out["status"] = r.status;
+  if (!r.detail.empty()) out["status_detail"] = r.detail;
+  out["solver_info"] = {{"code", r.info}, {"meaning", hybrd_meaning(r.info)}};
+  out["seed"] = s.seed;
+  out["restarts"] = std::max(0, r.attempts - 1);
+  out["iterations"] = r.iterations;
+  out["function_evaluations"] = r.evaluations;
+  steps_record(r, out);
+  if (r.status == "converged") solution_record(s, r, trajectory_path, out);
+  return out;
+}
+
 inline int run(int argc, char** argv) {
-  std::string settings_path, result_path = "result.json", trajectory_path = "trajectory.csv";
+  std::string settings_path, outcome_path = "outcome.json", trajectory_path = "trajectory.csv";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--settings")
       settings_path = argv[i + 1];
-    else if (a == "--result")
-      result_path = argv[i + 1];
+    else if (a == "--outcome")
+      outcome_path = argv[i + 1];
     else if (a == "--trajectory")
       trajectory_path = argv[i + 1];
     else
@@ -185,80 +282,8 @@ inline int run(int argc, char** argv) {
   }
   const Settings s = read_settings(settings_path);
   wall_seconds();
-  Result r = solve_problem(s);
-  nlohmann::json j;
-  j["problem"] = problem::kProblemId;
-  j["status"] = r.status;
-  j["detail"] = r.detail;
-  j["info"] = r.info;
-  j["info_meaning"] = hybrd_meaning(r.info);
-  j["attempts"] = r.attempts;
-  j["iterations"] = r.iterations;
-  j["function_evaluations"] = r.evaluations;
-  j["seed"] = s.seed;
-  nlohmann::json hom = nlohmann::json::array();
-  for (const auto& h : r.homotopy)
-    hom.push_back({{"eps", h.eps},
-                   {"converged", h.converged},
-                   {"max_residual", recorded(h.max_residual)},
-                   {"evaluations", h.evaluations}});
-  j["homotopy"] = hom;
-  j["method"] = r.method;
-  j["passes"] = r.passes;
-  if (!r.bounds.empty()) {
-    nlohmann::json bounds = nlohmann::json::array();
-    for (const auto& b : r.bounds)
-      bounds.push_back({{"name", b.name},
-                        {"meaning", b.meaning},
-                        {"first_pass_value", b.first_pass_value},
-                        {"active", b.active},
-                        {"value", b.value},
-                        {"multiplier", b.multiplier}});
-    j["bounds"] = bounds;
-  }
-  j["search"] = search_record(r.search);
-  if (!r.continuation.empty()) {
-    nlohmann::json steps = nlohmann::json::array();
-    for (const auto& c : r.continuation)
-      steps.push_back({{"stage", c.stage},
-                       {"value", c.value},
-                       {"converged", c.converged},
-                       {"max_residual", recorded(c.max_residual)},
-                       {"evaluations", c.evaluations}});
-    j["continuation"] = steps;
-  }
-  if (!r.legs.empty()) {
-    nlohmann::json legs = nlohmann::json::array();
-    for (const auto& l : r.legs)
-      legs.push_back({{"leg", l.leg},
-                      {"converged", l.converged},
-                      {"max_residual", recorded(l.max_residual)},
-                      {"evaluations", l.evaluations}});
-    j["legs"] = legs;
-  }
-  if (r.status == "converged") {
-    nlohmann::json x = nlohmann::json::array(), F = nlohmann::json::array();
-    for (int i = 0; i < problem::kNumVars; ++i) x.push_back({{"name", problem::kVariableNames[i]}, {"value", r.x[i]}});
-    for (int i = 0; i < problem::kNumVars; ++i) F.push_back({{"name", problem::kEquationNames[i]}, {"value", r.F[i]}});
-    j["x"] = x;
-    j["residuals"] = F;
-    j["max_residual"] = r.max_residual;
-    j["epsilon"] = r.eps;
-    j["trajectory"] = trajectory(s, r, trajectory_path);
-    const auto& path = j["trajectory"];
-    j["tof_days"] = (path["tf"].get<double>() - path["t0"].get<double>()) * problem::kTimeUnitDays;
-    if (problem::kEpochMjd2000 != 0)
-      j["departure_mjd2000"] = problem::kEpochMjd2000 + path["t0"].get<double>() * problem::kTimeUnitDays;
-    if constexpr (problem::kMassIndex >= 0) {
-      const double m0 = path["initial_state"][problem::kMassIndex].get<double>();
-      const double mf = path["final_state"][problem::kMassIndex].get<double>();
-      j["final_mass_kg"] = mf * problem::kMassUnitKg;
-      j["initial_mass_kg"] = m0 * problem::kMassUnitKg;
-      j["delta_v_m_s"] = path["delta_v_m_s"];
-      j["propellant_kg"] = path["propellant"].get<double>() * problem::kMassUnitKg;
-    }
-  }
-  write_atomic(result_path, j.dump(2) + "\n");
+  const Result r = solve_problem(s);
+  write_atomic(outcome_path, outcome_record(s, r, trajectory_path).dump(2) + "\n");
   return 0;
 }
 

@@ -69,35 +69,8 @@ class Propagator {
         h *= Dop853::step_factor(err);
         continue;
       }
-      // Locate the switch on the frozen-mode step (Illinois regula falsi in the step length).
-      double a = 0, ga = g_old[crossed], gb = g_new[crossed];
-      double hs = b;
-      int side = 0;
-      for (int it = 0; it < 100 && b - a > 4e-16 * (1 + std::fabs(t)); ++it) {
-        hs = (a * gb - b * ga) / (gb - ga);
-        if (!(hs > a && hs < b)) hs = 0.5 * (a + b);
-        rhs(t, y, f0.data());
-        stepper_.step(rhs, t, y, f0.data(), hs, ynew.data(), fnew.data(), settings_.atol, settings_.rtol);
-        stay_functions(ynew.data(), mode, mult, g_new.data());
-        const double gs = g_new[crossed];
-        if (gs == 0) {
-          a = b = hs;
-          break;
-        }
-        if ((gs > 0) == (ga > 0)) {
-          a = hs;
-          ga = gs;
-          if (side == -1) gb *= 0.5;
-          side = -1;
-        } else {
-          b = hs;
-          gb = gs;
-          if (side == 1) ga *= 0.5;
-          side = 1;
-        }
-      }
-      // Step to the far side of the bracket so the new mode starts past the switch.
-      hs = b;
+      // Step to the far side of the switch's bracket so the new mode starts past the switch.
+      const double hs = locate_switch(rhs, t, y, mode, mult, crossed, g_old[crossed], g_new[crossed], b);
       rhs(t, y, f0.data());
       stepper_.step(rhs, t, y, f0.data(), hs, ynew.data(), fnew.data(), settings_.atol, settings_.rtol);
       t += hs;
@@ -117,6 +90,39 @@ class Propagator {
   }
 
  private:
+  // The switch of stay function `crossed` on the frozen-mode step from (t, y), which changes
+  // sign from ga (at 0) to gb (at b) over the step's length: Illinois regula falsi in the length,
+  // to round-off. Returns the bracket's far end (past the switch).
+  template <class Rhs>
+  double locate_switch(Rhs& rhs, double t, const double* y, Mode mode, const Multipliers& mult, int crossed, double ga,
+                       double gb, double b) {
+    std::array<double, kNY> f0{}, ynew{}, fnew{};
+    std::array<double, 2> g{};
+    double a = 0;
+    int side = 0;
+    for (int it = 0; it < 100 && b - a > 4e-16 * (1 + std::fabs(t)); ++it) {
+      double hs = (a * gb - b * ga) / (gb - ga);
+      if (!(hs > a && hs < b)) hs = 0.5 * (a + b);
+      rhs(t, y, f0.data());
+      stepper_.step(rhs, t, y, f0.data(), hs, ynew.data(), fnew.data(), settings_.atol, settings_.rtol);
+      stay_functions(ynew.data(), mode, mult, g.data());
+      const double gs = g[crossed];
+      if (gs == 0) return hs;
+      if ((gs > 0) == (ga > 0)) {
+        a = hs;
+        ga = gs;
+        if (side == -1) gb *= 0.5;
+        side = -1;
+      } else {
+        b = hs;
+        gb = gs;
+        if (side == 1) ga *= 0.5;
+        side = 1;
+      }
+    }
+    return b;
+  }
+
   // A mode that ends and resumes inside one step (a short arc whose switches the step's ends do
   // not show; missing it makes the shooting function jump where the arc appears): the stay
   // functions on the step's cubic Hermite interpolant at kDipPoints - 1 interior points, and where
