@@ -7,7 +7,6 @@
 #include <cmath>
 #include <map>
 #include <random>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -28,23 +27,22 @@ void unpack(Context& c, Body& body, bool with_control) {
 }
 
 // A function of the runtime's interface with the generated `body`: `(void)p;` for each of its
-// `parameters` p (t, y, control, mult) the body reads neither itself nor through its locals.
+// `parameters` p (t, y, control, mult) the body uses neither itself nor through its locals.
 std::string function(Context& c, const std::string& signature, const std::vector<std::string>& parameters, Body& body) {
   std::vector<std::string> y = c.states;
   y.insert(y.end(), c.costates.begin(), c.costates.end());
-  const std::map<std::string, std::vector<std::string>> read_through = {
+  const std::map<std::string, std::vector<std::string>> used_through = {
       {"t", {"t"}},
       {"y", y},
       {"control", c.controls},
       {"mult", {c.d.at("multiplier"), c.d.at("homotopy").at("symbol")}}};
-  const std::string text = body.str();
-  std::string unread;
+  std::string unused;
   for (const auto& p : parameters) {
-    const auto& names = read_through.at(p);
+    const auto& names = used_through.at(p);
     if (std::none_of(names.begin(), names.end(), [&](const std::string& n) { return body.uses(n); }))
-      unread += "  (void)" + p + ";\n";
+      unused += "  (void)" + p + ";\n";
   }
-  return signature + " {\n" + unread + text + "}\n\n";
+  return signature + " {\n" + unused + body.str() + "}\n\n";
 }
 
 // dynamics: dy = the state and costate equations.
