@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "helios/pmp/derive.hpp"
 #include "helios/spec/parse.hpp"
@@ -54,6 +57,37 @@ TEST(Codegen, PlanetTargetsAreEvaluatedFromTheEphemerisAtTheEvent) {
   EXPECT_NE(g.source.find("const auto ephemeris_0 = ephemeris_state(\"Mars\", tf);"), std::string::npos);
   EXPECT_NE(g.source.find("const double arrival_rx = ephemeris_0[0];"), std::string::npos);
   EXPECT_EQ(g.source.find("constexpr double arrival_rx"), std::string::npos);
+}
+
+// The lines of the module whose banner starts "// ----- module <name>" in `source`.
+std::vector<std::string> module_lines(const std::string& source, const std::string& name) {
+  std::istringstream in(source);
+  std::vector<std::string> lines;
+  bool inside = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("// ----- ", 0) == 0) inside = line.rfind("// ----- module " + name + " ", 0) == 0;
+    if (inside) lines.push_back(line);
+  }
+  return lines;
+}
+
+TEST(Codegen, EveryResidualRowOfEveryScenarioSaysWhichConditionItIs) {
+  std::vector<std::filesystem::path> scenarios;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(HELIOS_SOURCE_DIR) + "/scenarios"))
+    scenarios.push_back(entry.path());
+  ASSERT_GE(scenarios.size(), 13u);
+  for (const auto& dir : scenarios) {
+    const std::string id = dir.filename().string();
+    const json d = helios::pmp::derive_from_spec(
+        helios::spec::parse_problem_text(helios::io::read_text((dir / "problem.txt").string()), id));
+    const auto lines = module_lines(helios::codegen::generate(d, {}).source, "RESIDUAL");
+    ASSERT_FALSE(lines.empty()) << id;
+    for (const auto& line : lines) {
+      if (line.find("F[") == std::string::npos || line.find("] = ") == std::string::npos) continue;
+      const auto comment = line.find(";  // ");
+      EXPECT_TRUE(comment != std::string::npos && comment + 6 < line.size()) << id << ": " << line;
+    }
+  }
 }
 
 TEST(Codegen, CountMismatchIsAnError) {

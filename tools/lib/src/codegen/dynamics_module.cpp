@@ -1,89 +1,124 @@
 // The DYNAMICS and SWITCH modules generated from the derivation, and the check that the
 // template's own implement it.
+#include "body.hpp"
 #include "context.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
-#include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace helios::codegen::detail {
 namespace {
 
-// Local names for y[], control[] and the multipliers, so generated expressions read like the math.
-std::string unpack(Context& c, bool with_control) {
-  std::ostringstream o;
-  for (std::size_t i = 0; i < c.states.size(); ++i)
-    o << "  [[maybe_unused]] const double " << c.states[i] << " = y[" << i << "];\n";
+// Locals for y[], control[] and the multipliers, so generated expressions read like the math.
+void unpack(Context& c, Body& body, bool with_control) {
+  for (std::size_t i = 0; i < c.states.size(); ++i) body.unpack(c.states[i], "y[" + std::to_string(i) + "]");
   for (std::size_t i = 0; i < c.costates.size(); ++i)
-    o << "  [[maybe_unused]] const double " << c.costates[i] << " = y[" << c.states.size() + i << "];\n";
-  if (with_control) o << "  [[maybe_unused]] const double t = time;\n";
+    body.unpack(c.costates[i], "y[" + std::to_string(c.states.size() + i) + "]");
   if (with_control)
     for (std::size_t i = 0; i < c.controls.size(); ++i)
-      o << "  [[maybe_unused]] const double " << c.controls[i] << " = control[" << i << "];\n";
-  o << "  [[maybe_unused]] const double " << c.d.at("multiplier").get<std::string>() << " = mult.lambda0;\n"
-    << "  [[maybe_unused]] const double " << c.d.at("homotopy").at("symbol").get<std::string>() << " = mult.eps;\n";
-  return o.str();
+      body.unpack(c.controls[i], "control[" + std::to_string(i) + "]");
+  body.unpack(c.d.at("multiplier").get<std::string>(), "mult.lambda0");
+  body.unpack(c.d.at("homotopy").at("symbol").get<std::string>(), "mult.eps");
+}
+
+// A function of the runtime's interface with the generated `body`: `(void)p;` for each of its
+// `parameters` p (t, y, control, mult) the body uses neither itself nor through its locals.
+std::string function(Context& c, const std::string& signature, const std::vector<std::string>& parameters, Body& body) {
+  std::vector<std::string> y = c.states;
+  y.insert(y.end(), c.costates.begin(), c.costates.end());
+  const std::map<std::string, std::vector<std::string>> used_through = {
+      {"t", {"t"}},
+      {"y", y},
+      {"control", c.controls},
+      {"mult", {c.d.at("multiplier"), c.d.at("homotopy").at("symbol")}}};
+  std::string unused;
+  for (const auto& p : parameters) {
+    const auto& names = used_through.at(p);
+    if (std::none_of(names.begin(), names.end(), [&](const std::string& n) { return body.uses(n); }))
+      unused += "  (void)" + p + ";\n";
+  }
+  return signature + " {\n" + unused + body.str() + "}\n\n";
+}
+
+// dynamics: dy = the state and costate equations.
+std::string dynamics_function(Context& c) {
+  const auto& so = c.d.at("state_odes");
+  const auto& co = c.d.at("costate_odes");
+  if (so.size() != c.states.size() || co.size() != c.states.size())
+    throw std::invalid_argument("field /state_odes or /costate_odes: one equation per state is required");
+  Body body(c);
+  unpack(c, body, true);
+  for (std::size_t i = 0; i < so.size(); ++i)
+    body.code() << "  dy[" << i << "] = " << body.cpp(so[i].at("rhs"), "/state_odes/" + std::to_string(i) + "/rhs")
+                << ";\n";
+  for (std::size_t i = 0; i < co.size(); ++i)
+    body.code() << "  dy[" << so.size() + i
+                << "] = " << body.cpp(co[i].at("rhs"), "/costate_odes/" + std::to_string(i) + "/rhs") << ";\n";
+  return function(
+      c, "void dynamics(double t, const double* y, const double* control, const Multipliers& mult, double* dy)",
+      {"t", "y", "control", "mult"}, body);
+}
+
+std::string hamiltonian_function(Context& c) {
+  Body body(c);
+  unpack(c, body, true);
+  body.code() << "  return " << body.cpp(c.d.at("hamiltonian"), "/hamiltonian") << ";\n";
+  return function(c, "double hamiltonian(double t, const double* y, const double* control, const Multipliers& mult)",
+                  {"t", "y", "control", "mult"}, body);
+}
+
+// direction_control: the direction (or sail) controls from their laws, after the laws' definitions.
+std::string direction_function(Context& c) {
+  const json& cl = c.d.at("control_law");
+  Body body(c);
+  for (std::size_t i = 0; i < c.states.size(); ++i) body.unpack(c.states[i], "y[" + std::to_string(i) + "]");
+  for (std::size_t i = 0; i < c.costates.size(); ++i)
+    body.unpack(c.costates[i], "y[" + std::to_string(c.states.size() + i) + "]");
+  for (const char* kind : {"direction", "sail"}) {
+    if (!cl.contains(kind)) continue;
+    const std::string where = "/control_law/" + std::string(kind);
+    const auto& names = cl.at(kind).at("controls");
+    const auto& law = cl.at(kind).at("law");
+    const json definitions = cl.at(kind).value("definitions", json::array());
+    for (std::size_t j = 0; j < definitions.size(); ++j)
+      body.code() << "  const double " << definitions[j].at("name").get<std::string>() << " = "
+                  << body.cpp(definitions[j].at("expression"),
+                              where + "/definitions/" + std::to_string(j) + "/expression")
+                  << ";\n";
+    for (std::size_t j = 0; j < names.size(); ++j)
+      body.code() << "  control[" << index_of(c.controls, body.use(names[j]))
+                  << "] = " << body.cpp(law[j], where + "/law/" + std::to_string(j)) << ";\n";
+  }
+  return function(c, "void direction_control(const double* y, double* control)", {"y", "control"}, body);
+}
+
+std::string throttle_function(Context& c) {
+  const json& throttle = c.d.at("control_law").at("throttle");
+  Body body(c);
+  unpack(c, body, false);
+  body.code() << "  at_lower = " << body.cpp(throttle.at("dH_du_at_lower"), "/control_law/throttle/dH_du_at_lower")
+              << ";\n"
+              << "  at_upper = " << body.cpp(throttle.at("dH_du_at_upper"), "/control_law/throttle/dH_du_at_upper")
+              << ";\n";
+  return function(c,
+                  "void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper)",
+                  {"y", "mult"}, body);
 }
 
 }  // namespace
 
 std::string generated_dynamics(Context& c) {
-  const json& d = c.d;
-  std::ostringstream o;
-  o << "// ----- modules DYNAMICS + SWITCH (generated from the derivation) ---------------------------\n"
-    << "namespace helios_rt {\n\n"
-    << "void dynamics(double time, const double* y, const double* control, const Multipliers& mult, double* dy) {\n"
-    << unpack(c, true);
-  const auto& so = d.at("state_odes");
-  const auto& co = d.at("costate_odes");
-  if (so.size() != c.states.size() || co.size() != c.states.size())
-    throw std::invalid_argument("field /state_odes or /costate_odes: one equation per state is required");
-  for (std::size_t i = 0; i < so.size(); ++i)
-    o << "  dy[" << i << "] = " << c.cpp(so[i].at("rhs"), "/state_odes/" + std::to_string(i) + "/rhs") << ";\n";
-  for (std::size_t i = 0; i < co.size(); ++i)
-    o << "  dy[" << so.size() + i << "] = " << c.cpp(co[i].at("rhs"), "/costate_odes/" + std::to_string(i) + "/rhs")
-      << ";\n";
-  o << "}\n\n"
-    << "double hamiltonian(double time, const double* y, const double* control, const Multipliers& mult) {\n"
-    << unpack(c, true) << "  return " << c.cpp(d.at("hamiltonian"), "/hamiltonian") << ";\n}\n\n"
-    << "void direction_control(const double* y, double* control) {\n";
-  const json& cl = d.at("control_law");
-  if (cl.contains("direction") || cl.contains("sail")) {
-    for (std::size_t i = 0; i < c.states.size(); ++i)
-      o << "  [[maybe_unused]] const double " << c.states[i] << " = y[" << i << "];\n";
-    for (std::size_t i = 0; i < c.costates.size(); ++i)
-      o << "  [[maybe_unused]] const double " << c.costates[i] << " = y[" << c.states.size() + i << "];\n";
-    for (const char* kind : {"direction", "sail"}) {
-      if (!cl.contains(kind)) continue;
-      const auto& names = cl.at(kind).at("controls");
-      const auto& law = cl.at(kind).at("law");
-      const json definitions = cl.at(kind).value("definitions", json::array());
-      for (std::size_t j = 0; j < definitions.size(); ++j)
-        o << "  const double " << definitions[j].at("name").get<std::string>() << " = "
-          << c.cpp(definitions[j].at("expression"),
-                   "/control_law/" + std::string(kind) + "/definitions/" + std::to_string(j) + "/expression")
-          << ";\n";
-      for (std::size_t j = 0; j < names.size(); ++j)
-        o << "  control[" << index_of(c.controls, names[j])
-          << "] = " << c.cpp(law[j], "/control_law/" + std::string(kind) + "/law/" + std::to_string(j)) << ";\n";
-    }
-  } else {
-    o << "  (void)y;\n  (void)control;\n";
-  }
-  o << "}\n\n";
-  if (cl.contains("throttle"))
-    o << "void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper) {\n"
-      << unpack(c, false)
-      << "  at_lower = " << c.cpp(cl.at("throttle").at("dH_du_at_lower"), "/control_law/throttle/dH_du_at_lower")
-      << ";\n"
-      << "  at_upper = " << c.cpp(cl.at("throttle").at("dH_du_at_upper"), "/control_law/throttle/dH_du_at_upper")
-      << ";\n"
-      << "}\n\n";
-  o << "}  // namespace helios_rt\n";
-  return o.str();
+  std::string o =
+      "// ----- modules DYNAMICS + SWITCH (generated from the derivation) ---------------------------\n"
+      "namespace helios_rt {\n\n";
+  o += dynamics_function(c) + hamiltonian_function(c) + direction_function(c);
+  if (c.d.at("control_law").contains("throttle")) o += throttle_function(c);
+  return o + "}  // namespace helios_rt\n";
 }
 
 // True if the template's default DYNAMICS/SWITCH implement this derivation: same state, costate

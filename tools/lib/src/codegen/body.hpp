@@ -1,0 +1,48 @@
+#pragma once
+// A generated function's body whose unpacked locals are written only when its code uses them
+// (internal to tools/lib/src/codegen).
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "context.hpp"
+
+namespace helios::codegen::detail {
+
+// The lines of a generated function in order, among them the unpacks of locals (a state from
+// y[], a shooting variable from x[], a target's component, ...). An unpack is written only if
+// the body uses one of the names it defines. The uses are the symbols of the expressions the
+// body prints (cpp) and the names the generator writes into code itself (use).
+class Body {
+ public:
+  explicit Body(Context& c) : c_(c) {}
+  // The stream of plain code lines, written in order with the unpacks.
+  std::ostringstream& code() { return code_; }
+  // C++ for a stored expression (Context::cpp); its symbols count as used.
+  std::string cpp(const std::string& text, const std::string& where);
+  // `name`, counted as used: a name the generator writes into code itself.
+  std::string use(const std::string& name);
+  bool uses(const std::string& name) const { return used_.count(name) > 0; }
+  // The line "  const double <name> = <value>;" (with "  // <comment>" when given), written if used.
+  void unpack(const std::string& name, const std::string& value, const std::string& comment = "");
+  // A line (ending in "\n") that defines all of `names`, written if any of them is used.
+  void unpack_line(const std::string& line, const std::vector<std::string>& names);
+  // The body's text: the code with the unpacks that are used.
+  std::string str();
+
+ private:
+  struct Segment {
+    std::string text;
+    std::vector<std::string> defines;  // empty for plain code
+  };
+  // Moves the pending code into a segment.
+  void flush();
+
+  Context& c_;
+  std::ostringstream code_;
+  std::vector<Segment> segments_;
+  std::set<std::string> used_;
+};
+
+}  // namespace helios::codegen::detail
