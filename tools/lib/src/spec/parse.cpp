@@ -14,18 +14,13 @@
 #include "helios/io/schema.hpp"
 #include "helios/spec/units.hpp"
 #include "helios/symbolic/expr.hpp"
+#include "text.hpp"
 
 namespace helios::spec {
 namespace {
 
+using detail::Sentence;
 using io::json;
-
-// A sentence, or one line of a table (a line starting with '|').
-struct Sentence {
-  std::string text;        // whitespace collapsed, final period removed
-  int line = 0;            // line where it starts
-  bool table_row = false;  // a table line, read as it stands
-};
 
 // Thrown by the sentence handlers; turned into an input_error naming file, line and sentence.
 struct sentence_error : std::runtime_error {
@@ -38,114 +33,11 @@ const std::string kQuantity = "(" + kNum + R"()\s*()" + kUnit + ")";
 const std::string kVector =
     R"(\[\s*()" + kNum + R"()\s*,\s*()" + kNum + R"()\s*,\s*()" + kNum + R"()\s*\]\s*()" + kUnit + ")";
 
-std::vector<Sentence> split_sentences(const std::string& text) {
-  std::vector<Sentence> out;
-  std::string current;
-  int line = 1, start_line = 1;
-  bool in_comment = false, at_line_start = true;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (c == '\n') {
-      ++line;
-      in_comment = false;
-      at_line_start = true;
-      if (!current.empty() && current.back() != ' ') current += ' ';
-      continue;
-    }
-    if (in_comment) continue;
-    if (at_line_start && c == '#') {
-      in_comment = true;
-      continue;
-    }
-    if (at_line_start && c == '|') {
-      // A table line ends any sentence before it (like the end of the text does) and is one item.
-      while (!current.empty() && current.back() == ' ') current.pop_back();
-      if (!current.empty()) out.push_back({current, start_line});
-      current.clear();
-      const std::size_t end = std::min(text.find('\n', i), text.size());
-      std::string row;
-      for (std::size_t j = i; j < end; ++j) {
-        const bool space = std::isspace(static_cast<unsigned char>(text[j])) != 0;
-        if (space && (row.empty() || row.back() == ' ')) continue;
-        row += space ? ' ' : text[j];
-      }
-      while (!row.empty() && row.back() == ' ') row.pop_back();
-      out.push_back({row, line, true});
-      i = end - 1;
-      continue;
-    }
-    if (!std::isspace(static_cast<unsigned char>(c))) at_line_start = false;
-    if (std::isspace(static_cast<unsigned char>(c))) {
-      if (!current.empty() && current.back() != ' ') current += ' ';
-      continue;
-    }
-    if (current.empty()) start_line = line;
-    // A period ends a sentence unless it sits inside a number (digit on both sides).
-    const bool next_is_digit = i + 1 < text.size() && std::isdigit(static_cast<unsigned char>(text[i + 1]));
-    if (c == '.' && !next_is_digit) {
-      while (!current.empty() && current.back() == ' ') current.pop_back();
-      if (!current.empty()) out.push_back({current, start_line});
-      current.clear();
-      continue;
-    }
-    current += c;
-  }
-  while (!current.empty() && current.back() == ' ') current.pop_back();
-  if (!current.empty()) out.push_back({current, start_line});
-  return out;
-}
-
 double number(const std::string& s) {
   try {
     return std::stod(s);
   } catch (const std::out_of_range&) {
     throw sentence_error("the number " + s + " is outside the range of a double (magnitudes 2.2e-308 to 1.8e308)");
-  }
-}
-
-// The length of the UTF-8 sequence that starts with byte c, 0 when c cannot start one.
-int utf8_length(unsigned char c) {
-  if (c < 0x80) return 1;
-  if (c >= 0xC2 && c <= 0xDF) return 2;
-  if (c >= 0xE0 && c <= 0xEF) return 3;
-  if (c >= 0xF0 && c <= 0xF4) return 4;
-  return 0;
-}
-
-// Refuses a text the sentence reader must not see: too large, not UTF-8, a NUL or control byte, a
-// line over the sentence bound. The byte is named by its code, never echoed.
-void check_text(const std::string& text, const std::string& source) {
-  if (text.size() > kMaxProblemBytes)
-    throw input_error(source + ": the problem text is " + std::to_string(text.size()) + " bytes; the limit is " +
-                      std::to_string(kMaxProblemBytes));
-  int line = 1;
-  std::size_t line_start = 0;
-  for (std::size_t i = 0; i < text.size();) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    const auto at = [&] { return source + ":" + std::to_string(line) + ": "; };
-    if (c == '\n') {
-      ++line;
-      line_start = ++i;
-      continue;
-    }
-    if (i - line_start >= kMaxSentenceChars)
-      throw input_error(at() + "the line is longer than " + std::to_string(kMaxSentenceChars) +
-                        " characters, the limit of a line or sentence");
-    if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7F) {
-      char code[8];
-      std::snprintf(code, sizeof code, "0x%02X", c);
-      throw input_error(at() + "control byte " + code + " in the problem text (is it a binary file?)");
-    }
-    const int n = utf8_length(c);
-    bool valid = n > 0 && i + n <= text.size();
-    for (int k = 1; valid && k < n; ++k) valid = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
-    if (valid && n > 2) {  // no overlong form, no UTF-16 surrogate, nothing above U+10FFFF
-      const auto second = static_cast<unsigned char>(text[i + 1]);
-      valid = !(c == 0xE0 && second < 0xA0) && !(c == 0xED && second > 0x9F) && !(c == 0xF0 && second < 0x90) &&
-              !(c == 0xF4 && second > 0x8F);
-    }
-    if (!valid) throw input_error(at() + "the problem text is not valid UTF-8");
-    i += n;
   }
 }
 
@@ -1152,9 +1044,9 @@ struct Builder {
 }  // namespace
 
 json parse_problem_text(const std::string& text, const std::string& source) {
-  check_text(text, source);
+  detail::check_text(text, source);
   Builder b(source);
-  for (const auto& item : split_sentences(text)) {
+  for (const auto& item : detail::split_sentences(text)) {
     if (item.text.size() > kMaxSentenceChars)
       throw input_error(source + ":" + std::to_string(item.line) + ": the sentence is longer than " +
                         std::to_string(kMaxSentenceChars) + " characters, the limit of a line or sentence");
