@@ -271,7 +271,11 @@ struct Accuracy {
 Accuracy accuracy_quantity(const json& reference) {
   const json& r = reference["result"];
   if (r.contains("initial_mass_kg"))
-    return {"initial_mass", "initial_mass_kg", "kg", "m_0", r["initial_mass_kg"].get<double>(),
+    return {"initial_mass",
+            "initial_mass_kg",
+            "kg",
+            "m_0",
+            r["initial_mass_kg"].get<double>(),
             r["tolerance_kg"].get<double>()};
   if (r.contains("final_mass_kg"))
     return {
@@ -542,9 +546,8 @@ RunRecord read_run(const std::filesystem::path& folder, const std::string& run_f
   return r;
 }
 
-}  // namespace
-
-std::string tables_from_runs(const std::string& root) {
+// Every <run folder>/<scenario>/ under `root` that has a score.json, in name order.
+std::vector<RunRecord> read_runs(const std::string& root) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_directory(root, ec)) throw input_error(root + ": not a folder, expected a runs tree such as runs/");
@@ -562,30 +565,85 @@ std::string tables_from_runs(const std::string& root) {
   }
   if (runs.empty())
     throw input_error(root + ": no <backend>/<scenario>/score.json found, run make scenario=S01 [BACKEND=llm] first");
-  std::vector<std::string> groups, scenarios;
-  for (const auto& r : runs) {
-    if (std::find(groups.begin(), groups.end(), r.group) == groups.end()) groups.push_back(r.group);
-    if (std::find(scenarios.begin(), scenarios.end(), r.scenario) == scenarios.end()) scenarios.push_back(r.scenario);
+  return runs;
+}
+
+// The runs grouped by backend (model) and scenario, and the three tables written from them.
+class RunTables {
+ public:
+  explicit RunTables(std::vector<RunRecord> runs) : runs_(std::move(runs)) {
+    for (const auto& r : runs_) {
+      if (std::find(groups_.begin(), groups_.end(), r.group) == groups_.end()) groups_.push_back(r.group);
+      if (std::find(scenarios_.begin(), scenarios_.end(), r.scenario) == scenarios_.end())
+        scenarios_.push_back(r.scenario);
+    }
+    std::sort(scenarios_.begin(), scenarios_.end());
   }
-  std::sort(scenarios.begin(), scenarios.end());
-  const auto select = [&](const std::string& group, const std::string& scenario) {
+
+  // Table 1: per scenario and group, then each group's totals in bold.
+  void comparison(std::ostream& md) const {
+    md << "## Table 1: per-scenario comparison of backends and models\n\n"
+       << "| scenario | backend (model) | runs | mean score | compiled | converged |\n"
+       << "|---|---|--:|--:|--:|--:|\n";
+    for (const auto& scenario : scenarios_)
+      for (const auto& group : groups_) comparison_row(md, group, scenario);
+    for (const auto& group : groups_) comparison_row(md, group, "");
+  }
+
+  void tokens(std::ostream& md) const {
+    md << "\n## Table 2: token consumption\n\n"
+       << "| backend (model) | scenarios | requests | input tokens | output tokens | total tokens | "
+          "total per scenario |\n"
+       << "|---|--:|--:|--:|--:|--:|--:|\n";
+    for (const auto& group : groups_) {
+      const auto sel = select(group, "");
+      long in = 0, out = 0, total = 0;
+      int requests = 0;
+      for (const auto* r : sel) {
+        in += r->prompt_tokens;
+        out += r->completion_tokens;
+        total += r->total_tokens;
+        requests += r->requests;
+      }
+      const long n = static_cast<long>(sel.size());
+      md << "| " << md_escape(group) << " | " << n << " | " << requests << " | " << thousands(in) << " | "
+         << thousands(out) << " | " << thousands(total) << " | " << thousands((total + n / 2) / n) << " |\n";
+    }
+  }
+
+  void repair_loop(std::ostream& md) const {
+    md << "\n## Table 3: effect of the compile-repair loop\n\n"
+       << "| backend (model) | scenarios | compiled before repair | compiled after repair | repaired | "
+          "repair rounds used |\n"
+       << "|---|--:|--:|--:|--:|--:|\n";
+    for (const auto& group : groups_) {
+      const auto sel = select(group, "");
+      int before = 0, after = 0, repaired = 0, rounds = 0;
+      bool loop = false;
+      for (const auto* r : sel) {
+        before += r->compiled_first;
+        after += r->compiled;
+        repaired += !r->compiled_first && r->compiled;
+        rounds += r->repair_rounds;
+        loop = loop || r->has_repair_loop;
+      }
+      const int n = static_cast<int>(sel.size());
+      md << "| " << md_escape(group) << " | " << n << " | " << frac(before, n) << " | " << frac(after, n) << " | "
+         << repaired << " | " << (loop ? std::to_string(rounds) : std::string("no loop")) << " |\n";
+    }
+  }
+
+ private:
+  // The runs of `group` on `scenario` ("" = every scenario).
+  std::vector<const RunRecord*> select(const std::string& group, const std::string& scenario) const {
     std::vector<const RunRecord*> out;
-    for (const auto& r : runs)
+    for (const auto& r : runs_)
       if (r.group == group && (scenario.empty() || r.scenario == scenario)) out.push_back(&r);
     return out;
-  };
+  }
 
-  std::ostringstream md;
-  md << "# HELIOS results across backends and models\n\n"
-     << "From every `<run folder>/<scenario>/` under " << md_escape(root)
-     << " that has a score.json. Rubric as in the scoreboard (total 100); tokens from the llm "
-        "transcripts (`*.transcript.json`).\n\n";
-
-  md << "## Table 1: per-scenario comparison of backends and models\n\n"
-     << "| scenario | backend (model) | runs | mean score | compiled | converged |\n"
-     << "|---|---|--:|--:|--:|--:|\n";
-  // One row: the runs of `group` on `scenario` ("" = all scenarios), bold for the totals.
-  const auto row = [&](const std::string& group, const std::string& scenario) {
+  // One row of table 1: the runs of `group` on `scenario` ("" = all scenarios), bold for the totals.
+  void comparison_row(std::ostream& md, const std::string& group, const std::string& scenario) const {
     const auto sel = select(group, scenario);
     if (sel.empty()) return;
     double sum = 0;
@@ -600,49 +658,24 @@ std::string tables_from_runs(const std::string& root) {
     md << "| " << (scenario.empty() ? "**all**" : md_escape(scenario)) << " | " << md_escape(group) << " | " << n
        << " | " << b << fmt(sum / n, "%.1f") << b << " | " << b << frac(compiled, n) << b << " | " << b
        << frac(converged, n) << b << " |\n";
-  };
-  for (const auto& scenario : scenarios)
-    for (const auto& group : groups) row(group, scenario);
-  for (const auto& group : groups) row(group, "");
-
-  md << "\n## Table 2: token consumption\n\n"
-     << "| backend (model) | scenarios | requests | input tokens | output tokens | total tokens | "
-        "total per scenario |\n"
-     << "|---|--:|--:|--:|--:|--:|--:|\n";
-  for (const auto& group : groups) {
-    const auto sel = select(group, "");
-    long in = 0, out = 0, total = 0;
-    int requests = 0;
-    for (const auto* r : sel) {
-      in += r->prompt_tokens;
-      out += r->completion_tokens;
-      total += r->total_tokens;
-      requests += r->requests;
-    }
-    const long n = static_cast<long>(sel.size());
-    md << "| " << md_escape(group) << " | " << n << " | " << requests << " | " << thousands(in) << " | "
-       << thousands(out) << " | " << thousands(total) << " | " << thousands((total + n / 2) / n) << " |\n";
   }
 
-  md << "\n## Table 3: effect of the compile-repair loop\n\n"
-     << "| backend (model) | scenarios | compiled before repair | compiled after repair | repaired | "
-        "repair rounds used |\n"
-     << "|---|--:|--:|--:|--:|--:|\n";
-  for (const auto& group : groups) {
-    const auto sel = select(group, "");
-    int before = 0, after = 0, repaired = 0, rounds = 0;
-    bool loop = false;
-    for (const auto* r : sel) {
-      before += r->compiled_first;
-      after += r->compiled;
-      repaired += !r->compiled_first && r->compiled;
-      rounds += r->repair_rounds;
-      loop = loop || r->has_repair_loop;
-    }
-    const int n = static_cast<int>(sel.size());
-    md << "| " << md_escape(group) << " | " << n << " | " << frac(before, n) << " | " << frac(after, n) << " | "
-       << repaired << " | " << (loop ? std::to_string(rounds) : std::string("no loop")) << " |\n";
-  }
+  std::vector<RunRecord> runs_;
+  std::vector<std::string> groups_, scenarios_;
+};
+
+}  // namespace
+
+std::string tables_from_runs(const std::string& root) {
+  const RunTables tables(read_runs(root));
+  std::ostringstream md;
+  md << "# HELIOS results across backends and models\n\n"
+     << "From every `<run folder>/<scenario>/` under " << md_escape(root)
+     << " that has a score.json. Rubric as in the scoreboard (total 100); tokens from the llm "
+        "transcripts (`*.transcript.json`).\n\n";
+  tables.comparison(md);
+  tables.tokens(md);
+  tables.repair_loop(md);
   return md.str();
 }
 
