@@ -172,3 +172,16 @@ syntax_check() {
     syntax_check "$id.cpp"
   done
 }
+
+@test "gen: an id or a shooting name that is not a plain name -> exit 3 naming the field, nothing written" {
+  s01_derivation
+  mkdir out
+  jq '.problem.id = "S01\"; inline int pwn = std::system(\"touch marker\"); //"' derivation.json >hostile.json
+  run -3 --separate-stderr "$BIN/helios-gen" hostile.json -o out/shoot.cpp
+  [[ $stderr == *"hostile.json"*"/problem/id"* ]] || { echo "$stderr" >&2; false; }
+  [[ $(wc -l <<<"$stderr") -eq 1 ]]
+  jq '.shooting.variables[0].name = "x; int y"' derivation.json >hostile.json
+  run -3 --separate-stderr "$BIN/helios-gen" hostile.json -o out/shoot.cpp
+  [[ $stderr == *"/shooting/variables/0/name"* ]] || { echo "$stderr" >&2; false; }
+  [[ -z $(ls -A out) && ! -e marker ]]
+}

@@ -90,6 +90,43 @@ TEST(Codegen, EveryResidualRowOfEveryScenarioSaysWhichConditionItIs) {
   }
 }
 
+// The lines of `text`.
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+TEST(Codegen, StringsFromTheDerivationCannotBecomeCode) {
+  // A derivation (an llm one, say) that passed no schema: an id that closes its string literal and
+  // its first-line comment, a meaning with a newline, a body name with a quote.
+  json d = s01();
+  const std::string payload = "S01\"; inline int pwn = std::system(\"touch marker\"); //\ninline int pwn2 = 1;";
+  d["problem"]["id"] = payload;
+  d["shooting"]["equations"][0]["meaning"] = "x\ninline int pwn3 = 1; //\\";
+  d["parameters"][0]["meaning"] = "mu\rinline int pwn4 = 1;";
+  d["bodies"] = json::array(
+      {{{"name", "Ni\"kko\\"},
+        {"model", "kepler"},
+        {"epoch", 0.0},
+        {"elements",
+         {{"a", 1.0}, {"e", 0.1}, {"i_rad", 0.0}, {"raan_rad", 0.0}, {"argp_rad", 0.0}, {"mean_anomaly_rad", 0.0}}}}});
+  const auto g = helios::codegen::generate(d, {});
+  // The payloads stay inside string literals and comments: no line starts with them as code.
+  for (const auto& line : lines_of(g.source))
+    EXPECT_NE(line.substr(line.find_first_not_of(' ') == std::string::npos ? 0 : line.find_first_not_of(' '))
+                  .rfind("inline int pwn", 0),
+              0u)
+        << line;
+  EXPECT_NE(
+      g.source.find("kProblemId = \"S01\\\"; inline int pwn = std::system(\\\"touch marker\\\"); //\\012inline int "
+                    "pwn2 = 1;\";"),
+      std::string::npos);
+  EXPECT_NE(g.source.find("{\"Ni\\\"kko\\\\\", {"), std::string::npos);
+  EXPECT_EQ(lines_of(g.source)[0].rfind("// Shooting program for problem S01\"; inline int pwn = ", 0), 0u);
+}
+
 TEST(Codegen, CountMismatchIsAnError) {
   json d = s01();
   d["shooting"]["equations"].erase(d["shooting"]["equations"].size() - 1);

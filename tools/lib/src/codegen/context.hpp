@@ -47,6 +47,14 @@ std::string number(double v);
 // "a", "b", ... as a C++ initializer list body.
 std::string quoted_list(const std::vector<std::string>& v);
 
+// `s` as a C++ string literal: quotes, backslashes and '?' escaped, control bytes as octal escapes.
+// Every string from an artifact that the generated code holds goes through it.
+std::string cpp_string(const std::string& s);
+
+// `s` fit for a // comment: control bytes (a newline would end the comment and let the rest be
+// code) become spaces, backslashes (a line splice) become '/'.
+std::string comment_text(std::string s);
+
 // The modules, each from its own unit.
 std::string problem_block(Context& c);                 // problem_block.cpp
 std::string generated_dynamics(Context& c);            // dynamics_module.cpp

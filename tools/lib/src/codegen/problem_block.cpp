@@ -25,7 +25,7 @@ std::string problem_block(Context& c) {
   std::ostringstream o;
   o << "// ----- PROBLEM (generated) -----------------------------------------------------------------\n"
     << "namespace problem {\n"
-    << "const char* const kProblemId = \"" << d.at("problem").at("id").get<std::string>() << "\";\n"
+    << "const char* const kProblemId = " << cpp_string(d.at("problem").at("id")) << ";\n"
     << "constexpr int kNumStates = " << c.states.size() << ";\n"
     << "constexpr int kNumControls = " << c.controls.size() << ";\n"
     << "constexpr int kThrottleIndex = " << c.throttle_index << ";\n"
@@ -68,15 +68,15 @@ std::string problem_block(Context& c) {
     << "inline const std::vector<OrbitBody> kOrbitBodies = {\n";
   for (const auto& b : d.value("bodies", json::array())) {
     const json& el = b.at("elements");
-    o << "    {\"" << b.at("name").get<std::string>() << "\", {" << number(el.at("a")) << ", " << number(el.at("e"))
-      << ", " << number(el.at("i_rad")) << ", " << number(el.at("raan_rad")) << ", " << number(el.at("argp_rad"))
-      << ", " << number(el.at("mean_anomaly_rad")) << "}, " << number(b.at("epoch")) << "},\n";
+    o << "    {" << cpp_string(b.at("name")) << ", {" << number(el.at("a")) << ", " << number(el.at("e")) << ", "
+      << number(el.at("i_rad")) << ", " << number(el.at("raan_rad")) << ", " << number(el.at("argp_rad")) << ", "
+      << number(el.at("mean_anomaly_rad")) << "}, " << number(b.at("epoch")) << "},\n";
   }
   o << "};\n";
   for (const auto& p : d.at("parameters"))
     if (!p.contains("source"))
       o << "constexpr double " << p.at("name").get<std::string>() << " = " << number(p.at("value")) << ";  // "
-        << p.at("meaning").get<std::string>() << " [" << p.value("unit", "") << "]\n";
+        << comment_text(p.at("meaning").get<std::string>() + " [" + p.value("unit", "") + "]") << "\n";
   o << "}  // namespace problem\n";
   return o.str();
 }

@@ -123,8 +123,9 @@ void ShootingFunction::alone_row(int& row, const std::string& name, const std::s
     if (eqs_[i].at("name") != name) continue;
     const bool alone = eqs_[i].contains(field) && field != "expression";
     body_.code() << "    F[" << row++ << "] = " << equation_code(i, alone ? field : "expression") << ";  // "
-                 << eqs_[i].at("meaning").get<std::string>()
-                 << (alone ? " (alone: " + eqs_[i].at(field).get<std::string>() + " = 0)" : "") << "\n";
+                 << comment_text(eqs_[i].at("meaning").get<std::string>() +
+                                 (alone ? " (alone: " + eqs_[i].at(field).get<std::string>() + " = 0)" : ""))
+                 << "\n";
     return;
   }
   throw std::invalid_argument("field /shooting/equations: no equation " + name);
@@ -332,7 +333,7 @@ void ShootingFunction::end() {
     const double scale = eqs_[i].at("scale");
     body_.code() << "  F[" << i << "] = (" << equation_code(i, "expression") << ")";
     if (scale != 1.0) body_.code() << " / " << number(scale);
-    body_.code() << ";  // " << eqs_[i].at("meaning").get<std::string>() << "\n";
+    body_.code() << ";  // " << comment_text(eqs_[i].at("meaning")) << "\n";
   }
 }
 
