@@ -98,6 +98,44 @@ setup() {
   assert_no_temp_files "$CACHE"
 }
 
+# A stand-in for a generated program: it writes $OUTCOME_TEXT as its outcome (--outcome PATH).
+outcome_writer() {
+  cat >"$1" <<'CPP'
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+int main(int argc, char** argv) {
+  for (int i = 1; i + 1 < argc; ++i)
+    if (std::strcmp(argv[i], "--outcome") == 0) std::ofstream(argv[i + 1]) << std::getenv("OUTCOME_TEXT");
+}
+CPP
+}
+
+@test "solve: a program whose outcome is malformed -> status crashed with the reason, exit 0" {
+  outcome_writer prog.cpp
+  local text
+  for text in 'not json at all' '[1, 2]' '{"status": "converged", "compile": {}}' \
+    '{"problem": {"id": "X"}, "status": "dancing", "seed": 1, "iterations": 0, "function_evaluations": 0}' \
+    '{"problem": {"id": "X"}, "status": "converged", "seed": "one", "iterations": 0, "function_evaluations": 0}'; do
+    rm -f solution.json
+    OUTCOME_TEXT="$text" run -0 --separate-stderr "$BIN/helios-solve" prog.cpp --cache-dir "$CACHE" \
+      --trajectory trajectory.csv -o solution.json
+    assert_jq solution.json '.status == "crashed" and .compile.ok == true'
+    assert_jq solution.json '.status_detail | startswith("the program'"'"'s outcome is unusable: ")'
+    assert_no_temp_files "$BATS_TEST_TMPDIR"
+  done
+}
+
+@test "solve: the files a killed run left are removed by the next run; a live run's are kept" {
+  outcome_writer prog.cpp
+  touch .settings.4194300.json .outcome.4194300.json.part .trajectory.4194300.csv ".settings.$$.json" \
+    .settings.notapid.json
+  OUTCOME_TEXT='{}' run -0 --separate-stderr "$BIN/helios-solve" prog.cpp --cache-dir "$CACHE" \
+    --trajectory trajectory.csv -o solution.json
+  [[ ! -e .settings.4194300.json && ! -e .outcome.4194300.json.part && ! -e .trajectory.4194300.csv ]]
+  [[ -e .settings.$$.json && -e .settings.notapid.json ]]
+}
+
 # ---- shared contract -------------------------------------------------------------------------
 
 @test "solve: no arguments -> exit 2, one error line" {

@@ -30,7 +30,8 @@ int count_of(const std::string& diagnostics, const std::string& kind) {
 
 }  // namespace
 
-CompileResult compile_cached(const std::string& source, const std::string& compiler, const std::string& cache_dir) {
+CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
+  const std::string& compiler = o.compiler;
   CompileResult c;
   const auto start = std::chrono::steady_clock::now();
   const std::vector<std::string> flags = {"-std=c++17", "-O2", "-pthread", "-Wall", "-Wextra"};
@@ -39,7 +40,7 @@ CompileResult compile_cached(const std::string& source, const std::string& compi
   c.command = compiler + flag_text + " shoot.cpp -o shoot -lcminpack";
   // The key covers the source, the command and the compiler's identity.
   c.sha256 = io::sha256_hex(source + "\n" + c.command + "\n" + first_line(capture({compiler, "--version"})));
-  const fs::path dir = fs::path(cache_dir) / c.sha256;
+  const fs::path dir = fs::path(o.cache_dir) / c.sha256;
   c.binary = (dir / "shoot").string();
   if (fs::exists(c.binary)) {
     c.ok = c.cached = true;
@@ -54,13 +55,18 @@ CompileResult compile_cached(const std::string& source, const std::string& compi
   io::write_text_atomic(src, source);
   const std::string tmp_bin = (dir / (".shoot.tmp." + std::to_string(::getpid()))).string();
   const io::TempFiles guard({tmp_bin});
-  std::vector<std::string> argv = {compiler};
+  std::vector<std::string> argv = {on_path(compiler)};
   argv.insert(argv.end(), flags.begin(), flags.end());
   argv.insert(argv.end(), {src, "-o", tmp_bin, "-lcminpack"});
-  // Compilers live on PATH: resolve through a shell-free execvp in capture().
-  c.diagnostics = capture(argv);
+  const RunResult run = run_limited(argv, o.time_limit_s, o.memory_limit_mb);
+  c.diagnostics = run.stderr_text;
+  if (run.timed_out || run.signal != 0)
+    c.diagnostics += "\nhelios-solve: the compiler was stopped: " +
+                     (run.timed_out ? "killed after " + limit_text(o.time_limit_s) + " s wall clock"
+                                    : "signal " + std::to_string(run.signal) + " (CPU, memory or file-size limit)") +
+                     "\n";
   c.warnings = count_of(c.diagnostics, "warning:");
-  c.ok = fs::exists(tmp_bin);
+  c.ok = run.exit_code == 0 && !run.timed_out && fs::exists(tmp_bin);
   if (c.ok) {
     io::write_text_atomic((dir / "compile.log").string(), c.diagnostics);
     fs::rename(tmp_bin, c.binary);
@@ -71,7 +77,7 @@ CompileResult compile_cached(const std::string& source, const std::string& compi
 
 json compile_report(const SolveOptions& o) {
   const std::string source = io::read_text(o.source_path);
-  const CompileResult c = compile_cached(source, o.compiler, o.cache_dir);
+  const CompileResult c = compile_cached(source, o);
   json doc = io::artifact_header("compile", "helios-solve", o.backend);
   doc["source"] = o.source_path == "-" ? "<stdin>" : o.source_path;
   doc["ok"] = c.ok;

@@ -3,11 +3,14 @@
 // timings and the files added.
 #include "helios/solve/solve.hpp"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <filesystem>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -75,6 +78,14 @@ std::string run_failure(const RunResult& run, double time_limit_s) {
   return detail;
 }
 
+// `text` on one line of at most 500 bytes, its control bytes replaced by '?'.
+std::string limited_detail(std::string text) {
+  if (text.size() > 500) text = text.substr(0, 500) + "...";
+  for (char& c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
+  return text;
+}
+
 // The outcome the program wrote: an object of solution.json's keys, none of them helios-solve's.
 json read_outcome(const std::string& path) {
   const json outcome = io::read_json(path);
@@ -85,6 +96,34 @@ json read_outcome(const std::string& path) {
         std::find(kSolveKeys.begin(), kSolveKeys.end(), it.key()) != kSolveKeys.end())
       throw std::runtime_error(path + ": field /" + it.key() + " is not a key of the program's outcome");
   return outcome;
+}
+
+// Removes the files of earlier runs in `dir` whose helios-solve is gone (a SIGKILL leaves them):
+// .settings.<pid>.json, .outcome.<pid>.json, .trajectory.<pid>.csv and their .part files.
+void remove_stale_run_files(const fs::path& dir) {
+  static const std::regex run_file(R"(\.(settings|outcome|trajectory)\.([0-9]+)\.(json|csv)(\.part)?)");
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir.empty() ? fs::path(".") : dir, ec)) {
+    std::smatch m;
+    const std::string name = entry.path().filename().string();
+    if (!std::regex_match(name, m, run_file) || m[2].length() > 9) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(m[2].str()));
+    if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) fs::remove(entry.path(), ec);
+  }
+}
+
+// The outcome merged into `doc` and checked against solution.json's schema; "" when usable, else
+// why not (the program's result is data: a malformed one makes the run crashed, not helios-solve).
+std::string merge_outcome(json& doc, const std::string& outcome_path, const std::string& source_path) {
+  try {
+    json merged = doc;
+    merged.update(read_outcome(outcome_path));
+    io::validate("solution", merged, "the outcome of " + source_path);
+    doc = std::move(merged);
+    return "";
+  } catch (const std::exception& e) {
+    return e.what();
+  }
 }
 
 // The files of one run, in the trajectory's directory: the settings it reads, the outcome and
@@ -106,7 +145,7 @@ json solve(const SolveOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const std::string source = io::read_text(o.source_path);
   const json settings = run_settings(o);
-  const CompileResult c = compile_cached(source, o.compiler, o.cache_dir);
+  const CompileResult c = compile_cached(source, o);
   json doc = record_before_run(o, settings, c);
   doc["timings"] = {{"compile_s", c.seconds}, {"run_s", 0.0}, {"total_s", seconds_since(start)}};
   if (!c.ok) return doc;
@@ -114,6 +153,7 @@ json solve(const SolveOptions& o) {
     o.progress(c.cached ? "compiled program from the cache" : "compiled in " + limit_text(c.seconds) + " s");
 
   const fs::path out_dir = fs::path(o.trajectory_path).parent_path();
+  remove_stale_run_files(out_dir);
   const RunFiles files(out_dir);
   io::write_json_atomic(files.settings, settings);
   const RunResult run = run_limited(
@@ -127,8 +167,12 @@ json solve(const SolveOptions& o) {
     doc["timings"]["total_s"] = seconds_since(start);
     return doc;
   }
-  doc.update(read_outcome(files.outcome));
-  io::validate("solution", doc, "the outcome of " + o.source_path);
+  if (const std::string why = merge_outcome(doc, files.outcome, o.source_path); !why.empty()) {
+    doc["status"] = "crashed";
+    doc["status_detail"] = "the program's outcome is unusable: " + limited_detail(why);
+    doc["timings"]["total_s"] = seconds_since(start);
+    return doc;
+  }
   if (doc.at("status") == "converged") {
     fs::rename(files.trajectory, o.trajectory_path);
     doc["files"] = {{"trajectory", fs::path(o.trajectory_path).filename().string()}};

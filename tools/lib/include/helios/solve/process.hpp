@@ -13,6 +13,10 @@ double seconds_since(std::chrono::steady_clock::time_point start);
 // `search_path`); exits 127 when that fails.
 [[noreturn]] void exec_or_exit(const std::vector<std::string>& argv, bool search_path);
 
+// `name` itself when it holds a '/', else the first executable PATH entry of that name; `name`
+// when none is (the exec then fails with its own error).
+std::string on_path(const std::string& name);
+
 // The combined stdout and stderr of a shell-free command (argv[0] looked up on PATH).
 std::string capture(const std::vector<std::string>& argv);
 

@@ -31,8 +31,11 @@ struct CompileResult {
   double seconds = 0;
 };
 
-// Compiles `source` with `compiler` -O2 into cache_dir/<sha256>/shoot unless already there.
-CompileResult compile_cached(const std::string& source, const std::string& compiler, const std::string& cache_dir);
+// Compiles `source` with o.compiler -O2 into o.cache_dir/<sha256>/shoot unless already there. The
+// compiler runs under the run's limits (run_limited: o.time_limit_s wall clock, o.memory_limit_mb
+// of address space, CPU, file size, processes): a source that makes it loop or grow fails the
+// compile, with the reason last in its diagnostics.
+CompileResult compile_cached(const std::string& source, const SolveOptions& o);
 
 struct RunResult {
   int exit_code = -1;
