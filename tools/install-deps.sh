@@ -19,6 +19,7 @@ checks=(
   "libgtest-dev:/usr/include/gtest/gtest.h"
   "libcpp-httplib-dev:/usr/include/httplib.h"
   "gnuplot-nox:cmd/gnuplot"
+  "bubblewrap:cmd/bwrap"
   "bats:cmd/bats"
   "jq:cmd/jq"
   "bc:cmd/bc"

@@ -98,15 +98,18 @@ setup() {
   assert_no_temp_files "$CACHE"
 }
 
-# A stand-in for a generated program: it writes $OUTCOME_TEXT as its outcome (--outcome PATH).
+# A stand-in for a generated program: it writes the text of ./outcome_text (its working directory
+# is the run folder) as its outcome (--outcome PATH).
 outcome_writer() {
   cat >"$1" <<'CPP'
-#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 int main(int argc, char** argv) {
+  std::ostringstream text;
+  text << std::ifstream("outcome_text").rdbuf();
   for (int i = 1; i + 1 < argc; ++i)
-    if (std::strcmp(argv[i], "--outcome") == 0) std::ofstream(argv[i + 1]) << std::getenv("OUTCOME_TEXT");
+    if (std::strcmp(argv[i], "--outcome") == 0) std::ofstream(argv[i + 1]) << text.str();
 }
 CPP
 }
@@ -118,8 +121,9 @@ CPP
     '{"problem": {"id": "X"}, "status": "dancing", "seed": 1, "iterations": 0, "function_evaluations": 0}' \
     '{"problem": {"id": "X"}, "status": "converged", "seed": "one", "iterations": 0, "function_evaluations": 0}'; do
     rm -f solution.json
-    OUTCOME_TEXT="$text" run -0 --separate-stderr "$BIN/helios-solve" prog.cpp --cache-dir "$CACHE" \
-      --trajectory trajectory.csv -o solution.json
+    printf '%s' "$text" >outcome_text
+    run -0 --separate-stderr "$BIN/helios-solve" prog.cpp --cache-dir "$CACHE" --trajectory trajectory.csv \
+      -o solution.json
     assert_jq solution.json '.status == "crashed" and .compile.ok == true'
     assert_jq solution.json '.status_detail | startswith("the program'"'"'s outcome is unusable: ")'
     assert_no_temp_files "$BATS_TEST_TMPDIR"
@@ -130,10 +134,52 @@ CPP
   outcome_writer prog.cpp
   touch .settings.4194300.json .outcome.4194300.json.part .trajectory.4194300.csv ".settings.$$.json" \
     .settings.notapid.json
-  OUTCOME_TEXT='{}' run -0 --separate-stderr "$BIN/helios-solve" prog.cpp --cache-dir "$CACHE" \
-    --trajectory trajectory.csv -o solution.json
+  echo '{}' >outcome_text
+  run -0 --separate-stderr "$BIN/helios-solve" prog.cpp --cache-dir "$CACHE" --trajectory trajectory.csv \
+    -o solution.json
   [[ ! -e .settings.4194300.json && ! -e .outcome.4194300.json.part && ! -e .trajectory.4194300.csv ]]
   [[ -e .settings.$$.json && -e .settings.notapid.json ]]
+}
+
+@test "solve: the program runs in bubblewrap: no file outside its run folder, no /etc, no network, no environment" {
+  mkdir -p run
+  local marker="helios-escape-$$-$RANDOM"
+  cat >escape.cpp <<CPP
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+int main() {
+  std::ofstream report("report.txt");
+  std::ofstream("/tmp/$marker") << "x";
+  std::ofstream("../$marker") << "x";
+  std::ofstream("$HOME/$marker") << "x";
+  std::ostringstream passwd;
+  passwd << std::ifstream("/etc/passwd").rdbuf();
+  report << "passwd " << passwd.str().size() << "\n";
+  report << "project " << (std::ifstream("$ROOT/Makefile") ? "readable" : "hidden") << "\n";
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(53);
+  inet_pton(AF_INET, "1.1.1.1", &a.sin_addr);
+  report << "connect " << (fd >= 0 && connect(fd, (sockaddr*)&a, sizeof a) == 0 ? "ok" : "failed") << "\n";
+  report << "key " << (std::getenv("HELIOS_LLM_API_KEY") ? "seen" : "unset") << "\n";
+}
+CPP
+  HELIOS_LLM_API_KEY=secret-key run -0 --separate-stderr "$BIN/helios-solve" escape.cpp --cache-dir "$CACHE" \
+    --trajectory run/trajectory.csv -o solution.json
+  assert_jq solution.json '.sandbox == "bubblewrap" and .status == "crashed"'
+  [[ ! -e /tmp/$marker && ! -e $marker && ! -e $HOME/$marker ]]
+  [[ $(cat run/report.txt) == $'passwd 0\nproject hidden\nconnect failed\nkey unset' ]] || { cat run/report.txt >&2; false; }
+  # Unsandboxed only when told, and then recorded.
+  run -0 --separate-stderr "$BIN/helios-solve" escape.cpp --no-sandbox --cache-dir "$CACHE" \
+    --trajectory run/trajectory.csv -o solution.json
+  assert_jq solution.json '.sandbox == "none"'
+  rm -f "/tmp/$marker" "$marker" "$HOME/$marker"
 }
 
 # ---- shared contract -------------------------------------------------------------------------

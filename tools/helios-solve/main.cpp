@@ -21,10 +21,12 @@ int main(int argc, char** argv) {
        {"memory-limit", "", "MB", "address-space limit of the run", "4096"},
        {"backend", "", "NAME", "backend label recorded in the solution (builtin or llm)", "builtin"},
        {"compile-only", "", "", "only compile (into the cache) and write a compile report instead", ""},
-       {"quiet", "", "", "no progress lines on stderr", ""}},
+       {"quiet", "", "", "no progress lines on stderr", ""},
+       {"no-sandbox", "", "", "run the program without bubblewrap (recorded in solution.json)", ""}},
       {"SHOOT"},
       "Compiles with g++ -O2 (skipped when the cache holds the same source and compiler), runs the\n"
-      "program in a child with CPU, memory, file-size and wall-clock limits, and writes solution.json.\n"
+      "program in a child with CPU, memory, file-size and wall-clock limits, inside bubblewrap (no\n"
+      "network, read-only /usr, the run folder its only writable place), and writes solution.json.\n"
       "A failed compile or run is recorded in the artifact's status; the tool still exits 0.\n"
       "The run is a global search (many starts, the distinct extremals compared, the best kept); its\n"
       "progress goes to stderr, one line per stage or every few seconds (--quiet: none).\n"
@@ -42,6 +44,7 @@ int main(int argc, char** argv) {
     o.backend = helios::cli::backend_option(args, {"builtin", "llm"});
     o.time_limit_s = helios::cli::positive_option(args, "time-limit");
     o.memory_limit_mb = helios::cli::positive_option(args, "memory-limit");
+    o.sandbox = !args.has("no-sandbox");
     if (!args.has("quiet"))
       o.progress = [](const std::string& line) { std::fprintf(stderr, "helios-solve: %s\n", line.c_str()); };
     if (args.has("compile-only")) {

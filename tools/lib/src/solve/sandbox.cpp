@@ -122,6 +122,29 @@ class StderrLines {
 
 }  // namespace
 
+std::vector<std::string> sandboxed(const std::vector<std::string>& argv, const std::string& workdir) {
+  const std::string bwrap = on_path("bwrap");
+  if (bwrap.find('/') == std::string::npos)
+    throw std::runtime_error(
+        "bubblewrap (bwrap) is not installed, so the program cannot run sandboxed: install it "
+        "(tools/install-deps.sh, Debian package bubblewrap) or pass --no-sandbox");
+  std::vector<std::string> out = {bwrap,      "--unshare-all", "--die-with-parent", "--new-session", "--clearenv",
+                                  "--setenv", "PATH",          "/usr/bin",          "--ro-bind",     "/usr",
+                                  "/usr"};
+  // The top-level links into /usr of a merged-/usr system stay links; a real folder is bound.
+  for (const char* top : {"/lib", "/lib64", "/lib32", "/bin", "/sbin"}) {
+    std::error_code ec;
+    if (fs::is_symlink(top, ec))
+      out.insert(out.end(), {"--symlink", fs::read_symlink(top, ec).string(), top});
+    else if (fs::is_directory(top, ec))
+      out.insert(out.end(), {"--ro-bind", top, top});
+  }
+  out.insert(out.end(), {"--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp", "--ro-bind", argv.at(0), argv.at(0),
+                         "--bind", workdir, workdir, "--chdir", workdir, "--"});
+  out.insert(out.end(), argv.begin(), argv.end());
+  return out;
+}
+
 RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s, double memory_limit_mb,
                       const std::string& workdir, const std::function<void(const std::string&)>& on_line) {
   RunResult r;

@@ -28,8 +28,8 @@ namespace {
 // The keys of solution.json that helios-solve alone knows: the artifact's header, the compile,
 // the settings the program ran with, the timings and the files. The program's outcome
 // (templates/runtime/main.hpp) carries every other key of schemas/solution.schema.json.
-const std::vector<std::string> kSolveKeys = {"schema",   "schema_version", "producer", "compile",
-                                             "settings", "timings",        "files"};
+const std::vector<std::string> kSolveKeys = {"schema",  "schema_version", "producer", "compile",
+                                             "sandbox", "settings",       "timings",  "files"};
 
 // The settings file, each key one of schemas/settings.schema.json (which lists the keys the
 // runtime reads, with their types and ranges: anything else is a typo, not a no-op), validated;
@@ -60,6 +60,7 @@ json record_before_run(const SolveOptions& o, const json& settings, const Compil
   doc["status"] = "compile_failed";
   doc["compile"] = {{"ok", c.ok},           {"cached", c.cached},     {"source_sha256", c.sha256},
                     {"command", c.command}, {"warnings", c.warnings}, {"diagnostics", c.diagnostics.substr(0, 8000)}};
+  doc["sandbox"] = o.sandbox ? "bubblewrap" : "none";
   doc["seed"] = settings.value("seed", 1);
   doc["iterations"] = 0;
   doc["function_evaluations"] = 0;
@@ -156,10 +157,16 @@ json solve(const SolveOptions& o) {
   remove_stale_run_files(out_dir);
   const RunFiles files(out_dir);
   io::write_json_atomic(files.settings, settings);
-  const RunResult run = run_limited(
-      {fs::absolute(c.binary).string(), "--settings", fs::absolute(files.settings).string(), "--outcome",
-       fs::absolute(files.outcome).string(), "--trajectory", fs::absolute(files.trajectory).string()},
-      o.time_limit_s, o.memory_limit_mb, fs::absolute(out_dir.empty() ? fs::path(".") : out_dir).string(), o.progress);
+  const std::string workdir = fs::absolute(out_dir.empty() ? fs::path(".") : out_dir).lexically_normal().string();
+  const std::vector<std::string> program = {fs::absolute(c.binary).lexically_normal().string(),
+                                            "--settings",
+                                            fs::absolute(files.settings).string(),
+                                            "--outcome",
+                                            fs::absolute(files.outcome).string(),
+                                            "--trajectory",
+                                            fs::absolute(files.trajectory).string()};
+  const RunResult run = run_limited(o.sandbox ? sandboxed(program, workdir) : program, o.time_limit_s,
+                                    o.memory_limit_mb, workdir, o.progress);
   doc["timings"]["run_s"] = run.seconds;
   if (run.timed_out || run.exit_code != 0 || !fs::exists(files.outcome)) {
     doc["status"] = run.timed_out ? "timeout" : "crashed";

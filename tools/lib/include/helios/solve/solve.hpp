@@ -19,6 +19,9 @@ struct SolveOptions {
   std::string compiler = "g++";
   double time_limit_s = 600;  // wall clock for the run (the program also stops itself)
   double memory_limit_mb = 4096;
+  // Run the program inside bubblewrap (no network, a read-only /usr, the run folder the only
+  // writable place); false only when the user says so (--no-sandbox), and recorded.
+  bool sandbox = true;
   // Receives each line the program writes on stderr as it comes (its search progress), and the
   // stage's own progress lines; empty: quiet.
   std::function<void(const std::string&)> progress;
@@ -45,6 +48,13 @@ struct RunResult {
   double seconds = 0;
   int leftover_processes = 0;  // processes the program left running, killed after it ended
 };
+
+// argv run inside bubblewrap: new user, pid, network, ipc, uts and cgroup namespaces, a new
+// session, an empty environment, dying with helios-solve; it sees /usr (and the /lib, /bin links
+// into it) read-only, fresh /proc, /dev and /tmp, its binary argv[0] read-only, and `workdir` as
+// the only writable folder and its working directory. Nothing else of the host (no /etc, no home,
+// no project folders). Throws std::runtime_error when bwrap is not installed.
+std::vector<std::string> sandboxed(const std::vector<std::string>& argv, const std::string& workdir);
 
 // Runs argv (argv[0] a path) in a child with CPU, address-space, file-size, core and process-count
 // limits and a wall-clock limit, in its own process group with `workdir` (if not empty) as its
