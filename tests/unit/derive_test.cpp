@@ -339,3 +339,35 @@ TEST(Derivation, CostatesAfterAStayAreShootingVariables) {
 }
 
 }  // namespace
+
+namespace {
+
+// The message of the std::invalid_argument parsing `text` throws, "" when it parses.
+std::string parse_error(const std::string& text) {
+  helios::symbolic::SymbolTable symbols;
+  symbols.get("x");
+  try {
+    symbols.parse(text, "d.json: field /hamiltonian");
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SymbolicParse, AnExpressionBeyondItsBoundsIsAnErrorNamingTheFieldNotACrash) {
+  using helios::symbolic::kMaxExpressionDepth;
+  // 7,800 nested parentheses overflowed GiNaC's recursive parser.
+  const std::string deep = std::string(7800, '(') + "x" + std::string(7800, ')');
+  const std::string err = parse_error(deep);
+  EXPECT_EQ(err.rfind("d.json: field /hamiltonian: cannot parse expression '((((", 0), 0u) << err;
+  EXPECT_NE(err.find("...': parentheses nested deeper than 256 levels"), std::string::npos) << err;
+  EXPECT_LT(err.size(), 400u);
+  const std::string at_limit =
+      std::string(kMaxExpressionDepth, '(') + "x" + std::string(kMaxExpressionDepth, ')') + "+(x)*(x)";
+  EXPECT_EQ(parse_error(at_limit), "");
+  std::string wide = "x";
+  while (wide.size() <= helios::symbolic::kMaxExpressionChars) wide += "+x";
+  EXPECT_NE(parse_error(wide).find("characters; the limit is 1048576"), std::string::npos);
+}
+
+}  // namespace

@@ -16,13 +16,26 @@ const GiNaC::symbol& SymbolTable::get(const std::string& name) {
 }
 
 GiNaC::ex SymbolTable::parse(const std::string& text, const std::string& where) const {
+  const auto fail = [&](const std::string& why) {
+    const std::string shown = text.size() > 200 ? text.substr(0, 200) + "..." : text;
+    return std::invalid_argument(where + ": cannot parse expression '" + shown + "': " + why);
+  };
+  if (text.size() > kMaxExpressionChars)
+    throw fail("it is " + std::to_string(text.size()) + " characters; the limit is " +
+               std::to_string(kMaxExpressionChars));
+  int depth = 0;
+  for (const char c : text)
+    if (c == '(' && ++depth > kMaxExpressionDepth)
+      throw fail("parentheses nested deeper than " + std::to_string(kMaxExpressionDepth) + " levels");
+    else if (c == ')')
+      --depth;
   GiNaC::parser reader(table_, true);
   try {
     return reader(text);
   } catch (const std::exception& e) {
     // GiNaC's message continues with the parser's source location on further lines.
     const std::string why = e.what();
-    throw std::invalid_argument(where + ": cannot parse expression '" + text + "': " + why.substr(0, why.find('\n')));
+    throw fail(why.substr(0, why.find('\n')));
   }
 }
 

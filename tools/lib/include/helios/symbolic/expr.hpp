@@ -3,12 +3,18 @@
 // text round trip (expressions are stored as text that GiNaC parses back), numeric evaluation.
 #include <ginac/ginac.h>
 
+#include <cstddef>
 #include <map>
 #include <random>
 #include <string>
 #include <vector>
 
 namespace helios::symbolic {
+
+// Bounds of an expression text (README "Limits of input"); the derivations of the scenarios stay
+// under 27 kB and 8 levels of parentheses.
+inline constexpr std::size_t kMaxExpressionChars = std::size_t{1} << 20;
+inline constexpr int kMaxExpressionDepth = 256;
 
 // Symbols by name. All GiNaC symbols of a derivation come from one table so that parsing a
 // stored text yields the very same symbols.
@@ -18,7 +24,9 @@ class SymbolTable {
   const GiNaC::symbol& get(const std::string& name);
   bool has(const std::string& name) const { return table_.count(name) > 0; }
   // Parses `text` allowing only known symbols; throws std::invalid_argument
-  // "<where>: cannot parse expression '<text>': <reason>".
+  // "<where>: cannot parse expression '<text>': <reason>" (the text cut at 200 characters), also
+  // for a text beyond kMaxExpressionChars or nested deeper than kMaxExpressionDepth (GiNaC's
+  // parser recurses per parenthesis: ~7,800 levels overflowed the stack).
   GiNaC::ex parse(const std::string& text, const std::string& where) const;
   const GiNaC::symtab& symtab() const { return table_; }
 
