@@ -61,7 +61,7 @@ std::string solve_module(Context& c) {
     const int k = index_of(c.variables, nu);
     if (k < 0) throw std::invalid_argument("field /shooting/equations: bound multiplier " + nu + " is not a variable");
     bounds +=
-        "      {" + json(e.at("name")).dump() + ", " + json(e.at("meaning")).dump() + ", " + std::to_string(k) + "},\n";
+        "      {" + cpp_string(e.at("name")) + ", " + cpp_string(e.at("meaning")) + ", " + std::to_string(k) + "},\n";
   }
   if (bounds.empty())
     o << "  return solve(settings);\n";
