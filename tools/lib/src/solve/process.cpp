@@ -63,6 +63,13 @@ std::string first_line(const std::string& s) {
   return s.substr(0, s.find('\n'));
 }
 
+std::string printable_line(std::string text, std::size_t max_bytes) {
+  if (text.size() > max_bytes) text = text.substr(0, max_bytes) + "...";
+  for (char& c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
+  return text;
+}
+
 std::string limit_text(double seconds) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", seconds);

@@ -71,20 +71,13 @@ json record_before_run(const SolveOptions& o, const json& settings, const Compil
 // Why a run left no outcome: the wall-clock kill, or its exit code and signal, and the processes
 // it left behind.
 std::string run_failure(const RunResult& run, double time_limit_s) {
-  std::string detail = run.timed_out ? "killed after " + limit_text(time_limit_s) + " s wall clock"
-                                     : "exit code " + std::to_string(run.exit_code) + ", signal " +
-                                           std::to_string(run.signal) + ": " + first_line(run.stderr_text);
+  std::string detail = run.timed_out
+                           ? "killed after " + limit_text(time_limit_s) + " s wall clock"
+                           : "exit code " + std::to_string(run.exit_code) + ", signal " + std::to_string(run.signal) +
+                                 ": " + printable_line(first_line(run.stderr_text));
   if (run.leftover_processes > 0)
     detail += "; killed " + std::to_string(run.leftover_processes) + " leftover processes";
   return detail;
-}
-
-// `text` on one line of at most 500 bytes, its control bytes replaced by '?'.
-std::string limited_detail(std::string text) {
-  if (text.size() > 500) text = text.substr(0, 500) + "...";
-  for (char& c : text)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
-  return text;
 }
 
 // The outcome the program wrote: an object of solution.json's keys, none of them helios-solve's.
@@ -176,7 +169,7 @@ json solve(const SolveOptions& o) {
   }
   if (const std::string why = merge_outcome(doc, files.outcome, o.source_path); !why.empty()) {
     doc["status"] = "crashed";
-    doc["status_detail"] = "the program's outcome is unusable: " + limited_detail(why);
+    doc["status_detail"] = "the program's outcome is unusable: " + printable_line(why);
     doc["timings"]["total_s"] = seconds_since(start);
     return doc;
   }

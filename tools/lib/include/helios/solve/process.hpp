@@ -1,6 +1,7 @@
 #pragma once
 // Small process helpers shared by helios-solve's units (compile, sandbox, plots, solve).
 #include <chrono>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,10 @@ std::string capture(const std::vector<std::string>& argv);
 
 // The text up to its first newline.
 std::string first_line(const std::string& s);
+
+// `text` fit for one line of a record: control bytes (a newline, an escape sequence) replaced by
+// '?', cut at `max_bytes` with "..." after. For what a program wrote into a status_detail.
+std::string printable_line(std::string text, std::size_t max_bytes = 500);
 
 // A number of seconds as text ("%g").
 std::string limit_text(double seconds);
