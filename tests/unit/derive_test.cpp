@@ -371,3 +371,68 @@ TEST(SymbolicParse, AnExpressionBeyondItsBoundsIsAnErrorNamingTheFieldNotACrash)
 }
 
 }  // namespace
+
+namespace {
+
+// The estimate of expand()'s work bounds the terms from above (like terms may combine), is exact
+// for a power of a sum of distinct terms (the multinomial count), and counts what expand()
+// multiplies out inside a function's argument.
+TEST(SymbolicParse, ExpandedTermsBoundTheWorkOfExpand) {
+  helios::symbolic::SymbolTable symbols;
+  for (const char* name : {"x", "y", "z"}) symbols.get(name);
+  const auto terms = [&](const std::string& text) {
+    return helios::symbolic::expanded_terms(symbols.parse(text, "test"));
+  };
+  for (const char* text : {"(x+y+z)^7", "(x+y)*(y+z)*(x+z+1)", "x^3*y-z"})
+    EXPECT_GE(terms(text) + 1e-9, static_cast<double>(symbols.parse(text, "test").expand().nops())) << text;
+  EXPECT_NEAR(terms("(x+y)*(y+z)*(x+z+1)"), 12, 1e-9);
+  EXPECT_NEAR(terms("(x+y+z)^7"), 36, 1e-9);  // C(9, 7)
+  EXPECT_NEAR(terms("sin((x+y)^5)"), 6, 1e-9);
+  EXPECT_NEAR(terms("1/(x+y+z)^3"), 3, 1e-9);
+}
+
+// (x+y+z+vx+vy+vz)^40 made helios-derive run past 240 s at 1.1 GB: it is refused at once, by
+// its field, and an expression at the scenarios' size is accepted.
+TEST(SymbolicParse, AnExpressionWhoseExpansionIsBeyondTheBudgetIsRefused) {
+  helios::symbolic::SymbolTable symbols;
+  for (const char* name : {"x", "y", "z", "vx", "vy", "vz"}) symbols.get(name);
+  try {
+    symbols.parse("(x+y+z+vx+vy+vz)^40", "s.json: field /dynamics/perturbations (a)/components/0");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(),
+                 "s.json: field /dynamics/perturbations (a)/components/0: expression '(x+y+z+vx+vy+vz)^40' (or a "
+                 "first derivative of it) would expand to about 1.2e+06 terms; the limit of the symbolic work is "
+                 "2e+04 terms");
+  }
+  // 6,188 terms (4,368 in a first derivative) pass; 20,349 do not.
+  EXPECT_NO_THROW(symbols.parse("(x+y+z+vx+vy+vz)^12", "test"));
+  EXPECT_THROW(symbols.parse("(x+y+z+vx+vy+vz)^16", "test"), std::invalid_argument);
+}
+
+// A spec magnitude beyond double precision was blamed on the output schema ("output derivation:
+// ... /parameters/0/value: Value type not permitted"): it is refused by its meaning.
+TEST(Derive, AMagnitudeBeyondDoublePrecisionIsRefusedByItsMeaning) {
+  const std::string path = kSource + "/scenarios/S01/problem.txt";
+  const json s01 = helios::spec::parse_problem_text(helios::io::read_text(path), path);
+  const auto error = [&](const char* pointer, double value) {
+    json spec = s01;
+    spec[json::json_pointer(pointer)] = value;
+    try {
+      helios::pmp::build_problem(spec);
+    } catch (const std::domain_error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error("/central_body/mu_km3_s2", 1e308)
+                .rfind("the gravitational parameter of the central body "
+                       "(parameter mu) is not finite in normalized units",
+                       0),
+            0u);
+  EXPECT_EQ(error("/time/tof_days", 1e306).rfind("a time of the problem", 0), 0u);
+  EXPECT_EQ(error("/spacecraft/initial_mass_kg", 1e308).rfind("field /spacecraft: the maximum thrust is 0", 0), 0u);
+  EXPECT_EQ(error("/spacecraft/isp_s", 3000), "");
+}
+
+}  // namespace

@@ -178,7 +178,12 @@ void spacecraft(Problem& p, const json& spec, bool j2) {
   } else {
     const double thrust = sc.at("thrust_N").get<double>() / U.force_N();
     const double exhaust = sc.at("isp_s").get<double>() * helios::astro::G0_M_S2 * 1e-3 / U.speed_km_s();
-    if (!(thrust > 0) || !(exhaust > 0)) throw std::domain_error("field /spacecraft: thrust and Isp must be positive");
+    // The schema asks for positive values; a zero here is an underflow in normalized units.
+    if (!(thrust > 0) || !(exhaust > 0))
+      throw std::domain_error("field /spacecraft: the " +
+                              std::string(thrust > 0 ? "exhaust velocity" : "maximum thrust") +
+                              " is 0 in normalized units: the spacecraft's magnitudes (thrust, Isp, mass) are beyond "
+                              "the range of double precision");
     p.states.push_back({"m", "mass", mass_unit});
     p.controls = {{"u", "throttle T/Tmax in [0, 1]", "throttle"},
                   {"ax", "thrust direction x (unit vector)", "direction"},
@@ -294,6 +299,24 @@ void times(Problem& p, const json& time) {
 
 }  // namespace
 
+// Every number of the problem in normalized units is finite: a spec magnitude beyond double
+// precision (mu of 1e308 km^3/s^2, a flight of 1e306 days) is refused here, by its meaning,
+// rather than written as a derivation that fails its schema.
+void check_magnitudes(const Problem& p) {
+  const auto refuse = [](const std::string& what) {
+    throw std::domain_error(what +
+                            " is not finite in normalized units: a value of the spec is beyond the range of "
+                            "double precision");
+  };
+  for (const auto& q : p.parameters)
+    if (!std::isfinite(q.value)) refuse("the " + q.meaning + " (parameter " + q.name + ")");
+  for (const double t : {p.t0, p.tf, p.tf_min, p.t0_min, p.t0_max})
+    if (!std::isfinite(t)) refuse("a time of the problem (departure, time of flight or their window)");
+  for (const auto& e : p.events)
+    if (!std::isfinite(e.duration) || !std::isfinite(e.window_lo) || !std::isfinite(e.window_hi))
+      refuse("the time of event " + e.id);
+}
+
 Problem build_problem(const json& spec) {
   Problem p;
   const bool j2 = describe(p, spec);
@@ -311,6 +334,7 @@ Problem build_problem(const json& spec) {
   for (std::size_t i = 1; i < p.events.size(); ++i)
     if (p.events[i].window_lo < p.events[i - 1].window_lo)
       throw std::invalid_argument("constraint '" + p.events[i].id + "': interior events must be listed in time order");
+  check_magnitudes(p);
   return p;
 }
 

@@ -16,9 +16,9 @@ const GiNaC::symbol& SymbolTable::get(const std::string& name) {
 }
 
 GiNaC::ex SymbolTable::parse(const std::string& text, const std::string& where) const {
+  const auto shown = [](const std::string& t) { return t.size() > 200 ? t.substr(0, 200) + "..." : t; };
   const auto fail = [&](const std::string& why) {
-    const std::string shown = text.size() > 200 ? text.substr(0, 200) + "..." : text;
-    return std::invalid_argument(where + ": cannot parse expression '" + shown + "': " + why);
+    return std::invalid_argument(where + ": cannot parse expression '" + shown(text) + "': " + why);
   };
   if (text.size() > kMaxExpressionChars)
     throw fail("it is " + std::to_string(text.size()) + " characters; the limit is " +
@@ -30,13 +30,61 @@ GiNaC::ex SymbolTable::parse(const std::string& text, const std::string& where) 
     else if (c == ')')
       --depth;
   GiNaC::parser reader(table_, true);
+  GiNaC::ex e;
   try {
-    return reader(text);
-  } catch (const std::exception& e) {
+    e = reader(text);
+  } catch (const std::exception& error) {
     // GiNaC's message continues with the parser's source location on further lines.
-    const std::string why = e.what();
+    const std::string why = error.what();
     throw fail(why.substr(0, why.find('\n')));
   }
+  double terms = expanded_terms(e);
+  for (const auto& name : free_symbols(e))
+    terms = std::max(terms, expanded_terms(e.diff(GiNaC::ex_to<GiNaC::symbol>(table_.at(name)))));
+  if (terms > kMaxExpandedTerms) {
+    std::ostringstream why;
+    why.precision(2);
+    why << where << ": expression '" << shown(text) << "' (or a first derivative of it) would expand to about " << terms
+        << " terms; the limit of the symbolic work is " << kMaxExpandedTerms << " terms";
+    throw std::invalid_argument(why.str());
+  }
+  return e;
+}
+
+namespace {
+
+// C(n + k - 1, k) in floating point: the monomials of degree k in n variables.
+double monomials(double n, double k) {
+  return std::exp(std::lgamma(n + k) - std::lgamma(k + 1) - std::lgamma(n));
+}
+
+// The terms of e's expansion; `worst` collects the largest expansion nested in a function or a
+// power that expand() leaves as one factor.
+double expanded_terms(const GiNaC::ex& e, double& worst) {
+  double terms = 1;
+  if (GiNaC::is_a<GiNaC::add>(e)) {
+    terms = 0;
+    for (const auto& op : e) terms += expanded_terms(op, worst);
+  } else if (GiNaC::is_a<GiNaC::mul>(e)) {
+    for (const auto& op : e) terms *= expanded_terms(op, worst);
+  } else if (GiNaC::is_a<GiNaC::power>(e)) {
+    const double base = expanded_terms(e.op(0), worst);
+    const GiNaC::ex& k = e.op(1);
+    if (GiNaC::is_a<GiNaC::numeric>(k) && GiNaC::ex_to<GiNaC::numeric>(k).is_pos_integer())
+      terms = base > 1 ? monomials(base, GiNaC::ex_to<GiNaC::numeric>(k).to_double()) : 1;
+    else
+      worst = std::max(worst, std::max(base, expanded_terms(k, worst)));
+  } else {
+    for (const auto& op : e) worst = std::max(worst, expanded_terms(op, worst));
+  }
+  return terms;
+}
+
+}  // namespace
+
+double expanded_terms(const GiNaC::ex& e) {
+  double worst = 0;
+  return std::max(expanded_terms(e, worst), worst);
 }
 
 namespace {

@@ -15,6 +15,17 @@ namespace helios::symbolic {
 // under 27 kB and 8 levels of parentheses.
 inline constexpr std::size_t kMaxExpressionChars = std::size_t{1} << 20;
 inline constexpr int kMaxExpressionDepth = 256;
+// Bound of the symbolic work an expression may ask for: the terms of its expansion, and of the
+// expansion of each first derivative (the costate equations and the control law expand those).
+// The scenarios ask for at most 268 (S10); (x+y+z+vx+vy+vz)^40 asks for 1.2e6, and the limit
+// is about what the 1 MiB limit of an expression text holds (6,200 terms took 310 kB).
+inline constexpr double kMaxExpandedTerms = 2e4;
+
+// An upper bound of the number of terms of e.expand() or of the expansion of any sum inside a
+// function or a negative power (which expand() multiplies out too): a positive integer power k
+// of n terms gives at most C(n + k - 1, k), a product the product of its factors' counts. One
+// walk of e's tree, no expansion.
+double expanded_terms(const GiNaC::ex& e);
 
 // Symbols by name. All GiNaC symbols of a derivation come from one table so that parsing a
 // stored text yields the very same symbols.
@@ -26,7 +37,9 @@ class SymbolTable {
   // Parses `text` allowing only known symbols; throws std::invalid_argument
   // "<where>: cannot parse expression '<text>': <reason>" (the text cut at 200 characters), also
   // for a text beyond kMaxExpressionChars or nested deeper than kMaxExpressionDepth (GiNaC's
-  // parser recurses per parenthesis: ~7,800 levels overflowed the stack).
+  // parser recurses per parenthesis: ~7,800 levels overflowed the stack), and for an expression
+  // whose expansion or whose first derivatives' expansions would exceed kMaxExpandedTerms
+  // ("... would expand to about N terms").
   GiNaC::ex parse(const std::string& text, const std::string& where) const;
   const GiNaC::symtab& symtab() const { return table_; }
 
