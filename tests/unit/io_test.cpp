@@ -100,6 +100,26 @@ TEST(Io, ReadArtifactChecksKindAndVersion) {
   } catch (const helios::input_error& e) {
     EXPECT_EQ(std::string(e.what()), path + ": field /schema_version is 99, this build reads version 1");
   }
+  // A header field of the wrong type gave nlohmann's "type_error.302"; not an object, .316.
+  const auto error_of = [&](const std::string& text) {
+    helios::io::write_text_atomic(path, text);
+    try {
+      helios::io::read_artifact("spec", path);
+    } catch (const helios::input_error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error_of(R"({"schema": "helios/spec", "schema_version": "1"})"),
+            path + ": field /schema_version is \"1\", this build reads version 1");
+  EXPECT_EQ(error_of(R"({"schema": ["helios/spec"]})"),
+            path + ": field /schema is [\"helios/spec\"], expected \"helios/spec\" (wrong artifact for this tool?)");
+  EXPECT_EQ(error_of("[1]"), path +
+                                 ": field /schema is absent (not a JSON object), expected \"helios/spec\" (wrong "
+                                 "artifact for this tool?)");
+  EXPECT_EQ(
+      error_of(R"({"schema": "helios/spec\u001b[2J"})"),
+      path + R"(: field /schema is "helios/spec\u001b[2J", expected "helios/spec" (wrong artifact for this tool?))");
   fs::remove_all(dir);
 }
 

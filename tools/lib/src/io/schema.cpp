@@ -31,7 +31,8 @@ const valijson::Schema& schema_for(const std::string& kind) {
 }  // namespace
 
 const std::vector<std::string>& artifact_kinds() {
-  static const std::vector<std::string> kinds = {"spec", "derivation", "verify", "solution", "score", "compile", "transcript"};
+  static const std::vector<std::string> kinds = {"spec",  "derivation", "verify",    "solution",
+                                                 "score", "compile",    "transcript"};
   return kinds;
 }
 
@@ -80,16 +81,33 @@ std::vector<std::string> schema_properties(const std::string& kind) {
   return names;
 }
 
+namespace {
+
+// A JSON value as an error message shows it: one line, at most 80 characters.
+std::string printable_json(const json& value) {
+  const std::string text = value.dump(-1, ' ', true, json::error_handler_t::replace);
+  return text.size() > 80 ? text.substr(0, 80) + "..." : text;
+}
+
+}  // namespace
+
 json read_artifact(const std::string& kind, const std::string& path) {
   json doc = read_json(path);
   const std::string name = path == "-" ? "<stdin>" : path;
-  if (!doc.is_object() || doc.value("schema", "") != "helios/" + kind)
-    throw input_error(name + ": field /schema is " +
-                      (doc.is_object() && doc.contains("schema") ? doc["schema"].dump() : "missing") +
+  const auto field = [&](const char* key) -> const json* {
+    if (!doc.is_object()) return nullptr;
+    const auto it = doc.find(key);
+    return it == doc.end() ? nullptr : &*it;
+  };
+  const auto shown = [](const json* value) { return value ? printable_json(*value) : std::string("missing"); };
+  const json* schema = field("schema");
+  if (!doc.is_object() || !schema || *schema != "helios/" + kind)
+    throw input_error(name + ": field /schema is " + (doc.is_object() ? shown(schema) : "absent (not a JSON object)") +
                       ", expected \"helios/" + kind + "\" (wrong artifact for this tool?)");
-  if (doc.value("schema_version", 0) != kSchemaVersion)
-    throw input_error(name + ": field /schema_version is " + doc["schema_version"].dump() +
-                      ", this build reads version " + std::to_string(kSchemaVersion));
+  const json* version = field("schema_version");
+  if (!version || *version != kSchemaVersion)
+    throw input_error(name + ": field /schema_version is " + shown(version) + ", this build reads version " +
+                      std::to_string(kSchemaVersion));
   validate(kind, doc, name);
   return doc;
 }
