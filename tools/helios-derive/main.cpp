@@ -17,7 +17,9 @@ int main(int argc, char** argv) {
        {"previous", "", "FILE", "llm: the derivation of the round before", ""},
        {"feedback", "", "FILE", "llm: verify.json of --previous; its failed checks go into the prompt", ""},
        {"round", "", "N", "llm: refinement round number (1 = first attempt)", "1"},
-       {"transcript", "", "FILE", "llm: transcript of the exchange (default: next to -o, NAME.transcript.json)", ""}},
+       {"transcript", "", "FILE", "llm: transcript of the exchange (default: next to -o, NAME.transcript.json)", ""},
+       helios::cli::time_limit_option("the symbolic work", "600"),
+       helios::cli::memory_limit_option("the symbolic work", "8192")},
       {"SPEC"},
       "Builds H = lambda0 L + lambda^T f, the state and costate ODEs, the optimal control law with\n"
       "its switching function and eps smoothing, the transversality conditions from psi, and the\n"
@@ -29,11 +31,14 @@ int main(int argc, char** argv) {
       "helios-derive runs/builtin/S01/spec.json -o runs/builtin/S01/derivation.json"};
   return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
     const std::string backend = helios::cli::backend_option(args, {"builtin", "llm"});
-    const auto spec = helios::io::read_artifact("spec", args.positionals[0]);
+    helios::cli::limit_work("helios-derive", args);
+    const std::string& input = args.positionals[0];
+    const auto spec = helios::io::read_artifact("spec", input);
     if (backend == "builtin") {
       for (const char* llm_only : {"previous", "feedback", "transcript"})
         if (args.has(llm_only)) throw helios::usage_error(std::string("--") + llm_only + " needs --backend llm");
-      helios::io::write_artifact("derivation", helios::pmp::derive_from_spec(spec), args.output);
+      helios::cli::naming_input(
+          input, [&] { helios::io::write_artifact("derivation", helios::pmp::derive_from_spec(spec), args.output); });
       return 0;
     }
     helios::llm::DeriveRequest request{spec, std::nullopt, std::nullopt};

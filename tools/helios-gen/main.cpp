@@ -51,8 +51,11 @@ int main(int argc, char** argv) {
       options.modules = helios::codegen::ModulePolicy::Generated;
     else if (policy != "auto")
       throw helios::usage_error("--modules " + policy + " is not one of auto, generated");
-    const auto derivation = helios::io::read_artifact("derivation", args.positionals[0]);
-    helios::io::write_text_atomic(args.output, helios::codegen::generate(derivation, options).source);
+    const std::string& input = args.positionals[0];
+    helios::cli::naming_input(input, [&] {
+      const auto derivation = helios::io::read_artifact("derivation", input);
+      helios::io::write_text_atomic(args.output, helios::codegen::generate(derivation, options).source);
+    });
     return 0;
   });
 }

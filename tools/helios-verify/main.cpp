@@ -13,7 +13,9 @@ int main(int argc, char** argv) {
       "[options] DERIVATION.json|-",
       {{"points", "", "N", "random sample points per check", "25"},
        {"seed", "", "N", "seed of the random sample points", "1"},
-       {"advisory", "", "", "exit 0 even when the verdict is fail", ""}},
+       {"advisory", "", "", "exit 0 even when the verdict is fail", ""},
+       helios::cli::time_limit_option("the symbolic work", "600"),
+       helios::cli::memory_limit_option("the symbolic work", "8192")},
       {"DERIVATION"},
       "Trusts only the problem statement of the derivation (states, controls, parameters, dynamics,\n"
       "costs, psi) and recomputes H, the state and costate ODEs, the direction and throttle laws,\n"
@@ -25,6 +27,7 @@ int main(int argc, char** argv) {
     helios::verify::VerifyOptions options;
     options.points = static_cast<int>(helios::cli::integer_option(args, "points", 1, 100000));
     options.seed = static_cast<unsigned>(helios::cli::integer_option(args, "seed", 0, 4294967295L));
+    helios::cli::limit_work("helios-verify", args);
     const auto derivation = helios::io::read_artifact("derivation", args.positionals[0]);
     const auto report = helios::verify::verify_derivation(derivation, options);
     helios::io::write_artifact("verify", report, args.output);

@@ -1,8 +1,17 @@
 #include "helios/io/cli.hpp"
 
+#include <cln/malloc.h>
+#include <gmp.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <iostream>
+#include <new>
 #include <sstream>
 
 #include "helios/io/error.hpp"
@@ -17,7 +26,98 @@ const Option* find_option(const ToolInfo& info, const std::string& name, bool by
   return nullptr;
 }
 
+// What the budget handlers write: fixed storage, so that they do not allocate.
+char g_cpu_budget_message[512] = {};
+char g_memory_budget_message[512] = {};
+double g_memory_budget_mb = 0;
+
+[[noreturn]] void exit_beyond_budget(const char* message) {
+  io::remove_registered_temps();
+  const ssize_t ignored = ::write(STDERR_FILENO, message, std::strlen(message));
+  (void)ignored;
+  ::_exit(kExitOther);
+}
+
+void cpu_budget_exceeded(int) {
+  exit_beyond_budget(g_cpu_budget_message);
+}
+
+// GMP and CLN abort when an allocation fails (GMP printing its own line); with a memory budget
+// set, their allocations go through these, which report the budget instead.
+void* budget_malloc(std::size_t n) {
+  void* p = std::malloc(n);
+  if (p == nullptr && n > 0) exit_beyond_budget(g_memory_budget_message);
+  return p;
+}
+void* gmp_budget_realloc(void* p, std::size_t, std::size_t n) {
+  void* q = std::realloc(p, n);
+  if (q == nullptr && n > 0) exit_beyond_budget(g_memory_budget_message);
+  return q;
+}
+void gmp_free(void* p, std::size_t) {
+  std::free(p);
+}
+
+bool under_address_sanitizer() {
+#if defined(__SANITIZE_ADDRESS__)
+  return true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  return true;
+#endif
+#endif
+  return false;
+}
+
 }  // namespace
+
+Option time_limit_option(const std::string& work, const std::string& seconds) {
+  return {"time-limit", "", "SECONDS", "CPU-time budget of " + work + " (beyond it: an error, exit 1)", seconds};
+}
+
+Option memory_limit_option(const std::string& work, const std::string& mb) {
+  return {"memory-limit", "", "MB", "memory (address-space) budget of " + work + " (beyond it: exit 1)", mb};
+}
+
+void limit_work(const std::string& tool, const Args& args) {
+  const double seconds = positive_option(args, "time-limit");
+  const double mb = positive_option(args, "memory-limit");
+  std::snprintf(g_cpu_budget_message, sizeof g_cpu_budget_message,
+                "%s: error: the work exceeded the CPU-time budget of %g s (--time-limit); no artifact written\n",
+                tool.c_str(), seconds);
+  std::snprintf(g_memory_budget_message, sizeof g_memory_budget_message,
+                "%s: error: the work exceeded the memory budget of %g MB (--memory-limit); no artifact written\n",
+                tool.c_str(), mb);
+  std::signal(SIGXCPU, cpu_budget_exceeded);
+  const auto cpu = static_cast<rlim_t>(std::ceil(seconds));
+  const rlimit cpu_limit{cpu, cpu + 5};  // the hard limit kills a process that ignores SIGXCPU
+  ::setrlimit(RLIMIT_CPU, &cpu_limit);
+  if (under_address_sanitizer()) return;
+  g_memory_budget_mb = mb;
+  mp_set_memory_functions(budget_malloc, gmp_budget_realloc, gmp_free);
+  cln::malloc_hook = budget_malloc;
+  const auto bytes = static_cast<rlim_t>(mb * 1024 * 1024);
+  const rlimit memory_limit{bytes, bytes};
+  ::setrlimit(RLIMIT_AS, &memory_limit);
+}
+
+void naming_input(const std::string& source, const std::function<void()>& work) {
+  const std::string name = source == "-" ? "<stdin>" : source;
+  const auto rethrow = [&](const std::exception& e) {
+    const std::string what = e.what();
+    if (what.rfind(name + ":", 0) == 0) throw;
+    throw input_error(name + ": " + what);
+  };
+  try {
+    work();
+  } catch (const input_error& e) {
+    rethrow(e);
+  } catch (const std::invalid_argument& e) {
+    rethrow(e);
+  } catch (const std::domain_error& e) {
+    rethrow(e);
+  }
+}
 
 std::string help_text(const ToolInfo& info) {
   std::ostringstream out;
@@ -150,6 +250,9 @@ int run_tool(const ToolInfo& info, int argc, char** argv, const std::function<in
     return fail(kExitInvalidInput, e.what());
   } catch (const check_failed& e) {
     return fail(kExitCheckFailed, e.what());
+  } catch (const std::bad_alloc&) {
+    if (g_memory_budget_mb > 0) exit_beyond_budget(g_memory_budget_message);
+    return fail(kExitOther, "out of memory");
   } catch (const std::exception& e) {
     return fail(kExitOther, e.what());
   }

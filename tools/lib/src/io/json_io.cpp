@@ -27,8 +27,7 @@ std::array<std::array<char, kMaxPath>, kMaxTemps> g_temps{};
 volatile std::sig_atomic_t g_temp_used[kMaxTemps] = {};
 
 void cleanup_and_reraise(int sig) {
-  for (std::size_t i = 0; i < kMaxTemps; ++i)
-    if (g_temp_used[i]) ::unlink(g_temps[i].data());
+  remove_registered_temps();
   std::signal(sig, SIG_DFL);
   std::raise(sig);
 }
@@ -53,6 +52,11 @@ void check_finite(const json& node, const std::string& where) {
 }
 
 }  // namespace
+
+void remove_registered_temps() {
+  for (std::size_t i = 0; i < kMaxTemps; ++i)
+    if (g_temp_used[i]) ::unlink(g_temps[i].data());
+}
 
 void install_cleanup_handlers() {
   static bool installed = false;

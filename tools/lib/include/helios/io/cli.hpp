@@ -43,6 +43,22 @@ double positive_option(const Args& args, const std::string& name);
 // The --backend value, which must be one of `available`.
 std::string backend_option(const Args& args, const std::vector<std::string>& available);
 
+// The options of a tool's own work budget (--time-limit, --memory-limit), with their defaults, and
+// their application: limit_work() bounds this process's CPU time and address space. Beyond the
+// CPU time the tool prints "<tool>: error: ... exceeded the CPU-time budget of N s" and exits
+// kExitOther with no artifact written; an allocation beyond the memory budget is reported by
+// run_tool as "out of memory: ... budget of N MB" (exit kExitOther). Under AddressSanitizer, whose
+// shadow memory needs terabytes of address space, the memory budget is not applied.
+Option time_limit_option(const std::string& work, const std::string& seconds);
+Option memory_limit_option(const std::string& work, const std::string& mb);
+void limit_work(const std::string& tool, const Args& args);
+
+// Runs `work`, which reads the input `source` ("-" = stdin): an error about that input
+// (input_error, std::invalid_argument, std::domain_error) whose message does not start with a
+// file name already is rethrown as input_error "SOURCE: <message>", so that a library's
+// "field /x: ..." names the file too.
+void naming_input(const std::string& source, const std::function<void()>& work);
+
 // Parses argv; throws usage_error. Returns false if --help or --version was handled.
 bool parse_args(const ToolInfo& info, int argc, char** argv, Args& args);
 

@@ -49,6 +49,8 @@ class TempFiles {
  private:
   std::vector<std::string> paths_;
 };
+// Deletes the registered temp paths now (async-signal-safe: for a signal handler that exits).
+void remove_registered_temps();
 // Installs the signal handlers that delete registered temp paths (idempotent).
 void install_cleanup_handlers();
 
