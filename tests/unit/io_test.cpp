@@ -86,6 +86,16 @@ TEST(Io, JsonBeyondItsDepthIsRefusedBeforeParsingStringsAside) {
   }
 }
 
+// 1e400 in a JSON document gave nlohmann's "out_of_range.406" as exit 1.
+TEST(Io, AJsonNumberBeyondDoubleIsAnInputError) {
+  try {
+    helios::io::parse_json_text(R"({"thrust_N": 1e400})", "s.json");
+    FAIL();
+  } catch (const helios::input_error& e) {
+    EXPECT_STREQ(e.what(), "s.json: a number beyond the range of a double (number overflow parsing '1e400')");
+  }
+}
+
 TEST(Io, ReadArtifactChecksKindAndVersion) {
   const fs::path dir = fresh_dir("kind");
   const std::string path = (dir / "x.json").string();

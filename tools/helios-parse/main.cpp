@@ -11,7 +11,9 @@ int main(int argc, char** argv) {
       "read a trajectory problem stated in controlled English into spec.json",
       "[options] PROBLEM.txt|-",
       {{"backend", "", "NAME", "parser backend: builtin or llm", "builtin"},
-       {"transcript", "", "FILE", "llm: transcript of the exchange (default: next to -o, NAME.transcript.json)", ""}},
+       {"transcript", "", "FILE", "llm: transcript of the exchange (default: next to -o, NAME.transcript.json)", ""},
+       helios::cli::time_limit_option("reading the text", "60"),
+       helios::cli::memory_limit_option("reading the text", "4096")},
       {"PROBLEM"},
       "Every sentence must match a form of the controlled English documented in README.md;\n"
       "a sentence that does not is an error quoting it. Quantities are converted to the spec's\n"
@@ -22,6 +24,7 @@ int main(int argc, char** argv) {
       "helios-parse scenarios/S01/problem.txt -o runs/builtin/S01/spec.json"};
   return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
     const std::string backend = helios::cli::backend_option(args, {"builtin", "llm"});
+    helios::cli::limit_work("helios-parse", args);
     const std::string& input = args.positionals[0];
     const std::string source = input == "-" ? "<stdin>" : input;
     if (backend == "llm") {

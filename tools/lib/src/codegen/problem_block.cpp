@@ -22,6 +22,11 @@ std::pair<std::string, double> physical(const derivation::Units& units, const de
 
 std::string problem_block(Context& c) {
   const json& d = c.d;
+  const json& times = d.at("times");
+  const json& tf = times.contains("tf") ? times.at("tf") : times.at("tf_window")[1];
+  if (!(tf.get<double>() > times.at("t0").get<double>()))
+    throw std::invalid_argument("field /times: the final time " + tf.dump() + " is not after t0 " +
+                                times.at("t0").dump());
   std::ostringstream o;
   o << "// ----- PROBLEM (generated) -----------------------------------------------------------------\n"
     << "namespace problem {\n"
@@ -34,15 +39,14 @@ std::string problem_block(Context& c) {
     << "// The objective: the propellant (minimum fuel or minimum initial mass), else minimum time.\n"
     << "constexpr bool kMinimumFuel = " << (d.at("problem").value("objective", "") != "minimum_time" ? "true" : "false")
     << ";\n"
-    << "constexpr double kT0 = " << number(d.at("times").at("t0")) << ";\n"
+    << "constexpr double kT0 = " << number(times.at("t0")) << ";\n"
     << "// The final time, or the upper end of its window when it is free.\n"
-    << "constexpr double kTf = "
-    << number(d.at("times").contains("tf") ? d.at("times").at("tf") : d.at("times").at("tf_window")[1]) << ";\n"
+    << "constexpr double kTf = " << number(tf) << ";\n"
     << "constexpr double kHomotopyStart = " << number(d.at("homotopy").at("start")) << ";\n"
     << "constexpr double kTimeUnitDays = " << number(c.units.time_s / 86400.0) << ";\n"
     << "constexpr double kLengthUnitKm = " << number(c.units.length_km) << ";\n"
     << "constexpr double kSpeedUnitKmS = " << number(c.units.length_km / c.units.time_s) << ";\n"
-    << "constexpr double kEpochMjd2000 = " << number(d.at("times").value("epoch_mjd2000", 0.0)) << ";\n"
+    << "constexpr double kEpochMjd2000 = " << number(times.value("epoch_mjd2000", 0.0)) << ";\n"
     << "constexpr double kMassUnitKg = " << number(c.units.mass_kg) << ";\n";
   const derivation::Quantity* exhaust = c.exhaust_velocity();
   o << "constexpr double kExhaustVelocityMS = " << number(exhaust ? c.units.to_si(exhaust->value, exhaust->unit) : 0.0)

@@ -141,6 +141,12 @@ json parse_json_text(const std::string& text, const std::string& name) {
     return json::parse(text);
   } catch (const json::parse_error& e) {
     throw input_error(name + ": malformed JSON at byte " + std::to_string(e.byte) + ", fix the file or regenerate it");
+  } catch (const json::out_of_range& e) {
+    // "[json.exception.out_of_range.406] number overflow parsing '1e400'": the part after the tag.
+    const std::string what = e.what();
+    const std::size_t tag = what.find("] ");
+    throw input_error(name + ": a number beyond the range of a double (" +
+                      (tag == std::string::npos ? what : what.substr(tag + 2)) + ")");
   }
 }
 
