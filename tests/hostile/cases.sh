@@ -1,0 +1,255 @@
+# The cases of the hostile corpus (sourced by tests/hostile/run.sh, which defines case_dir,
+# expect and the helpers). Each: case_dir ID; build the input; expect EXIT PATTERN TOOL ARGS.
+# shellcheck shell=bash disable=SC2154
+
+# ---- helios-parse: problem texts -------------------------------------------------------------
+
+# Encoding and bytes.
+case_dir parse-empty; : >p.txt; expect 3 'never states its name' parse p.txt
+case_dir parse-comments-only; printf '# a comment\n# another\n' >p.txt; expect 3 'never states its name' parse p.txt
+case_dir parse-whitespace-only; printf ' \n\t\n\n' >p.txt; expect 3 'never states its name' parse p.txt
+case_dir parse-nul-byte; { s01_text; printf 'The \000thrust.\n'; } >p.txt; expect 3 'NUL|control' parse p.txt
+case_dir parse-nul-first; printf '\000' >p.txt; expect 3 'NUL|control' parse p.txt
+case_dir parse-escape-sequence; { s01_text; printf 'The \033[31mred\033[0m sentence.\n'; } >p.txt
+expect 3 'control' parse p.txt
+case_dir parse-bell; { s01_text; printf 'Ring\a.\n'; } >p.txt; expect 3 'control' parse p.txt
+case_dir parse-del; { s01_text; printf 'Del\177.\n'; } >p.txt; expect 3 'control' parse p.txt
+case_dir parse-backspace; { s01_text; printf 'Back\b\b.\n'; } >p.txt; expect 3 'control' parse p.txt
+for bad in 'lone-continuation:\x80' 'overlong-slash:\xc0\xaf' 'surrogate:\xed\xa0\x80' 'truncated:\xe2\x82' \
+  'beyond-unicode:\xf4\x90\x80\x80' 'ff-byte:\xff' 'latin1:caf\xe9'; do
+  case_dir "parse-utf8-${bad%%:*}"; { s01_text; printf "Word ${bad#*:} here.\n"; } >p.txt; expect 3 'UTF-8' parse p.txt
+done
+case_dir parse-binary-elf; head -c 4096 "$BIN/helios-parse" >p.txt; expect 3 'UTF-8|control|NUL' parse p.txt
+for seed in 1 2 3 4 5 6 7 8; do
+  case_dir "parse-random-bytes-$seed"
+  awk -v s="$seed" 'BEGIN { srand(s); for (i = 0; i < 3000; i++) printf "%c", int(rand() * 256) }' >p.txt
+  expect 3 'p.txt:1: the problem text is not valid UTF-8|NUL|control' parse p.txt
+done
+for seed in 1 2 3 4 5 6; do
+  case_dir "parse-random-words-$seed"
+  awk -v s="$seed" 'BEGIN { srand(s); split("the spacecraft thrust of N kg km s days at from with position velocity and is a Minimize fuel MJD2000 [ ] , 0.5 1e3 -7 . Sun Earth Mars departs rendezvouses", w, " ");
+    for (i = 0; i < 400; i++) printf "%s%s", w[int(rand() * length(w)) + 1], (rand() < 0.1 ? ".\n" : " ") }' >p.txt
+  expect 3 '.' parse p.txt
+done
+case_dir parse-crlf; s01_text | sed 's/$/\r/' >p.txt; expect 0 '' parse p.txt
+case_dir parse-no-final-newline; s01_text | head -c -1 >p.txt; expect 0 '' parse p.txt
+case_dir parse-stdin-missing-file; expect 3 'no-such|No such|cannot' parse no-such.txt
+case_dir parse-directory; mkdir d; expect 3 'd|directory|read' parse d
+
+# Sizes.
+case_dir parse-over-1MiB; { s01_text; awk 'BEGIN { for (i = 0; i < 30000; i++) print "# padding comment line of forty chars" }'; } >p.txt
+expect 3 'MiB|bytes|limit' parse p.txt
+case_dir parse-line-5000; { s01_text; printf '# %05000d\n' 0; } >p.txt; expect 3 '4096|limit' parse p.txt
+case_dir parse-sentence-30KB; { s01_text; printf 'The spacecraft %s.\n' "$(printf 'very %.0s' $(seq 6000))"; } >p.txt
+expect 3 '4096|limit' parse p.txt
+case_dir parse-sentence-multiline-long; { s01_text; for i in $(seq 800); do echo "word word"; done; echo "."; } >p.txt
+expect 3 '4096|limit' parse p.txt
+case_dir parse-many-duplicates; { s01_text; for i in $(seq 3000); do echo "The time of flight is 348.795 days."; done; } >p.txt
+expect 3 'twice|again|duplicate|already' parse p.txt
+
+# Numbers.
+for n in 'huge:1e400' 'tiny:1e-400' 'digits:1'"$(printf '0%.0s' $(seq 400))" 'hex:0x1p3' 'nan:NaN' 'inf:inf'; do
+  case_dir "parse-number-${n%%:*}"; with_sentence "Minimize the fuel consumption." | sed "s/0.5 N/${n#*:} N/" >p.txt
+  expect 3 'p.txt:4: .*(outside the range of a double|cannot read .a maximum thrust of)' parse p.txt
+done
+case_dir parse-thrust-zero; s01_text | sed 's/0.5 N/0 N/' >p.txt; expect 3 'thrust' parse p.txt
+case_dir parse-thrust-negative; s01_text | sed 's/0.5 N/-0.5 N/' >p.txt; expect 3 'thrust' parse p.txt
+case_dir parse-isp-zero; s01_text | sed 's/2000 s/0 s/' >p.txt; expect 3 'impulse|Isp' parse p.txt
+case_dir parse-mass-zero; s01_text | sed 's/1000 kg/0 kg/' >p.txt; expect 3 'mass' parse p.txt
+case_dir parse-mass-negative; s01_text | sed 's/1000 kg/-1000 kg/' >p.txt; expect 3 'mass' parse p.txt
+case_dir parse-tof-zero; s01_text | sed 's/348.795 days/0 days/' >p.txt; expect 3 'flight|positive' parse p.txt
+case_dir parse-tof-negative; s01_text | sed 's/348.795 days/-348.795 days/' >p.txt; expect 3 'flight|positive' parse p.txt
+case_dir parse-mu-negative; s01_text | sed 's/1.32712440018e11/-1.32712440018e11/' >p.txt; expect 3 'gravitational|positive' parse p.txt
+case_dir parse-unit-typo; s01_text | sed 's/0.5 N/0.5 NN/' >p.txt; expect 3 'unit|NN' parse p.txt
+case_dir parse-unit-wrong-dimension; s01_text | sed 's/0.5 N/0.5 kg/' >p.txt; expect 3 'unit|kg' parse p.txt
+case_dir parse-unit-missing; s01_text | sed 's/0.5 N/0.5/' >p.txt; expect 3 '.' parse p.txt
+case_dir parse-vector-two; s01_text | sed 's/\[-140699693, -51614428, 980\]/[-140699693, -51614428]/' >p.txt; expect 3 '.' parse p.txt
+case_dir parse-vector-four; s01_text | sed 's/\[-140699693, -51614428, 980\]/[1, 2, 3, 4]/' >p.txt; expect 3 '.' parse p.txt
+case_dir parse-vector-nested; s01_text | sed 's/\[-140699693, -51614428, 980\]/[[1], 2, 3]/' >p.txt; expect 3 '.' parse p.txt
+case_dir parse-vector-deep; s01_text | sed "s/\[-140699693, -51614428, 980\]/$(nested 500)/" >p.txt; expect 3 '.' parse p.txt
+case_dir parse-vector-unclosed; s01_text | sed 's/\[-140699693, -51614428, 980\]/[1, 2, 3/' >p.txt; expect 3 '.' parse p.txt
+case_dir parse-vector-words; s01_text | sed 's/\[-140699693, -51614428, 980\]/[a, b, c]/' >p.txt; expect 3 '.' parse p.txt
+
+# Facts: missing, twice, contradictory, unknown.
+for drop in 'thrust:maximum thrust' 'departure:departs' 'arrival:rendezvouses' 'objective:Minimize' \
+  'central:central body' 'flight:time of flight'; do
+  case_dir "parse-missing-${drop%%:*}"; s01_text | grep -v "${drop#*:}" >p.txt; expect 3 '.' parse p.txt
+done
+case_dir parse-objective-twice; { s01_text; echo "Minimize the flight time."; } >p.txt; expect 3 '.' parse p.txt
+case_dir parse-central-twice; { s01_text; echo "The central body is the Earth."; } >p.txt; expect 3 '.' parse p.txt
+case_dir parse-thrust-twice; { s01_text; echo "The spacecraft has a maximum thrust of 0.6 N."; } >p.txt; expect 3 '.' parse p.txt
+case_dir parse-unknown-body; s01_text | sed 's/the Sun with gravitational parameter 1.32712440018e11 km^3\/s^2/the Vulcan/' >p.txt
+expect 3 'Vulcan|body|gravitational' parse p.txt
+case_dir parse-unknown-target; s01_text | sed 's/with position \[-172682023.*$/with Planet X./' >p.txt; expect 3 '.' parse p.txt
+case_dir parse-unknown-sentence; { s01_text; echo "Please compute the best trajectory."; } >p.txt; expect 3 'cannot use sentence' parse p.txt
+case_dir parse-no-period; { s01_text; printf 'The spacecraft waits'; } >p.txt; expect 3 '.' parse p.txt
+case_dir parse-only-periods; printf '....\n.\n' >p.txt; expect 3 '.' parse p.txt
+case_dir parse-table-row-alone; printf '| a | b |\n' >p.txt; expect 3 '.' parse p.txt
+case_dir parse-mjd-nan; s01_text | sed 's/at t = 0 days/at MJD2000 nan/' >p.txt; expect 3 '.' parse p.txt
+case_dir parse-flyby-unknown; { s01_text; echo "The spacecraft flies by Nibiru on the way."; } >p.txt; expect 3 '.' parse p.txt
+
+# User-written accelerations (parsed as text here; helios-derive reads them).
+for a in 'unbalanced:(x+' 'deep:'"$(printf '(%.0s' $(seq 300))"'x'"$(printf ')%.0s' $(seq 300))" 'unknown-symbol:q*x' \
+  'empty:' 'quote:x"; system("id")'; do
+  case_dir "parse-acceleration-${a%%:*}"
+  with_sentence "The dynamics include a perturbing acceleration a of [${a#*:}, 0, 0] mm/s^2." >p.txt
+  echo "Minimize the fuel consumption." >>p.txt
+  expect 3 '.' parse p.txt
+done
+case_dir parse-acceleration-bomb-power
+with_sentence "The dynamics include a perturbing acceleration a of [(x+y+z+vx+vy+vz)^40, 0, 0] mm/s^2." >p.txt
+echo "Minimize the fuel consumption." >>p.txt
+expect 3 'p.txt:8: .*would expand to about 1.2e\+06 terms' parse p.txt
+# GiNaC computes 3^(10^10) exactly while reading it: the CPU-time budget stops it.
+case_dir parse-acceleration-bomb-numeric
+with_sentence "The dynamics include a perturbing acceleration a of [3^(10^10)*x, 0, 0] mm/s^2." >p.txt
+echo "Minimize the fuel consumption." >>p.txt
+expect 1 'CPU-time budget of 2 s' parse p.txt --time-limit 2
+
+# Command line.
+# Problem ids become file names and C++ literals downstream: only a plain identifier is taken.
+for id in 'quote:S01"; system("id")' 'path:../../etc/passwd' 'space:S 01' 'semicolon:S01;rm'; do
+  case_dir "parse-id-${id%%:*}"; s01_text | sed "s|^Problem S01:|Problem ${id#*:}:|" >p.txt; expect 3 '.' parse p.txt
+done
+case_dir parse-stdin-binary; head -c 2000 "$BIN/helios-derive" >p.bin; expect 3 '<stdin>' parse - <p.bin
+case_dir parse-usage-no-input; expect 2 'expected 1 input' parse
+case_dir parse-usage-unknown-option; cp "$BASE/problem.txt" p.txt; expect 2 'unknown|option' parse p.txt --frobnicate
+case_dir parse-usage-bad-backend; cp "$BASE/problem.txt" p.txt; expect 2 'backend' parse p.txt --backend magic
+
+# ---- helios-derive: specs ---------------------------------------------------------------------
+
+case_dir derive-not-json; echo 'not json' >s.json; expect 3 'malformed JSON' derive s.json
+case_dir derive-empty; : >s.json; expect 3 'empty input, expected JSON' derive s.json
+case_dir derive-truncated; head -c 300 "$BASE/spec.json" >s.json; expect 3 'malformed JSON' derive s.json
+case_dir derive-deep-58000; nested 58000 >s.json; expect 3 'nested deeper than 256' derive s.json
+case_dir derive-deep-300; nested 300 >s.json; expect 3 'nested deeper than 256' derive s.json
+case_dir derive-deep-objects; { printf '{"a":%.0s' $(seq 20000); printf '1'; printf '}%.0s' $(seq 20000); } >s.json
+expect 3 'nested deeper than 256' derive s.json
+case_dir derive-over-64MiB; { printf '{"schema": "helios/spec", "pad": "'; head -c 67200000 /dev/zero | tr '\0' 'a'; printf '"}'; } >s.json
+expect 3 'MiB|bytes|limit' derive s.json
+case_dir derive-array-root; echo '[1, 2, 3]' >s.json; expect 3 'not a JSON object' derive s.json
+case_dir derive-number-root; echo '42' >s.json; expect 3 'not a JSON object' derive s.json
+case_dir derive-string-root; echo '"helios/spec"' >s.json; expect 3 'not a JSON object' derive s.json
+case_dir derive-wrong-kind; cp "$BASE/derivation.json" s.json; expect 3 'wrong artifact' derive s.json
+case_dir derive-schema-array; jq_spec '.schema = ["helios/spec"]' >s.json; expect 3 'field /schema' derive s.json
+case_dir derive-version-string; jq_spec '.schema_version = "1"' >s.json; expect 3 'schema_version' derive s.json
+case_dir derive-version-99; jq_spec '.schema_version = 99' >s.json; expect 3 'schema_version' derive s.json
+case_dir derive-version-missing; jq_spec 'del(.schema_version)' >s.json; expect 3 'schema_version is missing' derive s.json
+case_dir derive-producer-number; jq_spec '.producer = 5' >s.json; expect 3 'schema violation at /producer' derive s.json
+case_dir derive-invalid-utf8-string; jq_spec '.problem.title = "X"' | sed 's/"X"/"\xff\xfe"/' >s.json; expect 3 'UTF-8|malformed' derive s.json
+case_dir derive-nul-in-string; jq_spec '.problem.title = "a\u0000b"' >s.json; expect 0 '' derive s.json
+case_dir derive-control-in-kind; printf '{"schema": "helios/spec\\u001b[2J"}' >s.json; expect 3 'u001b' derive s.json
+case_dir derive-duplicate-keys; jq_spec . | sed '0,/"schema_version": 1,/s//"schema_version": 1, "schema_version": 7,/' >s.json; expect 3 '.' derive s.json
+case_dir derive-number-1e400; jq_spec . | sed 's/"thrust_N": 0.5/"thrust_N": 1e400/' >s.json; expect 3 'beyond the range of a double' derive s.json
+for f in '.spacecraft.thrust_N = "0.5":thrust-string' '.spacecraft.thrust_N = -1:thrust-negative' '.spacecraft.thrust_N = 0:thrust-zero' \
+  '.spacecraft.isp_s = null:isp-null' '.spacecraft = []:spacecraft-array' 'del(.constraints):no-constraints' \
+  '.constraints = []:empty-constraints' '.constraints[0].target.position_km = [1,2]:short-vector' \
+  '.constraints[0].target.position_km = ["a","b","c"]:string-vector' '.time.tof_days = -5:tof-negative' \
+  '.objective.kind = "maximum_fun":unknown-objective' '.central_body.mu_km3_s2 = 0:mu-zero' \
+  '.extra = 1:unknown-top-field' '.problem.id = "S01\"; system(\"id\")":hostile-id' \
+  '.problem.id = "a\nb":newline-id' '.problem.id = "":empty-id' '.constraints[0].id = "x y":constraint-id-space' \
+  '.constraints[1].at = "never":unknown-at' '.dynamics.model = "n_body":unknown-model'; do
+  case_dir "derive-spec-${f##*:}"; jq_spec "${f%:*}" >s.json; expect 3 's.json: spec schema violation at /' derive s.json
+done
+for m in '.central_body.mu_km3_s2 = 1e308:mu-overflow' '.time.tof_days = 1e306:tof-overflow' \
+  '.spacecraft.isp_s = 1e308:isp-overflow' '.spacecraft.initial_mass_kg = 1e308:mass-overflow'; do
+  case_dir "derive-magnitude-${m##*:}"; jq_spec "${m%:*}" >s.json; expect 3 'double precision' derive s.json
+done
+for a in 'unbalanced:(x+:cannot parse' 'deep:'"$(printf '(%.0s' $(seq 300))"'x'"$(printf ')%.0s' $(seq 300))"':nested deeper' \
+  'unknown-symbol:q*x:cannot parse' 'power-bomb:(x+y+z+vx+vy+vz)^40:would expand' 'injection:x\"); system(\"id\"):cannot parse' \
+  'long:@long.txt:characters'; do
+  name=${a%%:*} rest=${a#*:}
+  case_dir "derive-acceleration-$name"
+  if [[ ${rest%:*} == @long.txt ]]; then awk 'BEGIN { for (i = 0; i < 600000; i++) printf "x+"; print "x" }' >long.txt; fi
+  jq --rawfile c <(if [[ -f long.txt ]]; then tr -d '\n' <long.txt; else printf '%s' "${rest%:*}"; fi) \
+    '.dynamics.perturbations[0].components[0] = $c' "$BASE/s12-spec.json" >s.json
+  rm -f long.txt
+  expect 3 "s.json: field /dynamics/perturbations \\(srp\\)/components/0: .*${rest##*:}" derive s.json
+done
+case_dir derive-cpu-budget
+jq '.dynamics.perturbations[0].components[0] = "3^(10^10)*x"' "$BASE/s12-spec.json" >s.json
+expect 1 'CPU-time budget of 2 s' derive s.json --time-limit 2
+case_dir derive-memory-budget
+jq '.dynamics.perturbations[0].components[0] = "3^(10^10)*x"' "$BASE/s12-spec.json" >s.json
+# (Under AddressSanitizer the memory budget is not applied: the CPU-time budget stops it.)
+expect 1 'memory budget of 200 MB|CPU-time budget of 20 s' derive s.json --memory-limit 200 --time-limit 20
+case_dir derive-usage-bad-time-limit; cp "$BASE/spec.json" s.json; expect 2 'time-limit' derive s.json --time-limit -1
+case_dir derive-usage-llm-option; cp "$BASE/spec.json" s.json; expect 2 'needs --backend llm' derive s.json --previous x
+
+# ---- helios-verify and helios-gen: derivations ------------------------------------------------
+
+for tool in verify gen; do
+  case_dir "$tool-not-json"; echo '{' >d.json; expect 3 'malformed JSON' "$tool" d.json
+  case_dir "$tool-deep"; nested 60000 >d.json; expect 3 'nested deeper than 256' "$tool" d.json
+  case_dir "$tool-wrong-kind"; cp "$BASE/spec.json" d.json; expect 3 'wrong artifact' "$tool" d.json
+  case_dir "$tool-version-bool"; jq_derivation '.schema_version = true' >d.json; expect 3 'schema_version' "$tool" d.json
+done
+# Expressions of a derivation: gen refuses them as input; verify reports a failed check (exit 4).
+for e in 'unbalanced:1/(rx+' 'deep:'"$(printf '(%.0s' $(seq 400))"'rx'"$(printf ')%.0s' $(seq 400))" \
+  'unknown-symbol:rx*nosuch' 'power-bomb:(rx+ry+rz+vx+vy+vz)^40' 'injection:rx); system(\"id\"'; do
+  case_dir "gen-hamiltonian-${e%%:*}"; jq_derivation --arg h "${e#*:}" '.hamiltonian = $h' >d.json
+  expect 3 'd.json: field /hamiltonian' gen d.json
+  case_dir "verify-hamiltonian-${e%%:*}"; jq_derivation --arg h "${e#*:}" '.hamiltonian = $h' >d.json
+  expect 4 'verdict fail' verify d.json
+done
+for tool in verify gen; do
+  case_dir "$tool-hamiltonian-empty"; jq_derivation '.hamiltonian = ""' >d.json
+  expect 3 'd.json: derivation schema violation at /hamiltonian' "$tool" d.json
+  case_dir "$tool-number-1e400"; jq_derivation . | sed '0,/"value": [0-9.e+-]*/s//"value": 1e400/' >d.json
+  expect 3 'd.json: a number beyond the range of a double' "$tool" d.json
+  case_dir "$tool-stdin-deep"; nested 100000 >d.json; expect 3 '<stdin>: JSON nested deeper' "$tool" - <d.json
+done
+# With the generated dynamics module, helios-gen reads the state and costate equations.
+for e in 'rhs-bomb:.costate_odes[0].rhs = "(rx+ry+rz+vx+vy+vz)^40"' 'rhs-unbalanced:.costate_odes[0].rhs = "(("' \
+  'ode-missing:.costate_odes = .costate_odes[1:]'; do
+  case_dir "gen-${e%%:*}"; jq_derivation "${e#*:}" >d.json; expect 3 'd.json: field /(state|costate)_odes' gen d.json --modules generated
+done
+# A hostile meaning reaches only a comment, escaped: that is not an error.
+case_dir gen-meaning-newline; jq_derivation '.parameters[0].meaning = "mu */ system(\"id\"); /*\n"' >d.json; expect 0 '' gen d.json
+for e in 'state-renamed:.states[0].name = "r x"' \
+  'state-injection:.states[0].name = "rx;system"' 'id-injection:.problem.id = "S01\"; int pwn = system(\"touch /tmp/pwn\"); //"' \
+  'id-newline:.problem.id = "S01\n#include </etc/passwd>"' 'variable-injection:.shooting.variables[1].name = "l_rx=0;system(\"id\")"' 'equations-dropped:.shooting.equations = []' \
+  'units-negative:.units.length_km = -1' 'parameter-nan:.parameters[0].value = "nan"' 'times-swapped:.times.tf = -1'; do
+  case_dir "gen-${e%%:*}"; jq_derivation "${e#*:}" >d.json
+  expect 3 'd.json: (derivation schema violation at /|field /times: the final time)' gen d.json
+done
+case_dir gen-usage-bad-modules; cp "$BASE/derivation.json" d.json; expect 2 'modules' gen d.json --modules all
+case_dir verify-usage-points; cp "$BASE/derivation.json" d.json; expect 2 'points' verify d.json --points 0
+case_dir verify-clean; cp "$BASE/derivation.json" d.json; expect 0 '' verify d.json
+case_dir verify-cpu-budget; jq_derivation '.hamiltonian = "3^(10^10)*rx"' >d.json
+expect 1 'CPU-time budget of 2 s' verify d.json --time-limit 2
+
+# ---- helios-solve: settings and programs (each refused before any compile) -------------------
+
+for s in 'seed-huge:.seed = 1e30' 'seed-string:.seed = "1"' 'attempts-huge:.max_attempts = 1e12' 'attempts-zero:.max_attempts = 0' \
+  'ratio-zero:.eps_first_ratio = 0' 'rtol-negative:.integrator_rtol = -1' 'time-nan:.time_limit_s = "nan"' \
+  'unknown-key:.frobnicate = 1' 'array:[1]' 'eps-inverted:.eps_min = 2'; do
+  case_dir "solve-settings-${s%%:*}"; jq_settings "${s#*:}" >settings.json; echo 'int main() {}' >shoot.cpp
+  expect 3 'settings.json' solve shoot.cpp --settings settings.json --cache-dir cache --trajectory t.csv --plots ''
+done
+case_dir solve-settings-deep; nested 70000 >settings.json; echo 'int main() {}' >shoot.cpp
+expect 3 'nested deeper' solve shoot.cpp --settings settings.json --cache-dir cache --trajectory t.csv --plots ''
+case_dir solve-missing-program; cp "$BASE/settings.json" .; expect 3 'no-such.cpp' solve no-such.cpp --settings settings.json --cache-dir cache
+case_dir solve-program-is-directory; cp "$BASE/settings.json" .; mkdir shoot.cpp
+expect 3 'shoot.cpp' solve shoot.cpp --settings settings.json --cache-dir cache
+case_dir solve-settings-missing; echo 'int main() {}' >shoot.cpp; expect 3 'nowhere.json' solve shoot.cpp --settings nowhere.json --cache-dir cache
+case_dir solve-usage-memory-limit; cp "$BASE/settings.json" .; echo 'int main() {}' >shoot.cpp
+expect 2 'memory-limit' solve shoot.cpp --settings settings.json --memory-limit abc
+case_dir solve-usage-time-limit; cp "$BASE/settings.json" .; echo 'int main() {}' >shoot.cpp
+expect 2 'time-limit' solve shoot.cpp --settings settings.json --time-limit 0
+
+# ---- helios-score: the scored artifacts ------------------------------------------------------
+
+case_dir score-reference-not-json; echo 'x' >r.json; expect 3 'r.json' score --reference r.json
+case_dir score-reference-deep; nested 60000 >r.json; expect 3 'nested deeper' score --reference r.json
+case_dir score-reference-wrong-kind; cp "$BASE/spec.json" r.json; expect 3 'r.json: reference schema violation at /schema' score --reference r.json
+case_dir score-spec-deep; cp "$ROOT/scenarios/S01/reference.json" r.json; nested 300 >s.json
+expect 3 's.json' score --reference r.json --spec s.json
+case_dir score-solution-not-json; cp "$ROOT/scenarios/S01/reference.json" r.json; printf '\377\376' >sol.json
+expect 3 'sol.json' score --reference r.json --solution sol.json
+case_dir score-derivation-wrong-kind; cp "$ROOT/scenarios/S01/reference.json" r.json; cp "$BASE/spec.json" d.json
+expect 3 'd.json' score --reference r.json --derivation d.json
+case_dir score-verify-number-1e400; cp "$ROOT/scenarios/S01/reference.json" r.json; echo '{"schema": "helios/verify", "x": 1e400}' >v.json
+expect 3 'v.json: a number beyond the range of a double' score --reference r.json --verify v.json
+case_dir score-usage-nothing; expect 2 '.' score
+case_dir score-scoreboard-missing; expect 3 'nowhere' score --scoreboard nowhere
