@@ -182,6 +182,17 @@ CPP
   rm -f "/tmp/$marker" "$marker" "$HOME/$marker"
 }
 
+@test "solve: the compiler runs in bubblewrap too: a source including host files quotes none of them" {
+  printf '#include "/etc/passwd"\n#include "%s/Makefile"\nint main() {}\n' "$ROOT" >leak.cpp
+  run -0 --separate-stderr "$BIN/helios-solve" leak.cpp --compile-only --cache-dir "$CACHE" -o compile.json
+  assert_jq compile.json '.ok == false and (.diagnostics | contains("/etc/passwd: No such file or directory"))'
+  assert_jq compile.json '(.diagnostics | contains("root:") or contains("SHELL :=")) | not'
+  # A relative cache folder (the Makefile's runs/.cache) is bound at its absolute path.
+  echo 'int main() {}' >empty.cpp
+  run -0 --separate-stderr "$BIN/helios-solve" empty.cpp --compile-only --cache-dir relative-cache -o compile.json
+  assert_jq compile.json '.ok'
+}
+
 # ---- shared contract -------------------------------------------------------------------------
 
 @test "solve: no arguments -> exit 2, one error line" {

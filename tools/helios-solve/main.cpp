@@ -22,11 +22,12 @@ int main(int argc, char** argv) {
        {"backend", "", "NAME", "backend label recorded in the solution (builtin or llm)", "builtin"},
        {"compile-only", "", "", "only compile (into the cache) and write a compile report instead", ""},
        {"quiet", "", "", "no progress lines on stderr", ""},
-       {"no-sandbox", "", "", "run the program without bubblewrap (recorded in solution.json)", ""}},
+       {"no-sandbox", "", "", "compile and run the program without bubblewrap (recorded in solution.json)", ""}},
       {"SHOOT"},
       "Compiles with g++ -O2 (skipped when the cache holds the same source and compiler), runs the\n"
-      "program in a child with CPU, memory, file-size and wall-clock limits, inside bubblewrap (no\n"
-      "network, read-only /usr, the run folder its only writable place), and writes solution.json.\n"
+      "program in a child with CPU, memory, file-size and wall-clock limits, both inside bubblewrap\n"
+      "(no network, read-only /usr, the run or cache folder the only writable place), and writes\n"
+      "solution.json.\n"
       "A failed compile or run is recorded in the artifact's status; the tool still exits 0.\n"
       "The run is a global search (many starts, the distinct extremals compared, the best kept); its\n"
       "progress goes to stderr, one line per stage or every few seconds (--quiet: none).\n"

@@ -28,6 +28,14 @@ int count_of(const std::string& diagnostics, const std::string& kind) {
   return n;
 }
 
+// The folders a compiler outside /usr needs besides /usr (its installation prefix), else none.
+std::vector<std::string> compiler_prefix(const std::string& compiler) {
+  std::error_code ec;
+  const fs::path real = fs::canonical(compiler, ec);
+  if (ec || real.string().rfind("/usr/", 0) == 0) return {};
+  return {real.parent_path().parent_path().string()};
+}
+
 }  // namespace
 
 CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
@@ -51,14 +59,20 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
     return c;
   }
   fs::create_directories(dir);
-  const std::string src = (dir / "shoot.cpp").string();
+  // Absolute, as the sandbox binds the folder at its absolute path.
+  const std::string src = fs::absolute(dir / "shoot.cpp").lexically_normal().string();
   io::write_text_atomic(src, source);
-  const std::string tmp_bin = (dir / (".shoot.tmp." + std::to_string(::getpid()))).string();
+  const std::string tmp_bin =
+      fs::absolute(dir / (".shoot.tmp." + std::to_string(::getpid()))).lexically_normal().string();
   const io::TempFiles guard({tmp_bin});
   std::vector<std::string> argv = {on_path(compiler)};
   argv.insert(argv.end(), flags.begin(), flags.end());
   argv.insert(argv.end(), {src, "-o", tmp_bin, "-lcminpack"});
-  const RunResult run = run_limited(argv, o.time_limit_s, o.memory_limit_mb);
+  // The compiler is sandboxed as the program is: a source that includes /etc/passwd or a project
+  // file finds nothing to quote in its diagnostics (which a repair round sends to the model).
+  const RunResult run = run_limited(
+      o.sandbox ? sandboxed(argv, fs::absolute(dir).lexically_normal().string(), compiler_prefix(argv[0])) : argv,
+      o.time_limit_s, o.memory_limit_mb);
   c.diagnostics = run.stderr_text;
   if (run.timed_out || run.signal != 0)
     c.diagnostics += "\nhelios-solve: the compiler was stopped: " +

@@ -122,7 +122,8 @@ class StderrLines {
 
 }  // namespace
 
-std::vector<std::string> sandboxed(const std::vector<std::string>& argv, const std::string& workdir) {
+std::vector<std::string> sandboxed(const std::vector<std::string>& argv, const std::string& workdir,
+                                   const std::vector<std::string>& read_only) {
   const std::string bwrap = on_path("bwrap");
   if (bwrap.find('/') == std::string::npos)
     throw std::runtime_error(
@@ -139,6 +140,7 @@ std::vector<std::string> sandboxed(const std::vector<std::string>& argv, const s
     else if (fs::is_directory(top, ec))
       out.insert(out.end(), {"--ro-bind", top, top});
   }
+  for (const auto& folder : read_only) out.insert(out.end(), {"--ro-bind", folder, folder});
   out.insert(out.end(), {"--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp", "--ro-bind", argv.at(0), argv.at(0),
                          "--bind", workdir, workdir, "--chdir", workdir, "--"});
   out.insert(out.end(), argv.begin(), argv.end());

@@ -53,8 +53,10 @@ struct RunResult {
 // session, an empty environment, dying with helios-solve; it sees /usr (and the /lib, /bin links
 // into it) read-only, fresh /proc, /dev and /tmp, its binary argv[0] read-only, and `workdir` as
 // the only writable folder and its working directory. Nothing else of the host (no /etc, no home,
-// no project folders). Throws std::runtime_error when bwrap is not installed.
-std::vector<std::string> sandboxed(const std::vector<std::string>& argv, const std::string& workdir);
+// no project folders), and the folders of `read_only` read-only. Throws std::runtime_error when
+// bwrap is not installed.
+std::vector<std::string> sandboxed(const std::vector<std::string>& argv, const std::string& workdir,
+                                   const std::vector<std::string>& read_only = {});
 
 // Runs argv (argv[0] a path) in a child with CPU, address-space, file-size, core and process-count
 // limits and a wall-clock limit, in its own process group with `workdir` (if not empty) as its
