@@ -4,6 +4,13 @@
 
 # ---- helios-parse: problem texts -------------------------------------------------------------
 
+# s01_edited ID SED PATTERN: S01's problem text edited by SED must be refused (exit 3) with PATTERN.
+s01_edited() {
+  case_dir "$1"
+  s01_text | sed "$2" >p.txt
+  expect 3 "$3" parse p.txt
+}
+
 # Encoding and bytes.
 case_dir parse-empty; : >p.txt; expect 3 'never states its name' parse p.txt
 case_dir parse-comments-only; printf '# a comment\n# another\n' >p.txt; expect 3 'never states its name' parse p.txt
@@ -52,23 +59,23 @@ for n in 'huge:1e400' 'tiny:1e-400' 'digits:1'"$(printf '0%.0s' $(seq 400))" 'he
   case_dir "parse-number-${n%%:*}"; with_sentence "Minimize the fuel consumption." | sed "s/0.5 N/${n#*:} N/" >p.txt
   expect 3 'p.txt:4: .*(outside the range of a double|cannot read .a maximum thrust of)' parse p.txt
 done
-case_dir parse-thrust-zero; s01_text | sed 's/0.5 N/0 N/' >p.txt; expect 3 'thrust' parse p.txt
-case_dir parse-thrust-negative; s01_text | sed 's/0.5 N/-0.5 N/' >p.txt; expect 3 'thrust' parse p.txt
-case_dir parse-isp-zero; s01_text | sed 's/2000 s/0 s/' >p.txt; expect 3 'impulse|Isp' parse p.txt
-case_dir parse-mass-zero; s01_text | sed 's/1000 kg/0 kg/' >p.txt; expect 3 'mass' parse p.txt
-case_dir parse-mass-negative; s01_text | sed 's/1000 kg/-1000 kg/' >p.txt; expect 3 'mass' parse p.txt
-case_dir parse-tof-zero; s01_text | sed 's/348.795 days/0 days/' >p.txt; expect 3 'flight|positive' parse p.txt
-case_dir parse-tof-negative; s01_text | sed 's/348.795 days/-348.795 days/' >p.txt; expect 3 'flight|positive' parse p.txt
-case_dir parse-mu-negative; s01_text | sed 's/1.32712440018e11/-1.32712440018e11/' >p.txt; expect 3 'gravitational|positive' parse p.txt
-case_dir parse-unit-typo; s01_text | sed 's/0.5 N/0.5 NN/' >p.txt; expect 3 'unit|NN' parse p.txt
-case_dir parse-unit-wrong-dimension; s01_text | sed 's/0.5 N/0.5 kg/' >p.txt; expect 3 'unit|kg' parse p.txt
-case_dir parse-unit-missing; s01_text | sed 's/0.5 N/0.5/' >p.txt; expect 3 '.' parse p.txt
-case_dir parse-vector-two; s01_text | sed 's/\[-140699693, -51614428, 980\]/[-140699693, -51614428]/' >p.txt; expect 3 '.' parse p.txt
-case_dir parse-vector-four; s01_text | sed 's/\[-140699693, -51614428, 980\]/[1, 2, 3, 4]/' >p.txt; expect 3 '.' parse p.txt
-case_dir parse-vector-nested; s01_text | sed 's/\[-140699693, -51614428, 980\]/[[1], 2, 3]/' >p.txt; expect 3 '.' parse p.txt
-case_dir parse-vector-deep; s01_text | sed "s/\[-140699693, -51614428, 980\]/$(nested 500)/" >p.txt; expect 3 '.' parse p.txt
-case_dir parse-vector-unclosed; s01_text | sed 's/\[-140699693, -51614428, 980\]/[1, 2, 3/' >p.txt; expect 3 '.' parse p.txt
-case_dir parse-vector-words; s01_text | sed 's/\[-140699693, -51614428, 980\]/[a, b, c]/' >p.txt; expect 3 '.' parse p.txt
+s01_edited parse-thrust-zero 's/0.5 N/0 N/' 'thrust'
+s01_edited parse-thrust-negative 's/0.5 N/-0.5 N/' 'thrust'
+s01_edited parse-isp-zero 's/2000 s/0 s/' 'impulse|Isp'
+s01_edited parse-mass-zero 's/1000 kg/0 kg/' 'mass'
+s01_edited parse-mass-negative 's/1000 kg/-1000 kg/' 'mass'
+s01_edited parse-tof-zero 's/348.795 days/0 days/' 'flight|positive'
+s01_edited parse-tof-negative 's/348.795 days/-348.795 days/' 'flight|positive'
+s01_edited parse-mu-negative 's/1.32712440018e11/-1.32712440018e11/' 'gravitational|positive'
+s01_edited parse-unit-typo 's/0.5 N/0.5 NN/' 'unit|NN'
+s01_edited parse-unit-wrong-dimension 's/0.5 N/0.5 kg/' 'unit|kg'
+s01_edited parse-unit-missing 's/0.5 N/0.5/' 'p.txt:[0-9]+: cannot use sentence'
+s01_edited parse-vector-two 's/\[-140699693, -51614428, 980\]/[-140699693, -51614428]/' 'p.txt:[0-9]+: cannot use sentence'
+s01_edited parse-vector-four 's/\[-140699693, -51614428, 980\]/[1, 2, 3, 4]/' 'p.txt:[0-9]+: cannot use sentence'
+s01_edited parse-vector-nested 's/\[-140699693, -51614428, 980\]/[[1], 2, 3]/' 'p.txt:[0-9]+: cannot use sentence'
+s01_edited parse-vector-deep "s/\[-140699693, -51614428, 980\]/$(nested 500)/" 'p.txt:[0-9]+: cannot use sentence'
+s01_edited parse-vector-unclosed 's/\[-140699693, -51614428, 980\]/[1, 2, 3/' 'p.txt:[0-9]+: cannot use sentence'
+s01_edited parse-vector-words 's/\[-140699693, -51614428, 980\]/[a, b, c]/' 'p.txt:[0-9]+: cannot use sentence'
 
 # Facts: missing, twice, contradictory, unknown.
 for drop in 'thrust:maximum thrust' 'departure:departs' 'arrival:rendezvouses' 'objective:Minimize' \
@@ -80,12 +87,12 @@ case_dir parse-central-twice; { s01_text; echo "The central body is the Earth.";
 case_dir parse-thrust-twice; { s01_text; echo "The spacecraft has a maximum thrust of 0.6 N."; } >p.txt; expect 3 '.' parse p.txt
 case_dir parse-unknown-body; s01_text | sed 's/the Sun with gravitational parameter 1.32712440018e11 km^3\/s^2/the Vulcan/' >p.txt
 expect 3 'Vulcan|body|gravitational' parse p.txt
-case_dir parse-unknown-target; s01_text | sed 's/with position \[-172682023.*$/with Planet X./' >p.txt; expect 3 '.' parse p.txt
+s01_edited parse-unknown-target 's/with position \[-172682023.*$/with Planet X./' 'p.txt:[0-9]+: cannot use sentence'
 case_dir parse-unknown-sentence; { s01_text; echo "Please compute the best trajectory."; } >p.txt; expect 3 'cannot use sentence' parse p.txt
 case_dir parse-no-period; { s01_text; printf 'The spacecraft waits'; } >p.txt; expect 3 '.' parse p.txt
 case_dir parse-only-periods; printf '....\n.\n' >p.txt; expect 3 '.' parse p.txt
 case_dir parse-table-row-alone; printf '| a | b |\n' >p.txt; expect 3 '.' parse p.txt
-case_dir parse-mjd-nan; s01_text | sed 's/at t = 0 days/at MJD2000 nan/' >p.txt; expect 3 '.' parse p.txt
+s01_edited parse-mjd-nan 's/at t = 0 days/at MJD2000 nan/' 'p.txt:[0-9]+: cannot use sentence'
 case_dir parse-flyby-unknown; { s01_text; echo "The spacecraft flies by Nibiru on the way."; } >p.txt; expect 3 '.' parse p.txt
 
 # User-written accelerations (parsed as text here; helios-derive reads them).
