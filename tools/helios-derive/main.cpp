@@ -18,8 +18,8 @@ int main(int argc, char** argv) {
        {"feedback", "", "FILE", "llm: verify.json of --previous; its failed checks go into the prompt", ""},
        {"round", "", "N", "llm: refinement round number (1 = first attempt)", "1"},
        {"transcript", "", "FILE", "llm: transcript of the exchange (default: next to -o, NAME.transcript.json)", ""},
-       helios::cli::time_limit_option("the symbolic work", "600"),
-       helios::cli::memory_limit_option("the symbolic work", "8192")},
+       helios::cli::time_limit_option("the symbolic work", "120"),
+       helios::cli::memory_limit_option("the symbolic work", "2048")},
       {"SPEC"},
       "Builds H = lambda0 L + lambda^T f, the state and costate ODEs, the optimal control law with\n"
       "its switching function and eps smoothing, the transversality conditions from psi, and the\n"

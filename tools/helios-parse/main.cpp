@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
       {{"backend", "", "NAME", "parser backend: builtin or llm", "builtin"},
        {"transcript", "", "FILE", "llm: transcript of the exchange (default: next to -o, NAME.transcript.json)", ""},
        helios::cli::time_limit_option("reading the text", "60"),
-       helios::cli::memory_limit_option("reading the text", "4096")},
+       helios::cli::memory_limit_option("reading the text", "2048")},
       {"PROBLEM"},
       "Every sentence must match a form of the controlled English documented in README.md;\n"
       "a sentence that does not is an error quoting it. Quantities are converted to the spec's\n"

@@ -14,8 +14,8 @@ int main(int argc, char** argv) {
       {{"points", "", "N", "random sample points per check", "25"},
        {"seed", "", "N", "seed of the random sample points", "1"},
        {"advisory", "", "", "exit 0 even when the verdict is fail", ""},
-       helios::cli::time_limit_option("the symbolic work", "600"),
-       helios::cli::memory_limit_option("the symbolic work", "8192")},
+       helios::cli::time_limit_option("the symbolic work", "120"),
+       helios::cli::memory_limit_option("the symbolic work", "2048")},
       {"DERIVATION"},
       "Trusts only the problem statement of the derivation (states, controls, parameters, dynamics,\n"
       "costs, psi) and recomputes H, the state and costate ODEs, the direction and throttle laws,\n"
