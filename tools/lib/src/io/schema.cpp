@@ -31,7 +31,8 @@ const valijson::Schema& schema_for(const std::string& kind) {
 }  // namespace
 
 const std::vector<std::string>& artifact_kinds() {
-  static const std::vector<std::string> kinds = {"spec", "derivation", "verify", "solution", "score", "compile", "transcript"};
+  static const std::vector<std::string> kinds = {"spec",  "derivation", "verify",    "solution",
+                                                 "score", "compile",    "transcript"};
   return kinds;
 }
 
@@ -81,8 +82,11 @@ std::vector<std::string> schema_properties(const std::string& kind) {
 }
 
 json read_artifact(const std::string& kind, const std::string& path) {
-  json doc = read_json(path);
-  const std::string name = path == "-" ? "<stdin>" : path;
+  return parse_artifact(kind, read_text(path), path == "-" ? "<stdin>" : path);
+}
+
+json parse_artifact(const std::string& kind, const std::string& text, const std::string& name) {
+  json doc = parse_json_text(text, name);
   if (!doc.is_object() || doc.value("schema", "") != "helios/" + kind)
     throw input_error(name + ": field /schema is " +
                       (doc.is_object() && doc.contains("schema") ? doc["schema"].dump() : "missing") +
