@@ -68,6 +68,18 @@ TEST(Io, MalformedJsonNamesTheFileAndByte) {
   fs::remove_all(dir);
 }
 
+// Found by the json_settings fuzz target: nlohmann's out_of_range (406) reached the user raw.
+TEST(Io, JsonNumberBeyondADoubleIsInvalidInput) {
+  try {
+    helios::io::parse_json_text(R"({"seed": 1e3083})", "x.json");
+    FAIL();
+  } catch (const helios::input_error& e) {
+    EXPECT_STREQ(e.what(),
+                 "x.json: malformed JSON: the number 1e3083 is outside the range of a double (magnitudes up to "
+                 "1.8e308), fix the file or regenerate it");
+  }
+}
+
 TEST(Io, JsonBeyondItsDepthIsRefusedBeforeParsingStringsAside) {
   using helios::io::json_depth_exceeded_at;
   using helios::io::kMaxJsonDepth;
