@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "helios/io/error.hpp"
 #include "helios/io/schema.hpp"
 #include "helios/pmp/derivation.hpp"
 #include "helios/spec/parse.hpp"
@@ -371,3 +372,21 @@ TEST(SymbolicParse, AnExpressionBeyondItsBoundsIsAnErrorNamingTheFieldNotACrash)
 }
 
 }  // namespace
+
+// Found by the json_spec fuzz target: a body's name went into a parameter's source
+// ("ephemeris:<body>:tf") as it was, and a name with a space made a derivation its own schema
+// refuses. The spec's schema now asks of a body's name what the parser does (NAME).
+TEST(Derive, ABodyNameThatIsNoNameIsRefusedWhereTheSpecIsRead) {
+  const std::string path = kSource + "/scenarios/S02/problem.txt";
+  json spec = helios::spec::parse_problem_text(helios::io::read_text(path), path);
+  helios::io::validate("spec", spec, "spec.json");
+  spec["constraints"][1]["target"]["body"] = "Ma rs";
+  try {
+    helios::io::validate("spec", spec, "spec.json");
+    FAIL();
+  } catch (const helios::input_error& e) {
+    EXPECT_NE(std::string(e.what()).find("spec.json: spec schema violation at /constraints/1/target"),
+              std::string::npos)
+        << e.what();
+  }
+}
