@@ -98,6 +98,25 @@ TEST(Io, JsonBeyondItsDepthIsRefusedBeforeParsingStringsAside) {
   }
 }
 
+// Found by the json_spec fuzz target: a schema or schema_version of another type than expected
+// made json::value() throw nlohmann's type_error 302, which reached the user raw.
+TEST(Io, ArtifactHeaderOfAnotherTypeIsInvalidInput) {
+  try {
+    helios::io::parse_artifact("spec", R"({"schema": {"name": "Earth"}})", "x.json");
+    FAIL();
+  } catch (const helios::input_error& e) {
+    EXPECT_STREQ(
+        e.what(),
+        "x.json: field /schema is {\"name\":\"Earth\"}, expected \"helios/spec\" (wrong artifact for this tool?)");
+  }
+  try {
+    helios::io::parse_artifact("spec", R"({"schema": "helios/spec", "schema_version": "1"})", "x.json");
+    FAIL();
+  } catch (const helios::input_error& e) {
+    EXPECT_STREQ(e.what(), "x.json: field /schema_version is \"1\", this build reads version 1");
+  }
+}
+
 TEST(Io, ReadArtifactChecksKindAndVersion) {
   const fs::path dir = fresh_dir("kind");
   const std::string path = (dir / "x.json").string();

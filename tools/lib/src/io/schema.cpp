@@ -87,11 +87,12 @@ json read_artifact(const std::string& kind, const std::string& path) {
 
 json parse_artifact(const std::string& kind, const std::string& text, const std::string& name) {
   json doc = parse_json_text(text, name);
-  if (!doc.is_object() || doc.value("schema", "") != "helios/" + kind)
+  // Compared as JSON values: json::value() would throw a type_error for a schema of another type.
+  if (!doc.is_object() || !doc.contains("schema") || doc["schema"] != json("helios/" + kind))
     throw input_error(name + ": field /schema is " +
                       (doc.is_object() && doc.contains("schema") ? doc["schema"].dump() : "missing") +
                       ", expected \"helios/" + kind + "\" (wrong artifact for this tool?)");
-  if (doc.value("schema_version", 0) != kSchemaVersion)
+  if (!doc["schema_version"].is_number_integer() || doc["schema_version"] != json(kSchemaVersion))
     throw input_error(name + ": field /schema_version is " + doc["schema_version"].dump() +
                       ", this build reads version " + std::to_string(kSchemaVersion));
   validate(kind, doc, name);
