@@ -57,6 +57,8 @@ inline void expect_valid(const std::string& kind, const io::json& doc) {
     io::validate(kind, doc, "output " + kind);
   } catch (const input_error& e) {
     finding(e.what());
+  } catch (const std::exception& e) {  // e.g. a string of the artifact that is not UTF-8
+    finding("output " + kind + ": " + typeid(e).name() + ": " + e.what());
   }
 }
 

@@ -355,6 +355,22 @@ std::string parse_error(const std::string& text) {
   return "";
 }
 
+// Found by the json_derivation fuzz target: GiNaC's reason quoted a lone byte of a character it
+// does not know ("\xd3"), and the 200-byte cut could split one; helios-verify then failed to
+// write its report (nlohmann's type_error 316, invalid UTF-8) with exit 1.
+TEST(SymbolicParse, TheErrorOfATextWithAForeignCharacterIsValidUtf8) {
+  const auto valid = [](const std::string& s) {
+    return helios::io::parse_json_text(helios::io::json(s).dump(), "m").get<std::string>() == s;
+  };
+  const std::string foreign = parse_error("x+\xd3\x8dx");
+  EXPECT_NE(foreign.find("cannot parse expression 'x+\xd3\x8dx'"), std::string::npos) << foreign;
+  EXPECT_TRUE(valid(foreign)) << foreign;
+  // 199 ASCII bytes, then a 2-byte character across the cut at 200.
+  const std::string cut = parse_error(std::string(199, 'x') + "\xd3\x8d" + "+");
+  EXPECT_NE(cut.find("'" + std::string(199, 'x') + "...'"), std::string::npos) << cut;
+  EXPECT_TRUE(valid(cut)) << cut;
+}
+
 TEST(SymbolicParse, AnExpressionBeyondItsBoundsIsAnErrorNamingTheFieldNotACrash) {
   using helios::symbolic::kMaxExpressionDepth;
   // 7,800 nested parentheses overflowed GiNaC's recursive parser.

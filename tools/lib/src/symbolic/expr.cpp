@@ -16,8 +16,15 @@ const GiNaC::symbol& SymbolTable::get(const std::string& name) {
 }
 
 GiNaC::ex SymbolTable::parse(const std::string& text, const std::string& where) const {
-  const auto fail = [&](const std::string& why) {
-    const std::string shown = text.size() > 200 ? text.substr(0, 200) + "..." : text;
+  // The message goes into JSON artifacts, which must be UTF-8: the text (valid UTF-8, as it came
+  // from JSON) is cut at a character's start, and GiNaC's reason, which quotes a lone byte of a
+  // multi-byte character it does not know, has every byte outside ASCII shown as '?'.
+  const auto fail = [&](std::string why) {
+    std::size_t cut = std::min<std::size_t>(text.size(), 200);
+    while (cut > 0 && cut < text.size() && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+    const std::string shown = cut < text.size() ? text.substr(0, cut) + "..." : text;
+    for (char& c : why)
+      if (static_cast<unsigned char>(c) >= 0x80) c = '?';
     return std::invalid_argument(where + ": cannot parse expression '" + shown + "': " + why);
   };
   if (text.size() > kMaxExpressionChars)
