@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Checks that the Debian packages HELIOS builds and runs with are installed; installs the missing
 # ones with apt-get when run as root, otherwise prints the command to run.
-# usage: tools/install-deps.sh [--quiet]
+# usage: tools/install-deps.sh [--quiet] [--fuzz]   (--fuzz: also clang and libFuzzer, for make fuzz)
 set -euo pipefail
 
 # package:probe, where probe is a command (cmd/NAME) or a file that the package installs.
@@ -24,12 +24,20 @@ checks=(
   "jq:cmd/jq"
   "bc:cmd/bc"
 )
+# make fuzz builds its targets with clang++ and links libFuzzer (libclang-rt-dev, only recommended by clang).
+for arg in "$@"; do
+  if [[ $arg == --fuzz ]]; then
+    checks+=("clang:cmd/clang++" "libclang-rt-dev:glob//usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a")
+  fi
+done
 missing=()
 for entry in "${checks[@]}"; do
   pkg=${entry%%:*}
   probe=${entry#*:}
   if [[ $probe == cmd/* ]]; then
     command -v "${probe#cmd/}" >/dev/null 2>&1 || missing+=("$pkg")
+  elif [[ $probe == glob/* ]]; then
+    compgen -G "${probe#glob/}" >/dev/null || missing+=("$pkg")
   else
     [[ -e $probe ]] || missing+=("$pkg")
   fi

@@ -4,7 +4,7 @@
 # fixtures follow the tools as they change; the deliberate flaws (a sign error, a duplicate
 # definition, a program that never ends) are edits of those.
 
-FAKE_LLM="$ROOT/build/bin/fake-llm"
+FAKE_LLM="$BIN/fake-llm"
 export FAKE_LLM
 
 # fence FILE: FILE's text inside a ```json fence, as a model would write it.

@@ -9,9 +9,12 @@
 bats_require_minimum_version 1.5.0
 
 ROOT="$(cd "$BATS_TEST_DIRNAME/../.." && pwd)"
-BIN="$ROOT/build/bin"
+# The build tree whose tools run (make test-sanitized points it at build-asan); relative to ROOT.
+HELIOS_BUILD_DIR="${HELIOS_BUILD_DIR:-build}"
+[[ $HELIOS_BUILD_DIR == /* ]] || HELIOS_BUILD_DIR="$ROOT/$HELIOS_BUILD_DIR"
+BIN="$HELIOS_BUILD_DIR/bin"
 S01="$ROOT/scenarios/S01"
-export ROOT BIN S01
+export ROOT HELIOS_BUILD_DIR BIN S01
 
 # Called from each file's setup().
 common_setup() {

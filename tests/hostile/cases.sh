@@ -147,7 +147,7 @@ case_dir derive-invalid-utf8-string; jq_spec '.problem.title = "X"' | sed 's/"X"
 case_dir derive-nul-in-string; jq_spec '.problem.title = "a\u0000b"' >s.json; expect 0 '' derive s.json
 case_dir derive-control-in-kind; printf '{"schema": "helios/spec\\u001b[2J"}' >s.json; expect 3 'u001b' derive s.json
 case_dir derive-duplicate-keys; jq_spec . | sed '0,/"schema_version": 1,/s//"schema_version": 1, "schema_version": 7,/' >s.json; expect 3 '.' derive s.json
-case_dir derive-number-1e400; jq_spec . | sed 's/"thrust_N": 0.5/"thrust_N": 1e400/' >s.json; expect 3 'beyond the range of a double' derive s.json
+case_dir derive-number-1e400; jq_spec . | sed 's/"thrust_N": 0.5/"thrust_N": 1e400/' >s.json; expect 3 's.json: malformed JSON: the number 1e400 is outside the range of a double' derive s.json
 for f in '.spacecraft.thrust_N = "0.5":thrust-string' '.spacecraft.thrust_N = -1:thrust-negative' '.spacecraft.thrust_N = 0:thrust-zero' \
   '.spacecraft.isp_s = null:isp-null' '.spacecraft = []:spacecraft-array' 'del(.constraints):no-constraints' \
   '.constraints = []:empty-constraints' '.constraints[0].target.position_km = [1,2]:short-vector' \
@@ -203,7 +203,7 @@ for tool in verify gen; do
   case_dir "$tool-hamiltonian-empty"; jq_derivation '.hamiltonian = ""' >d.json
   expect 3 'd.json: derivation schema violation at /hamiltonian' "$tool" d.json
   case_dir "$tool-number-1e400"; jq_derivation . | sed '0,/"value": [0-9.e+-]*/s//"value": 1e400/' >d.json
-  expect 3 'd.json: a number beyond the range of a double' "$tool" d.json
+  expect 3 'd.json: malformed JSON: the number 1e400 is outside the range of a double' "$tool" d.json
   case_dir "$tool-stdin-deep"; nested 100000 >d.json; expect 3 '<stdin>: JSON nested deeper' "$tool" - <d.json
 done
 # With the generated dynamics module, helios-gen reads the state and costate equations.
@@ -257,6 +257,6 @@ expect 3 'sol.json' score --reference r.json --solution sol.json
 case_dir score-derivation-wrong-kind; cp "$ROOT/scenarios/S01/reference.json" r.json; cp "$BASE/spec.json" d.json
 expect 3 'd.json' score --reference r.json --derivation d.json
 case_dir score-verify-number-1e400; cp "$ROOT/scenarios/S01/reference.json" r.json; echo '{"schema": "helios/verify", "x": 1e400}' >v.json
-expect 3 'v.json: a number beyond the range of a double' score --reference r.json --verify v.json
+expect 3 'v.json: malformed JSON: the number 1e400 is outside the range of a double' score --reference r.json --verify v.json
 case_dir score-usage-nothing; expect 2 '.' score
 case_dir score-scoreboard-missing; expect 3 'nowhere' score --scoreboard nowhere

@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "helios/io/error.hpp"
 #include "helios/io/schema.hpp"
 #include "helios/pmp/derivation.hpp"
 #include "helios/spec/parse.hpp"
@@ -354,6 +355,22 @@ std::string parse_error(const std::string& text) {
   return "";
 }
 
+// Found by the json_derivation fuzz target: GiNaC's reason quoted a lone byte of a character it
+// does not know ("\xd3"), and the 200-byte cut could split one; helios-verify then failed to
+// write its report (nlohmann's type_error 316, invalid UTF-8) with exit 1.
+TEST(SymbolicParse, TheErrorOfATextWithAForeignCharacterIsValidUtf8) {
+  const auto valid = [](const std::string& s) {
+    return helios::io::parse_json_text(helios::io::json(s).dump(), "m").get<std::string>() == s;
+  };
+  const std::string foreign = parse_error("x+\xd3\x8dx");
+  EXPECT_NE(foreign.find("cannot parse expression 'x+\xd3\x8dx'"), std::string::npos) << foreign;
+  EXPECT_TRUE(valid(foreign)) << foreign;
+  // 199 ASCII bytes, then a 2-byte character across the cut at 200.
+  const std::string cut = parse_error(std::string(199, 'x') + "\xd3\x8d" + "+");
+  EXPECT_NE(cut.find("'" + std::string(199, 'x') + "...'"), std::string::npos) << cut;
+  EXPECT_TRUE(valid(cut)) << cut;
+}
+
 TEST(SymbolicParse, AnExpressionBeyondItsBoundsIsAnErrorNamingTheFieldNotACrash) {
   using helios::symbolic::kMaxExpressionDepth;
   // 7,800 nested parentheses overflowed GiNaC's recursive parser.
@@ -436,3 +453,21 @@ TEST(Derive, AMagnitudeBeyondDoublePrecisionIsRefusedByItsMeaning) {
 }
 
 }  // namespace
+
+// Found by the json_spec fuzz target: a body's name went into a parameter's source
+// ("ephemeris:<body>:tf") as it was, and a name with a space made a derivation its own schema
+// refuses. The spec's schema now asks of a body's name what the parser does (NAME).
+TEST(Derive, ABodyNameThatIsNoNameIsRefusedWhereTheSpecIsRead) {
+  const std::string path = kSource + "/scenarios/S02/problem.txt";
+  json spec = helios::spec::parse_problem_text(helios::io::read_text(path), path);
+  helios::io::validate("spec", spec, "spec.json");
+  spec["constraints"][1]["target"]["body"] = "Ma rs";
+  try {
+    helios::io::validate("spec", spec, "spec.json");
+    FAIL();
+  } catch (const helios::input_error& e) {
+    EXPECT_NE(std::string(e.what()).find("spec.json: spec schema violation at /constraints/1/target"),
+              std::string::npos)
+        << e.what();
+  }
+}

@@ -68,6 +68,18 @@ TEST(Io, MalformedJsonNamesTheFileAndByte) {
   fs::remove_all(dir);
 }
 
+// Found by the json_settings fuzz target: nlohmann's out_of_range (406) reached the user raw.
+TEST(Io, JsonNumberBeyondADoubleIsInvalidInput) {
+  try {
+    helios::io::parse_json_text(R"({"seed": 1e3083})", "x.json");
+    FAIL();
+  } catch (const helios::input_error& e) {
+    EXPECT_STREQ(e.what(),
+                 "x.json: malformed JSON: the number 1e3083 is outside the range of a double (magnitudes up to "
+                 "1.8e308), fix the file or regenerate it");
+  }
+}
+
 TEST(Io, JsonBeyondItsDepthIsRefusedBeforeParsingStringsAside) {
   using helios::io::json_depth_exceeded_at;
   using helios::io::kMaxJsonDepth;
@@ -86,13 +98,22 @@ TEST(Io, JsonBeyondItsDepthIsRefusedBeforeParsingStringsAside) {
   }
 }
 
-// 1e400 in a JSON document gave nlohmann's "out_of_range.406" as exit 1.
-TEST(Io, AJsonNumberBeyondDoubleIsAnInputError) {
+// Found by the json_spec fuzz target: a schema or schema_version of another type than expected
+// made json::value() throw nlohmann's type_error 302, which reached the user raw.
+TEST(Io, ArtifactHeaderOfAnotherTypeIsInvalidInput) {
   try {
-    helios::io::parse_json_text(R"({"thrust_N": 1e400})", "s.json");
+    helios::io::parse_artifact("spec", R"({"schema": {"name": "Earth"}})", "x.json");
     FAIL();
   } catch (const helios::input_error& e) {
-    EXPECT_STREQ(e.what(), "s.json: a number beyond the range of a double (number overflow parsing '1e400')");
+    EXPECT_STREQ(
+        e.what(),
+        "x.json: field /schema is {\"name\":\"Earth\"}, expected \"helios/spec\" (wrong artifact for this tool?)");
+  }
+  try {
+    helios::io::parse_artifact("spec", R"({"schema": "helios/spec", "schema_version": "1"})", "x.json");
+    FAIL();
+  } catch (const helios::input_error& e) {
+    EXPECT_STREQ(e.what(), "x.json: field /schema_version is \"1\", this build reads version 1");
   }
 }
 

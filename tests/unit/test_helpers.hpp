@@ -9,6 +9,14 @@
 
 namespace helios::test {
 
+// The wall-clock bounds of the tests are the normal build's; under ASan (make test-sanitized,
+// __SANITIZE_ADDRESS__) the same code runs several times slower, so a bound is scaled by this.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr double kTimeScale = 10;
+#else
+inline constexpr double kTimeScale = 1;
+#endif
+
 // |a - b| <= atol + rtol * max(|a|, |b|); NaN never compares close.
 inline bool close(double a, double b, double atol, double rtol) {
   return std::fabs(a - b) <= atol + rtol * std::max(std::fabs(a), std::fabs(b));

@@ -142,11 +142,12 @@ json parse_json_text(const std::string& text, const std::string& name) {
   } catch (const json::parse_error& e) {
     throw input_error(name + ": malformed JSON at byte " + std::to_string(e.byte) + ", fix the file or regenerate it");
   } catch (const json::out_of_range& e) {
-    // "[json.exception.out_of_range.406] number overflow parsing '1e400'": the part after the tag.
+    // The parser's one range error (406): a number literal beyond a double, "... parsing '1e400'".
     const std::string what = e.what();
-    const std::size_t tag = what.find("] ");
-    throw input_error(name + ": a number beyond the range of a double (" +
-                      (tag == std::string::npos ? what : what.substr(tag + 2)) + ")");
+    const std::size_t open = what.find('\''), close = what.rfind('\'');
+    const std::string number = open < close ? what.substr(open + 1, close - open - 1) : "";
+    throw input_error(name + ": malformed JSON: the number " + number +
+                      " is outside the range of a double (magnitudes up to 1.8e308), fix the file or regenerate it");
   }
 }
 

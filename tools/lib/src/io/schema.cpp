@@ -92,8 +92,11 @@ std::string printable_json(const json& value) {
 }  // namespace
 
 json read_artifact(const std::string& kind, const std::string& path) {
-  json doc = read_json(path);
-  const std::string name = path == "-" ? "<stdin>" : path;
+  return parse_artifact(kind, read_text(path), path == "-" ? "<stdin>" : path);
+}
+
+json parse_artifact(const std::string& kind, const std::string& text, const std::string& name) {
+  json doc = parse_json_text(text, name);
   const auto field = [&](const char* key) -> const json* {
     if (!doc.is_object()) return nullptr;
     const auto it = doc.find(key);

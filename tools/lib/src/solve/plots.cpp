@@ -39,7 +39,9 @@ std::pair<std::vector<std::string>, std::vector<double>> csv_head(const std::str
 
 json plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title) {
   const auto [columns, first] = csv_head(csv_path);
-  const auto has = [&](const std::string& c) { return std::find(columns.begin(), columns.end(), c) != columns.end(); };
+  // A lambda may not capture a structured binding in C++17 (clang refuses it): a reference it may.
+  const auto& names = columns;
+  const auto has = [&names](const std::string& c) { return std::find(names.begin(), names.end(), c) != names.end(); };
   const bool engine = has("u") && has("m_kg");
   const bool heliocentric = first.size() > 3 && std::hypot(first[1], first[2], first[3]) > 1e7;
   const std::string length = heliocentric ? "AU" : "km", scale = heliocentric ? "149597870.691" : "1.0";

@@ -23,6 +23,19 @@ namespace helios::solve {
 namespace fs = std::filesystem;
 using io::json;
 
+void check_settings(const json& settings, const std::string& source) {
+  if (!settings.is_object()) throw input_error(source + ": settings must be a JSON object");
+  static const std::vector<std::string> known = io::schema_properties("settings");
+  for (auto it = settings.begin(); it != settings.end(); ++it) {
+    if (std::find(known.begin(), known.end(), it.key()) == known.end()) {
+      std::string names;
+      for (const auto& k : known) names += (names.empty() ? "" : ", ") + k;
+      throw input_error(source + ": field /" + it.key() + " is not a solver setting (known: " + names + ")");
+    }
+  }
+  io::validate("settings", settings, source);
+}
+
 namespace {
 
 // The keys of solution.json that helios-solve alone knows: the artifact's header, the compile,
@@ -37,16 +50,7 @@ const std::vector<std::string> kSolveKeys = {"schema",  "schema_version", "produ
 json run_settings(const SolveOptions& o) {
   json settings = json::object();
   if (!o.settings_path.empty()) settings = io::read_json(o.settings_path);
-  if (!settings.is_object()) throw input_error(o.settings_path + ": settings must be a JSON object");
-  static const std::vector<std::string> known = io::schema_properties("settings");
-  for (auto it = settings.begin(); it != settings.end(); ++it) {
-    if (std::find(known.begin(), known.end(), it.key()) == known.end()) {
-      std::string names;
-      for (const auto& k : known) names += (names.empty() ? "" : ", ") + k;
-      throw input_error(o.settings_path + ": field /" + it.key() + " is not a solver setting (known: " + names + ")");
-    }
-  }
-  io::validate("settings", settings, o.settings_path);
+  check_settings(settings, o.settings_path);
   const double own_limit = std::max(1.0, o.time_limit_s - 5);
   settings["time_limit_s"] = std::min(settings.value("time_limit_s", own_limit), own_limit);
   return settings;

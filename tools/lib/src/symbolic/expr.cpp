@@ -16,8 +16,17 @@ const GiNaC::symbol& SymbolTable::get(const std::string& name) {
 }
 
 GiNaC::ex SymbolTable::parse(const std::string& text, const std::string& where) const {
-  const auto shown = [](const std::string& t) { return t.size() > 200 ? t.substr(0, 200) + "..." : t; };
-  const auto fail = [&](const std::string& why) {
+  // The message goes into JSON artifacts, which must be UTF-8: the text (valid UTF-8, as it came
+  // from JSON) is cut at a character's start, and GiNaC's reason, which quotes a lone byte of a
+  // multi-byte character it does not know, has every byte outside ASCII shown as '?'.
+  const auto shown = [](const std::string& t) {
+    std::size_t cut = std::min<std::size_t>(t.size(), 200);
+    while (cut > 0 && cut < t.size() && (static_cast<unsigned char>(t[cut]) & 0xC0) == 0x80) --cut;
+    return cut < t.size() ? t.substr(0, cut) + "..." : t;
+  };
+  const auto fail = [&](std::string why) {
+    for (char& c : why)
+      if (static_cast<unsigned char>(c) >= 0x80) c = '?';
     return std::invalid_argument(where + ": cannot parse expression '" + shown(text) + "': " + why);
   };
   if (text.size() > kMaxExpressionChars)

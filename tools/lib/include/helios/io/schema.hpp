@@ -22,6 +22,8 @@ std::vector<std::string> schema_properties(const std::string& kind);
 
 // Reads `path`, validates it as `kind` (including schema name and version) and returns it.
 json read_artifact(const std::string& kind, const std::string& path);
+// The same for the text of a document, `name` naming it in errors (read_artifact's reading).
+json parse_artifact(const std::string& kind, const std::string& text, const std::string& name);
 
 // Validates `doc` as `kind` and writes it atomically to `path`.
 void write_artifact(const std::string& kind, const json& doc, const std::string& path);

@@ -78,4 +78,8 @@ io::json compile_report(const SolveOptions& options);
 // The whole stage; returns the solution artifact (status "compile_failed" etc. are data, not throws).
 io::json solve(const SolveOptions& options);
 
+// Checks a settings document: an object whose keys are those of schemas/settings.schema.json,
+// valid against it. Throws input_error "<source>: ..." naming the field.
+void check_settings(const io::json& settings, const std::string& source);
+
 }  // namespace helios::solve
