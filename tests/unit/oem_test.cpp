@@ -112,6 +112,14 @@ TEST(OemTrajectory, MalformedCsvNamesFileLineAndField) {
   EXPECT_NE(message("t_days,rx_km,ry_km,rz_km,vx_km_s,vy_km_s,vz_km_s\n").find("no samples"), std::string::npos);
 }
 
+TEST(OemTrajectory, CrlfLineEndsAreRead) {
+  const auto samples =
+      read_trajectory("t_days,rx_km,ry_km,rz_km,vx_km_s,vy_km_s,vz_km_s,u\r\n0,1,2,3,4,5,6,1\r\n", "traj.csv");
+  ASSERT_EQ(samples.size(), 1u);
+  EXPECT_EQ(samples[0].throttle, 1.0);
+  EXPECT_LT(samples[0].mass_kg, 0);  // no m_kg column
+}
+
 // ---- the whole OEM of the fixture run (S08's spec, a trimmed solution, 17 of its samples) ------
 
 struct Fixture {

@@ -194,7 +194,8 @@ std::string oem_epoch(double mjd2000) {
 std::vector<TrajectorySample> read_trajectory(const std::string& csv_text, const std::string& source) {
   std::istringstream in(csv_text);
   std::string line;
-  if (!std::getline(in, line) || line.empty()) throw input_error(source + ":1: no header line");
+  if (std::getline(in, line) && !line.empty() && line.back() == '\r') line.pop_back();
+  if (line.empty()) throw input_error(source + ":1: no header line");
   const std::vector<std::string> header = split_csv_line(line);
   std::map<std::string, std::size_t> column;
   for (std::size_t i = 0; i < header.size(); ++i) column.emplace(header[i], i);
@@ -213,6 +214,7 @@ std::vector<TrajectorySample> read_trajectory(const std::string& csv_text, const
   std::size_t line_no = 1;
   while (std::getline(in, line)) {
     ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();  // a CSV saved with CRLF line ends
     if (line.empty()) continue;
     const std::vector<std::string> f = split_csv_line(line);
     if (f.size() != header.size())
