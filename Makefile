@@ -60,7 +60,7 @@ gen_rounds := $(shell seq 1 $(GEN_ROUNDS))
 ROUND_ARTIFACTS := $(foreach k,$(derive_rounds),derivation.r$(k).json $(if $(filter $(k),$(DERIVE_ROUNDS)),,verify.r$(k).json)) \
                    $(foreach k,$(gen_rounds),shoot.r$(k).cpp $(if $(filter $(k),$(GEN_ROUNDS)),,compile.r$(k).json))
 ARTIFACTS := spec.json $(if $(filter llm,$(BACKEND)),$(ROUND_ARTIFACTS)) derivation.json verify.json shoot.cpp \
-             solution.json score.json
+             solution.json trajectory.oem score.json
 artifacts_of = $(addprefix $(RUNS)/$(1)/,$(ARTIFACTS))
 
 .PHONY: run all scoreboard test unit bats bench tools deps clean test-sanitized fuzz deps-fuzz
@@ -154,6 +154,14 @@ endif
 $(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp scenarios/%/settings.json $(call TOOL_STAMP,solve)
 	$(LAUNCH) $(BIN)/helios-solve --backend $(BACKEND) $< --settings scenarios/$*/settings.json --cache-dir $(CACHE) \
 	  --time-limit $(SOLVE_TIME_LIMIT) --trajectory $(@D)/trajectory.csv --plots $(@D)/ -o $@
+
+# The converged trajectory as a CCSDS OEM 2.0 (README "trajectory.oem"). trajectory.csv is written
+# before solution.json and only for a converged solution, so it is no prerequisite: for a run that
+# did not converge helios-score writes nothing (and removes a stale OEM) and exits 0, so make goes
+# on; the target stays missing and this cheap step runs again at each make of that run.
+$(RUNS)/%/trajectory.oem: $(RUNS)/%/spec.json $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
+	$(BIN)/helios-score --oem --spec $(@D)/spec.json --solution $(@D)/solution.json \
+	  --trajectory $(@D)/trajectory.csv -o $@
 
 $(RUNS)/%/score.json: scenarios/%/reference.json $(RUNS)/%/spec.json $(RUNS)/%/derivation.json \
                       $(RUNS)/%/verify.json $(RUNS)/%/solution.json $(call TOOL_STAMP,score)

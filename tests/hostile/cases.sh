@@ -260,3 +260,19 @@ case_dir score-verify-number-1e400; cp "$ROOT/scenarios/S01/reference.json" r.js
 expect 3 'v.json: malformed JSON: the number 1e400 is outside the range of a double' score --reference r.json --verify v.json
 case_dir score-usage-nothing; expect 2 '.' score
 case_dir score-scoreboard-missing; expect 3 'nowhere' score --scoreboard nowhere
+
+# ---- helios-score --oem: trajectory.csv and the run it belongs to ---------------------------
+
+OEM_FIX="$ROOT/tests/fixtures/oem"
+# oem_case EXIT PATTERN: helios-score --oem on the fixture's spec and solution and ./t.csv.
+oem_case() { expect "$1" "$2" score --oem --spec "$OEM_FIX/spec.json" --solution "$OEM_FIX/solution.json" --trajectory t.csv; }
+case_dir score-oem-csv-empty; : >t.csv; oem_case 3 't.csv:1: no header'
+case_dir score-oem-csv-random-bytes
+awk 'BEGIN { srand(7); for (i = 0; i < 3000; i++) printf "%c", int(rand() * 256) }' >t.csv; oem_case 3 't.csv:1: no column'
+case_dir score-oem-csv-nul; sed '3s/,/,\x00/' "$OEM_FIX/trajectory.csv" >t.csv; oem_case 3 't.csv:3: field rx_km'
+case_dir score-oem-csv-1e400; sed '3s/,[^,]*,/,1e400,/' "$OEM_FIX/trajectory.csv" >t.csv; oem_case 3 't.csv:3: field rx_km: .1e400. is not a finite number'
+case_dir score-oem-csv-ragged; sed '3s/,[^,]*$//' "$OEM_FIX/trajectory.csv" >t.csv; oem_case 3 't.csv:3: 10 fields, the header has 11'
+case_dir score-oem-csv-time-back; sed '3s/^[^,]*,/-5,/' "$OEM_FIX/trajectory.csv" >t.csv; oem_case 3 't.csv:3: field t_days: -5 is before'
+case_dir score-oem-other-problem; cp "$OEM_FIX/trajectory.csv" t.csv; jq '.problem.id = "S01"' "$OEM_FIX/solution.json" >sol.json
+expect 3 'sol.json: field /problem/id' score --oem --spec "$OEM_FIX/spec.json" --solution sol.json --trajectory t.csv
+case_dir score-oem-usage-no-trajectory; expect 2 'needs --trajectory' score --oem --spec "$OEM_FIX/spec.json" --solution "$OEM_FIX/solution.json"

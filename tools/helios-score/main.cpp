@@ -1,5 +1,7 @@
 // helios-score: a run's artifacts + scenarios/SNN/reference.json -> score.json, or a folder of
-// score.json files -> scoreboard.md.
+// score.json files -> scoreboard.md, or a converged run's trajectory -> trajectory.oem.
+#include <cstdio>
+#include <iostream>
 #include <optional>
 #include <string>
 
@@ -7,21 +9,25 @@
 #include "helios/io/error.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/io/schema.hpp"
+#include "helios/score/oem.hpp"
 #include "helios/score/score.hpp"
 
 int main(int argc, char** argv) {
   const helios::cli::ToolInfo info{
       "helios-score",
-      "score a run against its scenario reference, or render a scoreboard",
+      "score a run against its scenario reference, render a scoreboard, or export a trajectory as a CCSDS OEM",
       "--reference REF.json [--spec F] [--derivation F] [--verify F] [--solution F] [options]\n"
-      "       helios-score --scoreboard DIR [options]",
+      "       helios-score --scoreboard DIR [options]\n"
+      "       helios-score --oem --spec F --solution F --trajectory F.csv [options]",
       {{"reference", "", "FILE", "scenarios/SNN/reference.json to score against", ""},
        {"spec", "", "FILE", "spec.json of the run (omitted: d1 scores 0)", ""},
        {"derivation", "", "FILE", "derivation.json of the run (omitted: no shooting-variable points)", ""},
        {"verify", "", "FILE", "verify.json of the run (omitted: no verification points)", ""},
        {"solution", "", "FILE", "solution.json of the run (omitted: d3-d5 score 0)", ""},
        {"scoreboard", "", "DIR", "render DIR/*/score.json as a Markdown table instead", ""},
-       {"tables", "", "ROOT", "render the paper's three tables from a runs tree ROOT/<backend>/<scenario>/", ""}},
+       {"tables", "", "ROOT", "render the paper's three tables from a runs tree ROOT/<backend>/<scenario>/", ""},
+       {"oem", "", "", "write the run's trajectory as a CCSDS OEM 2.0 (KVN) instead", ""},
+       {"trajectory", "", "FILE", "trajectory.csv of the run (with --oem)", ""}},
       {},
       "Scores the paper's five-dimension rubric: d1 parse 30 (facts of the reference found in the\n"
       "spec within tolerance), d2 derive 20 (14 x fraction of verify checks passed, 6 for the\n"
@@ -31,11 +37,37 @@ int main(int argc, char** argv) {
       "input may be omitted; its dimensions then score 0. With --scoreboard, writes one table row\n"
       "per scenario folder plus a totals row. With --tables, writes the per-scenario comparison of\n"
       "backends and models, the token consumption (from *.transcript.json) and the compile-repair\n"
-      "loop effect (compile.r1.json before, the final compile after) over every run folder of ROOT.",
+      "loop effect (compile.r1.json before, the final compile after) over every run folder of ROOT.\n"
+      "With --oem, writes the converged trajectory as a CCSDS OEM 2.0 in KVN form: one segment per\n"
+      "arc between interior events, km and km/s, TDB epochs from the spec's epoch (or J2000.0 when it\n"
+      "has none, said in a COMMENT), mass and throttle in COMMENT lines. A solution that did not\n"
+      "converge has no trajectory: nothing is written (a stale -o FILE is removed) and the exit is 0.",
       "helios-score --reference scenarios/S01/reference.json --spec runs/builtin/S01/spec.json "
       "--derivation runs/builtin/S01/derivation.json --verify runs/builtin/S01/verify.json "
       "--solution runs/builtin/S01/solution.json -o runs/builtin/S01/score.json"};
   return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
+    if (args.has("oem")) {
+      for (const char* other : {"scoreboard", "tables", "reference", "derivation", "verify"})
+        if (args.has(other))
+          throw helios::usage_error(std::string("--oem takes no --") + other + ", see helios-score --help");
+      for (const char* needed : {"spec", "solution", "trajectory"})
+        if (!args.has(needed))
+          throw helios::usage_error(std::string("--oem needs --") + needed + " FILE, see helios-score --help");
+      const helios::io::json spec = helios::io::read_artifact("spec", args.get("spec"));
+      const helios::io::json solution = helios::io::read_artifact("solution", args.get("solution"));
+      if (solution.at("status") != "converged") {
+        if (args.output != "-") std::remove(args.output.c_str());
+        std::cerr << "helios-score: " << args.get("solution") << " is " << solution.at("status").get<std::string>()
+                  << ": no trajectory, no OEM written\n";
+        return 0;
+      }
+      const helios::score::OemSources sources{args.get("spec"), args.get("solution"), args.get("trajectory")};
+      const auto oem =
+          helios::score::oem_from_run(spec, solution, helios::io::read_text(args.get("trajectory")), sources);
+      helios::io::write_text_atomic(args.output, *oem);
+      return 0;
+    }
+    if (args.has("trajectory")) throw helios::usage_error("--trajectory goes with --oem, see helios-score --help");
     if (args.has("tables")) {
       for (const char* other : {"scoreboard", "reference", "spec", "derivation", "verify", "solution"})
         if (args.has(other))
