@@ -185,7 +185,7 @@ std::string oem_epoch(double mjd2000) {
   rest -= minute * 60000000LL;
   const long long second = rest / 1000000LL;
   const long long micro = rest - second * 1000000LL;
-  char buf[64];
+  char buf[96];  // room for any long long, though the checks above bound every field
   std::snprintf(buf, sizeof buf, "%04lld-%02d-%02dT%02lld:%02lld:%02lld.%06lld", year, month, day, hour, minute, second,
                 micro);
   return buf;
