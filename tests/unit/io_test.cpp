@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <regex>
 #include <set>
 #include <string>
@@ -216,3 +217,22 @@ TEST(Io, CliRejectsUnknownOptionsAndCountsInputs) {
 }
 
 }  // namespace
+
+// A library's "field /x: ..." about a tool's input names the file; a message that names it
+// already, and any other error, pass unchanged.
+TEST(Cli, NamingInputPrefixesTheFileOnce) {
+  const auto error_of = [](const std::string& source, const std::function<void()>& work) {
+    try {
+      helios::cli::naming_input(source, work);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error_of("d.json", [] { throw std::invalid_argument("field /hamiltonian: bad"); }),
+            "d.json: field /hamiltonian: bad");
+  EXPECT_EQ(error_of("-", [] { throw std::domain_error("mu is not finite"); }), "<stdin>: mu is not finite");
+  EXPECT_EQ(error_of("d.json", [] { throw helios::input_error("d.json: malformed JSON"); }), "d.json: malformed JSON");
+  EXPECT_EQ(error_of("d.json", [] { throw std::runtime_error("disk full"); }), "disk full");
+  EXPECT_THROW(helios::cli::naming_input("d.json", [] { throw std::invalid_argument("x"); }), helios::input_error);
+}
