@@ -11,6 +11,7 @@
 #include "helios/io/json_io.hpp"
 #include "helios/io/schema.hpp"
 #include "helios/verify/verify.hpp"
+#include "test_helpers.hpp"
 
 namespace {
 
@@ -63,7 +64,7 @@ TEST(VerifyCorpus, EveryVerdictIsRightAndNamesTheFaultyCheck) {
     EXPECT_EQ(report["verdict"], c.at("verdict")) << report["feedback"];
     EXPECT_EQ(names(failed), names(expected)) << report["feedback"];
     if (report["verdict"] == c.at("verdict") && failed == expected) ++right;
-    EXPECT_LT(seconds, 1.0);
+    EXPECT_LT(seconds, 1.0 * helios::test::kTimeScale);
   }
   EXPECT_EQ(right, cases.size()) << right << " of " << cases.size() << " verdicts right";
   RecordProperty("cases", static_cast<int>(cases.size()));
