@@ -22,6 +22,16 @@ oem() {
     --trajectory "$FIXTURES/trajectory.csv" "$@"
 }
 
+# oem_refused SPEC CSV: helios-score --oem on SPEC, the fixture's solution and CSV must refuse
+# (exit 3, one error line) and write nothing into out/.
+oem_refused() {
+  mkdir out
+  run -3 --separate-stderr "$BIN/helios-score" --oem --spec "$1" --solution "$FIXTURES/solution.json" \
+    --trajectory "$2" -o out/x.oem
+  assert_one_error_line score
+  assert_dir_empty out
+}
+
 # check_oem CSV OEM EPOCH_MJD2000: the independent parser accepts OEM and it matches CSV.
 check_oem() {
   awk -v epoch0="$3" -f "$CHECK" "$1" "$2"
@@ -78,40 +88,25 @@ check_oem() {
 
 @test "oem: a malformed trajectory.csv -> exit 3 naming file, line and field, nothing written" {
   sed '5s/^\([^,]*\),[^,]*,/\1,abc,/' "$FIXTURES/trajectory.csv" >bad.csv
-  mkdir out
-  run -3 --separate-stderr "$BIN/helios-score" --oem --spec "$FIXTURES/spec.json" \
-    --solution "$FIXTURES/solution.json" --trajectory bad.csv -o out/x.oem
-  assert_one_error_line score
+  oem_refused "$FIXTURES/spec.json" bad.csv
   assert_stderr_contains "bad.csv:5: field rx_km: 'abc' is not a finite number"
-  assert_dir_empty out
 }
 
 @test "oem: a trajectory whose events do not match the spec's -> exit 3 naming the file" {
   sed '/^454,/d' "$FIXTURES/trajectory.csv" >noflyby.csv
-  mkdir out
-  run -3 --separate-stderr "$BIN/helios-score" --oem --spec "$FIXTURES/spec.json" \
-    --solution "$FIXTURES/solution.json" --trajectory noflyby.csv -o out/x.oem
-  assert_one_error_line score
+  oem_refused "$FIXTURES/spec.json" noflyby.csv
   assert_stderr_contains "noflyby.csv" "field t_days" "interior events"
-  assert_dir_empty out
 }
 
 @test "oem: a central body without a known frame -> exit 3 naming the spec and /central_body/name" {
   jq '.central_body.name = "Mars" | .central_body.mu_km3_s2 = 42828.37' "$FIXTURES/spec.json" >spec.json
-  mkdir out
-  run -3 --separate-stderr "$BIN/helios-score" --oem --spec spec.json --solution "$FIXTURES/solution.json" \
-    --trajectory "$FIXTURES/trajectory.csv" -o out/x.oem
-  assert_one_error_line score
+  oem_refused spec.json "$FIXTURES/trajectory.csv"
   assert_stderr_contains "spec.json: field /central_body/name"
-  assert_dir_empty out
 }
 
 @test "oem: a missing trajectory file -> exit 3 naming it" {
-  run -3 --separate-stderr "$BIN/helios-score" --oem --spec "$FIXTURES/spec.json" \
-    --solution "$FIXTURES/solution.json" --trajectory no-such.csv -o x.oem
-  assert_one_error_line score
+  oem_refused "$FIXTURES/spec.json" no-such.csv
   assert_stderr_contains "no-such.csv"
-  [[ ! -e x.oem ]]
 }
 
 @test "oem: usage errors -> exit 2 (--oem without --trajectory, --trajectory without --oem, --oem with --reference)" {
