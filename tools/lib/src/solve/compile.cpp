@@ -48,7 +48,8 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   c.command = compiler + flag_text + " shoot.cpp -o shoot -lcminpack";
   // The key covers the source, the command and the compiler's identity.
   c.sha256 = io::sha256_hex(source + "\n" + c.command + "\n" + first_line(capture({compiler, "--version"})));
-  const fs::path dir = fs::path(o.cache_dir) / c.sha256;
+  // Absolute, as the sandbox binds the folder at its absolute path.
+  const fs::path dir = fs::absolute(fs::path(o.cache_dir) / c.sha256).lexically_normal();
   c.binary = (dir / "shoot").string();
   if (fs::exists(c.binary)) {
     c.ok = c.cached = true;
@@ -59,20 +60,17 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
     return c;
   }
   fs::create_directories(dir);
-  // Absolute, as the sandbox binds the folder at its absolute path.
-  const std::string src = fs::absolute(dir / "shoot.cpp").lexically_normal().string();
+  const std::string src = (dir / "shoot.cpp").string();
   io::write_text_atomic(src, source);
-  const std::string tmp_bin =
-      fs::absolute(dir / (".shoot.tmp." + std::to_string(::getpid()))).lexically_normal().string();
+  const std::string tmp_bin = (dir / (".shoot.tmp." + std::to_string(::getpid()))).string();
   const io::TempFiles guard({tmp_bin});
   std::vector<std::string> argv = {on_path(compiler)};
   argv.insert(argv.end(), flags.begin(), flags.end());
   argv.insert(argv.end(), {src, "-o", tmp_bin, "-lcminpack"});
   // The compiler is sandboxed as the program is: a source that includes /etc/passwd or a project
   // file finds nothing to quote in its diagnostics (which a repair round sends to the model).
-  const RunResult run = run_limited(
-      o.sandbox ? sandboxed(argv, fs::absolute(dir).lexically_normal().string(), compiler_prefix(argv[0])) : argv,
-      o.time_limit_s, o.memory_limit_mb);
+  const RunResult run = run_limited(o.sandbox ? sandboxed(argv, dir.string(), compiler_prefix(argv[0])) : argv,
+                                    o.time_limit_s, o.memory_limit_mb);
   c.diagnostics = run.stderr_text;
   if (run.timed_out || run.signal != 0)
     c.diagnostics += "\nhelios-solve: the compiler was stopped: " +
