@@ -42,16 +42,24 @@ std::string temp_name_for(const std::string& path) {
   return name.str();
 }
 
-void check_finite(const json& node, const std::string& where) {
-  if (node.is_number_float() && !std::isfinite(node.get<double>()))
-    throw numerical_error("refusing to write a non-finite number at " + (where.empty() ? "/" : where));
-  if (node.is_object())
-    for (auto it = node.begin(); it != node.end(); ++it) check_finite(it.value(), where + "/" + it.key());
-  if (node.is_array())
-    for (std::size_t i = 0; i < node.size(); ++i) check_finite(node[i], where + "/" + std::to_string(i));
+void check_finite(const json& doc) {
+  for_each_scalar(doc, [](const json& value, const std::string& where) {
+    if (value.is_number_float() && !std::isfinite(value.get<double>()))
+      throw numerical_error("refusing to write a non-finite number at " + (where.empty() ? "/" : where));
+  });
 }
 
 }  // namespace
+
+void for_each_scalar(const json& doc, const std::function<void(const json&, const std::string&)>& visit,
+                     const std::string& where) {
+  if (doc.is_object())
+    for (auto it = doc.begin(); it != doc.end(); ++it) for_each_scalar(it.value(), visit, where + "/" + it.key());
+  else if (doc.is_array())
+    for (std::size_t i = 0; i < doc.size(); ++i) for_each_scalar(doc[i], visit, where + "/" + std::to_string(i));
+  else
+    visit(doc, where);
+}
 
 void remove_registered_temps() {
   for (std::size_t i = 0; i < kMaxTemps; ++i)
@@ -182,7 +190,7 @@ void write_text_atomic(const std::string& path, const std::string& text) {
 }
 
 void write_json_atomic(const std::string& path, const json& doc) {
-  check_finite(doc, "");
+  check_finite(doc);
   write_text_atomic(path, doc.dump(2) + "\n");
 }
 

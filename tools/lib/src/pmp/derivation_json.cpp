@@ -219,16 +219,14 @@ void problem_sections(const Derivation& d, json& doc) {
 
 // Refuses an expression text longer than its readers accept (symbolic::kMaxExpressionChars):
 // a derivation helios-verify and helios-gen would reject is not written.
-void check_expression_sizes(const json& node, const std::string& where) {
-  if (node.is_string() && node.get_ref<const std::string&>().size() > symbolic::kMaxExpressionChars)
-    throw std::domain_error(
-        "the derivation's " + where + " would be " + std::to_string(node.get_ref<const std::string&>().size()) +
-        " characters; an expression may have at most " + std::to_string(symbolic::kMaxExpressionChars) +
-        " (the problem's expressions are too large)");
-  if (node.is_object())
-    for (auto it = node.begin(); it != node.end(); ++it) check_expression_sizes(it.value(), where + "/" + it.key());
-  if (node.is_array())
-    for (std::size_t i = 0; i < node.size(); ++i) check_expression_sizes(node[i], where + "/" + std::to_string(i));
+void check_expression_sizes(const json& doc) {
+  io::for_each_scalar(doc, [](const json& value, const std::string& where) {
+    if (value.is_string() && value.get_ref<const std::string&>().size() > symbolic::kMaxExpressionChars)
+      throw std::domain_error(
+          "the derivation's " + where + " would be " + std::to_string(value.get_ref<const std::string&>().size()) +
+          " characters; an expression may have at most " + std::to_string(symbolic::kMaxExpressionChars) +
+          " (the problem's expressions are too large)");
+  });
 }
 
 }  // namespace
@@ -261,7 +259,7 @@ json derivation_json(const Derivation& d) {
   for (const auto& v : d.shooting.variables) variables.push_back(variable_json(v));
   for (const auto& q : d.shooting.equations) equations.push_back(equation_json(q));
   doc["shooting"] = {{"variables", variables}, {"equations", equations}};
-  check_expression_sizes(doc, "");
+  check_expression_sizes(doc);
   return doc;
 }
 

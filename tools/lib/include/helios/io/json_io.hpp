@@ -1,6 +1,7 @@
 #pragma once
 // Reading and atomic writing of JSON artifacts.
 #include <cstddef>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -31,6 +32,11 @@ json read_json(const std::string& path);
 // Writes `text` to `path` atomically: a temp file in the same folder, fsync, rename. "-" writes
 // to stdout. The temp file is removed if the process is interrupted (SIGINT/SIGTERM/SIGHUP).
 void write_text_atomic(const std::string& path, const std::string& text);
+
+// Calls visit(value, pointer) for every value of `doc` that is neither an object nor an array,
+// with its JSON pointer below `where` ("/constraints/0/id"; "" for a scalar document).
+void for_each_scalar(const json& doc, const std::function<void(const json&, const std::string&)>& visit,
+                     const std::string& where = "");
 
 // Refuses NaN/Inf anywhere in `doc` (throws numerical_error naming the JSON path), then writes
 // it pretty-printed and atomically.
