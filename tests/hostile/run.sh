@@ -38,13 +38,16 @@ case_dir() {
   cd "$WORK/cases/$CASE" || exit 1
 }
 
+# The files of the case's folder, but its TMPDIR and the tool's captured output.
+case_files() { find . -path ./tmp -prune -o -type f -print | grep -v -e '^./stdout.log$' -e '^./stderr.log$' | sort; }
+
 # expect EXIT PATTERN TOOL ARGS...: runs helios-TOOL ARGS -o out (in the case's folder) and
 # checks the rules above; PATTERN (grep -E) must match the error line (ignored for exit 0).
 expect() {
   local want=$1 pattern=$2 tool=$3
   shift 3
-  local before after rc line lines
-  before=$(find . -path ./tmp -prune -o -type f -print | sort)
+  local before expected after rc line lines
+  before=$(case_files)
   TMPDIR=$PWD/tmp timeout -s KILL 60 "$BIN/helios-$tool" "$@" -o out >stdout.log 2>stderr.log
   rc=$?
   total=$((total + 1))
@@ -68,13 +71,12 @@ expect() {
       why="error does not match /$pattern/"
     fi
   fi
-  after=$(find . -path ./tmp -prune -o -type f -print | grep -v -e '^./stdout.log$' -e '^./stderr.log$' | sort)
-  local expected_files=$before
+  after=$(case_files)
+  expected=$before
   # Exit 4 (a check failed) writes the artifact saying why, as success does.
-  [[ $rc -eq 0 || $rc -eq 4 ]] && expected_files=$(printf '%s\n./out\n' "$before" | sed '/^$/d' | sort)
-  before_clean=$(printf '%s\n' "$expected_files" | grep -v -e '^./stdout.log$' -e '^./stderr.log$' | sed '/^$/d')
-  if [[ -z $why && "$after" != "$before_clean" ]]; then
-    why="files changed: $(diff <(printf '%s\n' "$before_clean") <(printf '%s\n' "$after") | grep '^[<>]' | tr '\n' ' ')"
+  [[ $rc -eq 0 || $rc -eq 4 ]] && expected=$(printf '%s\n./out\n' "$before" | sed '/^$/d' | sort)
+  if [[ -z $why && "$after" != "$expected" ]]; then
+    why="files changed: $(diff <(printf '%s\n' "$expected") <(printf '%s\n' "$after") | grep '^[<>]' | tr '\n' ' ')"
   fi
   if [[ -z $why && -n $(ls -A tmp) ]]; then why="left files in TMPDIR: $(ls -A tmp | tr '\n' ' ')"; fi
   if [[ -n $why ]]; then
