@@ -51,8 +51,11 @@ check_oem() {
   [[ $(grep -c '^REF_FRAME = ECLIPJ2000$' out.oem) -eq 4 ]]
   [[ $(grep -c '^CENTER_NAME = SUN$' out.oem) -eq 4 ]]
   [[ $(grep -c '^TIME_SYSTEM = TDB$' out.oem) -eq 4 ]]
-  grep -q '^COMMENT Epochs: t = 0 of the problem is MJD2000 10313.6 = 2028-03-28T02:24:00.000000 TDB$' out.oem
-  grep -q '^START_TIME = 2028-03-28T02:24:00.000000$' out.oem
+  grep -q '^COMMENT Epochs: t = 0 of the problem is MJD2000 10313.6 = 2028-03-27T14:24:00.000000 TDB$' out.oem
+  grep -q '^START_TIME = 2028-03-27T14:24:00.000000$' out.oem
+  # The calendar day by GNU date from the MJD's own origin, 1858-11-17 (MJD2000 = MJD - 51544):
+  # MJD2000 10313.6 is MJD 61857.6, 0.6 d = 14:24.
+  [[ $(date -u -d "1858-11-17 00:00:00 UTC + $((10313 + 51544)) days" +%F) == 2028-03-27 ]]
   grep -q '^COMMENT Segment 2 of 4: from event nikko (rendezvous, stay of 30 d, lander of 50 kg left) to event ast_8648 (flyby)$' out.oem
   grep -q '^COMMENT Mass 1867.760280 kg at START_TIME, 1790.449315 kg at STOP_TIME$' out.oem
   grep -q '^COMMENT Throttle 0 from ' out.oem
@@ -73,7 +76,7 @@ check_oem() {
     --trajectory "$FIXTURES/trajectory.csv" -o out.oem
   grep -q '^START_TIME = 2000-01-01T12:00:00.000000$' out.oem
   grep -q '^COMMENT The problem states no calendar epoch' out.oem
-  run check_oem "$FIXTURES/trajectory.csv" out.oem 0
+  run check_oem "$FIXTURES/trajectory.csv" out.oem 0.5
   [[ $status -eq 0 ]] || { echo "$output" >&2; false; }
 }
 
@@ -144,7 +147,7 @@ check_oem() {
     [[ -f $dir/solution.json ]] || continue
     [[ $(jq -r .status "$dir/solution.json") == converged ]] || continue
     [[ -f $dir/trajectory.oem ]] || continue
-    e=$(jq -r '.time.epoch_mjd2000 // 0' "$dir/spec.json")
+    e=$(jq -r '.time.epoch_mjd2000 // 0.5' "$dir/spec.json")
     run check_oem "$dir/trajectory.csv" "$dir/trajectory.oem" "$e"
     [[ $status -eq 0 ]] || { echo "$dir: $output" >&2; false; }
     n=$((n + 1))

@@ -30,13 +30,13 @@ function days_from_civil(y, m, d,    era, yoe, doy, doe) {
   return era * 146097 + doe - 730425
 }
 
-# Seconds of TDB since 2000-01-01T12:00:00 of an epoch YYYY-MM-DDThh:mm:ss[.f...], or "" if malformed.
+# Seconds of TDB since 2000-01-01T00:00:00 (MJD2000 0) of an epoch YYYY-MM-DDThh:mm:ss[.f...], or "" if malformed.
 function epoch_seconds(s,    y, mo, d, h, mi, sec) {
   if (s !~ /^[0-9][0-9][0-9][0-9]-[0-9][0-9]-[0-9][0-9]T[0-9][0-9]:[0-9][0-9]:[0-9][0-9](\.[0-9]+)?$/) return ""
   y = substr(s, 1, 4) + 0; mo = substr(s, 6, 2) + 0; d = substr(s, 9, 2) + 0
   h = substr(s, 12, 2) + 0; mi = substr(s, 15, 2) + 0; sec = substr(s, 18) + 0
   if (mo < 1 || mo > 12 || d < 1 || d > 31 || h > 23 || mi > 59 || sec >= 60) return ""
-  return (days_from_civil(y, mo, d) - 0.5) * 86400 + h * 3600 + mi * 60 + sec
+  return days_from_civil(y, mo, d) * 86400 + h * 3600 + mi * 60 + sec
 }
 
 function is_number(s) { return s ~ /^[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?$/ }
@@ -49,7 +49,7 @@ function end_segment() {
 }
 
 BEGIN {
-  if (epoch0 == "") epoch0 = 0
+  if (epoch0 == "") epoch0 = 0.5  # J2000.0, the default epoch of a problem without one
   allowed_meta = " OBJECT_NAME OBJECT_ID CENTER_NAME REF_FRAME REF_FRAME_EPOCH TIME_SYSTEM START_TIME USEABLE_START_TIME USEABLE_STOP_TIME STOP_TIME INTERPOLATION INTERPOLATION_DEGREE "
   required_meta = "OBJECT_NAME OBJECT_ID CENTER_NAME REF_FRAME TIME_SYSTEM START_TIME STOP_TIME"
   section = "start"

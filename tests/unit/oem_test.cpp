@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "helios/astro/constants.hpp"
 #include "helios/io/error.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/io/schema.hpp"
@@ -23,31 +24,35 @@ const std::string kFixtures = std::string(HELIOS_SOURCE_DIR) + "/tests/fixtures/
 
 // ---- epochs ----------------------------------------------------------------------------------
 
-TEST(OemEpoch, Mjd2000ZeroIsJ2000Noon) {
-  EXPECT_EQ(oem_epoch(0.0), "2000-01-01T12:00:00.000000");
+TEST(OemEpoch, Mjd2000ZeroIsMidnightAndJ2000IsNoon) {
+  // MJD2000 = MJD - 51544 (helios::astro::MJD_MINUS_MJD2000): day 0 starts at 2000-01-01T00:00, and
+  // J2000.0 (JD 2451545.0) is MJD2000 0.5.
+  EXPECT_EQ(oem_epoch(0.0), "2000-01-01T00:00:00.000000");
+  EXPECT_EQ(oem_epoch(helios::astro::JD_J2000 - helios::astro::JD_OF_MJD2000), "2000-01-01T12:00:00.000000");
+  EXPECT_EQ(oem_epoch(helios::score::kOemDefaultEpochMjd2000), "2000-01-01T12:00:00.000000");
 }
 
 TEST(OemEpoch, HalfDaysAndTheDayBefore) {
-  EXPECT_EQ(oem_epoch(0.5), "2000-01-02T00:00:00.000000");
-  EXPECT_EQ(oem_epoch(-0.5), "2000-01-01T00:00:00.000000");
-  EXPECT_EQ(oem_epoch(-1.0), "1999-12-31T12:00:00.000000");
+  EXPECT_EQ(oem_epoch(1.0), "2000-01-02T00:00:00.000000");
+  EXPECT_EQ(oem_epoch(-0.5), "1999-12-31T12:00:00.000000");
+  EXPECT_EQ(oem_epoch(-1.0), "1999-12-31T00:00:00.000000");
 }
 
 TEST(OemEpoch, LeapDays) {
-  EXPECT_EQ(oem_epoch(58.5), "2000-02-29T00:00:00.000000");  // 2000 is a leap year (divisible by 400)
-  EXPECT_EQ(oem_epoch(59.5), "2000-03-01T00:00:00.000000");
-  EXPECT_EQ(oem_epoch(8824.5), "2024-02-29T00:00:00.000000");
-  EXPECT_EQ(oem_epoch(36583.5), "2100-03-01T00:00:00.000000");  // 2100 is not: 28 February, then 1 March
-  EXPECT_EQ(oem_epoch(36582.5), "2100-02-28T00:00:00.000000");
+  EXPECT_EQ(oem_epoch(59.0), "2000-02-29T00:00:00.000000");  // 2000 is a leap year (divisible by 400)
+  EXPECT_EQ(oem_epoch(60.0), "2000-03-01T00:00:00.000000");
+  EXPECT_EQ(oem_epoch(8825.0), "2024-02-29T00:00:00.000000");
+  EXPECT_EQ(oem_epoch(36584.0), "2100-03-01T00:00:00.000000");  // 2100 is not: 28 February, then 1 March
+  EXPECT_EQ(oem_epoch(36583.0), "2100-02-28T00:00:00.000000");
 }
 
 TEST(OemEpoch, FractionalSecondsRoundToTheMicrosecond) {
-  EXPECT_EQ(oem_epoch(1.25 / 86400.0), "2000-01-01T12:00:01.250000");
-  EXPECT_EQ(oem_epoch(0.5 + 3661.000001 / 86400.0), "2000-01-02T01:01:01.000001");
-  EXPECT_EQ(oem_epoch(0.5 - 0.4e-6 / 86400.0), "2000-01-02T00:00:00.000000");  // rounds up across midnight
-  EXPECT_EQ(oem_epoch(0.5 - 0.6e-6 / 86400.0), "2000-01-01T23:59:59.999999");
+  EXPECT_EQ(oem_epoch(1.25 / 86400.0), "2000-01-01T00:00:01.250000");
+  EXPECT_EQ(oem_epoch(1.0 + 3661.000001 / 86400.0), "2000-01-02T01:01:01.000001");
+  EXPECT_EQ(oem_epoch(1.0 - 0.4e-6 / 86400.0), "2000-01-02T00:00:00.000000");  // rounds up across midnight
+  EXPECT_EQ(oem_epoch(1.0 - 0.6e-6 / 86400.0), "2000-01-01T23:59:59.999999");
   // S07's departure (solution.json departure_mjd2000).
-  EXPECT_EQ(oem_epoch(10320.903927704128), "2028-04-04T09:41:39.353637");
+  EXPECT_EQ(oem_epoch(10320.903927704128), "2028-04-03T21:41:39.353637");
 }
 
 TEST(OemEpoch, OutsideYears1To9999IsAnError) {
@@ -143,7 +148,7 @@ TEST(OemRun, FixtureHasFourSegmentsInTheEclipticFrame) {
   EXPECT_EQ(count(*oem, "REF_FRAME = ECLIPJ2000\n"), 4u);
   EXPECT_EQ(count(*oem, "CENTER_NAME = SUN\n"), 4u);
   EXPECT_EQ(count(*oem, "TIME_SYSTEM = TDB\n"), 4u);
-  EXPECT_NE(oem->find("START_TIME = 2028-03-28T02:24:00.000000\n"), std::string::npos);  // MJD2000 10313.6
+  EXPECT_NE(oem->find("START_TIME = 2028-03-27T14:24:00.000000\n"), std::string::npos);  // MJD2000 10313.6
   EXPECT_NE(oem->find("COMMENT Mass 1867.760280 kg at START_TIME"), std::string::npos);
   EXPECT_NE(oem->find("lander of 50 kg left"), std::string::npos);
   EXPECT_NE(oem->find("CREATION_DATE = 2000-01-01T00:00:00\n"), std::string::npos);

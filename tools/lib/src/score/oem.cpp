@@ -163,15 +163,15 @@ void throttle_comments(std::ostringstream& o, const std::vector<TrajectorySample
 }  // namespace
 
 long long oem_epoch_microseconds(double mjd2000) {
-  // Years 0001-9999: about -730120 and +2921940 days from J2000.
-  if (!std::isfinite(mjd2000) || mjd2000 < -730120.5 || mjd2000 > 2921939.5)
+  // Years 0001-9999: -730119 and +2921940 days from MJD2000 0.
+  if (!std::isfinite(mjd2000) || mjd2000 < -730119.0 || mjd2000 >= 2921940.0)
     throw std::invalid_argument("epoch MJD2000 " + fmt("%.17g", mjd2000) + " is outside the years 0001-9999");
   return std::llround(static_cast<long double>(mjd2000) * static_cast<long double>(kMicrosecondsPerDay));
 }
 
 std::string oem_epoch(double mjd2000) {
-  // Microseconds since 2000-01-01T00:00:00.
-  const long long us = oem_epoch_microseconds(mjd2000) + kMicrosecondsPerDay / 2;
+  // Microseconds since 2000-01-01T00:00:00, MJD2000 0 (MJD 51544).
+  const long long us = oem_epoch_microseconds(mjd2000);
   const long long days = floor_div(us, kMicrosecondsPerDay);
   long long rest = us - days * kMicrosecondsPerDay;
   long long year = 0;

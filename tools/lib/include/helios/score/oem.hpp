@@ -12,18 +12,18 @@
 
 namespace helios::score {
 
-// The epoch of t = 0 when the problem states no calendar epoch: J2000.0, MJD2000 0 =
-// 2000-01-01T12:00:00 TDB. The OEM then says so in a COMMENT.
-constexpr double kOemDefaultEpochMjd2000 = 0.0;
+// The epoch of t = 0 when the problem states no calendar epoch: J2000.0 = 2000-01-01T12:00:00 TDB,
+// MJD2000 0.5 (MJD2000 = MJD - 51544: day 0 starts at 2000-01-01T00:00). The OEM then says so in a COMMENT.
+constexpr double kOemDefaultEpochMjd2000 = 0.5;
 
 // CREATION_DATE of every OEM: fixed, not the wall clock, so that the same run gives the same bytes.
 inline constexpr const char* kOemCreationDate = "2000-01-01T00:00:00";
 
-// A TDB epoch given in MJD2000 (days since 2000-01-01T12:00:00) as YYYY-MM-DDThh:mm:ss.ffffff,
+// A TDB epoch given in MJD2000 (days since 2000-01-01T00:00:00) as YYYY-MM-DDThh:mm:ss.ffffff,
 // rounded to the microsecond. Throws std::invalid_argument outside the years 0001-9999.
 std::string oem_epoch(double mjd2000);
 
-// The same epoch as a whole number of microseconds since 2000-01-01T12:00:00 (what oem_epoch prints).
+// The same epoch as a whole number of microseconds since 2000-01-01T00:00:00 (what oem_epoch prints).
 long long oem_epoch_microseconds(double mjd2000);
 
 // One row of trajectory.csv as the OEM uses it.
