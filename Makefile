@@ -60,7 +60,7 @@ gen_rounds := $(shell seq 1 $(GEN_ROUNDS))
 ROUND_ARTIFACTS := $(foreach k,$(derive_rounds),derivation.r$(k).json $(if $(filter $(k),$(DERIVE_ROUNDS)),,verify.r$(k).json)) \
                    $(foreach k,$(gen_rounds),shoot.r$(k).cpp $(if $(filter $(k),$(GEN_ROUNDS)),,compile.r$(k).json))
 ARTIFACTS := spec.json $(if $(filter llm,$(BACKEND)),$(ROUND_ARTIFACTS)) derivation.json verify.json shoot.cpp \
-             solution.json trajectory.oem score.json
+             solution.json trajectory.oem report.md score.json
 artifacts_of = $(addprefix $(RUNS)/$(1)/,$(ARTIFACTS))
 
 .PHONY: run all scoreboard test unit bats bench tools deps clean test-sanitized fuzz deps-fuzz
@@ -162,6 +162,13 @@ $(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp scenarios/%/settings.json $(call TO
 $(RUNS)/%/trajectory.oem: $(RUNS)/%/spec.json $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
 	$(BIN)/helios-score --oem --spec $(@D)/spec.json --solution $(@D)/solution.json \
 	  --trajectory $(@D)/trajectory.csv -o $@
+
+# The run as a document: the derivation as LaTeX mathematics beside verify's verdicts, the
+# solution and its plots (README "report.md").
+$(RUNS)/%/report.md: scenarios/%/problem.txt $(RUNS)/%/spec.json $(RUNS)/%/derivation.json $(RUNS)/%/verify.json \
+                     $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
+	$(BIN)/helios-score --report --problem $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
+	  --verify $(@D)/verify.json --solution $(@D)/solution.json -o $@
 
 $(RUNS)/%/score.json: scenarios/%/reference.json $(RUNS)/%/spec.json $(RUNS)/%/derivation.json \
                       $(RUNS)/%/verify.json $(RUNS)/%/solution.json $(call TOOL_STAMP,score)

@@ -23,6 +23,8 @@ checks=(
   "bats:cmd/bats"
   "jq:cmd/jq"
   "bc:cmd/bc"
+  # make test compiles every report's LaTeX with pdflatex (amsmath: texlive-latex-base, amssymb: texlive-base).
+  "texlive-latex-base:cmd/pdflatex"
 )
 # make fuzz builds its targets with clang++ and links libFuzzer (libclang-rt-dev, only recommended by clang).
 for arg in "$@"; do

@@ -10,6 +10,7 @@
 #include "helios/io/json_io.hpp"
 #include "helios/io/schema.hpp"
 #include "helios/score/oem.hpp"
+#include "helios/score/report.hpp"
 #include "helios/score/score.hpp"
 
 int main(int argc, char** argv) {
@@ -18,7 +19,8 @@ int main(int argc, char** argv) {
       "score a run against its scenario reference, render a scoreboard, or export a trajectory as a CCSDS OEM",
       "--reference REF.json [--spec F] [--derivation F] [--verify F] [--solution F] [options]\n"
       "       helios-score --scoreboard DIR [options]\n"
-      "       helios-score --oem --spec F --solution F --trajectory F.csv [options]",
+      "       helios-score --oem --spec F --solution F --trajectory F.csv [options]\n"
+      "       helios-score --report --problem F.txt --spec F --derivation F [--verify F] [--solution F] [options]",
       {{"reference", "", "FILE", "scenarios/SNN/reference.json to score against", ""},
        {"spec", "", "FILE", "spec.json of the run (omitted: d1 scores 0)", ""},
        {"derivation", "", "FILE", "derivation.json of the run (omitted: no shooting-variable points)", ""},
@@ -27,7 +29,9 @@ int main(int argc, char** argv) {
        {"scoreboard", "", "DIR", "render DIR/*/score.json as a Markdown table instead", ""},
        {"tables", "", "ROOT", "render the paper's three tables from a runs tree ROOT/<backend>/<scenario>/", ""},
        {"oem", "", "", "write the run's trajectory as a CCSDS OEM 2.0 (KVN) instead", ""},
-       {"trajectory", "", "FILE", "trajectory.csv of the run (with --oem)", ""}},
+       {"trajectory", "", "FILE", "trajectory.csv of the run (with --oem)", ""},
+       {"report", "", "", "write the run as report.md (the derivation as LaTeX mathematics) instead", ""},
+       {"problem", "", "FILE", "problem.txt of the run (with --report)", ""}},
       {},
       "Scores the paper's five-dimension rubric: d1 parse 30 (facts of the reference found in the\n"
       "spec within tolerance), d2 derive 20 (14 x fraction of verify checks passed, 6 for the\n"
@@ -41,11 +45,34 @@ int main(int argc, char** argv) {
       "With --oem, writes the converged trajectory as a CCSDS OEM 2.0 in KVN form: one segment per\n"
       "arc between interior events, km and km/s, TDB epochs from the spec's epoch (or J2000.0 when it\n"
       "has none, said in a COMMENT), mass and throttle in COMMENT lines. A solution that did not\n"
-      "converge has no trajectory: nothing is written (a stale -o FILE is removed) and the exit is 0.",
+      "converge has no trajectory: nothing is written (a stale -o FILE is removed) and the exit is 0.\n"
+      "With --report, writes the run as Markdown: the problem, the spec with units, the derivation as\n"
+      "LaTeX mathematics in a compact exact form, verify's verdict beside each condition, the solution\n"
+      "and its plots (verify and solution may be omitted: a report before verifying or solving).",
       "helios-score --reference scenarios/S01/reference.json --spec runs/builtin/S01/spec.json "
       "--derivation runs/builtin/S01/derivation.json --verify runs/builtin/S01/verify.json "
       "--solution runs/builtin/S01/solution.json -o runs/builtin/S01/score.json"};
   return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
+    if (args.has("report")) {
+      for (const char* other : {"scoreboard", "tables", "reference", "oem", "trajectory"})
+        if (args.has(other))
+          throw helios::usage_error(std::string("--report takes no --") + other + ", see helios-score --help");
+      for (const char* needed : {"problem", "spec", "derivation"})
+        if (!args.has(needed))
+          throw helios::usage_error(std::string("--report needs --") + needed + " FILE, see helios-score --help");
+      helios::score::ReportInputs in;
+      in.problem_text = helios::io::read_text(args.get("problem"));
+      in.spec = helios::io::read_artifact("spec", args.get("spec"));
+      in.derivation = helios::io::read_artifact("derivation", args.get("derivation"));
+      in.derivation_source = args.get("derivation");
+      if (args.has("verify")) in.verify = helios::io::read_artifact("verify", args.get("verify"));
+      if (args.has("solution")) in.solution = helios::io::read_artifact("solution", args.get("solution"));
+      std::string report;
+      helios::cli::naming_input(args.get("derivation"), [&] { report = helios::score::report_markdown(in); });
+      helios::io::write_text_atomic(args.output, report);
+      return 0;
+    }
+    if (args.has("problem")) throw helios::usage_error("--problem goes with --report, see helios-score --help");
     if (args.has("oem")) {
       for (const char* other : {"scoreboard", "tables", "reference", "derivation", "verify"})
         if (args.has(other))

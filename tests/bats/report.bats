@@ -1,0 +1,141 @@
+#!/usr/bin/env bats
+# helios-score --report: a run's artifacts -> report.md, the derivation as LaTeX mathematics.
+# Every scenario's report has its mathematics compiled by a real TeX engine (pdflatex, from
+# tests/report/latex_document.awk's standalone document), so a broken formula fails here. Only
+# parse, derive and verify run (a few seconds per scenario); the solution part uses the OEM
+# fixture's S08 solution.
+
+load test_helper
+
+LATEX_DOCUMENT="$ROOT/tests/report/latex_document.awk"
+
+setup() {
+  common_setup
+  require_tool parse derive verify score
+  command -v pdflatex >/dev/null || { echo "pdflatex missing: run tools/install-deps.sh (texlive-latex-base)" >&2; return 1; }
+}
+
+# derived S DIR: DIR/{spec,derivation,verify}.json of scenario S.
+derived() {
+  mkdir -p "$2"
+  "$BIN/helios-parse" "$ROOT/scenarios/$1/problem.txt" -o "$2/spec.json"
+  "$BIN/helios-derive" "$2/spec.json" -o "$2/derivation.json"
+  "$BIN/helios-verify" "$2/derivation.json" -o "$2/verify.json"
+}
+
+# report S DIR [ARGS...]: DIR/report.md of scenario S from DIR's artifacts.
+report() {
+  local s="$1" dir="$2"
+  shift 2
+  "$BIN/helios-score" --report --problem "$ROOT/scenarios/$s/problem.txt" --spec "$dir/spec.json" \
+    --derivation "$dir/derivation.json" --verify "$dir/verify.json" "$@" -o "$dir/report.md"
+}
+
+# compiles MD: the mathematics of MD compiles with pdflatex -halt-on-error (the log on failure).
+compiles() {
+  local md="$1" tex="${1%.md}.tex"
+  awk -f "$LATEX_DOCUMENT" "$md" >"$tex"
+  (cd "$(dirname "$tex")" && pdflatex -interaction=nonstopmode -halt-on-error "$(basename "$tex")" >/dev/null 2>&1) || {
+    grep -A3 '^!' "${tex%.tex}.log" >&2
+    return 1
+  }
+}
+
+@test "report: every scenario's report compiles with pdflatex, and has every section" {
+  local s n=0
+  for s in $(cd "$ROOT/scenarios" && ls -d S[0-9]*); do
+    derived "$s" "$s"
+    report "$s" "$s"
+    compiles "$s/report.md" || { echo "$s: the LaTeX of report.md does not compile" >&2; return 1; }
+    local section
+    for section in '## The problem' '## Specification' '### Hamiltonian' '### State equations' '### Costate equations' \
+      '### Optimal control' '### Boundary conditions and transversality' '### Shooting variables and equations' \
+      '## Verification'; do
+      grep -qF "$section" "$s/report.md" || { echo "$s: no '$section'" >&2; return 1; }
+    done
+    # One display block per shooting equation.
+    [[ $(grep -c '^F_{[0-9]*} = \|^F_{[0-9]*} ={}' "$s/report.md") -eq $(jq '.shooting.equations | length' "$s/derivation.json") ]] \
+      || { echo "$s: not one F_k per shooting equation" >&2; return 1; }
+    n=$((n + 1))
+  done
+  [[ $n -ge 13 ]]
+}
+
+@test "report: a broken formula fails the LaTeX check (the check can fail)" {
+  derived S01 r
+  report S01 r
+  compiles r/report.md
+  # An unbalanced brace in the first formula with a fraction.
+  awk '/\\frac\{/ && !done { sub(/\\frac\{/, "\\frac{{"); done = 1 } { print }' r/report.md >r/broken.md
+  run cmp -s r/report.md r/broken.md
+  [[ $status -eq 1 ]]
+  run compiles r/broken.md
+  [[ $status -ne 0 ]]
+}
+
+@test "report: S10's periapsis row is typeset in a tenth of its stored length, its norms named" {
+  derived S10 r
+  report S10 r
+  local stored typeset
+  stored=$(jq -r '.events[0].psi[5]' r/derivation.json | wc -c)
+  # The display block of psi_6 in the section of the event mars (the periapsis condition).
+  awk '/^#### mars /{ e = 1 } e && /^\\psi_\{6\} /{ p = 1 } p && /^\$\$$/{ exit } p' r/report.md >psi6.tex
+  typeset=$(wc -c <psi6.tex)
+  [[ $stored -gt 5000 && $typeset -gt 100 && $typeset -lt $((stored / 10)) ]] || { echo "stored $stored, typeset $typeset" >&2; false; }
+  grep -qF 'rmin' psi6.tex
+  grep -qF '### Named quantities' r/report.md
+  grep -qF 'r = \sqrt{r_{x}^{2} + r_{y}^{2} + r_{z}^{2}}' r/report.md
+}
+
+@test "report: the same artifacts give the same bytes" {
+  derived S10 r
+  report S10 r
+  cp r/report.md first.md
+  report S10 r
+  cmp first.md r/report.md
+}
+
+@test "report: a failed check of verify stands beside the condition it concerns" {
+  derived S01 r
+  jq '(.checks[] | select(.id == "hamiltonian")) |= (.verdict = "fail" | .feedback = "H differs at 3 of 25 points")
+      | .verdict = "fail"' r/verify.json >r/failed.json
+  mv r/failed.json r/verify.json
+  report S01 r
+  awk '/^### Hamiltonian/ { h = 1 } h && /^### State equations/ { exit } h' r/report.md >hamiltonian.md
+  grep -qF '`hamiltonian` **fail**' hamiltonian.md
+  grep -qF 'H differs at 3 of 25 points' hamiltonian.md
+  grep -qF 'verification **fail**' r/report.md
+}
+
+@test "report: with a solution, its table, switches and plots; without, it says so" {
+  local fixtures="$ROOT/tests/fixtures/oem"
+  mkdir r
+  cp "$fixtures/spec.json" r/
+  "$BIN/helios-derive" r/spec.json -o r/derivation.json
+  "$BIN/helios-verify" r/derivation.json -o r/verify.json
+  jq '.files = {"trajectory": "trajectory.csv", "trajectory_plot": "trajectory.png"}' "$fixtures/solution.json" >r/solution.json
+  report S08 r --solution r/solution.json
+  grep -qF '## Solution (solution.json)' r/report.md
+  grep -qF '| `final_mass_kg` | 1500' r/report.md
+  grep -qF '### Switches' r/report.md
+  grep -qF '![trajectory_plot](trajectory.png)' r/report.md
+  run grep -cF '](trajectory.csv)' r/report.md
+  [[ $output == 0 ]]
+  compiles r/report.md
+  report S08 r
+  grep -qF 'not solved (no solution.json given)' r/report.md
+}
+
+@test "report: usage and input errors -> exit 2 / 3, one line, nothing written" {
+  derived S01 r
+  run -2 --separate-stderr "$BIN/helios-score" --report --spec r/spec.json --derivation r/derivation.json -o out.md
+  assert_one_error_line score
+  [[ $stderr == *"--report needs --problem"* ]]
+  run -2 --separate-stderr "$BIN/helios-score" --problem "$S01/problem.txt" --reference "$S01/reference.json" -o out.md
+  [[ $stderr == *"--problem goes with --report"* ]]
+  run -3 --separate-stderr "$BIN/helios-score" --report --problem "$S01/problem.txt" --spec r/spec.json \
+    --derivation r/missing.json -o out.md
+  assert_one_error_line score
+  [[ $stderr == *"r/missing.json"* ]]
+  [[ ! -e out.md ]]
+}

@@ -1,0 +1,26 @@
+#pragma once
+// report.md: a run as a document a reviewer can sign off (README "report.md"). The problem in
+// words, the spec as a table with units, the derivation as mathematics (LaTeX in $...$ / $$...$$,
+// compact: symbolic::Typesetter), helios-verify's verdict beside each condition it checked, the
+// solution (status, objective, residual, switches, the search record) and the plots.
+#include <optional>
+#include <string>
+
+#include "helios/io/json_io.hpp"
+
+namespace helios::score {
+
+// The artifacts of one run, already read (schema-valid for the builtin backend; a model's
+// derivation is read as verify reads it). Sources name the files in the report.
+struct ReportInputs {
+  std::string problem_text;  // the problem in words (scenarios/SNN/problem.txt)
+  io::json spec, derivation;
+  std::optional<io::json> verify, solution;  // a report before verifying or solving omits them
+  std::string derivation_source = "derivation.json";
+};
+
+// The Markdown text. Throws input_error naming the derivation field an expression of which cannot
+// be read (an expression the verifier could not read either is shown as its text instead).
+std::string report_markdown(const ReportInputs& in);
+
+}  // namespace helios::score

@@ -1,0 +1,569 @@
+#include "helios/score/report.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include "helios/derivation/reader.hpp"
+#include "helios/symbolic/latex.hpp"
+
+namespace helios::score {
+
+namespace {
+
+using io::json;
+
+// Width of a display line of LaTeX before a sum is broken (about a page's width rendered).
+constexpr std::size_t kLineWidth = 150;
+
+std::string number(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+std::string scalar(const json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_integer()) return std::to_string(v.get<long long>());
+  if (v.is_number()) return number(v.get<double>());
+  if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
+  if (v.is_null()) return "";
+  if (v.is_array() && std::all_of(v.begin(), v.end(), [](const json& x) { return x.is_primitive(); })) {
+    std::string out = "[";
+    for (const auto& x : v) out += (out.size() > 1 ? ", " : "") + scalar(x);
+    return out + "]";
+  }
+  return v.dump();
+}
+
+// Text inside a Markdown table cell or a line: no line break, no cell separator, no HTML.
+std::string cell(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|')
+      out += "\\|";
+    else if (c == '\n' || c == '\r')
+      out += ' ';
+    else if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '$' || c == '*' || c == '_' || c == '`' || c == '\\')
+      out += std::string("\\") + c;
+    else
+      out += c;
+  }
+  return out;
+}
+
+// The unit a key of the spec names by its suffix (thrust_N, mu_km3_s2, tof_days).
+std::string unit_of_key(const std::string& key) {
+  static const std::vector<std::pair<std::string, std::string>> suffixes = {{"_km3_s2", "km^3/s^2"},
+                                                                            {"_km_s", "km/s"},
+                                                                            {"_m_s2", "m/s^2"},
+                                                                            {"_mm_s2", "mm/s^2"},
+                                                                            {"_m_s", "m/s"},
+                                                                            {"_mjd2000", "MJD2000"},
+                                                                            {"_days", "d"},
+                                                                            {"_km", "km"},
+                                                                            {"_kg", "kg"},
+                                                                            {"_N", "N"},
+                                                                            {"_s", "s"},
+                                                                            {"_deg", "deg"},
+                                                                            {"_rad", "rad"},
+                                                                            {"_AU", "AU"},
+                                                                            {"_m2", "m^2"},
+                                                                            {"_m", "m"}};
+  for (const auto& [suffix, unit] : suffixes)
+    if (key.size() > suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0) return unit;
+  return "";
+}
+
+void spec_rows(const json& v, const std::string& pointer, const std::string& key, std::ostringstream& out) {
+  if (v.is_object()) {
+    for (const auto& [k, x] : v.items()) spec_rows(x, pointer + "/" + k, k, out);
+    return;
+  }
+  if (v.is_array() && !std::all_of(v.begin(), v.end(), [](const json& x) { return x.is_primitive(); })) {
+    for (std::size_t i = 0; i < v.size(); ++i) spec_rows(v[i], pointer + "/" + std::to_string(i), key, out);
+    return;
+  }
+  out << "| `" << pointer << "` | " << cell(scalar(v)) << " | " << unit_of_key(key) << " |\n";
+}
+
+// A code span: backticks inside become quotes, and a cell separator is escaped.
+std::string code(const std::string& text) {
+  std::string out = "`";
+  for (char c : text) out += c == '`' ? std::string("'") : c == '|' ? std::string("\\|") : std::string(1, c);
+  return out + "`";
+}
+
+// A fence for a code block holding `text`: longer than any run of backticks in it.
+std::string fence_for(const std::string& text) {
+  std::size_t longest = 0, run = 0;
+  for (char c : text) {
+    run = c == '`' ? run + 1 : 0;
+    longest = std::max(longest, run);
+  }
+  return std::string(std::max<std::size_t>(3, longest + 1), '`');
+}
+
+class Writer {
+ public:
+  explicit Writer(const ReportInputs& in)
+      : in_(in),
+        d_(in.derivation),
+        reader_(in.derivation, in.derivation_source, false),
+        symbols_(with_multipliers(reader_.symbols, in.derivation)),
+        tex_(names()) {}
+
+  std::string write();
+
+ private:
+  // The reader's symbols and the multipliers the conditions name (nu_arrival_1, ...), which the
+  // reader does not register: they are no unknown of the shooting.
+  static symbolic::SymbolTable with_multipliers(symbolic::SymbolTable table, const json& d) {
+    const auto add = [&](const json& owner) {
+      for (const auto& m : owner.value("multipliers", json::array()))
+        if (m.is_string() && is_identifier(m.get<std::string>())) table.get(m.get<std::string>());
+    };
+    for (const auto& c : d.value("constraints", json::array())) add(c);
+    for (const auto& e : d.value("events", json::array())) add(e);
+    return table;
+  }
+  static bool is_identifier(const std::string& s) {
+    return !s.empty() && !std::isdigit(static_cast<unsigned char>(s[0])) && std::all_of(s.begin(), s.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    });
+  }
+
+  std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    for (const auto& entry : symbols_.symtab()) out.push_back(entry.first);
+    return out;
+  }
+
+  // An expression of the derivation parsed, or nothing when it is not one the reader can parse.
+  std::optional<GiNaC::ex> parsed(const std::string& text, const std::string& where) const {
+    try {
+      return symbols_.parse(text, where);
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+  }
+
+  void learn_all(const json& v, const std::string& key);
+  std::string display(const std::string& lhs, const std::string& text, const std::string& where,
+                      const std::string& rhs = "");
+  std::string condition(const std::string& text, const std::string& where);
+  std::string inline_symbol(const std::string& name) const { return "$" + tex_.symbol(name) + "$"; }
+  std::string findings(const std::function<bool(const json&)>& concerns) const;
+
+  void header(std::ostringstream& o) const;
+  void problem(std::ostringstream& o) const;
+  void specification(std::ostringstream& o) const;
+  void symbols(std::ostringstream& o);
+  void equations(std::ostringstream& o);
+  void control(std::ostringstream& o);
+  void boundaries(std::ostringstream& o);
+  void events(std::ostringstream& o);
+  void shooting(std::ostringstream& o);
+  void verification(std::ostringstream& o) const;
+  void solution(std::ostringstream& o) const;
+
+  const ReportInputs& in_;
+  const json& d_;
+  derivation::Reader reader_;
+  symbolic::SymbolTable symbols_;
+  symbolic::Typesetter tex_;
+};
+
+// Every expression-valued string of the derivation (by the keys that hold expressions), learned
+// first so that a named quantity has one name in the whole document.
+void Writer::learn_all(const json& v, const std::string& key) {
+  static const std::vector<std::string> keys = {"hamiltonian",
+                                                "rhs",
+                                                "state_rhs",
+                                                "running_cost",
+                                                "endpoint_cost",
+                                                "law",
+                                                "dH_da",
+                                                "switching_function",
+                                                "dH_du_at_lower",
+                                                "dH_du_at_upper",
+                                                "d2H_du2",
+                                                "interior",
+                                                "psi",
+                                                "expression",
+                                                "cone_angle"};
+  if (v.is_object()) {
+    for (const auto& [k, x] : v.items()) learn_all(x, k);
+  } else if (v.is_array()) {
+    for (const auto& x : v) learn_all(x, key);
+  } else if (v.is_string() && std::find(keys.begin(), keys.end(), key) != keys.end()) {
+    if (auto e = parsed(v.get<std::string>(), key)) tex_.learn(*e);
+  }
+}
+
+// A display block "lhs = expression", broken between the terms of a long sum; the text itself
+// when it is not an expression the reader parses.
+std::string Writer::display(const std::string& lhs, const std::string& text, const std::string& where,
+                            const std::string& rhs) {
+  const auto e = parsed(text, where);
+  if (!e) return "\n" + code(text) + " (not an expression this report can typeset)\n\n";
+  const std::vector<std::string> lines = tex_.latex_lines(*e, kLineWidth);
+  std::ostringstream o;
+  o << "\n$$\n";
+  if (lines.size() == 1) {
+    o << lhs << (lhs.empty() ? "" : " = ") << lines[0] << rhs << "\n";
+  } else {
+    o << "\\begin{aligned}\n" << lhs << (lhs.empty() ? "" : " ={}") << " & " << lines[0] << " \\\\\n";
+    for (std::size_t i = 1; i < lines.size(); ++i)
+      o << " & " << lines[i] << (i + 1 < lines.size() ? " \\\\\n" : rhs + "\n");
+    o << "\\end{aligned}\n";
+  }
+  o << "$$\n\n";
+  return o.str();
+}
+
+// A condition "a = b" as mathematics when both sides are expressions, else its words.
+std::string Writer::condition(const std::string& text, const std::string& where) {
+  const auto eq = text.find(" = ");
+  if (eq != std::string::npos) {
+    const auto lhs = parsed(text.substr(0, eq), where), rhs = parsed(text.substr(eq + 3), where);
+    if (lhs && rhs) return display(tex_.latex(*lhs), text.substr(eq + 3), where);
+  }
+  return "- " + cell(text) + "\n";
+}
+
+std::string Writer::findings(const std::function<bool(const json&)>& concerns) const {
+  if (!in_.verify) return "";
+  std::ostringstream o;
+  int shown = 0;
+  for (const auto& c : in_.verify->at("checks")) {
+    if (!concerns(c)) continue;
+    const bool pass = c.value("verdict", "") == "pass";
+    o << (shown++ ? "; " : "> helios-verify: ") << "`" << c.value("id", "") << "` "
+      << (pass ? c.value("verdict", "") : "**" + c.value("verdict", "") + "**");
+    const std::string feedback = c.value("feedback", "");
+    if (!pass && !feedback.empty()) o << ": " << cell(feedback);
+  }
+  return shown ? o.str() + "\n\n" : "";
+}
+
+bool id_starts(const json& check, const std::string& prefix) {
+  return check.value("id", "").rfind(prefix, 0) == 0;
+}
+
+// A check of event `id`: its id after the colon is the event's or one of its parts.
+bool concerns_event(const json& check, const std::string& id) {
+  const std::string c = check.value("id", "");
+  const auto colon = c.find(':');
+  if (colon == std::string::npos) return false;
+  const std::string part = c.substr(colon + 1);
+  return part == id || part.rfind(id + "_", 0) == 0 || part.find("_" + id + "_") != std::string::npos ||
+         (part.size() > id.size() && part.compare(part.size() - id.size() - 1, id.size() + 1, "_" + id) == 0);
+}
+
+void Writer::header(std::ostringstream& o) const {
+  const json& p = in_.spec.at("problem");
+  o << "# " << cell(p.value("id", "")) << ": " << cell(p.value("title", "")) << "\n\n";
+  const json& producer = d_.at("producer");
+  o << "Derivation by " << cell(producer.value("tool", "")) << " " << cell(producer.value("version", "")) << " ("
+    << cell(producer.value("backend", "")) << " backend)";
+  if (in_.verify) {
+    int passed = 0, total = 0;
+    for (const auto& c : in_.verify->at("checks")) {
+      ++total;
+      passed += c.value("verdict", "") == "pass";
+    }
+    o << "; verification **" << cell(in_.verify->value("verdict", "")) << "** (" << passed << " of " << total
+      << " checks pass)";
+  } else {
+    o << "; not verified (no verify.json given)";
+  }
+  if (in_.solution)
+    o << "; solution **" << cell(in_.solution->value("status", "")) << "**.\n\n";
+  else
+    o << "; not solved (no solution.json given).\n\n";
+  o << "Written by `helios-score --report` from the run's artifacts. Every formula is an exact rewrite of the "
+       "expression stored in "
+    << cell(in_.derivation_source)
+    << ": norms and differences are named (see *Named quantities*), terms collected and factored where "
+       "that is shorter.\n\n";
+}
+
+void Writer::problem(std::ostringstream& o) const {
+  o << "## The problem\n\n";
+  const std::string fence = fence_for(in_.problem_text);
+  o << fence << "text\n"
+    << in_.problem_text << (in_.problem_text.empty() || in_.problem_text.back() == '\n' ? "" : "\n") << fence << "\n\n";
+}
+
+void Writer::specification(std::ostringstream& o) const {
+  o << "## Specification (spec.json)\n\n| field | value | unit |\n|---|---|---|\n";
+  std::ostringstream rows;
+  for (const auto& [k, v] : in_.spec.items())
+    if (k != "schema" && k != "schema_version" && k != "producer") spec_rows(v, "/" + k, k, rows);
+  o << rows.str() << "\n";
+}
+
+void Writer::symbols(std::ostringstream& o) {
+  const json& u = d_.at("units");
+  o << "## The derivation\n\n### Units and symbols\n\nThe solver works in normalized units: length "
+    << cell(u.value("length", "")) << " = " << number(u.value("length_km", 0.0)) << " km, time "
+    << cell(u.value("time", "")) << " = " << number(u.value("time_s", 0.0)) << " s, mass "
+    << number(u.value("mass_kg", 0.0)) << " kg.\n\n| symbol | name | meaning | unit | value |\n|---|---|---|---|---|\n";
+  for (const auto& s : d_.at("states"))
+    o << "| " << inline_symbol(s.at("name")) << " | `" << s.at("name").get<std::string>()
+      << "` | state: " << cell(s.value("meaning", "")) << " | " << cell(s.value("unit", "")) << " | |\n";
+  for (const auto& s : d_.at("states"))
+    o << "| " << inline_symbol(s.at("costate")) << " | `" << s.at("costate").get<std::string>() << "` | costate of "
+      << cell(s.value("meaning", "")) << " | | |\n";
+  for (const auto& c : d_.at("controls"))
+    o << "| " << inline_symbol(c.at("name")) << " | `" << c.at("name").get<std::string>()
+      << "` | control: " << cell(c.value("meaning", "")) << " | | |\n";
+  for (const auto& p : d_.at("parameters"))
+    o << "| " << inline_symbol(p.at("name")) << " | `" << p.at("name").get<std::string>() << "` | "
+      << cell(p.value("meaning", "")) << " | " << cell(p.value("unit", "")) << " | "
+      << (p.value("source", "").empty() ? number(p.value("value", 0.0))
+                                        : "evaluated by the program: " + code(p.at("source")))
+      << " |\n";
+  o << "| " << inline_symbol(reader_.multiplier) << " | `" << reader_.multiplier << "` | cost multiplier | | |\n";
+  if (!reader_.homotopy.empty())
+    o << "| " << inline_symbol(reader_.homotopy) << " | `" << reader_.homotopy << "` | "
+      << cell(d_.at("homotopy").value("meaning", "")) << " | | |\n";
+  o << "\n";
+}
+
+// The time derivative of a symbol: the dot on its letter, not over its subscript.
+std::string dotted(const std::string& tex) {
+  for (const char* base : {"\\lambda"})
+    if (tex.rfind(base, 0) == 0) return "\\dot{" + std::string(base) + "}" + tex.substr(std::string(base).size());
+  if (tex.size() > 1 && std::isalpha(static_cast<unsigned char>(tex[0])) && (tex[1] == '_' || tex[1] == '^'))
+    return "\\dot{" + tex.substr(0, 1) + "}" + tex.substr(1);
+  return "\\dot{" + tex + "}";
+}
+
+void Writer::equations(std::ostringstream& o) {
+  o << "### Hamiltonian\n"
+    << display("H", d_.at("hamiltonian"), "/hamiltonian")
+    << findings([](const json& c) { return id_starts(c, "hamiltonian"); });
+  const json& dyn = d_.at("dynamics");
+  o << "Running cost and endpoint cost:\n"
+    << display("L", dyn.at("running_cost"), "/dynamics/running_cost")
+    << display("\\phi", dyn.at("endpoint_cost"), "/dynamics/endpoint_cost");
+  o << "### State equations\n";
+  for (const auto& s : d_.at("state_odes"))
+    o << display(dotted(tex_.symbol(s.at("state"))), s.at("rhs"), "/state_odes");
+  o << findings([](const json& c) { return id_starts(c, "state_ode:"); });
+  o << "### Costate equations\n";
+  for (const auto& s : d_.at("costate_odes"))
+    o << display(dotted(tex_.symbol(s.at("costate"))), s.at("rhs"), "/costate_odes");
+  o << findings([](const json& c) { return id_starts(c, "costate_ode:"); });
+}
+
+void Writer::control(std::ostringstream& o) {
+  o << "### Optimal control\n\n";
+  const json& law = d_.at("control_law");
+  if (law.contains("direction")) {
+    const json& dir = law.at("direction");
+    o << "Thrust direction: " << cell(dir.value("reason", "")) << "\n";
+    for (std::size_t i = 0; i < dir.at("controls").size(); ++i)
+      o << display(tex_.symbol(dir.at("controls")[i]) + "^{*}", dir.at("law")[i], "/control_law/direction/law");
+  }
+  if (law.contains("throttle")) {
+    const json& th = law.at("throttle");
+    const std::string u = tex_.symbol(th.at("control"));
+    o << "Throttle " << inline_symbol(th.at("control")) << " in [" << scalar(th.at("bounds")[0]) << ", "
+      << scalar(th.at("bounds")[1]) << "], smoothing " << cell(th.value("smoothing", "")) << ". Switching function:\n"
+      << display("S", th.at("switching_function"), "/control_law/throttle/switching_function")
+      << display("\\left.\\frac{\\partial H}{\\partial " + u + "}\\right|_{" + u + "=0}", th.at("dH_du_at_lower"),
+                 "/control_law/throttle/dH_du_at_lower")
+      << display("\\left.\\frac{\\partial H}{\\partial " + u + "}\\right|_{" + u + "=1}", th.at("dH_du_at_upper"),
+                 "/control_law/throttle/dH_du_at_upper")
+      << display("\\frac{\\partial^2 H}{\\partial " + u + "^2}", th.at("d2H_du2"), "/control_law/throttle/d2H_du2")
+      << "Interior throttle (stationarity of H):\n"
+      << display(u + "_{\\mathrm{int}}", th.at("interior"), "/control_law/throttle/interior")
+      << "Law: " << cell(th.value("law", "")) << "\n\n";
+  }
+  if (law.contains("sail")) {
+    const json& sail = law.at("sail");
+    o << "Sail normal: " << cell(sail.value("reason", "")) << "\n";
+    for (const auto& def : sail.value("definitions", json::array()))
+      o << display(tex_.symbol(def.at("name")), def.at("expression"), "/control_law/sail/definitions");
+    for (std::size_t i = 0; i < sail.at("controls").size(); ++i)
+      o << display(tex_.symbol(sail.at("controls")[i]) + "^{*}", sail.at("law")[i], "/control_law/sail/law");
+    o << "Stationarity: " << cell(sail.value("stationarity", ""))
+      << ". Admissible: " << cell(sail.value("admissible", "")) << ".\n\n";
+  }
+  o << findings([](const json& c) { return c.value("category", "") == "control"; });
+}
+
+void Writer::boundaries(std::ostringstream& o) {
+  o << "### Boundary conditions and transversality\n\n";
+  const json& times = d_.at("times");
+  o << "Times (normalized): t0 = " << scalar(times.at("t0")) << ", final time " << cell(times.value("final_time", ""));
+  if (times.contains("tf")) o << ", tf = " << scalar(times.at("tf"));
+  if (times.contains("tf_window")) o << ", tf in " << scalar(times.at("tf_window"));
+  o << ".\n";
+  if (times.contains("tf_expression")) o << display("t_f", times.at("tf_expression"), "/times/tf_expression");
+  o << "\n";
+  for (const auto& c : d_.at("constraints")) {
+    const std::string id = c.at("id");
+    o << "#### " << cell(id) << " (" << cell(c.value("kind", "")) << " at " << cell(c.value("at", "")) << ")\n\n"
+      << "Target: " << code(c.at("target").dump()) << "\n";
+    const json& psi = c.value("psi", json::array());
+    for (std::size_t i = 0; i < psi.size(); ++i)
+      o << display("\\psi_{" + std::to_string(i + 1) + "}", psi[i], "/constraints/" + id + "/psi", " = 0");
+    o << "Conditions:\n\n";
+    for (const auto& cond : c.value("conditions", json::array())) o << condition(cond, "/constraints/" + id);
+    if (c.contains("time_condition")) o << "- " << cell(c.at("time_condition")) << "\n";
+    o << "\n"
+      << findings([&](const json& check) {
+           return c.at("at") != "interior" && check.value("category", "") == "transversality" &&
+                  (c.at("at") == "t0" ? id_starts(check, "transversality_t0") : !id_starts(check, "transversality_t0"));
+         });
+  }
+}
+
+void Writer::events(std::ostringstream& o) {
+  const json& evs = d_.value("events", json::array());
+  if (evs.empty()) return;
+  o << "### Interior events\n\n";
+  for (const auto& ev : evs) {
+    const std::string id = ev.at("id");
+    const json& time = ev.at("time");
+    o << "#### " << cell(id) << " (" << cell(ev.value("kind", "")) << ")\n\nTarget: " << code(ev.at("target").dump())
+      << ". Epoch " << inline_symbol(time.at("symbol")) << " in " << scalar(time.value("window", json::array()))
+      << ", stay " << scalar(time.value("duration", json(0.0))) << " (normalized):\n"
+      << display(tex_.symbol(time.at("symbol")), time.at("expression"), "/events/" + id + "/time/expression");
+    const json& psi = ev.value("psi", json::array());
+    for (std::size_t i = 0; i < psi.size(); ++i)
+      o << display("\\psi_{" + std::to_string(i + 1) + "}", psi[i], "/events/" + id + "/psi", " = 0");
+    o << "Conditions:\n\n";
+    for (const auto& cond : ev.value("conditions", json::array())) o << condition(cond, "/events/" + id);
+    o << "\nState and costate after the event:\n";
+    for (const auto& m : ev.value("state_map", json::array()))
+      o << display(tex_.symbol(m.at("state")) + "(t^{+})", m.at("expression"), "/events/" + id + "/state_map");
+    // A costate after the event is an expression, or a shooting variable of its own (free).
+    for (const auto& m : ev.value("costate_map", json::array()))
+      o << display(tex_.symbol(m.at("costate")) + "(t^{+})",
+                   m.contains("expression") ? m.at("expression") : m.at("variable"), "/events/" + id + "/costate_map");
+    o << findings([&](const json& c) { return concerns_event(c, id); });
+  }
+}
+
+void Writer::shooting(std::ostringstream& o) {
+  const json& sh = d_.at("shooting");
+  o << "### Shooting variables and equations\n\n| # | variable | meaning | scale | first guess "
+       "|\n|---|---|---|---|---|\n";
+  int i = 0;
+  for (const auto& v : sh.at("variables"))
+    o << "| " << ++i << " | " << inline_symbol(v.at("name")) << " | " << cell(v.value("meaning", "")) << " | "
+      << scalar(v.value("scale", json(1.0))) << " | " << cell(v.value("init", "")) << " |\n";
+  o << "\n" << sh.at("equations").size() << " equations in " << sh.at("variables").size() << " unknowns:\n\n";
+  i = 0;
+  for (const auto& e : sh.at("equations")) {
+    ++i;
+    o << "**F" << i << "** `" << cell(e.value("name", "")) << "`: " << cell(e.value("meaning", "")) << "\n"
+      << display("F_{" + std::to_string(i) + "}", e.at("expression"), "/shooting/equations/" + std::to_string(i - 1));
+  }
+  o << findings([](const json& c) { return c.value("category", "") == "counts"; });
+}
+
+void Writer::verification(std::ostringstream& o) const {
+  if (!in_.verify) return;
+  o << "## Verification (verify.json)\n\nVerdict: **" << cell(in_.verify->value("verdict", ""))
+    << "**.\n\n| check | category | verdict | method | max rel. error | finding |\n|---|---|---|---|---|---|\n";
+  for (const auto& c : in_.verify->at("checks"))
+    o << "| `" << cell(c.value("id", "")) << "` | " << cell(c.value("category", "")) << " | "
+      << cell(c.value("verdict", "")) << " | " << cell(c.value("method", "")) << " | "
+      << (c.contains("max_rel_error") ? scalar(c.at("max_rel_error")) : "") << " | " << cell(c.value("feedback", ""))
+      << " |\n";
+  o << "\n";
+}
+
+void Writer::solution(std::ostringstream& o) const {
+  if (!in_.solution) return;
+  const json& s = *in_.solution;
+  o << "## Solution (solution.json)\n\n| quantity | value |\n|---|---|\n";
+  for (const char* key : {"status", "tof_days", "departure_mjd2000", "initial_mass_kg", "final_mass_kg",
+                          "propellant_kg", "delta_v_m_s", "epsilon", "max_residual", "hamiltonian_drift", "iterations",
+                          "function_evaluations", "restarts", "seed", "method"})
+    if (s.contains(key)) o << "| `" << key << "` | " << cell(scalar(s.at(key))) << " |\n";
+  if (s.contains("timings"))
+    for (const auto& [k, v] : s.at("timings").items()) o << "| `timings/" << k << "` | " << scalar(v) << " |\n";
+  o << "\n";
+  if (s.contains("switches") && !s.at("switches").empty()) {
+    o << "### Switches\n\n| t (d) | throttle after |\n|---|---|\n";
+    for (const auto& w : s.at("switches"))
+      o << "| " << scalar(w.value("t_days", json())) << " | " << scalar(w.value("throttle_after", json())) << " |\n";
+    o << "\n";
+  }
+  if (s.contains("homotopy")) {
+    o << "### Homotopy\n\n| eps | converged | evaluations | max residual |\n|---|---|---|---|\n";
+    for (const auto& h : s.at("homotopy"))
+      o << "| " << scalar(h.value("eps", json())) << " | " << scalar(h.value("converged", json())) << " | "
+        << scalar(h.value("evaluations", json())) << " | " << scalar(h.value("max_residual", json())) << " |\n";
+    o << "\n";
+  }
+  if (s.contains("search")) {
+    const json& sr = s.at("search");
+    o << "### The search\n\n"
+      << cell(sr.value("method", "")) << ": " << scalar(sr.value("starts", json())) << " starts on "
+      << scalar(sr.value("threads", json())) << " threads, " << scalar(sr.value("seconds", json())) << " s"
+      << (sr.value("cut_by_time", false) ? ", cut by the time limit" : "") << ". " << cell(sr.value("reason", ""))
+      << ".\n\n| extremal | objective | propellant (kg) | revolutions | switches | reached from | max residual "
+         "|\n|---|---|---|---|---|---|---|\n";
+    for (const auto& e : sr.value("extremals", json::array()))
+      o << "| " << scalar(e.value("id", json())) << (e.value("id", -1) == sr.value("returned", -2) ? " (returned)" : "")
+        << " | " << scalar(e.value("objective", json())) << " | " << scalar(e.value("propellant_kg", json())) << " | "
+        << scalar(e.value("revolutions", json())) << " | " << scalar(e.value("switches", json())) << " | "
+        << scalar(e.value("reached", json())) << " starts | " << scalar(e.value("max_residual", json())) << " |\n";
+    o << "\n";
+  }
+  if (s.contains("files")) {
+    o << "### Plots\n\n";
+    for (const auto& [k, v] : s.at("files").items()) {
+      const std::string file = v.get<std::string>();
+      if (file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0) o << "![" << k << "](" << file << ")\n\n";
+    }
+  }
+}
+
+std::string Writer::write() {
+  learn_all(d_, "");
+  std::ostringstream o, derivation;
+  header(o);
+  problem(o);
+  specification(o);
+  symbols(derivation);
+  equations(derivation);
+  control(derivation);
+  boundaries(derivation);
+  events(derivation);
+  shooting(derivation);
+  o << derivation.str();
+  const auto defs = tex_.definitions();
+  if (!defs.empty()) {
+    o << "### Named quantities\n\n";
+    for (const auto& q : defs) o << "$$\n" << q.symbol << " = " << q.definition << "\n$$\n\n";
+  }
+  verification(o);
+  solution(o);
+  return o.str();
+}
+
+}  // namespace
+
+std::string report_markdown(const ReportInputs& in) {
+  return Writer(in).write();
+}
+
+}  // namespace helios::score
