@@ -109,6 +109,13 @@ script() {
   assert_jq "$RUN/score.json" '.total == 100 and .producer.backend == "llm" and .producer.model == "fake-model-1"'
 }
 
+@test "llm: the model's derivation gets the same report.md, verify's verdicts beside its conditions" {
+  grep -qF 'Derivation by helios-derive' "$RUN/report.md"
+  grep -qF '(llm backend)' "$RUN/report.md"
+  grep -qF '> helios-verify: `hamiltonian` pass' "$RUN/report.md"
+  grep -qF '## Solution (solution.json)' "$RUN/report.md"
+}
+
 @test "llm: transcripts hold token counts, latency and model; no file under runs/ holds the API key" {
   local t n=0
   for t in "$RUN"/*.transcript.json; do
@@ -154,7 +161,7 @@ script() {
   cp -a "$RUN" "$copy/llm/S01"
   # The state of a run stopped while round 2 was asked.
   (cd "$copy/llm/S01" && rm -f derivation.r2* verify.r2.json derivation.r3.json derivation.json verify.json \
-    shoot.* compile.* solution.json score.json trajectory.* throttle_mass.png)
+    shoot.* compile.* solution.json report.md score.json trajectory.* throttle_mass.png)
   local before
   before="$(cd "$copy/llm/S01" && stat -c '%n %.9Y' spec.json derivation.r1.json verify.r1.json)"
   start_fake "$(script resume.json '{"replies": [

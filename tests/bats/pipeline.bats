@@ -15,7 +15,7 @@ BATS_NO_PARALLELIZE_WITHIN_FILE=true
 
 T01_LOCK=/tmp/helios-bats-T01.lock
 T01_LOCK_FD=201
-ARTIFACTS=(spec.json derivation.json verify.json shoot.cpp solution.json trajectory.oem score.json)
+ARTIFACTS=(spec.json derivation.json verify.json shoot.cpp solution.json trajectory.oem report.md score.json)
 EARLY=(spec.json derivation.json verify.json shoot.cpp)
 LATE=(solution.json trajectory.oem score.json)
 
@@ -126,7 +126,7 @@ assert_not_ran() {
   assert_jq "$RUNDIR/solution.json" '.status == "converged" and .max_residual < 1e-10'
   assert_jq "$RUNDIR/score.json" '.scenario == "T01" and .total == 100'
   # The OEM, read by the independent parser of oem.bats against trajectory.csv (S01: no epoch).
-  run -0 awk -v epoch0=0 -f "$ROOT/tests/bats/oem_check.awk" "$RUNDIR/trajectory.csv" "$RUNDIR/trajectory.oem"
+  run -0 awk -v epoch0=0.5 -f "$ROOT/tests/bats/oem_check.awk" "$RUNDIR/trajectory.csv" "$RUNDIR/trajectory.oem"
   [[ $output == "segments 1 data_lines "* ]] || { echo "$output" >&2; false; }
   assert_no_temp_files "$RUNDIR"
 }

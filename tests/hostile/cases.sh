@@ -261,6 +261,14 @@ expect 3 'v.json: malformed JSON: the number 1e400 is outside the range of a dou
 case_dir score-usage-nothing; expect 2 '.' score
 case_dir score-scoreboard-missing; expect 3 'nowhere' score --scoreboard nowhere
 
+# ---- helios-score --report: the problem text it quotes ---------------------------------------
+# report_case EXIT PATTERN: helios-score --report on ./p.txt and the base derivation.
+report_case() { expect "$1" "$2" score --report --problem p.txt --spec "$BASE/spec.json" --derivation "$BASE/derivation.json"; }
+case_dir score-report-problem-binary; printf 'The thrust is 0.5 N.\n\001\002\n' >p.txt; report_case 3 'p.txt:2: control byte'
+case_dir score-report-problem-not-utf8; printf 'The thrust is 0.5 N \377.\n' >p.txt; report_case 3 'p.txt:1: the problem text is not valid UTF-8'
+case_dir score-report-problem-missing; report_case 3 'p.txt'
+case_dir score-report-usage-no-derivation; echo x >p.txt; expect 2 'needs --derivation' score --report --problem p.txt --spec "$BASE/spec.json"
+
 # ---- helios-score --oem: trajectory.csv and the run it belongs to ---------------------------
 
 OEM_FIX="$ROOT/tests/fixtures/oem"

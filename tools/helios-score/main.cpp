@@ -12,6 +12,7 @@
 #include "helios/score/oem.hpp"
 #include "helios/score/report.hpp"
 #include "helios/score/score.hpp"
+#include "helios/spec/parse.hpp"
 
 int main(int argc, char** argv) {
   const helios::cli::ToolInfo info{
@@ -62,6 +63,7 @@ int main(int argc, char** argv) {
           throw helios::usage_error(std::string("--report needs --") + needed + " FILE, see helios-score --help");
       helios::score::ReportInputs in;
       in.problem_text = helios::io::read_text(args.get("problem"));
+      helios::spec::check_problem_text(in.problem_text, args.get("problem"));
       in.spec = helios::io::read_artifact("spec", args.get("spec"));
       in.derivation = helios::io::read_artifact("derivation", args.get("derivation"));
       in.derivation_source = args.get("derivation");

@@ -1106,4 +1106,8 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   return doc;
 }
 
+void check_problem_text(const std::string& text, const std::string& source) {
+  detail::check_text(text, source);
+}
+
 }  // namespace helios::spec

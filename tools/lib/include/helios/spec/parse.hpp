@@ -49,4 +49,8 @@ inline constexpr std::size_t kMaxSentenceChars = 4096;    // one sentence or one
 // not UTF-8, holds a NUL or another control byte (tab, CR and LF aside), or exceeds a bound above.
 io::json parse_problem_text(const std::string& text, const std::string& source);
 
+// The encoding and bound checks alone (for a tool that shows a problem text without reading it):
+// throws input_error as parse_problem_text does for such a text.
+void check_problem_text(const std::string& text, const std::string& source);
+
 }  // namespace helios::spec
