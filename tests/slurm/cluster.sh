@@ -165,10 +165,16 @@ do_start() {
     wait_pid slurmd
   fi
 
-  local deadline=$((SECONDS + TIMEOUT)) state=""
+  local deadline=$((SECONDS + TIMEOUT)) state="" resumed=0
   while ((SECONDS < deadline)); do
     state="$(node_state)"
     usable "$state" && return 0
+    # A node left drained (or down) by an earlier run is resumed once; ReturnToService=2 covers
+    # only a node that was down for not responding.
+    if [[ $state == drain* || $state == down* ]] && ((!resumed)); then
+      timeout 10 scontrol update NodeName="$HOST" State=RESUME >/dev/null 2>&1 || true
+      resumed=1
+    fi
     [[ -n $(pid_of slurmctld) ]] || fail_start "slurmctld exited"
     [[ -n $(pid_of slurmd) ]] || fail_start "slurmd exited"
     sleep 1
