@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Checks that the Debian packages HELIOS builds and runs with are installed; installs the missing
 # ones with apt-get when run as root, otherwise prints the command to run.
-# usage: tools/install-deps.sh [--quiet] [--fuzz]   (--fuzz: also clang and libFuzzer, for make fuzz)
+# usage: tools/install-deps.sh [--quiet] [--fuzz] [--slurm]
+#   --fuzz:  also clang and libFuzzer, for make fuzz
+#   --slurm: also Slurm (slurmctld, slurmd, srun) and munge, for tests/slurm/cluster.sh and slurm.bats;
+#            without their recommends (about 30 plugin packages: HDF5, InfluxDB, IPMI, ROCm, ...)
 set -euo pipefail
 
 # package:probe, where probe is a command (cmd/NAME) or a file that the package installs.
@@ -27,30 +30,44 @@ checks=(
   "texlive-latex-base:cmd/pdflatex"
 )
 # make fuzz builds its targets with clang++ and links libFuzzer (libclang-rt-dev, only recommended by clang).
+# Packages installed without their recommends.
+lean_checks=()
 for arg in "$@"; do
   if [[ $arg == --fuzz ]]; then
     checks+=("clang:cmd/clang++" "libclang-rt-dev:glob//usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a")
+  elif [[ $arg == --slurm ]]; then
+    lean_checks+=("slurmctld:/usr/sbin/slurmctld" "slurmd:/usr/sbin/slurmd" "slurm-client:/usr/bin/srun"
+                  "munge:/usr/sbin/munged")
   fi
 done
-missing=()
-for entry in "${checks[@]}"; do
-  pkg=${entry%%:*}
-  probe=${entry#*:}
-  if [[ $probe == cmd/* ]]; then
-    command -v "${probe#cmd/}" >/dev/null 2>&1 || missing+=("$pkg")
-  elif [[ $probe == glob/* ]]; then
-    compgen -G "${probe#glob/}" >/dev/null || missing+=("$pkg")
-  else
-    [[ -e $probe ]] || missing+=("$pkg")
-  fi
-done
-[[ ${#missing[@]} -eq 0 ]] && exit 0
+# missing_of ENTRY...: the packages whose probe fails.
+missing_of() {
+  local entry pkg probe
+  for entry in "$@"; do
+    pkg=${entry%%:*}
+    probe=${entry#*:}
+    if [[ $probe == cmd/* ]]; then
+      command -v "${probe#cmd/}" >/dev/null 2>&1 || echo "$pkg"
+    elif [[ $probe == glob/* ]]; then
+      compgen -G "${probe#glob/}" >/dev/null || echo "$pkg"
+    else
+      [[ -e $probe ]] || echo "$pkg"
+    fi
+  done
+}
+mapfile -t missing < <(missing_of "${checks[@]}")
+mapfile -t lean < <(missing_of ${lean_checks[@]+"${lean_checks[@]}"})
+all=(${missing[@]+"${missing[@]}"} ${lean[@]+"${lean[@]}"})
+[[ ${#all[@]} -eq 0 ]] && exit 0
 if [[ $(id -u) -eq 0 ]] && command -v apt-get >/dev/null 2>&1; then
-  echo "install-deps: installing ${missing[*]}" >&2
+  echo "install-deps: installing ${all[*]}" >&2
   export DEBIAN_FRONTEND=noninteractive
   apt-get update -qq
-  apt-get install -y -qq "${missing[@]}" >/dev/null
+  # Wait for another apt-get (a colleague's, an unattended upgrade) rather than fail on its lock.
+  apt=(apt-get install -y -qq -o DPkg::Lock::Timeout=600)
+  [[ ${#missing[@]} -eq 0 ]] || "${apt[@]}" "${missing[@]}" >/dev/null
+  [[ ${#lean[@]} -eq 0 ]] || "${apt[@]}" --no-install-recommends "${lean[@]}" >/dev/null
 else
-  echo "install-deps: error: missing Debian packages: ${missing[*]}; run: sudo apt-get install ${missing[*]}" >&2
+  echo "install-deps: error: missing Debian packages: ${all[*]}; run: sudo apt-get install ${all[*]}" >&2
   exit 1
 fi
