@@ -1,14 +1,16 @@
 #pragma once
-// Expressions as mathematics for people (README "report.md"): GiNaC's LaTeX printer applied to a
-// compact form of a stored expression. The stored form is fully expanded (S10's periapsis row is
-// 5.7 kB of polynomial); the compact form is an exact rewrite of it:
+// Expressions as mathematics for people (README "report.md"): LaTeX of a compact form of a stored
+// expression. The stored form is fully expanded (S10's periapsis row is 5.7 kB of polynomial); the
+// compact form is an exact rewrite of it:
 //   - a norm named: a power of a sum of squares, (rx^2+ry^2+rz^2)^(-3/2), becomes r^{-3} with
 //     r = sqrt(rx^2+ry^2+rz^2) stated once, also where the norm stands expanded in a polynomial;
 //   - a difference named: a sum of squared differences, the expanded |v- - v_Mars|^2, becomes the
 //     norm of a named difference vector Delta_1 = v- - v_Mars, its components substituted;
 //   - collected by the powers of the named norms, each coefficient factored where that is shorter.
 // Each step is kept only if it shortens the LaTeX. Every named quantity is listed (definitions()),
-// so the printed formula and its definitions say exactly what the stored expression says.
+// so the printed formula and its definitions say exactly what the stored expression says. The
+// printer is not GiNaC's: that one follows GiNaC's term order, which follows hash values and so
+// memory addresses; this one sorts terms and factors, so the same expression gives the same bytes.
 #include <ginac/ginac.h>
 
 #include <cstddef>
