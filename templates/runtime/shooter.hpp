@@ -107,7 +107,7 @@ class Shooter {
   Propagator prop_;
   Residual residual_;
   HybrdStart start_;
-  int size_ = problem::kNumVars;
+  int size_ = kProblem.num_vars;
   double eps_ = 1;
   bool failed_ = false;
 };
