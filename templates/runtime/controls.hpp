@@ -11,11 +11,7 @@ inline int ny() {
   return 2 * kProblem.num_states;
 }
 
-// Throttle modes. With eps > 0, H is strictly convex in u: u = 0 where dH/du(0) >= 0, u = 1 where
-// dH/du(1) <= 0, otherwise u solves dH/du = 0. At eps = 0 both slopes equal the switching function.
-enum Mode : int { kOff = 0, kInterior = 1, kFull = 2 };
-
-inline Mode mode_at(const double* y, const Multipliers& mult) {
+Mode mode_at(const double* y, const Multipliers& mult) {
   if (kProblem.throttle_index < 0) {
     return kFull;
   } else {
@@ -27,7 +23,7 @@ inline Mode mode_at(const double* y, const Multipliers& mult) {
   }
 }
 
-inline void control_in_mode(const double* y, Mode mode, const Multipliers& mult, double* control) {
+void control_in_mode(const double* y, Mode mode, const Multipliers& mult, double* control) {
   direction_control(y, control);
   if (kProblem.throttle_index >= 0) {
     double u = mode == kFull ? 1.0 : 0.0;

@@ -131,8 +131,15 @@ struct Switch {
   double throttle_after;
 };
 
+// Throttle modes (controls.hpp). With eps > 0, H is strictly convex in u: u = 0 where
+// dH/du(0) >= 0, u = 1 where dH/du(1) <= 0, otherwise u solves dH/du = 0. At eps = 0 both slopes
+// equal the switching function.
+enum Mode : int { kOff = 0, kInterior = 1, kFull = 2 };
+// The mode at y, and the optimal control in a mode (the RESIDUAL module's H at a free final time).
+Mode mode_at(const double* y, const Multipliers& mult);
+void control_in_mode(const double* y, Mode mode, const Multipliers& mult, double* control);
+
 class Dop853;
-enum Mode : int;
 
 // Integrates y from t0 to t1 under the optimal control, one mode at a time (propagator.hpp).
 class Propagator {

@@ -76,11 +76,8 @@ Result solve_problem(const Settings&) {
 }
 }  // namespace helios_rt
 
-// clang-format off
-// NOTE: the runtime's inline throttle modes (a library header), then the template's modules.
-#include "controls.hpp"
+// NOTE: the template's modules, as a generated program pastes them.
 #include "../modules/dynamics_cartesian_low_thrust.cpp"
-// clang-format on
 
 namespace {
 
