@@ -6,6 +6,8 @@
 
 namespace helios_rt {
 
+namespace {
+
 // The Newton homotopy F(z) - sigma F(x) = 0 at eps, followed from sigma = 1 (solved by x) to 0:
 // it moves the rows that changed with the active set from their old form to their new one. True
 // when sigma = 0 was reached (x is then the solution at eps).
@@ -225,6 +227,8 @@ inline void record_passes(const Settings& s, const std::vector<Bound>& bounds, c
     r.bounds.push_back({bounds[k].name, bounds[k].meaning, first[k], active, last[k], nu});
   }
 }
+
+}  // namespace
 
 // Bounds psi <= 0 by passes over the active set: pass 1 solves with every bound inactive, then
 // active_set_passes follows from its solution, warm. Pass 1's search keeps its distinct extremals,

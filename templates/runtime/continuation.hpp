@@ -6,6 +6,8 @@
 
 namespace helios_rt {
 
+namespace {
+
 // One attempt of the continuation onto the events, all at eps_start, as five stages that each
 // solve from the point the last one reached (x: the shooting variables, and `reference`: each
 // event's held epoch as a window fraction):
@@ -426,5 +428,7 @@ bool continuation_attempt(const Settings& s, const EventPlan& plan, Guess&& init
   evaluations += attempt.evaluations();
   return converged;
 }
+
+}  // namespace
 
 }  // namespace helios_rt

@@ -6,10 +6,14 @@
 
 namespace helios_rt {
 
+namespace {
+
 // The length of y: states then costates.
 inline int ny() {
   return 2 * kProblem.num_states;
 }
+
+}  // namespace
 
 Mode mode_at(const double* y, const Multipliers& mult) {
   if (kProblem.throttle_index < 0) {
@@ -35,6 +39,8 @@ void control_in_mode(const double* y, Mode mode, const Multipliers& mult, double
     control[kProblem.throttle_index] = u;
   }
 }
+
+namespace {
 
 // The switching function at eps = 0 (0 without a throttle), recorded in the trajectory.
 inline double switching_value(const double* y, const Multipliers& mult) {
@@ -69,5 +75,7 @@ inline int stay_functions(const double* y, Mode mode, const Multipliers& mult, d
     return 0;
   }
 }
+
+}  // namespace
 
 }  // namespace helios_rt

@@ -6,6 +6,8 @@
 
 namespace helios_rt {
 
+namespace {
+
 // Any step of a continuation stays on its branch (see homotopy_to_zero's on_branch).
 struct AnyBranch {
   bool operator()(const std::vector<double>&, double) const { return true; }
@@ -151,5 +153,7 @@ bool continue_to_zero(const Settings& s, double start, Step&& step) {
   }
   return false;
 }
+
+}  // namespace
 
 }  // namespace helios_rt

@@ -6,6 +6,8 @@
 
 namespace helios_rt {
 
+namespace {
+
 // The legs solved alone joined: from their variables x and each later leg's start state
 // (`starts`), multiple shooting over [x, starts] (F = [the problem's equations, costate
 // continuity]) continued in eps to 0, then polished by single shooting. True when it converged (r
@@ -111,5 +113,7 @@ bool legs_attempt(const Settings& s, const LegPlan& plan, Guess&& initial_guess,
   }
   return legs_solved && join_legs(s, x, starts, admissible, single, r, evaluations);
 }
+
+}  // namespace
 
 }  // namespace helios_rt

@@ -9,6 +9,8 @@
 
 namespace helios_rt {
 
+namespace {
+
 inline Settings read_settings(const std::string& path) {
   Settings s;
   if (path.empty()) return s;
@@ -283,6 +285,8 @@ inline void check_problem_shape() {
   if (kProblem.throttle_index >= 0 && !throttle_slopes)
     throw std::runtime_error("the problem has a throttle but the program defines no throttle_slopes");
 }
+
+}  // namespace
 
 int run(int argc, char** argv) {
   check_problem_shape();

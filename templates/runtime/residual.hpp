@@ -6,6 +6,8 @@
 
 namespace helios_rt {
 
+namespace {
+
 // The active set of the bounds and their last values (bound_row).
 struct BoundState {
   std::vector<char> active;
@@ -15,6 +17,8 @@ inline BoundState& bound_state() {
   thread_local BoundState state;  // each search thread its own (search.hpp's parallel_for)
   return state;
 }
+
+}  // namespace
 
 // Row k of the shooting function for bound k: records psi and returns it when the bound is
 // active, else the inactive expression (its multiplier).

@@ -3,6 +3,8 @@
 // program, one header per concept, in the order below (this list is the only one). runtime.cpp
 // compiles them once into the static library libhelios-runtime.a; a generated program sees only
 // helios_runtime.hpp (the problem's shape and the modules' prototypes) and links the library.
+// Only what that header declares has external linkage; the rest of each header is in an unnamed
+// namespace, so a module's function can never silently replace one of the runtime's own.
 //
 // Numerics (design.md section 6): normalized units; an adaptive DOP853 integrator whose control
 // mode (throttle off / interior / full) is frozen inside each step, with the switching times

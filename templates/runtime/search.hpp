@@ -22,6 +22,8 @@
 
 namespace helios_rt {
 
+namespace {
+
 // The generator of start k: SplitMix64 of (seed, k), so a start's guess does not depend on which
 // thread runs it or on how many starts came before.
 inline std::mt19937_64 start_generator(unsigned seed, int k) {
@@ -397,6 +399,8 @@ class MultiStart {
   std::mutex mutex_;
   int evaluations_ = 0;
 };
+
+}  // namespace
 
 // Problems without interior events: the global search (MultiStart). `initial_guess(rng, x)` draws
 // a start.

@@ -6,6 +6,8 @@
 
 namespace helios_rt {
 
+namespace {
+
 inline std::string hybrd_meaning(int info) {
   switch (info) {
     case 0:
@@ -121,5 +123,7 @@ bool homotopy_step(Shooter& shooter, std::vector<double>& x, double eps, double 
   r.homotopy.push_back({eps, ok, res, shooter.last_step_evaluations});
   return ok;
 }
+
+}  // namespace
 
 }  // namespace helios_rt
