@@ -76,15 +76,18 @@ $(BUILD)/build.ninja: CMakeLists.txt | deps
 
 # The tools are rebuilt when any library, tool, template or schema source changes.
 $(TOOLS_STAMP): $(BUILD)/build.ninja $(TOOL_SOURCES)
-	cmake --build $(BUILD) --target $(addprefix helios-,$(TOOLS)) helios-prompts
+	cmake --build $(BUILD) --target $(addprefix helios-,$(TOOLS)) helios-prompts helios-runtime
 	touch $@
 
 # Each artifact depends on the tool that writes it through that tool's content stamp, which
 # changes only when the tool's bytes do: a rebuild that leaves a tool the same (a touched source,
-# an edit of another tool) re-runs nothing it made.
+# an edit of another tool) re-runs nothing it made. helios-gen (which names the runtime in
+# shoot.cpp) and helios-solve (which links it) stamp the prebuilt runtime's bytes too.
+RUNTIME_FILES := $(BUILD)/include/helios-runtime/helios_runtime.hpp $(BUILD)/lib/libhelios-runtime.a
 $(BUILD)/stamps/helios-%: $(TOOLS_STAMP)
 	@mkdir -p $(@D)
-	@sha256sum <$(BIN)/helios-$* >$@.new && if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
+	@cat $(BIN)/helios-$* $(if $(filter gen solve,$*),$(RUNTIME_FILES)) | sha256sum >$@.new && \
+	  if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
 TOOL_STAMP = $(BUILD)/stamps/helios-$(1)
 # Named here, so make does not take them for intermediate files and delete them.
 TOOL_STAMPS := $(foreach t,$(TOOLS),$(call TOOL_STAMP,$(t)))

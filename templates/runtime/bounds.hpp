@@ -6,11 +6,13 @@
 
 namespace helios_rt {
 
+namespace {
+
 // The Newton homotopy F(z) - sigma F(x) = 0 at eps, followed from sigma = 1 (solved by x) to 0:
 // it moves the rows that changed with the active set from their old form to their new one. True
 // when sigma = 0 was reached (x is then the solution at eps).
 inline bool shift_rows(const Settings& s, std::vector<double>& x, double eps, Result& r) {
-  std::vector<double> start(problem::kNumVars);
+  std::vector<double> start(kProblem.num_vars);
   {
     Propagator prop(s);
     try {
@@ -22,7 +24,7 @@ inline bool shift_rows(const Settings& s, std::vector<double>& x, double eps, Re
   double sigma = 1;
   const Residual shifted = [&](const double* z, double e, Propagator& p, double* F) {
     shooting_function(z, e, p, F);
-    for (int i = 0; i < problem::kNumVars; ++i) F[i] -= sigma * start[i];
+    for (int i = 0; i < kProblem.num_vars; ++i) F[i] -= sigma * start[i];
   };
   Shooter shooter(s, shifted, kContinuationStart);
   const auto anything = [](const double*) { return true; };
@@ -111,7 +113,7 @@ struct PassLog {
 // The bounds' values psi at x (eps = 0).
 inline std::vector<double> bound_values(const Settings& s, const std::vector<double>& x) {
   Propagator prop(s);
-  std::vector<double> F(problem::kNumVars);
+  std::vector<double> F(kProblem.num_vars);
   shooting_function(x.data(), 0.0, prop, F.data());
   return bound_state().value;
 }
@@ -226,6 +228,8 @@ inline void record_passes(const Settings& s, const std::vector<Bound>& bounds, c
   }
 }
 
+}  // namespace
+
 // Bounds psi <= 0 by passes over the active set: pass 1 solves with every bound inactive, then
 // active_set_passes follows from its solution, warm. Pass 1's search keeps its distinct extremals,
 // and the passes start from each of them (best first; one no better than a result already found
@@ -233,8 +237,8 @@ inline void record_passes(const Settings& s, const std::vector<Bound>& bounds, c
 // best one with them. The best consistent result is the solution. Only when no warm start
 // gets there do the passes run again from pass 1's solution, now with a cold solve where the warm
 // one fails.
-template <class Solve, class Admissible>
-Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, Solve&& solve, Admissible&& admissible) {
+Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, const Solve& solve,
+                      const Admissible& admissible) {
   BoundState& state = bound_state();
   state.active.assign(bounds.size(), 0);
   state.value.assign(bounds.size(), 0.0);

@@ -6,23 +6,7 @@
 
 namespace helios_rt {
 
-// The events' own shooting variables and rows (RESIDUAL module), for the continuation onto the
-// events. An event is passable when it is instantaneous and its state map is the identity with
-// its parameters at 0: the trajectory of the problem without it (its multipliers and parameters
-// 0, its epoch held) then solves every row of the event but its constraint c = 0.
-struct EventRows {
-  std::vector<std::array<int, 2>> constraints;  // {multiplier nu_j, row of c_j = 0}
-  std::array<int, 2> epoch{-1, -1};             // {epoch as a window fraction, row of its free-epoch condition}
-  std::vector<std::array<int, 2>> parameters;   // {Category-C parameter, row of its stationarity}
-  std::vector<std::array<int, 2>> costates;     // {costate just after the event, row of its jump}
-};
-
-struct EventPlan {
-  bool passable = false;    // every event passable
-  int multiplier = 0;       // lambda0
-  std::vector<int> sphere;  // the normalization's variables, lambda0 among them
-  std::vector<EventRows> events;
-};
+namespace {
 
 // One attempt of the continuation onto the events, all at eps_start, as five stages that each
 // solve from the point the last one reached (x: the shooting variables, and `reference`: each
@@ -43,8 +27,6 @@ struct EventPlan {
 template <class Guess, class Admissible>
 class EventContinuation {
  public:
-  static constexpr int N = problem::kNumVars;
-
   EventContinuation(const Settings& s, const EventPlan& plan, Guess& initial_guess, Admissible& admissible,
                     std::mt19937_64& rng, Result& r)
       : s_(s),
@@ -55,6 +37,7 @@ class EventContinuation {
         r_(r),
         eps_(s.eps_start),
         nev_(static_cast<int>(plan.events.size())),
+        N(kProblem.num_vars),
         reference_(static_cast<std::size_t>(nev_), 0.5),
         prop_(s),
         F_(N),
@@ -420,6 +403,7 @@ class EventContinuation {
   Result& r_;
   const double eps_;  // every stage but the last solves at eps_start
   const int nev_;
+  const int N;  // the shooting variables
   std::uniform_real_distribution<double> unit_{0.0, 1.0};
   std::vector<double> x_;          // the point on the path: the last stage's solution
   std::vector<double> reference_;  // each event's held epoch (window fraction) while it is off
@@ -444,5 +428,7 @@ bool continuation_attempt(const Settings& s, const EventPlan& plan, Guess&& init
   evaluations += attempt.evaluations();
   return converged;
 }
+
+}  // namespace
 
 }  // namespace helios_rt

@@ -1,33 +1,22 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, controls (templates/runtime/controls.hpp): the modules' prototypes
-// (DYNAMICS, SWITCH) and the throttle modes: the optimal control in each mode and the functions
-// that stay positive while it holds.
+// HELIOS shooting runtime, controls (templates/runtime/controls.hpp): the throttle modes: the
+// optimal control in each mode and the functions that stay positive while it holds.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 
 namespace helios_rt {
 
-constexpr int kNY = 2 * problem::kNumStates;  // states then costates
+namespace {
 
-struct Multipliers {
-  double lambda0 = 1;
-  double eps = 1;
-};
+// The length of y: states then costates.
+inline int ny() {
+  return 2 * kProblem.num_states;
+}
 
-// DYNAMICS module: state and costate right-hand sides and H at time t for a given control vector.
-void dynamics(double t, const double* y, const double* control, const Multipliers& mult, double* dy);
-double hamiltonian(double t, const double* y, const double* control, const Multipliers& mult);
-// SWITCH module: the continuous controls (all but the throttle) and dH/du at u = 0 and u = 1.
-// A problem without a throttle (kThrottleIndex < 0) has one mode and no throttle_slopes.
-void direction_control(const double* y, double* control);
-void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper);
+}  // namespace
 
-// Throttle modes. With eps > 0, H is strictly convex in u: u = 0 where dH/du(0) >= 0, u = 1 where
-// dH/du(1) <= 0, otherwise u solves dH/du = 0. At eps = 0 both slopes equal the switching function.
-enum Mode { kOff = 0, kInterior = 1, kFull = 2 };
-
-inline Mode mode_at(const double* y, const Multipliers& mult) {
-  if constexpr (problem::kThrottleIndex < 0) {
+Mode mode_at(const double* y, const Multipliers& mult) {
+  if (kProblem.throttle_index < 0) {
     return kFull;
   } else {
     double s0 = 0, s1 = 0;
@@ -38,22 +27,24 @@ inline Mode mode_at(const double* y, const Multipliers& mult) {
   }
 }
 
-inline void control_in_mode(const double* y, Mode mode, const Multipliers& mult, double* control) {
+void control_in_mode(const double* y, Mode mode, const Multipliers& mult, double* control) {
   direction_control(y, control);
-  if constexpr (problem::kThrottleIndex >= 0) {
+  if (kProblem.throttle_index >= 0) {
     double u = mode == kFull ? 1.0 : 0.0;
     if (mode == kInterior) {
       double s0 = 0, s1 = 0;
       throttle_slopes(y, mult, s0, s1);
       u = std::min(1.0, std::max(0.0, s0 / (s0 - s1)));
     }
-    control[problem::kThrottleIndex] = u;
+    control[kProblem.throttle_index] = u;
   }
 }
 
+namespace {
+
 // The switching function at eps = 0 (0 without a throttle), recorded in the trajectory.
 inline double switching_value(const double* y, const Multipliers& mult) {
-  if constexpr (problem::kThrottleIndex < 0) {
+  if (kProblem.throttle_index < 0) {
     return 0.0;
   } else {
     double s0 = 0, s1 = 0;
@@ -64,7 +55,7 @@ inline double switching_value(const double* y, const Multipliers& mult) {
 
 // Functions that stay positive while `mode` holds; a sign change is a switch.
 inline int stay_functions(const double* y, Mode mode, const Multipliers& mult, double* g) {
-  if constexpr (problem::kThrottleIndex < 0) {
+  if (kProblem.throttle_index < 0) {
     return 0;
   } else {
     double s0 = 0, s1 = 0;
@@ -84,5 +75,7 @@ inline int stay_functions(const double* y, Mode mode, const Multipliers& mult, d
     return 0;
   }
 }
+
+}  // namespace
 
 }  // namespace helios_rt

@@ -1,7 +1,7 @@
 #pragma once
 // Dormand-Prince 8(5,3) explicit Runge-Kutta step (Hairer, Norsett & Wanner, dop853.f).
 // Coefficients copied from scipy/integrate/_ivp/dop853_coefficients.py (identical to dop853.f).
-// Standard library only: this header is pasted verbatim into generated programs.
+// Standard library only: part of the shooting runtime library (runtime.cpp) and of its tests.
 
 #include <algorithm>
 #include <cmath>

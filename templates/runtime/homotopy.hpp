@@ -6,6 +6,8 @@
 
 namespace helios_rt {
 
+namespace {
+
 // Any step of a continuation stays on its branch (see homotopy_to_zero's on_branch).
 struct AnyBranch {
   bool operator()(const std::vector<double>&, double) const { return true; }
@@ -21,7 +23,7 @@ bool homotopy_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& 
   int info = 0;
   double eps = s.eps_start;
   if (!homotopy_step(shooter, x, eps, s.accept_residual, r, admissible, info, res)) return false;
-  r.x_start.assign(x.begin(), x.begin() + problem::kNumVars);
+  r.x_start.assign(x.begin(), x.begin() + kProblem.num_vars);
   double log_step = std::log(1.0 / s.eps_first_ratio);
   double zero_below = s.eps_min;  // eps at or below which the next step goes to eps = 0
   while (wall_seconds() <= s.time_limit_s) {
@@ -60,17 +62,19 @@ inline RecordedPath recorded_path(const Settings& s, const std::vector<double>& 
   prop.samples = &path.samples;
   prop.switches = &path.switches;
   prop.max_step = max_step;
-  std::vector<double> F(problem::kNumVars);
+  std::vector<double> F(kProblem.num_vars);
   shooting_function(x.data(), eps, prop, F.data());
   return path;
 }
 
 // The objective is the propellant (minimum fuel, minimum initial mass), else the flight time.
-constexpr bool kObjectiveIsPropellant = problem::kMinimumFuel && problem::kMassIndex >= 0;
+inline bool objective_is_propellant() {
+  return kProblem.minimum_fuel && kProblem.mass_index >= 0;
+}
 
 // A normalized objective in its named unit: kg of propellant, or days.
 inline double objective_in_named_unit(double objective) {
-  return objective * (kObjectiveIsPropellant ? problem::kMassUnitKg : problem::kTimeUnitDays);
+  return objective * (objective_is_propellant() ? kProblem.mass_unit_kg : kProblem.time_unit_days);
 }
 
 // The Shape of a converged x at eps (the first three states are the position). At eps = 0 its
@@ -80,7 +84,7 @@ inline Shape shape_of(const Settings& s, const std::vector<double>& x, double ep
   Shape out;
   RecordedPath path;
   try {
-    path = recorded_path(s, x, eps, (problem::kTf - problem::kT0) / 1000);
+    path = recorded_path(s, x, eps, (kProblem.tf - kProblem.t0) / 1000);
   } catch (const numerical_error&) {
     return out;
   }
@@ -92,24 +96,25 @@ inline Shape shape_of(const Settings& s, const std::vector<double>& x, double ep
   double hn = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
   if (!(hn > 0)) h = {0, 0, 1}, hn = 1;
   double swept = 0, smoothed = 0, burned = 0, propellant = 0;
+  const bool propellant_objective = objective_is_propellant();
   for (std::size_t i = 1; i < samples.size(); ++i) {
     const auto &a = samples[i - 1].y, &b = samples[i].y;
     const double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];
     swept += std::atan2((cx * h[0] + cy * h[1] + cz * h[2]) / hn, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
-    if constexpr (kObjectiveIsPropellant) {
+    if (propellant_objective) {
       if (samples[i].arc != samples[i - 1].arc) continue;
-      propellant += a[problem::kMassIndex] - b[problem::kMassIndex];
-      if constexpr (problem::kThrottleIndex >= 0) {
+      propellant += a[kProblem.mass_index] - b[kProblem.mass_index];
+      if (kProblem.throttle_index >= 0) {
         const double dt = samples[i].t - samples[i - 1].t;
-        const double ua = samples[i - 1].control[problem::kThrottleIndex],
-                     ub = samples[i].control[problem::kThrottleIndex];
+        const double ua = samples[i - 1].control[kProblem.throttle_index],
+                     ub = samples[i].control[kProblem.throttle_index];
         smoothed += 0.5 * dt * (ua - eps * ua * (1 - ua) + ub - eps * ub * (1 - ub));
         burned += 0.5 * dt * (ua + ub);
       }
     }
   }
   out.revolutions = swept / (2 * M_PI);
-  if (!kObjectiveIsPropellant)
+  if (!propellant_objective)
     out.cost = samples.back().t - samples.front().t;
   else if (eps == 0)
     out.cost = propellant;
@@ -148,5 +153,7 @@ bool continue_to_zero(const Settings& s, double start, Step&& step) {
   }
   return false;
 }
+
+}  // namespace
 
 }  // namespace helios_rt

@@ -6,6 +6,8 @@
 
 namespace helios_rt {
 
+namespace {
+
 // The legs solved alone joined: from their variables x and each later leg's start state
 // (`starts`), multiple shooting over [x, starts] (F = [the problem's equations, costate
 // continuity]) continued in eps to 0, then polished by single shooting. True when it converged (r
@@ -13,7 +15,7 @@ namespace helios_rt {
 template <class Admissible>
 bool join_legs(const Settings& s, std::vector<double> x, const std::vector<double>& starts, Admissible& admissible,
                Shooter& single, Result& r, int& evaluations) {
-  constexpr int N = problem::kNumVars;
+  const int N = kProblem.num_vars;
   const Residual multiple = [&](const double* z, double eps, Propagator& prop, double* F) {
     const Legs legs{-1, z + N, F + N};
     shooting_legs(z, eps, prop, F, &legs);
@@ -49,7 +51,7 @@ bool join_legs(const Settings& s, std::vector<double> x, const std::vector<doubl
 template <class Guess, class Admissible>
 bool legs_attempt(const Settings& s, const LegPlan& plan, Guess&& initial_guess, Admissible&& admissible,
                   std::mt19937_64& rng, Shooter& single, Result& r, int& evaluations) {
-  constexpr int n = problem::kNumStates, N = problem::kNumVars;
+  const int n = kProblem.num_states, N = kProblem.num_vars;
   const int events = static_cast<int>(plan.variables.size()) - 1;
   std::uniform_real_distribution<double> symmetric(-1.0, 1.0);
   std::vector<double> x(N), starts(static_cast<std::size_t>(events * n));
@@ -111,5 +113,7 @@ bool legs_attempt(const Settings& s, const LegPlan& plan, Guess&& initial_guess,
   }
   return legs_solved && join_legs(s, x, starts, admissible, single, r, evaluations);
 }
+
+}  // namespace
 
 }  // namespace helios_rt

@@ -1,8 +1,10 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime (templates/runtime/runtime.hpp): the fixed part of every generated
-// shooting program, one header per concept, in the order below (helios-gen pastes them in this
-// order; this list is the only one). It needs the PROBLEM block (namespace problem) before it and
-// the modules DYNAMICS, SWITCH, RESIDUAL and SOLVE after it (their prototypes are in the headers).
+// HELIOS shooting runtime (templates/runtime/runtime.hpp): the fixed part of every shooting
+// program, one header per concept, in the order below (this list is the only one). runtime.cpp
+// compiles them once into the static library libhelios-runtime.a; a generated program sees only
+// helios_runtime.hpp (the problem's shape and the modules' prototypes) and links the library.
+// Only what that header declares has external linkage; the rest of each header is in an unnamed
+// namespace, so a module's function can never silently replace one of the runtime's own.
 //
 // Numerics (design.md section 6): normalized units; an adaptive DOP853 integrator whose control
 // mode (throttle off / interior / full) is frozen inside each step, with the switching times
@@ -11,15 +13,19 @@
 // ---------------------------------------------------------------------------------------------
 #pragma once
 
+// The headers in the runtime's order, each after what it uses.
+// clang-format off
+#include "helios_runtime.hpp"
+#include "dop853.hpp"
 #include "controls.hpp"
 #include "targets.hpp"
-#include "settings.hpp"
 #include "propagator.hpp"
 #include "residual.hpp"
-#include "outcome.hpp"
 #include "shooter.hpp"
 #include "homotopy.hpp"
 #include "legs.hpp"
 #include "continuation.hpp"
 #include "bounds.hpp"
 #include "search.hpp"
+#include "report.hpp"
+// clang-format on

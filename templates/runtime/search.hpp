@@ -1,6 +1,6 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, global search (templates/runtime/search.hpp): pasted after
-// runtime.hpp. A converged shooting solution is an extremal, not necessarily the optimum: on
+// HELIOS shooting runtime, global search (templates/runtime/search.hpp): the last
+// header of runtime.hpp. A converged shooting solution is an extremal, not necessarily the optimum: on
 // multi-revolution transfers the extremal a random start reaches is a matter of chance. So the
 // solve is a search:
 //   1. starts: seeded guesses, each solved at eps_start (eps = 1: the smooth, energy-like
@@ -21,6 +21,8 @@
 #pragma once
 
 namespace helios_rt {
+
+namespace {
 
 // The generator of start k: SplitMix64 of (seed, k), so a start's guess does not depend on which
 // thread runs it or on how many starts came before.
@@ -154,7 +156,7 @@ inline void take_extremal(Result& r) {
 // An objective in named units for the progress lines.
 inline std::string objective_text(double objective) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, kObjectiveIsPropellant ? "%.6g kg of propellant" : "%.6g days",
+  std::snprintf(buf, sizeof buf, objective_is_propellant() ? "%.6g kg of propellant" : "%.6g days",
                 objective_in_named_unit(objective));
   return buf;
 }
@@ -281,7 +283,7 @@ class MultiStart {
   StartRun start(int k) {
     StartRun run;
     std::mt19937_64 rng = start_generator(s_.seed, k);
-    run.x.assign(problem::kNumVars, 0.0);
+    run.x.assign(kProblem.num_vars, 0.0);
     guess_(rng, run.x.data());
     Shooter shooter(s_);
     int info = 0;
@@ -398,12 +400,12 @@ class MultiStart {
   int evaluations_ = 0;
 };
 
+}  // namespace
+
 // Problems without interior events: the global search (MultiStart). `initial_guess(rng, x)` draws
 // a start.
-template <class Guess, class Admissible>
-Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& admissible) {
-  return MultiStart<std::remove_reference_t<Guess>, std::remove_reference_t<Admissible>>(s, initial_guess, admissible)
-      .solve();
+Result homotopy_solve(const Settings& s, const Guess& initial_guess, const Admissible& admissible) {
+  return MultiStart<const Guess, const Admissible>(s, initial_guess, admissible).solve();
 }
 
 // Problems with interior events: search_attempts complete attempts, independent of one another.
@@ -411,9 +413,8 @@ Result homotopy_solve(const Settings& s, Guess&& initial_guess, Admissible&& adm
 // every event is passable (the epochs where that solution passes closest to the targets), then
 // tries the legs. The converged ones are told apart and the
 // best kept; more attempts follow while none has converged.
-template <class Guess, class Admissible>
-Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const EventPlan& events, Guess&& initial_guess,
-                             Admissible&& admissible) {
+Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const EventPlan& events,
+                             const Guess& initial_guess, const Admissible& admissible) {
   Result r;
   SearchRecord& rec = r.search;
   rec.threads = search_threads(s);

@@ -6,6 +6,8 @@
 
 namespace helios_rt {
 
+namespace {
+
 inline std::string hybrd_meaning(int info) {
   switch (info) {
     case 0:
@@ -107,7 +109,7 @@ class Shooter {
   Propagator prop_;
   Residual residual_;
   HybrdStart start_;
-  int size_ = problem::kNumVars;
+  int size_ = kProblem.num_vars;
   double eps_ = 1;
   bool failed_ = false;
 };
@@ -121,5 +123,7 @@ bool homotopy_step(Shooter& shooter, std::vector<double>& x, double eps, double 
   r.homotopy.push_back({eps, ok, res, shooter.last_step_evaluations});
   return ok;
 }
+
+}  // namespace
 
 }  // namespace helios_rt

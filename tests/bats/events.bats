@@ -30,8 +30,8 @@ sensitivity() {
   local dir=$BATS_FILE_TMPDIR/$1
   shift
   if [[ ! -x $dir/sensitivity ]]; then
-    g++ -std=c++17 -O2 -DSHOOT_CPP="\"$dir/shoot.cpp\"" "$ROOT/tests/events/sensitivity.cpp" -o "$dir/sensitivity" \
-      -lcminpack
+    g++ -std=c++17 -O2 -pthread -DSHOOT_CPP="\"$dir/shoot.cpp\"" -I"$ROOT/templates/runtime" -I"$ROOT/tools/lib/include" \
+      "$ROOT/tests/events/sensitivity.cpp" -o "$dir/sensitivity" -lcminpack
   fi
   "$dir/sensitivity" "$dir/solution.json" "$@"
 }

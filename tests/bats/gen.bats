@@ -8,9 +8,9 @@ setup() {
   require_tool parse derive gen
 }
 
-# The flags of helios-solve's compile, made strict.
+# The flags of helios-solve's compile (against the runtime's header beside the tools), made strict.
 syntax_check() {
-  g++ -std=c++17 -O2 -Wall -Wextra -Werror -fsyntax-only "$1"
+  g++ -std=c++17 -O2 -Wall -Wextra -Werror -I"$HELIOS_BUILD_DIR/include/helios-runtime" -fsyntax-only "$1"
 }
 
 # ---- shared contract -------------------------------------------------------------------------
@@ -36,6 +36,17 @@ syntax_check() {
 @test "gen: shoot.cpp opens with a map of its parts, each line number at that part's banner" {
   s01_shoot
   assert_file_map shoot.cpp "modules DYNAMICS + SWITCH" "module RESIDUAL" "module SOLVE"
+}
+
+@test "gen: the program holds no runtime: the prebuilt runtime's header, the problem, modules, entry point" {
+  s01_shoot
+  grep -qx '#include "helios_runtime.hpp"' shoot.cpp
+  # Of templates/runtime only the entry point is in the file; none of the runtime's headers is
+  # pasted (their banners, the integrator, the propagator, the solver calls, the JSON writer).
+  [[ $(grep -o 'templates/runtime/[a-z0-9_]*\.hpp' shoot.cpp | sort -u) == templates/runtime/main.hpp ]]
+  run -1 grep -nE 'HELIOS shooting runtime, [a-z]+ \(templates/runtime/[a-z0-9_]+\.hpp\): [a-z]' shoot.cpp
+  run -1 grep -nE 'class (Propagator|Dop853|Shooter|MultiStart)|dop853_coeffs|hybrd1?\(|nlohmann|#include <' shoot.cpp
+  (($(wc -l <shoot.cpp) < 400))
 }
 
 @test "gen: --backend other than builtin -> exit 2" {

@@ -1,7 +1,7 @@
 #!/usr/bin/env bats
 # helios-solve: shoot.cpp -> solution.json (+ trajectory.csv, trajectory.png, throttle_mass.png)
 #
-# Compiling shoot.cpp takes ~5 s, so setup_file compiles and runs S01 once, into
+# Compiling shoot.cpp (against the prebuilt runtime) takes ~1 s, so setup_file compiles and runs S01 once, into
 # $BATS_FILE_TMPDIR/e2e with the compile cache $BATS_FILE_TMPDIR/cache; the other tests reuse
 # that cache (a cache hit costs < 1 s).
 
@@ -76,6 +76,31 @@ setup() {
     '.compile.source_sha256 == $first[0].compile.source_sha256 and .final_mass_kg == $first[0].final_mass_kg' solution.json
   assert_no_temp_files "$BATS_TEST_TMPDIR"
   assert_no_temp_files "$CACHE"
+}
+
+@test "solve: the recorded compile command rebuilds the program by hand, against the prebuilt runtime" {
+  cp "$SRC/shoot.cpp" shoot.cpp
+  local command
+  command=$(jq -r .compile.command "$E2E/solution.json")
+  [[ $command == *" -I$HELIOS_BUILD_DIR/include/helios-runtime "* || $command == *" -I$(realpath "$HELIOS_BUILD_DIR")/include/helios-runtime "* ]]
+  [[ $command == *" $(realpath "$HELIOS_BUILD_DIR")/lib/libhelios-runtime.a "* ]]
+  eval "$command"
+  jq '{threads: 1}' -n >settings.json
+  ./shoot --settings settings.json --outcome outcome.json --trajectory trajectory.csv 2>/dev/null
+  jq -e --slurpfile first "$E2E/solution.json" '.x == $first[0].x and .final_mass_kg == $first[0].final_mass_kg' outcome.json
+}
+
+# A module's function can never replace one of the runtime's by its name: the library's only
+# external functions are those its header declares (the rest is in unnamed namespaces).
+@test "solve: the runtime library defines no external function its header does not declare" {
+  local name names
+  names=$(nm -C --defined-only -g "$HELIOS_BUILD_DIR/lib/libhelios-runtime.a" | sed -n 's/^[0-9a-f]* [TW] //p' |
+    grep -E '^helios_rt::[A-Za-z0-9_]+\(' | sed 's/(.*//' | sort -u)
+  [[ -n $names ]]
+  for name in $names; do
+    grep -qE "[ *&]${name#helios_rt::}\(" "$HELIOS_BUILD_DIR/include/helios-runtime/helios_runtime.hpp" ||
+      { echo "the library exports $name, which helios_runtime.hpp does not declare" >&2; false; }
+  done
 }
 
 @test "solve: reads the program from stdin with -" {

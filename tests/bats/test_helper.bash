@@ -137,7 +137,8 @@ assert_png() {
 }
 
 # assert_file_map SHOOT_CPP NAME...: the program's opening map lists the PROBLEM block, each NAME
-# (a module) and the entry point, every line number pointing at that part's banner, and the runtime.
+# (a module) and the entry point, every line number pointing at that part's banner, and the SHA-256
+# of the runtime it links (the header and library beside the tools).
 assert_file_map() {
   local src="$1" name line
   shift
@@ -153,7 +154,11 @@ assert_file_map() {
   line=$(sed -n '4,20p' "$src" | awk 'index($0, "entry point") { print $2; exit }')
   sed -n "$((line + 1))p" "$src" | grep -q "^// HELIOS shooting runtime, entry point" ||
     { echo "the map's entry point line $line is wrong" >&2; return 1; }
-  grep -qE '^//   runtime SHA-256 [0-9a-f]{64}$' "$src"
+  local runtime_sha
+  runtime_sha=$(cat "$HELIOS_BUILD_DIR/include/helios-runtime/helios_runtime.hpp" \
+    "$HELIOS_BUILD_DIR/lib/libhelios-runtime.a" | sha256sum | cut -d' ' -f1)
+  grep -qx "//   runtime SHA-256 $runtime_sha" "$src" ||
+    { echo "the map names another runtime than the build tree's ($runtime_sha):" >&2; grep 'runtime SHA' "$src" >&2; return 1; }
 }
 
 # ---- the contract every tool shares (used by each tool's file) -------------------------------

@@ -1,7 +1,7 @@
 // Measures start strategies for the global search (templates/runtime/search.hpp) on a problem
 // without interior events whose shooting variables are all on the normalization sphere (S01,
-// S13). Built against its generated program (SHOOT_CPP, its main renamed), it spends the same
-// budget of shooting-function evaluations at eps_start per seed on each strategy:
+// S13). Built with its generated program (SHOOT_CPP, its main renamed) and the runtime's source,
+// it spends the same budget of shooting-function evaluations at eps_start per seed on each strategy:
 //   random: the generated guess from start_generator(seed, k), then hybrd (what the search does);
 //   halton: scrambled Halton points (a random shift per seed) mapped like the guess (lambda0 in
 //     (0, 1), the others in (-1, 1), projected on the sphere), then hybrd;
@@ -10,9 +10,12 @@
 // and prints, per strategy, the converged solves, the distinct extremals found and whether the
 // lowest-cost one was among them (the lowest over all strategies and seeds), summed over seeds.
 // usage: search_methods SEEDS EVALUATIONS   e.g. search_methods 10 8000
+// The program links the runtime library; this measure needs the runtime's internals (Shooter,
+// shape_of, merge_extremal), so it compiles the runtime from its source (runtime.cpp) instead.
 #define main generated_main
 #include SHOOT_CPP
 #undef main
+#include "runtime.cpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // Independent check of an interior event's conditions at a converged solution (tests/bats/events.bats).
-// Built against a generated shooting program (SHOOT_CPP, its main renamed), it re-solves the
-// problem with one condition replaced and compares finite differences of the optimal cost with
-// what the multipliers claim:
+// Built with a generated shooting program (SHOOT_CPP, its main renamed) and the runtime's source,
+// it re-solves the problem with one condition replaced and compares finite differences of the
+// optimal cost with what the multipliers claim:
 //   epoch EVENT: with t_EVENT fixed at t* +- h the final mass is stationary at t* (the H-jump
 //     condition's claim): |m(t*+h) - m(t*-h)| must be small against the curvature term
 //     |m(t*+h) + m(t*-h) - 2 m(t*)|;
@@ -11,9 +11,12 @@
 // The shift of a psi row is 1e-6 unless given (a larger one where the rows carry more integration
 // noise: S10's 2201-day legs).
 // usage: sensitivity RESULT.json epoch EVENT | psi EVENT ROW [SHIFT]; prints the two numbers compared.
+// The program links the runtime library; the harness needs the runtime's internals (Shooter,
+// kContinuationStart), so it compiles the runtime from its source (runtime.cpp) instead.
 #define main generated_main
 #include SHOOT_CPP
 #undef main
+#include "runtime.cpp"
 
 namespace {
 
@@ -35,7 +38,8 @@ double final_mass(std::vector<double> x, int row, const std::function<double(con
   Shooter shooter(s, residual, kContinuationStart);  // a step next to a solution
   int info = 0;
   double res = 0;
-  if (!shooter.solve(x, 0.0, s.final_residual, info, res)) throw std::runtime_error("the modified problem did not converge");
+  if (!shooter.solve(x, 0.0, s.final_residual, info, res))
+    throw std::runtime_error("the modified problem did not converge");
   Propagator prop(s);
   std::vector<Sample> samples;
   prop.samples = &samples;

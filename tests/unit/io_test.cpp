@@ -169,7 +169,7 @@ TEST(Io, SchemaViolationNamesThePath) {
 
 // The settings schema is the one list of solver settings: exactly the keys the runtime reads.
 TEST(Io, SettingsSchemaListsExactlyTheKeysTheRuntimeReads) {
-  const std::string runtime = helios::embedded::file("templates/runtime/main.hpp");
+  const std::string runtime = helios::io::read_text(HELIOS_SOURCE_DIR "/templates/runtime/report.hpp");
   std::set<std::string> read;
   const std::regex key(R"re(j\.value\("([a-z_0-9]+)")re");
   for (auto it = std::sregex_iterator(runtime.begin(), runtime.end(), key); it != std::sregex_iterator(); ++it)

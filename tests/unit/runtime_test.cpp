@@ -1,67 +1,83 @@
-// The shooting runtime and the template DYNAMICS/SWITCH module, compiled in-process with the
-// S01 constants: costate equations against finite differences of H, H constant along extremals
-// with switches, and the throttle consistent with the switching function's sign.
-#include <cminpack-1/cminpack.h>
+// The shooting runtime library (libhelios-runtime.a) and the template DYNAMICS/SWITCH module,
+// linked as a generated program links them, with the S01 constants: costate equations against
+// finite differences of H, H constant along extremals with switches, and the throttle consistent
+// with the switching function's sign.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
-#include <atomic>
-#include <chrono>
 #include <cmath>
-#include <cstdint>
-#include <cstdio>
-#include <exception>
-#include <functional>
-#include <mutex>
 #include <random>
 #include <stdexcept>
-#include <string>
-#include <system_error>
-#include <thread>
 #include <vector>
 
-#include "dop853.hpp"
 #include "helios/astro/constants.hpp"
 #include "helios/astro/ephemeris.hpp"
+#include "helios/astro/kepler.hpp"
+#include "helios_runtime.hpp"
 #include "test_helpers.hpp"
 
+// NOTE: this test is a program of the runtime library (libhelios-runtime.a, linked as a generated
+// program links it): it defines the problem's shape and the modules the library calls.
 namespace problem {
 constexpr int kNumStates = 7;
 constexpr int kNumControls = 4;
 constexpr int kThrottleIndex = 0;
 constexpr int kNumVars = 8;
 constexpr int kMassIndex = 6;
-constexpr bool kMinimumFuel = true;
 constexpr double kTimeUnitDays = 365.25;
-constexpr double kMassUnitKg = 1000.0;
-constexpr double kT0 = 0.0;
-constexpr double kTf = 348.795 / 365.25;
 constexpr double kLengthUnitKm = 149597870.691;
 constexpr double kSpeedUnitKmS = 149597870.691 / 31557600.0;
-constexpr double kEpochMjd2000 = 400.0;
-constexpr double kHomotopyStart = 1.0;
 constexpr double mu = 39.47692642137688;    // AU^3/yr^2
 constexpr double Tmax = 3.328530390038211;  // m0 AU/yr^2
 constexpr double c = 4.137416349718383;     // AU/yr
-struct OrbitBody {
-  const char* name;
-  helios::astro::Elements elements;
-  double epoch;
-};
+const char* const kNames[] = {"x", "y", "z", "vx", "vy", "vz", "m", "u", "ax", "ay", "az"};
+constexpr double kUnit[] = {1, 1, 1, 1, 1, 1, 1};
 // Nikko's GTOC7 row (a in AU; epoch MJD 56800 as years from MJD2000 400).
-inline const std::vector<OrbitBody> kOrbitBodies = {
-    {"Nikko",
-     {2.2375176, 0.1052183, 5.70117 * helios::astro::DEG_TO_RAD, 71.94548 * helios::astro::DEG_TO_RAD,
-      2.08462 * helios::astro::DEG_TO_RAD, 287.3844555 * helios::astro::DEG_TO_RAD},
+constexpr helios_rt::OrbitBody kOrbitBodies[] = {
+    {"Nikko", 2.2375176, 0.1052183, 5.70117 * helios::astro::DEG_TO_RAD, 71.94548 * helios::astro::DEG_TO_RAD,
+     2.08462 * helios::astro::DEG_TO_RAD, 287.3844555 * helios::astro::DEG_TO_RAD,
      (56800.0 - 51544.0 - 400.0) / 365.25}};
 }  // namespace problem
 
-// clang-format off
-// NOTE: the order is the generated program's: PROBLEM, runtime, then the modules.
-#include "runtime.hpp"
+namespace helios_rt {
+constexpr int kNY = 2 * problem::kNumStates;
+const ProblemShape kProblem = {"runtime-test",
+                               problem::kNumStates,
+                               problem::kNumControls,
+                               problem::kThrottleIndex,
+                               problem::kNumVars,
+                               problem::kMassIndex,
+                               true,
+                               0.0,
+                               348.795 / 365.25,
+                               1.0,
+                               problem::kTimeUnitDays,
+                               problem::kLengthUnitKm,
+                               problem::kSpeedUnitKmS,
+                               400.0,
+                               1000.0,
+                               0.0,
+                               problem::mu,
+                               problem::kNames,
+                               problem::kNames,
+                               problem::kUnit,
+                               problem::kNames + 7,
+                               problem::kNames,
+                               problem::kNames,
+                               problem::kOrbitBodies,
+                               1};
+// The modules the library calls that these tests do not use.
+void shooting_function(const double*, double, Propagator&, double*) {
+  throw std::logic_error("not used");
+}
+Result solve_problem(const Settings&) {
+  throw std::logic_error("not used");
+}
+}  // namespace helios_rt
+
+// NOTE: the template's modules, as a generated program pastes them.
 #include "../modules/dynamics_cartesian_low_thrust.cpp"
-// clang-format on
 
 namespace {
 
@@ -253,7 +269,9 @@ TEST(Runtime, EphemerisRateIsTheModelsTimeDerivative) {
 TEST(Runtime, OrbitBodyFollowsItsElements) {
   const auto& body = problem::kOrbitBodies[0];
   const auto at_epoch = helios_rt::ephemeris_state("Nikko", body.epoch);
-  const auto expected = helios::astro::elements_to_state(body.elements, problem::mu);
+  const helios::astro::Elements elements{body.a,        body.e,        body.i_rad,
+                                         body.raan_rad, body.argp_rad, body.mean_anomaly_rad};
+  const auto expected = helios::astro::elements_to_state(elements, problem::mu);
   for (int i = 0; i < 6; ++i) EXPECT_TRUE(IsClose(at_epoch[i], expected[i], 1e-13, 1e-13)) << i;
   const double t = body.epoch + 1.3;
   const auto state = helios_rt::ephemeris_state("Nikko", t);

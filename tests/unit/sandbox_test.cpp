@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "helios/solve/runtime_files.hpp"
 #include "helios/solve/solve.hpp"
 
 namespace {
@@ -95,6 +96,37 @@ TEST(Sandbox, AnUnboundedAllocationIsStoppedByTheAddressSpaceLimit) {
       helios::solve::run_limited({"/usr/bin/perl", "-e", "my @a; push @a, 'x' x 1_000_000 while 1"}, 20, 64, "");
   EXPECT_FALSE(r.timed_out);
   EXPECT_NE(r.exit_code, 0);
+}
+
+// The compile cache's key covers the prebuilt runtime: the same source and command against a
+// rebuilt runtime (another SHA-256) is another program, so a cached binary is not reused.
+TEST(Compile, TheCacheKeyChangesWithTheRuntime) {
+  const std::string source = "int main() {}\n", command = "g++ -O2 shoot.cpp", version = "g++ 12";
+  const std::string a(64, 'a'), b(64, 'b');
+  EXPECT_EQ(helios::solve::compile_key(source, command, version, a),
+            helios::solve::compile_key(source, command, version, a));
+  EXPECT_NE(helios::solve::compile_key(source, command, version, a),
+            helios::solve::compile_key(source, command, version, b));
+  EXPECT_NE(helios::solve::compile_key(source, command, version, a),
+            helios::solve::compile_key(source + " ", command, version, a));
+}
+
+// A compile against the runtime found beside this executable records a command that rebuilds the
+// program by hand: the header's folder and the library by absolute path.
+TEST(Compile, TheCommandNamesTheRuntimeByAbsolutePath) {
+  const helios::solve::RuntimeFiles& runtime = helios::solve::runtime_files();
+  ASSERT_TRUE(fs::path(runtime.library).is_absolute());
+  EXPECT_TRUE(fs::is_regular_file(runtime.library));
+  EXPECT_TRUE(fs::is_regular_file(fs::path(runtime.include_dir) / "helios_runtime.hpp"));
+  EXPECT_EQ(runtime.sha256.size(), 64u);
+  const fs::path dir = fresh_dir("compile");
+  helios::solve::SolveOptions o;
+  o.cache_dir = dir.string();
+  o.sandbox = false;
+  const auto c = helios::solve::compile_cached("#include \"helios_runtime.hpp\"\nint main() {}\n", o);
+  EXPECT_NE(c.command.find(" -I" + runtime.include_dir + " "), std::string::npos) << c.command;
+  EXPECT_NE(c.command.find(" " + runtime.library + " "), std::string::npos) << c.command;
+  fs::remove_all(dir);
 }
 
 }  // namespace

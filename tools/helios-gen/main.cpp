@@ -1,5 +1,5 @@
-// helios-gen: derivation.json -> shoot.cpp (fixed runtime from templates/ + generated modules, or
-// modules written by the llm backend, one gen <-> compile repair round per call).
+// helios-gen: derivation.json -> shoot.cpp (the problem and its generated modules, linking the
+// prebuilt runtime, or modules written by the llm backend, one gen <-> compile repair round per call).
 #include <optional>
 
 #include "helios/codegen/generate.hpp"
@@ -23,9 +23,9 @@ int main(int argc, char** argv) {
        {"round", "", "N", "llm: repair round number (1 = first generation)", "1"},
        {"transcript", "", "FILE", "llm: transcript of the exchange (default: next to -o, NAME.transcript.json)", ""}},
       {"DERIVATION"},
-      "The program is one self-contained C++17 file: the fixed runtime (normalization, ephemeris,\n"
-      "DOP853 with switch detection, eps-homotopy, seeded restarts, cminpack hybrd1, JSON output)\n"
-      "and the modules RESIDUAL and SOLVE generated from the shooting system.\n"
+      "The program is one C++17 file of the problem and its modules (RESIDUAL and SOLVE generated\n"
+      "from the shooting system); it links the prebuilt runtime libhelios-runtime.a (ephemeris,\n"
+      "DOP853 with switch detection, eps-homotopy, seeded restarts, cminpack hybrd1, JSON output).\n"
       "With --backend llm the model writes the four modules (prompts/codegen.txt); round N > 1 sends\n"
       "the compiler's errors of --previous (prompts/repair.txt), and when --compile-report says the\n"
       "previous program compiled, writes it unchanged without asking the model.",

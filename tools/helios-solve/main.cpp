@@ -24,7 +24,8 @@ int main(int argc, char** argv) {
        {"quiet", "", "", "no progress lines on stderr", ""},
        {"no-sandbox", "", "", "compile and run the program without bubblewrap (recorded in solution.json)", ""}},
       {"SHOOT"},
-      "Compiles with g++ -O2 (skipped when the cache holds the same source and compiler), runs the\n"
+      "Compiles with g++ -O2 against the prebuilt runtime beside this tool (../lib, ../include;\n"
+      "skipped when the cache holds the same source, compiler and runtime), runs the\n"
       "program in a child with CPU, memory, file-size and wall-clock limits, both inside bubblewrap\n"
       "(no network, read-only /usr, the run or cache folder the only writable place), and writes\n"
       "solution.json.\n"

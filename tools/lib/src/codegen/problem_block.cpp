@@ -67,21 +67,36 @@ std::string problem_block(Context& c) {
     << "const char* const kControlNames[] = {" << quoted_list(c.controls) << "};\n"
     << "const char* const kVariableNames[] = {" << quoted_list(vars) << "};\n"
     << "const char* const kEquationNames[] = {" << quoted_list(eqs) << "};\n";
-  o << "struct OrbitBody {\n  const char* name;\n  helios::astro::Elements elements;  // normalized a, rad\n"
-    << "  double epoch;  // normalized time of the elements\n};\n"
-    << "inline const std::vector<OrbitBody> kOrbitBodies = {\n";
-  for (const auto& b : d.value("bodies", json::array())) {
-    const json& el = b.at("elements");
-    o << "    {" << cpp_string(b.at("name")) << ", {" << number(el.at("a")) << ", " << number(el.at("e")) << ", "
-      << number(el.at("i_rad")) << ", " << number(el.at("raan_rad")) << ", " << number(el.at("argp_rad")) << ", "
-      << number(el.at("mean_anomaly_rad")) << "}, " << number(b.at("epoch")) << "},\n";
+  const json bodies = d.value("bodies", json::array());
+  if (!bodies.empty()) {
+    o << "// Bodies on their Keplerian orbits (normalized a, rad; epoch: normalized time of the elements).\n"
+      << "constexpr helios_rt::OrbitBody kOrbitBodies[] = {\n";
+    for (const auto& b : bodies) {
+      const json& el = b.at("elements");
+      o << "    {" << cpp_string(b.at("name")) << ", " << number(el.at("a")) << ", " << number(el.at("e")) << ", "
+        << number(el.at("i_rad")) << ", " << number(el.at("raan_rad")) << ", " << number(el.at("argp_rad")) << ", "
+        << number(el.at("mean_anomaly_rad")) << ", " << number(b.at("epoch")) << "},\n";
+    }
+    o << "};\n";
   }
-  o << "};\n";
   for (const auto& p : d.at("parameters"))
     if (!p.contains("source"))
       o << "constexpr double " << p.at("name").get<std::string>() << " = " << number(p.at("value")) << ";  // "
         << comment_text(p.at("meaning").get<std::string>() + " [" + p.value("unit", "") + "]") << "\n";
-  o << "}  // namespace problem\n";
+  o << "}  // namespace problem\n\n"
+    << "// The problem's shape as the runtime library reads it (helios_runtime.hpp's ProblemShape).\n"
+    << "namespace helios_rt {\n"
+    << "constexpr int kNY = 2 * problem::kNumStates;  // states then costates\n"
+    << "const ProblemShape kProblem = {problem::kProblemId, problem::kNumStates, problem::kNumControls,\n"
+    << "                               problem::kThrottleIndex, problem::kNumVars, problem::kMassIndex,\n"
+    << "                               problem::kMinimumFuel, problem::kT0, problem::kTf, problem::kHomotopyStart,\n"
+    << "                               problem::kTimeUnitDays, problem::kLengthUnitKm, problem::kSpeedUnitKmS,\n"
+    << "                               problem::kEpochMjd2000, problem::kMassUnitKg, problem::kExhaustVelocityMS,\n"
+    << "                               problem::mu, problem::kStateNames, problem::kStateColumns,\n"
+    << "                               problem::kStateToPhysical, problem::kControlNames, problem::kVariableNames,\n"
+    << "                               problem::kEquationNames, "
+    << (bodies.empty() ? "nullptr, 0" : "problem::kOrbitBodies, " + std::to_string(bodies.size())) << "};\n"
+    << "}  // namespace helios_rt\n";
   return o.str();
 }
 

@@ -282,7 +282,7 @@ std::string generate(const GenRequest& r, const CallInfo& call) {
   std::vector<Message> messages = {system_message("code generator"),
                                    {"user", fill(prompt("codegen.txt"), {{"DERIVATION_JSON", pretty(r.derivation)},
                                                                          {"PROBLEM_BLOCK", block},
-                                                                         {"RUNTIME", codegen::runtime_source()}})}};
+                                                                         {"RUNTIME", codegen::runtime_header()}})}};
   if (repair) {
     if (!r.compile_report) throw usage_error("--previous needs --compile-report (how the previous program compiled)");
     const json previous = modules_of(*r.previous_source);

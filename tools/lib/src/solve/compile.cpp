@@ -1,4 +1,5 @@
-// The compile step: g++ into a cache keyed by the SHA-256 of source, command and compiler.
+// The compile step: g++ against the prebuilt runtime, into a cache keyed by the SHA-256 of source,
+// command, compiler and runtime.
 #include <unistd.h>
 
 #include <chrono>
@@ -13,6 +14,7 @@
 #include "helios/io/schema.hpp"
 #include "helios/io/sha256.hpp"
 #include "helios/solve/process.hpp"
+#include "helios/solve/runtime_files.hpp"
 #include "helios/solve/solve.hpp"
 
 namespace helios::solve {
@@ -38,6 +40,11 @@ std::vector<std::string> compiler_prefix(const std::string& compiler) {
 
 }  // namespace
 
+std::string compile_key(const std::string& source, const std::string& command, const std::string& compiler_version,
+                        const std::string& runtime_sha256) {
+  return io::sha256_hex(source + "\n" + command + "\n" + compiler_version + "\n" + runtime_sha256);
+}
+
 CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   const std::string& compiler = o.compiler;
   CompileResult c;
@@ -45,9 +52,13 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   const std::vector<std::string> flags = {"-std=c++17", "-O2", "-pthread", "-Wall", "-Wextra"};
   std::string flag_text;
   for (const auto& f : flags) flag_text += " " + f;
-  c.command = compiler + flag_text + " shoot.cpp -o shoot -lcminpack";
-  // The key covers the source, the command and the compiler's identity.
-  c.sha256 = io::sha256_hex(source + "\n" + c.command + "\n" + first_line(capture({compiler, "--version"})));
+  // The program includes the runtime's header and links its library (absolute paths, so the
+  // recorded command rebuilds the program by hand).
+  const RuntimeFiles& runtime = runtime_files();
+  c.command =
+      compiler + flag_text + " -I" + runtime.include_dir + " shoot.cpp -o shoot " + runtime.library + " -lcminpack";
+  // The key covers the source, the command, the compiler's identity and the runtime's bytes.
+  c.sha256 = compile_key(source, c.command, first_line(capture({compiler, "--version"})), runtime.sha256);
   // Absolute, as the sandbox binds the folder at its absolute path.
   const fs::path dir = fs::absolute(fs::path(o.cache_dir) / c.sha256).lexically_normal();
   c.binary = (dir / "shoot").string();
@@ -66,11 +77,15 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   const io::TempFiles guard({tmp_bin});
   std::vector<std::string> argv = {on_path(compiler)};
   argv.insert(argv.end(), flags.begin(), flags.end());
-  argv.insert(argv.end(), {src, "-o", tmp_bin, "-lcminpack"});
+  argv.insert(argv.end(), {"-I" + runtime.include_dir, src, "-o", tmp_bin, runtime.library, "-lcminpack"});
   // The compiler is sandboxed as the program is: a source that includes /etc/passwd or a project
   // file finds nothing to quote in its diagnostics (which a repair round sends to the model).
-  const RunResult run = run_limited(o.sandbox ? sandboxed(argv, dir.string(), compiler_prefix(argv[0])) : argv,
-                                    o.time_limit_s, o.memory_limit_mb);
+  // The runtime's folders are bound read-only, beside the compiler's prefix.
+  std::vector<std::string> read_only = compiler_prefix(argv[0]);
+  read_only.push_back(runtime.include_dir);
+  read_only.push_back(fs::path(runtime.library).parent_path().string());
+  const RunResult run =
+      run_limited(o.sandbox ? sandboxed(argv, dir.string(), read_only) : argv, o.time_limit_s, o.memory_limit_mb);
   c.diagnostics = run.stderr_text;
   if (run.timed_out || run.signal != 0)
     c.diagnostics += "\nhelios-solve: the compiler was stopped: " +

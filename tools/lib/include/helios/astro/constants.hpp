@@ -1,6 +1,6 @@
 #pragma once
 // Physical and time constants. Units are part of every name. Standard library only: this
-// header is pasted verbatim into generated programs.
+// header is also compiled into the shooting runtime (templates/runtime/runtime.cpp).
 
 namespace helios::astro {
 

@@ -1,12 +1,9 @@
 #pragma once
 // JPL low-precision planetary ephemerides (Standish, "Keplerian Elements for Approximate Positions
 // of the Major Planets", Table 1, valid 1800-2050), following pykep's jpl_lp convention.
-// Standard library only: pasted verbatim into generated programs after constants.hpp and
-// kepler.hpp, with HELIOS_ASTRO_EMBEDDED defined so that the project includes below are skipped.
-#ifndef HELIOS_ASTRO_EMBEDDED
+// Standard library only: also compiled into the shooting runtime (templates/runtime/runtime.cpp).
 #include "helios/astro/constants.hpp"
 #include "helios/astro/kepler.hpp"
-#endif
 
 #include <array>
 #include <stdexcept>

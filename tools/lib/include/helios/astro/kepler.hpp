@@ -1,11 +1,8 @@
 #pragma once
 // Two-body (Kepler) utilities: Kepler's equation, classical elements <-> Cartesian state and
-// universal-variable propagation. Standard library only: this header is pasted verbatim into
-// generated programs right after constants.hpp, with HELIOS_ASTRO_EMBEDDED defined so that the
-// project include below is skipped.
-#ifndef HELIOS_ASTRO_EMBEDDED
+// universal-variable propagation. Standard library only: also compiled into the shooting runtime
+// (templates/runtime/runtime.cpp).
 #include "helios/astro/constants.hpp"
-#endif
 
 #include <algorithm>
 #include <array>

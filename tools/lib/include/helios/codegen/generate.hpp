@@ -1,6 +1,8 @@
 #pragma once
-// helios-gen (builtin): a derivation -> one self-contained C++ shooting program made of the fixed
-// runtime in templates/ and the generated modules (design.md section 1 and 6).
+// helios-gen (builtin): a derivation -> one C++ shooting program made of the PROBLEM block, the
+// generated (or template) modules and the entry point; it links the prebuilt runtime
+// libhelios-runtime.a (templates/runtime) through its header helios_runtime.hpp (design.md
+// section 1 and 6).
 #include <string>
 #include <vector>
 
@@ -29,13 +31,14 @@ GeneratedProgram generate(const io::json& derivation, const GenOptions& options)
 // The PROBLEM block (namespace problem: sizes, names, units, constant parameters) of a derivation.
 std::string problem_block(const io::json& derivation);
 
-// The fixed shooting runtime as it goes into a program: the headers templates/runtime/runtime.hpp
-// includes, in its order, each pasted whole.
-std::string runtime_source();
+// The runtime's header as a program includes it (templates/runtime/helios_runtime.hpp): the
+// problem's shape, the modules' prototypes and the runtime's declarations.
+std::string runtime_header();
 
 // The whole program around `modules` (C++ defining DYNAMICS, SWITCH, RESIDUAL and SOLVE in
-// namespace helios_rt): headers, astro code, integrator, PROBLEM block, runtime, modules, entry
-// point. `origin` names the generator in the first comment line (builtin, or llm and the model).
+// namespace helios_rt): the map (with the runtime's SHA-256, found beside the executable), the
+// runtime header's include, the PROBLEM block, the modules, the entry point. `origin` names the generator in the first
+// comment line (builtin, or llm and the model).
 std::string assemble(const io::json& derivation, const std::string& modules, const std::string& origin);
 
 }  // namespace helios::codegen

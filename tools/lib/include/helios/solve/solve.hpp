@@ -39,6 +39,10 @@ struct CompileResult {
 // of address space, CPU, file size, processes): a source that makes it loop or grow fails the
 // compile, with the reason last in its diagnostics.
 CompileResult compile_cached(const std::string& source, const SolveOptions& o);
+// The cache key of a compile: the SHA-256 of the source, the command, the compiler's --version line
+// and the runtime's SHA-256 (runtime_files), so a rebuilt runtime invalidates cached programs.
+std::string compile_key(const std::string& source, const std::string& command, const std::string& compiler_version,
+                        const std::string& runtime_sha256);
 
 struct RunResult {
   int exit_code = -1;

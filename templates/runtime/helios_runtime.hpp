@@ -1,0 +1,362 @@
+// ---------------------------------------------------------------------------------------------
+// HELIOS shooting runtime, public header (templates/runtime/helios_runtime.hpp): what a generated
+// shooting program sees of the runtime, declarations only. The runtime itself (the other headers
+// of templates/runtime, compiled by runtime.cpp) is the static library libhelios-runtime.a, built
+// once with the tools; helios-solve compiles a program against this header and links it with the
+// library.
+//
+// The program defines what the library calls:
+//   - kProblem, the problem's shape (its sizes, units, names), read by the runtime at run time;
+//   - the modules DYNAMICS (dynamics, hamiltonian), SWITCH (direction_control, throttle_slopes
+//     when the problem has a throttle), RESIDUAL (shooting_function; shooting_legs with events;
+//     coast_dynamics with a coasting target) and SOLVE (solve_problem);
+//   - main, which calls run.
+// ---------------------------------------------------------------------------------------------
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace helios_rt {
+
+// The largest problem the library's fixed-size arrays hold (run refuses a larger one).
+constexpr int kMaxStates = 16;
+constexpr int kMaxControls = 8;
+constexpr int kMaxNY = 2 * kMaxStates;  // states then costates
+
+// A body propagated on its Keplerian orbit instead of the ephemeris model.
+struct OrbitBody {
+  const char* name;
+  double a, e, i_rad, raan_rad, argp_rad, mean_anomaly_rad;  // normalized a
+  double epoch;                                              // normalized time of the elements
+};
+
+// The problem as the runtime reads it (the PROBLEM block's constants, defined by the program).
+struct ProblemShape {
+  const char* id;
+  int num_states, num_controls;
+  int throttle_index;  // -1: no throttle (one mode)
+  int num_vars;
+  int mass_index;     // -1: no mass state (a sail)
+  bool minimum_fuel;  // the objective is the propellant (minimum fuel or initial mass), else the time
+  double t0, tf;      // tf: the final time, or the upper end of its window when it is free
+  double homotopy_start;
+  double time_unit_days, length_unit_km, speed_unit_km_s, epoch_mjd2000, mass_unit_kg;
+  double exhaust_velocity_m_s;
+  double mu;
+  const char* const* state_names;
+  const char* const* state_columns;
+  const double* state_to_physical;
+  const char* const* control_names;
+  const char* const* variable_names;
+  const char* const* equation_names;
+  const OrbitBody* orbit_bodies;
+  int num_orbit_bodies;
+};
+extern const ProblemShape kProblem;
+
+struct Multipliers {
+  double lambda0 = 1;
+  double eps = 1;
+};
+
+struct numerical_error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// DYNAMICS module: state and costate right-hand sides and H at time t for a given control vector.
+void dynamics(double t, const double* y, const double* control, const Multipliers& mult, double* dy);
+double hamiltonian(double t, const double* y, const double* control, const Multipliers& mult);
+// SWITCH module: the continuous controls (all but the throttle) and dH/du at u = 0 and u = 1.
+// A problem without a throttle (throttle_index < 0) has one mode and no throttle_slopes.
+void direction_control(const double* y, double* control);
+void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper);
+// Unpowered dynamics of a coasting target (RESIDUAL module, when the problem has one).
+void coast_dynamics(const double* y, double* dy);
+
+// The solver settings (schemas/settings.schema.json lists them).
+struct Settings {
+  unsigned seed = 1;
+  int max_attempts = 200;
+  double time_limit_s = 600;
+  double rtol = 1e-13, atol = 1e-13;
+  double hybrd_tol = 1e-12;
+  double accept_residual = 1e-8;  // intermediate homotopy steps
+  double final_residual = 1e-10;  // the gate at eps = 0
+  double eps_start = kProblem.homotopy_start;
+  double eps_min = 1e-6;  // below this the next step is eps = 0
+  double eps_first_ratio = 0.5;
+  int leg_attempts = 20;  // random guesses per leg before the attempt is abandoned
+  // The global search (search.hpp): at most search_starts starts at eps_start, fewer once the
+  // chance that another converged start finds a new extremal is below search_saturation (0:
+  // always all); how many of the lowest-cost distinct extremals are continued to eps = 0
+  // (problems without interior events); complete attempts (problems with them); its own time
+  // budget (0: only time_limit_s) and threads (0: the cores).
+  int search_starts = 64;
+  double search_saturation = 0.05;
+  int search_continued = 4;
+  int search_attempts = 4;
+  double search_time_s = 0;
+  int threads = 0;
+  int max_steps = 200000;  // integrator steps per arc
+};
+
+// Seconds since the program's first call.
+double wall_seconds();
+
+// Where the targets are (targets.hpp): a planet's (or an orbit body's) normalized state at
+// normalized time t and its rate, and a coasting target's state at t1 from y0 at t0.
+std::array<double, 6> ephemeris_state(const std::string& body, double t);
+std::array<double, 6> ephemeris_rate(const std::string& body, double t);
+std::array<double, 6> coast_state(const std::array<double, 6>& y0, double t0, double t1);
+
+struct Sample {
+  int arc;  // samples of one propagate() call share an arc; H may jump only between arcs
+  double t;
+  std::array<double, kMaxNY> y;  // the first 2 num_states entries
+  std::array<double, kMaxControls> control;
+  double H, S;
+};
+
+struct Switch {
+  double t;
+  double throttle_after;
+};
+
+// Throttle modes (controls.hpp). With eps > 0, H is strictly convex in u: u = 0 where
+// dH/du(0) >= 0, u = 1 where dH/du(1) <= 0, otherwise u solves dH/du = 0. At eps = 0 both slopes
+// equal the switching function.
+enum Mode : int { kOff = 0, kInterior = 1, kFull = 2 };
+// The mode at y, and the optimal control in a mode (the RESIDUAL module's H at a free final time).
+Mode mode_at(const double* y, const Multipliers& mult);
+void control_in_mode(const double* y, Mode mode, const Multipliers& mult, double* control);
+
+class Dop853;
+
+// Integrates y from t0 to t1 under the optimal control, one mode at a time (propagator.hpp).
+class Propagator {
+ public:
+  explicit Propagator(const Settings& s);
+  ~Propagator();
+  Propagator(const Propagator&) = delete;
+  Propagator& operator=(const Propagator&) = delete;
+
+  std::vector<Sample>* samples = nullptr;  // when set, every accepted step is recorded
+  std::vector<Switch>* switches = nullptr;
+  double max_step = INFINITY;  // limits steps when recording, for smooth plots
+
+  void propagate(double t0, double t1, double* y, const Multipliers& mult);
+
+ private:
+  template <class Rhs>
+  double locate_switch(Rhs& rhs, double t, const double* y, Mode mode, const Multipliers& mult, int crossed, double ga,
+                       double gb, double b);
+  int dip(double t, const double* y, const double* f0, double h, const double* y1, const double* f1, Mode mode,
+          const Multipliers& mult, double& b, std::array<double, 2>& g_at_b);
+  static Mode next_mode(Mode mode, int crossed, const Multipliers& mult);
+  void record(double t, const double* y, Mode mode, const Multipliers& mult);
+
+  const Settings& settings_;
+  std::unique_ptr<Dop853> stepper_;
+  int arc_ = 0;
+};
+
+// The shooting function of the RESIDUAL module, with the bookkeeping hybrd1 needs.
+void shooting_function(const double* x, double eps, Propagator& prop, double* F);
+
+// Problems with interior events also have the shooting function by legs (RESIDUAL module):
+// stop_at = k solves leg k alone (it ends at event k as if the trajectory ended there);
+// stop_at = -1 is multiple shooting: after event k the costates restart from starts[k*n...] and
+// their mismatch with the jump conditions is written to continuity[k*n...].
+struct Legs {
+  int stop_at = -1;
+  const double* starts = nullptr;
+  double* continuity = nullptr;
+};
+void shooting_legs(const double* x, double eps, Propagator& prop, double* F, const Legs* legs);
+using Residual = std::function<void(const double* x, double eps, Propagator& prop, double* F)>;
+
+// Which shooting variables each leg solves for alone (indices into x; leg k > 0 also solves for
+// its start costates), and the variables a leg alone holds fixed: the time fractions at their
+// guesses, the event's other variables (costates after a state map, parameters) at 0.
+struct LegPlan {
+  std::vector<std::vector<int>> variables;
+  std::vector<int> time_fractions, held_at_zero;
+  // An epoch's window bound: while it is active (pass 2), legs alone hold the epoch's fraction
+  // at the window's edge (0 or 1) instead of a guess inside.
+  struct WindowEdge {
+    int bound, fraction;
+    double edge;
+  };
+  std::vector<WindowEdge> window_edges;
+};
+
+// The events' own shooting variables and rows (RESIDUAL module), for the continuation onto the
+// events (continuation.hpp). An event is passable when it is instantaneous and its state map is
+// the identity with its parameters at 0: the trajectory of the problem without it (its
+// multipliers and parameters 0, its epoch held) then solves every row of the event but its
+// constraint c = 0.
+struct EventRows {
+  std::vector<std::array<int, 2>> constraints;  // {multiplier nu_j, row of c_j = 0}
+  std::array<int, 2> epoch{-1, -1};             // {epoch as a window fraction, row of its free-epoch condition}
+  std::vector<std::array<int, 2>> parameters;   // {Category-C parameter, row of its stationarity}
+  std::vector<std::array<int, 2>> costates;     // {costate just after the event, row of its jump}
+};
+
+struct EventPlan {
+  bool passable = false;    // every event passable
+  int multiplier = 0;       // lambda0
+  std::vector<int> sphere;  // the normalization's variables, lambda0 among them
+  std::vector<EventRows> events;
+};
+
+// A bound psi <= 0 of the derivation, solved in two passes: its row of the shooting function is
+// its multiplier (= 0) while inactive and psi itself (= 0) when active.
+struct Bound {
+  std::string name, meaning;
+  int multiplier;  // index of the bound's multiplier in x
+};
+
+struct BoundReport {
+  std::string name, meaning;
+  double first_pass_value;   // psi at the solution of pass 1 (bound inactive); > 0 is a violation
+  bool active;               // made active in pass 2
+  double value, multiplier;  // at the final solution
+};
+
+// Row k of the shooting function for bound k: records psi and returns it when the bound is
+// active, else the inactive expression (its multiplier).
+double bound_row(int k, double psi, double inactive);
+
+// What a solve records: homotopy, leg and continuation steps, the search's extremals, the result.
+struct HomotopyStep {
+  double eps;
+  bool converged;
+  double max_residual;
+  int evaluations;
+};
+
+struct LegStep {
+  int leg;
+  bool converged;
+  double max_residual;
+  int evaluations;
+};
+
+// One solve of the continuation onto the events (continuation_attempt): its stage ("events off",
+// "epochs", "targets", "parameters"), the stage's homotopy value (the guess number, 0, tau or
+// kappa) and the outcome.
+struct ContinuationStep {
+  std::string stage;
+  double value;
+  bool converged;
+  double max_residual;
+  int evaluations;
+};
+
+// What tells one extremal from another (search.hpp's shape_of): the revolutions about the
+// central body (the angle the position sweeps about the initial angular momentum, over 2 pi), the
+// throttle's mode changes (at eps = 0 its bang-bang switches), and the cost at its eps: the
+// propellant of the smoothed problem (the integral of u - eps u (1 - u), in propellant units) for
+// a throttle, else the flight time. At eps = 0 the cost is the objective.
+struct Shape {
+  double revolutions = 0;
+  int switches = 0;
+  double cost = INFINITY;
+};
+
+// A distinct solution at eps_start, and how many starts reached it.
+struct StartExtremal {
+  std::vector<double> x;
+  Shape shape;
+  double max_residual = 0;
+  int first_start = 0, reached = 0;
+  bool continued = false;
+  int arrived = -1;  // the extremal at eps = 0 it was continued to (-1: none)
+};
+
+// A distinct extremal at eps = 0 (it satisfies the problem's own necessary conditions), with the
+// solve that reached it first. With bounds: whether the passes over the active set started from
+// it, the objective they reached (NaN when they did not converge) and their number.
+struct Extremal {
+  std::vector<double> x, x_start, F;
+  Shape shape;
+  double max_residual = 0;
+  int info = 0;
+  int first_start = 0, reached = 0;  // the first start (or attempt) that reached it, and how many did
+  std::vector<int> from;             // the eps_start extremals (or attempts) that led to it
+  std::string method;
+  std::vector<HomotopyStep> homotopy;
+  std::vector<LegStep> legs;
+  std::vector<ContinuationStep> continuation;
+  bool bounded_tried = false;
+  double bounded_objective = NAN;
+  int bounded_passes = 0;
+};
+
+// What the global search did (search.hpp), for solution.json.
+struct SearchRecord {
+  std::string method;
+  int threads = 1;
+  int starts = 0;           // starts (or complete attempts) drawn
+  int converged_start = 0;  // starts converged at eps_start (problems without events)
+  int continued = 0;        // eps_start extremals continued to eps = 0
+  int converged_final = 0;  // solves that reached eps = 0
+  double seconds = 0;
+  bool cut_by_time = false;
+  std::vector<StartExtremal> start_extremals;
+  std::vector<Extremal> extremals;
+  int returned = -1;  // index into extremals
+  std::string reason;
+};
+
+struct Result {
+  std::string status = "not_converged";
+  std::string method = "single shooting";
+  int passes = 1;
+  std::vector<BoundReport> bounds;
+  std::vector<LegStep> legs;
+  std::string detail;
+  int info = 0;
+  std::vector<double> x;
+  std::vector<double> x_start;  // the solution at settings.eps_start that eps was continued from to x
+  std::vector<double> F;
+  double eps = 1;
+  double max_residual = 0;
+  int evaluations = 0;
+  int attempts = 0;
+  int iterations = 0;
+  std::vector<HomotopyStep> homotopy;
+  std::vector<ContinuationStep> continuation;
+  SearchRecord search;
+};
+
+// The SOLVE module's calls: `initial_guess(rng, x)` draws a start, `admissible(x)` accepts a
+// solution (lambda0 > 0).
+using Guess = std::function<void(std::mt19937_64& rng, double* x)>;
+using Admissible = std::function<bool(const double* x)>;
+using Solve = std::function<Result(const Settings& s)>;
+// Problems without interior events: the global search (search.hpp's MultiStart).
+Result homotopy_solve(const Settings& s, const Guess& initial_guess, const Admissible& admissible);
+// Problems with interior events: search_attempts complete attempts (search.hpp).
+Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const EventPlan& events,
+                             const Guess& initial_guess, const Admissible& admissible);
+// Problems with bounds psi <= 0: the passes over their active set around `solve` (bounds.hpp).
+Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, const Solve& solve,
+                      const Admissible& admissible);
+
+// SOLVE module: the whole solve.
+Result solve_problem(const Settings& settings);
+
+// The entry point (report.hpp): reads the settings, solves, writes the outcome and trajectory.
+int run(int argc, char** argv);
+
+}  // namespace helios_rt

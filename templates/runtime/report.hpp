@@ -1,0 +1,312 @@
+// ---------------------------------------------------------------------------------------------
+// HELIOS shooting runtime, report (templates/runtime/report.hpp): what the program's entry point
+// (main.hpp) runs.
+// usage: shoot --settings SETTINGS.json --outcome OUTCOME.json --trajectory TRAJECTORY.csv
+// Writes OUTCOME.json (solution.json's keys but helios-solve's own: normalized and physical
+// numbers) and the trajectory of the final solution.
+// ---------------------------------------------------------------------------------------------
+#pragma once
+
+namespace helios_rt {
+
+namespace {
+
+inline Settings read_settings(const std::string& path) {
+  Settings s;
+  if (path.empty()) return s;
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read settings " + path);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  s.seed = j.value("seed", s.seed);
+  s.max_attempts = j.value("max_attempts", s.max_attempts);
+  s.time_limit_s = j.value("time_limit_s", s.time_limit_s);
+  s.rtol = j.value("integrator_rtol", s.rtol);
+  s.atol = j.value("integrator_atol", s.atol);
+  s.hybrd_tol = j.value("hybrd_tol", s.hybrd_tol);
+  s.accept_residual = j.value("accept_residual", s.accept_residual);
+  s.final_residual = j.value("final_residual", s.final_residual);
+  s.eps_start = j.value("eps_start", s.eps_start);
+  s.eps_min = j.value("eps_min", s.eps_min);
+  s.eps_first_ratio = j.value("eps_first_ratio", s.eps_first_ratio);
+  s.leg_attempts = j.value("leg_attempts", s.leg_attempts);
+  s.search_starts = j.value("search_starts", s.search_starts);
+  s.search_saturation = j.value("search_saturation", s.search_saturation);
+  s.search_continued = j.value("search_continued", s.search_continued);
+  s.search_attempts = j.value("search_attempts", s.search_attempts);
+  s.search_time_s = j.value("search_time_s", s.search_time_s);
+  s.threads = j.value("threads", s.threads);
+  return s;
+}
+
+// A residual as recorded: -1 where the evaluation failed (not finite).
+inline double recorded(double residual) {
+  return std::isfinite(residual) ? residual : -1.0;
+}
+
+inline void write_atomic(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".part";
+  {
+    std::ofstream out(tmp);
+    out << text;
+    if (!out) throw std::runtime_error("cannot write " + tmp);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot rename " + tmp);
+}
+
+// What the re-propagated solution says: its switches, the largest drift of H over an arc, the
+// states and times at its ends, and (with a mass state) the propellant and delta-v summed over the
+// arcs.
+struct TrajectorySummary {
+  std::vector<Switch> switches;
+  double hamiltonian_drift = 0;
+  std::vector<double> initial_state, final_state;
+  double t0 = 0, tf = 0;
+  double delta_v_m_s = 0, propellant = 0;
+};
+
+// Re-propagates the solution, recording samples and switches, and writes the trajectory CSV.
+inline TrajectorySummary trajectory(const Settings& s, const Result& r, const std::string& csv_path) {
+  const RecordedPath path = recorded_path(s, r.x, r.eps, (kProblem.tf - kProblem.t0) / 500);
+  const std::vector<Sample>& samples = path.samples;
+  std::ostringstream csv;
+  csv.precision(15);
+  csv << "t_days";
+  for (int i = 0; i < kProblem.num_states; ++i) csv << ',' << kProblem.state_columns[i];
+  for (int i = 0; i < kProblem.num_states; ++i) csv << ",l_" << kProblem.state_names[i];
+  for (int i = 0; i < kProblem.num_controls; ++i) csv << ',' << kProblem.control_names[i];
+  csv << ",H,S\n";
+  // H is constant on each arc (the dynamics are autonomous); it may jump at interior events.
+  std::map<int, std::pair<double, double>> h_range;
+  std::map<int, std::pair<double, double>> arc_mass;  // first and last mass of each arc
+  for (const auto& p : samples) {
+    if (kProblem.mass_index >= 0) {
+      auto& [first, last] = arc_mass.try_emplace(p.arc, p.y[kProblem.mass_index], 0.0).first->second;
+      last = p.y[kProblem.mass_index];
+      (void)first;
+    }
+    csv << p.t * kProblem.time_unit_days;
+    for (int i = 0; i < kProblem.num_states; ++i) csv << ',' << p.y[i] * kProblem.state_to_physical[i];
+    for (int i = 0; i < kProblem.num_states; ++i) csv << ',' << p.y[kProblem.num_states + i];
+    for (int i = 0; i < kProblem.num_controls; ++i) csv << ',' << p.control[i];
+    csv << ',' << p.H << ',' << p.S << '\n';
+    auto& [lo, hi] = h_range.try_emplace(p.arc, INFINITY, -INFINITY).first->second;
+    lo = std::min(lo, p.H);
+    hi = std::max(hi, p.H);
+  }
+  write_atomic(csv_path, csv.str());
+  TrajectorySummary out;
+  out.switches = path.switches;
+  for (const auto& [arc, range] : h_range)
+    out.hamiltonian_drift = std::max(out.hamiltonian_drift, range.second - range.first);
+  const auto& first = samples.front();
+  const auto& last = samples.back();
+  out.initial_state.assign(first.y.begin(), first.y.begin() + kProblem.num_states);
+  out.final_state.assign(last.y.begin(), last.y.begin() + kProblem.num_states);
+  // Delta-v by the rocket equation on each arc (a mass drop between arcs is not propellant).
+  for (const auto& [arc, mass] : arc_mass) {
+    out.delta_v_m_s += kProblem.exhaust_velocity_m_s * std::log(mass.first / mass.second);
+    out.propellant += mass.first - mass.second;
+  }
+  out.t0 = first.t;
+  out.tf = last.t;
+  return out;
+}
+
+// A finite objective in named units: the propellant under `mass_key`, or the flight time under
+// `time_key`.
+inline void objective_in_units(nlohmann::ordered_json& to, double objective, const char* mass_key = "propellant_kg",
+                               const char* time_key = "tof_days") {
+  if (std::isfinite(objective))
+    to[objective_is_propellant() ? mass_key : time_key] = objective_in_named_unit(objective);
+}
+
+// The distinct extremals at eps_start as solution.json records them ("search", "extremals_at_eps_start").
+inline nlohmann::ordered_json start_extremals_record(const std::vector<StartExtremal>& list) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const StartExtremal& e = list[i];
+    nlohmann::ordered_json entry = {{"id", i},
+                                    {"cost", recorded(e.shape.cost)},
+                                    {"revolutions", e.shape.revolutions},
+                                    {"mode_changes", e.shape.switches},
+                                    {"reached", e.reached},
+                                    {"first_start", e.first_start},
+                                    {"max_residual", recorded(e.max_residual)},
+                                    {"continued", e.continued}};
+    objective_in_units(entry, e.shape.cost, "cost_kg", "cost_days");  // the smoothed problem's cost
+    if (e.arrived >= 0) entry["arrived_at"] = e.arrived;
+    out.push_back(entry);
+  }
+  return out;
+}
+
+// The distinct extremals at eps = 0 as solution.json records them ("search", "extremals").
+inline nlohmann::ordered_json extremals_record(const std::vector<Extremal>& list) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Extremal& e = list[i];
+    nlohmann::ordered_json entry = {{"id", i},
+                                    {"objective", recorded(e.shape.cost)},
+                                    {"revolutions", e.shape.revolutions},
+                                    {"switches", e.shape.switches},
+                                    {"reached", e.reached},
+                                    {"first_start", e.first_start},
+                                    {"from", e.from},
+                                    {"max_residual", recorded(e.max_residual)},
+                                    {"method", e.method}};
+    objective_in_units(entry, e.shape.cost);
+    if (e.bounded_tried) {  // where the passes over the bounds led from this extremal
+      nlohmann::ordered_json bounded = {{"converged", std::isfinite(e.bounded_objective)}};
+      if (std::isfinite(e.bounded_objective)) {
+        bounded["objective"] = e.bounded_objective;
+        bounded["passes"] = e.bounded_passes;
+        objective_in_units(bounded, e.bounded_objective);
+      }
+      entry["with_bounds"] = bounded;
+    }
+    out.push_back(entry);
+  }
+  return out;
+}
+
+// The global search as solution.json records it (schemas/solution.schema.json, "search").
+inline nlohmann::ordered_json search_record(const SearchRecord& rec) {
+  nlohmann::ordered_json out = {{"method", rec.method},
+                                {"threads", rec.threads},
+                                {"starts", rec.starts},
+                                {"converged_at_eps_start", rec.converged_start},
+                                {"continued", rec.continued},
+                                {"converged_at_eps_0", rec.converged_final},
+                                {"seconds", rec.seconds},
+                                {"cut_by_time", rec.cut_by_time},
+                                {"extremals_at_eps_start", start_extremals_record(rec.start_extremals)},
+                                {"extremals", extremals_record(rec.extremals)}};
+  if (rec.returned >= 0) {
+    out["returned"] = rec.returned;
+    out["reason"] = rec.reason;
+  }
+  return out;
+}
+
+// The solves that led to the result, as solution.json records them: the homotopy and
+// continuation steps (max_residual only where the evaluation was finite), the legs, the bounds.
+inline void steps_record(const Result& r, nlohmann::ordered_json& out) {
+  out["homotopy"] = nlohmann::ordered_json::array();
+  for (const auto& h : r.homotopy) {
+    nlohmann::ordered_json step = {{"eps", h.eps}, {"converged", h.converged}, {"evaluations", h.evaluations}};
+    if (std::isfinite(h.max_residual)) step["max_residual"] = h.max_residual;
+    out["homotopy"].push_back(step);
+  }
+  out["method"] = r.method;
+  if (!r.legs.empty()) {
+    out["legs"] = nlohmann::ordered_json::array();
+    for (const auto& l : r.legs)
+      out["legs"].push_back({{"leg", l.leg},
+                             {"converged", l.converged},
+                             {"max_residual", recorded(l.max_residual)},
+                             {"evaluations", l.evaluations}});
+  }
+  out["passes"] = r.passes;
+  if (!r.bounds.empty()) {
+    out["bounds"] = nlohmann::ordered_json::array();
+    for (const auto& b : r.bounds)
+      out["bounds"].push_back({{"name", b.name},
+                               {"meaning", b.meaning},
+                               {"first_pass_value", b.first_pass_value},
+                               {"active", b.active},
+                               {"value", b.value},
+                               {"multiplier", b.multiplier}});
+  }
+  out["search"] = search_record(r.search);
+  if (!r.continuation.empty()) {
+    out["continuation"] = nlohmann::ordered_json::array();
+    for (const auto& c : r.continuation) {
+      nlohmann::ordered_json step = {
+          {"stage", c.stage}, {"value", c.value}, {"converged", c.converged}, {"evaluations", c.evaluations}};
+      if (std::isfinite(c.max_residual)) step["max_residual"] = c.max_residual;
+      out["continuation"].push_back(step);
+    }
+  }
+}
+
+// A converged solution as solution.json records it: the physical results (from its re-propagation,
+// which also writes the trajectory CSV), then the normalized ones.
+inline void solution_record(const Settings& s, const Result& r, const std::string& trajectory_path,
+                            nlohmann::ordered_json& out) {
+  const TrajectorySummary path = trajectory(s, r, trajectory_path);
+  out["tof_days"] = (path.tf - path.t0) * kProblem.time_unit_days;
+  if (kProblem.epoch_mjd2000 != 0)
+    out["departure_mjd2000"] = kProblem.epoch_mjd2000 + path.t0 * kProblem.time_unit_days;
+  if (kProblem.mass_index >= 0) {  // a sail has no mass state
+    out["initial_mass_kg"] = path.initial_state[kProblem.mass_index] * kProblem.mass_unit_kg;
+    out["final_mass_kg"] = path.final_state[kProblem.mass_index] * kProblem.mass_unit_kg;
+    out["propellant_kg"] = path.propellant * kProblem.mass_unit_kg;  // a mass drop is not propellant
+    out["delta_v_m_s"] = path.delta_v_m_s;
+  }
+  out["epsilon"] = r.eps;
+  out["max_residual"] = r.max_residual;
+  nlohmann::ordered_json x = nlohmann::ordered_json::array(), F = nlohmann::ordered_json::array();
+  for (int i = 0; i < kProblem.num_vars; ++i) F.push_back({{"name", kProblem.equation_names[i]}, {"value", r.F[i]}});
+  for (int i = 0; i < kProblem.num_vars; ++i) x.push_back({{"name", kProblem.variable_names[i]}, {"value", r.x[i]}});
+  out["residuals"] = F;
+  out["x"] = x;
+  out["switches"] = nlohmann::ordered_json::array();
+  for (const auto& w : path.switches)
+    out["switches"].push_back({{"t_days", w.t * kProblem.time_unit_days}, {"throttle_after", w.throttle_after}});
+  out["hamiltonian_drift"] = path.hamiltonian_drift;
+}
+
+// The outcome of the solve under schemas/solution.schema.json's keys: every key but those
+// helios-solve alone knows (the artifact's header, the compile, the settings, the timings, the
+// files), which it adds.
+inline nlohmann::ordered_json outcome_record(const Settings& s, const Result& r, const std::string& trajectory_path) {
+  nlohmann::ordered_json out;
+  out["problem"] = {{"id", kProblem.id}};
+  out["status"] = r.status;
+  if (!r.detail.empty()) out["status_detail"] = r.detail;
+  out["solver_info"] = {{"code", r.info}, {"meaning", hybrd_meaning(r.info)}};
+  out["seed"] = s.seed;
+  out["restarts"] = std::max(0, r.attempts - 1);
+  out["iterations"] = r.iterations;
+  out["function_evaluations"] = r.evaluations;
+  steps_record(r, out);
+  if (r.status == "converged") solution_record(s, r, trajectory_path, out);
+  return out;
+}
+
+// The problem's sizes within what the library's arrays hold.
+inline void check_problem_shape() {
+  if (kProblem.num_states < 1 || kProblem.num_states > kMaxStates || kProblem.num_controls < 0 ||
+      kProblem.num_controls > kMaxControls || kProblem.throttle_index >= kProblem.num_controls || kProblem.num_vars < 1)
+    throw std::runtime_error("the problem has " + std::to_string(kProblem.num_states) + " states and " +
+                             std::to_string(kProblem.num_controls) + " controls; this runtime holds at most " +
+                             std::to_string(kMaxStates) + " states and " + std::to_string(kMaxControls) +
+                             " controls (helios_runtime.hpp's kMaxStates, kMaxControls)");
+  if (kProblem.throttle_index >= 0 && !throttle_slopes)
+    throw std::runtime_error("the problem has a throttle but the program defines no throttle_slopes");
+}
+
+}  // namespace
+
+int run(int argc, char** argv) {
+  check_problem_shape();
+  std::string settings_path, outcome_path = "outcome.json", trajectory_path = "trajectory.csv";
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    if (a == "--settings")
+      settings_path = argv[i + 1];
+    else if (a == "--outcome")
+      outcome_path = argv[i + 1];
+    else if (a == "--trajectory")
+      trajectory_path = argv[i + 1];
+    else
+      throw std::runtime_error("unknown option " + a);
+  }
+  const Settings s = read_settings(settings_path);
+  wall_seconds();
+  const Result r = solve_problem(s);
+  write_atomic(outcome_path, outcome_record(s, r, trajectory_path).dump(2) + "\n");
+  return 0;
+}
+
+}  // namespace helios_rt
