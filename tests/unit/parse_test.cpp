@@ -641,6 +641,14 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
   has(err(sc + " Minimize fuel and minimize time."), "it states two objectives");
   has(err(sc + " Tmax = 0.6 N."), "the maximum thrust is given twice");
   has(err("Tmax = 0.5 N, Isp = 2000 s, m0 = -1000 kg."), "the initial mass must be positive, got -1000 kg");
+  has(err(sc + " The maximum time of flight is 500 days."), "'maximum' makes 'time of flight' a bound, not a value");
+  has(err(sc + " The time of flight is up to 500 days."), "'up' makes 'time of flight' a bound, not a value");
+  has(err(sc + " The thrust is 3 furlongs."),
+      "'furlongs' after 3 is no unit HELIOS knows and no fact word; did you mean \"The spacecraft has a maximum "
+      "thrust of 3 N.\"?");
+  has(err(sc + " The transfer takes 348.795 days with an Isp of 2000 s."),
+      "348.795 days could be the time of flight or the specific impulse");
+  has(err(sc + " The target position is [1, 2, 3] km."), "does not say whether it is the initial or the final one");
   // an error names the file, line and sentence on one line
   const std::string e = err("Thrust 0.5 N Isp. The spacecraft has an initial mass of 1000 kg.");
   has(e, "problem.txt:4: cannot use sentence \"Thrust 0.5 N Isp\": 'isp' has no value");

@@ -9,6 +9,7 @@
 #include <optional>
 #include <regex>
 #include <set>
+#include <sstream>
 
 #include "helios/spec/units.hpp"
 
@@ -44,6 +45,7 @@ struct Meaning {
   int role = kNoRole;
   int verb = kNoVerb;
   int noun = kNoNoun;
+  bool bound = false;  // "up to", "limited to", "available", "maximum": a bound, which only the thrust is
 };
 
 // The fact rules: words and synonyms, lower case, hyphens read as spaces. Words not listed are
@@ -51,17 +53,13 @@ struct Meaning {
 const std::map<std::string, Meaning>& phrases() {
   static const std::map<std::string, Meaning> table = [] {
     std::map<std::string, Meaning> t;
-    for (const char* w :
-         {"the",        "a",        "an",        "is",        "are",        "be",        "of",         "to",
-          "with",       "at",       "from",      "by",        "for",        "in",        "its",        "it",
-          "spacecraft", "probe",    "vehicle",   "engine",    "engines",    "thruster",  "thrusters",  "propulsion",
-          "system",     "electric", "ion",       "has",       "have",       "must",      "should",     "can",
-          "set",        "fixed",    "equal",     "equals",    "given",      "taken",     "as",         "assumed",
-          "up",         "constant", "total",     "available", "level",      "magnitude", "limited",    "consumption",
-          "used",       "consumed", "objective", "goal",      "vector",     "state",     "conditions", "we",
-          "want",       "find",     "optimize",  "optimise",  "trajectory", "transfer",  "mission",    "operate",
-          "operates",   "possible", "reach",     "target",    "looking",    "of the"})
-      t[w] = {};
+    // fillers: they state nothing
+    std::istringstream fillers(
+        "the a an is are be of to with at from by for in its it spacecraft probe vehicle engine engines thruster "
+        "thrusters propulsion system electric ion has have must should can set fixed equal equals given taken as "
+        "assumed constant total level magnitude consumption used consumed objective goal vector state conditions we "
+        "want find optimize optimise trajectory transfer mission operate operates possible reach target looking");
+    for (std::string w; fillers >> w;) t[w] = {};
     const auto slot = [&](std::initializer_list<const char*> ws, Slot s, int noun = kNoNoun) {
       for (const char* w : ws) t[w] = {s, kNoRole, kNoVerb, noun};
     };
@@ -92,7 +90,8 @@ const std::map<std::string, Meaning>& phrases() {
     for (const char* w : {"minimize", "minimise", "cost", "cost function"}) t[w] = {Slot::None, kNoRole, kMinimize};
     for (const char* w : {"maximize", "maximise", "as large as possible"}) t[w] = {Slot::None, kNoRole, kMaximize};
     t["minimum"] = {Slot::None, kNoRole, kMinimum};
-    t["maximum"] = {Slot::None, kNoRole, kMaximum};
+    t["maximum"] = {Slot::None, kNoRole, kMaximum, kNoNoun, true};
+    for (const char* w : {"up", "limited", "available"}) t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, true};
     for (const char* w : {"fuel", "propellant", "fuel consumption", "propellant consumption", "fuel mass",
                           "propellant mass", "fuel use"})
       t[w] = {Slot::None, kNoRole, kNoVerb, kFuel};
@@ -280,6 +279,7 @@ struct Clause {
 std::vector<Clause> clauses_of(const std::vector<Token>& tokens) {
   std::vector<Clause> out(1);
   std::vector<std::string> words;
+  bool after_bare_number = false;  // the words follow a number without a unit
   const auto flush = [&] {
     const auto& table = phrases();
     for (std::size_t i = 0; i < words.size();) {
@@ -293,7 +293,12 @@ std::vector<Clause> clauses_of(const std::vector<Token>& tokens) {
           break;
         }
       }
-      if (len == 0) throw facts_error("cannot place the word '" + words[i] + "'");
+      if (len == 0) {
+        if (i == 0 && after_bare_number)
+          throw facts_error("'" + words[i] + "' after " + out.back().quantities.back().written +
+                            " is no unit HELIOS knows and no fact word");
+        throw facts_error("cannot place the word '" + words[i] + "'");
+      }
       i += len;
     }
     words.clear();
@@ -304,6 +309,7 @@ std::vector<Clause> clauses_of(const std::vector<Token>& tokens) {
       continue;
     }
     flush();
+    after_bare_number = t.kind == Token::Value && t.q.unit.empty();
     if (t.kind == Token::Value) out.back().quantities.push_back(t.q);
     if (t.kind == Token::Separator && (!out.back().mentions.empty() || !out.back().quantities.empty()))
       out.emplace_back();
@@ -460,8 +466,44 @@ bool states_nothing(const std::string& sentence) {
   return true;
 }
 
+// For a sentence with a word that fits nowhere: the controlled form of its one scalar fact, if the
+// sentence names exactly one and holds exactly one number.
+std::string rough_suggestion(const std::vector<Token>& tokens) {
+  std::set<Field> fields;
+  std::vector<Candidate> cands;
+  const Quantity* number = nullptr;
+  int numbers = 0;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    if (tokens[i].kind == Token::Value) {
+      ++numbers;
+      if (!tokens[i].q.vector) number = &tokens[i].q;
+    }
+    if (tokens[i].kind != Token::Word) continue;
+    std::string phrase;
+    for (std::size_t len = 1; len <= 4 && i + len <= tokens.size(); ++len) {
+      if (tokens[i + len - 1].kind != Token::Word) break;
+      phrase += (len == 1 ? "" : " ") + tokens[i + len - 1].word;
+      const auto it = phrases().find(phrase);
+      if (it == phrases().end()) continue;
+      const Slot sl = it->second.slot;
+      if (sl == Slot::Thrust || sl == Slot::Isp || sl == Slot::Mass || sl == Slot::InitialMass ||
+          sl == Slot::FinalMass || sl == Slot::Tof || sl == Slot::Mu)
+        for (const auto& c : candidates(sl, kNoRole, phrase))
+          if (fields.insert(c.field).second) cands.push_back(c);
+    }
+  }
+  if (cands.size() != 1 || numbers != 1 || !number) return "";
+  return suggestion(cands[0].field, *number, cands[0].dim);
+}
+
 SentenceFacts read_facts(const std::string& sentence) {
-  const std::vector<Clause> clauses = clauses_of(scan(sentence));
+  const std::vector<Token> tokens = scan(sentence);
+  std::vector<Clause> clauses;
+  try {
+    clauses = clauses_of(tokens);
+  } catch (const facts_error& e) {
+    throw facts_error(e.what(), rough_suggestion(tokens));
+  }
   SentenceFacts out;
   std::set<int> sentence_roles;
   for (const auto& c : clauses)
@@ -502,6 +544,13 @@ SentenceFacts read_facts(const std::string& sentence) {
     }
     if (verb == kMinimum || verb == kMinimize || verb == kMaximize)
       throw facts_error("'" + words + "' mixes an objective with a value");
+    // A bound on the thrust is the maximum thrust; a bound on anything else is not a value.
+    for (const auto& m : c.mentions)
+      for (const auto& n : c.mentions)
+        if (m.meaning.bound && n.meaning.slot != Slot::None && n.meaning.slot != Slot::Thrust)
+          throw facts_error("'" + m.text + "' makes '" + n.text +
+                            "' a bound, not a value (a bounded time of flight reads 'The time of flight is free, at "
+                            "most Q.')");
 
     // Quantities: each goes to the one fact of its clause whose dimension fits.
     struct Named {
