@@ -189,11 +189,20 @@ std::string read_unit(const std::string& s, std::size_t& i) {
   return unit;
 }
 
+// "(a, b, c)": a '(' followed by a number-like character, with a comma before its ')'.
+bool paren_vector(const std::string& s, std::size_t i) {
+  std::size_t j = i + 1;
+  while (j < s.size() && s[j] == ' ') ++j;
+  if (j == s.size() || !(std::isdigit(static_cast<unsigned char>(s[j])) || s[j] == '-' || s[j] == '+' || s[j] == '.'))
+    return false;
+  const std::size_t close = s.find_first_of("()", j);
+  return close != std::string::npos && s[close] == ')' && s.find(',', j) < close;
+}
+
 std::vector<Token> scan(const std::string& sentence) {
   // Superscripts as written in many texts: km³/s² is km^3/s^2.
   const std::string s = replace_all(replace_all(sentence, "\xC2\xB3", "^3"), "\xC2\xB2", "^2");
   static const std::regex num(R"(^[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)");
-  static const std::regex vec3(R"(^\(\s*[-+.\d][^()]*,[^()]*,[^()]*\))");
   std::vector<Token> out;
   std::size_t i = 0;
   const auto prev_word = [&] { return i > 0 && word_char(s[i - 1]); };
@@ -203,11 +212,10 @@ std::vector<Token> scan(const std::string& sentence) {
     const std::string rest = s.substr(i);
     if (c == ' ' || c == ':' || c == '=') {
       ++i;
-    } else if (c == '[' || (c == '(' && std::regex_search(rest, m, vec3))) {
+    } else if (c == '[' || (c == '(' && paren_vector(s, i))) {
       const char close = c == '[' ? ']' : ')';
       const std::size_t end = s.find(close, i);
-      if (end == std::string::npos)
-        throw facts_error("the vector starting at '" + rest + "' has no closing '" + close + "'");
+      if (end == std::string::npos) throw facts_error(std::string("a '") + c + "' has no closing '" + close + "'");
       const std::string body = s.substr(i + 1, end - i - 1);
       Quantity q;
       q.vector = true;
@@ -218,7 +226,7 @@ std::vector<Token> scan(const std::string& sentence) {
         item.erase(0, item.find_first_not_of(' '));
         item.erase(item.find_last_not_of(' ') + 1);
         std::smatch n;
-        if (!std::regex_match(item, n, std::regex(R"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)")))
+        if (!std::regex_match(item, n, num) || n.length(0) != static_cast<std::ptrdiff_t>(item.size()))
           throw facts_error("the vector " + s.substr(i, end - i + 1) + " has a component '" + item +
                             "' that is not a number");
         q.nums.push_back(number_of(item));
@@ -258,6 +266,7 @@ std::vector<Token> scan(const std::string& sentence) {
       }
       if (i < s.size() && s[i] == '-' && i + 1 < s.size() && std::isalpha(static_cast<unsigned char>(s[i + 1]))) ++i;
     } else {
+      if (static_cast<unsigned char>(c) >= 0x80) throw facts_error("cannot read a non-ASCII character here");
       throw facts_error(std::string("cannot read the character '") + c + "' here");
     }
   }
