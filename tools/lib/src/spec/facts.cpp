@@ -41,11 +41,14 @@ enum Verb { kNoVerb = 0, kMinimize, kMaximize, kMinimum, kMaximum };
 enum Noun { kNoNoun = 0, kFuel, kTime, kFinalMass, kInitialMass, kMass };
 
 struct Meaning {
-  Slot slot = Slot::None;
-  int role = kNoRole;
-  int verb = kNoVerb;
-  int noun = kNoNoun;
-  bool bound = false;  // "up to", "limited to", "available", "maximum": a bound, which only the thrust is
+  Slot slot;
+  int role, verb, noun;
+  bool bound;        // "up to", "limited to", "available", "maximum": a bound, which only the thrust is
+  std::string body;  // a body with a known gravitational parameter
+  bool central;      // names the central body ("central body", "heliocentric")
+  Meaning(Slot s = Slot::None, int r = kNoRole, int v = kNoVerb, int n = kNoNoun, bool b = false, std::string bd = "",
+          bool c = false)
+      : slot(s), role(r), verb(v), noun(n), bound(b), body(std::move(bd)), central(c) {}
 };
 
 // The fact rules: words and synonyms, lower case, hyphens read as spaces. Words not listed are
@@ -58,7 +61,8 @@ const std::map<std::string, Meaning>& phrases() {
         "the a an is are be of to with at from by for in its it spacecraft probe vehicle engine engines thruster "
         "thrusters propulsion system electric ion has have must should can set fixed equal equals given taken as "
         "assumed constant total level magnitude consumption used consumed objective goal vector state conditions we "
-        "want find optimize optimise trajectory transfer mission operate operates possible reach target looking");
+        "want find optimize optimise trajectory transfer mission operate operates possible reach target looking use "
+        "motion problem");
     for (std::string w; fillers >> w;) t[w] = {};
     const auto slot = [&](std::initializer_list<const char*> ws, Slot s, int noun = kNoNoun) {
       for (const char* w : ws) t[w] = {s, kNoRole, kNoVerb, noun};
@@ -91,6 +95,11 @@ const std::map<std::string, Meaning>& phrases() {
     for (const char* w : {"maximize", "maximise", "as large as possible"}) t[w] = {Slot::None, kNoRole, kMaximize};
     t["minimum"] = {Slot::None, kNoRole, kMinimum};
     t["maximum"] = {Slot::None, kNoRole, kMaximum, kNoNoun, true};
+    for (const auto& [w, b] : std::map<std::string, std::string>{{"sun", "Sun"}, {"earth", "Earth"}, {"mars", "Mars"}})
+      t[w].body = b;
+    for (const char* w : {"central body", "gravitational attractor", "attractor"}) t[w].central = true;
+    t["heliocentric"] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Sun", true};
+    t["geocentric"] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Earth", true};
     for (const char* w : {"up", "limited", "available"}) t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, true};
     for (const char* w : {"fuel", "propellant", "fuel consumption", "propellant consumption", "fuel mass",
                           "propellant mass", "fuel use"})
@@ -469,7 +478,8 @@ bool states_nothing(const std::string& sentence) {
     for (std::size_t k = i; k < tokens.size() && k < i + 4 && tokens[k].kind == Token::Word; ++k) {
       phrase += (k == i ? "" : " ") + tokens[k].word;
       const auto it = table.find(phrase);
-      if (it != table.end() && (it->second.slot != Slot::None || it->second.verb != kNoVerb)) return false;
+      const Meaning& mean = it == table.end() ? Meaning{} : it->second;
+      if (mean.slot != Slot::None || mean.verb != kNoVerb || !mean.body.empty() || mean.central) return false;
     }
   }
   return true;
@@ -514,6 +524,23 @@ SentenceFacts read_facts(const std::string& sentence) {
     throw facts_error(e.what(), rough_suggestion(tokens));
   }
   SentenceFacts out;
+  // The central body: a known body and a word saying it is the central one, once in the sentence.
+  std::set<std::string> bodies;
+  bool central_named = false;
+  for (const auto& c : clauses)
+    for (const auto& m : c.mentions) {
+      if (!m.meaning.body.empty()) bodies.insert(m.meaning.body);
+      central_named = central_named || m.meaning.central;
+    }
+  if (bodies.size() > 1)
+    throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": which one is the central body?");
+  if (!bodies.empty() && !central_named)
+    throw facts_error("it does not say what " + *bodies.begin() +
+                      " is here (the central body reads 'The central body is " +
+                      (*bodies.begin() == "Mars" ? "" : "the ") + *bodies.begin() + ".')");
+  if (bodies.empty() && central_named)
+    throw facts_error("it does not name the central body (Sun, Earth or Mars: 'The central body is the Sun.')");
+  if (!bodies.empty()) out.central = *bodies.begin();
   std::set<int> sentence_roles;
   for (const auto& c : clauses)
     for (const auto& m : c.mentions)
@@ -638,7 +665,8 @@ SentenceFacts read_facts(const std::string& sentence) {
                           spec_unit(want.dim) + ")");
       }
   }
-  if (out.facts.empty() && out.objective.empty()) throw facts_error("it states no fact HELIOS reads");
+  if (out.facts.empty() && out.objective.empty() && out.central.empty())
+    throw facts_error("it states no fact HELIOS reads");
   for (const auto& f : out.facts) {
     const bool positive = f.field == Field::Thrust || f.field == Field::Isp || f.field == Field::InitialMass ||
                           f.field == Field::FinalMass || f.field == Field::Tof || f.field == Field::Mu;

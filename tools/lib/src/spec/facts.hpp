@@ -21,6 +21,7 @@ struct Fact {
 struct SentenceFacts {
   std::vector<Fact> facts;
   std::string objective;  // a spec objective kind ("minimum_fuel", ...) or ""
+  std::string central;    // the central body named ("Sun", "Earth", "Mars") or ""
 };
 
 // Why a sentence cannot be read as facts; `suggestion` is the nearest controlled-English sentence

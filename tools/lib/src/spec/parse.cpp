@@ -403,6 +403,10 @@ struct Builder {
 
   void apply_facts(const detail::SentenceFacts& f) {
     using detail::Field;
+    if (!f.central.empty()) {
+      once("the central body");
+      central(f.central, "");
+    }
     const auto engine = [&](Field field, const char* key, double v) {
       once(detail::field_name(field));
       ++seen["the spacecraft's engine"];
