@@ -164,6 +164,10 @@ Result run(const Entry& e, std::string& detail) {
     if (!x.contains("rf_km")) extra += "The final position is [-172682023, 176959469, 7948912] km.\n";
     if (!x.contains("vf_km_s")) extra += "The final velocity is [-16.427384, -14.860506, 9.21486e-2] km/s.\n";
   }
+  if (x.value("objective", "") == "min_time" && !omit.count("tof")) {  // a minimum time needs a free final time
+    omit.insert("tof");
+    extra += "The time of flight is free, at most 1000 days.\n";
+  }
   json spec;
   try {
     spec = helios::spec::parse_problem_text(text_without(omit, e.sentence + ".", extra), "p.txt");
