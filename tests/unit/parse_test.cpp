@@ -616,6 +616,9 @@ TEST(ParseFacts, IssueSentencesGiveS01sSpecByteIdentically) {
       {"Minimize the fuel consumption.", "The objective is minimum fuel."},
       {"The central body is the Sun with gravitational parameter 1.32712440018e11 km^3/s^2.",
        "The central body is the Sun with mu = 1.32712440018e11 km^3/s^2."},
+      // beyond the issue's list: the central body in other words
+      {"The central body is the Sun with gravitational parameter 1.32712440018e11 km^3/s^2.",
+       "The Sun is the central body; its gravitational parameter is 1.32712440018e11 km^3/s^2."},
   };
   const std::string want = parse(s01).dump(2);
   for (const auto& [from, to] : cases) EXPECT_EQ(parse(replaced(s01, from, to)).dump(2), want) << to;
@@ -649,6 +652,11 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
   has(err(sc + " The transfer takes 348.795 days with an Isp of 2000 s."),
       "348.795 days could be the time of flight or the specific impulse");
   has(err(sc + " The target position is [1, 2, 3] km."), "does not say whether it is the initial or the final one");
+  const std::string dry = err(sc + " The dry mass is 500 kg.");  // no suggestion: a dry mass is no initial mass
+  has(dry, "cannot place the word 'dry'");
+  EXPECT_EQ(dry.find("did you mean"), std::string::npos) << dry;
+  has(err(sc + " The Sun is the central body and Earth is the central body."), "it names Earth and Sun");
+  has(err(sc + " Mars has a gravitational parameter of 42828 km^3/s^2."), "it does not say what Mars is here");
   // an error names the file, line and sentence on one line
   const std::string e = err("Thrust 0.5 N Isp. The spacecraft has an initial mass of 1000 kg.");
   has(e, "problem.txt:4: cannot use sentence \"Thrust 0.5 N Isp\": 'isp' has no value");

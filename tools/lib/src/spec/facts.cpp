@@ -315,7 +315,17 @@ std::vector<Clause> clauses_of(const std::vector<Token>& tokens) {
         if (i == 0 && after_bare_number)
           throw facts_error("'" + words[i] + "' after " + out.back().quantities.back().written +
                             " is no unit HELIOS knows and no fact word");
-        throw facts_error("cannot place the word '" + words[i] + "'");
+        // a word before a fact word modifies it ("dry mass"): no form can be suggested
+        bool modifies = false;
+        for (std::size_t len2 = 1; i + len2 < words.size() && len2 <= 4 && !modifies; ++len2) {
+          std::string next = words[i + 1];
+          for (std::size_t k = 1; k < len2; ++k) next += " " + words[i + 1 + k];
+          const auto it = table.find(next);
+          modifies = it != table.end() && it->second.slot != Slot::None;
+        }
+        facts_error e("cannot place the word '" + words[i] + "'");
+        e.modifies_fact = modifies;
+        throw e;
       }
       i += len;
     }
@@ -512,6 +522,7 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
     }
   }
   if (cands.size() != 1 || numbers != 1 || !number) return "";
+  if (cands[0].exhaust) return "";
   return suggestion(cands[0].field, *number, cands[0].dim);
 }
 
@@ -521,7 +532,7 @@ SentenceFacts read_facts(const std::string& sentence) {
   try {
     clauses = clauses_of(tokens);
   } catch (const facts_error& e) {
-    throw facts_error(e.what(), rough_suggestion(tokens));
+    throw facts_error(e.what(), e.modifies_fact ? "" : rough_suggestion(tokens));
   }
   SentenceFacts out;
   // The central body: a known body and a word saying it is the central one, once in the sentence.
@@ -621,7 +632,8 @@ SentenceFacts read_facts(const std::string& sentence) {
                                            "final position or velocity"
                                      : "nothing in its clause says what " + q.written + " is");
         const Candidate& want = named.front().cands.front();
-        const std::string sug = named.size() == 1 && !q.vector ? suggestion(want.field, q, want.dim) : "";
+        const std::string sug =
+            named.size() == 1 && !q.vector && !want.exhaust ? suggestion(want.field, q, want.dim) : "";
         if (q.unit.empty())
           throw facts_error(
               q.written + " has no unit, and " + field_name(want.field) + " needs one (" + spec_unit(want.dim) + ")",

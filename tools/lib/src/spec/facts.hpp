@@ -30,6 +30,7 @@ struct facts_error : std::runtime_error {
   facts_error(const std::string& why, std::string suggest = "")
       : std::runtime_error(why), suggestion(std::move(suggest)) {}
   std::string suggestion;
+  bool modifies_fact = false;  // an unknown word qualifies a fact word ("dry mass")
 };
 
 // True when the sentence names no fact and holds no number: it is not an attempt to state one.
