@@ -9,6 +9,7 @@
 #include <regex>
 #include <vector>
 
+#include "facts.hpp"
 #include "helios/astro/constants.hpp"
 #include "helios/io/error.hpp"
 #include "helios/io/schema.hpp"
@@ -370,7 +371,120 @@ struct Builder {
     std::smatch m;
     for (const auto& rule : rules)
       if (std::regex_match(s, m, rule.pattern)) return (this->*rule.apply)(m);
-    throw sentence_error("it matches no form of the controlled English (see README.md, 'Controlled English')");
+    if (detail::states_nothing(s))
+      throw sentence_error("it matches no form of the controlled English (see README.md, 'Controlled English')");
+    apply_facts(facts_of(s));
+  }
+
+  // ---- facts stated in other words (facts.cpp), when no form matches ---------------------------
+
+  std::optional<json> r0, v0, rf, vf;  // state vectors stated one by one
+  Where initial_where, final_where;
+  bool mu_stated = false;
+  std::optional<double> pending_mu;  // a gravitational parameter stated before the central body
+
+  static detail::SentenceFacts facts_of(const std::string& s) {
+    try {
+      return detail::read_facts(s);
+    } catch (const detail::facts_error& e) {
+      throw sentence_error(std::string(e.what()) +
+                           (e.suggestion.empty() ? "" : "; did you mean \"" + e.suggestion + "\"?"));
+    }
+  }
+
+  void set_mu(double mu) {
+    if (mu_stated) throw sentence_error("the gravitational parameter is given twice");
+    mu_stated = true;
+    if (central_body.is_null())
+      pending_mu = mu;
+    else
+      central_body["mu_km3_s2"] = mu;
+  }
+
+  void apply_facts(const detail::SentenceFacts& f) {
+    using detail::Field;
+    if (!f.central.empty()) {
+      once("the central body");
+      central(f.central, "");
+    }
+    const auto engine = [&](Field field, const char* key, double v) {
+      once(detail::field_name(field));
+      ++seen["the spacecraft's engine"];
+      spacecraft[key] = v;
+    };
+    const auto state = [&](std::optional<json>& slot, Field field, bool initial, const json& v) {
+      once(detail::field_name(field));
+      if (initial && !r0 && !v0) {
+        once("the departure");
+        initial_where = here;
+      }
+      if (!initial && !rf && !vf) {
+        once("the final rendezvous");
+        final_where = here;
+      }
+      slot = v;
+    };
+    for (const auto& fact : f.facts) {
+      const double v = fact.value[0];
+      const json vec = fact.value.size() == 3 ? json(fact.value) : json();
+      switch (fact.field) {
+        case Field::Thrust:
+          engine(fact.field, "thrust_N", v);
+          break;
+        case Field::Isp:
+          engine(fact.field, "isp_s", v);
+          break;
+        case Field::InitialMass:
+          engine(fact.field, "initial_mass_kg", v);
+          break;
+        case Field::FinalMass:
+          engine(fact.field, "final_mass_kg", v);
+          break;
+        case Field::Tof:
+          once("the time of flight");
+          time["tof_days"] = v;
+          time["final_time"] = "fixed";
+          break;
+        case Field::T0:
+          once("the departure time");
+          time["t0_days"] = v;
+          departure_at_t = true;
+          break;
+        case Field::Mu:
+          set_mu(v);
+          break;
+        case Field::R0:
+          state(r0, fact.field, true, vec);
+          break;
+        case Field::V0:
+          state(v0, fact.field, true, vec);
+          break;
+        case Field::Rf:
+          state(rf, fact.field, false, vec);
+          break;
+        case Field::Vf:
+          state(vf, fact.field, false, vec);
+          break;
+      }
+    }
+    if (!f.objective.empty()) {
+      once("the objective");
+      objective = {{"kind", f.objective}};
+    }
+  }
+
+  // The departure and the final state from vectors stated one by one.
+  void finish_facts() {
+    const auto endpoint = [&](const std::optional<json>& r, const std::optional<json>& v, const Where& w,
+                              const char* which, std::optional<Endpoint>& out, const char* kind) {
+      if (!r && !v) return;
+      if (!r || !v)
+        fail(w, std::string("it gives the ") + which + (r ? " position" : " velocity") + " but no sentence gives the " +
+                    which + (r ? " velocity" : " position"));
+      out = Endpoint{w, {{"kind", "fixed_state"}, {"position_km", *r}, {"velocity_km_s", *v}}, kind, std::nullopt};
+    };
+    endpoint(r0, v0, initial_where, "initial", departure, "initial_state");
+    endpoint(rf, vf, final_where, "final", arrival, "rendezvous");
   }
 
   // ---- one handler per sentence form (handle's rules, in their order) ---------------------------
@@ -515,6 +629,7 @@ struct Builder {
     static const std::regex t_re = re(R"(t\s*=\s*)" + kQuantity);
     static const std::regex mjd_re = re("(MJD2000|MJD) (" + kNum + ")");
     if (std::regex_match(phrase, m, t_re)) {
+      once("the departure time");
       time["t0_days"] = quantity(m, 1, Dimension::Time);
       departure_at_t = true;
     } else if (std::regex_match(phrase, m, mjd_re)) {
@@ -834,16 +949,26 @@ struct Builder {
         const std::string part = *it;
         std::smatch m;
         if (std::regex_match(part, m, mu_re)) {
-          central_body["mu_km3_s2"] = quantity(m, 1, Dimension::GravParam);
+          set_mu(quantity(m, 1, Dimension::GravParam));
         } else if (std::regex_match(part, m, radius_re)) {
           central_body["radius_km"] = quantity(m, 1, Dimension::Length);
         } else if (std::regex_match(part, m, j2_re)) {
           central_body["j2"] = number(m[1].str());
         } else {
-          throw sentence_error("cannot read '" + part +
-                               "': expected 'gravitational parameter Q', 'equatorial radius Q' or 'J2 coefficient N'");
+          // "mu = Q", "GM = Q": a fact in other words
+          detail::SentenceFacts f;
+          try {
+            f = detail::read_facts(part);
+          } catch (const detail::facts_error&) {
+          }
+          if (f.facts.size() != 1 || f.facts[0].field != detail::Field::Mu || !f.objective.empty())
+            throw sentence_error(
+                "cannot read '" + part +
+                "': expected 'gravitational parameter Q', 'equatorial radius Q' or 'J2 coefficient N'");
+          set_mu(f.facts[0].value[0]);
         }
       }
+    if (pending_mu) central_body["mu_km3_s2"] = *pending_mu;
     if (!central_body.contains("mu_km3_s2")) {
       const auto mu = known_mu(name);
       if (!mu)
@@ -893,6 +1018,22 @@ struct Builder {
         {"specific impulse", {"isp_s", Dimension::Duration}},
         {"initial mass", {"initial_mass_kg", Dimension::Mass}},
         {"final mass", {"final_mass_kg", Dimension::Mass}}};
+    // Clauses in other words ("an Isp of 2000 s", "Tmax = 0.5 N") make the sentence one of facts.
+    for (std::sregex_token_iterator it(list.begin(), list.end(), split, -1), end; it != end; ++it) {
+      const std::string part = *it;
+      std::smatch m;
+      if (std::regex_match(part, m, clause)) continue;
+      detail::SentenceFacts f;
+      try {
+        f = facts_of(here.text);
+      } catch (const sentence_error& e) {
+        throw sentence_error("cannot read '" + part +
+                             "': expected 'a maximum thrust of Q', 'a specific impulse of Q', 'an initial mass of Q' "
+                             "or 'a final mass of Q' (read as facts in other words: " +
+                             e.what() + ")");
+      }
+      return apply_facts(f);
+    }
     for (std::sregex_token_iterator it(list.begin(), list.end(), split, -1), end; it != end; ++it) {
       const std::string part = *it;
       std::smatch m;
@@ -1057,6 +1198,7 @@ json parse_problem_text(const std::string& text, const std::string& source) {
     throw input_error(source + ": the problem text never states " + what + " (add a sentence such as \"" + example +
                       "\")");
   };
+  b.finish_facts();
   if (b.problem.is_null()) missing("its name", "Problem S01: Earth to Mars.");
   if (b.central_body.is_null()) missing("the central body", "The central body is the Sun.");
   if (b.propulsion == "low_thrust") {
@@ -1093,7 +1235,12 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   b.problem["source_file"] = source;
   doc["problem"] = b.problem;
   doc["central_body"] = b.central_body;
-  doc["spacecraft"] = b.spacecraft;
+  json spacecraft = json::object();  // in one order, however the text states the facts
+  for (const char* k : {"thrust_N", "isp_s", "initial_mass_kg", "final_mass_kg"})
+    if (b.spacecraft.contains(k)) spacecraft[k] = b.spacecraft[k];
+  for (const auto& [k, v] : b.spacecraft.items())
+    if (!spacecraft.contains(k)) spacecraft[k] = v;
+  doc["spacecraft"] = spacecraft;
   doc["dynamics"] = {{"model", "two_body"}, {"coordinates", "cartesian"}, {"propulsion", b.propulsion}};
   if (!b.perturbations.empty()) doc["dynamics"]["perturbations"] = b.perturbations;
   doc["objective"] = b.objective;

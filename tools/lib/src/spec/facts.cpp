@@ -1,0 +1,690 @@
+// Facts read from a sentence the controlled English does not cover: a quantity scanner and a
+// table of fact rules. The rule: a quantity belongs to the one fact its clause names whose
+// dimension fits; anything else (no fact, two facts, a word that fits nowhere) is an error.
+#include "facts.hpp"
+
+#include <cctype>
+#include <cstdio>
+#include <map>
+#include <optional>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "helios/spec/units.hpp"
+
+namespace helios::spec::detail {
+namespace {
+
+// What a phrase of the sentence may name. A slot is a fact whose field may depend on the role
+// (initial or final) the clause gives it.
+enum class Slot {
+  None,
+  Thrust,
+  Isp,
+  ExhaustV,
+  Mass,
+  InitialMass,
+  FinalMass,
+  Tof,
+  ThrustOrT0,
+  Mu,
+  Position,
+  Velocity,
+  R0,
+  V0,
+  Rf,
+  Vf
+};
+enum Role { kNoRole = 0, kInitial = 1, kFinal = 2 };
+enum Verb { kNoVerb = 0, kMinimize, kMaximize, kMinimum, kMaximum };
+enum Noun { kNoNoun = 0, kFuel, kTime, kFinalMass, kInitialMass, kMass };
+
+struct Meaning {
+  Slot slot;
+  int role, verb, noun;
+  bool bound;        // "up to", "limited to", "available", "maximum": a bound, which only the thrust is
+  std::string body;  // a body with a known gravitational parameter
+  bool central;      // names the central body ("central body", "heliocentric")
+  Meaning(Slot s = Slot::None, int r = kNoRole, int v = kNoVerb, int n = kNoNoun, bool b = false, std::string bd = "",
+          bool c = false)
+      : slot(s), role(r), verb(v), noun(n), bound(b), body(std::move(bd)), central(c) {}
+};
+
+// The fact rules: words and synonyms, lower case, hyphens read as spaces. Words not listed are
+// errors; listed with an empty meaning they are fillers that state nothing.
+const std::map<std::string, Meaning>& phrases() {
+  static const std::map<std::string, Meaning> table = [] {
+    std::map<std::string, Meaning> t;
+    // fillers: they state nothing
+    std::istringstream fillers(
+        "the a an is are be of to with at from by for in its it spacecraft probe vehicle engine engines thruster "
+        "thrusters propulsion system electric ion has have must should can set fixed equal equals given taken as "
+        "assumed constant total level magnitude consumption used consumed objective goal vector state conditions we "
+        "want find optimize optimise trajectory transfer mission operate operates possible reach target looking use "
+        "motion problem");
+    for (std::string w; fillers >> w;) t[w] = {};
+    const auto slot = [&](std::initializer_list<const char*> ws, Slot s, int noun = kNoNoun) {
+      for (const char* w : ws) t[w] = {s, kNoRole, kNoVerb, noun};
+    };
+    slot({"thrust", "maximum thrust", "max thrust", "delivers", "deliver", "provides", "provide", "produces", "produce",
+          "tmax", "t_max", "thrust force"},
+         Slot::Thrust);
+    slot({"t"}, Slot::ThrustOrT0);
+    slot({"specific impulse", "isp", "i_sp"}, Slot::Isp);
+    slot({"exhaust velocity", "effective exhaust velocity", "exhaust speed"}, Slot::ExhaustV);
+    slot({"mass", "weighs", "weigh"}, Slot::Mass, kMass);
+    slot({"initial mass", "wet mass", "launch mass", "starting mass", "m0", "m_0"}, Slot::InitialMass, kInitialMass);
+    slot({"final mass"}, Slot::FinalMass, kFinalMass);
+    slot({"time of flight", "flight time", "transfer time", "tof", "takes", "lasts", "duration", "transfer duration",
+          "flight duration"},
+         Slot::Tof, kTime);
+    slot({"mu", "gm", "gravitational parameter"}, Slot::Mu);
+    slot({"position", "location", "r"}, Slot::Position);
+    slot({"velocity", "v"}, Slot::Velocity);
+    slot({"r0", "r_0"}, Slot::R0);
+    slot({"v0", "v_0"}, Slot::V0);
+    slot({"rf", "r_f"}, Slot::Rf);
+    slot({"vf", "v_f"}, Slot::Vf);
+    for (const char* w :
+         {"initial", "initially", "start", "starts", "starting", "begins", "departs", "departure", "launch", "leaves"})
+      t[w] = {Slot::None, kInitial};
+    for (const char* w : {"final", "arrives", "arrive", "arrival", "end", "ends", "terminal"})
+      t[w] = {Slot::None, kFinal};
+    for (const char* w : {"minimize", "minimise", "cost", "cost function"}) t[w] = {Slot::None, kNoRole, kMinimize};
+    for (const char* w : {"maximize", "maximise", "as large as possible"}) t[w] = {Slot::None, kNoRole, kMaximize};
+    t["minimum"] = {Slot::None, kNoRole, kMinimum};
+    t["maximum"] = {Slot::None, kNoRole, kMaximum, kNoNoun, true};
+    for (const auto& [w, b] : std::map<std::string, std::string>{{"sun", "Sun"}, {"earth", "Earth"}, {"mars", "Mars"}})
+      t[w].body = b;
+    for (const char* w : {"central body", "gravitational attractor", "attractor"}) t[w].central = true;
+    t["heliocentric"] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Sun", true};
+    t["geocentric"] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Earth", true};
+    for (const char* w : {"up", "limited", "available"}) t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, true};
+    for (const char* w : {"fuel", "propellant", "fuel consumption", "propellant consumption", "fuel mass",
+                          "propellant mass", "fuel use"})
+      t[w] = {Slot::None, kNoRole, kNoVerb, kFuel};
+    for (const char* w : {"time", "final time"}) t[w] = {Slot::None, kNoRole, kNoVerb, kTime};
+    for (const char* w : {"fuel optimal", "propellant optimal"}) t[w] = {Slot::None, kNoRole, kMinimize, kFuel};
+    for (const char* w : {"time optimal", "fastest", "as fast as possible", "as short as possible"})
+      t[w] = {Slot::None, kNoRole, kMinimize, kTime};
+    return t;
+  }();
+  return table;
+}
+
+// A number or a vector, with the unit written after it ("" when none).
+struct Quantity {
+  std::vector<double> nums;
+  std::vector<std::string> texts;
+  std::string unit, written;
+  bool vector = false;
+};
+
+struct Token {
+  enum Kind { Word, Value, Separator } kind;
+  std::string word;
+  Quantity q;
+};
+
+// A candidate reading of a quantity: a field, the dimension it takes, whether it is a vector.
+struct Candidate {
+  Field field;
+  Dimension dim;
+  bool vector;
+  bool exhaust;  // an exhaust velocity, stored as the specific impulse
+};
+
+constexpr double kG0 = 9.80665;  // m/s^2, exhaust velocity = Isp * g0
+
+bool known_unit(const std::string& unit) {
+  for (Dimension d : {Dimension::Length, Dimension::Speed, Dimension::Force, Dimension::Time, Dimension::Duration,
+                      Dimension::Mass, Dimension::GravParam, Dimension::Acceleration, Dimension::Angle}) {
+    try {
+      to_spec_unit(d, unit);
+      return true;
+    } catch (const std::invalid_argument&) {
+    }
+  }
+  return false;
+}
+
+double number_of(const std::string& s) {
+  try {
+    return std::stod(s);
+  } catch (const std::out_of_range&) {
+    throw facts_error("the number " + s + " is outside the range of a double (magnitudes 2.2e-308 to 1.8e308)");
+  }
+}
+
+bool word_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+
+std::string replace_all(std::string s, const std::string& from, const std::string& to) {
+  for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size()))
+    s.replace(p, from.size(), to);
+  return s;
+}
+
+// The unit after a quantity, starting at `i` (spaces skipped); "" and `i` unchanged when none.
+std::string read_unit(const std::string& s, std::size_t& i) {
+  std::size_t j = i;
+  while (j < s.size() && s[j] == ' ') ++j;
+  std::size_t k = j;
+  while (k < s.size() && (word_char(s[k]) || s[k] == '^' || s[k] == '/')) ++k;
+  if (k == j || !std::isalpha(static_cast<unsigned char>(s[j]))) return "";
+  std::string unit = s.substr(j, k - j);
+  if (lowercase(unit) == "metric") {  // "metric tons"
+    std::size_t m = k;
+    while (m < s.size() && s[m] == ' ') ++m;
+    std::size_t n = m;
+    while (n < s.size() && word_char(s[n])) ++n;
+    const std::string next = lowercase(s.substr(m, n - m));
+    if (next == "ton" || next == "tons" || next == "tonne" || next == "tonnes") {
+      i = n;
+      return "t";
+    }
+  }
+  static const std::regex per_s2(R"(^ s\^-2\b)");  // "km^3 s^-2"
+  std::smatch m;
+  const std::string rest = s.substr(k);
+  if ((lowercase(unit) == "km^3" || lowercase(unit) == "m^3") && std::regex_search(rest, m, per_s2)) {
+    k += m.length(0);
+    unit += "/s^2";
+  }
+  if (!known_unit(unit)) return "";
+  i = k;
+  return unit;
+}
+
+// "(a, b, c)": a '(' followed by a number-like character, with a comma before its ')'.
+bool paren_vector(const std::string& s, std::size_t i) {
+  std::size_t j = i + 1;
+  while (j < s.size() && s[j] == ' ') ++j;
+  if (j == s.size() || !(std::isdigit(static_cast<unsigned char>(s[j])) || s[j] == '-' || s[j] == '+' || s[j] == '.'))
+    return false;
+  const std::size_t close = s.find_first_of("()", j);
+  return close != std::string::npos && s[close] == ')' && s.find(',', j) < close;
+}
+
+std::vector<Token> scan(const std::string& sentence) {
+  // Superscripts as written in many texts: km³/s² is km^3/s^2.
+  const std::string s = replace_all(replace_all(sentence, "\xC2\xB3", "^3"), "\xC2\xB2", "^2");
+  static const std::regex num(R"(^[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)");
+  std::vector<Token> out;
+  std::size_t i = 0;
+  const auto prev_word = [&] { return i > 0 && word_char(s[i - 1]); };
+  while (i < s.size()) {
+    const char c = s[i];
+    std::smatch m;
+    const std::string rest = s.substr(i);
+    if (c == ' ' || c == ':' || c == '=') {
+      ++i;
+    } else if (c == '[' || (c == '(' && paren_vector(s, i))) {
+      const char close = c == '[' ? ']' : ')';
+      const std::size_t end = s.find(close, i);
+      if (end == std::string::npos) throw facts_error(std::string("a '") + c + "' has no closing '" + close + "'");
+      const std::string body = s.substr(i + 1, end - i - 1);
+      Quantity q;
+      q.vector = true;
+      std::size_t from = 0;
+      for (;;) {
+        const std::size_t comma = body.find(',', from);
+        std::string item = body.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+        item.erase(0, item.find_first_not_of(' '));
+        item.erase(item.find_last_not_of(' ') + 1);
+        std::smatch n;
+        if (!std::regex_match(item, n, num) || n.length(0) != static_cast<std::ptrdiff_t>(item.size()))
+          throw facts_error("the vector " + s.substr(i, end - i + 1) + " has a component '" + item +
+                            "' that is not a number");
+        q.nums.push_back(number_of(item));
+        q.texts.push_back(item);
+        if (comma == std::string::npos) break;
+        from = comma + 1;
+      }
+      if (q.nums.size() != 3)
+        throw facts_error("the vector " + s.substr(i, end - i + 1) + " has " + std::to_string(q.nums.size()) +
+                          " components; a position or velocity has 3");
+      i = end + 1;
+      q.unit = read_unit(s, i);
+      q.written = "[" + q.texts[0] + ", " + q.texts[1] + ", " + q.texts[2] + "]" + (q.unit.empty() ? "" : " " + q.unit);
+      out.push_back({Token::Value, "", q});
+    } else if (!prev_word() && (std::isdigit(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '+') &&
+               std::regex_search(rest, m, num)) {
+      Quantity q;
+      q.texts = {m.str(0)};
+      q.nums = {number_of(m.str(0))};
+      i += m.length(0);
+      q.unit = read_unit(s, i);
+      q.written = q.texts[0] + (q.unit.empty() ? "" : " " + q.unit);
+      out.push_back({Token::Value, "", q});
+    } else if (c == ',' || c == ';' || c == '(' || c == ')') {
+      out.push_back({Token::Separator, "", {}});
+      ++i;
+    } else if (word_char(c)) {
+      std::size_t k = i;
+      while (k < s.size() && (word_char(s[k]) || s[k] == '\'')) ++k;
+      std::string w = lowercase(s.substr(i, k - i));
+      if (w.size() > 2 && w.compare(w.size() - 2, 2, "'s") == 0) w.resize(w.size() - 2);
+      i = k;
+      if (w == "and") {
+        out.push_back({Token::Separator, "", {}});
+      } else {
+        out.push_back({Token::Word, w, {}});
+      }
+      if (i < s.size() && s[i] == '-' && i + 1 < s.size() && std::isalpha(static_cast<unsigned char>(s[i + 1]))) ++i;
+    } else {
+      if (static_cast<unsigned char>(c) >= 0x80) throw facts_error("cannot read a non-ASCII character here");
+      throw facts_error(std::string("cannot read the character '") + c + "' here");
+    }
+  }
+  return out;
+}
+
+// A phrase found in a clause, with the words as written.
+struct Mention {
+  Meaning meaning;
+  std::string text;
+};
+
+struct Clause {
+  std::vector<Mention> mentions;
+  std::vector<Quantity> quantities;
+};
+
+// Words into the longest phrases of the table; an unknown word is an error.
+std::vector<Clause> clauses_of(const std::vector<Token>& tokens) {
+  std::vector<Clause> out(1);
+  std::vector<std::string> words;
+  bool after_bare_number = false;  // the words follow a number without a unit
+  const auto flush = [&] {
+    const auto& table = phrases();
+    for (std::size_t i = 0; i < words.size();) {
+      std::size_t len = std::min<std::size_t>(4, words.size() - i);
+      for (; len > 0; --len) {
+        std::string phrase = words[i];
+        for (std::size_t k = 1; k < len; ++k) phrase += " " + words[i + k];
+        const auto it = table.find(phrase);
+        if (it != table.end()) {
+          out.back().mentions.push_back({it->second, phrase});
+          break;
+        }
+      }
+      if (len == 0) {
+        if (i == 0 && after_bare_number)
+          throw facts_error("'" + words[i] + "' after " + out.back().quantities.back().written +
+                            " is no unit HELIOS knows and no fact word");
+        // a word before a fact word modifies it ("dry mass"): no form can be suggested
+        bool modifies = false;
+        for (std::size_t len2 = 1; i + len2 < words.size() && len2 <= 4 && !modifies; ++len2) {
+          std::string next = words[i + 1];
+          for (std::size_t k = 1; k < len2; ++k) next += " " + words[i + 1 + k];
+          const auto it = table.find(next);
+          modifies = it != table.end() && it->second.slot != Slot::None;
+        }
+        facts_error e("cannot place the word '" + words[i] + "'");
+        e.modifies_fact = modifies;
+        throw e;
+      }
+      i += len;
+    }
+    words.clear();
+  };
+  for (const auto& t : tokens) {
+    if (t.kind == Token::Word) {
+      words.push_back(t.word);
+      continue;
+    }
+    flush();
+    after_bare_number = t.kind == Token::Value && t.q.unit.empty();
+    if (t.kind == Token::Value) out.back().quantities.push_back(t.q);
+    if (t.kind == Token::Separator && (!out.back().mentions.empty() || !out.back().quantities.empty()))
+      out.emplace_back();
+  }
+  flush();
+  if (out.back().mentions.empty() && out.back().quantities.empty()) out.pop_back();
+  return out;
+}
+
+std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
+  const auto need_role = [&](Field initial, Field final_, Dimension d) -> std::vector<Candidate> {
+    if (role == kNoRole) throw facts_error("'" + text + "' does not say whether it is the initial or the final one");
+    return {{role == kInitial ? initial : final_, d, true, false}};
+  };
+  switch (s) {
+    case Slot::Thrust:
+      return {{Field::Thrust, Dimension::Force, false, false}};
+    case Slot::ThrustOrT0:
+      return {{Field::Thrust, Dimension::Force, false, false}, {Field::T0, Dimension::Time, false, false}};
+    case Slot::Isp:
+      return {{Field::Isp, Dimension::Duration, false, false}};
+    case Slot::ExhaustV:
+      return {{Field::Isp, Dimension::Speed, false, true}};
+    case Slot::Mass:
+      return {{role == kFinal ? Field::FinalMass : Field::InitialMass, Dimension::Mass, false, false}};
+    case Slot::InitialMass:
+      return {{Field::InitialMass, Dimension::Mass, false, false}};
+    case Slot::FinalMass:
+      return {{Field::FinalMass, Dimension::Mass, false, false}};
+    case Slot::Tof:
+      return {{Field::Tof, Dimension::Time, false, false}};
+    case Slot::Mu:
+      return {{Field::Mu, Dimension::GravParam, false, false}};
+    case Slot::Position:
+      return need_role(Field::R0, Field::Rf, Dimension::Length);
+    case Slot::Velocity:
+      return need_role(Field::V0, Field::Vf, Dimension::Speed);
+    case Slot::R0:
+      return {{Field::R0, Dimension::Length, true, false}};
+    case Slot::V0:
+      return {{Field::V0, Dimension::Speed, true, false}};
+    case Slot::Rf:
+      return {{Field::Rf, Dimension::Length, true, false}};
+    case Slot::Vf:
+      return {{Field::Vf, Dimension::Speed, true, false}};
+    case Slot::None:
+      break;
+  }
+  return {};
+}
+
+bool fits(const Candidate& c, const Quantity& q) {
+  if (c.vector != q.vector) return false;
+  if (q.unit.empty()) return c.field == Field::T0 && q.nums[0] == 0;  // t = 0 needs no unit
+  try {
+    to_spec_unit(c.dim, q.unit);
+    return true;
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+}
+
+// The controlled-English sentence stating `f` with the user's number (and unit, else the spec's).
+std::string suggestion(Field f, const Quantity& q, Dimension d) {
+  std::string unit = q.unit;
+  try {
+    if (!unit.empty()) to_spec_unit(d, unit);
+  } catch (const std::invalid_argument&) {
+    unit.clear();
+  }
+  if (unit.empty()) unit = spec_unit(d);
+  const std::string v = q.texts[0] + " " + unit;
+  switch (f) {
+    case Field::Thrust:
+      return "The spacecraft has a maximum thrust of " + v + ".";
+    case Field::Isp:
+      return "The spacecraft has a specific impulse of " + v + ".";
+    case Field::InitialMass:
+      return "The spacecraft has an initial mass of " + v + ".";
+    case Field::FinalMass:
+      return "The spacecraft has a final mass of " + v + ".";
+    case Field::Tof:
+      return "The time of flight is " + v + ".";
+    case Field::Mu:
+      return "The central body is the Sun with gravitational parameter " + v + ".";
+    default:
+      return "";
+  }
+}
+
+std::string objective_of(int verb, int noun, int role, const std::string& words) {
+  if (noun == kMass) noun = role == kFinal ? kFinalMass : role == kInitial ? kInitialMass : kMass;
+  const bool min = verb == kMinimize || verb == kMinimum;
+  if (noun == kNoNoun) throw facts_error("it does not say what to " + std::string(min ? "minimize" : "maximize"));
+  if (noun == kMass) throw facts_error("'" + words + "' does not say which mass, the initial or the final one");
+  if (min && noun == kFuel) return "minimum_fuel";
+  if (!min && noun == kFinalMass) return "minimum_fuel";
+  if (min && noun == kTime) return "minimum_time";
+  if (min && noun == kInitialMass) return "minimum_initial_mass";
+  throw facts_error("'" + words +
+                    "' is no objective HELIOS solves (minimize the fuel, the time of flight or the initial mass, or "
+                    "maximize the final mass)");
+}
+
+}  // namespace
+
+std::string field_name(Field f) {
+  switch (f) {
+    case Field::Thrust:
+      return "the maximum thrust";
+    case Field::Isp:
+      return "the specific impulse";
+    case Field::InitialMass:
+      return "the initial mass";
+    case Field::FinalMass:
+      return "the final mass";
+    case Field::Tof:
+      return "the time of flight";
+    case Field::T0:
+      return "the departure time";
+    case Field::Mu:
+      return "the gravitational parameter";
+    case Field::R0:
+      return "the initial position";
+    case Field::V0:
+      return "the initial velocity";
+    case Field::Rf:
+      return "the final position";
+    case Field::Vf:
+      return "the final velocity";
+  }
+  return "?";
+}
+
+bool states_nothing(const std::string& sentence) {
+  static const std::regex digit("[0-9]");
+  if (std::regex_search(sentence, digit)) return false;
+  std::vector<Token> tokens;
+  try {
+    tokens = scan(sentence);
+  } catch (const facts_error&) {
+    return true;
+  }
+  const auto& table = phrases();
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    if (tokens[i].kind != Token::Word) continue;
+    std::string phrase;
+    for (std::size_t k = i; k < tokens.size() && k < i + 4 && tokens[k].kind == Token::Word; ++k) {
+      phrase += (k == i ? "" : " ") + tokens[k].word;
+      const auto it = table.find(phrase);
+      const Meaning& mean = it == table.end() ? Meaning{} : it->second;
+      if (mean.slot != Slot::None || mean.verb != kNoVerb || !mean.body.empty() || mean.central) return false;
+    }
+  }
+  return true;
+}
+
+// For a sentence with a word that fits nowhere: the controlled form of its one scalar fact, if the
+// sentence names exactly one and holds exactly one number.
+std::string rough_suggestion(const std::vector<Token>& tokens) {
+  std::set<Field> fields;
+  std::vector<Candidate> cands;
+  const Quantity* number = nullptr;
+  int numbers = 0;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    if (tokens[i].kind == Token::Value) {
+      ++numbers;
+      if (!tokens[i].q.vector) number = &tokens[i].q;
+    }
+    if (tokens[i].kind != Token::Word) continue;
+    std::string phrase;
+    for (std::size_t len = 1; len <= 4 && i + len <= tokens.size(); ++len) {
+      if (tokens[i + len - 1].kind != Token::Word) break;
+      phrase += (len == 1 ? "" : " ") + tokens[i + len - 1].word;
+      const auto it = phrases().find(phrase);
+      if (it == phrases().end()) continue;
+      const Slot sl = it->second.slot;
+      if (sl == Slot::Thrust || sl == Slot::Isp || sl == Slot::Mass || sl == Slot::InitialMass ||
+          sl == Slot::FinalMass || sl == Slot::Tof || sl == Slot::Mu)
+        for (const auto& c : candidates(sl, kNoRole, phrase))
+          if (fields.insert(c.field).second) cands.push_back(c);
+    }
+  }
+  if (cands.size() != 1 || numbers != 1 || !number) return "";
+  if (cands[0].exhaust) return "";
+  return suggestion(cands[0].field, *number, cands[0].dim);
+}
+
+SentenceFacts read_facts(const std::string& sentence) {
+  const std::vector<Token> tokens = scan(sentence);
+  std::vector<Clause> clauses;
+  try {
+    clauses = clauses_of(tokens);
+  } catch (const facts_error& e) {
+    throw facts_error(e.what(), e.modifies_fact ? "" : rough_suggestion(tokens));
+  }
+  SentenceFacts out;
+  // The central body: a known body and a word saying it is the central one, once in the sentence.
+  std::set<std::string> bodies;
+  bool central_named = false;
+  for (const auto& c : clauses)
+    for (const auto& m : c.mentions) {
+      if (!m.meaning.body.empty()) bodies.insert(m.meaning.body);
+      central_named = central_named || m.meaning.central;
+    }
+  if (bodies.size() > 1)
+    throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": which one is the central body?");
+  if (!bodies.empty() && !central_named)
+    throw facts_error("it does not say what " + *bodies.begin() +
+                      " is here (the central body reads 'The central body is " +
+                      (*bodies.begin() == "Mars" ? "" : "the ") + *bodies.begin() + ".')");
+  if (bodies.empty() && central_named)
+    throw facts_error("it does not name the central body (Sun, Earth or Mars: 'The central body is the Sun.')");
+  if (!bodies.empty()) out.central = *bodies.begin();
+  std::set<int> sentence_roles;
+  for (const auto& c : clauses)
+    for (const auto& m : c.mentions)
+      if (m.meaning.role != kNoRole) sentence_roles.insert(m.meaning.role);
+  std::string objective_words;
+  for (const auto& c : clauses) {
+    std::set<int> roles;
+    int verb = kNoVerb;
+    std::set<int> nouns;
+    std::string words;
+    for (const auto& m : c.mentions) {
+      if (m.meaning.role != kNoRole) roles.insert(m.meaning.role);
+      if (m.meaning.verb != kNoVerb) verb = m.meaning.verb;
+      if (m.meaning.noun != kNoNoun) nouns.insert(m.meaning.noun);
+      words += (words.empty() ? "" : " ") + m.text;
+    }
+    if (roles.size() > 1) throw facts_error("'" + words + "' names both the initial and the final state");
+    int role = roles.empty() ? kNoRole : *roles.begin();
+    const int clause_role = role;
+    if (role == kNoRole && sentence_roles.size() == 1) role = *sentence_roles.begin();
+
+    // An objective: a verb and what it applies to, no quantity.
+    const bool objective = c.quantities.empty() && verb != kNoVerb;
+    if (objective) {
+      for (const auto& m : c.mentions)
+        if (m.meaning.slot != Slot::None && m.meaning.noun == kNoNoun)
+          throw facts_error("'" + m.text +
+                            "' cannot be an objective (minimize the fuel, the time of flight or the "
+                            "initial mass, or maximize the final mass)");
+      if (nouns.size() > 1) throw facts_error("'" + words + "' names more than one thing to optimize");
+      const std::string kind = objective_of(verb, nouns.empty() ? kNoNoun : *nouns.begin(), clause_role, words);
+      if (!out.objective.empty())
+        throw facts_error("it states two objectives (" + objective_words + "; " + words + "): choose one");
+      out.objective = kind;
+      objective_words = words;
+      continue;
+    }
+    if (verb == kMinimum || verb == kMinimize || verb == kMaximize)
+      throw facts_error("'" + words + "' mixes an objective with a value");
+    // A bound on the thrust is the maximum thrust; a bound on anything else is not a value.
+    for (const auto& m : c.mentions)
+      for (const auto& n : c.mentions)
+        if (m.meaning.bound && n.meaning.slot != Slot::None && n.meaning.slot != Slot::Thrust)
+          throw facts_error("'" + m.text + "' makes '" + n.text +
+                            "' a bound, not a value (a bounded time of flight reads 'The time of flight is free, at "
+                            "most Q.')");
+
+    // Quantities: each goes to the one fact of its clause whose dimension fits.
+    struct Named {
+      std::vector<Candidate> cands;
+      std::string text;
+      bool bound = false;
+    };
+    std::vector<Named> named;
+    for (const auto& m : c.mentions)
+      if (m.meaning.slot != Slot::None) {
+        const Slot s = m.meaning.slot;
+        // the mass and a state take their role from their own clause, a state also from the sentence
+        const int r = s == Slot::Mass ? clause_role : role;
+        if ((s == Slot::Position || s == Slot::Velocity) && role == kNoRole && sentence_roles.size() > 1)
+          throw facts_error("'" + m.text + "' could be the initial or the final one: say which in its clause");
+        named.push_back({candidates(s, r, m.text), m.text});
+      }
+    std::map<Field, std::string> bound_here;
+    for (const auto& q : c.quantities) {
+      std::vector<std::pair<Candidate, std::size_t>> fit;
+      for (std::size_t k = 0; k < named.size(); ++k)
+        for (const auto& cand : named[k].cands)
+          if (fits(cand, q)) {
+            bool dup = false;
+            for (const auto& [f, _] : fit) dup = dup || f.field == cand.field;
+            if (!dup) fit.push_back({cand, k});
+          }
+      if (fit.empty()) {
+        if (named.empty())
+          throw facts_error(q.vector ? "the vector " + q.written +
+                                           " has no role: say whether it is the initial or "
+                                           "final position or velocity"
+                                     : "nothing in its clause says what " + q.written + " is");
+        const Candidate& want = named.front().cands.front();
+        const std::string sug =
+            named.size() == 1 && !q.vector && !want.exhaust ? suggestion(want.field, q, want.dim) : "";
+        if (q.unit.empty())
+          throw facts_error(
+              q.written + " has no unit, and " + field_name(want.field) + " needs one (" + spec_unit(want.dim) + ")",
+              sug);
+        std::string why;
+        try {
+          to_spec_unit(want.dim, q.unit);
+          why = q.vector ? "a vector cannot be " + field_name(want.field)
+                         : "a single number cannot be " + field_name(want.field);
+        } catch (const std::invalid_argument& e) {
+          why = e.what();
+        }
+        throw facts_error(q.written + " cannot be " + field_name(want.field) + ": " + why, sug);
+      }
+      // Ambiguity: a number that fits two facts is an error, whatever the order.
+      if (fit.size() > 1) {
+        std::string names;
+        for (const auto& f : fit) names += (names.empty() ? "" : " or ") + field_name(f.first.field);
+        throw facts_error(q.written + " could be " + names + ": state one fact per clause");
+      }
+      const Candidate& cand = fit.front().first;
+      if (bound_here.count(cand.field))
+        throw facts_error("two values for " + field_name(cand.field) + ": " + bound_here[cand.field] + " and " +
+                          q.written);
+      bound_here[cand.field] = q.written;
+      for (auto& n : named)
+        for (const auto& x : n.cands)
+          if (x.field == cand.field) n.bound = true;
+      Fact fact{cand.field, {}, q.written};
+      const double factor = q.unit.empty() ? 1.0 : to_spec_unit(cand.dim, q.unit);
+      for (double v : q.nums) fact.value.push_back(cand.exhaust ? v * factor * 1000.0 / kG0 : v * factor);
+      for (const auto& f : out.facts)
+        if (f.field == fact.field)
+          throw facts_error(field_name(fact.field) + " is stated twice: " + f.written + " and " + fact.written);
+      out.facts.push_back(fact);
+    }
+    for (const auto& n : named)
+      if (!n.bound) {
+        const Candidate& want = n.cands.front();
+        throw facts_error("'" + n.text + "' has no value: give " + field_name(want.field) + " with its unit (" +
+                          spec_unit(want.dim) + ")");
+      }
+  }
+  if (out.facts.empty() && out.objective.empty() && out.central.empty())
+    throw facts_error("it states no fact HELIOS reads");
+  for (const auto& f : out.facts) {
+    const bool positive = f.field == Field::Thrust || f.field == Field::Isp || f.field == Field::InitialMass ||
+                          f.field == Field::FinalMass || f.field == Field::Tof || f.field == Field::Mu;
+    if (positive && !(f.value[0] > 0)) throw facts_error(field_name(f.field) + " must be positive, got " + f.written);
+  }
+  return out;
+}
+
+}  // namespace helios::spec::detail

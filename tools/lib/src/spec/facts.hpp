@@ -1,0 +1,45 @@
+#pragma once
+// Facts read from a sentence the controlled English does not cover (internal to tools/lib/src/spec).
+// A quantity scanner finds numbers and vectors with their units; a table of fact rules (words and
+// synonyms -> spec field, expected dimension) places each quantity on the fact its clause names.
+// Whatever cannot be placed exactly once, and without a choice, is an error: never a guess.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace helios::spec::detail {
+
+// The facts a sentence may state.
+enum class Field { Thrust, Isp, InitialMass, FinalMass, Tof, T0, Mu, R0, V0, Rf, Vf };
+
+struct Fact {
+  Field field;
+  std::vector<double> value;  // one number, or three for a vector, in the spec's unit
+  std::string written;        // as written, e.g. "0.5 N"
+};
+
+struct SentenceFacts {
+  std::vector<Fact> facts;
+  std::string objective;  // a spec objective kind ("minimum_fuel", ...) or ""
+  std::string central;    // the central body named ("Sun", "Earth", "Mars") or ""
+};
+
+// Why a sentence cannot be read as facts; `suggestion` is the nearest controlled-English sentence
+// filled in with the user's own numbers, or "".
+struct facts_error : std::runtime_error {
+  facts_error(const std::string& why, std::string suggest = "")
+      : std::runtime_error(why), suggestion(std::move(suggest)) {}
+  std::string suggestion;
+  bool modifies_fact = false;  // an unknown word qualifies a fact word ("dry mass")
+};
+
+// True when the sentence names no fact and holds no number: it is not an attempt to state one.
+bool states_nothing(const std::string& sentence);
+
+// The facts of `sentence` (final period removed). Throws facts_error.
+SentenceFacts read_facts(const std::string& sentence);
+
+// "the maximum thrust", "the initial position", ...: the name errors and `once` use.
+std::string field_name(Field f);
+
+}  // namespace helios::spec::detail
