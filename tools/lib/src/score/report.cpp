@@ -130,16 +130,11 @@ class Writer {
   static symbolic::SymbolTable with_multipliers(symbolic::SymbolTable table, const json& d) {
     const auto add = [&](const json& owner) {
       for (const auto& m : owner.value("multipliers", json::array()))
-        if (m.is_string() && is_identifier(m.get<std::string>())) table.get(m.get<std::string>());
+        if (m.is_string() && symbolic::is_identifier(m.get<std::string>())) table.get(m.get<std::string>());
     };
     for (const auto& c : d.value("constraints", json::array())) add(c);
     for (const auto& e : d.value("events", json::array())) add(e);
     return table;
-  }
-  static bool is_identifier(const std::string& s) {
-    return !s.empty() && !std::isdigit(static_cast<unsigned char>(s[0])) && std::all_of(s.begin(), s.end(), [](char c) {
-      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-    });
   }
 
   std::vector<std::string> names() const {

@@ -200,6 +200,12 @@ Printed print(const GiNaC::ex& e, Dialect d) {
 
 }  // namespace
 
+bool is_identifier(const std::string& s) {
+  return !s.empty() && (std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_') &&
+         std::all_of(s.begin(), s.end(),
+                     [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; });
+}
+
 // NOTE: printing the expanded form makes the text independent of how GiNaC normalized the
 // signs of sums inside products, which depends on its term order.
 std::string to_text(const GiNaC::ex& e) {

@@ -90,12 +90,6 @@ double random_value(Kind kind, double value, std::mt19937_64& rng) {
 
 }  // namespace
 
-bool is_identifier(const std::string& s) {
-  return !s.empty() && (std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_') &&
-         std::all_of(s.begin(), s.end(),
-                     [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; });
-}
-
 double uniform(std::mt19937_64& rng, double a, double b) {
   return a + (b - a) * (static_cast<double>(rng() >> 11) * 0x1.0p-53);
 }
@@ -132,10 +126,7 @@ Context::Context(const json& derivation, const VerifyOptions& options) : derivat
 }
 
 int Context::declare(const std::string& name, Kind kind, double value) {
-  if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') ||
-      !std::all_of(name.begin(), name.end(),
-                   [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; }))
-    throw input_error("derivation: '" + name + "' is not a valid symbol name");
+  if (!is_identifier(name)) throw input_error("derivation: '" + name + "' is not a valid symbol name");
   if (slots.count(name)) throw input_error("derivation: the name '" + name + "' is used for two different symbols");
   symbols.get(name);
   slots[name] = static_cast<int>(kinds.size());

@@ -94,8 +94,7 @@ struct Event {
   std::string Hm, Hp;  // event values: H just before / just after
 };
 
-// True if `s` is a C identifier.
-bool is_identifier(const std::string& s);
+using symbolic::is_identifier;
 
 // A uniform draw in [a, b) and a uniformly distributed unit vector of R^n.
 double uniform(std::mt19937_64& rng, double a, double b);

@@ -27,6 +27,9 @@ inline constexpr double kMaxExpandedTerms = 2e4;
 // walk of e's tree, no expansion.
 double expanded_terms(const GiNaC::ex& e);
 
+// True if `s` is a C identifier (what a symbol's name must be).
+bool is_identifier(const std::string& s);
+
 // Symbols by name. All GiNaC symbols of a derivation come from one table so that parsing a
 // stored text yields the very same symbols.
 class SymbolTable {
