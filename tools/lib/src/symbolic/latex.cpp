@@ -246,33 +246,39 @@ Latex latex_numeric(const GiNaC::numeric& n) {
   return {t, t[0] == '-' ? kSum : (n.is_integer() ? kAtom : kProduct)};
 }
 
-// A sum and the sign it was multiplied by to make its first term (in printed order) positive.
-std::pair<ex, bool> positive_first(const ex& sum) {
+// The terms of a sum printed, in the order they are printed in (by their text, the sign aside).
+std::vector<std::string> sorted_terms(const ex& sum) {
   std::vector<std::string> terms;
   for (const auto& t : sum) terms.push_back(latex_of(t).text);
-  const auto first = std::min_element(
-      terms.begin(), terms.end(), [](const std::string& a, const std::string& b) { return sort_key(a) < sort_key(b); });
-  if (first != terms.end() && (*first)[0] == '-') return {(-sum).expand(), true};
-  return {sum, false};
+  std::sort(terms.begin(), terms.end(),
+            [](const std::string& a, const std::string& b) { return sort_key(a) < sort_key(b); });
+  return terms;
 }
 
-std::string latex_base(const ex& base) {
-  const Latex b = latex_of(base);
+// A sum's printed terms joined with their signs.
+std::string joined_terms(const std::vector<std::string>& terms) {
+  std::string out;
+  for (const auto& t : terms) out += out.empty() ? t : (t[0] == '-' ? " - " + t.substr(1) : " + " + t);
+  return out;
+}
+
+// `base` (printed as `b`) as the base of a power.
+std::string latex_base(const ex& base, const Latex& b) {
   if (GiNaC::is_a<GiNaC::symbol>(base) && b.text.find('^') != std::string::npos) return "{" + b.text + "}";
   if (GiNaC::is_a<GiNaC::function>(base)) return "\\left(" + b.text + "\\right)";
   return parenthesized(b, kAtom);
 }
 
-// base^k for k > 0.
-std::string latex_power(const ex& base, const GiNaC::numeric& k) {
-  if (k == 1) return parenthesized(latex_of(base), kProduct);
-  if (k == GiNaC::numeric(1, 2)) return "\\sqrt{" + latex_of(base).text + "}";
+// base^k for k > 0, `base` printed as `b`.
+std::string latex_power(const ex& base, const Latex& b, const GiNaC::numeric& k) {
+  if (k == 1) return parenthesized(b, kProduct);
+  if (k == GiNaC::numeric(1, 2)) return "\\sqrt{" + b.text + "}";
   std::ostringstream exponent;
   if (k.is_integer())
     exponent << k;
   else
     exponent << k.numer() << "/" << k.denom();
-  return latex_base(base) + "^{" + exponent.str() + "}";
+  return latex_base(base, b) + "^{" + exponent.str() + "}";
 }
 
 bool is_upright(const std::string& factor) {
@@ -295,19 +301,23 @@ Latex latex_product(const GiNaC::exvector& factors) {
       base = f.op(0);
       k = GiNaC::ex_to<GiNaC::numeric>(f.op(1));
     } else if (GiNaC::is_a<GiNaC::power>(f)) {
-      numerator.push_back(latex_base(f.op(0)) + "^{" + latex_of(f.op(1)).text + "}");
+      numerator.push_back(latex_base(f.op(0), latex_of(f.op(0))) + "^{" + latex_of(f.op(1)).text + "}");
       continue;
     }
+    Latex printed = latex_of(base);
     if (GiNaC::is_a<GiNaC::add>(base) && k.is_integer()) {
-      const auto [sum, flipped] = positive_first(base);
-      base = sum;
-      if (flipped && k.is_odd()) negative = !negative;
+      // A sum raised to an integer power is printed with its first term positive.
+      if (printed.text[0] == '-') {
+        base = (-base).expand();
+        printed = latex_of(base);
+        if (k.is_odd()) negative = !negative;
+      }
       if (k == 1) {
         lone_sum = true;
-        lone_sum_text = latex_of(base).text;
+        lone_sum_text = printed.text;
       }
     }
-    (k.is_negative() ? denominator : numerator).push_back(latex_power(base, GiNaC::abs(k)));
+    (k.is_negative() ? denominator : numerator).push_back(latex_power(base, printed, GiNaC::abs(k)));
   }
   if (coefficient.is_negative()) {
     negative = !negative;
@@ -364,15 +374,7 @@ const std::map<std::string, std::string>& latex_functions() {
 Latex latex_of(const ex& e) {
   if (GiNaC::is_a<GiNaC::numeric>(e)) return latex_numeric(GiNaC::ex_to<GiNaC::numeric>(e));
   if (GiNaC::is_a<GiNaC::symbol>(e)) return {GiNaC::ex_to<GiNaC::symbol>(e).get_TeX_name(), kAtom};
-  if (GiNaC::is_a<GiNaC::add>(e)) {
-    std::vector<std::string> terms;
-    for (const auto& t : e) terms.push_back(latex_of(t).text);
-    std::sort(terms.begin(), terms.end(),
-              [](const std::string& a, const std::string& b) { return sort_key(a) < sort_key(b); });
-    std::string out;
-    for (const auto& t : terms) out += out.empty() ? t : (t[0] == '-' ? " - " + t.substr(1) : " + " + t);
-    return {out, kSum};
-  }
+  if (GiNaC::is_a<GiNaC::add>(e)) return {joined_terms(sorted_terms(e)), kSum};
   if (GiNaC::is_a<GiNaC::mul>(e)) return latex_product(GiNaC::exvector(e.begin(), e.end()));
   if (GiNaC::is_a<GiNaC::power>(e)) return latex_product({e});
   if (GiNaC::is_a<GiNaC::function>(e)) {
@@ -515,9 +517,13 @@ void collect_power_bases(const ex& e, std::map<std::string, ex>& bases) {
 }  // namespace
 
 void Typesetter::learn(const ex& e) {
+  learn_printable(printable(e));
+}
+
+void Typesetter::learn_printable(const ex& e) {
   // In the order of their text, so that the names do not follow GiNaC's term order.
   std::map<std::string, ex> bases;
-  collect_power_bases(printable(e), bases);
+  collect_power_bases(e, bases);
   for (const auto& [text, base] : bases) norm_of(base);
 }
 
@@ -605,8 +611,9 @@ ex Typesetter::collected(const ex& e) const {
 }
 
 ex Typesetter::compact(const ex& stored) {
-  learn(stored);  // new quantities named in the order of their text, not of GiNaC's terms
-  ex best = name_power_bases(printable(stored));
+  const ex p = printable(stored);
+  learn_printable(p);  // new quantities named in the order of their text, not of GiNaC's terms
+  ex best = name_power_bases(p);
   std::size_t best_length = print(best).size();
   const auto keep_if_shorter = [&](const ex& candidate) {
     const std::size_t length = print(candidate).size();
@@ -644,12 +651,11 @@ std::vector<NamedQuantity> Typesetter::definitions() const {
 
 std::vector<std::string> Typesetter::latex_lines(const ex& e, std::size_t width) {
   const ex c = compact(e);
-  const std::string whole = print(c);
-  if (!GiNaC::is_a<GiNaC::add>(c) || whole.size() <= width) return {whole};
-  std::vector<std::string> terms, lines;
-  for (const auto& term : c) terms.push_back(print(term));
-  std::sort(terms.begin(), terms.end(),
-            [](const std::string& a, const std::string& b) { return sort_key(a) < sort_key(b); });
+  if (!GiNaC::is_a<GiNaC::add>(c)) return {print(c)};
+  const std::vector<std::string> terms = sorted_terms(c);
+  const std::string whole = joined_terms(terms);
+  if (whole.size() <= width) return {whole};
+  std::vector<std::string> lines;
   std::string line;
   for (std::string t : terms) {
     const bool negative = !t.empty() && t[0] == '-';

@@ -78,6 +78,7 @@ class Typesetter {
   };
 
   GiNaC::ex printable(const GiNaC::ex& e) const;
+  void learn_printable(const GiNaC::ex& e);
   GiNaC::ex name_power_bases(const GiNaC::ex& e);
   const Norm* norm_of(const GiNaC::ex& base);
   GiNaC::ex substitute_differences(const GiNaC::ex& e) const;
