@@ -88,11 +88,18 @@ compiles() {
 }
 
 @test "report: the same artifacts give the same bytes" {
-  derived S10 r
-  report S10 r
-  cp r/report.md first.md
-  report S10 r
-  cmp first.md r/report.md
+  # GiNaC's term order follows memory addresses, which change from process to process: S05's and
+  # S06's costate rows (J2) were grouped differently in 2 of 5 runs before factors were expanded.
+  local s i
+  for s in S05 S06 S10; do
+    derived "$s" "$s"
+    report "$s" "$s"
+    cp "$s/report.md" "$s/first.md"
+    for i in 1 2 3 4 5; do
+      report "$s" "$s"
+      cmp "$s/first.md" "$s/report.md" || { echo "$s: run $i differs" >&2; return 1; }
+    done
+  done
 }
 
 @test "report: a failed check of verify stands beside the condition it concerns" {

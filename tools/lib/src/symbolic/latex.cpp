@@ -562,11 +562,27 @@ namespace {
 
 // The shortest LaTeX among `e` with its common factors collected and `e` factored (factoring only
 // a polynomial of few terms: its cost grows fast with their number).
-ex shortest_form(const ex& e) {
+// A product with each factor (or power's base) expanded: factor() returns an irreducible factor
+// collected in the variable it chose as its main one, which follows GiNaC's term order too.
+ex with_expanded_factors(const ex& product) {
+  const auto expanded = [](const ex& f) {
+    return GiNaC::is_a<GiNaC::power>(f) ? GiNaC::pow(f.op(0).expand(), f.op(1)) : f.expand();
+  };
+  if (!GiNaC::is_a<GiNaC::mul>(product)) return expanded(product);
+  ex out = 1;
+  for (const auto& f : product) out *= expanded(f);
+  return out;
+}
+
+ex shortest_form(const ex& coefficient) {
+  // From the expanded form: GiNaC's collect leaves a coefficient partly grouped, and
+  // collect_common_factors then groups it further, both in GiNaC's term order, which follows
+  // memory addresses (S05's costate rows came out grouped differently from run to run).
+  const ex e = coefficient.expand();
   std::vector<ex> forms = {e, GiNaC::collect_common_factors(e)};
   if (term_count(e) <= 24) {
     try {
-      forms.push_back(GiNaC::factor(e));
+      forms.push_back(with_expanded_factors(GiNaC::factor(e)));
     } catch (const std::exception&) {
       // Not a form GiNaC factors: the others stand.
     }
