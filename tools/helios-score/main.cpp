@@ -1,6 +1,7 @@
 // helios-score: a run's artifacts + scenarios/SNN/reference.json -> score.json, or a folder of
 // score.json files -> scoreboard.md, or a converged run's trajectory -> trajectory.oem.
 #include <cstdio>
+#include <initializer_list>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -13,6 +14,29 @@
 #include "helios/score/report.hpp"
 #include "helios/score/score.hpp"
 #include "helios/spec/parse.hpp"
+
+namespace {
+
+// A mode of the tool (--report, --oem, ...) refuses the options of the others and needs its own.
+void refuse_options(const helios::cli::Args& args, const std::string& mode, std::initializer_list<const char*> others) {
+  for (const char* other : others)
+    if (args.has(other)) throw helios::usage_error("--" + mode + " takes no --" + other + ", see helios-score --help");
+}
+
+void require_options(const helios::cli::Args& args, const std::string& mode,
+                     std::initializer_list<const char*> needed) {
+  for (const char* option : needed)
+    if (!args.has(option))
+      throw helios::usage_error("--" + mode + " needs --" + option + " FILE, see helios-score --help");
+}
+
+// The stage artifact of option `kind` (spec, verify, ...), if it was given.
+std::optional<helios::io::json> optional_artifact(const helios::cli::Args& args, const char* kind) {
+  if (!args.has(kind)) return std::nullopt;
+  return helios::io::read_artifact(kind, args.get(kind));
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   const helios::cli::ToolInfo info{
@@ -55,20 +79,16 @@ int main(int argc, char** argv) {
       "--solution runs/builtin/S01/solution.json -o runs/builtin/S01/score.json"};
   return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
     if (args.has("report")) {
-      for (const char* other : {"scoreboard", "tables", "reference", "oem", "trajectory"})
-        if (args.has(other))
-          throw helios::usage_error(std::string("--report takes no --") + other + ", see helios-score --help");
-      for (const char* needed : {"problem", "spec", "derivation"})
-        if (!args.has(needed))
-          throw helios::usage_error(std::string("--report needs --") + needed + " FILE, see helios-score --help");
+      refuse_options(args, "report", {"scoreboard", "tables", "reference", "oem", "trajectory"});
+      require_options(args, "report", {"problem", "spec", "derivation"});
       helios::score::ReportInputs in;
       in.problem_text = helios::io::read_text(args.get("problem"));
       helios::spec::check_problem_text(in.problem_text, args.get("problem"));
       in.spec = helios::io::read_artifact("spec", args.get("spec"));
       in.derivation = helios::io::read_artifact("derivation", args.get("derivation"));
       in.derivation_source = args.get("derivation");
-      if (args.has("verify")) in.verify = helios::io::read_artifact("verify", args.get("verify"));
-      if (args.has("solution")) in.solution = helios::io::read_artifact("solution", args.get("solution"));
+      in.verify = optional_artifact(args, "verify");
+      in.solution = optional_artifact(args, "solution");
       std::string report;
       helios::cli::naming_input(args.get("derivation"), [&] { report = helios::score::report_markdown(in); });
       helios::io::write_text_atomic(args.output, report);
@@ -76,12 +96,8 @@ int main(int argc, char** argv) {
     }
     if (args.has("problem")) throw helios::usage_error("--problem goes with --report, see helios-score --help");
     if (args.has("oem")) {
-      for (const char* other : {"scoreboard", "tables", "reference", "derivation", "verify"})
-        if (args.has(other))
-          throw helios::usage_error(std::string("--oem takes no --") + other + ", see helios-score --help");
-      for (const char* needed : {"spec", "solution", "trajectory"})
-        if (!args.has(needed))
-          throw helios::usage_error(std::string("--oem needs --") + needed + " FILE, see helios-score --help");
+      refuse_options(args, "oem", {"scoreboard", "tables", "reference", "derivation", "verify"});
+      require_options(args, "oem", {"spec", "solution", "trajectory"});
       const helios::io::json spec = helios::io::read_artifact("spec", args.get("spec"));
       const helios::io::json solution = helios::io::read_artifact("solution", args.get("solution"));
       if (solution.at("status") != "converged") {
@@ -98,16 +114,12 @@ int main(int argc, char** argv) {
     }
     if (args.has("trajectory")) throw helios::usage_error("--trajectory goes with --oem, see helios-score --help");
     if (args.has("tables")) {
-      for (const char* other : {"scoreboard", "reference", "spec", "derivation", "verify", "solution"})
-        if (args.has(other))
-          throw helios::usage_error(std::string("--tables takes no --") + other + ", see helios-score --help");
+      refuse_options(args, "tables", {"scoreboard", "reference", "spec", "derivation", "verify", "solution"});
       helios::io::write_text_atomic(args.output, helios::score::tables_from_runs(args.get("tables")));
       return 0;
     }
     if (args.has("scoreboard")) {
-      for (const char* stage : {"reference", "spec", "derivation", "verify", "solution"})
-        if (args.has(stage))
-          throw helios::usage_error(std::string("--scoreboard takes no --") + stage + ", see helios-score --help");
+      refuse_options(args, "scoreboard", {"reference", "spec", "derivation", "verify", "solution"});
       helios::io::write_text_atomic(args.output, helios::score::scoreboard_from_dir(args.get("scoreboard")));
       return 0;
     }
@@ -116,14 +128,10 @@ int main(int argc, char** argv) {
     helios::score::ScoreInputs in;
     in.reference_source = args.get("reference") == "-" ? "<stdin>" : args.get("reference");
     in.reference = helios::io::read_json(args.get("reference"));
-    const auto stage = [&](const char* kind) -> std::optional<helios::io::json> {
-      if (!args.has(kind)) return std::nullopt;
-      return helios::io::read_artifact(kind, args.get(kind));
-    };
-    in.spec = stage("spec");
-    in.derivation = stage("derivation");
-    in.verify = stage("verify");
-    in.solution = stage("solution");
+    in.spec = optional_artifact(args, "spec");
+    in.derivation = optional_artifact(args, "derivation");
+    in.verify = optional_artifact(args, "verify");
+    in.solution = optional_artifact(args, "solution");
     helios::io::write_artifact("score", helios::score::score_run(in), args.output);
     return 0;
   });
