@@ -155,6 +155,7 @@ class Writer {
   void learn_all(const json& v, const std::string& key);
   std::string display(const std::string& lhs, const std::string& text, const std::string& where,
                       const std::string& rhs = "");
+  std::string display_expression(const std::string& lhs, const GiNaC::ex& e, const std::string& rhs = "");
   std::string condition(const std::string& text, const std::string& where);
   std::string inline_symbol(const std::string& name) const { return "$" + tex_.symbol(name) + "$"; }
   std::string findings(const std::function<bool(const json&)>& concerns) const;
@@ -211,7 +212,11 @@ std::string Writer::display(const std::string& lhs, const std::string& text, con
                             const std::string& rhs) {
   const auto e = parsed(text, where);
   if (!e) return "\n" + code(text) + " (not an expression this report can typeset)\n\n";
-  const std::vector<std::string> lines = tex_.latex_lines(*e, kLineWidth);
+  return display_expression(lhs, *e, rhs);
+}
+
+std::string Writer::display_expression(const std::string& lhs, const GiNaC::ex& e, const std::string& rhs) {
+  const std::vector<std::string> lines = tex_.latex_lines(e, kLineWidth);
   std::ostringstream o;
   o << "\n$$\n";
   if (lines.size() == 1) {
@@ -231,7 +236,7 @@ std::string Writer::condition(const std::string& text, const std::string& where)
   const auto eq = text.find(" = ");
   if (eq != std::string::npos) {
     const auto lhs = parsed(text.substr(0, eq), where), rhs = parsed(text.substr(eq + 3), where);
-    if (lhs && rhs) return display(tex_.latex(*lhs), text.substr(eq + 3), where);
+    if (lhs && rhs) return display_expression(tex_.latex(*lhs), *rhs);
   }
   return "- " + cell(text) + "\n";
 }
