@@ -120,6 +120,8 @@ slurm_make() {
   grep -qx 'SLURM_NTASKS=1' "$dir/slurm-step.env"
   grep -qx 'SLURM_CPUS_PER_TASK=1' "$dir/slurm-step.env"
   grep -qx "SLURMD_NODENAME=$(hostname -s)" "$dir/slurm-step.env"
+  # srun -c1 gave the step one CPU: the search ran on one thread, not on every core.
+  assert_jq "$dir/solution.json" '.settings.threads == 1 and .search.threads == 1'
   # The controller saw that job finish: its job completion log (the cluster keeps no accounting
   # database) has a line for it, written when the job ends (a moment after srun returns).
   local jobcomp i

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "helios/io/error.hpp"
 #include "helios/solve/runtime_files.hpp"
 #include "helios/solve/solve.hpp"
 
@@ -126,6 +127,35 @@ TEST(Compile, TheCommandNamesTheRuntimeByAbsolutePath) {
   const auto c = helios::solve::compile_cached("#include \"helios_runtime.hpp\"\nint main() {}\n", o);
   EXPECT_NE(c.command.find(" -I" + runtime.include_dir + " "), std::string::npos) << c.command;
   EXPECT_NE(c.command.find(" " + runtime.library + " "), std::string::npos) << c.command;
+  fs::remove_all(dir);
+}
+
+// The thread count a scheduler's task is given: srun -c1 cells of a sweep must not each run a
+// search on every core of the node. A settings file's own nonzero `threads` wins.
+TEST(SolveSettings, TheSearchThreadsFollowSlurmCpusPerTaskUnlessTheSettingsSayOtherwise) {
+  const fs::path dir = fresh_dir("threads");
+  helios::solve::SolveOptions o;
+  ::unsetenv("SLURM_CPUS_PER_TASK");
+  EXPECT_EQ(helios::solve::scheduler_cpus_per_task(), 0);
+  EXPECT_FALSE(helios::solve::run_settings(o).contains("threads"));
+  ::setenv("SLURM_CPUS_PER_TASK", "1", 1);
+  EXPECT_EQ(helios::solve::run_settings(o).at("threads"), 1);
+  o.settings_path = (dir / "settings.json").string();
+  std::ofstream(o.settings_path) << R"({"threads": 3})";
+  EXPECT_EQ(helios::solve::run_settings(o).at("threads"), 3);
+  std::ofstream(o.settings_path) << R"({"threads": 0})";
+  EXPECT_EQ(helios::solve::run_settings(o).at("threads"), 1);
+  for (const char* bad : {"0", "65", "2(x3)", "-1", "x"}) {
+    ::setenv("SLURM_CPUS_PER_TASK", bad, 1);
+    try {
+      helios::solve::scheduler_cpus_per_task();
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const helios::input_error& e) {
+      EXPECT_EQ(std::string(e.what()),
+                std::string("SLURM_CPUS_PER_TASK: '") + bad + "' is not a CPU count (a whole number from 1 to 64)");
+    }
+  }
+  ::unsetenv("SLURM_CPUS_PER_TASK");
   fs::remove_all(dir);
 }
 

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <regex>
 #include <string>
@@ -36,6 +37,31 @@ void check_settings(const json& settings, const std::string& source) {
   io::validate("settings", settings, source);
 }
 
+int scheduler_cpus_per_task() {
+  const char* value = std::getenv("SLURM_CPUS_PER_TASK");
+  if (value == nullptr || *value == '\0') return 0;
+  const std::string text = value;
+  const bool digits =
+      text.size() <= 2 && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  const int cpus = digits ? std::stoi(text) : 0;
+  if (cpus < 1 || cpus > 64)
+    throw input_error("SLURM_CPUS_PER_TASK: '" + text + "' is not a CPU count (a whole number from 1 to 64)");
+  return cpus;
+}
+
+// Each key of the settings file is one of schemas/settings.schema.json (which lists the keys the
+// runtime reads, with their types and ranges: anything else is a typo, not a no-op).
+json run_settings(const SolveOptions& o) {
+  json settings = json::object();
+  if (!o.settings_path.empty()) settings = io::read_json(o.settings_path);
+  check_settings(settings, o.settings_path);
+  const double own_limit = std::max(1.0, o.time_limit_s - 5);
+  settings["time_limit_s"] = std::min(settings.value("time_limit_s", own_limit), own_limit);
+  if (settings.value("threads", 0) == 0)
+    if (const int cpus = scheduler_cpus_per_task(); cpus > 0) settings["threads"] = cpus;
+  return settings;
+}
+
 namespace {
 
 // The keys of solution.json that helios-solve alone knows: the artifact's header, the compile,
@@ -43,18 +69,6 @@ namespace {
 // (templates/runtime/main.hpp) carries every other key of schemas/solution.schema.json.
 const std::vector<std::string> kSolveKeys = {"schema",  "schema_version", "producer", "compile",
                                              "sandbox", "settings",       "timings",  "files"};
-
-// The settings file, each key one of schemas/settings.schema.json (which lists the keys the
-// runtime reads, with their types and ranges: anything else is a typo, not a no-op), validated;
-// the program's own time limit a little before the wall-clock kill.
-json run_settings(const SolveOptions& o) {
-  json settings = json::object();
-  if (!o.settings_path.empty()) settings = io::read_json(o.settings_path);
-  check_settings(settings, o.settings_path);
-  const double own_limit = std::max(1.0, o.time_limit_s - 5);
-  settings["time_limit_s"] = std::min(settings.value("time_limit_s", own_limit), own_limit);
-  return settings;
-}
 
 // solution.json before the run: the compile, and the keys the program's outcome replaces (the
 // problem, the status, the seed and the counts) as they are for a program that did not run.

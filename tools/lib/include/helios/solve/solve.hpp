@@ -27,6 +27,17 @@ struct SolveOptions {
   std::function<void(const std::string&)> progress;
 };
 
+// The CPUs a scheduler gave this task: SLURM_CPUS_PER_TASK (set by srun -c N / sbatch
+// --cpus-per-task), or 0 when it is unset. A value that is not a whole number from 1 to 64 is an
+// input_error naming the variable and the value.
+int scheduler_cpus_per_task();
+
+// The settings the program runs with: o.settings_path's (validated against
+// schemas/settings.schema.json; none: {}), the time limit a little under o.time_limit_s, and
+// `threads` set to scheduler_cpus_per_task() where the settings leave it 0 (every core), so that
+// the cells of a sweep under `srun -c1` do not each take the whole machine.
+io::json run_settings(const SolveOptions& o);
+
 struct CompileResult {
   bool ok = false, cached = false;
   std::string binary, sha256, command, diagnostics;
