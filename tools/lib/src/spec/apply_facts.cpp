@@ -1,0 +1,101 @@
+// Facts stated in other words (read by facts.cpp) applied to the spec being built.
+#include "grammar.hpp"
+
+namespace helios::spec::grammar {
+
+detail::SentenceFacts Builder::facts_of(const std::string& s) {
+  try {
+    return detail::read_facts(s);
+  } catch (const detail::facts_error& e) {
+    throw sentence_error(std::string(e.what()) +
+                         (e.suggestion.empty() ? "" : "; did you mean \"" + e.suggestion + "\"?"));
+  }
+}
+
+void Builder::apply_facts(const detail::SentenceFacts& f) {
+  using detail::Field;
+  if (!f.central.empty()) {
+    once("the central body");
+    central(f.central, "");
+  }
+  const auto engine = [&](Field field, const char* key, double v) {
+    once(detail::field_name(field));
+    ++seen["the spacecraft's engine"];
+    spacecraft[key] = v;
+  };
+  const auto state = [&](std::optional<json>& slot, Field field, bool initial, const json& v) {
+    once(detail::field_name(field));
+    if (initial && !r0 && !v0) {
+      once("the departure");
+      initial_where = here;
+    }
+    if (!initial && !rf && !vf) {
+      once("the final rendezvous");
+      final_where = here;
+    }
+    slot = v;
+  };
+  for (const auto& fact : f.facts) {
+    const double v = fact.value[0];
+    const json vec = fact.value.size() == 3 ? json(fact.value) : json();
+    switch (fact.field) {
+      case Field::Thrust:
+        engine(fact.field, "thrust_N", v);
+        break;
+      case Field::Isp:
+        engine(fact.field, "isp_s", v);
+        break;
+      case Field::InitialMass:
+        engine(fact.field, "initial_mass_kg", v);
+        break;
+      case Field::FinalMass:
+        engine(fact.field, "final_mass_kg", v);
+        break;
+      case Field::Tof:
+        once("the time of flight");
+        time["tof_days"] = v;
+        time["final_time"] = "fixed";
+        break;
+      case Field::T0:
+        once("the departure time");
+        time["t0_days"] = v;
+        departure_at_t = true;
+        break;
+      case Field::Mu:
+        set_mu(v);
+        break;
+      case Field::R0:
+        state(r0, fact.field, true, vec);
+        break;
+      case Field::V0:
+        state(v0, fact.field, true, vec);
+        break;
+      case Field::Rf:
+        state(rf, fact.field, false, vec);
+        break;
+      case Field::Vf:
+        state(vf, fact.field, false, vec);
+        break;
+    }
+  }
+  if (!f.objective.empty()) {
+    once("the objective");
+    objective = {{"kind", f.objective}};
+  }
+}
+
+// The departure and the final state from vectors stated one by one.
+void Builder::finish_facts() {
+  const auto endpoint = [&](const std::optional<json>& r, const std::optional<json>& v, const Where& w,
+                            const char* which, std::optional<Endpoint>& out, const char* kind) {
+    if (!r && !v) return;
+    if (!r || !v)
+      fail(w, std::string("it gives the ") + which + (r ? " position" : " velocity") + " but no sentence gives the " +
+                  which + (r ? " velocity" : " position"));
+    out = Endpoint{w, {{"kind", "fixed_state"}, {"position_km", *r}, {"velocity_km_s", *v}}, kind, std::nullopt};
+  };
+  endpoint(r0, v0, initial_where, "initial", departure, "initial_state");
+  endpoint(rf, vf, final_where, "final", arrival, "rendezvous");
+}
+
+}  // namespace helios::spec::grammar

@@ -1,0 +1,326 @@
+// Where the spacecraft goes: targets, the final condition, events on the way (rendezvous with stays
+// and landers, flybys, gravity assists), the checks that need the whole text, and the constraints.
+#include "grammar.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+namespace helios::spec::grammar {
+
+// "position [..] km with velocity [..] km/s", "a coasting target starting from position .. with
+// velocity .." (its state at t0; it then moves unpowered) or a body's name, kept as {"ref": NAME}
+// and looked up once the whole text is read (a body given by its orbit, else a planet).
+json parse_target(const std::string& phrase) {
+  std::smatch m;
+  static const std::regex state = re("(a coasting target starting from )?(?:position " + kVector + " and velocity " +
+                                     kVector + "|position " + kVector + " with velocity " + kVector + ")");
+  if (std::regex_match(phrase, m, state)) {
+    const std::size_t base = m[2].matched ? 2 : 10;
+    return {{"kind", m[1].matched ? "coasting" : "fixed_state"},
+            {"position_km", vector3(m, base, Dimension::Length)},
+            {"velocity_km_s", vector3(m, base + 4, Dimension::Speed)}};
+  }
+  if (phrase.find('[') == std::string::npos) {
+    try {
+      return {{"ref", body_name(phrase)}};
+    } catch (const sentence_error& e) {
+      throw sentence_error(std::string(e.what()) +
+                           "; a state reads 'position [x, y, z] UNIT with velocity [vx, vy, vz] UNIT'");
+    }
+  }
+  throw sentence_error(
+      "expected 'position [x, y, z] UNIT with velocity [vx, vy, vz] UNIT', 'a coasting target starting from position "
+      "... with velocity ...' or a body's name");
+}
+
+void Builder::on_arrive(const std::smatch& m) {
+  once("the final rendezvous");
+  const std::string phrase = m[1].matched ? m[1].str() : m[2].str();
+  arrival = Endpoint{here, parse_target(phrase), "rendezvous", std::nullopt};
+}
+
+void Builder::on_arrive_flyby(const std::smatch& m) {
+  once("the final rendezvous");
+  arrival = Endpoint{here, parse_target(m[1].str()), "flyby", std::nullopt};
+  if (m[2].matched) {
+    const double v = quantity(m, 2, Dimension::Speed);
+    if (!(v > 0)) throw sentence_error("the relative speed bound must be positive");
+    arrival->max_speed = v;
+  }
+}
+
+void Builder::on_event(const std::smatch& m) {
+  const std::string verb = lowercase(m[1].str());
+  event(verb.find("rendezvous") != std::string::npos ? "rendezvous"
+        : verb.find("fl") != std::string::npos       ? "flyby"
+                                                     : "gravity_assist",
+        m[2].str());
+}
+
+EpochRef Builder::epoch_ref(const std::string& scale, const std::string& value) {
+  if (lowercase(scale) == "day") return {number(value), false};
+  return {mjd2000_of(scale, value), true};
+}
+
+// "<verb> NAME between day N and day N[ in an unpowered gravity assist][, CLAUSE[ and CLAUSE]]".
+void Builder::event(const std::string& kind, const std::string& rest) {
+  static const std::regex window_re =
+      re(R"((.+?) between (day|MJD2000|MJD) ()" + kNum + R"() and (day|MJD2000|MJD) ()" + kNum + R"()(.*))");
+  std::smatch m;
+  if (!std::regex_match(rest, m, window_re)) {
+    if (rest.find(" between ") != std::string::npos)
+      throw sentence_error(
+          "the window must read 'between day N and day N' (days after the epoch) or 'between "
+          "MJD2000 N and MJD2000 N'");
+    throw sentence_error(
+        "an event on the way needs its window ('... between day N and day N'); a rendezvous at "
+        "the end reads 'At the final time the spacecraft rendezvouses with NAME'");
+  }
+  Event e;
+  e.where = here;
+  e.kind = kind;
+  e.body = body_name(m[1].str());
+  e.lo = epoch_ref(m[2].str(), m[3].str());
+  e.hi = epoch_ref(m[4].str(), m[5].str());
+  std::string tail = m[6].str();
+  if (kind == "gravity_assist") {
+    static const std::regex ga_re = re(R"(\s*(?:in|as|for) an? (?:unpowered )?gravity assist(.*))");
+    std::smatch g;
+    if (std::regex_match(tail, g, ga_re)) tail = g[1].str();
+  }
+  if (!trimmed(tail).empty()) {
+    static const std::regex lead = re(R"(\s*(?:[;,]\s*(?:and\s+)?|and\s+)(.+))");
+    std::smatch l;
+    if (!std::regex_match(tail, l, lead))
+      throw sentence_error("cannot read '" + trimmed(tail) + "' after the window: " + clause_forms(kind));
+    for (const auto& part : clauses_of(l[1].str())) event_clause(e, part);
+  }
+  if (kind == "gravity_assist" && !e.mu) {
+    const std::string key = lowercase(e.body);
+    const auto mu = key == "sun" ? std::nullopt : known_mu(e.body);
+    if (!mu)
+      throw sentence_error("the gravitational parameter of " + e.body + " is not known: add '; " + e.body +
+                           " has a gravitational parameter of Q km^3/s^2'");
+    e.mu = *mu;
+  }
+  if (e.drop) e.drop_where = here;
+  events.push_back(e);
+}
+
+std::string Builder::clause_forms(const std::string& kind) {
+  if (kind == "rendezvous") return "a rendezvous takes 'stays there for Q', 'does not stay' and 'leaves a lander of Q'";
+  if (kind == "flyby") return "a flyby matches the position only and takes 'the relative speed must be at most Q'";
+  return "a gravity assist takes 'NAME has a gravitational parameter of Q' and 'the periapsis radius must be at "
+         "least Q'";
+}
+
+// The body a clause names ("at NAME", "NAME has ...") must be the event's.
+void Builder::same_body(const Event& e, const std::string& phrase) {
+  const std::string named = body_name(phrase);
+  if (lowercase(named) != lowercase(e.body) && lowercase(named) != "it")
+    throw sentence_error("the clause names " + named + " but the event is at " + e.body);
+}
+
+void Builder::event_clause(Event& e, const std::string& part) {
+  static const std::regex stay_re = re(R"(stays(?: there| at (.+?))? for )" + kQuantity);
+  static const std::regex no_stay_re = re(R"(does not stay(?: there)?)");
+  static const std::regex lander_re = re(R"((?:leaves|drops|releases) (?:a|an) (?:lander|probe|payload|package) of )" +
+                                         kQuantity + R"((?: there| at (.+))?)");
+  static const std::regex mu_re = re(R"((.+?) has a gravitational parameter of )" + kQuantity);
+  static const std::regex rmin_re = re(
+      R"((?:(?:the )?(?:periapsis|pericenter|pericentre|closest approach) radius (?:must be|is) at least |(?:the )?(?:minimum|lowest) (?:periapsis|pericenter|pericentre) radius is ))" +
+      kQuantity);
+  static const std::regex speed_re =
+      re(R"((?:(?:the )?relative speed (?:must be|is) at most |with a relative speed of at most ))" + kQuantity);
+  std::smatch m;
+  const auto set = [&](std::optional<double>& slot, double value, const std::string& what) {
+    if (slot) throw sentence_error(what + " at " + e.body + " is given twice");
+    slot = value;
+  };
+  if (e.kind == "rendezvous" && std::regex_match(part, m, stay_re)) {
+    if (m[1].matched) same_body(e, m[1].str());
+    const double stay = quantity(m, 2, Dimension::Time);
+    if (stay < 0) throw sentence_error("the stay must not be negative, got " + m[2].str() + " " + m[3].str());
+    set(e.stay, stay, "the stay");
+  } else if (e.kind == "rendezvous" && std::regex_match(part, m, no_stay_re)) {
+    set(e.stay, 0.0, "the stay");
+  } else if (e.kind == "rendezvous" && std::regex_match(part, m, lander_re)) {
+    if (m[3].matched) same_body(e, m[3].str());
+    const double drop = quantity(m, 1, Dimension::Mass);
+    if (!(drop > 0)) throw sentence_error("the lander's mass must be positive, got " + m[1].str() + " " + m[2].str());
+    set(e.drop, drop, "the lander");
+  } else if (e.kind == "gravity_assist" && std::regex_match(part, m, mu_re)) {
+    same_body(e, m[1].str());
+    const double mu = quantity(m, 2, Dimension::GravParam);
+    if (!(mu > 0)) throw sentence_error("the gravitational parameter must be positive");
+    set(e.mu, mu, "the gravitational parameter");
+  } else if (e.kind == "flyby" && std::regex_match(part, m, speed_re)) {
+    const double v = quantity(m, 1, Dimension::Speed);
+    if (!(v > 0)) throw sentence_error("the relative speed bound must be positive");
+    set(e.max_speed, v, "the relative speed bound");
+  } else if (e.kind == "gravity_assist" && std::regex_match(part, m, rmin_re)) {
+    const double r = quantity(m, 1, Dimension::Length);
+    if (!(r > 0)) throw sentence_error("the periapsis radius must be positive");
+    set(e.rmin, r, "the lowest periapsis radius");
+  } else {
+    throw sentence_error("cannot read '" + part + "': " + clause_forms(e.kind));
+  }
+}
+
+void Builder::on_drop(const std::smatch& m) {
+  lander(quantity(m, 1, Dimension::Mass), body_name(m[3].str()));
+}
+
+// "It leaves a lander of Q at NAME": the one rendezvous with NAME stated before.
+void Builder::lander(double kg, const std::string& name) {
+  if (!(kg > 0)) throw sentence_error("the lander's mass must be positive");
+  Event* found = nullptr;
+  int rendezvous = 0, others = 0;
+  for (auto& e : events) {
+    if (lowercase(e.body) != lowercase(name)) continue;
+    if (e.kind == "rendezvous") {
+      ++rendezvous;
+      found = &e;
+    } else {
+      ++others;
+    }
+  }
+  if (rendezvous == 0)
+    throw sentence_error(others ? "only a rendezvous can leave a lander, and the spacecraft only passes " + name
+                                : "no rendezvous with " + name + " is stated before this sentence");
+  if (rendezvous > 1)
+    throw sentence_error("the spacecraft rendezvouses with " + name + " " + std::to_string(rendezvous) +
+                         " times: put ', and leaves a lander of Q' in the rendezvous sentence meant");
+  if (found->drop) throw sentence_error("the lander at " + name + " is given twice");
+  found->drop = kg;
+  found->drop_where = here;
+}
+
+// A target's {"ref": NAME} as the body given by its orbit, else a planet with an ephemeris.
+json Builder::resolve(const json& target, const Where& w) {
+  if (!target.contains("ref")) return target;
+  const std::string name = target["ref"];
+  for (auto& o : orbits)
+    if (lowercase(o.name) == lowercase(name)) {
+      o.used = true;
+      return {{"kind", "orbit"}, {"body", o.name}, {"elements", o.elements}};
+    }
+  if (is_planet(lowercase(name))) {
+    std::string body = lowercase(name);
+    body[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(body[0])));
+    return {{"kind", "body"}, {"body", body}, {"ephemeris", "jpl_lp"}};
+  }
+  fail(w, "unknown body '" + name + "': state its orbit ('" + name +
+              " moves on a Keplerian orbit about the Sun with a = Q, e = N, i = Q, node = Q, argument of "
+              "perihelion = Q and mean anomaly = Q at MJD N') or name a planet with an ephemeris (Earth, Mars, "
+              "Venus, Jupiter)");
+}
+
+// Checks that need the whole text: names, epochs, windows, landers.
+void Builder::finish_events() {
+  const std::string central = central_body.value("name", "");
+  for (const auto& o : orbits) {
+    static const std::regex the = re(R"((?:the )?(.+))");
+    std::smatch m;
+    std::regex_match(o.about, m, the);
+    const std::string about = lowercase(m[1].str());
+    if (!o.about.empty() && about != "central body" && about != lowercase(central))
+      fail(o.where, "the orbit is about " + m[1].str() + " but the central body is " + central);
+  }
+  const bool has_epoch = time.contains("epoch_mjd2000");
+  const auto needs_epoch = [&](const json& target, const Where& w) {
+    if (has_epoch || (target["kind"] != "body" && target["kind"] != "orbit")) return;
+    fail(w, target["body"].get<std::string>() +
+                " moves with time, so the text needs a calendar epoch: depart 'at MJD2000 N' (or 'at MJD N') or "
+                "state 'The departure epoch is free between Q before and Q after MJD2000 N'");
+  };
+  departure->target = resolve(departure->target, departure->where);
+  needs_epoch(departure->target, departure->where);
+  for (auto& e : events) {
+    e.target = resolve(json{{"ref", e.body}}, e.where);
+    needs_epoch(e.target, e.where);
+  }
+  arrival->target = resolve(arrival->target, arrival->where);
+  needs_epoch(arrival->target, arrival->where);
+  for (const auto& o : orbits)
+    if (!o.used)
+      fail(o.where, "no sentence sends the spacecraft to " + o.name + ": remove its orbit or state the event");
+
+  const bool free_dep = time.value("departure", "") == "free";
+  if (free_dep && departure_at_t)
+    fail(departure->where,
+         "with a free departure epoch the departure reads 'from TARGET' or 'at MJD2000 N', "
+         "not 't = Q'");
+  if (free_dep && time["final_time"] == "free")
+    fail(free_departure_where,
+         "a free departure epoch needs a fixed total time of flight ('The total time of "
+         "flight is Q.')");
+
+  // Windows in days after the epoch, inside the flight, in order and apart.
+  const double epoch = has_epoch ? time["epoch_mjd2000"].get<double>() : 0.0;
+  const double start = free_dep ? time["t0_window_days"][0].get<double>() : 0.0;
+  const double tof =
+      time["final_time"] == "fixed" ? time["tof_days"].get<double>() : time["tof_max_days"].get<double>();
+  const double end = (free_dep ? time["t0_window_days"][1].get<double>() : 0.0) + tof;
+  const Event* previous = nullptr;
+  for (auto& e : events) {
+    e.window_lo = e.lo.absolute ? e.lo.value - epoch : e.lo.value;
+    e.window_hi = e.hi.absolute ? e.hi.value - epoch : e.hi.value;
+    const std::string window = "day " + num_text(e.window_lo) + " to day " + num_text(e.window_hi);
+    if (!(e.window_hi > e.window_lo)) fail(e.where, "its window, " + window + ", is empty");
+    if (!(e.window_lo > start && e.window_hi < end))
+      fail(e.where, "its window, " + window + ", must lie inside the flight: after day " + num_text(start) +
+                        " and before day " + num_text(end) + " (days count from the epoch)");
+    if (previous && e.window_lo < previous->window_hi)
+      fail(e.where, "its window, " + window + ", starts before the window of the event at " + previous->body +
+                        " (day " + num_text(previous->window_lo) + " to day " + num_text(previous->window_hi) +
+                        ") ends: state the events in the order they happen, with windows that do not overlap");
+    if (previous && previous->stay && !(e.window_hi > previous->window_lo + *previous->stay))
+      fail(e.where, "its window, " + window + ", ends before the stay at " + previous->body + " can end (day " +
+                        num_text(previous->window_lo + *previous->stay) +
+                        " at the earliest): widen or move the windows");
+    previous = &e;
+  }
+  if (previous && previous->stay && !(end > previous->window_lo + *previous->stay))
+    fail(previous->where,
+         "the stay at " + previous->body + " cannot end before the final time (day " + num_text(end) + ")");
+  double dropped = 0;
+  for (const auto& e : events) {
+    if (!e.drop) continue;
+    if (propulsion == "solar_sail") fail(e.drop_where, "a solar sail has no mass to leave behind");
+    dropped += *e.drop;
+    if (spacecraft.contains("initial_mass_kg") && !(dropped < spacecraft["initial_mass_kg"].get<double>()))
+      fail(e.drop_where, "the landers weigh " + num_text(dropped) + " kg, not less than the initial mass");
+  }
+}
+
+json Builder::constraints() {
+  json out = json::array();
+  out.push_back({{"id", "departure"}, {"kind", "initial_state"}, {"at", "t0"}, {"target", departure->target}});
+  std::map<std::string, int> visits;
+  std::vector<std::string> ids;
+  for (const auto& e : events) {
+    const std::string base = lowercase(e.body);
+    int& n = visits[base];
+    std::string id = ++n == 1 ? base : base + "_" + std::to_string(n);
+    while (std::find(ids.begin(), ids.end(), id) != ids.end()) id = base + "_" + std::to_string(++n);
+    ids.push_back(id);
+    json c = {{"id", id},
+              {"kind", e.kind},
+              {"at", "interior"},
+              {"target", e.target},
+              {"window_days", json::array({e.window_lo, e.window_hi})}};
+    if (e.stay) c["stay_days"] = *e.stay;
+    if (e.drop) c["mass_drop_kg"] = *e.drop;
+    if (e.mu) c["body_mu_km3_s2"] = *e.mu;
+    if (e.rmin) c["min_periapsis_radius_km"] = *e.rmin;
+    if (e.max_speed) c["max_relative_speed_km_s"] = *e.max_speed;
+    out.push_back(c);
+  }
+  json last = {{"id", "arrival"}, {"kind", arrival->kind}, {"at", "tf"}, {"target", arrival->target}};
+  if (arrival->max_speed) last["max_relative_speed_km_s"] = *arrival->max_speed;
+  out.push_back(last);
+  return out;
+}
+
+}  // namespace helios::spec::grammar

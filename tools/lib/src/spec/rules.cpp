@@ -1,0 +1,58 @@
+// The rule table of the controlled English: each sentence form, as a pattern, and its handler.
+// A sentence no form matches is read as facts in other words (apply_facts.cpp).
+#include "grammar.hpp"
+
+namespace helios::spec::grammar {
+
+void Builder::handle(const std::string& s) {
+  static const std::vector<SentenceRule> rules = {
+      {re(R"(Problem ([A-Za-z0-9_-]+)\s*:\s*(.+))"), &Builder::on_problem},
+      {re(R"(The central body is (?:the )?([A-Za-z]+)(?: with (.+))?)"), &Builder::on_central},
+      {re(R"(The spacecraft is an ideal (?:flat )?solar sail with (?:a )?characteristic acceleration (?:of )?)" +
+          kQuantity + " at " + kQuantity),
+       &Builder::on_sail},
+      {re(R"(The dynamics include the J2 (?:perturbation|term) of the central body)"), &Builder::on_j2},
+      {re(R"(The dynamics include (?:a|an) (?:perturbing|additional) acceleration ([A-Za-z][A-Za-z0-9_]*) of \[(.+)\]\s*()" +
+          kUnit + ")"),
+       &Builder::on_accel},
+      {re(R"(The (?:total )?time of flight is free,? (?:at most )" + kQuantity + "|between " + kQuantity + " and " +
+          kQuantity + ")"),
+       &Builder::on_free_tof},
+      {re(R"(The spacecraft has (.+))"), &Builder::on_has},
+      {re(R"(The spacecraft departs from (.+) at ((?:t\s*=|MJD2000 |MJD ).+))"), &Builder::on_depart_from},
+      {re(R"(The spacecraft departs(?: at (.+?))? from (.+))"), &Builder::on_depart},
+      {re(R"(The (?:total )?time of flight is (?:fixed at )?)" + kQuantity), &Builder::on_tof},
+      {re(R"(At the final time the spacecraft (?:rendezvouses|must rendezvous) with (.+)|The spacecraft (?:rendezvouses|must rendezvous) with (.+) at the final time)"),
+       &Builder::on_arrive},
+      {re(R"(At the final time the spacecraft (?:flies|must fly) by (.+?)(?:,? with a relative speed of at most )" +
+          kQuantity + ")?"),
+       &Builder::on_arrive_flyby},
+      {re(R"(Minimi[sz]e (?:the )?(?:initial|launch|departure|wet) mass)"), &Builder::on_initial_mass},
+      {re(R"(Minimi[sz]e (?:the )?(?:fuel(?: consumption)?|propellant(?: mass)?|fuel use))"), &Builder::on_fuel},
+      {re(R"(Minimi[sz]e (?:the )?(?:time of flight|flight time|final time|transfer time))"), &Builder::on_time},
+      {re(R"((?:the (?:asteroid|comet|planet|moon|body|object) )?(.+?) moves on an? (?:Keplerian )?orbit (?:about|around) (the central body|(?:the )?[A-Za-z][A-Za-z0-9_]*) with (.+?)(?: at (?:the )?(?:epoch )?(MJD2000|MJD) ()" +
+          kNum + "))?"),
+       &Builder::on_orbit},
+      {re(R"(The (?:following )?(?:bodies|asteroids|comets|planets|targets) move on (?:Keplerian )?orbits (?:about|around) (the central body|(?:the )?[A-Za-z][A-Za-z0-9_]*)(?: with (?:these|the following) elements)?\s*:?)"),
+       &Builder::on_intro},
+      {re(R"(The departure (?:epoch|date) is free,? between )" + kQuantity + " (before|after) and " + kQuantity +
+          " (before|after) (MJD2000|MJD) (" + kNum + ")"),
+       &Builder::on_free_dep},
+      {re(R"(The departure (?:epoch|date) is free,? within )" + kQuantity + " (?:of|around) (MJD2000|MJD) (" + kNum +
+          ")"),
+       &Builder::on_free_dep_within},
+      {re(R"(The spacecraft (rendezvouses with|must rendezvous with|flies by|must fly by|swings by|must swing by) (.+))"),
+       &Builder::on_event},
+      {re(R"((?:It|The spacecraft) (?:leaves|drops|releases) (?:a|an) (?:lander|probe|payload|package) of )" +
+          kQuantity + " at (.+)"),
+       &Builder::on_drop},
+  };
+  std::smatch m;
+  for (const auto& rule : rules)
+    if (std::regex_match(s, m, rule.pattern)) return (this->*rule.apply)(m);
+  if (detail::states_nothing(s))
+    throw sentence_error("it matches no form of the controlled English (see README.md, 'Controlled English')");
+  apply_facts(facts_of(s));
+}
+
+}  // namespace helios::spec::grammar
