@@ -187,6 +187,11 @@ $(RUNS)/%/score.json: scenarios/%/reference.json $(RUNS)/%/spec.json $(RUNS)/%/d
 # by helios-score --sweep-cells with the cells' problem texts) names the cells and the chains.
 sweep ?=
 SWEEP_GRID ?=
+# cold: every cell searches cold (no --warm-start; its own folder <P>-cold), to measure the warm starts.
+SWEEP_START ?= warm
+ifeq ($(filter $(SWEEP_START),warm cold),)
+  $(error SWEEP_START=$(SWEEP_START) is not warm or cold)
+endif
 ifneq ($(filter P%,$(scenario)),)
   $(error scenario=$(scenario) is a sweep template: use make sweep sweep=$(scenario))
 endif
@@ -194,7 +199,7 @@ ifneq ($(sweep),)
 ifneq ($(BACKEND),builtin)
   $(error make sweep runs the builtin backend only (BACKEND=$(BACKEND)))
 endif
-SWEEP_DIR := $(RUNS)/$(sweep)$(if $(SWEEP_GRID),-$(SWEEP_GRID))
+SWEEP_DIR := $(RUNS)/$(sweep)$(if $(SWEEP_GRID),-$(SWEEP_GRID))$(if $(filter cold,$(SWEEP_START)),-cold)
 SWEEP_CELLS :=
 $(SWEEP_DIR)/cells.mk: scenarios/$(sweep)/sweep.json scenarios/$(sweep)/problem.txt $(call TOOL_STAMP,score)
 	@mkdir -p $(@D)
@@ -211,7 +216,7 @@ $(SWEEP_DIR)/%/spec.json: $(SWEEP_DIR)/%/problem.txt $(call TOOL_STAMP,parse)
 $(SWEEP_SOLUTIONS): $(SWEEP_DIR)/%/solution.json: $(SWEEP_DIR)/%/shoot.cpp scenarios/$(sweep)/settings.json \
                     $(call TOOL_STAMP,solve)
 	$(LAUNCH) $(BIN)/helios-solve --backend builtin $< --settings scenarios/$(sweep)/settings.json --cache-dir $(CACHE) \
-	  --time-limit $(SOLVE_TIME_LIMIT) --quiet $(if $(SWEEP_WARM_$*),--warm-start $(SWEEP_DIR)/$(SWEEP_WARM_$*)/solution.json) \
+	  --time-limit $(SOLVE_TIME_LIMIT) --quiet $(if $(and $(filter warm,$(SWEEP_START)),$(SWEEP_WARM_$*)),--warm-start $(SWEEP_DIR)/$(SWEEP_WARM_$*)/solution.json) \
 	  --trajectory $(@D)/trajectory.csv -o $@
 
 # porkchop.png is drawn before sweep.csv, which marks the sweep done.
