@@ -2,6 +2,7 @@
 #   make scenario=S01 [BACKEND=builtin|llm] one scenario (default S01)
 #   make all                               every scenario (-j works)
 #   make scoreboard | test | bench | clean
+#   make sweep sweep=P01 [SWEEP_GRID=bench] [SWEEP_START=cold]   a launch-window sweep (README "Sweeps")
 #   make test-sanitized                    unit tests and Bats under ASan/UBSan (build-asan)
 #   make fuzz [FUZZ_SECONDS=60]            libFuzzer targets, each FUZZ_SECONDS (build-fuzz)
 SHELL := bash
@@ -63,7 +64,7 @@ ARTIFACTS := spec.json $(if $(filter llm,$(BACKEND)),$(ROUND_ARTIFACTS)) derivat
              solution.json trajectory.oem report.md score.json
 artifacts_of = $(addprefix $(RUNS)/$(1)/,$(ARTIFACTS))
 
-.PHONY: run all scoreboard test unit bats bench tools deps clean test-sanitized fuzz deps-fuzz sweep
+.PHONY: run all scoreboard test unit bats bench tools deps clean test-sanitized fuzz deps-fuzz sweep bench-sweep
 run: $(call artifacts_of,$(scenario))
 
 all: $(foreach s,$(SCENARIOS),$(call artifacts_of,$(s)))
@@ -314,8 +315,16 @@ fuzz: $(FUZZ_BUILD)/build.ninja
 	$(foreach t,$(FUZZ_TARGETS),$(FUZZ_ENV) tests/fuzz/run.sh $(FUZZ_BUILD) $(t) $(FUZZ_SECONDS) $(FUZZ_MAX_LEN_$(t)) \
 	  $(FUZZ_DICT_$(t)) $(FUZZ_SEEDS_$(t)) || status=1;) exit $$status
 
-bench: $(TOOLS_STAMP)
+bench: $(TOOLS_STAMP) bench-sweep
 	tests/bench/bench.sh
+
+# The finer P01 grid (sweep.json's "bench"), with warm starts then every cell cold, each timed
+# (into RUNS_ROOT's P01-bench and P01-bench-cold: a finished grid is not redone).
+bench-sweep: $(TOOLS_STAMP)
+	@for start in warm cold; do t0=$$(date +%s.%N); \
+	  $(MAKE) --no-print-directory sweep sweep=P01 SWEEP_GRID=bench SWEEP_START=$$start >/dev/null; \
+	  echo "bench-sweep: P01 bench grid, $$start starts: $$(echo "$$(date +%s.%N) - $$t0" | bc) s wall"; \
+	  tail -n +2 $(RUNS)/P01-bench$$([[ $$start == cold ]] && echo -cold)/sweep.csv | cut -d, -f4,7 | sort | uniq -c; done
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) runs/builtin runs/llm runs/llm-* runs/scoreboard.md runs/.cache
