@@ -2,6 +2,7 @@
 #   make scenario=S01 [BACKEND=builtin|llm] one scenario (default S01)
 #   make all                               every scenario (-j works)
 #   make scoreboard | test | bench | clean
+#   make sweep sweep=P01 [SWEEP_GRID=bench] [SWEEP_START=cold]   a launch-window sweep (README "Sweeps")
 #   make test-sanitized                    unit tests and Bats under ASan/UBSan (build-asan)
 #   make fuzz [FUZZ_SECONDS=60]            libFuzzer targets, each FUZZ_SECONDS (build-fuzz)
 SHELL := bash
@@ -63,7 +64,7 @@ ARTIFACTS := spec.json $(if $(filter llm,$(BACKEND)),$(ROUND_ARTIFACTS)) derivat
              solution.json trajectory.oem report.md score.json
 artifacts_of = $(addprefix $(RUNS)/$(1)/,$(ARTIFACTS))
 
-.PHONY: run all scoreboard test unit bats bench tools deps clean test-sanitized fuzz deps-fuzz
+.PHONY: run all scoreboard test unit bats bench tools deps clean test-sanitized fuzz deps-fuzz sweep bench-sweep
 run: $(call artifacts_of,$(scenario))
 
 all: $(foreach s,$(SCENARIOS),$(call artifacts_of,$(s)))
@@ -178,6 +179,57 @@ $(RUNS)/%/score.json: scenarios/%/reference.json $(RUNS)/%/spec.json $(RUNS)/%/d
 	$(BIN)/helios-score --reference $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
 	  --verify $(@D)/verify.json --solution $(@D)/solution.json -o $@
 
+# ---- launch-window sweeps (README "Sweeps") --------------------------------------------------
+# make sweep sweep=P01 [SWEEP_GRID=bench] [LAUNCH="srun -n1 -c1"] [-j N]: every cell d<epoch>_t<tof>
+# of scenarios/P01/sweep.json is a run folder under $(RUNS)/P01 (the bench grid: P01-bench) with
+# the normal chain parse -> derive -> verify -> gen -> solve. The cells of one departure row are
+# a chain along increasing tof: the first solved cold, each next one warm from the one before
+# (its solution.json is a prerequisite), so make -j runs the rows in parallel. cells.mk (written
+# by helios-score --sweep-cells with the cells' problem texts) names the cells and the chains.
+sweep ?=
+SWEEP_GRID ?=
+# cold: every cell searches cold (no --warm-start; its own folder <P>-cold), to measure the warm starts.
+SWEEP_START ?= warm
+ifeq ($(filter $(SWEEP_START),warm cold),)
+  $(error SWEEP_START=$(SWEEP_START) is not warm or cold)
+endif
+ifneq ($(filter P%,$(scenario)),)
+  $(error scenario=$(scenario) is a sweep template: use make sweep sweep=$(scenario))
+endif
+ifneq ($(sweep),)
+ifneq ($(BACKEND),builtin)
+  $(error make sweep runs the builtin backend only (BACKEND=$(BACKEND)))
+endif
+SWEEP_DIR := $(RUNS)/$(sweep)$(if $(SWEEP_GRID),-$(SWEEP_GRID))$(if $(filter cold,$(SWEEP_START)),-cold)
+SWEEP_CELLS :=
+$(SWEEP_DIR)/cells.mk: scenarios/$(sweep)/sweep.json scenarios/$(sweep)/problem.txt $(call TOOL_STAMP,score)
+	@mkdir -p $(@D)
+	$(BIN)/helios-score --sweep-cells $< --cells $(@D) $(if $(SWEEP_GRID),--grid $(SWEEP_GRID)) -o $@
+-include $(SWEEP_DIR)/cells.mk
+SWEEP_SOLUTIONS := $(foreach c,$(SWEEP_CELLS),$(SWEEP_DIR)/$(c)/solution.json)
+# A cell's artifacts are kept (make would delete them as intermediate, and redo the cell).
+.SECONDARY: $(foreach c,$(SWEEP_CELLS),$(addprefix $(SWEEP_DIR)/$(c)/,problem.txt spec.json derivation.json verify.json shoot.cpp))
+
+$(SWEEP_DIR)/%/spec.json: $(SWEEP_DIR)/%/problem.txt $(call TOOL_STAMP,parse)
+	$(BIN)/helios-parse --backend builtin $< -o $@
+
+# A cell's solve, warm from its neighbour's solution.json when the chain gives it one.
+$(SWEEP_SOLUTIONS): $(SWEEP_DIR)/%/solution.json: $(SWEEP_DIR)/%/shoot.cpp scenarios/$(sweep)/settings.json \
+                    $(call TOOL_STAMP,solve)
+	$(LAUNCH) $(BIN)/helios-solve --backend builtin $< --settings scenarios/$(sweep)/settings.json --cache-dir $(CACHE) \
+	  --time-limit $(SOLVE_TIME_LIMIT) --quiet $(if $(and $(filter warm,$(SWEEP_START)),$(SWEEP_WARM_$*)),--warm-start $(SWEEP_DIR)/$(SWEEP_WARM_$*)/solution.json) \
+	  --trajectory $(@D)/trajectory.csv -o $@
+
+# porkchop.png is drawn before sweep.csv, which marks the sweep done.
+$(SWEEP_DIR)/sweep.csv: scenarios/$(sweep)/sweep.json $(SWEEP_DIR)/cells.mk $(SWEEP_SOLUTIONS) $(call TOOL_STAMP,score)
+	$(BIN)/helios-score --sweep $< --cells $(@D) $(if $(SWEEP_GRID),--grid $(SWEEP_GRID)) \
+	  --porkchop $(@D)/porkchop.png -o $@
+sweep: $(SWEEP_DIR)/sweep.csv
+else
+sweep:
+	$(error make sweep needs sweep=<P scenario>, e.g. make sweep sweep=P01)
+endif
+
 # This backend's table, and the paper's three tables over every run folder under $(RUNS_ROOT).
 scoreboard: $(RUNS)/scoreboard.md $(RUNS_ROOT)/scoreboard.md
 $(RUNS)/scoreboard.md: $(wildcard $(RUNS)/S*/score.json) $(call TOOL_STAMP,score)
@@ -265,8 +317,16 @@ fuzz: $(FUZZ_BUILD)/build.ninja
 	$(foreach t,$(FUZZ_TARGETS),$(FUZZ_ENV) tests/fuzz/run.sh $(FUZZ_BUILD) $(t) $(FUZZ_SECONDS) $(FUZZ_MAX_LEN_$(t)) \
 	  $(FUZZ_DICT_$(t)) $(FUZZ_SEEDS_$(t)) || status=1;) exit $$status
 
-bench: $(TOOLS_STAMP)
+bench: $(TOOLS_STAMP) bench-sweep
 	tests/bench/bench.sh
+
+# The finer P01 grid (sweep.json's "bench"), with warm starts then every cell cold, each timed
+# (into RUNS_ROOT's P01-bench and P01-bench-cold: a finished grid is not redone).
+bench-sweep: $(TOOLS_STAMP)
+	@for start in warm cold; do t0=$$(date +%s.%N); \
+	  $(MAKE) --no-print-directory sweep sweep=P01 SWEEP_GRID=bench SWEEP_START=$$start >/dev/null; \
+	  echo "bench-sweep: P01 bench grid, $$start starts: $$(echo "$$(date +%s.%N) - $$t0" | bc) s wall"; \
+	  tail -n +2 $(RUNS)/P01-bench$$([[ $$start == cold ]] && echo -cold)/sweep.csv | cut -d, -f4,7 | sort | uniq -c; done
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) runs/builtin runs/llm runs/llm-* runs/scoreboard.md runs/.cache

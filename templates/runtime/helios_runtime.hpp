@@ -107,6 +107,9 @@ struct Settings {
   double search_time_s = 0;
   int threads = 0;
   int max_steps = 200000;  // integrator steps per arc
+  // A neighbour's converged shooting variables at eps = 0 (a sweep's cell, helios-solve
+  // --warm-start), in kProblem.variable_names' order; empty: a cold start (the global search).
+  std::vector<double> warm_start;
 };
 
 // Seconds since the program's first call.
@@ -337,6 +340,10 @@ struct Result {
   std::vector<HomotopyStep> homotopy;
   std::vector<ContinuationStep> continuation;
   SearchRecord search;
+  // How the solve started: "cold" (the global search), "warm" (from Settings::warm_start) or
+  // "cold-after-warm-failed"; start_detail says why when it is not plain.
+  std::string start = "cold";
+  std::string start_detail;
 };
 
 // The SOLVE module's calls: `initial_guess(rng, x)` draws a start, `admissible(x)` accepts a

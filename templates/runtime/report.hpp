@@ -11,6 +11,28 @@ namespace helios_rt {
 
 namespace {
 
+// A neighbour's shooting variables (helios-solve's "warm_start": {"variables": [names], "x":
+// [values]}) in this problem's order. They are a guess only where they mean the same: the same
+// variables under the same names (the same derivation shape), else the run is refused.
+inline std::vector<double> warm_start_of(const nlohmann::json& w) {
+  const auto& names = w.at("variables");
+  const auto& values = w.at("x");
+  if (!names.is_array() || !values.is_array() || names.size() != values.size())
+    throw std::runtime_error("warm start: variables and x must be arrays of one length");
+  if (static_cast<int>(names.size()) != kProblem.num_vars)
+    throw std::runtime_error("warm start: the neighbour has " + std::to_string(names.size()) +
+                             " shooting variables, this problem " + std::to_string(kProblem.num_vars));
+  std::vector<double> x;
+  for (int i = 0; i < kProblem.num_vars; ++i) {
+    if (names[i].get<std::string>() != kProblem.variable_names[i])
+      throw std::runtime_error("warm start: the neighbour's variable " + std::to_string(i) + " is " +
+                               names[i].get<std::string>() + ", this problem's " + kProblem.variable_names[i]);
+    x.push_back(values[i].get<double>());
+    if (!std::isfinite(x.back())) throw std::runtime_error("warm start: a variable is not finite");
+  }
+  return x;
+}
+
 inline Settings read_settings(const std::string& path) {
   Settings s;
   if (path.empty()) return s;
@@ -35,6 +57,7 @@ inline Settings read_settings(const std::string& path) {
   s.search_attempts = j.value("search_attempts", s.search_attempts);
   s.search_time_s = j.value("search_time_s", s.search_time_s);
   s.threads = j.value("threads", s.threads);
+  if (j.contains("warm_start")) s.warm_start = warm_start_of(j.at("warm_start"));
   return s;
 }
 
@@ -269,6 +292,8 @@ inline nlohmann::ordered_json outcome_record(const Settings& s, const Result& r,
   out["restarts"] = std::max(0, r.attempts - 1);
   out["iterations"] = r.iterations;
   out["function_evaluations"] = r.evaluations;
+  out["start"] = r.start;
+  if (!r.start_detail.empty()) out["start_detail"] = r.start_detail;
   steps_record(r, out);
   if (r.status == "converged") solution_record(s, r, trajectory_path, out);
   return out;

@@ -400,12 +400,79 @@ class MultiStart {
   int evaluations_ = 0;
 };
 
+// The warm start: the neighbour's shooting variables at eps = 0 as the first guess, in the
+// normalized units of the runtime (the length, time and mass units do not depend on the epoch or
+// the flight time, so a neighbour's costates at its departure are this cell's guess at its own;
+// they are not propagated). First a direct solve at eps = 0, then continuations in eps from
+// small smoothing (1e-2, then 1e-1) down to 0, each from the neighbour's variables. The first to
+// reach eps = 0 is the result; none: r.detail says so and the caller searches cold.
+template <class Admissible>
+Result warm_solve(const Settings& s, Admissible& admissible) {
+  Result r;
+  r.start = "warm";
+  r.search.method = "warm start from a neighbour's solution (no search)";
+  r.search.threads = 1;
+  const double started = wall_seconds();
+  int evaluations = 0;
+  bool ok = false;
+  std::vector<double> x;
+  for (const double eps0 : {0.0, 1e-2, 1e-1}) {
+    if (wall_seconds() > s.time_limit_s) break;
+    x = s.warm_start;
+    Result path;
+    Shooter shooter(s, shooting_function, kContinuationStart);
+    double res = 0;
+    int info = 0;
+    try {
+      if (eps0 == 0) {
+        ok = homotopy_step(shooter, x, 0.0, s.final_residual, path, admissible, info, res);
+        path.x_start = x;
+        path.info = info;
+      } else {
+        Settings from = s;
+        from.eps_start = eps0;
+        ok = homotopy_to_zero(from, shooter, x, path, admissible, res);
+      }
+    } catch (const numerical_error&) {
+      ok = false;
+    }
+    evaluations += shooter.evaluations;
+    r.iterations += path.iterations;
+    r.homotopy.insert(r.homotopy.end(), path.homotopy.begin(), path.homotopy.end());
+    if (!ok) continue;
+    r.status = "converged";
+    r.x = x;
+    r.x_start = path.x_start;
+    r.F = shooter.last_F;
+    r.eps = 0;
+    r.max_residual = res;
+    r.info = path.info;
+    r.method = eps0 == 0 ? "single shooting at eps = 0 from a neighbour's solution"
+                         : "single shooting, eps continuation from " + std::to_string(eps0).substr(0, 4) +
+                               " starting at a neighbour's solution";
+    break;
+  }
+  r.evaluations = evaluations;
+  r.attempts = 1;
+  r.search.seconds = wall_seconds() - started;
+  if (!ok) r.detail = "the warm start from the neighbour's solution did not reach eps = 0";
+  return r;
+}
+
 }  // namespace
 
 // Problems without interior events: the global search (MultiStart). `initial_guess(rng, x)` draws
 // a start.
+// With a warm start (a sweep's converged neighbour) the search runs only when the warm solve fails.
 Result homotopy_solve(const Settings& s, const Guess& initial_guess, const Admissible& admissible) {
-  return MultiStart<const Guess, const Admissible>(s, initial_guess, admissible).solve();
+  if (s.warm_start.empty()) return MultiStart<const Guess, const Admissible>(s, initial_guess, admissible).solve();
+  Result warm = warm_solve(s, admissible);
+  if (warm.status == "converged") return warm;
+  Result r = MultiStart<const Guess, const Admissible>(s, initial_guess, admissible).solve();
+  r.start = "cold-after-warm-failed";
+  r.start_detail = warm.detail;
+  r.evaluations += warm.evaluations;
+  return r;
 }
 
 // Problems with interior events: search_attempts complete attempts, independent of one another.
@@ -416,6 +483,8 @@ Result homotopy_solve(const Settings& s, const Guess& initial_guess, const Admis
 Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const EventPlan& events,
                              const Guess& initial_guess, const Admissible& admissible) {
   Result r;
+  if (!s.warm_start.empty())
+    r.start_detail = "a warm start is not used on problems with interior events: the search starts cold";
   SearchRecord& rec = r.search;
   rec.threads = search_threads(s);
   rec.method = events.passable ? "complete attempts: events off, then continuation onto the events; else legs, then "

@@ -152,3 +152,35 @@ slurm_make() {
   jq -en --argjson a "$a" --argjson b "$b" \
     '($a | length) == 3 and ([range(3) | (($a[.] - $b[.]) | fabs) <= 1e-9 * ($b[.] | fabs)] | all)' >/dev/null
 }
+
+# sweep_smake RUNS_ROOT [VAR=VALUE...]: the P01 sweep (3 x 3 cells) into RUNS_ROOT, as smake does.
+sweep_smake() {
+  local runs="$1"
+  shift
+  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
+    make --no-print-directory -C "$ROOT" -o build/tools.stamp sweep sweep=P01 RUNS_ROOT="$runs" \
+    CACHE="$SHARED_CACHE" -j2 "$@"
+}
+
+@test "slurm: the P01 sweep with LAUNCH=\"srun -n1 -c1\" solves every cell as a Slurm step, objectives as without LAUNCH" {
+  run -0 sweep_smake "$SLURM_RUNS" LAUNCH="srun -n1 -c1 $RECORD_STEP"
+  run -0 sweep_smake "$PLAIN_RUNS"
+  local s="$SLURM_RUNS/builtin/P01" p="$PLAIN_RUNS/builtin/P01" cell jobs=()
+  [[ $(tail -n +2 "$s/sweep.csv" | wc -l) -eq 9 ]]
+  for cell in $(tail -n +2 "$s/sweep.csv" | cut -d, -f3); do
+    [[ -s $s/$cell/slurm-step.env ]] || { echo "$cell: no slurm-step.env, its solve was no Slurm step" >&2; false; }
+    [[ ! -e $p/$cell/slurm-step.env ]]
+    grep -Eq '^SLURM_JOB_ID=[0-9]+$' "$s/$cell/slurm-step.env"
+    grep -Eq '^SLURM_STEP_ID=[0-9]+$' "$s/$cell/slurm-step.env"
+    grep -qx 'SLURM_CPUS_PER_TASK=1' "$s/$cell/slurm-step.env"
+    jobs+=("$(sed -n 's/^SLURM_JOB_ID=//p' "$s/$cell/slurm-step.env")")
+    assert_jq "$s/$cell/solution.json" '.settings.threads == 1'
+  done
+  # Each cell was its own srun (job): nine distinct job ids.
+  [[ $(printf '%s\n' "${jobs[@]}" | sort -u | wc -l) -eq 9 ]]
+  # Same cells, same status and start, objectives within 1e-9 relative.
+  paste -d, <(tail -n +2 "$s/sweep.csv" | cut -d, -f3,4,5,7) <(tail -n +2 "$p/sweep.csv" | cut -d, -f3,4,5,7) |
+    awk -F, '{ d = $3 - $7; if (d < 0) d = -d
+               if ($1 != $5 || $2 != "converged" || $2 != $6 || $4 != $8 || d > 1e-9 * $7) { print "differs: " $0; bad = 1 } }
+             END { exit bad }' >&2
+}

@@ -73,8 +73,9 @@ std::vector<std::string> module_lines(const std::string& source, const std::stri
 
 TEST(Codegen, EveryResidualRowOfEveryScenarioSaysWhichConditionItIs) {
   std::vector<std::filesystem::path> scenarios;
+  // The scored scenarios S<NN> (a sweep's P<NN> is a template whose values are placeholders).
   for (const auto& entry : std::filesystem::directory_iterator(std::string(HELIOS_SOURCE_DIR) + "/scenarios"))
-    scenarios.push_back(entry.path());
+    if (entry.path().filename().string().rfind('S', 0) == 0) scenarios.push_back(entry.path());
   ASSERT_GE(scenarios.size(), 13u);
   for (const auto& dir : scenarios) {
     const std::string id = dir.filename().string();

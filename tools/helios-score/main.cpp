@@ -1,6 +1,7 @@
 // helios-score: a run's artifacts + scenarios/SNN/reference.json -> score.json, or a folder of
 // score.json files -> scoreboard.md, or a converged run's trajectory -> trajectory.oem.
 #include <cstdio>
+#include <filesystem>
 #include <initializer_list>
 #include <iostream>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "helios/score/oem.hpp"
 #include "helios/score/report.hpp"
 #include "helios/score/score.hpp"
+#include "helios/score/sweep.hpp"
 #include "helios/spec/parse.hpp"
 
 namespace {
@@ -45,7 +47,9 @@ int main(int argc, char** argv) {
       "--reference REF.json [--spec F] [--derivation F] [--verify F] [--solution F] [options]\n"
       "       helios-score --scoreboard DIR [options]\n"
       "       helios-score --oem --spec F --solution F --trajectory F.csv [options]\n"
-      "       helios-score --report --problem F.txt --spec F --derivation F [--verify F] [--solution F] [options]",
+      "       helios-score --report --problem F.txt --spec F --derivation F [--verify F] [--solution F] [options]\n"
+      "       helios-score --sweep-cells SWEEP.json --cells DIR [--grid bench] -o DIR/cells.mk\n"
+      "       helios-score --sweep SWEEP.json --cells DIR [--grid bench] [--porkchop F.png] -o DIR/sweep.csv",
       {{"reference", "", "FILE", "scenarios/SNN/reference.json to score against", ""},
        {"spec", "", "FILE", "spec.json of the run (omitted: d1 scores 0)", ""},
        {"derivation", "", "FILE", "derivation.json of the run (omitted: no shooting-variable points)", ""},
@@ -56,7 +60,12 @@ int main(int argc, char** argv) {
        {"oem", "", "", "write the run's trajectory as a CCSDS OEM 2.0 (KVN) instead", ""},
        {"trajectory", "", "FILE", "trajectory.csv of the run (with --oem)", ""},
        {"report", "", "", "write the run as report.md (the derivation as LaTeX mathematics) instead", ""},
-       {"problem", "", "FILE", "problem.txt of the run (with --report)", ""}},
+       {"problem", "", "FILE", "problem.txt of the run (with --report)", ""},
+       {"sweep-cells", "", "FILE", "write a sweep's cell problem texts under --cells and its make fragment", ""},
+       {"sweep", "", "FILE", "write a sweep's sweep.csv (and --porkchop) from its cells' solution.json", ""},
+       {"cells", "", "DIR", "the sweep's run folder, one sub-folder per cell (with --sweep, --sweep-cells)", ""},
+       {"grid", "", "NAME", "a named grid of sweep.json (bench) instead of its top level", ""},
+       {"porkchop", "", "FILE", "porkchop.png to draw with --sweep (gnuplot)", ""}},
       {},
       "Scores the paper's five-dimension rubric: d1 parse 30 (facts of the reference found in the\n"
       "spec within tolerance), d2 derive 20 (14 x fraction of verify checks passed, 6 for the\n"
@@ -73,7 +82,11 @@ int main(int argc, char** argv) {
       "converge has no trajectory: nothing is written (a stale -o FILE is removed) and the exit is 0.\n"
       "With --report, writes the run as Markdown: the problem, the spec with units, the derivation as\n"
       "LaTeX mathematics in a compact exact form, verify's verdict beside each condition, the solution\n"
-      "and its plots (verify and solution may be omitted: a report before verifying or solving).",
+      "and its plots (verify and solution may be omitted: a report before verifying or solving).\n"
+      "With --sweep-cells, writes DIR/<cell>/problem.txt for every cell d<epoch>_t<tof> of the sweep\n"
+      "(the template beside SWEEP.json with @DEPARTURE_MJD2000@ and @TOF_DAYS@ replaced; an unchanged\n"
+      "text is not rewritten) and the make fragment of the chains. With --sweep, writes sweep.csv\n"
+      "(one row per cell) and with --porkchop the contour plot of the objective.",
       "helios-score --reference scenarios/S01/reference.json --spec runs/builtin/S01/spec.json "
       "--derivation runs/builtin/S01/derivation.json --verify runs/builtin/S01/verify.json "
       "--solution runs/builtin/S01/solution.json -o runs/builtin/S01/score.json"};
@@ -94,6 +107,33 @@ int main(int argc, char** argv) {
       helios::io::write_text_atomic(args.output, report);
       return 0;
     }
+    if (args.has("sweep-cells") || args.has("sweep")) {
+      const std::string mode = args.has("sweep-cells") ? "sweep-cells" : "sweep";
+      refuse_options(args, mode,
+                     {"scoreboard", "tables", "reference", "oem", "report", "spec", "derivation", "verify", "solution",
+                      "problem", "trajectory", mode == "sweep" ? "sweep-cells" : "porkchop"});
+      if (!args.has("cells")) throw helios::usage_error("--" + mode + " needs --cells DIR, see helios-score --help");
+      const std::string sweep_path = args.get(mode);
+      const helios::score::SweepGrid grid =
+          helios::score::read_sweep(helios::io::read_json(sweep_path), sweep_path, args.get("grid"));
+      if (mode == "sweep-cells") {
+        const std::string template_path =
+            (std::filesystem::path(sweep_path).parent_path() / grid.template_file).string();
+        const std::string fragment = helios::score::write_sweep_cells(grid, helios::io::read_text(template_path),
+                                                                      template_path, args.get("cells"));
+        helios::io::write_text_atomic(args.output, fragment);
+        return 0;
+      }
+      const std::string csv = helios::score::sweep_csv(grid, args.get("cells"));
+      if (args.has("porkchop"))
+        helios::score::porkchop_png(grid, csv, args.get("porkchop"),
+                                    std::filesystem::path(sweep_path).parent_path().filename().string());
+      helios::io::write_text_atomic(args.output, csv);
+      return 0;
+    }
+    if (args.has("cells") || args.has("grid") || args.has("porkchop"))
+      throw helios::usage_error(
+          "--cells, --grid and --porkchop go with --sweep or --sweep-cells, see helios-score --help");
     if (args.has("problem")) throw helios::usage_error("--problem goes with --report, see helios-score --help");
     if (args.has("oem")) {
       refuse_options(args, "oem", {"scoreboard", "tables", "reference", "derivation", "verify"});

@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
        {"cache-dir", "", "DIR", "compiled programs by content hash", "runs/.cache"},
        {"time-limit", "", "SECONDS", "wall-clock limit of the run", "600"},
        {"memory-limit", "", "MB", "address-space limit of the run", "4096"},
+       {"warm-start", "", "FILE",
+        "a neighbour's solution.json: its shooting variables are the first guess (a sweep's cell)", ""},
        {"backend", "", "NAME", "backend label recorded in the solution (builtin or llm)", "builtin"},
        {"compile-only", "", "", "only compile (into the cache) and write a compile report instead", ""},
        {"quiet", "", "", "no progress lines on stderr", ""},
@@ -43,6 +45,7 @@ int main(int argc, char** argv) {
     o.trajectory_path = args.get("trajectory");
     o.plot_prefix = args.get("plots");
     o.cache_dir = args.get("cache-dir");
+    o.warm_start_path = args.get("warm-start");
     o.backend = helios::cli::backend_option(args, {"builtin", "llm"});
     o.time_limit_s = helios::cli::positive_option(args, "time-limit");
     o.memory_limit_mb = helios::cli::positive_option(args, "memory-limit");

@@ -67,8 +67,8 @@ namespace {
 // The keys of solution.json that helios-solve alone knows: the artifact's header, the compile,
 // the settings the program ran with, the timings and the files. The program's outcome
 // (templates/runtime/main.hpp) carries every other key of schemas/solution.schema.json.
-const std::vector<std::string> kSolveKeys = {"schema",  "schema_version", "producer", "compile",
-                                             "sandbox", "settings",       "timings",  "files"};
+const std::vector<std::string> kSolveKeys = {"schema",   "schema_version", "producer", "compile",   "sandbox",
+                                             "settings", "timings",        "files",    "warm_start"};
 
 // solution.json before the run: the compile, and the keys the program's outcome replaces (the
 // problem, the status, the seed and the counts) as they are for a program that did not run.
@@ -153,12 +153,37 @@ struct RunFiles {
 
 }  // namespace
 
+json warm_start_of(const std::string& path, json& record) {
+  const json neighbour = io::read_json(path);
+  const std::string status = neighbour.is_object() ? neighbour.value("status", "") : "";
+  if (status.empty()) throw input_error(path + ": field /status: missing (not a solution.json)");
+  record = {{"from", path}, {"neighbour_status", status}, {"used", false}};
+  if (status != "converged") return nullptr;
+  const json* x = neighbour.contains("x") ? &neighbour.at("x") : nullptr;
+  if (x == nullptr || !x->is_array() || x->empty())
+    throw input_error(path + ": field /x: a converged solution without its shooting variables");
+  json names = json::array(), values = json::array();
+  for (std::size_t i = 0; i < x->size(); ++i) {
+    const json& v = (*x)[i];
+    if (!v.is_object() || !v.contains("name") || !v.at("name").is_string() || !v.contains("value") ||
+        !v.at("value").is_number())
+      throw input_error(path + ": field /x/" + std::to_string(i) + ": not a {name, value} pair");
+    names.push_back(v.at("name"));
+    values.push_back(v.at("value"));
+  }
+  record["used"] = true;
+  return {{"variables", names}, {"x", values}};
+}
+
 json solve(const SolveOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const std::string source = io::read_text(o.source_path);
   const json settings = run_settings(o);
+  json warm_record;
+  const json warm = o.warm_start_path.empty() ? json(nullptr) : warm_start_of(o.warm_start_path, warm_record);
   const CompileResult c = compile_cached(source, o);
   json doc = record_before_run(o, settings, c);
+  if (!warm_record.is_null()) doc["warm_start"] = warm_record;
   doc["timings"] = {{"compile_s", c.seconds}, {"run_s", 0.0}, {"total_s", seconds_since(start)}};
   if (!c.ok) return doc;
   if (o.progress)
@@ -167,7 +192,10 @@ json solve(const SolveOptions& o) {
   const fs::path out_dir = fs::path(o.trajectory_path).parent_path();
   remove_stale_run_files(out_dir);
   const RunFiles files(out_dir);
-  io::write_json_atomic(files.settings, settings);
+  // The program reads the warm start beside its settings; solution.json's settings stay the user's.
+  json program_settings = settings;
+  if (!warm.is_null()) program_settings["warm_start"] = warm;
+  io::write_json_atomic(files.settings, program_settings);
   const std::string workdir = fs::absolute(out_dir.empty() ? fs::path(".") : out_dir).lexically_normal().string();
   const std::vector<std::string> program = {fs::absolute(c.binary).lexically_normal().string(),
                                             "--settings",
@@ -191,6 +219,9 @@ json solve(const SolveOptions& o) {
     doc["timings"]["total_s"] = seconds_since(start);
     return doc;
   }
+  if (!warm_record.is_null() && !warm_record.at("used").get<bool>())
+    doc["start_detail"] = "the neighbour " + o.warm_start_path + " did not converge (" +
+                          warm_record.at("neighbour_status").get<std::string>() + "): the search started cold";
   if (doc.at("status") == "converged") {
     fs::rename(files.trajectory, o.trajectory_path);
     doc["files"] = {{"trajectory", fs::path(o.trajectory_path).filename().string()}};

@@ -16,6 +16,9 @@ struct SolveOptions {
   std::string plot_prefix;      // writes <prefix>trajectory.png and <prefix>throttle_mass.png (engine) or
                                 // <prefix>cone_angle.png (sail); empty: no plots
   std::string backend = "builtin";
+  // A neighbour's solution.json (a sweep's cell): when it converged, its shooting variables are
+  // the program's first guess (Settings::warm_start), else the solve starts cold; empty: cold.
+  std::string warm_start_path;
   std::string compiler = "g++";
   double time_limit_s = 600;  // wall clock for the run (the program also stops itself)
   double memory_limit_mb = 4096;
@@ -37,6 +40,12 @@ int scheduler_cpus_per_task();
 // `threads` set to scheduler_cpus_per_task() where the settings leave it 0 (every core), so that
 // the cells of a sweep under `srun -c1` do not each take the whole machine.
 io::json run_settings(const SolveOptions& o);
+
+// A neighbour's solution.json as the program's warm start: {"variables": [names], "x": [values]}
+// when it converged, else null. `record` receives solution.json's "warm_start" (the file, the
+// neighbour's status, whether it is used). A file that is not a solution (no status, a converged
+// one without x) is an input_error naming the file and field.
+io::json warm_start_of(const std::string& path, io::json& record);
 
 struct CompileResult {
   bool ok = false, cached = false;

@@ -1,0 +1,139 @@
+#!/usr/bin/env bats
+# Launch-window sweeps (issue 17): make sweep sweep=P01 on its small CI grid (3 departures x 3
+# times of flight): sweep.csv and porkchop.png, the chains' warm starts, a second make that does
+# nothing, a killed sweep that resumes without redoing a cell, and helios-solve --warm-start's
+# refusals. Runs go to private RUNS_ROOTs under $BATS_FILE_TMPDIR.
+
+load test_helper
+
+BATS_NO_PARALLELIZE_WITHIN_FILE=true
+
+setup_file() {
+  require_tool parse derive verify gen solve score
+  export RUNS="$BATS_FILE_TMPDIR/runs" SHARED_CACHE="$BATS_FILE_TMPDIR/cache"
+}
+
+setup() {
+  common_setup
+}
+
+# sweep_make RUNS_ROOT [VAR=VALUE...]: make sweep sweep=P01 into RUNS_ROOT, isolated from an
+# enclosing make and from tool rebuilds.
+sweep_make() {
+  local runs="$1"
+  shift
+  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
+    make --no-print-directory -C "$ROOT" -o build/tools.stamp sweep sweep=P01 RUNS_ROOT="$runs" \
+    CACHE="${SWEEP_CACHE:-$SHARED_CACHE}" -j2 "$@"
+}
+
+CELLS=(d9700_t300 d9700_t350 d9700_t400 d9740_t300 d9740_t350 d9740_t400 d9780_t300 d9780_t350 d9780_t400)
+
+@test "sweep: make sweep sweep=P01 writes sweep.csv and porkchop.png; each row's first cell cold, the others warm" {
+  run -0 sweep_make "$RUNS"
+  local dir="$RUNS/builtin/P01"
+  [[ -s $dir/sweep.csv ]]
+  [[ $(head -n 1 "$dir/sweep.csv") == "departure_mjd2000,tof_days,cell,status,propellant_kg,max_residual,start" ]]
+  [[ $(tail -n +2 "$dir/sweep.csv" | wc -l) -eq 9 ]]
+  local cell dep tof name status objective residual start
+  while IFS=, read -r dep tof name status objective residual start; do
+    [[ $name == "d${dep}_t${tof}" ]] || { echo "row $name is not d${dep}_t${tof}" >&2; false; }
+    [[ $status == converged ]] || { echo "$name: $status" >&2; false; }
+    # Earth -> Mars at 0.5 N, Isp 2000 s, 1000 kg: some hundred kg of propellant, a tight residual.
+    awk -v m="$objective" -v r="$residual" 'BEGIN { exit !(m > 100 && m < 900 && r < 1e-9) }' ||
+      { echo "$name: $objective kg, residual $residual" >&2; false; }
+    if [[ $tof == 300 ]]; then
+      [[ $start == cold ]] || { echo "$name (a row's first cell) started $start" >&2; false; }
+      assert_jq "$dir/$name/solution.json" '(has("warm_start") | not) and .start == "cold"'
+    else
+      [[ $start == warm ]] || { echo "$name started $start" >&2; false; }
+      local prev=$((tof - 50))
+      assert_jq "$dir/$name/solution.json" \
+        ".warm_start.used and .warm_start.neighbour_status == \"converged\" and (.warm_start.from | endswith(\"/d${dep}_t${prev}/solution.json\")) and .search.starts == 0"
+    fi
+    # The cell's problem text is the template's with the swept values.
+    grep -qx "The spacecraft departs at MJD2000 $dep from Earth." "$dir/$name/problem.txt"
+    grep -qx "The time of flight is $tof days." "$dir/$name/problem.txt"
+  done < <(tail -n +2 "$dir/sweep.csv")
+  [[ $(head -c 8 "$dir/porkchop.png" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]]
+}
+
+@test "sweep: a second make does nothing" {
+  run -0 sweep_make "$RUNS"
+  local dir="$RUNS/builtin/P01" before after
+  before="$(stat -c '%n %Y' "$dir"/*/solution.json "$dir"/*/problem.txt "$dir/sweep.csv")"
+  sleep 1
+  run -0 sweep_make "$RUNS"
+  [[ $output != *helios-* ]] || { echo "the second make ran: $output" >&2; false; }
+  after="$(stat -c '%n %Y' "$dir"/*/solution.json "$dir"/*/problem.txt "$dir/sweep.csv")"
+  [[ $before == "$after" ]]
+}
+
+@test "sweep: a warm cell's objective equals its cold search's (1e-9 relative)" {
+  run -0 sweep_make "$RUNS"
+  run -0 sweep_make "$RUNS" SWEEP_START=cold
+  local warm="$RUNS/builtin/P01/sweep.csv" cold="$RUNS/builtin/P01-cold/sweep.csv"
+  [[ $(cut -d, -f7 "$cold" | tail -n +2 | sort -u) == cold ]]
+  paste -d, <(tail -n +2 "$warm" | cut -d, -f3,5) <(tail -n +2 "$cold" | cut -d, -f3,5) |
+    awk -F, '{ d = $2 - $4; if (d < 0) d = -d; if ($1 != $3 || d > 1e-9 * $4) { print "differs: " $0; bad = 1 } } END { exit bad }' >&2
+}
+
+@test "sweep: a killed sweep resumes with no cell redone and no partial artifact" {
+  local runs="$BATS_TEST_TMPDIR/runs" dir="$BATS_TEST_TMPDIR/runs/builtin/P01"
+  export SWEEP_CACHE="$BATS_TEST_TMPDIR/cache"  # its own cache: the compiles make the sweep slow enough to kill
+  export -f sweep_make
+  setsid bash -c 'sweep_make "$1" >"$2" 2>&1' _ "$runs" "$BATS_TEST_TMPDIR/first.log" &
+  local pid=$! i n=0
+  for ((i = 0; i < 1200; i++)); do
+    n=$(compgen -G "$dir/*/solution.json" | wc -l)
+    ((n >= 2)) && break
+    kill -0 "$pid" 2>/dev/null || break
+    sleep 0.05
+  done
+  kill -TERM -- "-$pid" 2>/dev/null || true
+  wait "$pid" || true
+  n=$(compgen -G "$dir/*/solution.json" | wc -l)
+  echo "# killed with $n of 9 cells solved" >&3
+  ((n >= 1 && n < 9)) || { echo "the kill came at $n cells: $(cat "$BATS_TEST_TMPDIR/first.log")" >&2; false; }
+  [[ ! -e $dir/sweep.csv ]]
+  # No partial artifact: every solution.json there is a whole one; no .part file is left.
+  local f
+  for f in "$dir"/*/solution.json; do assert_jq "$f" '.status == "converged"'; done
+  [[ -z $(find "$dir" -name '*.part') ]] || { find "$dir" -name '*.part' >&2; false; }
+  local before
+  before="$(stat -c '%n %Y' "$dir"/*/solution.json)"
+  sleep 1
+  run -0 sweep_make "$runs"
+  # The finished cells were not redone: their solution.json files are the same files as before.
+  while read -r f t; do
+    [[ $(stat -c %Y "$f") == "$t" ]] || { echo "$f was redone" >&2; false; }
+  done <<<"$before"
+  [[ $(compgen -G "$dir/*/solution.json" | wc -l) -eq 9 ]]
+  [[ $(tail -n +2 "$dir/sweep.csv" | cut -d, -f4 | sort -u) == converged ]]
+}
+
+@test "sweep: helios-solve --warm-start refuses what is not a solution, and a neighbour of another shape" {
+  run -0 sweep_make "$RUNS"
+  local cell="$RUNS/builtin/P01/d9700_t350" neighbour="$RUNS/builtin/P01/d9700_t300/solution.json"
+  echo '{"a": 1}' >bad.json
+  run "$BIN/helios-solve" "$cell/shoot.cpp" --cache-dir "$SHARED_CACHE" --warm-start bad.json \
+    --trajectory t.csv -o s.json
+  [ "$status" -ne 0 ]
+  [[ $output == *"bad.json: field /status"* ]] || { echo "$output" >&2; false; }
+  [[ ! -e s.json ]]
+  # A neighbour whose variables are named otherwise (another derivation's shape) is refused.
+  jq '.x[0].name = "lambda_other"' "$neighbour" >renamed.json
+  run -0 "$BIN/helios-solve" "$cell/shoot.cpp" --quiet --cache-dir "$SHARED_CACHE" --warm-start renamed.json \
+    --trajectory t.csv -o s.json
+  assert_jq s.json '.status == "crashed" and (.status_detail | test("warm start: the neighbour.s variable 0 is lambda_other"))'
+  # A neighbour far from the answer: the warm solve fails and the search starts cold.
+  jq '.x |= map(.value = 0.3)' "$neighbour" >far.json
+  run -0 "$BIN/helios-solve" "$cell/shoot.cpp" --quiet --cache-dir "$SHARED_CACHE" \
+    --settings "$ROOT/scenarios/P01/settings.json" --warm-start far.json --trajectory t.csv -o s.json
+  assert_jq s.json '.status == "converged" and .start == "cold-after-warm-failed" and .search.starts > 0'
+  # A neighbour that did not converge: no guess, a cold start, and the record says why.
+  jq '.status = "not_converged" | del(.x)' "$neighbour" >failed.json
+  run -0 "$BIN/helios-solve" "$cell/shoot.cpp" --quiet --cache-dir "$SHARED_CACHE" \
+    --settings "$ROOT/scenarios/P01/settings.json" --warm-start failed.json --trajectory t.csv -o s.json
+  assert_jq s.json '.start == "cold" and (.warm_start.used | not) and (.start_detail | test("did not converge"))'
+}

@@ -1,0 +1,289 @@
+// Launch-window sweeps: the grid of a sweep.json, the cells' problem texts and chains, sweep.csv
+// and porkchop.png (helios/score/sweep.hpp).
+#include "helios/score/sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "helios/io/error.hpp"
+#include "helios/solve/process.hpp"
+
+namespace helios::score {
+
+namespace fs = std::filesystem;
+using io::json;
+
+namespace {
+
+constexpr std::size_t kMaxAxis = 1000;  // values on one axis
+
+[[noreturn]] void bad(const std::string& source, const std::string& field, const std::string& why) {
+  throw input_error(source + ": field /" + field + ": " + why);
+}
+
+double number_at(const json& j, const std::string& key, const std::string& source, const std::string& field) {
+  if (!j.contains(key) || !j.at(key).is_number()) bad(source, field + "/" + key, "missing or not a number");
+  const double v = j.at(key).get<double>();
+  if (!std::isfinite(v)) bad(source, field + "/" + key, "not finite");
+  return v;
+}
+
+// A computed grid value to a millionth (a day's, an epoch's), so that 0.1 steps name cells 0.3,
+// not 0.30000000000000004.
+double micro(double v) {
+  return std::round(v * 1e6) / 1e6;
+}
+
+// One axis: {start, stop, step}, {start, stop, count} or {values: [...]}, strictly increasing.
+std::vector<double> read_axis(const json& j, const std::string& source, const std::string& field, double lowest) {
+  if (!j.is_object()) bad(source, field, "must be an object {start, stop, step}, {start, stop, count} or {values}");
+  std::vector<double> out;
+  if (j.contains("values")) {
+    if (!j.at("values").is_array() || j.at("values").empty()) bad(source, field + "/values", "not a non-empty array");
+    for (std::size_t i = 0; i < j.at("values").size(); ++i) {
+      const json& v = j.at("values")[i];
+      if (!v.is_number() || !std::isfinite(v.get<double>()))
+        bad(source, field + "/values/" + std::to_string(i), "not a finite number");
+      out.push_back(v.get<double>());
+    }
+  } else {
+    const double start = number_at(j, "start", source, field), stop = number_at(j, "stop", source, field);
+    if (stop < start) bad(source, field + "/stop", number_text(stop) + " is below start " + number_text(start));
+    if (j.contains("count")) {
+      if (!j.at("count").is_number_integer() || j.at("count").get<long long>() < 1 ||
+          j.at("count").get<long long>() > static_cast<long long>(kMaxAxis))
+        bad(source, field + "/count", "must be a whole number from 1 to " + std::to_string(kMaxAxis));
+      const long long n = j.at("count").get<long long>();
+      if (n == 1 && stop != start) bad(source, field + "/count", "1 needs start = stop");
+      for (long long i = 0; i < n; ++i) out.push_back(micro(n == 1 ? start : start + (stop - start) * i / (n - 1)));
+    } else {
+      const double step = number_at(j, "step", source, field);
+      if (!(step > 0)) bad(source, field + "/step", number_text(step) + " is not positive");
+      const double n = std::floor((stop - start) / step + 1e-9) + 1;
+      if (n > kMaxAxis) bad(source, field + "/step", "more than " + std::to_string(kMaxAxis) + " values");
+      for (int i = 0; i < static_cast<int>(n); ++i) out.push_back(micro(start + step * i));
+    }
+  }
+  if (out.size() > kMaxAxis) bad(source, field, "more than " + std::to_string(kMaxAxis) + " values");
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (out[i] < lowest) bad(source, field, number_text(out[i]) + " is below " + number_text(lowest));
+    if (i > 0 && !(out[i] > out[i - 1])) bad(source, field, "values must increase");
+  }
+  return out;
+}
+
+std::string replace_all(std::string text, const std::string& what, const std::string& with) {
+  for (std::size_t at = 0; (at = text.find(what, at)) != std::string::npos; at += with.size())
+    text.replace(at, what.size(), with);
+  return text;
+}
+
+struct CsvRow {
+  double departure, tof;
+  std::string status;
+  double objective;  // NaN: none
+};
+
+std::vector<CsvRow> csv_rows(const std::string& csv_text) {
+  std::vector<CsvRow> rows;
+  std::istringstream in(csv_text);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) f.push_back(c);
+    if (f.size() < 5) continue;
+    rows.push_back({std::stod(f[0]), std::stod(f[1]), f[3], f[4].empty() ? NAN : std::stod(f[4])});
+  }
+  return rows;
+}
+
+}  // namespace
+
+std::string number_text(double value) {
+  char buf[400];
+  for (int decimals = 0; decimals <= 9; ++decimals) {  // fixed notation: no exponent in a cell's name
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
+    if (std::stod(buf) == value) return buf;
+  }
+  std::snprintf(buf, sizeof buf, "%.17g", value);
+  return buf;
+}
+
+SweepGrid read_sweep(const json& sweep, const std::string& source, const std::string& grid) {
+  if (!sweep.is_object()) throw input_error(source + ": a sweep must be a JSON object");
+  static const std::vector<std::string> known = {"template", "departure_mjd2000", "tof_days", "plot",
+                                                 "bench",    "description"};
+  for (auto it = sweep.begin(); it != sweep.end(); ++it)
+    if (std::find(known.begin(), known.end(), it.key()) == known.end())
+      bad(source, it.key(), "not a sweep field (known: template, departure_mjd2000, tof_days, plot, bench)");
+  SweepGrid out;
+  if (sweep.contains("template")) {
+    if (!sweep.at("template").is_string() || sweep.at("template").get<std::string>().empty() ||
+        sweep.at("template").get<std::string>().find('/') != std::string::npos)
+      bad(source, "template", "must be a file name beside sweep.json");
+    out.template_file = sweep.at("template").get<std::string>();
+  }
+  if (sweep.contains("plot")) {
+    const json& p = sweep.at("plot");
+    if (!p.is_string() || (p != "propellant_kg" && p != "final_mass_kg" && p != "tof_days"))
+      bad(source, "plot", p.dump() + " is not propellant_kg, final_mass_kg or tof_days");
+    out.plot = p.get<std::string>();
+  }
+  const json* axes = &sweep;
+  std::string prefix;
+  if (!grid.empty()) {
+    if (grid != "bench") throw input_error(source + ": no grid '" + grid + "' (the grids: the top level, bench)");
+    if (!sweep.contains(grid) || !sweep.at(grid).is_object()) bad(source, grid, "missing or not an object");
+    axes = &sweep.at(grid);
+    prefix = grid + "/";
+  }
+  for (const char* key : {"departure_mjd2000", "tof_days"})
+    if (!axes->contains(key)) bad(source, prefix + key, "missing");
+  out.departures_mjd2000 = read_axis(axes->at("departure_mjd2000"), source, prefix + "departure_mjd2000", -1e5);
+  out.tofs_days = read_axis(axes->at("tof_days"), source, prefix + "tof_days", 1e-6);
+  return out;
+}
+
+std::string cell_name(double departure_mjd2000, double tof_days) {
+  return "d" + number_text(departure_mjd2000) + "_t" + number_text(tof_days);
+}
+
+std::string cell_problem(const std::string& template_text, const std::string& template_source, double departure_mjd2000,
+                         double tof_days) {
+  for (const char* p : {kDeparturePlaceholder, kTofPlaceholder})
+    if (template_text.find(p) == std::string::npos)
+      throw input_error(template_source + ": the sweep template has no " + p);
+  return replace_all(replace_all(template_text, kDeparturePlaceholder, number_text(departure_mjd2000)), kTofPlaceholder,
+                     number_text(tof_days));
+}
+
+std::vector<SweepCell> sweep_cells(const SweepGrid& grid) {
+  std::vector<SweepCell> cells;
+  for (const double d : grid.departures_mjd2000) {
+    std::string previous;
+    for (const double t : grid.tofs_days) {
+      cells.push_back({d, t, cell_name(d, t), previous});
+      previous = cells.back().name;
+    }
+  }
+  return cells;
+}
+
+std::string write_sweep_cells(const SweepGrid& grid, const std::string& template_text,
+                              const std::string& template_source, const std::string& dir) {
+  const std::vector<SweepCell> cells = sweep_cells(grid);
+  std::ostringstream mk;
+  mk << "# Written by helios-score --sweep-cells from " << template_source << "'s sweep: do not edit.\n";
+  mk << "SWEEP_CELLS :=";
+  for (const auto& c : cells) mk << ' ' << c.name;
+  mk << "\n";
+  for (const auto& c : cells) {
+    const std::string text = cell_problem(template_text, template_source, c.departure_mjd2000, c.tof_days);
+    const fs::path path = fs::path(dir) / c.name / "problem.txt";
+    fs::create_directories(path.parent_path());
+    std::error_code ec;
+    if (!fs::exists(path, ec) || io::read_text(path.string()) != text) io::write_text_atomic(path.string(), text);
+    mk << "SWEEP_WARM_" << c.name << " :=" << (c.warm_from.empty() ? "" : " " + c.warm_from) << "\n";
+    if (!c.warm_from.empty()) {
+      mk << (fs::path(dir) / c.name / "solution.json").string() << ": "
+         << (fs::path(dir) / c.warm_from / "solution.json").string() << "\n";
+    }
+  }
+  return mk.str();
+}
+
+std::string sweep_csv(const SweepGrid& grid, const std::string& dir) {
+  std::ostringstream csv;
+  csv << "departure_mjd2000,tof_days,cell,status," << grid.plot << ",max_residual,start\n";
+  for (const auto& c : sweep_cells(grid)) {
+    const fs::path path = fs::path(dir) / c.name / "solution.json";
+    std::string status = "missing", objective, residual, start;
+    std::error_code ec;
+    if (fs::exists(path, ec)) {
+      const json s = io::read_json(path.string());
+      status = s.value("status", "unknown");
+      start = s.value("start", "");
+      if (status == "converged") {
+        if (!s.contains(grid.plot) || !s.at(grid.plot).is_number())
+          throw input_error(path.string() + ": field /" + grid.plot + ": missing in a converged solution");
+        char buf[40];
+        std::snprintf(buf, sizeof buf, "%.12g", s.at(grid.plot).get<double>());
+        objective = buf;
+        std::snprintf(buf, sizeof buf, "%.3e", s.value("max_residual", NAN));
+        residual = buf;
+      }
+    }
+    csv << number_text(c.departure_mjd2000) << ',' << number_text(c.tof_days) << ',' << c.name << ',' << status << ','
+        << objective << ',' << residual << ',' << start << "\n";
+  }
+  return csv.str();
+}
+
+void porkchop_png(const SweepGrid& grid, const std::string& csv_text, const std::string& png_path,
+                  const std::string& title) {
+  const std::vector<CsvRow> rows = csv_rows(csv_text);
+  // The grid as gnuplot's blocks (one per departure row, NaN where a cell has no objective), the
+  // unconverged cells and the best one.
+  std::ostringstream data, bad_cells, best_cell;
+  const bool maximize = grid.plot == "final_mass_kg";
+  int best = -1;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (std::isfinite(rows[i].objective) &&
+        (best < 0 || (maximize ? rows[i].objective > rows[best].objective : rows[i].objective < rows[best].objective)))
+      best = static_cast<int>(i);
+  const double z = best >= 0 ? rows[best].objective : 0.0;
+  double last = NAN;
+  for (const auto& r : rows) {
+    if (!std::isnan(last) && r.departure != last) data << "\n";
+    last = r.departure;
+    data << number_text(r.departure) << ' ' << number_text(r.tof) << ' '
+         << (std::isfinite(r.objective) ? number_text(r.objective) : "NaN") << "\n";
+    if (!std::isfinite(r.objective))
+      bad_cells << number_text(r.departure) << ' ' << number_text(r.tof) << ' ' << number_text(z) << "\n";
+  }
+  if (best >= 0)
+    best_cell << number_text(rows[best].departure) << ' ' << number_text(rows[best].tof) << ' ' << number_text(z)
+              << "\n";
+  const std::string base = png_path + ".part";
+  const std::string grid_file = base + ".grid", bad_file = base + ".bad", best_file = base + ".best",
+                    script_file = base + ".gp", tmp_png = base + ".png";
+  const io::TempFiles guard({grid_file, bad_file, best_file, script_file, tmp_png});
+  io::write_text_atomic(grid_file, data.str());
+  io::write_text_atomic(bad_file, bad_cells.str().empty() ? "NaN NaN NaN\n" : bad_cells.str());
+  io::write_text_atomic(best_file, best_cell.str().empty() ? "NaN NaN NaN\n" : best_cell.str());
+  const std::string unit = grid.plot == "tof_days"        ? "time of flight [days]"
+                           : grid.plot == "final_mass_kg" ? "final mass [kg]"
+                                                          : "propellant [kg]";
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size 1000,800 noenhanced\nset output '" << tmp_png << "'\n"
+     << "set title '" << title << ": " << unit << " (x: not converged, star: best)'\n"
+     << "set xlabel 'departure [MJD2000]'\nset ylabel 'time of flight [days]'\nset cblabel '" << unit << "'\n"
+     << "set view map\nset pm3d at b interpolate 8,8\nset contour base\nset cntrparam levels auto 10\nunset clabel\n"
+     << "set bmargin 7\nset key at screen 0.5,0.06 center center horizontal maxrows 1 box\n"
+     << "set palette defined (0 '#2b6cb0', 0.5 '#f6e05e', 1 '#e53e3e')\nset datafile missing 'NaN'\n"
+     << "set xrange [" << number_text(grid.departures_mjd2000.front()) << ":"
+     << number_text(grid.departures_mjd2000.back()) << "]\nset yrange [" << number_text(grid.tofs_days.front()) << ":"
+     << number_text(grid.tofs_days.back()) << "]\n"
+     << "splot '" << grid_file << "' using 1:2:3 with pm3d notitle, '" << grid_file
+     << "' using 1:2:3 with lines nosurface lc rgb 'black' notitle, '" << bad_file
+     << "' using 1:2:3 with points nocontours pt 2 ps 2 lw 2 lc rgb 'black' title 'not converged', '" << best_file
+     << "' using 1:2:3 with points nocontours pt 3 ps 3 lw 3 lc rgb 'white' title 'best', '" << best_file
+     << "' using 1:2:3 with points nocontours pt 6 ps 3 lw 2 lc rgb 'black' notitle\n";
+  io::write_text_atomic(script_file, gp.str());
+  const std::string out = solve::capture({"gnuplot", script_file});
+  std::error_code ec;
+  if (!fs::exists(tmp_png, ec) || fs::file_size(tmp_png, ec) == 0)
+    throw std::runtime_error("gnuplot did not draw " + png_path + " (is gnuplot installed?): " + out.substr(0, 300));
+  fs::rename(tmp_png, png_path);
+}
+
+}  // namespace helios::score
