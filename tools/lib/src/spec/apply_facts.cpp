@@ -61,6 +61,14 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
         time["t0_days"] = v;
         departure_at_t = true;
         break;
+      case Field::Epoch:
+        once(detail::field_name(fact.field));
+        if (time.value("t0_days", 0.0) != 0.0)
+          throw sentence_error("the departure epoch " + fact.written +
+                               " is the time 0 of the problem, but the departure time was stated as t = " +
+                               num_text(time["t0_days"].get<double>()) + " days");
+        set_epoch(v);
+        break;
       case Field::Mu:
         set_mu(v);
         break;

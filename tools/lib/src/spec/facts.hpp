@@ -10,11 +10,11 @@
 namespace helios::spec::detail {
 
 // The facts a sentence may state.
-enum class Field { Thrust, Isp, InitialMass, FinalMass, Tof, T0, Mu, R0, V0, Rf, Vf };
+enum class Field { Thrust, Isp, InitialMass, FinalMass, Tof, T0, Epoch, Mu, R0, V0, Rf, Vf };
 
 struct Fact {
   Field field;
-  std::vector<double> value;  // one number, or three for a vector, in the spec's unit
+  std::vector<double> value;  // one number (an epoch as MJD2000), or three for a vector, in the spec's unit
   std::string written;        // as written, e.g. "0.5 N"
 };
 
