@@ -250,13 +250,15 @@ std::size_t read_date(const std::string& rest, Quantity& q) {
   static const std::regex before("^(MJD2000|MJD|JD)\\b ?(" + n + ")", std::regex::icase);
   static const std::regex after("^(" + n + R"() ?(?:\( ?(MJD2000|MJD|JD) ?\)|(MJD2000|MJD|JD)\b))", std::regex::icase);
   std::smatch m;
+  // matched at the start only, never searched along the rest of the sentence
+  constexpr auto kAtStart = std::regex_constants::match_continuous;
   const auto scale = [](const std::string& sc, double v) {
     const std::string k = lowercase(sc);
     return k == "mjd2000" ? v : k == "mjd" ? v - 51544.0 : v - 2451544.5;
   };
   const char c = rest[0];
   if (std::isdigit(static_cast<unsigned char>(c))) {
-    if (std::regex_search(rest, m, iso)) {
+    if (std::regex_search(rest, m, iso, kAtStart)) {
       const std::string text = m.str(0);
       double v = civil_date(text, std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3]));
       if (m[4].matched) {
@@ -269,23 +271,23 @@ std::size_t read_date(const std::string& rest, Quantity& q) {
       q.texts = {text};
       return m.length(0);
     }
-    if (std::regex_search(rest, m, dmy) && month_of(m[2]) != 0) {
+    if (std::regex_search(rest, m, dmy, kAtStart) && month_of(m[2]) != 0) {
       q.nums = {civil_date(m.str(0), std::stoi(m[3]), month_of(m[2]), std::stoi(m[1]))};
       q.texts = {m.str(0)};
       return m.length(0);
     }
   }
-  if (std::isalpha(static_cast<unsigned char>(c)) && std::regex_search(rest, m, mdy) && month_of(m[1]) != 0) {
+  if (std::isalpha(static_cast<unsigned char>(c)) && std::regex_search(rest, m, mdy, kAtStart) && month_of(m[1]) != 0) {
     q.nums = {civil_date(m.str(0), std::stoi(m[3]), month_of(m[1]), std::stoi(m[2]))};
     q.texts = {m.str(0)};
     return m.length(0);
   }
-  if (std::regex_search(rest, m, before)) {
+  if (std::regex_search(rest, m, before, kAtStart)) {
     q.nums = {scale(m[1], number_of(m[2]))};
     q.texts = {m.str(0)};
     return m.length(0);
   }
-  if (std::regex_search(rest, m, after)) {
+  if (std::regex_search(rest, m, after, kAtStart)) {
     q.nums = {scale(m[2].matched ? m[2] : m[3], number_of(m[1]))};
     q.texts = {m.str(0)};
     return m.length(0);
@@ -315,10 +317,11 @@ std::vector<Token> scan(const std::string& sentence) {
     std::smatch m;
     const std::string rest = s.substr(i);
     Quantity date;
+    std::size_t date_len = 0;
     if (c == ' ' || c == ':' || c == '=') {
       ++i;
-    } else if (!prev_word() && std::isalnum(static_cast<unsigned char>(c)) && read_date(rest, date) > 0) {
-      i += read_date(rest, date);
+    } else if (!prev_word() && std::isalnum(static_cast<unsigned char>(c)) && (date_len = read_date(rest, date)) > 0) {
+      i += date_len;
       date.date = true;
       date.written = date.texts[0];
       out.push_back({Token::Value, "", date});
