@@ -712,3 +712,32 @@ TEST(ParseFacts, AnEpochOfNoRoleOrNoDayIsAnError) {
   // a date for an epoch that the controlled form also states must agree with it
   has(error_of(s02 + "Launch date: 2001-02-05.\n"), "contradicts the epoch MJD2000 400");
 }
+
+// The departure and arrival planets in other words give S02's spec.
+TEST(ParseFacts, BodiesInOtherWordsGiveTheSameSpec) {
+  const std::string s02 = helios::io::read_text(kSource + "/scenarios/S02/problem.txt");
+  const std::string want = parse(s02).dump(2);
+  const std::string dep = "The spacecraft departs at MJD2000 400 from Earth.";
+  const std::string arr = "At the final time the spacecraft rendezvouses with Mars.";
+  for (const char* to : {"Departure from Earth on MJD2000 400.", "The spacecraft leaves Earth on 2001-02-04.",
+                         "Launch from Earth on 4 February 2001."})
+    EXPECT_EQ(parse(replaced(s02, dep, to)).dump(2), want) << to;
+  for (const char* to : {"Rendezvous with Mars.", "The spacecraft must arrive at Mars.", "The destination is Mars."})
+    EXPECT_EQ(parse(replaced(s02, arr, to)).dump(2), want) << to;
+  EXPECT_EQ(
+      parse(replaced(replaced(s02, dep, "The spacecraft leaves Earth on MJD2000 400 and arrives at Mars."), arr, ""))
+          .dump(2),
+      want);
+  const auto has = [](const std::string& e, const std::string& part) {
+    EXPECT_NE(e.find(part), std::string::npos) << e;
+  };
+  has(error_of(replaced(s02, arr, "Rendezvous with Mars or Venus.")), "cannot place the word 'or'");
+  has(error_of(replaced(s02, arr, "Arrive at Mars and Venus.")), "it names Mars and Venus as the arrival body");
+  has(error_of(replaced(s02, arr, "Arrive at Venus.") + "Rendezvous with Mars.\n"), "the final rendezvous");
+  has(error_of(replaced(s02, dep, "Departure from Earth.")), "calendar epoch");
+  has(error_of(replaced(s02, arr, "Arrive at the Sun.")), "cannot reach the Sun");
+  has(error_of(replaced(s02, arr, "Arrive at Mars, mu = 42828 km^3/s^2.")),
+      "stands beside a departure or arrival body");
+  has(error_of(replaced(s02, dep, "Departure from Earth on MJD2000 400 at position [1, 2, 3] km.")),
+      "both a body and the initial position");
+}

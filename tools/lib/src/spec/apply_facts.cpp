@@ -18,6 +18,14 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
     once("the central body");
     central(f.central, "");
   }
+  if (!f.departure_body.empty()) {
+    once("the departure");
+    departure = Endpoint{here, {{"ref", f.departure_body}}, "initial_state", std::nullopt};
+  }
+  if (!f.arrival_body.empty()) {
+    once("the final rendezvous");
+    arrival = Endpoint{here, {{"ref", f.arrival_body}}, "rendezvous", std::nullopt};
+  }
   const auto engine = [&](Field field, const char* key, double v) {
     once(detail::field_name(field));
     ++seen["the spacecraft's engine"];

@@ -64,7 +64,7 @@ const std::map<std::string, Meaning>& phrases() {
         "thrusters propulsion system electric ion has have must should can set fixed equal equals given taken as "
         "assumed constant total level magnitude consumption used consumed objective goal vector state conditions we "
         "want find optimize optimise trajectory transfer mission operate operates possible reach target looking use "
-        "motion problem on place utc our rated single trip exactly");
+        "motion problem on place utc our rated single trip exactly body");
     for (std::string w; fillers >> w;) t[w] = {};
     const auto slot = [&](std::initializer_list<const char*> ws, Slot s, int noun = kNoNoun) {
       for (const char* w : ws) t[w] = {s, kNoRole, kNoVerb, noun};
@@ -97,13 +97,15 @@ const std::map<std::string, Meaning>& phrases() {
     for (const char* w :
          {"initial", "initially", "start", "starts", "starting", "begins", "departs", "departure", "launch", "leaves"})
       t[w] = {Slot::None, kInitial};
-    for (const char* w : {"final", "arrives", "arrive", "arrival", "end", "ends", "terminal"})
+    for (const char* w : {"final", "arrives", "arrive", "arrival", "end", "ends", "terminal", "rendezvous",
+                          "rendezvouses", "destination"})
       t[w] = {Slot::None, kFinal};
     for (const char* w : {"minimize", "minimise", "cost", "cost function"}) t[w] = {Slot::None, kNoRole, kMinimize};
     for (const char* w : {"maximize", "maximise", "as large as possible"}) t[w] = {Slot::None, kNoRole, kMaximize};
     t["minimum"] = {Slot::None, kNoRole, kMinimum};
     t["maximum"] = {Slot::None, kNoRole, kMaximum, kNoNoun, true};
-    for (const auto& [w, b] : std::map<std::string, std::string>{{"sun", "Sun"}, {"earth", "Earth"}, {"mars", "Mars"}})
+    for (const auto& [w, b] : std::map<std::string, std::string>{
+             {"sun", "Sun"}, {"earth", "Earth"}, {"mars", "Mars"}, {"venus", "Venus"}, {"jupiter", "Jupiter"}})
       t[w].body = b;
     for (const char* w : {"central body", "gravitational attractor", "attractor"}) t[w].central = true;
     t["heliocentric"] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Sun", true};
@@ -648,6 +650,10 @@ SentenceFacts read_facts(const std::string& sentence) {
     throw facts_error(e.what(), e.modifies_fact ? "" : rough_suggestion(tokens));
   }
   SentenceFacts out;
+  std::set<int> sentence_roles;
+  for (const auto& c : clauses)
+    for (const auto& m : c.mentions)
+      if (m.meaning.role != kNoRole) sentence_roles.insert(m.meaning.role);
   // The central body: a known body and a word saying it is the central one, once in the sentence.
   std::set<std::string> bodies;
   bool central_named = false;
@@ -656,6 +662,31 @@ SentenceFacts read_facts(const std::string& sentence) {
       if (!m.meaning.body.empty()) bodies.insert(m.meaning.body);
       central_named = central_named || m.meaning.central;
     }
+  // Else a planet in a clause that says the spacecraft leaves or arrives is the body it departs
+  // from or rendezvouses with ("Departure from Earth.", "Rendezvous with Mars.").
+  if (!bodies.empty() && !central_named && !sentence_roles.empty()) {
+    for (const auto& c : clauses) {
+      std::set<int> roles;
+      for (const auto& m : c.mentions)
+        if (m.meaning.role != kNoRole) roles.insert(m.meaning.role);
+      if (roles.empty() && sentence_roles.size() == 1) roles = sentence_roles;
+      for (const auto& m : c.mentions) {
+        const std::string& b = m.meaning.body;
+        if (b.empty()) continue;
+        if (roles.size() != 1)
+          throw facts_error("'" + b + "' could be the departure or the arrival body: say which in its clause");
+        if (b == "Sun")
+          throw facts_error("the spacecraft cannot " + std::string(*roles.begin() == kInitial ? "leave" : "reach") +
+                            " the Sun; the central body reads 'The central body is the Sun.'");
+        std::string& slot = *roles.begin() == kInitial ? out.departure_body : out.arrival_body;
+        const char* which = *roles.begin() == kInitial ? "departure" : "arrival";
+        if (!slot.empty() && slot != b)
+          throw facts_error("it names " + slot + " and " + b + " as the " + which + " body: which one?");
+        slot = b;
+      }
+    }
+    bodies.clear();
+  }
   if (bodies.size() > 1)
     throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": which one is the central body?");
   if (!bodies.empty() && !central_named)
@@ -665,10 +696,6 @@ SentenceFacts read_facts(const std::string& sentence) {
   if (bodies.empty() && central_named)
     throw facts_error("it does not name the central body (Sun, Earth or Mars: 'The central body is the Sun.')");
   if (!bodies.empty()) out.central = *bodies.begin();
-  std::set<int> sentence_roles;
-  for (const auto& c : clauses)
-    for (const auto& m : c.mentions)
-      if (m.meaning.role != kNoRole) sentence_roles.insert(m.meaning.role);
   std::string objective_words;
   for (const auto& c : clauses) {
     std::set<int> roles;
@@ -804,8 +831,20 @@ SentenceFacts read_facts(const std::string& sentence) {
                           spec_unit(want.dim) + ")");
       }
   }
-  if (out.facts.empty() && out.objective.empty() && out.central.empty())
+  if (out.facts.empty() && out.objective.empty() && out.central.empty() && out.departure_body.empty() &&
+      out.arrival_body.empty())
     throw facts_error("it states no fact HELIOS reads");
+  for (const auto& f : out.facts) {
+    // a body's state is its ephemeris, a gravitational parameter here would be the body's, not the central one's
+    const bool initial_state = f.field == Field::R0 || f.field == Field::V0;
+    const bool final_state = f.field == Field::Rf || f.field == Field::Vf;
+    if ((!out.departure_body.empty() && initial_state) || (!out.arrival_body.empty() && final_state))
+      throw facts_error("it gives both a body and " + field_name(f.field) + ": the body's ephemeris is the state");
+    if ((!out.departure_body.empty() || !out.arrival_body.empty()) && f.field == Field::Mu)
+      throw facts_error("the gravitational parameter " + f.written +
+                        " stands beside a departure or arrival body: the central body's reads 'The central body is "
+                        "the Sun with mu = Q.'");
+  }
   for (const auto& f : out.facts) {
     const bool positive = f.field == Field::Thrust || f.field == Field::Isp || f.field == Field::InitialMass ||
                           f.field == Field::FinalMass || f.field == Field::Tof || f.field == Field::Mu;

@@ -20,8 +20,9 @@ struct Fact {
 
 struct SentenceFacts {
   std::vector<Fact> facts;
-  std::string objective;  // a spec objective kind ("minimum_fuel", ...) or ""
-  std::string central;    // the central body named ("Sun", "Earth", "Mars") or ""
+  std::string objective;                     // a spec objective kind ("minimum_fuel", ...) or ""
+  std::string central;                       // the central body named ("Sun", "Earth", "Mars") or ""
+  std::string departure_body, arrival_body;  // a planet the spacecraft leaves or rendezvouses with, or ""
 };
 
 // Why a sentence cannot be read as facts; `suggestion` is the nearest controlled-English sentence
