@@ -662,3 +662,82 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
   has(e, "problem.txt:4: cannot use sentence \"Thrust 0.5 N Isp\": 'isp' has no value");
   EXPECT_EQ(e.find('\n'), std::string::npos);
 }
+
+// Epochs in other words: a calendar date or a day number on a named scale is the departure epoch
+// when its clause says the spacecraft starts, and gives the spec the controlled form gives.
+TEST(ParseFacts, EpochsInOtherWordsGiveTheSameSpec) {
+  const auto scenario = [](const char* id) {
+    return helios::io::read_text(kSource + "/scenarios/" + id + "/problem.txt");
+  };
+  const std::string s02 = scenario("S02"), s04 = scenario("S04");
+  const std::string want02 = parse(s02).dump(2), want04 = parse(s04).dump(2);
+  // MJD2000 400 is 2001-02-04 00:00 (2000 is a leap year: 366 + 34 days)
+  for (const char* epoch :
+       {"Launch date: 2001-02-04.", "Launch on 4 February 2001.", "The spacecraft leaves on Feb 4, 2001.",
+        "Departure epoch: MJD 51944.", "The departure date is 2001-02-04 00:00 UTC.", "t0 = 400 MJD2000.",
+        "The start epoch is 400 (MJD2000).", "Launch is at JD 2451944.5."})
+    EXPECT_EQ(parse(replaced(s02, "The spacecraft departs at MJD2000 400 from Earth.",
+                             std::string(epoch) + "\nThe spacecraft departs from Earth."))
+                  .dump(2),
+              want02)
+        << epoch;
+  const std::string r0 = "[-140699693, -51614428, 980] km", v0 = "[9.774596, -28.07828, 4.337725e-4] km/s";
+  EXPECT_EQ(
+      parse(replaced(s04,
+                     "The spacecraft departs at MJD2000 3082.828 from position " + r0 + " with velocity " + v0 + ".",
+                     "Launch is on MJD2000 3082.828. The initial position is " + r0 + " and the initial velocity is " +
+                         v0 + "."))
+          .dump(2),
+      want04);
+}
+
+TEST(ParseFacts, AnEpochOfNoRoleOrNoDayIsAnError) {
+  const std::string s02 = helios::io::read_text(kSource + "/scenarios/S02/problem.txt");
+  const auto err = [&](const std::string& to) {
+    return error_of(replaced(s02, "The spacecraft departs at MJD2000 400 from Earth.",
+                             to + "\nThe spacecraft departs from Earth."));
+  };
+  const auto has = [](const std::string& e, const std::string& part) {
+    EXPECT_NE(e.find(part), std::string::npos) << e;
+  };
+  has(err("The departure date is 2025-02-30."), "the date 2025-02-30 does not exist");
+  has(err("The departure date is 2023-02-29."), "the date 2023-02-29 does not exist");
+  has(err("The departure date is 2024-02-29 25:00."), "the time of day in 2024-02-29 25:00 does not exist");
+  has(err("The arrival date is 2026-01-01."), "is an arrival date");
+  has(err("The spacecraft arrives on 2026-01-01."), "gives an arrival date");
+  has(err("The thrust is 2026-01-01."), "nothing in its clause says the date 2026-01-01 is the departure epoch");
+  has(err("Launch on 2026-01-01, launch on 2027-01-01."), "the departure epoch is stated twice");
+  has(err("Launch on MJD2000."), "cannot place the word 'mjd2000'");  // a scale with no day number
+  has(err("Launch on 2026-01-01. Launch on 2027-01-01."), "the departure epoch is given twice");
+  // a date for an epoch that the controlled form also states must agree with it
+  has(error_of(s02 + "Launch date: 2001-02-05.\n"), "contradicts the epoch MJD2000 400");
+}
+
+// The departure and arrival planets in other words give S02's spec.
+TEST(ParseFacts, BodiesInOtherWordsGiveTheSameSpec) {
+  const std::string s02 = helios::io::read_text(kSource + "/scenarios/S02/problem.txt");
+  const std::string want = parse(s02).dump(2);
+  const std::string dep = "The spacecraft departs at MJD2000 400 from Earth.";
+  const std::string arr = "At the final time the spacecraft rendezvouses with Mars.";
+  for (const char* to : {"Departure from Earth on MJD2000 400.", "The spacecraft leaves Earth on 2001-02-04.",
+                         "Launch from Earth on 4 February 2001."})
+    EXPECT_EQ(parse(replaced(s02, dep, to)).dump(2), want) << to;
+  for (const char* to : {"Rendezvous with Mars.", "The spacecraft must arrive at Mars.", "The destination is Mars."})
+    EXPECT_EQ(parse(replaced(s02, arr, to)).dump(2), want) << to;
+  EXPECT_EQ(
+      parse(replaced(replaced(s02, dep, "The spacecraft leaves Earth on MJD2000 400 and arrives at Mars."), arr, ""))
+          .dump(2),
+      want);
+  const auto has = [](const std::string& e, const std::string& part) {
+    EXPECT_NE(e.find(part), std::string::npos) << e;
+  };
+  has(error_of(replaced(s02, arr, "Rendezvous with Mars or Venus.")), "cannot place the word 'or'");
+  has(error_of(replaced(s02, arr, "Arrive at Mars and Venus.")), "it names Mars and Venus as the arrival body");
+  has(error_of(replaced(s02, arr, "Arrive at Venus.") + "Rendezvous with Mars.\n"), "the final rendezvous");
+  has(error_of(replaced(s02, dep, "Departure from Earth.")), "calendar epoch");
+  has(error_of(replaced(s02, arr, "Arrive at the Sun.")), "cannot reach the Sun");
+  has(error_of(replaced(s02, arr, "Arrive at Mars, mu = 42828 km^3/s^2.")),
+      "stands beside a departure or arrival body");
+  has(error_of(replaced(s02, dep, "Departure from Earth on MJD2000 400 at position [1, 2, 3] km.")),
+      "both a body and the initial position");
+}

@@ -18,6 +18,14 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
     once("the central body");
     central(f.central, "");
   }
+  if (!f.departure_body.empty()) {
+    once("the departure");
+    departure = Endpoint{here, {{"ref", f.departure_body}}, "initial_state", std::nullopt};
+  }
+  if (!f.arrival_body.empty()) {
+    once("the final rendezvous");
+    arrival = Endpoint{here, {{"ref", f.arrival_body}}, "rendezvous", std::nullopt};
+  }
   const auto engine = [&](Field field, const char* key, double v) {
     once(detail::field_name(field));
     ++seen["the spacecraft's engine"];
@@ -60,6 +68,14 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
         once("the departure time");
         time["t0_days"] = v;
         departure_at_t = true;
+        break;
+      case Field::Epoch:
+        once(detail::field_name(fact.field));
+        if (time.value("t0_days", 0.0) != 0.0)
+          throw sentence_error("the departure epoch " + fact.written +
+                               " is the time 0 of the problem, but the departure time was stated as t = " +
+                               num_text(time["t0_days"].get<double>()) + " days");
+        set_epoch(v);
         break;
       case Field::Mu:
         set_mu(v);

@@ -28,6 +28,8 @@ enum class Slot {
   FinalMass,
   Tof,
   ThrustOrT0,
+  T0,
+  Epoch,
   Mu,
   Position,
   Velocity,
@@ -62,15 +64,21 @@ const std::map<std::string, Meaning>& phrases() {
         "thrusters propulsion system electric ion has have must should can set fixed equal equals given taken as "
         "assumed constant total level magnitude consumption used consumed objective goal vector state conditions we "
         "want find optimize optimise trajectory transfer mission operate operates possible reach target looking use "
-        "motion problem");
+        "motion problem on place utc our rated single trip exactly body");
     for (std::string w; fillers >> w;) t[w] = {};
     const auto slot = [&](std::initializer_list<const char*> ws, Slot s, int noun = kNoNoun) {
       for (const char* w : ws) t[w] = {s, kNoRole, kNoVerb, noun};
     };
     slot({"thrust", "maximum thrust", "max thrust", "delivers", "deliver", "provides", "provide", "produces", "produce",
-          "tmax", "t_max", "thrust force"},
+          "gives", "give", "tmax", "t_max", "thrust force"},
          Slot::Thrust);
     slot({"t"}, Slot::ThrustOrT0);
+    slot({"t0", "t_0"}, Slot::T0);
+    t["takes place"] = {};
+    t["two body"] = {};
+    slot({"epoch", "date", "departure epoch", "departure date", "launch date", "launch epoch", "start date",
+          "start epoch", "initial epoch", "epoch of departure", "date of departure"},
+         Slot::Epoch);
     slot({"specific impulse", "isp", "i_sp"}, Slot::Isp);
     slot({"exhaust velocity", "effective exhaust velocity", "exhaust speed"}, Slot::ExhaustV);
     slot({"mass", "weighs", "weigh"}, Slot::Mass, kMass);
@@ -89,18 +97,20 @@ const std::map<std::string, Meaning>& phrases() {
     for (const char* w :
          {"initial", "initially", "start", "starts", "starting", "begins", "departs", "departure", "launch", "leaves"})
       t[w] = {Slot::None, kInitial};
-    for (const char* w : {"final", "arrives", "arrive", "arrival", "end", "ends", "terminal"})
+    for (const char* w : {"final", "arrives", "arrive", "arrival", "end", "ends", "terminal", "rendezvous",
+                          "rendezvouses", "destination"})
       t[w] = {Slot::None, kFinal};
     for (const char* w : {"minimize", "minimise", "cost", "cost function"}) t[w] = {Slot::None, kNoRole, kMinimize};
     for (const char* w : {"maximize", "maximise", "as large as possible"}) t[w] = {Slot::None, kNoRole, kMaximize};
     t["minimum"] = {Slot::None, kNoRole, kMinimum};
     t["maximum"] = {Slot::None, kNoRole, kMaximum, kNoNoun, true};
-    for (const auto& [w, b] : std::map<std::string, std::string>{{"sun", "Sun"}, {"earth", "Earth"}, {"mars", "Mars"}})
+    for (const auto& [w, b] : std::map<std::string, std::string>{
+             {"sun", "Sun"}, {"earth", "Earth"}, {"mars", "Mars"}, {"venus", "Venus"}, {"jupiter", "Jupiter"}})
       t[w].body = b;
     for (const char* w : {"central body", "gravitational attractor", "attractor"}) t[w].central = true;
     t["heliocentric"] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Sun", true};
     t["geocentric"] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Earth", true};
-    for (const char* w : {"up", "limited", "available"}) t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, true};
+    for (const char* w : {"up", "limited", "available", "most"}) t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, true};
     for (const char* w : {"fuel", "propellant", "fuel consumption", "propellant consumption", "fuel mass",
                           "propellant mass", "fuel use"})
       t[w] = {Slot::None, kNoRole, kNoVerb, kFuel};
@@ -119,6 +129,7 @@ struct Quantity {
   std::vector<std::string> texts;
   std::string unit, written;
   bool vector = false;
+  bool date = false;  // an epoch: nums holds its MJD2000
 };
 
 struct Token {
@@ -132,7 +143,8 @@ struct Candidate {
   Field field;
   Dimension dim;
   bool vector;
-  bool exhaust;  // an exhaust velocity, stored as the specific impulse
+  bool exhaust;       // an exhaust velocity, stored as the specific impulse
+  bool date = false;  // takes an epoch
 };
 
 constexpr double kG0 = 9.80665;  // m/s^2, exhaust velocity = Isp * g0
@@ -198,6 +210,93 @@ std::string read_unit(const std::string& s, std::size_t& i) {
   return unit;
 }
 
+// Days from 2000-01-01 to the civil date y-m-d (proleptic Gregorian calendar).
+double days_from_2000(int y, int m, int d) {
+  y -= m <= 2;
+  const int era = (y >= 0 ? y : y - 399) / 400;
+  const int yoe = y - era * 400;
+  const int doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
+  const int doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+  return static_cast<double>(era) * 146097.0 + doe - 719468.0 - 10957.0;
+}
+
+int month_of(const std::string& word) {
+  static const std::map<std::string, int> months = {
+      {"january", 1},  {"jan", 1},    {"february", 2},  {"feb", 2},       {"march", 3},     {"mar", 3},
+      {"april", 4},    {"apr", 4},    {"may", 5},       {"june", 6},      {"jun", 6},       {"july", 7},
+      {"jul", 7},      {"august", 8}, {"aug", 8},       {"september", 9}, {"sep", 9},       {"sept", 9},
+      {"october", 10}, {"oct", 10},   {"november", 11}, {"nov", 11},      {"december", 12}, {"dec", 12}};
+  const auto it = months.find(lowercase(word));
+  return it == months.end() ? 0 : it->second;
+}
+
+double civil_date(const std::string& text, int y, int m, int d) {
+  static const int days_in[] = {31, 29, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  if (m < 1 || m > 12 || d < 1 || d > days_in[m - 1] ||
+      (m == 2 && d == 29 && !(y % 4 == 0 && (y % 100 != 0 || y % 400 == 0))))
+    throw facts_error("the date " + text + " does not exist");
+  if (y < 1900 || y > 2200) throw facts_error("the date " + text + " lies outside the years 1900 to 2200");
+  return days_from_2000(y, m, d);
+}
+
+// An epoch written at the start of `rest`: a calendar date (2025-03-01 [00:00 UTC], 15 January
+// 2030, March 3, 2028) or a day number on a named scale (MJD 60000, 9000 MJD2000, 10000 (MJD2000),
+// JD 2460676.5). Fills `q` (its MJD2000) and returns the characters read, 0 when none.
+std::size_t read_date(const std::string& rest, Quantity& q) {
+  static const std::string n = R"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)";
+  static const std::regex iso(
+      R"(^(\d{4})-(\d{1,2})-(\d{1,2})(?:(?:T| at | )(\d{1,2}):(\d{2})(?::(\d{2}(?:\.\d+)?))?)?(?: ?(?:UTC|UT)\b)?)",
+      std::regex::icase);
+  static const std::regex dmy(R"(^(\d{1,2})(?:st|nd|rd|th)? ([A-Za-z]+)\.?,? (\d{4})\b)");
+  static const std::regex mdy(R"(^([A-Za-z]+)\.? (\d{1,2})(?:st|nd|rd|th)?,? (\d{4})\b)");
+  static const std::regex before("^(MJD2000|MJD|JD)\\b ?(" + n + ")", std::regex::icase);
+  static const std::regex after("^(" + n + R"() ?(?:\( ?(MJD2000|MJD|JD) ?\)|(MJD2000|MJD|JD)\b))", std::regex::icase);
+  std::smatch m;
+  // matched at the start only, never searched along the rest of the sentence
+  constexpr auto kAtStart = std::regex_constants::match_continuous;
+  const auto scale = [](const std::string& sc, double v) {
+    const std::string k = lowercase(sc);
+    return k == "mjd2000" ? v : k == "mjd" ? v - 51544.0 : v - 2451544.5;
+  };
+  const char c = rest[0];
+  if (std::isdigit(static_cast<unsigned char>(c))) {
+    if (std::regex_search(rest, m, iso, kAtStart)) {
+      const std::string text = m.str(0);
+      double v = civil_date(text, std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3]));
+      if (m[4].matched) {
+        const int hh = std::stoi(m[4]), mm = std::stoi(m[5]);
+        const double ss = m[6].matched ? std::stod(m[6]) : 0.0;
+        if (hh > 23 || mm > 59 || ss >= 60) throw facts_error("the time of day in " + text + " does not exist");
+        v += (hh * 3600.0 + mm * 60.0 + ss) / 86400.0;
+      }
+      q.nums = {v};
+      q.texts = {text};
+      return m.length(0);
+    }
+    if (std::regex_search(rest, m, dmy, kAtStart) && month_of(m[2]) != 0) {
+      q.nums = {civil_date(m.str(0), std::stoi(m[3]), month_of(m[2]), std::stoi(m[1]))};
+      q.texts = {m.str(0)};
+      return m.length(0);
+    }
+  }
+  if (std::isalpha(static_cast<unsigned char>(c)) && std::regex_search(rest, m, mdy, kAtStart) && month_of(m[1]) != 0) {
+    q.nums = {civil_date(m.str(0), std::stoi(m[3]), month_of(m[1]), std::stoi(m[2]))};
+    q.texts = {m.str(0)};
+    return m.length(0);
+  }
+  if (std::regex_search(rest, m, before, kAtStart)) {
+    q.nums = {scale(m[1], number_of(m[2]))};
+    q.texts = {m.str(0)};
+    return m.length(0);
+  }
+  if (std::regex_search(rest, m, after, kAtStart)) {
+    q.nums = {scale(m[2].matched ? m[2] : m[3], number_of(m[1]))};
+    q.texts = {m.str(0)};
+    return m.length(0);
+  }
+  return 0;
+}
+
 // "(a, b, c)": a '(' followed by a number-like character, with a comma before its ')'.
 bool paren_vector(const std::string& s, std::size_t i) {
   std::size_t j = i + 1;
@@ -219,8 +318,15 @@ std::vector<Token> scan(const std::string& sentence) {
     const char c = s[i];
     std::smatch m;
     const std::string rest = s.substr(i);
+    Quantity date;
+    std::size_t date_len = 0;
     if (c == ' ' || c == ':' || c == '=') {
       ++i;
+    } else if (!prev_word() && std::isalnum(static_cast<unsigned char>(c)) && (date_len = read_date(rest, date)) > 0) {
+      i += date_len;
+      date.date = true;
+      date.written = date.texts[0];
+      out.push_back({Token::Value, "", date});
     } else if (c == '[' || (c == '(' && paren_vector(s, i))) {
       const char close = c == '[' ? ']' : ')';
       const std::size_t end = s.find(close, i);
@@ -357,6 +463,12 @@ std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
       return {{Field::Thrust, Dimension::Force, false, false}};
     case Slot::ThrustOrT0:
       return {{Field::Thrust, Dimension::Force, false, false}, {Field::T0, Dimension::Time, false, false}};
+    case Slot::T0:
+      return {{Field::T0, Dimension::Time, false, false}, {Field::Epoch, Dimension::Time, false, false, true}};
+    case Slot::Epoch:
+      if (role == kFinal)
+        throw facts_error("'" + text + "' is an arrival date: HELIOS reads the departure epoch and the time of flight");
+      return {{Field::Epoch, Dimension::Time, false, false, true}};
     case Slot::Isp:
       return {{Field::Isp, Dimension::Duration, false, false}};
     case Slot::ExhaustV:
@@ -390,7 +502,8 @@ std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
 }
 
 bool fits(const Candidate& c, const Quantity& q) {
-  if (c.vector != q.vector) return false;
+  if (c.vector != q.vector || c.date != q.date) return false;
+  if (q.date) return true;
   if (q.unit.empty()) return c.field == Field::T0 && q.nums[0] == 0;  // t = 0 needs no unit
   try {
     to_spec_unit(c.dim, q.unit);
@@ -458,6 +571,8 @@ std::string field_name(Field f) {
       return "the time of flight";
     case Field::T0:
       return "the departure time";
+    case Field::Epoch:
+      return "the departure epoch";
     case Field::Mu:
       return "the gravitational parameter";
     case Field::R0:
@@ -535,6 +650,10 @@ SentenceFacts read_facts(const std::string& sentence) {
     throw facts_error(e.what(), e.modifies_fact ? "" : rough_suggestion(tokens));
   }
   SentenceFacts out;
+  std::set<int> sentence_roles;
+  for (const auto& c : clauses)
+    for (const auto& m : c.mentions)
+      if (m.meaning.role != kNoRole) sentence_roles.insert(m.meaning.role);
   // The central body: a known body and a word saying it is the central one, once in the sentence.
   std::set<std::string> bodies;
   bool central_named = false;
@@ -543,6 +662,31 @@ SentenceFacts read_facts(const std::string& sentence) {
       if (!m.meaning.body.empty()) bodies.insert(m.meaning.body);
       central_named = central_named || m.meaning.central;
     }
+  // Else a planet in a clause that says the spacecraft leaves or arrives is the body it departs
+  // from or rendezvouses with ("Departure from Earth.", "Rendezvous with Mars.").
+  if (!bodies.empty() && !central_named && !sentence_roles.empty()) {
+    for (const auto& c : clauses) {
+      std::set<int> roles;
+      for (const auto& m : c.mentions)
+        if (m.meaning.role != kNoRole) roles.insert(m.meaning.role);
+      if (roles.empty() && sentence_roles.size() == 1) roles = sentence_roles;
+      for (const auto& m : c.mentions) {
+        const std::string& b = m.meaning.body;
+        if (b.empty()) continue;
+        if (roles.size() != 1)
+          throw facts_error("'" + b + "' could be the departure or the arrival body: say which in its clause");
+        if (b == "Sun")
+          throw facts_error("the spacecraft cannot " + std::string(*roles.begin() == kInitial ? "leave" : "reach") +
+                            " the Sun; the central body reads 'The central body is the Sun.'");
+        std::string& slot = *roles.begin() == kInitial ? out.departure_body : out.arrival_body;
+        const char* which = *roles.begin() == kInitial ? "departure" : "arrival";
+        if (!slot.empty() && slot != b)
+          throw facts_error("it names " + slot + " and " + b + " as the " + which + " body: which one?");
+        slot = b;
+      }
+    }
+    bodies.clear();
+  }
   if (bodies.size() > 1)
     throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": which one is the central body?");
   if (!bodies.empty() && !central_named)
@@ -552,10 +696,6 @@ SentenceFacts read_facts(const std::string& sentence) {
   if (bodies.empty() && central_named)
     throw facts_error("it does not name the central body (Sun, Earth or Mars: 'The central body is the Sun.')");
   if (!bodies.empty()) out.central = *bodies.begin();
-  std::set<int> sentence_roles;
-  for (const auto& c : clauses)
-    for (const auto& m : c.mentions)
-      if (m.meaning.role != kNoRole) sentence_roles.insert(m.meaning.role);
   std::string objective_words;
   for (const auto& c : clauses) {
     std::set<int> roles;
@@ -615,6 +755,17 @@ SentenceFacts read_facts(const std::string& sentence) {
           throw facts_error("'" + m.text + "' could be the initial or the final one: say which in its clause");
         named.push_back({candidates(s, r, m.text), m.text});
       }
+    // A date in a clause that says the spacecraft starts ("Launch is on 2025-03-01") is the
+    // departure epoch; in one that says it arrives it is no fact HELIOS takes.
+    bool date_here = false, epoch_named = false;
+    for (const auto& q : c.quantities) date_here = date_here || q.date;
+    for (const auto& n : named)
+      for (const auto& x : n.cands) epoch_named = epoch_named || x.date;
+    if (date_here && !epoch_named && role == kFinal)
+      throw facts_error("'" + words +
+                        "' gives an arrival date: HELIOS reads the departure epoch and the time of flight");
+    if (date_here && !epoch_named && role == kInitial)
+      named.push_back({{{Field::Epoch, Dimension::Time, false, false, true}}, words});
     std::map<Field, std::string> bound_here;
     for (const auto& q : c.quantities) {
       std::vector<std::pair<Candidate, std::size_t>> fit;
@@ -625,6 +776,9 @@ SentenceFacts read_facts(const std::string& sentence) {
             for (const auto& [f, _] : fit) dup = dup || f.field == cand.field;
             if (!dup) fit.push_back({cand, k});
           }
+      if (fit.empty() && q.date)
+        throw facts_error("nothing in its clause says the date " + q.written + " is the departure epoch",
+                          "The departure epoch is " + q.written + ".");
       if (fit.empty()) {
         if (named.empty())
           throw facts_error(q.vector ? "the vector " + q.written +
@@ -677,8 +831,20 @@ SentenceFacts read_facts(const std::string& sentence) {
                           spec_unit(want.dim) + ")");
       }
   }
-  if (out.facts.empty() && out.objective.empty() && out.central.empty())
+  if (out.facts.empty() && out.objective.empty() && out.central.empty() && out.departure_body.empty() &&
+      out.arrival_body.empty())
     throw facts_error("it states no fact HELIOS reads");
+  for (const auto& f : out.facts) {
+    // a body's state is its ephemeris, a gravitational parameter here would be the body's, not the central one's
+    const bool initial_state = f.field == Field::R0 || f.field == Field::V0;
+    const bool final_state = f.field == Field::Rf || f.field == Field::Vf;
+    if ((!out.departure_body.empty() && initial_state) || (!out.arrival_body.empty() && final_state))
+      throw facts_error("it gives both a body and " + field_name(f.field) + ": the body's ephemeris is the state");
+    if ((!out.departure_body.empty() || !out.arrival_body.empty()) && f.field == Field::Mu)
+      throw facts_error("the gravitational parameter " + f.written +
+                        " stands beside a departure or arrival body: the central body's reads 'The central body is "
+                        "the Sun with mu = Q.'");
+  }
   for (const auto& f : out.facts) {
     const bool positive = f.field == Field::Thrust || f.field == Field::Isp || f.field == Field::InitialMass ||
                           f.field == Field::FinalMass || f.field == Field::Tof || f.field == Field::Mu;

@@ -10,18 +10,19 @@
 namespace helios::spec::detail {
 
 // The facts a sentence may state.
-enum class Field { Thrust, Isp, InitialMass, FinalMass, Tof, T0, Mu, R0, V0, Rf, Vf };
+enum class Field { Thrust, Isp, InitialMass, FinalMass, Tof, T0, Epoch, Mu, R0, V0, Rf, Vf };
 
 struct Fact {
   Field field;
-  std::vector<double> value;  // one number, or three for a vector, in the spec's unit
+  std::vector<double> value;  // one number (an epoch as MJD2000), or three for a vector, in the spec's unit
   std::string written;        // as written, e.g. "0.5 N"
 };
 
 struct SentenceFacts {
   std::vector<Fact> facts;
-  std::string objective;  // a spec objective kind ("minimum_fuel", ...) or ""
-  std::string central;    // the central body named ("Sun", "Earth", "Mars") or ""
+  std::string objective;                     // a spec objective kind ("minimum_fuel", ...) or ""
+  std::string central;                       // the central body named ("Sun", "Earth", "Mars") or ""
+  std::string departure_body, arrival_body;  // a planet the spacecraft leaves or rendezvouses with, or ""
 };
 
 // Why a sentence cannot be read as facts; `suggestion` is the nearest controlled-English sentence
