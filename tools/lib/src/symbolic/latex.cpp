@@ -465,7 +465,9 @@ const Typesetter::Norm* Typesetter::norm_of(const ex& base) {
   std::vector<ex> components;
   std::sort(crosses.begin(), crosses.end(),
             [](const auto& x, const auto& y) { return name_of(x.first) < name_of(y.first); });
-  for (auto [a, b] : crosses) {
+  for (const auto& cross : crosses) {
+    // Named copies, not structured bindings: C++17 lambdas cannot capture bindings (clang refuses).
+    ex a = cross.first, b = cross.second;
     if (!has_square(a) || !has_square(b) || is_paired(a) || is_paired(b)) return nullptr;
     paired.push_back(a);
     paired.push_back(b);
