@@ -26,7 +26,9 @@ GeneratedProgram generate(const json& derivation, const GenOptions& options) {
   }
   g.generated_modules.push_back("RESIDUAL");
   g.generated_modules.push_back("SOLVE");
-  g.source = assemble(derivation, dynamics + "\n" + residual_module(c) + "\n" + solve_module(c) + "\n", "builtin");
+  g.source = assemble(
+      derivation, dynamics + "\n" + generated_jacobians(c) + "\n" + residual_module(c) + "\n" + solve_module(c) + "\n",
+      "builtin");
   return g;
 }
 
