@@ -86,6 +86,8 @@ void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower,
 void dynamics_jacobian(double t, const double* y, const double* control, const Multipliers& mult, double* dfdy,
                        double* dfdu);
 void direction_jacobian(const double* y, double* dcontrol_dy);
+// With a throttle: d/dy_j of throttle_slopes' at_lower and at_upper (ny entries each).
+void throttle_slopes_jacobian(const double* y, const Multipliers& mult, double* d_lower, double* d_upper);
 // Unpowered dynamics of a coasting target (RESIDUAL module, when the problem has one).
 void coast_dynamics(const double* y, double* dy);
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bats
-# The generated JACOBIAN module (issue 15): the exact first derivatives of the right-hand side
-# and of the direction law against central finite differences of the program's own DYNAMICS
-# and SWITCH modules (tests/bats/jacobian_check.cpp), for every scenario at 20 random points.
+# The generated JACOBIAN module (issue 15): the exact first derivatives of the right-hand side,
+# of the direction law and of the throttle slopes against central finite differences of the
+# program's own DYNAMICS and SWITCH modules (tests/bats/jacobian_check.cpp), for every scenario
+# at 20 random points.
 # Tolerance: every entry within 1e-6 of the difference, relative to 1 + its row's largest entry
 # (central differences with h = 1e-6 (1 + |y_j|) agree to ~1e-9 here).
 
@@ -55,6 +56,12 @@ program() {
   # and one flipped entry of the direction law's derivative
   program S01 generated
   sed -i '0,/^  dcontrol_dy\[[0-9]*\] = /s/^\(  dcontrol_dy\[[0-9]*\] = \)\(.*\);$/\1-(\2);/' S01.cpp
+  run check_program "$PWD/S01.cpp"
+  echo "$output"
+  [ "$status" -eq 1 ]
+  # and one of the throttle slopes' gradients
+  program S01 generated
+  sed -i '0,/^  d_upper\[[0-9]*\] = /s/^\(  d_upper\[[0-9]*\] = \)\(.*\);$/\1-(\2);/' S01.cpp
   run check_program "$PWD/S01.cpp"
   echo "$output"
   [ "$status" -eq 1 ]

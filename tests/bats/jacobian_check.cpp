@@ -1,5 +1,6 @@
-// The generated JACOBIAN module against central finite differences of the generated (or template)
-// DYNAMICS and SWITCH modules, at random points: built by tests/bats/jacobian.bats with the
+// The generated JACOBIAN module (df/dy, df/du, the direction law's and the throttle slopes'
+// gradients) against central finite differences of the generated (or template) DYNAMICS and
+// SWITCH modules, at random points: built by tests/bats/jacobian.bats with the
 // program's shoot.cpp included (its main renamed), linked with libhelios-runtime.a.
 // usage: jacobian_check POINTS SEED  -> one line "max_error E" (the largest error over every
 // entry, relative to 1 + the row's largest |entry|); exit 1 when E > 1e-6.
@@ -73,6 +74,22 @@ int main(int argc, char** argv) {
       direction_control(ym.data(), cd.data());
       for (int k = 0; k < nc; ++k)
         if (k != kProblem.throttle_index) fd_c[k * ny + j] = (cu[k] - cd[k]) / (2 * h);
+    }
+    if (kProblem.throttle_index >= 0) {  // the throttle slopes' gradients
+      std::vector<double> dl(ny), du(ny), fd_l(ny), fd_h(ny);
+      throttle_slopes_jacobian(y.data(), mult, dl.data(), du.data());
+      for (int j = 0; j < ny; ++j) {
+        const double h = 1e-6 * (1 + std::fabs(y[j]));
+        std::vector<double> yp = y, ym = y;
+        yp[j] += h;
+        ym[j] -= h;
+        double lp = 0, hp = 0, lm = 0, hm = 0;
+        throttle_slopes(yp.data(), mult, lp, hp);
+        throttle_slopes(ym.data(), mult, lm, hm);
+        fd_l[j] = (lp - lm) / (2 * h);
+        fd_h[j] = (hp - hm) / (2 * h);
+      }
+      worst = std::max({worst, row_error(dl, fd_l, 1, ny), row_error(du, fd_h, 1, ny)});
     }
     worst = std::max({worst, row_error(dfdy, fd_y, ny, ny), nc > 0 ? row_error(dfdu, fd_u, ny, nc) : 0.0,
                       nc > 0 ? row_error(dcdy, fd_c, nc, ny) : 0.0});

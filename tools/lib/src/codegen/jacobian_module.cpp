@@ -1,6 +1,6 @@
 // The JACOBIAN module generated from the derivation: the exact first derivatives of the DYNAMICS
 // module's right-hand side (GiNaC diff of the derivation's state and costate equations) and of
-// the SWITCH module's direction law, the building blocks of the variational equations
+// the SWITCH module's direction law and throttle slopes, the building blocks of the variational equations
 // Phi' = (df/dy + df/du du/dy) Phi of the shooting Jacobian (issue 15).
 #include <algorithm>
 #include <map>
@@ -161,12 +161,37 @@ std::string direction_jacobian_function(Context& c) {
   return "void direction_jacobian(const double* y, double* dcontrol_dy) {\n" + unused + text + "}\n\n";
 }
 
+// throttle_slopes_jacobian: d_lower[j], d_upper[j] = d/dy_j of the throttle's dH/du at u = 0 and
+// u = 1 (the SWITCH module's throttle_slopes): the interior throttle's and the switches' gradients.
+std::string throttle_jacobian_function(Context& c) {
+  const json& throttle = c.d.at("control_law").at("throttle");
+  const std::vector<GiNaC::symbol> y = y_symbols(c);
+  Body body(c);
+  unpack_all(c, body, false);
+  body.code() << "  std::fill(d_lower, d_lower + " << y.size() << ", 0.0);\n"
+              << "  std::fill(d_upper, d_upper + " << y.size() << ", 0.0);\n";
+  for (const char* side : {"lower", "upper"}) {
+    const std::string key = std::string("dH_du_at_") + side;
+    const GiNaC::ex e = c.symbols.parse(throttle.at(key), "field /control_law/throttle/" + key);
+    for (std::size_t j = 0; j < y.size(); ++j) {
+      const GiNaC::ex d = e.diff(y[j]);
+      if (!d.is_zero()) body.code() << "  d_" << side << "[" << j << "] = " << body.cpp(d) << ";\n";
+    }
+  }
+  const std::string text = body.str();
+  return "void throttle_slopes_jacobian(const double* y, const Multipliers& mult, double* d_lower, double* d_upper) "
+         "{\n" +
+         unused_parameters(c, body, {"y", "mult"}) + text + "}\n\n";
+}
+
 }  // namespace
 
 std::string generated_jacobians(Context& c) {
   return "// ----- module JACOBIAN (generated from the derivation: GiNaC derivatives) -----------------\n"
          "namespace helios_rt {\n\n" +
-         dynamics_jacobian_function(c) + direction_jacobian_function(c) + "}  // namespace helios_rt\n";
+         dynamics_jacobian_function(c) + direction_jacobian_function(c) +
+         (c.d.at("control_law").contains("throttle") ? throttle_jacobian_function(c) : std::string()) +
+         "}  // namespace helios_rt\n";
 }
 
 }  // namespace helios::codegen::detail
