@@ -24,7 +24,7 @@ check_program() {
 program() {
   "$BIN/helios-parse" "$ROOT/scenarios/$1/problem.txt" -o "$1.spec.json"
   "$BIN/helios-derive" "$1.spec.json" -o "$1.derivation.json"
-  "$BIN/helios-gen" --modules "$2" "$1.derivation.json" -o "$1.cpp"
+  "$BIN/helios-gen" --jacobian --modules "$2" "$1.derivation.json" -o "$1.cpp"
 }
 
 @test "jacobian: every scenario's generated Jacobian agrees with central differences of its dynamics" {
@@ -43,6 +43,13 @@ program() {
   run check_program "$PWD/S01.cpp"
   echo "$output"
   [ "$status" -eq 0 ]
+}
+
+@test "jacobian: helios-gen adds the module only with --jacobian (the runtime does not use it yet)" {
+  program S01 auto
+  grep -q '^void dynamics_jacobian(' S01.cpp
+  "$BIN/helios-gen" S01.derivation.json -o plain.cpp
+  run -1 grep -n 'jacobian' plain.cpp
 }
 
 @test "jacobian: a sign flipped in one generated derivative fails the check" {
