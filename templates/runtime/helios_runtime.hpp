@@ -79,6 +79,15 @@ double hamiltonian(double t, const double* y, const double* control, const Multi
 // A problem without a throttle (throttle_index < 0) has one mode and no throttle_slopes.
 void direction_control(const double* y, double* control);
 void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper);
+// JACOBIAN module (generated from the derivation by GiNaC): the exact first derivatives of the
+// right-hand side at fixed control, dfdy[i * ny + j] = d dy_i / d y_j and dfdu[i * nc + k] =
+// d dy_i / d control_k (ny = 2 num_states, nc = num_controls), and of the direction law,
+// dcontrol_dy[k * ny + j] (the throttle's row zero): the variational equations' pieces.
+void dynamics_jacobian(double t, const double* y, const double* control, const Multipliers& mult, double* dfdy,
+                       double* dfdu);
+void direction_jacobian(const double* y, double* dcontrol_dy);
+// With a throttle: d/dy_j of throttle_slopes' at_lower and at_upper (ny entries each).
+void throttle_slopes_jacobian(const double* y, const Multipliers& mult, double* d_lower, double* d_upper);
 // Unpowered dynamics of a coasting target (RESIDUAL module, when the problem has one).
 void coast_dynamics(const double* y, double* dy);
 

@@ -10,6 +10,7 @@ Propagator::Propagator(const Settings& s) : settings_(s), stepper_(std::make_uni
 Propagator::~Propagator() = default;
 
 void Propagator::propagate(double t0, double t1, double* y, const Multipliers& mult) {
+  const IntegrationTimer timer;
   ++arc_;
   Mode mode = mode_at(y, mult);
   double t = t0;

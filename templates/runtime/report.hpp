@@ -279,6 +279,20 @@ inline void solution_record(const Settings& s, const Result& r, const std::strin
   out["hamiltonian_drift"] = path.hamiltonian_drift;
 }
 
+// What the solve's integrations cost (counters.hpp), as solution.json records it ("integration"):
+// taken before the final solution's re-propagation for the trajectory, so it counts the solve alone.
+inline nlohmann::ordered_json integration_record() {
+  const Counters& c = counters();
+  const double seconds = static_cast<double>(c.integration_ns.load()) * 1e-9;
+  return {{"integrations", c.integrations.load()},
+          {"integration_s", seconds},
+          {"solve_s", wall_seconds()},
+          {"residual_evaluations", c.residual_evaluations.load()},
+          {"jacobian", "finite-difference"},
+          {"jacobian_evaluations", c.jacobian_evaluations.load()},
+          {"jacobian_residual_evaluations", c.jacobian_residual_calls.load()}};
+}
+
 // The outcome of the solve under schemas/solution.schema.json's keys: every key but those
 // helios-solve alone knows (the artifact's header, the compile, the settings, the timings, the
 // files), which it adds.
@@ -294,6 +308,7 @@ inline nlohmann::ordered_json outcome_record(const Settings& s, const Result& r,
   out["function_evaluations"] = r.evaluations;
   out["start"] = r.start;
   if (!r.start_detail.empty()) out["start_detail"] = r.start_detail;
+  out["integration"] = integration_record();
   steps_record(r, out);
   if (r.status == "converged") solution_record(s, r, trajectory_path, out);
   return out;

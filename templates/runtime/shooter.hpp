@@ -92,8 +92,16 @@ class Shooter {
   Propagator& propagator() { return prop_; }
 
  private:
-  static int callback(void* self, int n, const double* x, double* F, int) {
+  static int callback(void* self, int n, const double* x, double* F, int iflag) {
     auto* me = static_cast<Shooter*>(self);
+    Counters& c = counters();
+    c.residual_evaluations.fetch_add(1, std::memory_order_relaxed);
+    if (iflag == 2) {  // fdjac1's n calls in a row make one finite-difference Jacobian
+      c.jacobian_residual_calls.fetch_add(1, std::memory_order_relaxed);
+      if (me->jacobian_calls_++ % n == 0) c.jacobian_evaluations.fetch_add(1, std::memory_order_relaxed);
+    } else {
+      me->jacobian_calls_ = 0;
+    }
     if (wall_seconds() > me->settings_.time_limit_s) {
       me->failed_ = true;
       return -1;
@@ -112,6 +120,7 @@ class Shooter {
   int size_ = kProblem.num_vars;
   double eps_ = 1;
   bool failed_ = false;
+  long long jacobian_calls_ = 0;  // iflag-2 calls since the last iflag-1 call
 };
 
 // One hybrd solve from x at eps, recorded in r: true if max|F| <= accept and x is admissible.

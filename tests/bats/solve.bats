@@ -44,6 +44,20 @@ setup() {
   assert_no_temp_files "$E2E"
 }
 
+@test "solve: solution.json records what the integrations cost, and the finite-difference Jacobian's evaluations" {
+  local sol="$E2E/solution.json" n
+  n=$(jq '.x | length' "$sol")
+  assert_jq "$sol" '.integration.jacobian == "finite-difference"'
+  assert_jq "$sol" '.integration.integrations > 0 and .integration.integration_s > 0'
+  # the integrations are part of the solve: their summed time is at most the wall time on each thread
+  assert_jq "$sol" '.integration.integration_s <= .integration.solve_s * .search.threads'
+  assert_jq "$sol" '.integration.solve_s <= .timings.run_s'
+  # every residual evaluation integrates at least once; fdjac1 makes n evaluations per Jacobian
+  assert_jq "$sol" '.integration.integrations >= .integration.residual_evaluations'
+  assert_jq "$sol" ".integration.jacobian_evaluations > 0 and .integration.jacobian_residual_evaluations == $n * .integration.jacobian_evaluations"
+  assert_jq "$sol" '.integration.jacobian_residual_evaluations < .integration.residual_evaluations'
+}
+
 @test "solve: trajectory.csv has the t_days, m_kg, u, H and S columns" {
   local csv="$E2E/trajectory.csv"
   [[ -s $csv ]]

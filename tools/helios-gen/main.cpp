@@ -18,6 +18,10 @@ int main(int argc, char** argv) {
         "auto: template DYNAMICS/SWITCH when the derivation is the template's model; generated: always from the "
         "derivation",
         "auto"},
+       {"jacobian", "", "",
+        "builtin: add the JACOBIAN module (exact df/dy, df/du, du/dy by GiNaC); the runtime does not use it yet, so "
+        "it is off by default (it costs compile time)",
+        ""},
        {"previous", "", "FILE", "llm: shoot.cpp of the round before", ""},
        {"compile-report", "", "FILE", "llm: compile report of --previous (helios-solve --compile-only)", ""},
        {"round", "", "N", "llm: repair round number (1 = first generation)", "1"},
@@ -46,6 +50,7 @@ int main(int argc, char** argv) {
     for (const char* llm_only : {"previous", "compile-report", "transcript"})
       if (args.has(llm_only)) throw helios::usage_error(std::string("--") + llm_only + " needs --backend llm");
     helios::codegen::GenOptions options;
+    options.jacobian = args.has("jacobian");
     const std::string policy = args.get("modules");
     if (policy == "generated")
       options.modules = helios::codegen::ModulePolicy::Generated;

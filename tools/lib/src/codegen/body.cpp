@@ -11,6 +11,11 @@ std::string Body::cpp(const std::string& text, const std::string& where) {
   return c_.cpp(text, where);
 }
 
+std::string Body::cpp(const GiNaC::ex& e) {
+  for (const auto& name : symbolic::free_symbols(e)) used_.insert(name);
+  return c_.cpp(e);
+}
+
 std::string Body::use(const std::string& name) {
   used_.insert(name);
   return name;

@@ -21,6 +21,8 @@ class Body {
   std::ostringstream& code() { return code_; }
   // C++ for a stored expression (Context::cpp); its symbols count as used.
   std::string cpp(const std::string& text, const std::string& where);
+  // C++ for an expression built by the generator (a derivative); its symbols count as used.
+  std::string cpp(const GiNaC::ex& e);
   // `name`, counted as used: a name the generator writes into code itself.
   std::string use(const std::string& name);
   bool uses(const std::string& name) const { return used_.count(name) > 0; }

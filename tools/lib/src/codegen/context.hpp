@@ -33,7 +33,10 @@ struct Context : derivation::Reader {
 
   // C++ for a stored expression; parameters are read from namespace problem.
   std::string cpp(const std::string& text, const std::string& where) {
-    GiNaC::ex e = symbols.parse(text, "field " + where);
+    return cpp(symbols.parse(text, "field " + where));
+  }
+  // C++ for an expression built here (a derivative); parameters as in cpp(text, where).
+  std::string cpp(const GiNaC::ex& e) {
     GiNaC::exmap qualified;
     for (const auto& p : parameters)
       if (index_of(runtime_evaluated, p) < 0) qualified[symbols.get(p)] = GiNaC::symbol("problem::" + p);
@@ -58,6 +61,7 @@ std::string comment_text(std::string s);
 // The modules, each from its own unit.
 std::string problem_block(Context& c);                 // problem_block.cpp
 std::string generated_dynamics(Context& c);            // dynamics_module.cpp
+std::string generated_jacobians(Context& c);           // jacobian_module.cpp
 bool template_matches(Context& c, const json& model);  // dynamics_module.cpp
 std::string residual_module(Context& c);               // residual_module.cpp
 std::string solve_module(Context& c);                  // solve_module.cpp

@@ -26,7 +26,10 @@ GeneratedProgram generate(const json& derivation, const GenOptions& options) {
   }
   g.generated_modules.push_back("RESIDUAL");
   g.generated_modules.push_back("SOLVE");
-  g.source = assemble(derivation, dynamics + "\n" + residual_module(c) + "\n" + solve_module(c) + "\n", "builtin");
+  g.source = assemble(derivation,
+                      dynamics + "\n" + (options.jacobian ? generated_jacobians(c) + "\n" : std::string()) +
+                          residual_module(c) + "\n" + solve_module(c) + "\n",
+                      "builtin");
   return g;
 }
 

@@ -1,0 +1,197 @@
+// The JACOBIAN module generated from the derivation: the exact first derivatives of the DYNAMICS
+// module's right-hand side (GiNaC diff of the derivation's state and costate equations) and of
+// the SWITCH module's direction law and throttle slopes, the building blocks of the variational equations
+// Phi' = (df/dy + df/du du/dy) Phi of the shooting Jacobian (issue 15).
+#include <algorithm>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "body.hpp"
+#include "context.hpp"
+
+namespace helios::codegen::detail {
+namespace {
+
+// y[] (states then costates), control[] and the multipliers as locals, as the DYNAMICS module has them.
+void unpack_all(Context& c, Body& body, bool with_control) {
+  for (std::size_t i = 0; i < c.states.size(); ++i) body.unpack(c.states[i], "y[" + std::to_string(i) + "]");
+  for (std::size_t i = 0; i < c.costates.size(); ++i)
+    body.unpack(c.costates[i], "y[" + std::to_string(c.states.size() + i) + "]");
+  if (with_control)
+    for (std::size_t i = 0; i < c.controls.size(); ++i)
+      body.unpack(c.controls[i], "control[" + std::to_string(i) + "]");
+  body.unpack(c.d.at("multiplier").get<std::string>(), "mult.lambda0");
+  body.unpack(c.d.at("homotopy").at("symbol").get<std::string>(), "mult.eps");
+}
+
+// `(void)p;` for each parameter whose names the body does not use.
+std::string unused_parameters(Context& c, Body& body, const std::vector<std::string>& parameters) {
+  std::vector<std::string> y = c.states;
+  y.insert(y.end(), c.costates.begin(), c.costates.end());
+  const std::map<std::string, std::vector<std::string>> used_through = {
+      {"t", {"t"}},
+      {"y", y},
+      {"control", c.controls},
+      {"mult", {c.d.at("multiplier"), c.d.at("homotopy").at("symbol")}}};
+  std::string out;
+  for (const auto& p : parameters) {
+    const auto& names = used_through.at(p);
+    if (std::none_of(names.begin(), names.end(), [&](const std::string& n) { return body.uses(n); }))
+      out += "  (void)" + p + ";\n";
+  }
+  return out;
+}
+
+// The variables y (states then costates) as GiNaC symbols.
+std::vector<GiNaC::symbol> y_symbols(Context& c) {
+  std::vector<GiNaC::symbol> y;
+  for (const auto& s : c.states) y.push_back(c.symbols.get(s));
+  for (const auto& s : c.costates) y.push_back(c.symbols.get(s));
+  return y;
+}
+
+// dynamics_jacobian: dfdy[i * ny + j] = d dy_i / d y_j and dfdu[i * nc + k] = d dy_i / d control_k
+// at fixed control, zero where the derivative is identically zero.
+std::string dynamics_jacobian_function(Context& c) {
+  const auto& so = c.d.at("state_odes");
+  const auto& co = c.d.at("costate_odes");
+  if (so.size() != c.states.size() || co.size() != c.states.size())
+    throw std::invalid_argument("field /state_odes or /costate_odes: one equation per state is required");
+  std::vector<GiNaC::ex> rhs;
+  for (std::size_t i = 0; i < so.size(); ++i)
+    rhs.push_back(c.symbols.parse(so[i].at("rhs"), "field /state_odes/" + std::to_string(i) + "/rhs"));
+  for (std::size_t i = 0; i < co.size(); ++i)
+    rhs.push_back(c.symbols.parse(co[i].at("rhs"), "field /costate_odes/" + std::to_string(i) + "/rhs"));
+  const std::vector<GiNaC::symbol> y = y_symbols(c);
+  const std::size_t ny = y.size(), nc = c.controls.size();
+  Body body(c);
+  unpack_all(c, body, true);
+  body.code() << "  std::fill(dfdy, dfdy + " << ny * ny << ", 0.0);\n";
+  if (nc > 0) body.code() << "  std::fill(dfdu, dfdu + " << ny * nc << ", 0.0);\n";
+  for (std::size_t i = 0; i < ny; ++i) {
+    for (std::size_t j = 0; j < ny; ++j) {
+      const GiNaC::ex d = rhs[i].diff(y[j]);
+      if (!d.is_zero()) body.code() << "  dfdy[" << i * ny + j << "] = " << body.cpp(d) << ";\n";
+    }
+    for (std::size_t k = 0; k < nc; ++k) {
+      const GiNaC::ex d = rhs[i].diff(c.symbols.get(c.controls[k]));
+      if (!d.is_zero()) body.code() << "  dfdu[" << i * nc + k << "] = " << body.cpp(d) << ";\n";
+    }
+  }
+  if (nc == 0) body.code() << "  (void)dfdu;\n";
+  const std::string text = body.str();
+  return "void dynamics_jacobian(double t, const double* y, const double* control, const Multipliers& mult, "
+         "double* dfdy, double* dfdu) {\n" +
+         unused_parameters(c, body, {"t", "y", "control", "mult"}) + text + "}\n\n";
+}
+
+// direction_jacobian: dcontrol_dy[k * ny + j] = d control_k / d y_j of the direction (or sail)
+// law, its definitions substituted; the throttle's row (and any control without a law) is zero.
+std::string direction_jacobian_function(Context& c) {
+  const json& cl = c.d.at("control_law");
+  const std::vector<GiNaC::symbol> y = y_symbols(c);
+  const std::size_t ny = y.size(), nc = c.controls.size();
+  Body body(c);
+  for (std::size_t i = 0; i < c.states.size(); ++i) body.unpack(c.states[i], "y[" + std::to_string(i) + "]");
+  for (std::size_t i = 0; i < c.costates.size(); ++i)
+    body.unpack(c.costates[i], "y[" + std::to_string(c.states.size() + i) + "]");
+  if (nc > 0) body.code() << "  std::fill(dcontrol_dy, dcontrol_dy + " << nc * ny << ", 0.0);\n";
+  std::vector<std::pair<std::string, GiNaC::ex>> locals;   // the definitions and their gradients, in order
+  std::vector<std::pair<std::size_t, GiNaC::ex>> entries;  // the nonzero entries of dcontrol_dy
+  for (const char* kind : {"direction", "sail"}) {
+    if (!cl.contains(kind)) continue;
+    const std::string where = "field /control_law/" + std::string(kind);
+    const auto& names = cl.at(kind).at("controls");
+    const auto& law = cl.at(kind).at("law");
+    const json definitions = cl.at(kind).value("definitions", json::array());
+    // The definitions as locals, each with its gradient d_<name>_<j> by the chain rule through
+    // the earlier ones (substituting them instead would grow the expressions without bound).
+    std::vector<GiNaC::symbol> defs;
+    std::vector<std::vector<GiNaC::ex>> grads;  // grads[i][j] = d def_i / d y_j (a symbol or 0)
+    // The derivative of e in y_j: its own and through each definition's gradient.
+    auto total = [&](const GiNaC::ex& e, std::size_t j) {
+      GiNaC::ex d = e.diff(y[j]);
+      for (std::size_t i = 0; i < defs.size(); ++i)
+        if (!grads[i][j].is_zero()) d += e.diff(defs[i]) * grads[i][j];
+      return d;
+    };
+    for (std::size_t i = 0; i < definitions.size(); ++i) {
+      const std::string name = definitions[i].at("name");
+      const GiNaC::ex e =
+          c.symbols.parse(definitions[i].at("expression"), where + "/definitions/" + std::to_string(i) + "/expression");
+      locals.emplace_back(name, e);
+      std::vector<GiNaC::ex> g(ny, GiNaC::ex(0));
+      for (std::size_t j = 0; j < ny; ++j) {
+        const GiNaC::ex d = total(e, j);
+        if (d.is_zero()) continue;
+        const std::string d_name = "d_" + name + "_" + std::to_string(j);
+        locals.emplace_back(d_name, d);
+        g[j] = c.symbols.get(d_name);
+      }
+      defs.push_back(c.symbols.get(name));
+      grads.push_back(g);
+    }
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      const int row = index_of(c.controls, names[k].get<std::string>());
+      if (row < 0) throw std::invalid_argument(where + "/controls/" + std::to_string(k) + ": not a control");
+      const GiNaC::ex e = c.symbols.parse(law[k], where + "/law/" + std::to_string(k));
+      for (std::size_t j = 0; j < ny; ++j) {
+        const GiNaC::ex d = total(e, j);
+        if (!d.is_zero()) entries.emplace_back(row * ny + j, d);
+      }
+    }
+  }
+  // Only the locals the entries need, directly or through later locals.
+  std::set<std::string> needed;
+  for (const auto& [k, d] : entries)
+    for (const auto& n : symbolic::free_symbols(d)) needed.insert(n);
+  for (auto it = locals.rbegin(); it != locals.rend(); ++it)
+    if (needed.count(it->first))
+      for (const auto& n : symbolic::free_symbols(it->second)) needed.insert(n);
+  for (const auto& [name, e] : locals)
+    if (needed.count(name)) body.code() << "  const double " << name << " = " << body.cpp(e) << ";\n";
+  for (const auto& [k, d] : entries) body.code() << "  dcontrol_dy[" << k << "] = " << body.cpp(d) << ";\n";
+  const std::string text = body.str();
+  std::string unused = unused_parameters(c, body, {"y"});
+  if (nc == 0) unused += "  (void)dcontrol_dy;\n";
+  return "void direction_jacobian(const double* y, double* dcontrol_dy) {\n" + unused + text + "}\n\n";
+}
+
+// throttle_slopes_jacobian: d_lower[j], d_upper[j] = d/dy_j of the throttle's dH/du at u = 0 and
+// u = 1 (the SWITCH module's throttle_slopes): the interior throttle's and the switches' gradients.
+std::string throttle_jacobian_function(Context& c) {
+  const json& throttle = c.d.at("control_law").at("throttle");
+  const std::vector<GiNaC::symbol> y = y_symbols(c);
+  Body body(c);
+  unpack_all(c, body, false);
+  body.code() << "  std::fill(d_lower, d_lower + " << y.size() << ", 0.0);\n"
+              << "  std::fill(d_upper, d_upper + " << y.size() << ", 0.0);\n";
+  for (const char* side : {"lower", "upper"}) {
+    const std::string key = std::string("dH_du_at_") + side;
+    const GiNaC::ex e = c.symbols.parse(throttle.at(key), "field /control_law/throttle/" + key);
+    for (std::size_t j = 0; j < y.size(); ++j) {
+      const GiNaC::ex d = e.diff(y[j]);
+      if (!d.is_zero()) body.code() << "  d_" << side << "[" << j << "] = " << body.cpp(d) << ";\n";
+    }
+  }
+  const std::string text = body.str();
+  return "void throttle_slopes_jacobian(const double* y, const Multipliers& mult, double* d_lower, double* d_upper) "
+         "{\n" +
+         unused_parameters(c, body, {"y", "mult"}) + text + "}\n\n";
+}
+
+}  // namespace
+
+std::string generated_jacobians(Context& c) {
+  return "// ----- module JACOBIAN (generated from the derivation: GiNaC derivatives) -----------------\n"
+         "namespace helios_rt {\n\n" +
+         dynamics_jacobian_function(c) + direction_jacobian_function(c) +
+         (c.d.at("control_law").contains("throttle") ? throttle_jacobian_function(c) : std::string()) +
+         "}  // namespace helios_rt\n";
+}
+
+}  // namespace helios::codegen::detail
