@@ -1,6 +1,8 @@
 // A generated function's body: code and the unpacks it reads.
 #include "body.hpp"
 
+#include <algorithm>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,37 @@ void Body::unpack(const std::string& name, const std::string& value, const std::
   unpack_line(
       "  const double " + name + " = " + value + ";" + (comment.empty() ? "" : "  // " + comment_text(comment)) + "\n",
       {name});
+}
+
+void Body::unpack_y() {
+  for (std::size_t i = 0; i < c_.states.size(); ++i) unpack(c_.states[i], "y[" + std::to_string(i) + "]");
+  for (std::size_t i = 0; i < c_.costates.size(); ++i)
+    unpack(c_.costates[i], "y[" + std::to_string(c_.states.size() + i) + "]");
+}
+
+void Body::unpack_variables(bool with_control) {
+  unpack_y();
+  if (with_control)
+    for (std::size_t i = 0; i < c_.controls.size(); ++i) unpack(c_.controls[i], "control[" + std::to_string(i) + "]");
+  unpack(c_.d.at("multiplier").get<std::string>(), "mult.lambda0");
+  unpack(c_.d.at("homotopy").at("symbol").get<std::string>(), "mult.eps");
+}
+
+std::string Body::unused_parameters(const std::vector<std::string>& parameters) const {
+  std::vector<std::string> y = c_.states;
+  y.insert(y.end(), c_.costates.begin(), c_.costates.end());
+  const std::map<std::string, std::vector<std::string>> used_through = {
+      {"t", {"t"}},
+      {"y", y},
+      {"control", c_.controls},
+      {"mult", {c_.d.at("multiplier"), c_.d.at("homotopy").at("symbol")}}};
+  std::string out;
+  for (const auto& p : parameters) {
+    const auto& names = used_through.at(p);
+    if (std::none_of(names.begin(), names.end(), [&](const std::string& n) { return uses(n); }))
+      out += "  (void)" + p + ";\n";
+  }
+  return out;
 }
 
 void Body::unpack_line(const std::string& line, const std::vector<std::string>& names) {

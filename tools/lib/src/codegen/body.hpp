@@ -28,6 +28,13 @@ class Body {
   bool uses(const std::string& name) const { return used_.count(name) > 0; }
   // The line "  const double <name> = <value>;" (with "  // <comment>" when given), written if used.
   void unpack(const std::string& name, const std::string& value, const std::string& comment = "");
+  // The states then the costates from y[], as the runtime's modules have them.
+  void unpack_y();
+  // unpack_y, then the controls from control[] (with_control) and the multipliers from mult.
+  void unpack_variables(bool with_control);
+  // `(void)p;` for each of the runtime function's `parameters` p (t, y, control, mult) the body
+  // uses neither itself nor through its locals.
+  std::string unused_parameters(const std::vector<std::string>& parameters) const;
   // A line (ending in "\n") that defines all of `names`, written if any of them is used.
   void unpack_line(const std::string& line, const std::vector<std::string>& names);
   // The body's text: the code with the unpacks that are used.

@@ -14,35 +14,10 @@
 namespace helios::codegen::detail {
 namespace {
 
-// Locals for y[], control[] and the multipliers, so generated expressions read like the math.
-void unpack(Context& c, Body& body, bool with_control) {
-  for (std::size_t i = 0; i < c.states.size(); ++i) body.unpack(c.states[i], "y[" + std::to_string(i) + "]");
-  for (std::size_t i = 0; i < c.costates.size(); ++i)
-    body.unpack(c.costates[i], "y[" + std::to_string(c.states.size() + i) + "]");
-  if (with_control)
-    for (std::size_t i = 0; i < c.controls.size(); ++i)
-      body.unpack(c.controls[i], "control[" + std::to_string(i) + "]");
-  body.unpack(c.d.at("multiplier").get<std::string>(), "mult.lambda0");
-  body.unpack(c.d.at("homotopy").at("symbol").get<std::string>(), "mult.eps");
-}
-
 // A function of the runtime's interface with the generated `body`: `(void)p;` for each of its
 // `parameters` p (t, y, control, mult) the body uses neither itself nor through its locals.
-std::string function(Context& c, const std::string& signature, const std::vector<std::string>& parameters, Body& body) {
-  std::vector<std::string> y = c.states;
-  y.insert(y.end(), c.costates.begin(), c.costates.end());
-  const std::map<std::string, std::vector<std::string>> used_through = {
-      {"t", {"t"}},
-      {"y", y},
-      {"control", c.controls},
-      {"mult", {c.d.at("multiplier"), c.d.at("homotopy").at("symbol")}}};
-  std::string unused;
-  for (const auto& p : parameters) {
-    const auto& names = used_through.at(p);
-    if (std::none_of(names.begin(), names.end(), [&](const std::string& n) { return body.uses(n); }))
-      unused += "  (void)" + p + ";\n";
-  }
-  return signature + " {\n" + unused + body.str() + "}\n\n";
+std::string function(const std::string& signature, const std::vector<std::string>& parameters, Body& body) {
+  return signature + " {\n" + body.unused_parameters(parameters) + body.str() + "}\n\n";
 }
 
 // dynamics: dy = the state and costate equations.
@@ -52,7 +27,7 @@ std::string dynamics_function(Context& c) {
   if (so.size() != c.states.size() || co.size() != c.states.size())
     throw std::invalid_argument("field /state_odes or /costate_odes: one equation per state is required");
   Body body(c);
-  unpack(c, body, true);
+  body.unpack_variables(true);
   for (std::size_t i = 0; i < so.size(); ++i)
     body.code() << "  dy[" << i << "] = " << body.cpp(so[i].at("rhs"), "/state_odes/" + std::to_string(i) + "/rhs")
                 << ";\n";
@@ -60,15 +35,15 @@ std::string dynamics_function(Context& c) {
     body.code() << "  dy[" << so.size() + i
                 << "] = " << body.cpp(co[i].at("rhs"), "/costate_odes/" + std::to_string(i) + "/rhs") << ";\n";
   return function(
-      c, "void dynamics(double t, const double* y, const double* control, const Multipliers& mult, double* dy)",
+      "void dynamics(double t, const double* y, const double* control, const Multipliers& mult, double* dy)",
       {"t", "y", "control", "mult"}, body);
 }
 
 std::string hamiltonian_function(Context& c) {
   Body body(c);
-  unpack(c, body, true);
+  body.unpack_variables(true);
   body.code() << "  return " << body.cpp(c.d.at("hamiltonian"), "/hamiltonian") << ";\n";
-  return function(c, "double hamiltonian(double t, const double* y, const double* control, const Multipliers& mult)",
+  return function("double hamiltonian(double t, const double* y, const double* control, const Multipliers& mult)",
                   {"t", "y", "control", "mult"}, body);
 }
 
@@ -76,9 +51,7 @@ std::string hamiltonian_function(Context& c) {
 std::string direction_function(Context& c) {
   const json& cl = c.d.at("control_law");
   Body body(c);
-  for (std::size_t i = 0; i < c.states.size(); ++i) body.unpack(c.states[i], "y[" + std::to_string(i) + "]");
-  for (std::size_t i = 0; i < c.costates.size(); ++i)
-    body.unpack(c.costates[i], "y[" + std::to_string(c.states.size() + i) + "]");
+  body.unpack_y();
   for (const char* kind : {"direction", "sail"}) {
     if (!cl.contains(kind)) continue;
     const std::string where = "/control_law/" + std::string(kind);
@@ -94,19 +67,18 @@ std::string direction_function(Context& c) {
       body.code() << "  control[" << index_of(c.controls, body.use(names[j]))
                   << "] = " << body.cpp(law[j], where + "/law/" + std::to_string(j)) << ";\n";
   }
-  return function(c, "void direction_control(const double* y, double* control)", {"y", "control"}, body);
+  return function("void direction_control(const double* y, double* control)", {"y", "control"}, body);
 }
 
 std::string throttle_function(Context& c) {
   const json& throttle = c.d.at("control_law").at("throttle");
   Body body(c);
-  unpack(c, body, false);
+  body.unpack_variables(false);
   body.code() << "  at_lower = " << body.cpp(throttle.at("dH_du_at_lower"), "/control_law/throttle/dH_du_at_lower")
               << ";\n"
               << "  at_upper = " << body.cpp(throttle.at("dH_du_at_upper"), "/control_law/throttle/dH_du_at_upper")
               << ";\n";
-  return function(c,
-                  "void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper)",
+  return function("void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper)",
                   {"y", "mult"}, body);
 }
 

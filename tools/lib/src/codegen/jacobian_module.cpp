@@ -16,36 +16,6 @@
 namespace helios::codegen::detail {
 namespace {
 
-// y[] (states then costates), control[] and the multipliers as locals, as the DYNAMICS module has them.
-void unpack_all(Context& c, Body& body, bool with_control) {
-  for (std::size_t i = 0; i < c.states.size(); ++i) body.unpack(c.states[i], "y[" + std::to_string(i) + "]");
-  for (std::size_t i = 0; i < c.costates.size(); ++i)
-    body.unpack(c.costates[i], "y[" + std::to_string(c.states.size() + i) + "]");
-  if (with_control)
-    for (std::size_t i = 0; i < c.controls.size(); ++i)
-      body.unpack(c.controls[i], "control[" + std::to_string(i) + "]");
-  body.unpack(c.d.at("multiplier").get<std::string>(), "mult.lambda0");
-  body.unpack(c.d.at("homotopy").at("symbol").get<std::string>(), "mult.eps");
-}
-
-// `(void)p;` for each parameter whose names the body does not use.
-std::string unused_parameters(Context& c, Body& body, const std::vector<std::string>& parameters) {
-  std::vector<std::string> y = c.states;
-  y.insert(y.end(), c.costates.begin(), c.costates.end());
-  const std::map<std::string, std::vector<std::string>> used_through = {
-      {"t", {"t"}},
-      {"y", y},
-      {"control", c.controls},
-      {"mult", {c.d.at("multiplier"), c.d.at("homotopy").at("symbol")}}};
-  std::string out;
-  for (const auto& p : parameters) {
-    const auto& names = used_through.at(p);
-    if (std::none_of(names.begin(), names.end(), [&](const std::string& n) { return body.uses(n); }))
-      out += "  (void)" + p + ";\n";
-  }
-  return out;
-}
-
 // The variables y (states then costates) as GiNaC symbols.
 std::vector<GiNaC::symbol> y_symbols(Context& c) {
   std::vector<GiNaC::symbol> y;
@@ -69,7 +39,7 @@ std::string dynamics_jacobian_function(Context& c) {
   const std::vector<GiNaC::symbol> y = y_symbols(c);
   const std::size_t ny = y.size(), nc = c.controls.size();
   Body body(c);
-  unpack_all(c, body, true);
+  body.unpack_variables(true);
   body.code() << "  std::fill(dfdy, dfdy + " << ny * ny << ", 0.0);\n";
   if (nc > 0) body.code() << "  std::fill(dfdu, dfdu + " << ny * nc << ", 0.0);\n";
   for (std::size_t i = 0; i < ny; ++i) {
@@ -86,7 +56,7 @@ std::string dynamics_jacobian_function(Context& c) {
   const std::string text = body.str();
   return "void dynamics_jacobian(double t, const double* y, const double* control, const Multipliers& mult, "
          "double* dfdy, double* dfdu) {\n" +
-         unused_parameters(c, body, {"t", "y", "control", "mult"}) + text + "}\n\n";
+         body.unused_parameters({"t", "y", "control", "mult"}) + text + "}\n\n";
 }
 
 // direction_jacobian: dcontrol_dy[k * ny + j] = d control_k / d y_j of the direction (or sail)
@@ -96,9 +66,7 @@ std::string direction_jacobian_function(Context& c) {
   const std::vector<GiNaC::symbol> y = y_symbols(c);
   const std::size_t ny = y.size(), nc = c.controls.size();
   Body body(c);
-  for (std::size_t i = 0; i < c.states.size(); ++i) body.unpack(c.states[i], "y[" + std::to_string(i) + "]");
-  for (std::size_t i = 0; i < c.costates.size(); ++i)
-    body.unpack(c.costates[i], "y[" + std::to_string(c.states.size() + i) + "]");
+  body.unpack_y();
   if (nc > 0) body.code() << "  std::fill(dcontrol_dy, dcontrol_dy + " << nc * ny << ", 0.0);\n";
   std::vector<std::pair<std::string, GiNaC::ex>> locals;   // the definitions and their gradients, in order
   std::vector<std::pair<std::size_t, GiNaC::ex>> entries;  // the nonzero entries of dcontrol_dy
@@ -156,7 +124,7 @@ std::string direction_jacobian_function(Context& c) {
     if (needed.count(name)) body.code() << "  const double " << name << " = " << body.cpp(e) << ";\n";
   for (const auto& [k, d] : entries) body.code() << "  dcontrol_dy[" << k << "] = " << body.cpp(d) << ";\n";
   const std::string text = body.str();
-  std::string unused = unused_parameters(c, body, {"y"});
+  std::string unused = body.unused_parameters({"y"});
   if (nc == 0) unused += "  (void)dcontrol_dy;\n";
   return "void direction_jacobian(const double* y, double* dcontrol_dy) {\n" + unused + text + "}\n\n";
 }
@@ -167,7 +135,7 @@ std::string throttle_jacobian_function(Context& c) {
   const json& throttle = c.d.at("control_law").at("throttle");
   const std::vector<GiNaC::symbol> y = y_symbols(c);
   Body body(c);
-  unpack_all(c, body, false);
+  body.unpack_variables(false);
   body.code() << "  std::fill(d_lower, d_lower + " << y.size() << ", 0.0);\n"
               << "  std::fill(d_upper, d_upper + " << y.size() << ", 0.0);\n";
   for (const char* side : {"lower", "upper"}) {
@@ -181,7 +149,7 @@ std::string throttle_jacobian_function(Context& c) {
   const std::string text = body.str();
   return "void throttle_slopes_jacobian(const double* y, const Multipliers& mult, double* d_lower, double* d_upper) "
          "{\n" +
-         unused_parameters(c, body, {"y", "mult"}) + text + "}\n\n";
+         body.unused_parameters({"y", "mult"}) + text + "}\n\n";
 }
 
 }  // namespace
