@@ -153,18 +153,9 @@ slurm_make() {
     '($a | length) == 3 and ([range(3) | (($a[.] - $b[.]) | fabs) <= 1e-9 * ($b[.] | fabs)] | all)' >/dev/null
 }
 
-# sweep_smake RUNS_ROOT [VAR=VALUE...]: the P01 sweep (3 x 3 cells) into RUNS_ROOT, as smake does.
-sweep_smake() {
-  local runs="$1"
-  shift
-  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
-    make --no-print-directory -C "$ROOT" -o build/tools.stamp sweep sweep=P01 RUNS_ROOT="$runs" \
-    CACHE="$SHARED_CACHE" -j2 "$@"
-}
-
 @test "slurm: the P01 sweep with LAUNCH=\"srun -n1 -c1\" solves every cell as a Slurm step, objectives as without LAUNCH" {
-  run -0 sweep_smake "$SLURM_RUNS" LAUNCH="srun -n1 -c1 $RECORD_STEP"
-  run -0 sweep_smake "$PLAIN_RUNS"
+  run -0 sweep_make "$SLURM_RUNS" LAUNCH="srun -n1 -c1 $RECORD_STEP"
+  run -0 sweep_make "$PLAIN_RUNS"
   local s="$SLURM_RUNS/builtin/P01" p="$PLAIN_RUNS/builtin/P01" cell jobs=()
   [[ $(tail -n +2 "$s/sweep.csv" | wc -l) -eq 9 ]]
   for cell in $(tail -n +2 "$s/sweep.csv" | cut -d, -f3); do

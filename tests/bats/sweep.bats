@@ -17,16 +17,6 @@ setup() {
   common_setup
 }
 
-# sweep_make RUNS_ROOT [VAR=VALUE...]: make sweep sweep=P01 into RUNS_ROOT, isolated from an
-# enclosing make and from tool rebuilds.
-sweep_make() {
-  local runs="$1"
-  shift
-  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
-    make --no-print-directory -C "$ROOT" -o build/tools.stamp sweep sweep=P01 RUNS_ROOT="$runs" \
-    CACHE="${SWEEP_CACHE:-$SHARED_CACHE}" -j2 "$@"
-}
-
 CELLS=(d9700_t300 d9700_t350 d9700_t400 d9740_t300 d9740_t350 d9740_t400 d9780_t300 d9780_t350 d9780_t400)
 
 @test "sweep: make sweep sweep=P01 writes sweep.csv and porkchop.png; each row's first cell cold, the others warm" {

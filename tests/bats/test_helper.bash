@@ -213,3 +213,14 @@ converged_and_verified() {
   assert_jq "$1/solution.json" '.status == "converged" and .max_residual < 1e-10 and .epsilon == 0'
   assert_jq "$1/score.json" '.total == 100'
 }
+
+# sweep_make RUNS_ROOT [VAR=VALUE...]: make sweep sweep=P01 (its 3 x 3 CI grid) into RUNS_ROOT with
+# -j2, isolated from an enclosing make and from tool rebuilds; the compile cache is SWEEP_CACHE,
+# else SHARED_CACHE (sweep.bats, slurm.bats).
+sweep_make() {
+  local runs="$1"
+  shift
+  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
+    make --no-print-directory -C "$ROOT" -o build/tools.stamp sweep sweep=P01 RUNS_ROOT="$runs" \
+    CACHE="${SWEEP_CACHE:-$SHARED_CACHE}" -j2 "$@"
+}
