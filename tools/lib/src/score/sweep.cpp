@@ -265,7 +265,7 @@ void porkchop_png(const SweepGrid& grid, const std::string& csv_text, const std:
                                                           : "propellant [kg]";
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1000,800 noenhanced\nset output '" << tmp_png << "'\n"
-     << "set title '" << title << ": " << unit << " (x: not converged, star: best)'\n"
+     << "set title '" << title << ": " << unit << " (x: not converged, circled: best)'\n"
      << "set xlabel 'departure [MJD2000]'\nset ylabel 'time of flight [days]'\nset cblabel '" << unit << "'\n"
      << "set view map\nset pm3d at b interpolate 8,8\nset contour base\nset cntrparam levels auto 10\nunset clabel\n"
      << "set bmargin 7\nset key at screen 0.5,0.06 center center horizontal maxrows 1 box\n"
@@ -276,8 +276,8 @@ void porkchop_png(const SweepGrid& grid, const std::string& csv_text, const std:
      << "splot '" << grid_file << "' using 1:2:3 with pm3d notitle, '" << grid_file
      << "' using 1:2:3 with lines nosurface lc rgb 'black' notitle, '" << bad_file
      << "' using 1:2:3 with points nocontours pt 2 ps 2 lw 2 lc rgb 'black' title 'not converged', '" << best_file
-     << "' using 1:2:3 with points nocontours pt 3 ps 3 lw 3 lc rgb 'white' title 'best', '" << best_file
-     << "' using 1:2:3 with points nocontours pt 6 ps 3 lw 2 lc rgb 'black' notitle\n";
+     << "' using 1:2:3 with points nocontours pt 6 ps 3 lw 2 lc rgb 'black' title 'best', '" << best_file
+     << "' using 1:2:3 with points nocontours pt 3 ps 3 lw 3 lc rgb 'white' notitle\n";
   io::write_text_atomic(script_file, gp.str());
   const std::string out = solve::capture({"gnuplot", script_file});
   std::error_code ec;

@@ -62,7 +62,7 @@ std::string write_sweep_cells(const SweepGrid& grid, const std::string& template
 std::string sweep_csv(const SweepGrid& grid, const std::string& dir);
 
 // porkchop.png from sweep.csv's rows: filled contours of the objective over departure x tof,
-// unconverged cells marked with crosses and the best cell with a star (gnuplot). Written
+// unconverged cells marked with crosses and the best cell with a circle (gnuplot). Written
 // atomically to png_path.
 void porkchop_png(const SweepGrid& grid, const std::string& csv_text, const std::string& png_path,
                   const std::string& title);
