@@ -91,14 +91,14 @@ TEST(SweepCells, ProblemTextsAndFragment) {
       R"({"status": "converged", "propellant_kg": 123.5, "max_residual": 1e-12, "start": "cold"})");
   helios::io::write_text_atomic((dir / "d9700_t350" / "solution.json").string(),
                                 R"({"status": "not_converged", "start": "cold-after-warm-failed"})");
-  const std::string csv = sweep_csv(g, dir.string());
+  const std::string csv = sweep_csv(g, sweep_rows(g, dir.string()));
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "departure_mjd2000,tof_days,cell,status,propellant_kg,max_residual,start");
   EXPECT_NE(csv.find("\n9700,300,d9700_t300,converged,123.5,1.000e-12,cold\n"), std::string::npos) << csv;
   EXPECT_NE(csv.find("\n9700,350,d9700_t350,not_converged,,,cold-after-warm-failed\n"), std::string::npos) << csv;
   EXPECT_NE(csv.find("\n9780,400,d9780_t400,missing,,,\n"), std::string::npos) << csv;
   // A converged solution without the plotted key is refused.
   helios::io::write_text_atomic((dir / "d9700_t300" / "solution.json").string(), R"({"status": "converged"})");
-  EXPECT_THROW(sweep_csv(g, dir.string()), input_error);
+  EXPECT_THROW(sweep_rows(g, dir.string()), input_error);
   fs::remove_all(dir);
 }
 

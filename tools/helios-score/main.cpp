@@ -124,11 +124,11 @@ int main(int argc, char** argv) {
         helios::io::write_text_atomic(args.output, fragment);
         return 0;
       }
-      const std::string csv = helios::score::sweep_csv(grid, args.get("cells"));
+      const std::vector<helios::score::SweepRow> rows = helios::score::sweep_rows(grid, args.get("cells"));
       if (args.has("porkchop"))
-        helios::score::porkchop_png(grid, csv, args.get("porkchop"),
+        helios::score::porkchop_png(grid, rows, args.get("porkchop"),
                                     std::filesystem::path(sweep_path).parent_path().filename().string());
-      helios::io::write_text_atomic(args.output, csv);
+      helios::io::write_text_atomic(args.output, helios::score::sweep_csv(grid, rows));
       return 0;
     }
     if (args.has("cells") || args.has("grid") || args.has("porkchop"))

@@ -85,27 +85,6 @@ std::string replace_all(std::string text, const std::string& what, const std::st
   return text;
 }
 
-struct CsvRow {
-  double departure, tof;
-  std::string status;
-  double objective;  // NaN: none
-};
-
-std::vector<CsvRow> csv_rows(const std::string& csv_text) {
-  std::vector<CsvRow> rows;
-  std::istringstream in(csv_text);
-  std::string line;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream ls(line);
-    for (std::string c; std::getline(ls, c, ',');) f.push_back(c);
-    if (f.size() < 5) continue;
-    rows.push_back({std::stod(f[0]), std::stod(f[1]), f[3], f[4].empty() ? NAN : std::stod(f[4])});
-  }
-  return rows;
-}
-
 }  // namespace
 
 std::string number_text(double value) {
@@ -201,36 +180,48 @@ std::string write_sweep_cells(const SweepGrid& grid, const std::string& template
   return mk.str();
 }
 
-std::string sweep_csv(const SweepGrid& grid, const std::string& dir) {
-  std::ostringstream csv;
-  csv << "departure_mjd2000,tof_days,cell,status," << grid.plot << ",max_residual,start\n";
+std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const std::string& dir) {
+  std::vector<SweepRow> rows;
   for (const auto& c : sweep_cells(grid)) {
+    SweepRow row{c, "missing", "", NAN, NAN};
     const fs::path path = fs::path(dir) / c.name / "solution.json";
-    std::string status = "missing", objective, residual, start;
     std::error_code ec;
     if (fs::exists(path, ec)) {
       const json s = io::read_json(path.string());
-      status = s.value("status", "unknown");
-      start = s.value("start", "");
-      if (status == "converged") {
+      row.status = s.value("status", "unknown");
+      row.start = s.value("start", "");
+      if (row.status == "converged") {
         if (!s.contains(grid.plot) || !s.at(grid.plot).is_number())
           throw input_error(path.string() + ": field /" + grid.plot + ": missing in a converged solution");
-        char buf[40];
-        std::snprintf(buf, sizeof buf, "%.12g", s.at(grid.plot).get<double>());
-        objective = buf;
-        std::snprintf(buf, sizeof buf, "%.3e", s.value("max_residual", NAN));
-        residual = buf;
+        row.objective = s.at(grid.plot).get<double>();
+        row.max_residual = s.value("max_residual", NAN);
       }
     }
-    csv << number_text(c.departure_mjd2000) << ',' << number_text(c.tof_days) << ',' << c.name << ',' << status << ','
-        << objective << ',' << residual << ',' << start << "\n";
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::string sweep_csv(const SweepGrid& grid, const std::vector<SweepRow>& rows) {
+  std::ostringstream csv;
+  csv << "departure_mjd2000,tof_days,cell,status," << grid.plot << ",max_residual,start\n";
+  for (const auto& r : rows) {
+    std::string objective, residual;
+    if (r.status == "converged") {
+      char buf[40];
+      std::snprintf(buf, sizeof buf, "%.12g", r.objective);
+      objective = buf;
+      std::snprintf(buf, sizeof buf, "%.3e", r.max_residual);
+      residual = buf;
+    }
+    csv << number_text(r.cell.departure_mjd2000) << ',' << number_text(r.cell.tof_days) << ',' << r.cell.name << ','
+        << r.status << ',' << objective << ',' << residual << ',' << r.start << "\n";
   }
   return csv.str();
 }
 
-void porkchop_png(const SweepGrid& grid, const std::string& csv_text, const std::string& png_path,
+void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, const std::string& png_path,
                   const std::string& title) {
-  const std::vector<CsvRow> rows = csv_rows(csv_text);
   // The grid as gnuplot's blocks (one per departure row, NaN where a cell has no objective), the
   // unconverged cells and the best one.
   std::ostringstream data, bad_cells, best_cell;
@@ -243,16 +234,15 @@ void porkchop_png(const SweepGrid& grid, const std::string& csv_text, const std:
   const double z = best >= 0 ? rows[best].objective : 0.0;
   double last = NAN;
   for (const auto& r : rows) {
-    if (!std::isnan(last) && r.departure != last) data << "\n";
-    last = r.departure;
-    data << number_text(r.departure) << ' ' << number_text(r.tof) << ' '
-         << (std::isfinite(r.objective) ? number_text(r.objective) : "NaN") << "\n";
-    if (!std::isfinite(r.objective))
-      bad_cells << number_text(r.departure) << ' ' << number_text(r.tof) << ' ' << number_text(z) << "\n";
+    const std::string at = number_text(r.cell.departure_mjd2000) + ' ' + number_text(r.cell.tof_days) + ' ';
+    if (!std::isnan(last) && r.cell.departure_mjd2000 != last) data << "\n";
+    last = r.cell.departure_mjd2000;
+    data << at << (std::isfinite(r.objective) ? number_text(r.objective) : "NaN") << "\n";
+    if (!std::isfinite(r.objective)) bad_cells << at << number_text(z) << "\n";
   }
   if (best >= 0)
-    best_cell << number_text(rows[best].departure) << ' ' << number_text(rows[best].tof) << ' ' << number_text(z)
-              << "\n";
+    best_cell << number_text(rows[best].cell.departure_mjd2000) << ' ' << number_text(rows[best].cell.tof_days) << ' '
+              << number_text(z) << "\n";
   const std::string base = png_path + ".part";
   const std::string grid_file = base + ".grid", bad_file = base + ".bad", best_file = base + ".best",
                     script_file = base + ".gp", tmp_png = base + ".png";

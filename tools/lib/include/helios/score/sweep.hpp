@@ -57,14 +57,24 @@ std::vector<SweepCell> sweep_cells(const SweepGrid& grid);
 std::string write_sweep_cells(const SweepGrid& grid, const std::string& template_text,
                               const std::string& template_source, const std::string& dir);
 
-// sweep.csv: one row per cell (departure_mjd2000, tof_days, cell, status, the plotted objective in
-// its unit, max_residual, start), from <dir>/<cell>/solution.json (a missing one: status missing).
-std::string sweep_csv(const SweepGrid& grid, const std::string& dir);
+// One cell's outcome, from <dir>/<cell>/solution.json: its status ("missing" without one), how it
+// started, and where it converged the plotted objective in its unit and max_residual (else NaN).
+struct SweepRow {
+  SweepCell cell;
+  std::string status, start;
+  double objective, max_residual;
+};
 
-// porkchop.png from sweep.csv's rows: filled contours of the objective over departure x tof,
-// unconverged cells marked with crosses and the best cell with a circle (gnuplot). Written
-// atomically to png_path.
-void porkchop_png(const SweepGrid& grid, const std::string& csv_text, const std::string& png_path,
+// The cells' outcomes in chain order; a converged solution without the plotted key is an input_error.
+std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const std::string& dir);
+
+// sweep.csv: one row per cell (departure_mjd2000, tof_days, cell, status, the plotted objective in
+// its unit, max_residual, start).
+std::string sweep_csv(const SweepGrid& grid, const std::vector<SweepRow>& rows);
+
+// porkchop.png: filled contours of the objective over departure x tof, unconverged cells marked
+// with crosses and the best cell with a circle (gnuplot). Written atomically to png_path.
+void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, const std::string& png_path,
                   const std::string& title);
 
 }  // namespace helios::score
