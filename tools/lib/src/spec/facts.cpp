@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "helios/astro/constants.hpp"
 #include "helios/spec/units.hpp"
 
 namespace helios::spec::detail {
@@ -256,7 +257,7 @@ std::size_t read_date(const std::string& rest, Quantity& q) {
   constexpr auto kAtStart = std::regex_constants::match_continuous;
   const auto scale = [](const std::string& sc, double v) {
     const std::string k = lowercase(sc);
-    return k == "mjd2000" ? v : k == "mjd" ? v - 51544.0 : v - 2451544.5;
+    return k == "mjd2000" ? v : k == "mjd" ? v - astro::MJD_MINUS_MJD2000 : v - astro::JD_OF_MJD2000;
   };
   const char c = rest[0];
   if (std::isdigit(static_cast<unsigned char>(c))) {
