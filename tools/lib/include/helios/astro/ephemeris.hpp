@@ -45,13 +45,10 @@ inline const JplLpRow& jpl_lp_row(Planet p) {
 
 }  // namespace ephemeris_detail
 
-// Osculating elements (a in km, angles in rad) of the JPL low-precision model at mjd2000.
-inline Elements jpl_lp_elements(Planet p, double mjd2000) {
-  const auto& row = ephemeris_detail::jpl_lp_row(p);
-  // Julian centuries from J2000.0 (JD 2451545.0 = MJD2000 0.5).
-  const double T = (mjd2000 - (JD_J2000 - JD_OF_MJD2000)) / JULIAN_CENTURY_DAYS;
-  double x[6];
-  for (int k = 0; k < 6; ++k) x[k] = row.el[k] + row.rate[k] * T;
+namespace ephemeris_detail {
+
+// Elements (a in km, angles in rad) from the table's a [AU], e, I, L, varpi, Omega [deg].
+inline Elements from_table(const double (&x)[6]) {
   Elements el{};
   el.a = x[0] * AU_KM;
   el.e = x[1];
@@ -62,9 +59,35 @@ inline Elements jpl_lp_elements(Planet p, double mjd2000) {
   return el;
 }
 
+}  // namespace ephemeris_detail
+
+// Osculating elements (a in km, angles in rad) of the JPL low-precision model at mjd2000.
+inline Elements jpl_lp_elements(Planet p, double mjd2000) {
+  const auto& row = ephemeris_detail::jpl_lp_row(p);
+  // Julian centuries from J2000.0 (JD 2451545.0 = MJD2000 0.5).
+  const double T = (mjd2000 - (JD_J2000 - JD_OF_MJD2000)) / JULIAN_CENTURY_DAYS;
+  double x[6];
+  for (int k = 0; k < 6; ++k) x[k] = row.el[k] + row.rate[k] * T;
+  return ephemeris_detail::from_table(x);
+}
+
+// The elements' constant drift per day (a in km/day, angles in rad/day).
+inline Elements jpl_lp_element_rates(Planet p) {
+  const auto& row = ephemeris_detail::jpl_lp_row(p);
+  double x[6];
+  for (int k = 0; k < 6; ++k) x[k] = row.rate[k] / JULIAN_CENTURY_DAYS;
+  return ephemeris_detail::from_table(x);
+}
+
 // Heliocentric ecliptic J2000 position [km] and velocity [km/s] at mjd2000 (days).
 inline std::array<double, 6> jpl_lp_state(Planet p, double mjd2000) {
   return elements_to_state(jpl_lp_elements(p, mjd2000), MU_SUN_KM3_S2);
+}
+
+// d/dt of jpl_lp_state per day (km/day, km/s/day): the model's own rate, elements drift included
+// (it is not the Kepler velocity the state reports).
+inline std::array<double, 6> jpl_lp_state_rate(Planet p, double mjd2000) {
+  return elements_to_state_rate(jpl_lp_elements(p, mjd2000), jpl_lp_element_rates(p), MU_SUN_KM3_S2);
 }
 
 // "Earth" is the Earth-Moon barycentre, as in the JPL table. Case-insensitive.

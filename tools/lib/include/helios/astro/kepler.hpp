@@ -240,29 +240,98 @@ inline double eccentric_anomaly(double M, double e) {
   return E + turns * TWO_PI;
 }
 
-// Cartesian state [x, y, z, vx, vy, vz] from elliptic elements; mu in length^3/time^2.
-inline std::array<double, 6> elements_to_state(const Elements& el, double mu) {
+namespace kepler_detail {
+
+// The state at eccentric anomaly E, on any scalar S with the arithmetic, sin, cos and sqrt: double
+// for elements_to_state, Jet for its time derivative.
+template <class S>
+std::array<S, 6> state_at_anomaly(const S& a, const S& e, const S& i, const S& raan, const S& argp, const S& E,
+                                  double mu) {
+  using std::cos, std::sin, std::sqrt;
+  const S cE = cos(E), sE = sin(E);
+  const S b_over_a = sqrt((1.0 - e) * (1.0 + e));
+  const S one_minus_ecosE = 1.0 - e * cE;
+  // Perifocal frame (P towards periapsis, Q 90 deg ahead in the direction of motion).
+  const S xp = a * (cE - e);
+  const S yp = a * b_over_a * sE;
+  const S vscale = sqrt(mu / a) / one_minus_ecosE;
+  const S vxp = -vscale * sE;
+  const S vyp = vscale * b_over_a * cE;
+
+  const S cO = cos(raan), sO = sin(raan);
+  const S cw = cos(argp), sw = sin(argp);
+  const S ci = cos(i), si = sin(i);
+  const S P[3] = {cO * cw - sO * sw * ci, sO * cw + cO * sw * ci, sw * si};
+  const S Q[3] = {-cO * sw - sO * cw * ci, -sO * sw + cO * cw * ci, cw * si};
+  return {xp * P[0] + yp * Q[0],   xp * P[1] + yp * Q[1],   xp * P[2] + yp * Q[2],
+          vxp * P[0] + vyp * Q[0], vxp * P[1] + vyp * Q[1], vxp * P[2] + vyp * Q[2]};
+}
+
+// A value and its derivative in one variable (forward mode), for state_at_anomaly.
+struct Jet {
+  double v, d;
+};
+inline Jet operator+(Jet a, Jet b) {
+  return {a.v + b.v, a.d + b.d};
+}
+inline Jet operator-(Jet a, Jet b) {
+  return {a.v - b.v, a.d - b.d};
+}
+inline Jet operator*(Jet a, Jet b) {
+  return {a.v * b.v, a.d * b.v + a.v * b.d};
+}
+inline Jet operator/(Jet a, Jet b) {
+  return {a.v / b.v, (a.d * b.v - a.v * b.d) / (b.v * b.v)};
+}
+inline Jet operator-(Jet a) {
+  return {-a.v, -a.d};
+}
+inline Jet operator+(double a, Jet b) {
+  return {a + b.v, b.d};
+}
+inline Jet operator-(double a, Jet b) {
+  return {a - b.v, -b.d};
+}
+inline Jet operator/(double a, Jet b) {
+  return {a / b.v, -a * b.d / (b.v * b.v)};
+}
+inline Jet sin(Jet a) {
+  return {std::sin(a.v), std::cos(a.v) * a.d};
+}
+inline Jet cos(Jet a) {
+  return {std::cos(a.v), -std::sin(a.v) * a.d};
+}
+inline Jet sqrt(Jet a) {
+  const double r = std::sqrt(a.v);
+  return {r, 0.5 * a.d / r};
+}
+
+inline void check_elements(const Elements& el, double mu) {
   if (!(el.a > 0.0) || !(el.e >= 0.0 && el.e < 1.0) || !(mu > 0.0)) {
     throw std::invalid_argument("elements_to_state: need a > 0, 0 <= e < 1 and mu > 0");
   }
-  const double E = eccentric_anomaly(el.mean_anomaly, el.e);
-  const double cE = std::cos(E), sE = std::sin(E);
-  const double b_over_a = std::sqrt((1.0 - el.e) * (1.0 + el.e));
-  const double one_minus_ecosE = 1.0 - el.e * cE;
-  // Perifocal frame (P towards periapsis, Q 90 deg ahead in the direction of motion).
-  const double xp = el.a * (cE - el.e);
-  const double yp = el.a * b_over_a * sE;
-  const double vscale = std::sqrt(mu / el.a) / one_minus_ecosE;
-  const double vxp = -vscale * sE;
-  const double vyp = vscale * b_over_a * cE;
+}
 
-  const double cO = std::cos(el.raan), sO = std::sin(el.raan);
-  const double cw = std::cos(el.argp), sw = std::sin(el.argp);
-  const double ci = std::cos(el.i), si = std::sin(el.i);
-  const double P[3] = {cO * cw - sO * sw * ci, sO * cw + cO * sw * ci, sw * si};
-  const double Q[3] = {-cO * sw - sO * cw * ci, -sO * sw + cO * cw * ci, cw * si};
-  return {xp * P[0] + yp * Q[0],   xp * P[1] + yp * Q[1],   xp * P[2] + yp * Q[2],
-          vxp * P[0] + vyp * Q[0], vxp * P[1] + vyp * Q[1], vxp * P[2] + vyp * Q[2]};
+}  // namespace kepler_detail
+
+// Cartesian state [x, y, z, vx, vy, vz] from elliptic elements; mu in length^3/time^2.
+inline std::array<double, 6> elements_to_state(const Elements& el, double mu) {
+  kepler_detail::check_elements(el, mu);
+  const double E = eccentric_anomaly(el.mean_anomaly, el.e);
+  return kepler_detail::state_at_anomaly(el.a, el.e, el.i, el.raan, el.argp, E, mu);
+}
+
+// The time derivative of elements_to_state(el(t), mu) where the elements move at `rate` (per unit
+// time; the JPL model's drift), exact: Kepler's equation E - e sin E = M gives
+// dE/dt = (dM/dt + de/dt sin E) / (1 - e cos E), and the rest is differentiated in forward mode.
+inline std::array<double, 6> elements_to_state_rate(const Elements& el, const Elements& rate, double mu) {
+  kepler_detail::check_elements(el, mu);
+  using kepler_detail::Jet;
+  const double E = eccentric_anomaly(el.mean_anomaly, el.e);
+  const double E_rate = (rate.mean_anomaly + rate.e * std::sin(E)) / (1.0 - el.e * std::cos(E));
+  const auto s = kepler_detail::state_at_anomaly(Jet{el.a, rate.a}, Jet{el.e, rate.e}, Jet{el.i, rate.i},
+                                                 Jet{el.raan, rate.raan}, Jet{el.argp, rate.argp}, Jet{E, E_rate}, mu);
+  return {s[0].d, s[1].d, s[2].d, s[3].d, s[4].d, s[5].d};
 }
 
 // Elliptic elements from a Cartesian state. Angles: i in [0, pi], the others in [0, 2*pi).
