@@ -26,7 +26,11 @@ inline bool shift_rows(const Settings& s, std::vector<double>& x, double eps, Re
     shooting_function(z, e, p, F);
     for (int i = 0; i < kProblem.num_vars; ++i) F[i] -= sigma * start[i];
   };
-  Shooter shooter(s, shifted, kContinuationStart);
+  const JacobianResidual shifted_jacobian = [&](const double* z, double e, Propagator& p, double* F, double* J) {
+    shooting_jacobian(z, e, p, F, J);
+    for (int i = 0; i < kProblem.num_vars; ++i) F[i] -= sigma * start[i];
+  };
+  Shooter shooter(s, shifted, shifted_jacobian, kContinuationStart);
   const auto anything = [](const double*) { return true; };
   const bool moved = continue_to_zero(s, 1.0, [&](double value) {
     sigma = value;
@@ -41,15 +45,18 @@ inline bool shift_rows(const Settings& s, std::vector<double>& x, double eps, Re
   return moved;
 }
 
-// A pass over a new active set, warm from the last pass's result `warm`:
-//   first from its solution x (eps = 0), smoothed (eps raised by decades to eps_start as far as
-//     each step, a Newton solve from the last, converges), the rows shifted there (shift_rows),
-//     and eps continued back to 0;
-//   else from its solution at eps_start (x_start), where the problem is smooth and a bound can
-//     move far (S10's periapsis radius by a factor of ten), shifted there and continued to 0.
+// A pass over a new active set, warm from the last pass's result `warm`, by the first of these
+// routes whose solution `pushes` (its active bounds' multipliers are not negative: a route that
+// ends on the other side has followed the homotopy to another branch):
+//   from its solution x (eps = 0), smoothed (eps raised by decades to eps_start as far as each
+//     step, a Newton solve from the last, converges), the rows shifted there (shift_rows), and
+//     eps continued back to 0;
+//   when x could be smoothed, from x itself, the rows shifted at eps = 0;
+//   from its solution at eps_start (x_start), where the problem is smooth and a bound can move
+//     far (S10's periapsis radius by a factor of ten), shifted there and continued to 0.
 // True when eps = 0 was reached (warm.x is then the solution).
-template <class Admissible>
-bool bound_homotopy(const Settings& s, Result& warm, Admissible&& admissible) {
+template <class Admissible, class Pushes>
+bool bound_homotopy(const Settings& s, Result& warm, Admissible&& admissible, Pushes&& pushes) {
   const auto to_zero = [&](std::vector<double>& x, double eps) {
     double res = 0;
     int info = 0;
@@ -64,13 +71,13 @@ bool bound_homotopy(const Settings& s, Result& warm, Admissible&& admissible) {
       warm.F = single.last_F;
       warm.x = x;
     }
-    return reached;
+    return reached && pushes(x.data());
   };
-  const std::vector<double> last_start = warm.x_start;
-  std::vector<double> x = warm.x;
+  const std::vector<double> last_start = warm.x_start, last = warm.x;
+  std::vector<double> x = last;
   double eps = 0;
   {
-    Shooter plain(s, shooting_function, kContinuationStart);
+    Shooter plain(s, kContinuationStart);
     const auto anything = [](const double*) { return true; };
     for (double next = 1e-4; next <= s.eps_start * (1 + 1e-12); next *= 10) {
       std::vector<double> trial = x;
@@ -85,6 +92,13 @@ bool bound_homotopy(const Settings& s, Result& warm, Admissible&& admissible) {
   if (shift_rows(s, x, eps, warm) && to_zero(x, eps)) {
     if (eps != s.eps_start) warm.x_start = last_start;  // to_zero set it at eps
     return true;
+  }
+  if (eps > 0) {
+    x = last;
+    if (shift_rows(s, x, 0.0, warm) && to_zero(x, 0.0)) {
+      warm.x_start = last_start;
+      return true;
+    }
   }
   if (last_start.empty()) return false;
   x = last_start;
@@ -155,7 +169,12 @@ bool active_set_passes(const Settings& s, const std::vector<Bound>& bounds, Resu
     warm.x = r.x;
     warm.x_start = r.x_start;
     warm.method = "warm from pass " + std::to_string(pass - 1) + " by a homotopy on the bounds' rows";
-    if (bound_homotopy(s, warm, admissible)) {
+    const auto pushes = [&](const double* x) {
+      for (std::size_t k = 0; k < bounds.size(); ++k)
+        if (state.active[k] && x[bounds[k].multiplier] < 0) return false;
+      return true;
+    };
+    if (bound_homotopy(s, warm, admissible, pushes)) {
       warm.status = "converged";
       warm.eps = 0;
       warm.attempts = 1;

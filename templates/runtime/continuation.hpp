@@ -243,7 +243,17 @@ class EventContinuation {
       for (const auto& ev : plan_.events)
         for (const auto& [v, row] : ev.parameters) G[row] = z[v];
     };
-    Shooter shooter(s_, toward_targets, kContinuationStart);
+    const JacobianResidual toward_targets_jacobian = [&](const double* z, double e, Propagator& p, double* G,
+                                                         double* J) {
+      shooting_jacobian(z, e, p, G, J);
+      for (int i = 0; i < N; ++i) G[i] -= (1 - tau) * F0[i];
+      for (const auto& ev : plan_.events)
+        for (const auto& [v, row] : ev.parameters) {
+          G[row] = z[v];
+          for (int j = 0; j < N; ++j) J[row + j * N] = j == v ? 1.0 : 0.0;
+        }
+    };
+    Shooter shooter(s_, toward_targets, toward_targets_jacobian, kContinuationStart);
     std::vector<double> previous = x_;
     double tau_previous = 0, step = 0.1;
     bool reached = false;
@@ -298,7 +308,18 @@ class EventContinuation {
       for (const auto& ev : plan_.events)
         for (const auto& [v, row] : ev.parameters) G[row] += kappa * weight[v] * z[plan_.multiplier] * z[v];
     };
-    Shooter shooter(s_, penalized, kContinuationStart);
+    const JacobianResidual penalized_jacobian = [&](const double* z, double e, Propagator& p, double* G, double* J) {
+      shooting_jacobian(z, e, p, G, J);
+      const int m = plan_.multiplier;
+      for (const auto& ev : plan_.events)
+        for (const auto& [v, row] : ev.parameters) {
+          const double k = kappa * weight[v];
+          G[row] += k * z[m] * z[v];
+          J[row + v * N] += k * z[m];
+          J[row + m * N] += k * z[v];
+        }
+    };
+    Shooter shooter(s_, penalized, penalized_jacobian, kContinuationStart);
     // The first kappa moves the parameters by about 1e-3.
     const double start = stationarity > 0 ? stationarity / (1e-3 * x_[plan_.multiplier]) : 1.0;
     // Secant predictor in log(kappa) from the last two solutions (the parameters move fast
@@ -365,7 +386,7 @@ class EventContinuation {
   bool eps_to_zero() {
     Settings to_zero = s_;
     to_zero.final_residual = std::max(s_.final_residual, s_.accept_residual);
-    Shooter full(s_, shooting_function, kContinuationStart), polish(s_);
+    Shooter full(s_, kContinuationStart), polish(s_);
     double res = 0;
     int info = 0;
     bool converged = homotopy_to_zero(to_zero, full, x_, r_, admissible_, res);

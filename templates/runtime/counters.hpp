@@ -16,9 +16,10 @@ namespace {
 struct Counters {
   std::atomic<long long> integrations{0};
   std::atomic<long long> integration_ns{0};
-  std::atomic<long long> residual_evaluations{0};     // every call of a solver's function (iflag 1 and 2)
-  std::atomic<long long> jacobian_evaluations{0};     // finite-difference Jacobians (one per n iflag-2 calls)
-  std::atomic<long long> jacobian_residual_calls{0};  // the iflag-2 calls
+  std::atomic<long long> residual_evaluations{0};        // every call of a solver's function (iflag 1 and 2)
+  std::atomic<long long> jacobian_evaluations{0};        // finite-difference Jacobians (one per n iflag-2 calls)
+  std::atomic<long long> jacobian_residual_calls{0};     // the iflag-2 calls
+  std::atomic<long long> exact_jacobian_evaluations{0};  // exact Jacobians (hybrj's iflag-2 calls)
 };
 inline Counters& counters() {
   static Counters c;

@@ -89,8 +89,11 @@ inline constexpr double E5[12] = {
 
 class Dop853 {
  public:
-  explicit Dop853(int n)
+  // n_err: the error norm is over the first n_err components only (the rest, e.g. variational
+  // equations, take the steps the first ones choose); -1: all n.
+  explicit Dop853(int n, int n_err = -1)
       : n_(n < 0 ? 0 : n),
+        n_err_(n_err < 0 || n_err > n_ ? n_ : n_err),
         k_(static_cast<std::size_t>(n_) * 11),
         ytmp_(static_cast<std::size_t>(n_)),
         ynew_(static_cast<std::size_t>(n_)) {}
@@ -133,6 +136,7 @@ class Dop853 {
         e5 += E5[j] * kj;
       }
       yn[i] = y[i] + h * incr;
+      if (i >= n_err_) continue;
       const double e3 = incr - BHH[0] * K[0][i] - BHH[1] * K[8][i] - BHH[2] * K[11][i];
       const double sk = atol + rtol * std::max(std::fabs(y[i]), std::fabs(yn[i]));
       err5 += (e5 / sk) * (e5 / sk);
@@ -141,7 +145,7 @@ class Dop853 {
     // The 3rd-order term keeps the estimate honest where the 5th-order one is accidentally small.
     double deno = err5 + 0.01 * err3;
     if (deno <= 0.0) deno = 1.0;
-    const double err = n > 0 ? std::fabs(h) * err5 * std::sqrt(1.0 / (n * deno)) : 0.0;
+    const double err = n_err_ > 0 ? std::fabs(h) * err5 * std::sqrt(1.0 / (n_err_ * deno)) : 0.0;
 
     std::copy(yn, yn + n, y_new);
     f(t + h, static_cast<const double*>(y_new), f_new);
@@ -159,6 +163,7 @@ class Dop853 {
 
  private:
   int n_;
+  int n_err_;
   std::vector<double> k_;     // stages 2..12, n values each
   std::vector<double> ytmp_;  // stage argument
   std::vector<double> ynew_;  // 8th-order solution before it is copied out

@@ -79,14 +79,15 @@ double hamiltonian(double t, const double* y, const double* control, const Multi
 // A problem without a throttle (throttle_index < 0) has one mode and no throttle_slopes.
 void direction_control(const double* y, double* control);
 void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper);
-// JACOBIAN module (generated from the derivation by GiNaC): the exact first derivatives of the
-// right-hand side at fixed control, dfdy[i * ny + j] = d dy_i / d y_j and dfdu[i * nc + k] =
-// d dy_i / d control_k (ny = 2 num_states, nc = num_controls), and of the direction law,
-// dcontrol_dy[k * ny + j] (the throttle's row zero): the variational equations' pieces.
-void dynamics_jacobian(double t, const double* y, const double* control, const Multipliers& mult, double* dfdy,
+// JACOBIAN module (generated from the derivation by GiNaC): the exact first derivatives in
+// z = (y, lambda0) (nz = ny + 1 = 2 num_states + 1) of the right-hand side at fixed control,
+// dfdz[i * nz + j] = d dy_i / d z_j and dfdu[i * nc + k] = d dy_i / d control_k (nc =
+// num_controls), and of the direction law, dcontrol_dy[k * ny + j] (the throttle's row zero):
+// the variational equations' pieces.
+void dynamics_jacobian(double t, const double* y, const double* control, const Multipliers& mult, double* dfdz,
                        double* dfdu);
 void direction_jacobian(const double* y, double* dcontrol_dy);
-// With a throttle: d/dy_j of throttle_slopes' at_lower and at_upper (ny entries each).
+// With a throttle: d/dz_j of throttle_slopes' at_lower and at_upper (nz entries each).
 void throttle_slopes_jacobian(const double* y, const Multipliers& mult, double* d_lower, double* d_upper);
 // Unpowered dynamics of a coasting target (RESIDUAL module, when the problem has one).
 void coast_dynamics(const double* y, double* dy);
@@ -116,6 +117,9 @@ struct Settings {
   double search_time_s = 0;
   int threads = 0;
   int max_steps = 200000;  // integrator steps per arc
+  // The shooting Jacobian: "exact" (the program's shooting_jacobian, hybrj) where the program has
+  // one, else "finite-difference" (hybrd's forward differences).
+  std::string jacobian = "exact";
   // A neighbour's converged shooting variables at eps = 0 (a sweep's cell, helios-solve
   // --warm-start), in kProblem.variable_names' order; empty: a cold start (the global search).
   std::vector<double> warm_start;
@@ -124,11 +128,92 @@ struct Settings {
 // Seconds since the program's first call.
 double wall_seconds();
 
+// ---- Dual numbers: the shooting function's exact first derivatives (forward mode) -------------
+// The RESIDUAL module is a template on its scalar. On double it is the shooting function; on Dual
+// each value has its derivatives in the variables (the shooting variables, or a leg's), the
+// propagation carries them by the variational equations (with the switching-time and event-time
+// corrections), and the result is the exact Jacobian. A Dual is its value and the row of its
+// derivatives in the thread's tape (dual.hpp), so it is as small as a double's pair and a generated
+// expression on it compiles about as fast as on double (with the derivatives inside the value,
+// g++ took 78-146 s for S10's module). In namespace ad, so that only argument-dependent lookup
+// finds its functions (sqrt, pow, ...): an unqualified sqrt on a double in the runtime stays std's.
+namespace ad {
+
+int width();  // the variables of the Jacobian being evaluated (set by dual_jacobian)
+
+struct Dual {
+  double v = 0;
+  int id = -1;  // its derivatives' row in the thread's tape; -1: a constant (all zero)
+  Dual() = default;
+  Dual(double value) : v(value) {}  // NOLINT(google-explicit-constructor): a constant
+};
+// d a / d x_j, and a new Dual of `value` with the derivatives d[0 .. width()) (nullptr: a constant).
+double derivative(const Dual& a, int j);
+Dual with_derivatives(double value, const double* d);
+
+// The operations, out of line in the library (a generated expression is a chain of calls).
+Dual chain(Dual a, double value, double slope) noexcept;                  // f(a) with f'(a) = slope
+Dual chain(Dual a, Dual b, double value, double da, double db) noexcept;  // f(a, b)
+Dual operator+(Dual a) noexcept;
+Dual operator-(Dual a) noexcept;
+Dual operator+(Dual a, Dual b) noexcept;
+Dual operator-(Dual a, Dual b) noexcept;
+Dual operator*(Dual a, Dual b) noexcept;
+Dual operator/(Dual a, Dual b) noexcept;
+Dual operator+(Dual a, double b) noexcept;
+Dual operator+(double a, Dual b) noexcept;
+Dual operator-(Dual a, double b) noexcept;
+Dual operator-(double a, Dual b) noexcept;
+Dual operator*(Dual a, double b) noexcept;
+Dual operator*(double a, Dual b) noexcept;
+Dual operator/(Dual a, double b) noexcept;
+Dual operator/(double a, Dual b) noexcept;
+inline bool operator<(Dual a, Dual b) noexcept {
+  return a.v < b.v;
+}
+inline bool operator>(Dual a, Dual b) noexcept {
+  return a.v > b.v;
+}
+inline bool operator<=(Dual a, Dual b) noexcept {
+  return a.v <= b.v;
+}
+inline bool operator>=(Dual a, Dual b) noexcept {
+  return a.v >= b.v;
+}
+Dual sqrt(Dual a) noexcept;
+Dual pow(Dual a, double k) noexcept;
+Dual pow(Dual a, Dual b) noexcept;
+Dual pow(double a, Dual b) noexcept;
+Dual exp(Dual a) noexcept;
+Dual log(Dual a) noexcept;
+Dual sin(Dual a) noexcept;
+Dual cos(Dual a) noexcept;
+Dual tan(Dual a) noexcept;
+Dual asin(Dual a) noexcept;
+Dual acos(Dual a) noexcept;
+Dual atan(Dual a) noexcept;
+Dual atan2(Dual a, Dual b) noexcept;  // atan2(y = a, x = b)
+Dual abs(Dual a) noexcept;
+
+}  // namespace ad
+
+using ad::Dual;
+inline double value_of(double a) {
+  return a;
+}
+inline double value_of(const Dual& a) {
+  return a.v;
+}
+
 // Where the targets are (targets.hpp): a planet's (or an orbit body's) normalized state at
-// normalized time t and its rate, and a coasting target's state at t1 from y0 at t0.
+// normalized time t and its rate, and a coasting target's state at t1 from y0 at t0. On a Dual
+// time, with their derivatives through it.
 std::array<double, 6> ephemeris_state(const std::string& body, double t);
 std::array<double, 6> ephemeris_rate(const std::string& body, double t);
 std::array<double, 6> coast_state(const std::array<double, 6>& y0, double t0, double t1);
+std::array<Dual, 6> ephemeris_state(const std::string& body, const Dual& t);
+std::array<Dual, 6> ephemeris_rate(const std::string& body, const Dual& t);
+std::array<Dual, 6> coast_state(const std::array<double, 6>& y0, double t0, const Dual& t1);
 
 struct Sample {
   int arc;  // samples of one propagate() call share an arc; H may jump only between arcs
@@ -165,9 +250,22 @@ class Propagator {
   std::vector<Switch>* switches = nullptr;
   double max_step = INFINITY;  // limits steps when recording, for smooth plots
 
-  void propagate(double t0, double t1, double* y, const Multipliers& mult);
+  // With `tangents`: also carries k tangent directions of z = (y, lambda0) by the variational
+  // equations (the same steps as y, so they are the derivatives of the integration itself), with
+  // the jump each switch makes in them.
+  struct Tangents {
+    double* Y;  // (ny + 1) x k, row-major; row ny (lambda0) is constant
+    int k;
+  };
+  void propagate(double t0, double t1, double* y, const Multipliers& mult, Tangents* tangents = nullptr);
 
  private:
+  // One step of y and the tangents from t to t + h in `mode` (y_new has ny entries).
+  void tangent_step(double t, const double* y, double h, Mode mode, const Multipliers& mult, Tangents& tangents,
+                    double* y_new);
+  // The tangents' jump at a switch at y from mode `from` (stay function `crossed`) to mode `to`.
+  static void switch_jump(double t, const double* y, Mode from, int crossed, Mode to, const Multipliers& mult,
+                          Tangents& tangents);
   template <class Rhs>
   double locate_switch(Rhs& rhs, double t, const double* y, Mode mode, const Multipliers& mult, int crossed, double ga,
                        double gb, double b);
@@ -178,22 +276,52 @@ class Propagator {
 
   const Settings& settings_;
   std::unique_ptr<Dop853> stepper_;
+  std::unique_ptr<Dop853> tangent_stepper_;  // y and k tangents; its error is y's alone
   int arc_ = 0;
 };
 
+// What the RESIDUAL module's template calls, on double and on Dual: the multipliers of the
+// dynamics (lambda0, eps), the propagation from t0 to t1 (on Dual: by the variational equations,
+// with the derivatives in t0 and t1), and H at (t, y) under the optimal control.
+struct DualMultipliers {
+  Dual lambda0;
+  double eps;
+};
+inline Multipliers multipliers(double lambda0, double eps) {
+  return {lambda0, eps};
+}
+inline DualMultipliers multipliers(const Dual& lambda0, double eps) {
+  return {lambda0, eps};
+}
+void propagate(Propagator& prop, double t0, double t1, double* y, const Multipliers& mult);
+void propagate(Propagator& prop, const Dual& t0, const Dual& t1, Dual* y, const DualMultipliers& mult);
+double optimal_hamiltonian(double t, const double* y, const Multipliers& mult);
+Dual optimal_hamiltonian(const Dual& t, const Dual* y, const DualMultipliers& mult);
+
 // The shooting function of the RESIDUAL module, with the bookkeeping hybrd1 needs.
 void shooting_function(const double* x, double eps, Propagator& prop, double* F);
+// Its exact Jacobian (RESIDUAL module, when the program has the JACOBIAN module): F and
+// J[i + j * n] = dF_i / dx_j (column-major, as cminpack's hybrj takes it).
+void shooting_jacobian(const double* x, double eps, Propagator& prop, double* F, double* J);
+// F and J (column-major) of a function of n variables at x, from the function on dual numbers:
+// x seeded as the unit directions, so F's derivatives are J's columns.
+void dual_jacobian(int n, const double* x, double* F, double* J,
+                   const std::function<void(const Dual* x, Dual* F)>& dual_function);
 
 // Problems with interior events also have the shooting function by legs (RESIDUAL module):
 // stop_at = k solves leg k alone (it ends at event k as if the trajectory ended there);
 // stop_at = -1 is multiple shooting: after event k the costates restart from starts[k*n...] and
 // their mismatch with the jump conditions is written to continuity[k*n...].
-struct Legs {
+template <class T>
+struct LegsOf {
   int stop_at = -1;
-  const double* starts = nullptr;
-  double* continuity = nullptr;
+  const T* starts = nullptr;
+  T* continuity = nullptr;
 };
+using Legs = LegsOf<double>;
 void shooting_legs(const double* x, double eps, Propagator& prop, double* F, const Legs* legs);
+// The same on dual numbers (RESIDUAL module, with the JACOBIAN module): the legs' exact Jacobians.
+void shooting_legs_dual(const Dual* x, double eps, Propagator& prop, Dual* F, const LegsOf<Dual>* legs);
 using Residual = std::function<void(const double* x, double eps, Propagator& prop, double* F)>;
 
 // Which shooting variables each leg solves for alone (indices into x; leg k > 0 also solves for
@@ -247,6 +375,7 @@ struct BoundReport {
 // Row k of the shooting function for bound k: records psi and returns it when the bound is
 // active, else the inactive expression (its multiplier).
 double bound_row(int k, double psi, double inactive);
+Dual bound_row(int k, const Dual& psi, const Dual& inactive);
 
 // What a solve records: homotopy, leg and continuation steps, the search's extremals, the result.
 struct HomotopyStep {

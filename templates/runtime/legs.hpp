@@ -20,7 +20,14 @@ bool join_legs(const Settings& s, std::vector<double> x, const std::vector<doubl
     const Legs legs{-1, z + N, F + N};
     shooting_legs(z, eps, prop, F, &legs);
   };
-  Shooter shooter(s, multiple);
+  const int size = N + static_cast<int>(starts.size());
+  const JacobianResidual multiple_jacobian = [&](const double* z, double eps, Propagator& prop, double* F, double* J) {
+    dual_jacobian(size, z, F, J, [&](const Dual* zd, Dual* Fd) {
+      const LegsOf<Dual> legs{-1, zd + N, Fd + N};
+      shooting_legs_dual(zd, eps, prop, Fd, &legs);
+    });
+  };
+  Shooter shooter(s, multiple, multiple_jacobian);
   std::vector<double> z(x);
   z.insert(z.end(), starts.begin(), starts.end());
   double res = 0;
@@ -69,15 +76,24 @@ bool legs_attempt(const Settings& s, const LegPlan& plan, Guess&& initial_guess,
   for (int k = 0; k <= events && legs_solved; ++k) {
     const auto& own = plan.variables[k];
     const int m = static_cast<int>(own.size()) + (k > 0 ? n : 0);
-    const Residual leg = [&, k](const double* z, double eps, Propagator& prop, double* F) {
-      std::vector<double> xx = x, st = starts;
+    // Leg k's variables z in the whole x and the starts, on double or on Dual.
+    const auto leg_call = [&, k](const auto* z, double eps, Propagator& prop, auto* F) {
+      using T = std::remove_cv_t<std::remove_pointer_t<decltype(z)>>;
+      std::vector<T> xx(x.begin(), x.end()), st(starts.begin(), starts.end());
       for (std::size_t j = 0; j < own.size(); ++j) xx[own[j]] = z[j];
       if (k > 0)
         for (int i = 0; i < n; ++i) st[(k - 1) * n + i] = z[own.size() + i];
-      const Legs legs{k, st.data(), nullptr};
-      shooting_legs(xx.data(), eps, prop, F, &legs);
+      const LegsOf<T> legs{k, st.data(), nullptr};
+      if constexpr (std::is_same_v<T, double>)
+        shooting_legs(xx.data(), eps, prop, F, &legs);
+      else
+        shooting_legs_dual(xx.data(), eps, prop, F, &legs);
     };
-    Shooter shooter(s, leg);
+    const Residual leg = [&](const double* z, double eps, Propagator& prop, double* F) { leg_call(z, eps, prop, F); };
+    const JacobianResidual leg_jacobian = [&](const double* z, double eps, Propagator& prop, double* F, double* J) {
+      dual_jacobian(m, z, F, J, [&](const Dual* zd, Dual* Fd) { leg_call(zd, eps, prop, Fd); });
+    };
+    Shooter shooter(s, leg, leg_jacobian);
     bool solved = false;
     for (int tries = 0; tries < s.leg_attempts && !solved; ++tries) {
       std::vector<double> z(m);

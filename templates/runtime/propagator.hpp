@@ -9,7 +9,7 @@ namespace helios_rt {
 Propagator::Propagator(const Settings& s) : settings_(s), stepper_(std::make_unique<Dop853>(ny())) {}
 Propagator::~Propagator() = default;
 
-void Propagator::propagate(double t0, double t1, double* y, const Multipliers& mult) {
+void Propagator::propagate(double t0, double t1, double* y, const Multipliers& mult, Tangents* tangents) {
   const IntegrationTimer timer;
   ++arc_;
   Mode mode = mode_at(y, mult);
@@ -45,6 +45,7 @@ void Propagator::propagate(double t0, double t1, double* y, const Multipliers& m
       if (g_old[k] >= 0 && g_new[k] < 0) crossed = k;
     if (crossed < 0 && ng > 0) crossed = dip(t, y, f0.data(), h, ynew.data(), fnew.data(), mode, mult, b, g_new);
     if (crossed < 0) {
+      if (tangents) tangent_step(t, y, h, mode, mult, *tangents, ynew.data());
       t = last ? t1 : t + h;
       std::copy(ynew.begin(), ynew.begin() + ny(), y);
       record(t, y, mode, mult);
@@ -53,11 +54,17 @@ void Propagator::propagate(double t0, double t1, double* y, const Multipliers& m
     }
     // Step to the far side of the switch's bracket so the new mode starts past the switch.
     const double hs = locate_switch(rhs, t, y, mode, mult, crossed, g_old[crossed], g_new[crossed], b);
-    rhs(t, y, f0.data());
-    stepper_->step(rhs, t, y, f0.data(), hs, ynew.data(), fnew.data(), settings_.atol, settings_.rtol);
+    if (tangents) {
+      tangent_step(t, y, hs, mode, mult, *tangents, ynew.data());
+    } else {
+      rhs(t, y, f0.data());
+      stepper_->step(rhs, t, y, f0.data(), hs, ynew.data(), fnew.data(), settings_.atol, settings_.rtol);
+    }
     t += hs;
     std::copy(ynew.begin(), ynew.begin() + ny(), y);
+    const Mode before = mode;
     mode = next_mode(mode, crossed, mult);
+    if (tangents) switch_jump(t, y, before, crossed, mode, mult, *tangents);
     record(t, y, mode, mult);
     if (switches) {
       std::array<double, kMaxControls> control{};
@@ -68,6 +75,109 @@ void Propagator::propagate(double t0, double t1, double* y, const Multipliers& m
     // the next switch would bracket that round-off instead. A short one moves clear of it, and
     // the step control grows the steps again.
     h = 1e-6 * (1 + std::fabs(t1 - t0));
+  }
+}
+
+namespace {
+
+// The variational equations' matrix A = df/dz + df/du du/dz at (t, y) in `mode` (ny x nz,
+// row-major; z = (y, lambda0)), with the control there and f itself. The direction law's
+// du/dy is the JACOBIAN module's; the interior throttle u = s0 / (s0 - s1) is differentiated here.
+void variational_matrix(double t, const double* y, Mode mode, const Multipliers& mult, double* A, double* f) {
+  const int n = ny(), nz = n + 1, nc = kProblem.num_controls;
+  std::array<double, kMaxControls> control{};
+  std::array<double, kMaxNY*(kMaxNY + 1)> dfdz{};
+  std::array<double, kMaxNY * kMaxControls> dfdu{};
+  std::array<double, kMaxControls*(kMaxNY + 1)> dudz{};
+  control_in_mode(y, mode, mult, control.data());
+  dynamics(t, y, control.data(), mult, f);
+  dynamics_jacobian(t, y, control.data(), mult, dfdz.data(), dfdu.data());
+  {
+    std::array<double, kMaxControls * kMaxNY> dcontrol_dy{};
+    direction_jacobian(y, dcontrol_dy.data());
+    for (int k = 0; k < nc; ++k)
+      for (int j = 0; j < n; ++j) dudz[k * nz + j] = dcontrol_dy[k * n + j];
+  }
+  const int u = kProblem.throttle_index;
+  if (u >= 0) {
+    for (int j = 0; j < nz; ++j) dudz[u * nz + j] = 0;
+    if (mode == kInterior) {
+      double s0 = 0, s1 = 0;
+      std::array<double, kMaxNY + 1> d0{}, d1{};
+      throttle_slopes(y, mult, s0, s1);
+      throttle_slopes_jacobian(y, mult, d0.data(), d1.data());
+      const double q = 1 / ((s0 - s1) * (s0 - s1));
+      for (int j = 0; j < nz; ++j) dudz[u * nz + j] = (s0 * d1[j] - s1 * d0[j]) * q;
+    }
+  }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < nz; ++j) {
+      double a = dfdz[i * nz + j];
+      for (int k = 0; k < nc; ++k) a += dfdu[i * nc + k] * dudz[k * nz + j];
+      A[i * nz + j] = a;
+    }
+}
+
+}  // namespace
+
+void Propagator::tangent_step(double t, const double* y, double h, Mode mode, const Multipliers& mult,
+                              Tangents& tangents, double* y_new) {
+  const int n = ny(), nz = n + 1, k = tangents.k, size = n + n * k;
+  if (!tangent_stepper_ || tangent_stepper_->size() != size) tangent_stepper_ = std::make_unique<Dop853>(size, n);
+  const double* lambda0_row = tangents.Y + n * k;
+  std::vector<double> A(static_cast<std::size_t>(n * nz));
+  // w = (y, Y's first ny rows); w' = (f, A (Y; lambda0 row)).
+  auto rhs = [&](double tt, const double* w, double* dw) {
+    variational_matrix(tt, w, mode, mult, A.data(), dw);
+    const double* Y = w + n;
+    double* dY = dw + n;
+    std::fill(dY, dY + n * k, 0.0);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < nz; ++j) {
+        const double a = A[i * nz + j];
+        if (a == 0) continue;
+        const double* from = j < n ? Y + j * k : lambda0_row;
+        for (int c = 0; c < k; ++c) dY[i * k + c] += a * from[c];
+      }
+  };
+  std::vector<double> w(static_cast<std::size_t>(size)), f0(w.size()), w_new(w.size()), f_new(w.size());
+  std::copy(y, y + n, w.begin());
+  std::copy(tangents.Y, tangents.Y + n * k, w.begin() + n);
+  rhs(t, w.data(), f0.data());
+  tangent_stepper_->step(rhs, t, w.data(), f0.data(), h, w_new.data(), f_new.data(), settings_.atol, settings_.rtol);
+  std::copy(w_new.begin(), w_new.begin() + n, y_new);
+  std::copy(w_new.begin() + n, w_new.end(), tangents.Y);
+}
+
+// At a switch the state's slope jumps from f- to f+, and the switching time moves with the
+// start: dt_s = -(grad g . dz) / (grad g . f-). The tangents after it are
+// dz+ = dz- + (f+ - f-) (grad g . dz-) / (grad g . f-) (g the stay function that crossed 0).
+void Propagator::switch_jump(double t, const double* y, Mode from, int crossed, Mode to, const Multipliers& mult,
+                             Tangents& tangents) {
+  if (kProblem.throttle_index < 0) return;
+  const int n = ny(), k = tangents.k;
+  std::array<double, kMaxNY> f_before{}, f_after{};
+  std::array<double, kMaxControls> control{};
+  control_in_mode(y, from, mult, control.data());
+  dynamics(t, y, control.data(), mult, f_before.data());
+  control_in_mode(y, to, mult, control.data());
+  dynamics(t, y, control.data(), mult, f_after.data());
+  std::array<double, kMaxNY + 1> d0{}, d1{}, grad{};
+  throttle_slopes_jacobian(y, mult, d0.data(), d1.data());
+  // The stay functions (controls.hpp): off s0, full -s1, interior (-s0, s1).
+  for (int j = 0; j <= n; ++j) {
+    if (from == kOff) grad[j] = d0[j];
+    if (from == kFull) grad[j] = -d1[j];
+    if (from == kInterior) grad[j] = crossed == 0 ? -d0[j] : d1[j];
+  }
+  double rate = 0;
+  for (int j = 0; j < n; ++j) rate += grad[j] * f_before[j];
+  if (rate == 0) throw numerical_error("a switch is tangent to its switching surface (grad g . f = 0)");
+  for (int c = 0; c < k; ++c) {
+    double g_dot_dz = 0;
+    for (int j = 0; j <= n; ++j) g_dot_dz += grad[j] * tangents.Y[j * k + c];
+    const double dt = g_dot_dz / rate;
+    for (int i = 0; i < n; ++i) tangents.Y[i * k + c] += (f_after[i] - f_before[i]) * dt;
   }
 }
 
@@ -156,6 +266,95 @@ void Propagator::record(double t, const double* y, Mode mode, const Multipliers&
   s.H = hamiltonian(t, y, s.control.data(), mult);
   s.S = switching_value(y, mult);
   samples->push_back(s);
+}
+
+// ---- The RESIDUAL module's calls on double and on Dual ----------------------------------------
+
+void propagate(Propagator& prop, double t0, double t1, double* y, const Multipliers& mult) {
+  prop.propagate(t0, t1, y, mult);
+}
+
+namespace {
+
+// f at (t, y) under the optimal control there.
+void optimal_rhs(double t, const double* y, const Multipliers& mult, double* f) {
+  std::array<double, kMaxControls> control{};
+  control_in_mode(y, mode_at(y, mult), mult, control.data());
+  dynamics(t, y, control.data(), mult, f);
+}
+
+}  // namespace
+
+// y(t1) from y(t0) with its derivatives: d y(t1) = Phi (d y(t0) - f(t0) d t0) + f(t1) d t1, where
+// Phi carries z = (y, lambda0). Only the tangent directions that are not zero are propagated; when
+// there are more of them than z has components, Phi itself is, and multiplied after.
+void propagate(Propagator& prop, const Dual& t0, const Dual& t1, Dual* y, const DualMultipliers& m) {
+  const int n = ny(), nz = n + 1, nv = ad::width();
+  const Multipliers mult{m.lambda0.v, m.eps};
+  std::array<double, kMaxNY> yv{}, f{};
+  for (int i = 0; i < n; ++i) yv[i] = y[i].v;
+  optimal_rhs(t0.v, yv.data(), mult, f.data());
+  std::vector<double> start(static_cast<std::size_t>(nz * nv));  // dz(t0), nz x nv
+  for (int j = 0; j < nv; ++j) {
+    const double dt0 = ad::derivative(t0, j);
+    for (int i = 0; i < n; ++i) start[i * nv + j] = ad::derivative(y[i], j) - f[i] * dt0;
+    start[n * nv + j] = ad::derivative(m.lambda0, j);
+  }
+  std::vector<int> columns;
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nz; ++i)
+      if (start[i * nv + j] != 0) {
+        columns.push_back(j);
+        break;
+      }
+  const bool whole = static_cast<int>(columns.size()) > nz;
+  const int k = whole ? nz : static_cast<int>(columns.size());
+  std::vector<double> Y(static_cast<std::size_t>(nz * k), 0.0);
+  for (int i = 0; i < nz; ++i)
+    for (int c = 0; c < k; ++c) Y[i * k + c] = whole ? (i == c ? 1.0 : 0.0) : start[i * nv + columns[c]];
+  Propagator::Tangents tangents{Y.data(), k};
+  prop.propagate(t0.v, t1.v, yv.data(), mult, k > 0 ? &tangents : nullptr);
+  optimal_rhs(t1.v, yv.data(), mult, f.data());
+  std::vector<double> dt1(static_cast<std::size_t>(nv)), d(dt1.size());
+  for (int j = 0; j < nv; ++j) dt1[j] = ad::derivative(t1, j);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < nv; ++j) d[j] = f[i] * dt1[j];
+    if (whole) {
+      for (int c = 0; c < nz; ++c)
+        for (int j = 0; j < nv; ++j) d[j] += Y[i * k + c] * start[c * nv + j];
+    } else {
+      for (int c = 0; c < k; ++c) d[columns[c]] += Y[i * k + c];
+    }
+    y[i] = ad::with_derivatives(yv[i], d.data());
+  }
+}
+
+double optimal_hamiltonian(double t, const double* y, const Multipliers& mult) {
+  std::array<double, kMaxControls> control{};
+  control_in_mode(y, mode_at(y, mult), mult, control.data());
+  return hamiltonian(t, y, control.data(), mult);
+}
+
+// H at the optimal control, differentiated by the envelope theorem: the control minimizes H, so
+// dH = dH/dx dx + dH/dlambda dlambda + dH/dlambda0 dlambda0 at fixed control, where
+// dH/dx = -lambda', dH/dlambda = x' (the costate and state equations) and dH/dlambda0 = L (H is
+// linear in lambda0). The dynamics are autonomous (the JACOBIAN module is generated only then).
+Dual optimal_hamiltonian(const Dual& t, const Dual* y, const DualMultipliers& m) {
+  const int n = ny(), ns = kProblem.num_states, nv = ad::width();
+  const Multipliers mult{m.lambda0.v, m.eps};
+  std::array<double, kMaxNY> yv{}, f{};
+  for (int i = 0; i < n; ++i) yv[i] = y[i].v;
+  std::array<double, kMaxControls> control{};
+  control_in_mode(yv.data(), mode_at(yv.data(), mult), mult, control.data());
+  dynamics(t.v, yv.data(), control.data(), mult, f.data());
+  const double running_cost = hamiltonian(t.v, yv.data(), control.data(), Multipliers{1.0, m.eps}) -
+                              hamiltonian(t.v, yv.data(), control.data(), Multipliers{0.0, m.eps});
+  std::vector<double> d(static_cast<std::size_t>(nv));
+  for (int j = 0; j < nv; ++j) {
+    d[j] = running_cost * ad::derivative(m.lambda0, j);
+    for (int i = 0; i < ns; ++i) d[j] += -f[ns + i] * ad::derivative(y[i], j) + f[i] * ad::derivative(y[ns + i], j);
+  }
+  return ad::with_derivatives(hamiltonian(t.v, yv.data(), control.data(), mult), d.data());
 }
 
 }  // namespace helios_rt

@@ -57,6 +57,7 @@ inline Settings read_settings(const std::string& path) {
   s.search_attempts = j.value("search_attempts", s.search_attempts);
   s.search_time_s = j.value("search_time_s", s.search_time_s);
   s.threads = j.value("threads", s.threads);
+  s.jacobian = j.value("jacobian", s.jacobian);
   if (j.contains("warm_start")) s.warm_start = warm_start_of(j.at("warm_start"));
   return s;
 }
@@ -281,16 +282,19 @@ inline void solution_record(const Settings& s, const Result& r, const std::strin
 
 // What the solve's integrations cost (counters.hpp), as solution.json records it ("integration"):
 // taken before the final solution's re-propagation for the trajectory, so it counts the solve alone.
-inline nlohmann::ordered_json integration_record() {
+// "jacobian" says which the shooting function's solves used; the homotopies of it (a leg alone,
+// the continuation onto the events) always use finite differences, counted apart.
+inline nlohmann::ordered_json integration_record(const Settings& s) {
   const Counters& c = counters();
   const double seconds = static_cast<double>(c.integration_ns.load()) * 1e-9;
   return {{"integrations", c.integrations.load()},
           {"integration_s", seconds},
           {"solve_s", wall_seconds()},
           {"residual_evaluations", c.residual_evaluations.load()},
-          {"jacobian", "finite-difference"},
+          {"jacobian", exact_jacobian(s) ? "exact" : "finite-difference"},
           {"jacobian_evaluations", c.jacobian_evaluations.load()},
-          {"jacobian_residual_evaluations", c.jacobian_residual_calls.load()}};
+          {"jacobian_residual_evaluations", c.jacobian_residual_calls.load()},
+          {"exact_jacobian_evaluations", c.exact_jacobian_evaluations.load()}};
 }
 
 // The outcome of the solve under schemas/solution.schema.json's keys: every key but those
@@ -308,7 +312,7 @@ inline nlohmann::ordered_json outcome_record(const Settings& s, const Result& r,
   out["function_evaluations"] = r.evaluations;
   out["start"] = r.start;
   if (!r.start_detail.empty()) out["start_detail"] = r.start_detail;
-  out["integration"] = integration_record();
+  out["integration"] = integration_record(s);
   steps_record(r, out);
   if (r.status == "converged") solution_record(s, r, trajectory_path, out);
   return out;

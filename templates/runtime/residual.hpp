@@ -32,4 +32,26 @@ double bound_row(int k, double psi, double inactive) {
   return b.active[k] ? psi : inactive;
 }
 
+Dual bound_row(int k, const Dual& psi, const Dual& inactive) {
+  bound_row(k, psi.v, inactive.v);
+  return bound_state().active[k] ? psi : inactive;
+}
+
+void dual_jacobian(int n, const double* x, double* F, double* J,
+                   const std::function<void(const Dual* x, Dual* F)>& dual_function) {
+  ad::begin_jacobian(n);
+  std::vector<Dual> xd, Fd(static_cast<std::size_t>(n));
+  std::vector<double> unit(static_cast<std::size_t>(n), 0.0);
+  for (int j = 0; j < n; ++j) {
+    unit[j] = 1;
+    xd.push_back(ad::with_derivatives(x[j], unit.data()));
+    unit[j] = 0;
+  }
+  dual_function(xd.data(), Fd.data());
+  for (int i = 0; i < n; ++i) {
+    F[i] = Fd[i].v;
+    for (int j = 0; j < n; ++j) J[i + j * n] = ad::derivative(Fd[i], j);
+  }
+}
+
 }  // namespace helios_rt

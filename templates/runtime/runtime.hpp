@@ -17,6 +17,7 @@
 // clang-format off
 #include "helios_runtime.hpp"
 #include "dop853.hpp"
+#include "dual.hpp"
 #include "counters.hpp"
 #include "controls.hpp"
 #include "targets.hpp"

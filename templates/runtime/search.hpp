@@ -325,7 +325,7 @@ class MultiStart {
   // this one's continuation.
   bool continue_one(int which, Extremal& e) {
     const StartExtremal& from = rec_.start_extremals[which];
-    Shooter shooter(s_, shooting_function, kContinuationStart);
+    Shooter shooter(s_, kContinuationStart);
     Result path;
     std::vector<double> x = from.x;
     double res = 0, revolutions = from.shape.revolutions;
@@ -420,7 +420,7 @@ Result warm_solve(const Settings& s, Admissible& admissible) {
     if (wall_seconds() > s.time_limit_s) break;
     x = s.warm_start;
     Result path;
-    Shooter shooter(s, shooting_function, kContinuationStart);
+    Shooter shooter(s, kContinuationStart);
     double res = 0;
     int info = 0;
     try {

@@ -35,12 +35,36 @@ struct HybrdStart {
 };
 constexpr HybrdStart kContinuationStart{1.0, true};
 
+// Whether the solves of the shooting function use its exact Jacobian: the program has one (the
+// JACOBIAN module) and the settings ask for it.
+inline bool exact_jacobian(const Settings& s) {
+  return shooting_jacobian != nullptr && s.jacobian == "exact";
+}
+
+// F and its Jacobian J (column-major, J[i + j n] = dF_i/dx_j) at x: shooting_jacobian, or a
+// homotopy of the shooting function with its terms differentiated.
+using JacobianResidual = std::function<void(const double* x, double eps, Propagator& prop, double* F, double* J)>;
+
 class Shooter {
  public:
-  explicit Shooter(const Settings& s, Residual residual = shooting_function, HybrdStart start = {})
+  // The shooting function itself, with its exact Jacobian where the program has one.
+  explicit Shooter(const Settings& s, HybrdStart start = {})
+      : Shooter(s, shooting_function, shooting_jacobian, start) {}
+  // A function of the variables and its exact Jacobian (used where exact_jacobian).
+  Shooter(const Settings& s, Residual residual, JacobianResidual jacobian, HybrdStart start = {})
+      : settings_(s),
+        prop_(s),
+        residual_(std::move(residual)),
+        jacobian_(std::move(jacobian)),
+        start_(start),
+        exact_(exact_jacobian(s)) {}
+  // Any other function of the variables (a leg alone, multiple shooting): hybrd's
+  // finite-difference Jacobian.
+  Shooter(const Settings& s, Residual residual, HybrdStart start = {})
       : settings_(s), prop_(s), residual_(std::move(residual)), start_(start) {}
 
-  // hybrd1 from x at eps; true if max|F| <= accept. Returns the info code through `info`.
+  // hybrd1 (hybrj1 with the exact Jacobian) from x at eps; true if max|F| <= accept. Returns the
+  // info code through `info`.
   bool solve(std::vector<double>& x, double eps, double accept, int& info, double& max_res) {
     eps_ = eps;
     failed_ = false;
@@ -48,7 +72,18 @@ class Shooter {
     size_ = n;
     std::vector<double> F(n), wa(static_cast<std::size_t>(n * (3 * n + 13)) / 2 + 1);
     const int before = evaluations;
-    if (start_.factor == 100 && !start_.scaled) {
+    if (exact_) {
+      std::vector<double> J(static_cast<std::size_t>(n * n));
+      const int lr = n * (n + 1) / 2;
+      std::vector<double> w(static_cast<std::size_t>(6 * n + lr));
+      for (int j = 0; j < n; ++j) w[j] = 1;
+      int nfev = 0, njev = 0;
+      // hybrj1's call (100 (n + 1) evaluations of F, D = 1) with hybrd's start
+      info = hybrj(&Shooter::callback_with_jacobian, this, n, x.data(), F.data(), J.data(), n, settings_.hybrd_tol,
+                   100 * (n + 1), w.data(), start_.scaled ? 1 : 2, start_.factor, 0, &nfev, &njev, w.data() + 6 * n, lr,
+                   w.data() + n, w.data() + 2 * n, w.data() + 3 * n, w.data() + 4 * n, w.data() + 5 * n);
+      if (info == 5) info = 4;
+    } else if (start_.factor == 100 && !start_.scaled) {
       info = hybrd1(&Shooter::callback, this, n, x.data(), F.data(), settings_.hybrd_tol, wa.data(),
                     static_cast<int>(wa.size()));
     } else {  // hybrd1's call with the trust region's start changed
@@ -113,10 +148,43 @@ class Shooter {
     return 0;
   }
 
+  // hybrj's function: F (iflag 1) or the exact Jacobian J (iflag 2) at x.
+  static int callback_with_jacobian(void* self, int n, const double* x, double* F, double* J, int ldfjac, int iflag) {
+    auto* me = static_cast<Shooter*>(self);
+    Counters& c = counters();
+    if (wall_seconds() > me->settings_.time_limit_s) {
+      me->failed_ = true;
+      return -1;
+    }
+    if (iflag == 1) {
+      c.residual_evaluations.fetch_add(1, std::memory_order_relaxed);
+      if (!me->evaluate(x, F))
+        for (int i = 0; i < n; ++i) F[i] = 1e6;  // as in callback: hybrj backs off
+      return 0;
+    }
+    c.exact_jacobian_evaluations.fetch_add(1, std::memory_order_relaxed);
+    std::vector<double> F_at(static_cast<std::size_t>(n));
+    bool finite = true;
+    try {
+      me->jacobian_(x, me->eps_, me->prop_, F_at.data(), J);
+      for (int k = 0; k < n * ldfjac; ++k) finite = finite && std::isfinite(J[k]);
+    } catch (const numerical_error&) {
+      finite = false;
+    }
+    // hybrj asks for a Jacobian only at a point whose F it has; a failed one stops this solve.
+    if (!finite) {
+      me->failed_ = true;
+      return -1;
+    }
+    return 0;
+  }
+
   const Settings& settings_;
   Propagator prop_;
   Residual residual_;
+  JacobianResidual jacobian_;
   HybrdStart start_;
+  bool exact_ = false;
   int size_ = kProblem.num_vars;
   double eps_ = 1;
   bool failed_ = false;

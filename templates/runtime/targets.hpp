@@ -31,19 +31,19 @@ std::array<double, 6> ephemeris_state(const std::string& body, double t) {
 // Time derivative of the ephemeris model itself, as a free event time's transversality condition
 // needs. A body of kProblem.orbit_bodies moves exactly on its Kepler orbit: (v, -mu r/|r|^3). A
 // JPL low-precision planet's elements drift, so its rate is not the Kepler velocity the model
-// reports: a fourth-order central difference.
+// reports: the model's exact derivative, drift included (astro::jpl_lp_state_rate).
 std::array<double, 6> ephemeris_rate(const std::string& body, double t) {
   if (orbit_body(body)) {
     const auto s = ephemeris_state(body, t);
     const double r = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]), k = -kProblem.mu / (r * r * r);
     return {s[3], s[4], s[5], k * s[0], k * s[1], k * s[2]};
   }
-  const double h = 1e-3 / kProblem.time_unit_days;  // 1e-3 day: truncation ~1e-13, round-off ~1e-12
-  const auto p1 = ephemeris_state(body, t + h), m1 = ephemeris_state(body, t - h);
-  const auto p2 = ephemeris_state(body, t + 2 * h), m2 = ephemeris_state(body, t - 2 * h);
-  std::array<double, 6> d{};
-  for (int i = 0; i < 6; ++i) d[i] = (8 * (p1[i] - m1[i]) - (p2[i] - m2[i])) / (12 * h);
-  return d;
+  const auto d = helios::astro::jpl_lp_state_rate(helios::astro::planet_from_name(body),
+                                                  kProblem.epoch_mjd2000 + t * kProblem.time_unit_days);
+  const double to_position = kProblem.time_unit_days / kProblem.length_unit_km;
+  const double to_velocity = kProblem.time_unit_days / kProblem.speed_unit_km_s;
+  return {d[0] * to_position, d[1] * to_position, d[2] * to_position,
+          d[3] * to_velocity, d[4] * to_velocity, d[5] * to_velocity};
 }
 
 // A coasting target's state at t1 from its state y0 at t0, integrated to 1e-14.
@@ -70,6 +70,51 @@ std::array<double, 6> coast_state(const std::array<double, 6>& y0, double t0, do
     h *= Dop853::step_factor(err);
   }
   return y;
+}
+
+// On a Dual time: the value and its derivative through t (d state = rate dt, d rate = rate' dt).
+namespace {
+std::array<Dual, 6> through_time(const std::array<double, 6>& value, const std::array<double, 6>& rate, const Dual& t) {
+  std::array<Dual, 6> r;
+  for (int i = 0; i < 6; ++i) r[i] = ad::chain(t, value[i], rate[i]);
+  return r;
+}
+}  // namespace
+
+std::array<Dual, 6> ephemeris_state(const std::string& body, const Dual& t) {
+  return through_time(ephemeris_state(body, t.v), ephemeris_rate(body, t.v), t);
+}
+
+// The rate's own rate: for an orbit body exactly, (a, da/dt) with a = -mu r/|r|^3 and
+// da/dt = -mu (v/|r|^3 - 3 r (r.v)/|r|^5); for a JPL low-precision planet, the fourth-order
+// central difference of its exact rate (h = 0.1 day: truncation near 1e-11 of the value, round-off
+// near 1e-12).
+std::array<Dual, 6> ephemeris_rate(const std::string& body, const Dual& t) {
+  const auto rate = ephemeris_rate(body, t.v);
+  std::array<double, 6> second{};
+  if (orbit_body(body)) {
+    const auto s = ephemeris_state(body, t.v);
+    const double r2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2], r = std::sqrt(r2);
+    const double k = -kProblem.mu / (r2 * r), rv = s[0] * s[3] + s[1] * s[4] + s[2] * s[5];
+    for (int i = 0; i < 3; ++i) {
+      second[i] = k * s[i];
+      second[3 + i] = k * (s[3 + i] - 3 * s[i] * rv / r2);
+    }
+  } else {
+    const double h = 0.1 / kProblem.time_unit_days;
+    const auto p1 = ephemeris_rate(body, t.v + h), m1 = ephemeris_rate(body, t.v - h);
+    const auto p2 = ephemeris_rate(body, t.v + 2 * h), m2 = ephemeris_rate(body, t.v - 2 * h);
+    for (int i = 0; i < 6; ++i) second[i] = (8 * (p1[i] - m1[i]) - (p2[i] - m2[i])) / (12 * h);
+  }
+  return through_time(rate, second, t);
+}
+
+// A coasting target's state moves with t1 at its own (autonomous) rate.
+std::array<Dual, 6> coast_state(const std::array<double, 6>& y0, double t0, const Dual& t1) {
+  const auto y1 = coast_state(y0, t0, t1.v);
+  std::array<double, 6> rate{};
+  coast_dynamics(y1.data(), rate.data());
+  return through_time(y1, rate, t1);
 }
 
 }  // namespace helios_rt

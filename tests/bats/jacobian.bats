@@ -1,10 +1,15 @@
 #!/usr/bin/env bats
-# The generated JACOBIAN module (issue 15): the exact first derivatives of the right-hand side,
-# of the direction law and of the throttle slopes against central finite differences of the
-# program's own DYNAMICS and SWITCH modules (tests/bats/jacobian_check.cpp), for every scenario
-# at 20 random points.
-# Tolerance: every entry within 1e-6 of the difference, relative to 1 + its row's largest entry
-# (central differences with h = 1e-6 (1 + |y_j|) agree to ~1e-9 here).
+# The exact Jacobians (issue 15), for every scenario:
+#   - the generated JACOBIAN module: the first derivatives of the right-hand side in z = (y,
+#     lambda0), of the direction law and of the throttle slopes against central finite differences
+#     of the program's own DYNAMICS and SWITCH modules (tests/bats/jacobian_check.cpp), at 20
+#     random points; every entry within 1e-6 of the difference, relative to 1 + its row's largest
+#     entry (central differences with h = 1e-6 (1 + |y_j|) agree to ~1e-9 here);
+#   - the shooting Jacobian (the RESIDUAL module on dual numbers: the variational equations, the
+#     switches' and the free times' corrections) against finite differences of the shooting
+#     function (tests/bats/shooting_jacobian_check.cpp), at random starts at eps = 1 (smooth) and
+#     eps = 0 (bang-bang: switching arcs), and at the scenario's solution
+#     (tests/fixtures/solutions); within 1e-6 relative to 1 + the row's largest entry.
 
 load test_helper
 
@@ -24,7 +29,17 @@ check_program() {
 program() {
   "$BIN/helios-parse" "$ROOT/scenarios/$1/problem.txt" -o "$1.spec.json"
   "$BIN/helios-derive" "$1.spec.json" -o "$1.derivation.json"
-  "$BIN/helios-gen" --jacobian --modules "$2" "$1.derivation.json" -o "$1.cpp"
+  "$BIN/helios-gen" --modules "$2" "$1.derivation.json" -o "$1.cpp"
+}
+
+# shooting_check SHOOT_CPP ARGS... -> builds ./shooting_jacobian_check against it and runs it
+shooting_check() {
+  local cpp="$1"
+  shift
+  g++ -std=c++17 -O2 -pthread -DSHOOT_CPP="\"$cpp\"" -I"$HELIOS_BUILD_DIR/include/helios-runtime" \
+    "$ROOT/tests/bats/shooting_jacobian_check.cpp" "$HELIOS_BUILD_DIR/lib/libhelios-runtime.a" -lcminpack \
+    -o shooting_jacobian_check
+  ./shooting_jacobian_check "$@"
 }
 
 @test "jacobian: every scenario's generated Jacobian agrees with central differences of its dynamics" {
@@ -45,17 +60,48 @@ program() {
   [ "$status" -eq 0 ]
 }
 
-@test "jacobian: helios-gen adds the module only with --jacobian (the runtime does not use it yet)" {
+@test "jacobian: helios-gen --jacobian finite-difference leaves out the module and shooting_jacobian" {
   program S01 auto
   grep -q '^void dynamics_jacobian(' S01.cpp
-  "$BIN/helios-gen" S01.derivation.json -o plain.cpp
+  grep -q '^void shooting_jacobian(' S01.cpp
+  "$BIN/helios-gen" --jacobian finite-difference S01.derivation.json -o plain.cpp
   run -1 grep -n 'jacobian' plain.cpp
+  run -2 --separate-stderr "$BIN/helios-gen" --jacobian analytic S01.derivation.json -o bad.cpp
+  [[ $stderr == *"--jacobian analytic is not one of exact, finite-difference"* ]]
+  [[ ! -e bad.cpp ]]
+}
+
+@test "jacobian: every scenario's shooting Jacobian agrees with finite differences at random starts and at its solution" {
+  local s eps x
+  for s in $(ls "$ROOT/scenarios" | grep -E '^S[0-9]+$'); do
+    program "$s" auto
+    for eps in 1 0; do
+      run shooting_check "$PWD/$s.cpp" "$eps" 1 1
+      echo "$s eps $eps: $output"
+      [ "$status" -eq 0 ]
+      [[ $output == "points 1 skipped 0 "* ]]
+    done
+    read -r -a x < "$ROOT/tests/fixtures/solutions/$s.txt"
+    run shooting_check "$PWD/$s.cpp" 0 0 1 "${x[@]}"
+    echo "$s at its solution: $output"
+    [ "$status" -eq 0 ]
+    [[ $output == "points 1 skipped 0 "* ]]
+  done
+}
+
+@test "jacobian: a sign flipped in one entry of the variational equations fails the shooting check" {
+  program S01 generated
+  sed -i '0,/^  dfdz\[[0-9]*\] = /s/^\(  dfdz\[[0-9]*\] = \)\(.*\);$/\1-(\2);/' S01.cpp
+  run shooting_check "$PWD/S01.cpp" 0 2 1
+  echo "$output"
+  [ "$status" -eq 1 ]
+  [[ $output == "points 2 skipped 0 max_error "* ]]
 }
 
 @test "jacobian: a sign flipped in one generated derivative fails the check" {
   program S01 generated
-  grep -q '^  dfdy\[3\] = ' S01.cpp
-  sed -i '0,/^  dfdy\[[0-9]*\] = /s/^\(  dfdy\[[0-9]*\] = \)\(.*\);$/\1-(\2);/' S01.cpp
+  grep -q '^  dfdz\[3\] = ' S01.cpp
+  sed -i '0,/^  dfdz\[[0-9]*\] = /s/^\(  dfdz\[[0-9]*\] = \)\(.*\);$/\1-(\2);/' S01.cpp
   run check_program "$PWD/S01.cpp"
   echo "$output"
   [ "$status" -eq 1 ]

@@ -44,18 +44,34 @@ setup() {
   assert_no_temp_files "$E2E"
 }
 
-@test "solve: solution.json records what the integrations cost, and the finite-difference Jacobian's evaluations" {
-  local sol="$E2E/solution.json" n
-  n=$(jq '.x | length' "$sol")
-  assert_jq "$sol" '.integration.jacobian == "finite-difference"'
+@test "solve: solution.json records what the integrations cost, and the exact Jacobian's evaluations" {
+  local sol="$E2E/solution.json"
+  # S01 has no interior events: every solve is of the shooting function, with its exact Jacobian
+  assert_jq "$sol" '.integration.jacobian == "exact"'
+  assert_jq "$sol" '.integration.exact_jacobian_evaluations > 0'
+  assert_jq "$sol" '.integration.jacobian_evaluations == 0 and .integration.jacobian_residual_evaluations == 0'
   assert_jq "$sol" '.integration.integrations > 0 and .integration.integration_s > 0'
   # the integrations are part of the solve: their summed time is at most the wall time on each thread
   assert_jq "$sol" '.integration.integration_s <= .integration.solve_s * .search.threads'
   assert_jq "$sol" '.integration.solve_s <= .timings.run_s'
-  # every residual evaluation integrates at least once; fdjac1 makes n evaluations per Jacobian
-  assert_jq "$sol" '.integration.integrations >= .integration.residual_evaluations'
-  assert_jq "$sol" ".integration.jacobian_evaluations > 0 and .integration.jacobian_residual_evaluations == $n * .integration.jacobian_evaluations"
-  assert_jq "$sol" '.integration.jacobian_residual_evaluations < .integration.residual_evaluations'
+  # every residual evaluation and every exact Jacobian integrates at least once
+  assert_jq "$sol" '.integration.integrations >= .integration.residual_evaluations + .integration.exact_jacobian_evaluations'
+}
+
+@test "solve: with settings jacobian = finite-difference, hybrd's differences: n evaluations per Jacobian, same m_f" {
+  local sol="$E2E/solution.json" n
+  n=$(jq '.x | length' "$sol")
+  jq '. + {jacobian: "finite-difference"}' "$S01/settings.json" > settings.json
+  cp "$E2E/shoot.cpp" shoot.cpp
+  run -0 "$BIN/helios-solve" shoot.cpp --settings settings.json --cache-dir "$CACHE" --plots "" --quiet -o fd.json
+  assert_jq fd.json '.status == "converged" and .integration.jacobian == "finite-difference"'
+  assert_jq fd.json '.integration.exact_jacobian_evaluations == 0'
+  assert_jq fd.json ".integration.jacobian_evaluations > 0 and .integration.jacobian_residual_evaluations == $n * .integration.jacobian_evaluations"
+  assert_jq fd.json '.integration.jacobian_residual_evaluations < .integration.residual_evaluations'
+  # the same extremal (1e-8 relative)
+  local exact
+  exact=$(jq .final_mass_kg "$sol")
+  assert_jq fd.json "((.final_mass_kg - $exact) / $exact) | fabs <= 1e-8"
 }
 
 @test "solve: trajectory.csv has the t_days, m_kg, u, H and S columns" {

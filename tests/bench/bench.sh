@@ -2,7 +2,7 @@
 # Benchmark of the builtin backend, from a cold start (fresh output folder, empty compile cache):
 # per scenario the wall time of each stage, the solve's cost against its integrations (compile,
 # run, Jacobian and residual evaluations, integrations per second, run time over integration
-# time), the global search's cost (starts or attempts, distinct
+# time, and the run with finite-difference Jacobians instead of exact ones), the global search's cost (starts or attempts, distinct
 # extremals at eps = 0, its wall time), legs solved alone (problems with interior events: every
 # leg attempt before the legs were joined), homotopy steps of the returned solution, passes over
 # the bounds, and the result; then a warm solve of the first scenario (compile cache hit), for the
@@ -59,17 +59,30 @@ for s in "${scenarios[@]}"; do
     "$(jq -r 'if .final_mass_kg then "m0 \(.initial_mass_kg) kg, m_f \(.final_mass_kg) kg" else "tof \(.tof_days) d" end + ", max|F| \(.max_residual)"' \
       "$work/$s/solution.json"), verify $(jq -r .verdict "$work/$s/verify.json"), score $(jq .total "$work/$s/score.json")"
   # The solve's cost against its integrations (solution.json's "integration", the runtime's
-  # counters): the Jacobian's evaluations (finite differences: n residual evaluations each), the
-  # integrations per second of integration time, and the program's wall time over that time (1 is
-  # the floor: a solve that does nothing but integrate; with several search threads the summed
-  # integration time can exceed the wall time, so the ratio can fall below 1).
+  # counters): the exact Jacobians, the finite-difference ones (the homotopies without an exact
+  # Jacobian; n residual evaluations each), the integrations per second of integration time, and
+  # the program's wall time over that time (1 is the floor: a solve that does nothing but
+  # integrate; with several search threads the summed integration time can exceed the wall time,
+  # so the ratio can fall below 1).
   sol="$work/$s/solution.json"
-  printf '      compile %.3f s, run %.3f s; Jacobian %s: %s evaluations (%s of the %s residual evaluations); %s integrations, %.1f per s; run / integrations %.3f\n' \
+  printf '      compile %.3f s, run %.3f s; Jacobian %s: %s exact, %s finite-difference (%s of the %s residual evaluations); %s integrations, %.1f per s; run / integrations %.3f\n' \
     "$(jq .timings.compile_s "$sol")" "$(jq .timings.run_s "$sol")" "$(jq -r '.integration.jacobian // "-"' "$sol")" \
+    "$(jq '.integration.exact_jacobian_evaluations // 0' "$sol")" \
     "$(jq '.integration.jacobian_evaluations // 0' "$sol")" "$(jq '.integration.jacobian_residual_evaluations // 0' "$sol")" \
     "$(jq '.integration.residual_evaluations // 0' "$sol")" "$(jq '.integration.integrations // 0' "$sol")" \
     "$(jq '(.integration.integrations // 0) / ([.integration.integration_s // 0, 1e-9] | max)' "$sol")" \
     "$(jq '.timings.run_s / ([.integration.integration_s // 0, 1e-9] | max)' "$sol")"
+  # The same program with hybrd's finite differences everywhere (settings jacobian =
+  # finite-difference; a compile cache hit): the exact Jacobian's gain, measured in the same run.
+  jq '. + {jacobian: "finite-difference"}' "scenarios/$s/settings.json" >"$work/$s/settings-fd.json"
+  "$bin/helios-solve" --quiet "$work/$s/shoot.cpp" --settings "$work/$s/settings-fd.json" --cache-dir "$work/$s/cache" \
+    --plots "" --trajectory "$work/$s/trajectory-fd.csv" -o "$work/$s/solution-fd.json"
+  fd="$work/$s/solution-fd.json"
+  printf '      finite-difference: run %.3f s (exact / finite-difference %.3f), %s, max|F| %s, objective difference %s relative\n' \
+    "$(jq .timings.run_s "$fd")" "$(ratio "$(jq .timings.run_s "$sol")" "$(jq .timings.run_s "$fd")")" \
+    "$(jq -r .status "$fd")" "$(jq -r .max_residual "$fd")" \
+    "$(jq -n --slurpfile a "$sol" --slurpfile b "$fd" '[("initial_mass_kg", "final_mass_kg", "tof_days") as $k |
+       select($a[0][$k] and $b[0][$k]) | (($a[0][$k] - $b[0][$k]) / $a[0][$k] | fabs)] | max // "-"')"
   front=$(echo "$t_parse + $t_derive + $t_verify" | bc -l)
   printf '      parse+derive+verify %.3f s (target < 1 s: ratio %.3f); verify %.3f s (target < 1 s: ratio %.3f); solve cold %.3f s (target < 30 s: ratio %.3f)\n' \
     "$front" "$(ratio "$front" 1)" "$t_verify" "$(ratio "$t_verify" 1)" "$t_solve" "$(ratio "$t_solve" 30)"

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -23,8 +24,13 @@ const json& s01() {
 TEST(Codegen, StandardModelUsesTemplateDynamicsAndGeneratesResidualAndSolve) {
   const auto g = helios::codegen::generate(s01(), {});
   EXPECT_EQ(g.template_modules, (std::vector<std::string>{"DYNAMICS", "SWITCH"}));
-  EXPECT_EQ(g.generated_modules, (std::vector<std::string>{"RESIDUAL", "SOLVE"}));
+  EXPECT_EQ(g.generated_modules, (std::vector<std::string>{"JACOBIAN", "RESIDUAL", "SOLVE"}));
   EXPECT_NE(g.source.find("module RESIDUAL (generated)"), std::string::npos);
+  // the shooting function on double and on dual numbers, its exact Jacobian
+  EXPECT_NE(g.source.find("template <class T>\nvoid shooting_residual(const T* x,"), std::string::npos);
+  EXPECT_NE(
+      g.source.find("void shooting_jacobian(const double* x, double eps, Propagator& prop, double* F, double* J)"),
+      std::string::npos);
   EXPECT_NE(g.source.find("template default: two-body Cartesian low thrust"), std::string::npos);
   EXPECT_EQ(g.source.find("#pragma once"), std::string::npos);
   EXPECT_NE(g.source.find("F[6] = (l_m_tf);"), std::string::npos);
@@ -35,8 +41,27 @@ TEST(Codegen, DifferentHamiltonianGetsGeneratedDynamics) {
   // A derivation whose H differs from the template's (a different cost) must not use the template.
   d["hamiltonian"] = d["hamiltonian"].get<std::string>() + "+l_rx*rx";
   const auto g = helios::codegen::generate(d, {});
-  EXPECT_EQ(g.generated_modules.size(), 4u);
+  EXPECT_EQ(g.generated_modules.size(), 5u);  // DYNAMICS, SWITCH, JACOBIAN, RESIDUAL, SOLVE
   EXPECT_NE(g.source.find("modules DYNAMICS + SWITCH (generated"), std::string::npos);
+}
+
+TEST(Codegen, FiniteDifferenceOptionLeavesOutTheJacobian) {
+  helios::codegen::GenOptions o;
+  o.jacobian = false;
+  const auto g = helios::codegen::generate(s01(), o);
+  EXPECT_EQ(g.generated_modules, (std::vector<std::string>{"RESIDUAL", "SOLVE"}));
+  EXPECT_EQ(g.source.find("shooting_jacobian"), std::string::npos);
+  EXPECT_EQ(g.source.find("pragma GCC"), std::string::npos);
+}
+
+TEST(Codegen, TimeDependentDynamicsGetNoExactJacobian) {
+  json d = s01();
+  // An explicitly time-dependent term: the variational equations here assume autonomous dynamics.
+  d["hamiltonian"] = d["hamiltonian"].get<std::string>() + "+l_rx*t";
+  d["state_odes"][0]["rhs"] = d["state_odes"][0]["rhs"].get<std::string>() + "+t";
+  const auto g = helios::codegen::generate(d, {});
+  EXPECT_EQ(g.source.find("shooting_jacobian"), std::string::npos);
+  EXPECT_EQ(std::count(g.generated_modules.begin(), g.generated_modules.end(), "JACOBIAN"), 0);
 }
 
 TEST(Codegen, GeneratedPolicyIsDeterministic) {
@@ -55,7 +80,7 @@ TEST(Codegen, PlanetTargetsAreEvaluatedFromTheEphemerisAtTheEvent) {
   EXPECT_EQ(d["times"]["epoch_mjd2000"], 400.0);
   const auto g = helios::codegen::generate(d, {});
   EXPECT_NE(g.source.find("const auto ephemeris_0 = ephemeris_state(\"Mars\", tf);"), std::string::npos);
-  EXPECT_NE(g.source.find("const double arrival_rx = ephemeris_0[0];"), std::string::npos);
+  EXPECT_NE(g.source.find("const T arrival_rx = ephemeris_0[0];"), std::string::npos);
   EXPECT_EQ(g.source.find("constexpr double arrival_rx"), std::string::npos);
 }
 

@@ -264,6 +264,29 @@ TEST(Runtime, EphemerisRateIsTheModelsTimeDerivative) {
   for (int i = 0; i < 3; ++i) EXPECT_TRUE(IsClose(rate[i], state[3 + i], 1e-3, 1e-3)) << i;
 }
 
+// Dual numbers (the RESIDUAL module's scalar for the exact Jacobian): every operation and function
+// the generated expressions use carries the exact derivative, constants carry none.
+TEST(Runtime, DualNumbersCarryExactDerivatives) {
+  using helios_rt::Dual;
+  const double x[2] = {0.7, 1.9};
+  double F[2], J[4];
+  helios_rt::dual_jacobian(2, x, F, J, [](const Dual* v, Dual* f) {
+    using std::atan2, std::cos, std::exp, std::log, std::pow, std::sin, std::sqrt;
+    const Dual a = v[0], b = v[1];
+    f[0] = sin(a) * b + pow(a, 2.5) / b - 3.0 + 2.0 * a;
+    f[1] = atan2(b, a) + exp(a) * log(b) - sqrt(a * b) + cos(b) / (1.0 + a) + pow(b, a);
+  });
+  const double a = x[0], b = x[1];
+  EXPECT_TRUE(IsClose(F[0], std::sin(a) * b + std::pow(a, 2.5) / b - 3 + 2 * a, 1e-15, 1e-15));
+  const double expected[4] = {std::cos(a) * b + 2.5 * std::pow(a, 1.5) / b + 2,  // dF0/da
+                              -b / (a * a + b * b) + std::exp(a) * std::log(b) - 0.5 * std::sqrt(b / a) -
+                                  std::cos(b) / ((1 + a) * (1 + a)) + std::pow(b, a) * std::log(b),  // dF1/da
+                              std::sin(a) - std::pow(a, 2.5) / (b * b),                              // dF0/db
+                              a / (a * a + b * b) + std::exp(a) / b - 0.5 * std::sqrt(a / b) - std::sin(b) / (1 + a) +
+                                  a * std::pow(b, a - 1)};  // dF1/db
+  for (int k = 0; k < 4; ++k) EXPECT_TRUE(IsClose(J[k], expected[k], 1e-14, 1e-14)) << k;
+}
+
 // A body given by elements moves on its Kepler orbit: at its epoch it is at the elements' state,
 // and the model's rate is (v, -mu r/|r|^3) to the rate's truncation error.
 TEST(Runtime, OrbitBodyFollowsItsElements) {

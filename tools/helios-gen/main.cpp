@@ -18,10 +18,10 @@ int main(int argc, char** argv) {
         "auto: template DYNAMICS/SWITCH when the derivation is the template's model; generated: always from the "
         "derivation",
         "auto"},
-       {"jacobian", "", "",
-        "builtin: add the JACOBIAN module (exact df/dy, df/du, du/dy by GiNaC); the runtime does not use it yet, so "
-        "it is off by default (it costs compile time)",
-        ""},
+       {"jacobian", "", "MODE",
+        "builtin: exact (the JACOBIAN module, exact df/dz, df/du, du/dy by GiNaC, and shooting_jacobian: the solver "
+        "uses the exact shooting Jacobian where the dynamics are autonomous) or finite-difference (neither)",
+        "exact"},
        {"previous", "", "FILE", "llm: shoot.cpp of the round before", ""},
        {"compile-report", "", "FILE", "llm: compile report of --previous (helios-solve --compile-only)", ""},
        {"round", "", "N", "llm: repair round number (1 = first generation)", "1"},
@@ -29,7 +29,8 @@ int main(int argc, char** argv) {
       {"DERIVATION"},
       "The program is one C++17 file of the problem and its modules (RESIDUAL and SOLVE generated\n"
       "from the shooting system); it links the prebuilt runtime libhelios-runtime.a (ephemeris,\n"
-      "DOP853 with switch detection, eps-homotopy, seeded restarts, cminpack hybrd1, JSON output).\n"
+      "DOP853 with switch detection, eps-homotopy, seeded restarts, cminpack hybrj with the exact\n"
+      "Jacobian (hybrd1 without it), JSON output).\n"
       "With --backend llm the model writes the four modules (prompts/codegen.txt); round N > 1 sends\n"
       "the compiler's errors of --previous (prompts/repair.txt), and when --compile-report says the\n"
       "previous program compiled, writes it unchanged without asking the model.",
@@ -50,7 +51,10 @@ int main(int argc, char** argv) {
     for (const char* llm_only : {"previous", "compile-report", "transcript"})
       if (args.has(llm_only)) throw helios::usage_error(std::string("--") + llm_only + " needs --backend llm");
     helios::codegen::GenOptions options;
-    options.jacobian = args.has("jacobian");
+    const std::string jacobian = args.get("jacobian");
+    if (jacobian != "exact" && jacobian != "finite-difference")
+      throw helios::usage_error("--jacobian " + jacobian + " is not one of exact, finite-difference");
+    options.jacobian = jacobian == "exact";
     const std::string policy = args.get("modules");
     if (policy == "generated")
       options.modules = helios::codegen::ModulePolicy::Generated;

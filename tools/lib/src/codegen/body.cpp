@@ -24,9 +24,9 @@ std::string Body::use(const std::string& name) {
 }
 
 void Body::unpack(const std::string& name, const std::string& value, const std::string& comment) {
-  unpack_line(
-      "  const double " + name + " = " + value + ";" + (comment.empty() ? "" : "  // " + comment_text(comment)) + "\n",
-      {name});
+  unpack_line("  const " + scalar_ + " " + name + " = " + value + ";" +
+                  (comment.empty() ? "" : "  // " + comment_text(comment)) + "\n",
+              {name});
 }
 
 void Body::unpack_y() {

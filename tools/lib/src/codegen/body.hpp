@@ -4,6 +4,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "context.hpp"
@@ -16,7 +17,8 @@ namespace helios::codegen::detail {
 // body prints (cpp) and the names the generator writes into code itself (use).
 class Body {
  public:
-  explicit Body(Context& c) : c_(c) {}
+  // `scalar`: the type of the unpacked locals (double, or T in a function template).
+  explicit Body(Context& c, std::string scalar = "double") : c_(c), scalar_(std::move(scalar)) {}
   // The stream of plain code lines, written in order with the unpacks.
   std::ostringstream& code() { return code_; }
   // C++ for a stored expression (Context::cpp); its symbols count as used.
@@ -26,7 +28,7 @@ class Body {
   // `name`, counted as used: a name the generator writes into code itself.
   std::string use(const std::string& name);
   bool uses(const std::string& name) const { return used_.count(name) > 0; }
-  // The line "  const double <name> = <value>;" (with "  // <comment>" when given), written if used.
+  // The line "  const <scalar> <name> = <value>;" (with "  // <comment>" when given), written if used.
   void unpack(const std::string& name, const std::string& value, const std::string& comment = "");
   // The states then the costates from y[], as the runtime's modules have them.
   void unpack_y();
@@ -49,6 +51,7 @@ class Body {
   void flush();
 
   Context& c_;
+  std::string scalar_;
   std::ostringstream code_;
   std::vector<Segment> segments_;
   std::set<std::string> used_;

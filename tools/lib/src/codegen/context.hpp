@@ -40,8 +40,12 @@ struct Context : derivation::Reader {
     GiNaC::exmap qualified;
     for (const auto& p : parameters)
       if (index_of(runtime_evaluated, p) < 0) qualified[symbols.get(p)] = GiNaC::symbol("problem::" + p);
-    return symbolic::to_csrc(e.subs(qualified));
+    return symbolic::to_csrc(e.subs(qualified), scalar);
   }
+
+  // How cpp() prints functions: std::pow for double code, unqualified in the RESIDUAL module,
+  // which is a template on its scalar (double, or the runtime's dual numbers for the Jacobian).
+  symbolic::CppScalar scalar = symbolic::CppScalar::Double;
 };
 
 // A double as C++ source that reads back exactly (17 digits, always with a '.' or exponent).
@@ -59,11 +63,12 @@ std::string cpp_string(const std::string& s);
 std::string comment_text(std::string s);
 
 // The modules, each from its own unit.
-std::string problem_block(Context& c);                 // problem_block.cpp
-std::string generated_dynamics(Context& c);            // dynamics_module.cpp
-std::string generated_jacobians(Context& c);           // jacobian_module.cpp
-bool template_matches(Context& c, const json& model);  // dynamics_module.cpp
-std::string residual_module(Context& c);               // residual_module.cpp
-std::string solve_module(Context& c);                  // solve_module.cpp
+std::string problem_block(Context& c);                   // problem_block.cpp
+std::string generated_dynamics(Context& c);              // dynamics_module.cpp
+std::string generated_jacobians(Context& c);             // jacobian_module.cpp
+bool jacobian_supported(Context& c);                     // jacobian_module.cpp
+bool template_matches(Context& c, const json& model);    // dynamics_module.cpp
+std::string residual_module(Context& c, bool jacobian);  // residual_module.cpp (jacobian: shooting_jacobian too)
+std::string solve_module(Context& c);                    // solve_module.cpp
 
 }  // namespace helios::codegen::detail

@@ -24,11 +24,13 @@ GeneratedProgram generate(const json& derivation, const GenOptions& options) {
     dynamics = generated_dynamics(c);
     g.generated_modules = {"DYNAMICS", "SWITCH"};
   }
+  const bool jacobian = options.jacobian && jacobian_supported(c);
+  if (jacobian) g.generated_modules.push_back("JACOBIAN");
   g.generated_modules.push_back("RESIDUAL");
   g.generated_modules.push_back("SOLVE");
   g.source = assemble(derivation,
-                      dynamics + "\n" + (options.jacobian ? generated_jacobians(c) + "\n" : std::string()) +
-                          residual_module(c) + "\n" + solve_module(c) + "\n",
+                      dynamics + "\n" + (jacobian ? generated_jacobians(c) + "\n" : std::string()) +
+                          residual_module(c, jacobian) + "\n" + solve_module(c) + "\n",
                       "builtin");
   return g;
 }

@@ -24,9 +24,16 @@ std::vector<GiNaC::symbol> y_symbols(Context& c) {
   return y;
 }
 
-// dynamics_jacobian: dfdy[i * ny + j] = d dy_i / d y_j and dfdu[i * nc + k] = d dy_i / d control_k
-// at fixed control, zero where the derivative is identically zero.
-std::string dynamics_jacobian_function(Context& c) {
+// z = (y, lambda0): lambda0 is a shooting variable that the throttle's slopes (and in general the
+// running cost's part of the dynamics) depend on, so the variational equations carry it.
+std::vector<GiNaC::symbol> z_symbols(Context& c) {
+  std::vector<GiNaC::symbol> z = y_symbols(c);
+  z.push_back(c.symbols.get(c.d.at("multiplier").get<std::string>()));
+  return z;
+}
+
+// The state and costate equations' right-hand sides.
+std::vector<GiNaC::ex> right_hand_sides(Context& c) {
   const auto& so = c.d.at("state_odes");
   const auto& co = c.d.at("costate_odes");
   if (so.size() != c.states.size() || co.size() != c.states.size())
@@ -36,16 +43,23 @@ std::string dynamics_jacobian_function(Context& c) {
     rhs.push_back(c.symbols.parse(so[i].at("rhs"), "field /state_odes/" + std::to_string(i) + "/rhs"));
   for (std::size_t i = 0; i < co.size(); ++i)
     rhs.push_back(c.symbols.parse(co[i].at("rhs"), "field /costate_odes/" + std::to_string(i) + "/rhs"));
-  const std::vector<GiNaC::symbol> y = y_symbols(c);
-  const std::size_t ny = y.size(), nc = c.controls.size();
+  return rhs;
+}
+
+// dynamics_jacobian: dfdz[i * nz + j] = d dy_i / d z_j and dfdu[i * nc + k] = d dy_i / d control_k
+// at fixed control, zero where the derivative is identically zero.
+std::string dynamics_jacobian_function(Context& c) {
+  const std::vector<GiNaC::ex> rhs = right_hand_sides(c);
+  const std::vector<GiNaC::symbol> z = z_symbols(c);
+  const std::size_t ny = rhs.size(), nz = z.size(), nc = c.controls.size();
   Body body(c);
   body.unpack_variables(true);
-  body.code() << "  std::fill(dfdy, dfdy + " << ny * ny << ", 0.0);\n";
+  body.code() << "  std::fill(dfdz, dfdz + " << ny * nz << ", 0.0);\n";
   if (nc > 0) body.code() << "  std::fill(dfdu, dfdu + " << ny * nc << ", 0.0);\n";
   for (std::size_t i = 0; i < ny; ++i) {
-    for (std::size_t j = 0; j < ny; ++j) {
-      const GiNaC::ex d = rhs[i].diff(y[j]);
-      if (!d.is_zero()) body.code() << "  dfdy[" << i * ny + j << "] = " << body.cpp(d) << ";\n";
+    for (std::size_t j = 0; j < nz; ++j) {
+      const GiNaC::ex d = rhs[i].diff(z[j]);
+      if (!d.is_zero()) body.code() << "  dfdz[" << i * nz + j << "] = " << body.cpp(d) << ";\n";
     }
     for (std::size_t k = 0; k < nc; ++k) {
       const GiNaC::ex d = rhs[i].diff(c.symbols.get(c.controls[k]));
@@ -55,7 +69,7 @@ std::string dynamics_jacobian_function(Context& c) {
   if (nc == 0) body.code() << "  (void)dfdu;\n";
   const std::string text = body.str();
   return "void dynamics_jacobian(double t, const double* y, const double* control, const Multipliers& mult, "
-         "double* dfdy, double* dfdu) {\n" +
+         "double* dfdz, double* dfdu) {\n" +
          body.unused_parameters({"t", "y", "control", "mult"}) + text + "}\n\n";
 }
 
@@ -129,20 +143,20 @@ std::string direction_jacobian_function(Context& c) {
   return "void direction_jacobian(const double* y, double* dcontrol_dy) {\n" + unused + text + "}\n\n";
 }
 
-// throttle_slopes_jacobian: d_lower[j], d_upper[j] = d/dy_j of the throttle's dH/du at u = 0 and
+// throttle_slopes_jacobian: d_lower[j], d_upper[j] = d/dz_j of the throttle's dH/du at u = 0 and
 // u = 1 (the SWITCH module's throttle_slopes): the interior throttle's and the switches' gradients.
 std::string throttle_jacobian_function(Context& c) {
   const json& throttle = c.d.at("control_law").at("throttle");
-  const std::vector<GiNaC::symbol> y = y_symbols(c);
+  const std::vector<GiNaC::symbol> z = z_symbols(c);
   Body body(c);
   body.unpack_variables(false);
-  body.code() << "  std::fill(d_lower, d_lower + " << y.size() << ", 0.0);\n"
-              << "  std::fill(d_upper, d_upper + " << y.size() << ", 0.0);\n";
+  body.code() << "  std::fill(d_lower, d_lower + " << z.size() << ", 0.0);\n"
+              << "  std::fill(d_upper, d_upper + " << z.size() << ", 0.0);\n";
   for (const char* side : {"lower", "upper"}) {
     const std::string key = std::string("dH_du_at_") + side;
     const GiNaC::ex e = c.symbols.parse(throttle.at(key), "field /control_law/throttle/" + key);
-    for (std::size_t j = 0; j < y.size(); ++j) {
-      const GiNaC::ex d = e.diff(y[j]);
+    for (std::size_t j = 0; j < z.size(); ++j) {
+      const GiNaC::ex d = e.diff(z[j]);
       if (!d.is_zero()) body.code() << "  d_" << side << "[" << j << "] = " << body.cpp(d) << ";\n";
     }
   }
@@ -153,6 +167,20 @@ std::string throttle_jacobian_function(Context& c) {
 }
 
 }  // namespace
+
+// The variational equations hold where the dynamics are autonomous (no explicit time: the
+// propagation's derivative in a free epoch is then f itself, and dH/dt = 0 at fixed state) and every
+// control has a law the module differentiates (throttle, direction, sail).
+bool jacobian_supported(Context& c) {
+  std::vector<GiNaC::ex> checked = right_hand_sides(c);
+  checked.push_back(c.symbols.parse(c.d.at("hamiltonian"), "field /hamiltonian"));
+  for (const auto& e : checked)
+    for (const auto& name : symbolic::free_symbols(e))
+      if (name == "t") return false;
+  for (const auto& [kind, law] : c.d.at("control_law").items())
+    if (kind != "throttle" && kind != "direction" && kind != "sail") return false;
+  return true;
+}
 
 std::string generated_jacobians(Context& c) {
   return "// ----- module JACOBIAN (generated from the derivation: GiNaC derivatives) -----------------\n"

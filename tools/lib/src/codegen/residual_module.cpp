@@ -57,10 +57,12 @@ class ShootingFunction {
         eqs_(c.d.at("shooting").at("equations")),
         vars_(c.d.at("shooting").at("variables")),
         events_(c.d.value("events", json::array())),
-        body_(c) {}
+        body_(c, "T") {}
 
-  // The function: shooting_legs with events, shooting_function without.
-  std::string text();
+  // The function template shooting_residual on the scalar T (with `legs` when the problem has
+  // events), shooting_function (or shooting_legs) on double, and with `jacobian` shooting_jacobian
+  // on dual numbers.
+  std::string text(bool jacobian);
   // The equations of each leg alone (known after text()).
   const std::vector<int>& leg_sizes() const { return leg_sizes_; }
 
@@ -92,20 +94,52 @@ class ShootingFunction {
   std::vector<int> leg_sizes_;
 };
 
-std::string ShootingFunction::text() {
+std::string ShootingFunction::text(bool jacobian) {
   unpack_variables();
   epochs();
   targets();
   start();
   for (std::size_t k = 0; k < events_.size(); ++k) event(k);
   end();
-  const std::string signature =
-      events_.empty()
-          ? "void shooting_function(const double* x, double eps, Propagator& prop, double* F) {\n"
-          : "// With `legs`: multiple shooting (the costates after each event are legs->starts, their mismatch\n"
-            "// with the jump conditions goes to legs->continuity), or one leg alone (legs->stop_at).\n"
-            "void shooting_legs(const double* x, double eps, Propagator& prop, double* F, const Legs* legs) {\n";
-  return signature + body_.str() + "}\n\n";
+  const bool legs = !events_.empty();
+  // NOTE: -O2 on the module's Dual instantiation costs g++ 20 s for S10's long expressions, -O0
+  // about 4 s; the module runs once per Newton iteration, outside the integration, so its
+  // optimization buys little.
+  std::string o =
+      std::string(jacobian ? "// The module on Dual compiles at -O0 (it runs outside the integration's loop).\n"
+                             "#pragma GCC push_options\n#pragma GCC optimize(\"O0\")\n"
+                           : "") +
+      "// The shooting function on its scalar T: double, or Dual for the exact Jacobian.\n" +
+      std::string(
+          legs ? "// With `legs`: multiple shooting (the costates after each event are legs->starts, their mismatch\n"
+                 "// with the jump conditions goes to legs->continuity), or one leg alone (legs->stop_at).\n"
+               : "") +
+      "template <class T>\nvoid shooting_residual(const T* x, double eps, Propagator& prop, T* F" +
+      (legs ? ", const LegsOf<T>* legs" : "") +
+      ") {\n"
+      "  using std::abs, std::acos, std::asin, std::atan, std::atan2, std::cos, std::exp, std::log, std::pow, "
+      "std::sin,\n"
+      "      std::sqrt, std::tan;\n" +
+      body_.str() + "}\n\n";
+  if (legs)
+    o += "void shooting_legs(const double* x, double eps, Propagator& prop, double* F, const Legs* legs) {\n"
+         "  shooting_residual(x, eps, prop, F, legs);\n}\n\n";
+  else
+    o += "void shooting_function(const double* x, double eps, Propagator& prop, double* F) {\n"
+         "  shooting_residual(x, eps, prop, F);\n}\n\n";
+  if (jacobian) {
+    o += "// The exact Jacobian: the shooting function on dual numbers (its propagations by the variational\n"
+         "// equations of the JACOBIAN module).\n"
+         "void shooting_jacobian(const double* x, double eps, Propagator& prop, double* F, double* J) {\n"
+         "  dual_jacobian(problem::kNumVars, x, F, J, [&](const Dual* xd, Dual* Fd) {\n"
+         "    shooting_residual(xd, eps, prop, Fd" +
+         std::string(legs ? ", static_cast<const LegsOf<Dual>*>(nullptr)" : "") + ");\n  });\n}\n\n";
+    if (legs)
+      o += "void shooting_legs_dual(const Dual* x, double eps, Propagator& prop, Dual* F, const LegsOf<Dual>* legs) {\n"
+           "  shooting_residual(x, eps, prop, F, legs);\n}\n\n";
+    o += "#pragma GCC pop_options\n\n";
+  }
+  return o;
 }
 
 std::string ShootingFunction::equation_code(std::size_t i, const std::string& field) {
@@ -134,8 +168,7 @@ void ShootingFunction::alone_row(int& row, const std::string& name, const std::s
 void ShootingFunction::evaluate_h(const std::string& at, const std::string& time) {
   const auto it = hamiltonian_at_.find(at);
   if (it == hamiltonian_at_.end()) return;
-  body_.code() << "  control_in_mode(y, mode_at(y, mult), mult, " << body_.use("control") << ".data());\n"
-               << "  const double " << it->second << " = hamiltonian(" << time << ", y, control.data(), mult);\n";
+  body_.code() << "  const T " << it->second << " = optimal_hamiltonian(" << time << ", y, mult);\n";
   hamiltonian_at_.erase(it);
 }
 
@@ -156,29 +189,28 @@ void ShootingFunction::unpack_variables() {
 void ShootingFunction::epochs() {
   const json& times = c_.d.at("times");
   auto& o = body_.code();
-  o << "  const double t0 = "
+  o << "  const T t0 = "
     << (times.contains("t0_expression") ? body_.cpp(times.at("t0_expression"), "/times/t0_expression")
                                         : std::string("problem::kT0"))
     << ";\n";
   if (times.contains("tf_expression"))
-    o << "  const double tf = " << body_.cpp(times.at("tf_expression"), "/times/tf_expression") << ";\n";
+    o << "  const T tf = " << body_.cpp(times.at("tf_expression"), "/times/tf_expression") << ";\n";
   else
-    o << "  const double tf = problem::kTf;\n";
+    o << "  const T tf = problem::kTf;\n";
   std::string order = "t0";
   for (std::size_t k = 0; k < events_.size(); ++k) {
     const json& e = events_[k];
     const std::string id = e.at("id"), where = "/events/" + std::to_string(k);
-    o << "  const double t_" << id << " = " << body_.cpp(e.at("time").at("expression"), where + "/time/expression")
-      << ";\n"
-      << "  const double t_" << id << "_dep = t_" << id << " + " << number(e.at("time").at("duration")) << ";\n";
+    o << "  const T t_" << id << " = " << body_.cpp(e.at("time").at("expression"), where + "/time/expression") << ";\n"
+      << "  const T t_" << id << "_dep = t_" << id << " + " << number(e.at("time").at("duration")) << ";\n";
     order += ", t_" + id + ", t_" + id + "_dep";
   }
   order += ", tf";
-  o << "  {\n    const double epochs[] = {" << order << "};\n"
+  o << "  {\n    const T epochs[] = {" << order << "};\n"
     << "    for (std::size_t k = 1; k < sizeof epochs / sizeof epochs[0]; ++k)\n"
     << "      if (!(epochs[k] >= epochs[k - 1]) || (k % 2 == 1 && !(epochs[k] > epochs[k - 1])))\n"
     << "        throw numerical_error(\"the event epochs are out of order\");\n  }\n"
-    << "  double y[kNY];\n";
+    << "  T y[kNY];\n";
 }
 
 // Targets evaluated at the actual event time, in normalized units: a planet's state or rate from
@@ -224,8 +256,7 @@ void ShootingFunction::start() {
     if (!found) throw std::invalid_argument("field /shooting/variables: no variable " + v + " for the initial costate");
     o << "  y[" << c_.states.size() + i << "] = " << body_.use(v) << ";\n";
   }
-  o << "  const Multipliers mult{" << body_.use(c_.d.at("multiplier")) << ", eps};\n";
-  body_.unpack_line("  std::array<double, problem::kNumControls> control{};\n", {"control"});
+  o << "  const auto mult = multipliers(T(" << body_.use(c_.d.at("multiplier")) << "), eps);\n";
   // Event values: H just before / after an event, under the optimal control.
   for (const auto& e : c_.d.value("event_values", json::array())) {
     if (e.value("kind", "") != "hamiltonian")
@@ -241,7 +272,7 @@ void ShootingFunction::event(std::size_t k) {
   const json& e = events_[k];
   const std::string id = e.at("id");
   const std::string from = k == 0 ? "t0" : "t_" + events_[k - 1].at("id").get<std::string>() + "_dep";
-  body_.code() << "  prop.propagate(" << from << ", t_" << id << ", y, mult);\n";
+  body_.code() << "  propagate(prop, " << from << ", t_" << id << ", y, mult);\n";
   unpack_y("_" + id + "_m");
   evaluate_h(id + "_m", "t_" + id);
   leg_alone_at_event(k);
@@ -303,7 +334,7 @@ void ShootingFunction::jump(std::size_t k) {
   }
   o << "  if (legs) {\n"
     << "    for (int i = 0; i < problem::kNumStates; ++i) {\n"
-    << "      const double start = legs->starts[" << k << " * problem::kNumStates + i];\n"
+    << "      const T start = legs->starts[" << k << " * problem::kNumStates + i];\n"
     << "      if (legs->continuity) legs->continuity[" << k
     << " * problem::kNumStates + i] = y[problem::kNumStates + i] - start;\n"
     << "      y[problem::kNumStates + i] = start;\n    }\n  }\n";
@@ -313,7 +344,7 @@ void ShootingFunction::jump(std::size_t k) {
 // constraint's own equations, its epoch held at its guess) and the rows of the whole problem.
 void ShootingFunction::end() {
   const std::string from = events_.empty() ? "t0" : "t_" + events_.back().at("id").get<std::string>() + "_dep";
-  body_.code() << "  prop.propagate(" << from << ", tf, y, mult);\n";
+  body_.code() << "  propagate(prop, " << from << ", tf, y, mult);\n";
   unpack_y("_tf");
   evaluate_h("tf", "tf");
   if (!hamiltonian_at_.empty())
@@ -339,7 +370,7 @@ void ShootingFunction::end() {
 
 }  // namespace
 
-std::string residual_module(Context& c) {
+std::string residual_module(Context& c, bool jacobian) {
   const auto& vars = c.d.at("shooting").at("variables");
   const auto& eqs = c.d.at("shooting").at("equations");
   if (vars.size() != eqs.size())
@@ -350,7 +381,9 @@ std::string residual_module(Context& c) {
       "namespace helios_rt {\n\n";
   if (c.d.contains("coast_dynamics")) o += coast_dynamics_function(c);
   ShootingFunction shooting(c);
-  o += shooting.text();
+  c.scalar = symbolic::CppScalar::Generic;
+  o += shooting.text(jacobian);
+  c.scalar = symbolic::CppScalar::Double;
   if (!c.d.value("events", json::array()).empty()) o += legs_block(c, shooting.leg_sizes());
   return o + "}  // namespace helios_rt\n";
 }

@@ -100,8 +100,10 @@ namespace {
 
 // A printer whose output depends only on the expression, not on GiNaC's internal term order
 // (which follows hash values and so memory addresses): terms and factors are sorted by their
-// printed text. Two dialects: GiNaC's own syntax (parsed back by GiNaC::parser) and C++.
-enum class Dialect { Text, Cpp };
+// printed text. Three dialects: GiNaC's own syntax (parsed back by GiNaC::parser), C++ on doubles
+// (std::pow, std::sin, ...), and C++ for any scalar type (the functions unqualified, so that
+// argument-dependent lookup finds the overloads of a type such as the runtime's dual numbers).
+enum class Dialect { Text, Cpp, CppGeneric };
 enum Precedence { kSum = 1, kProduct = 2, kPower = 3, kAtom = 4 };
 
 struct Printed {
@@ -117,7 +119,7 @@ Printed print(const GiNaC::ex& e, Dialect d);
 
 Printed print_numeric(const GiNaC::numeric& n, Dialect d) {
   std::ostringstream out;
-  if (d == Dialect::Cpp) {
+  if (d != Dialect::Text) {
     if (n.is_integer()) {
       out << n << ".0";
     } else if (n.is_rational()) {
@@ -139,7 +141,7 @@ Printed print_power(const GiNaC::ex& base, const GiNaC::ex& exponent, Dialect d)
   if (GiNaC::is_a<GiNaC::numeric>(exponent)) {
     const GiNaC::numeric k = GiNaC::ex_to<GiNaC::numeric>(exponent);
     if (k == GiNaC::numeric(1, 2)) return {"sqrt(" + b.text + ")", kAtom};
-    if (d == Dialect::Cpp) {
+    if (d != Dialect::Text) {
       const std::string bb = wrap(b, kAtom);
       if (k == 2) return {bb + "*" + bb, kProduct};
       if (k == -1) return {"1.0/" + bb, kProduct};
@@ -149,7 +151,9 @@ Printed print_power(const GiNaC::ex& base, const GiNaC::ex& exponent, Dialect d)
       if (k == GiNaC::numeric(-3, 2)) return {"1.0/(" + bb + "*sqrt(" + b.text + "))", kProduct};
     }
   }
-  if (d == Dialect::Cpp) return {"std::pow(" + b.text + ", " + print(exponent, d).text + ")", kAtom};
+  if (d != Dialect::Text)
+    return {std::string(d == Dialect::Cpp ? "std::" : "") + "pow(" + b.text + ", " + print(exponent, d).text + ")",
+            kAtom};
   const Printed x = print(exponent, d);
   return {wrap(b, kAtom) + "^" + wrap(x, kAtom), kPower};
 }
@@ -212,8 +216,8 @@ std::string to_text(const GiNaC::ex& e) {
   return print(e.expand(), Dialect::Text).text;
 }
 
-std::string to_csrc(const GiNaC::ex& e) {
-  return print(e.expand(), Dialect::Cpp).text;
+std::string to_csrc(const GiNaC::ex& e, CppScalar scalar) {
+  return print(e.expand(), scalar == CppScalar::Double ? Dialect::Cpp : Dialect::CppGeneric).text;
 }
 
 double evaluate(const GiNaC::ex& e, const SymbolTable& table, const Values& values) {

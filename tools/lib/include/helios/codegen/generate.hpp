@@ -17,10 +17,10 @@ enum class ModulePolicy {
 
 struct GenOptions {
   ModulePolicy modules = ModulePolicy::Auto;
-  // The JACOBIAN module (exact first derivatives, jacobian_module.cpp). Off by default: the
-  // runtime's shooter does not use it yet (issue 15), and it costs compile time (S01 about 0.2 s,
-  // S11 about 1.3 s of g++ -O2).
-  bool jacobian = false;
+  // The JACOBIAN module (exact first derivatives, jacobian_module.cpp) and the RESIDUAL module's
+  // shooting_jacobian built on it, where the derivation allows (autonomous dynamics): the solver
+  // then uses the exact shooting Jacobian (hybrj). Off: hybrd's finite differences.
+  bool jacobian = true;
 };
 
 struct GeneratedProgram {

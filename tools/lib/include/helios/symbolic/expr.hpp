@@ -53,8 +53,10 @@ class SymbolTable {
 // Text GiNaC's parser reads back (the default print form).
 std::string to_text(const GiNaC::ex& e);
 
-// C++ source for `e` (csrc_double print form).
-std::string to_csrc(const GiNaC::ex& e);
+// C++ source for `e` (csrc_double print form). Double: the functions as std::pow, std::sin, ...;
+// Generic: unqualified, for code templated on its scalar type (which brings std's in by `using`).
+enum class CppScalar { Double, Generic };
+std::string to_csrc(const GiNaC::ex& e, CppScalar scalar = CppScalar::Double);
 
 using Values = std::map<std::string, double>;
 
