@@ -619,6 +619,13 @@ TEST(ParseFacts, IssueSentencesGiveS01sSpecByteIdentically) {
       // beyond the issue's list: the central body in other words
       {"The central body is the Sun with gravitational parameter 1.32712440018e11 km^3/s^2.",
        "The Sun is the central body; its gravitational parameter is 1.32712440018e11 km^3/s^2."},
+      // everyday words: a mass said of the spacecraft, a force of the engine, a body's mu
+      {spacecraft, "The 1000 kg spacecraft has a 0.5 N engine with Isp 2000 s."},
+      {spacecraft, "The spacecraft starts with 1000 kg, and its engine gives 0.5 N at an Isp of 2000 s."},
+      {spacecraft, "Thrust (max): 0.5 N. Our engine runs at an Isp of 2000 s. m0 = 1000 kg."},
+      {"Minimize the fuel consumption.", "We want to use as little propellant as possible."},
+      {"The central body is the Sun with gravitational parameter 1.32712440018e11 km^3/s^2.",
+       "The Sun's gravitational parameter is 1.32712440018e11 km^3/s^2."},
   };
   const std::string want = parse(s01).dump(2);
   for (const auto& [from, to] : cases) EXPECT_EQ(parse(replaced(s01, from, to)).dump(2), want) << to;
@@ -656,7 +663,13 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
   has(dry, "cannot place the word 'dry'");
   EXPECT_EQ(dry.find("did you mean"), std::string::npos) << dry;
   has(err(sc + " The Sun is the central body and Earth is the central body."), "it names Earth and Sun");
-  has(err(sc + " Mars has a gravitational parameter of 42828 km^3/s^2."), "it does not say what Mars is here");
+  has(err(sc + " Mars has a gravitational parameter of 42828 km^3/s^2."),
+      "it gives Mars's gravitational parameter, but the central body is Sun");
+  has(err(sc + " It is Mars."), "it does not say what Mars is here");
+  // a weak word (spacecraft, engine) takes only a quantity of its own dimension, and yields to a fact word
+  has(err("The 0.5 N spacecraft has Isp = 2000 s, m0 = 1000 kg."), "0.5 N cannot be the specific impulse");
+  has(err("The 1000 kg spacecraft has an initial mass of 900 kg. Tmax = 0.5 N, Isp = 2000 s."),
+      "two values for the initial mass: 1000 kg and 900 kg");
   // an error names the file, line and sentence on one line
   const std::string e = err("Thrust 0.5 N Isp. The spacecraft has an initial mass of 1000 kg.");
   has(e, "problem.txt:4: cannot use sentence \"Thrust 0.5 N Isp\": 'isp' has no value");

@@ -18,6 +18,14 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
     once("the central body");
     central(f.central, "");
   }
+  if (!f.mu_body.empty()) {
+    // HELIOS takes the central body's gravitational parameter here: the body must be that one.
+    const std::string name = central_body.is_object() ? central_body.value("name", "") : "";
+    if (!name.empty() && lowercase(name) != lowercase(f.mu_body))
+      throw sentence_error("it gives " + f.mu_body + "'s gravitational parameter, but the central body is " + name +
+                           " (a swing-by body's reads '; " + f.mu_body + " has a gravitational parameter of Q')");
+    mu_body = {f.mu_body, here};
+  }
   if (!f.departure_body.empty()) {
     once("the departure");
     departure = Endpoint{here, {{"ref", f.departure_body}}, "initial_state", std::nullopt};

@@ -49,6 +49,9 @@ struct Meaning {
   bool bound;        // "up to", "limited to", "available", "maximum": a bound, which only the thrust is
   std::string body;  // a body with a known gravitational parameter
   bool central;      // names the central body ("central body", "heliocentric")
+  // A weak fact word ("the 1500 kg spacecraft", "a 0.4 N engine"): it takes a quantity only when
+  // no other fact word of its clause does, and needs none.
+  bool weak = false;
   Meaning(Slot s = Slot::None, int r = kNoRole, int v = kNoVerb, int n = kNoNoun, bool b = false, std::string bd = "",
           bool c = false)
       : slot(s), role(r), verb(v), noun(n), bound(b), body(std::move(bd)), central(c) {}
@@ -61,21 +64,31 @@ const std::map<std::string, Meaning>& phrases() {
     std::map<std::string, Meaning> t;
     // fillers: they state nothing
     std::istringstream fillers(
-        "the a an is are be of to with at from by for in its it spacecraft probe vehicle engine engines thruster "
-        "thrusters propulsion system electric ion has have must should can set fixed equal equals given taken as "
-        "assumed constant total level magnitude consumption used consumed objective goal vector state conditions we "
+        "the a an is are be of to with at from by for in its it system electric ion has have must should can set fixed "
+        "equal equals given taken as assumed constant total level magnitude consumption used consumed objective goal "
+        "vector state conditions we "
         "want find optimize optimise trajectory transfer mission operate operates possible reach target looking use "
-        "motion problem on place utc our rated single trip exactly body");
+        "motion problem on place utc our single trip exactly body runs run carries carry hall");
     for (std::string w; fillers >> w;) t[w] = {};
     const auto slot = [&](std::initializer_list<const char*> ws, Slot s, int noun = kNoNoun) {
       for (const char* w : ws) t[w] = {s, kNoRole, kNoVerb, noun};
     };
     slot({"thrust", "maximum thrust", "max thrust", "delivers", "deliver", "provides", "provide", "produces", "produce",
-          "gives", "give", "tmax", "t_max", "thrust force"},
+          "gives", "give", "tmax", "t_max", "thrust force", "rated", "capable"},
          Slot::Thrust);
+    // A force said of the engine is its thrust; a mass said of the spacecraft is its mass.
+    for (const char* w : {"engine", "engines", "thruster", "thrusters", "propulsion"}) {
+      t[w] = {Slot::Thrust};
+      t[w].weak = true;
+    }
+    for (const char* w : {"spacecraft", "probe", "vehicle", "starts with"}) {
+      t[w] = {Slot::Mass, std::string(w) == "starts with" ? kInitial : kNoRole};
+      t[w].weak = true;
+    }
     slot({"t"}, Slot::ThrustOrT0);
     slot({"t0", "t_0"}, Slot::T0);
     t["takes place"] = {};
+    t["low thrust"] = {};  // a kind of engine, not a thrust value
     t["two body"] = {};
     slot({"epoch", "date", "departure epoch", "departure date", "launch date", "launch epoch", "start date",
           "start epoch", "initial epoch", "epoch of departure", "date of departure"},
@@ -101,10 +114,11 @@ const std::map<std::string, Meaning>& phrases() {
     for (const char* w : {"final", "arrives", "arrive", "arrival", "end", "ends", "terminal", "rendezvous",
                           "rendezvouses", "destination"})
       t[w] = {Slot::None, kFinal};
-    for (const char* w : {"minimize", "minimise", "cost", "cost function"}) t[w] = {Slot::None, kNoRole, kMinimize};
+    for (const char* w : {"minimize", "minimise", "cost", "cost function", "as little"})
+      t[w] = {Slot::None, kNoRole, kMinimize};
     for (const char* w : {"maximize", "maximise", "as large as possible"}) t[w] = {Slot::None, kNoRole, kMaximize};
     t["minimum"] = {Slot::None, kNoRole, kMinimum};
-    t["maximum"] = {Slot::None, kNoRole, kMaximum, kNoNoun, true};
+    t["maximum"] = t["max"] = {Slot::None, kNoRole, kMaximum, kNoNoun, true};
     for (const auto& [w, b] : std::map<std::string, std::string>{
              {"sun", "Sun"}, {"earth", "Earth"}, {"mars", "Mars"}, {"venus", "Venus"}, {"jupiter", "Jupiter"}})
       t[w].body = b;
@@ -308,9 +322,22 @@ bool paren_vector(const std::string& s, std::size_t i) {
   return close != std::string::npos && s[close] == ')' && s.find(',', j) < close;
 }
 
+// Parentheses around words only ("Thrust (max): 0.8 N", "the central body (Earth)") qualify the
+// words before them, so they do not cut the clause; with a number inside they still do.
+std::string unwrap_word_parens(std::string s) {
+  for (std::size_t open = s.find('('); open != std::string::npos; open = s.find('(', open + 1)) {
+    const std::size_t close = s.find_first_of("()", open + 1);
+    if (close == std::string::npos || s[close] != ')') continue;
+    const std::string inside = s.substr(open + 1, close - open - 1);
+    if (inside.find_first_of("0123456789[]") != std::string::npos) continue;
+    s[open] = s[close] = ' ';
+  }
+  return s;
+}
+
 std::vector<Token> scan(const std::string& sentence) {
   // Superscripts as written in many texts: km³/s² is km^3/s^2.
-  const std::string s = replace_all(replace_all(sentence, "\xC2\xB3", "^3"), "\xC2\xB2", "^2");
+  const std::string s = unwrap_word_parens(replace_all(replace_all(sentence, "\xC2\xB3", "^3"), "\xC2\xB2", "^2"));
   static const std::regex num(R"(^[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)");
   std::vector<Token> out;
   std::size_t i = 0;
@@ -605,7 +632,8 @@ bool states_nothing(const std::string& sentence) {
       phrase += (k == i ? "" : " ") + tokens[k].word;
       const auto it = table.find(phrase);
       const Meaning& mean = it == table.end() ? Meaning{} : it->second;
-      if (mean.slot != Slot::None || mean.verb != kNoVerb || !mean.body.empty() || mean.central) return false;
+      if ((mean.slot != Slot::None && !mean.weak) || mean.verb != kNoVerb || !mean.body.empty() || mean.central)
+        return false;
     }
   }
   return true;
@@ -690,13 +718,12 @@ SentenceFacts read_facts(const std::string& sentence) {
   }
   if (bodies.size() > 1)
     throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": which one is the central body?");
-  if (!bodies.empty() && !central_named)
-    throw facts_error("it does not say what " + *bodies.begin() +
-                      " is here (the central body reads 'The central body is " +
-                      (*bodies.begin() == "Mars" ? "" : "the ") + *bodies.begin() + ".')");
+  // A body named with no word saying it is the central one: its gravitational parameter, if the
+  // sentence gives one ("The Sun's gravitational parameter is Q"), checked below.
+  const std::string unplaced = !bodies.empty() && !central_named ? *bodies.begin() : "";
   if (bodies.empty() && central_named)
     throw facts_error("it does not name the central body (Sun, Earth or Mars: 'The central body is the Sun.')");
-  if (!bodies.empty()) out.central = *bodies.begin();
+  if (!bodies.empty() && central_named) out.central = *bodies.begin();
   std::string objective_words;
   for (const auto& c : clauses) {
     std::set<int> roles;
@@ -718,7 +745,7 @@ SentenceFacts read_facts(const std::string& sentence) {
     const bool objective = c.quantities.empty() && verb != kNoVerb;
     if (objective) {
       for (const auto& m : c.mentions)
-        if (m.meaning.slot != Slot::None && m.meaning.noun == kNoNoun)
+        if (m.meaning.slot != Slot::None && m.meaning.noun == kNoNoun && !m.meaning.weak)
           throw facts_error("'" + m.text +
                             "' cannot be an objective (minimize the fuel, the time of flight or the "
                             "initial mass, or maximize the final mass)");
@@ -735,7 +762,7 @@ SentenceFacts read_facts(const std::string& sentence) {
     // A bound on the thrust is the maximum thrust; a bound on anything else is not a value.
     for (const auto& m : c.mentions)
       for (const auto& n : c.mentions)
-        if (m.meaning.bound && n.meaning.slot != Slot::None && n.meaning.slot != Slot::Thrust)
+        if (m.meaning.bound && n.meaning.slot != Slot::None && n.meaning.slot != Slot::Thrust && !n.meaning.weak)
           throw facts_error("'" + m.text + "' makes '" + n.text +
                             "' a bound, not a value (a bounded time of flight reads 'The time of flight is free, at "
                             "most Q.')");
@@ -744,6 +771,7 @@ SentenceFacts read_facts(const std::string& sentence) {
     struct Named {
       std::vector<Candidate> cands;
       std::string text;
+      bool weak;
       bool bound = false;
     };
     std::vector<Named> named;
@@ -754,7 +782,7 @@ SentenceFacts read_facts(const std::string& sentence) {
         const int r = s == Slot::Mass ? clause_role : role;
         if ((s == Slot::Position || s == Slot::Velocity) && role == kNoRole && sentence_roles.size() > 1)
           throw facts_error("'" + m.text + "' could be the initial or the final one: say which in its clause");
-        named.push_back({candidates(s, r, m.text), m.text});
+        named.push_back({candidates(s, r, m.text), m.text, m.meaning.weak});
       }
     // A date in a clause that says the spacecraft starts ("Launch is on 2025-03-01") is the
     // departure epoch; in one that says it arrives it is no fact HELIOS takes.
@@ -766,29 +794,36 @@ SentenceFacts read_facts(const std::string& sentence) {
       throw facts_error("'" + words +
                         "' gives an arrival date: HELIOS reads the departure epoch and the time of flight");
     if (date_here && !epoch_named && role == kInitial)
-      named.push_back({{{Field::Epoch, Dimension::Time, false, false, true}}, words});
+      named.push_back({{{Field::Epoch, Dimension::Time, false, false, true}}, words, false});
     std::map<Field, std::string> bound_here;
     for (const auto& q : c.quantities) {
       std::vector<std::pair<Candidate, std::size_t>> fit;
-      for (std::size_t k = 0; k < named.size(); ++k)
-        for (const auto& cand : named[k].cands)
-          if (fits(cand, q)) {
-            bool dup = false;
-            for (const auto& [f, _] : fit) dup = dup || f.field == cand.field;
-            if (!dup) fit.push_back({cand, k});
-          }
+      for (const bool weak : {false, true}) {  // a weak fact word only when no other fits
+        if (weak && !fit.empty()) break;
+        for (std::size_t k = 0; k < named.size(); ++k)
+          if (named[k].weak == weak)
+            for (const auto& cand : named[k].cands)
+              if (fits(cand, q)) {
+                bool dup = false;
+                for (const auto& [f, _] : fit) dup = dup || f.field == cand.field;
+                if (!dup) fit.push_back({cand, k});
+              }
+      }
       if (fit.empty() && q.date)
         throw facts_error("nothing in its clause says the date " + q.written + " is the departure epoch",
                           "The departure epoch is " + q.written + ".");
       if (fit.empty()) {
-        if (named.empty())
+        std::vector<const Named*> strong;
+        for (const auto& n : named)
+          if (!n.weak) strong.push_back(&n);
+        if (strong.empty())
           throw facts_error(q.vector ? "the vector " + q.written +
                                            " has no role: say whether it is the initial or "
                                            "final position or velocity"
                                      : "nothing in its clause says what " + q.written + " is");
-        const Candidate& want = named.front().cands.front();
+        const Candidate& want = strong.front()->cands.front();
         const std::string sug =
-            named.size() == 1 && !q.vector && !want.exhaust ? suggestion(want.field, q, want.dim) : "";
+            strong.size() == 1 && !q.vector && !want.exhaust ? suggestion(want.field, q, want.dim) : "";
         if (q.unit.empty())
           throw facts_error(
               q.written + " has no unit, and " + field_name(want.field) + " needs one (" + spec_unit(want.dim) + ")",
@@ -826,11 +861,19 @@ SentenceFacts read_facts(const std::string& sentence) {
       out.facts.push_back(fact);
     }
     for (const auto& n : named)
-      if (!n.bound) {
+      if (!n.bound && !n.weak) {
         const Candidate& want = n.cands.front();
         throw facts_error("'" + n.text + "' has no value: give " + field_name(want.field) + " with its unit (" +
                           spec_unit(want.dim) + ")");
       }
+  }
+  if (!unplaced.empty()) {
+    bool mu = false;
+    for (const auto& f : out.facts) mu = mu || f.field == Field::Mu;
+    if (!mu)
+      throw facts_error("it does not say what " + unplaced + " is here (the central body reads 'The central body is " +
+                        (unplaced == "Mars" ? "" : "the ") + unplaced + ".')");
+    out.mu_body = unplaced;
   }
   if (out.facts.empty() && out.objective.empty() && out.central.empty() && out.departure_body.empty() &&
       out.arrival_body.empty())

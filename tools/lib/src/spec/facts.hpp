@@ -23,6 +23,7 @@ struct SentenceFacts {
   std::string objective;                     // a spec objective kind ("minimum_fuel", ...) or ""
   std::string central;                       // the central body named ("Sun", "Earth", "Mars") or ""
   std::string departure_body, arrival_body;  // a planet the spacecraft leaves or rendezvouses with, or ""
+  std::string mu_body;                       // the body whose gravitational parameter it gives, or ""
 };
 
 // Why a sentence cannot be read as facts; `suggestion` is the nearest controlled-English sentence

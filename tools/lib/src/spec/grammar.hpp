@@ -139,7 +139,8 @@ struct Builder {
   std::optional<json> r0, v0, rf, vf;  // state vectors stated one by one
   Where initial_where, final_where;
   bool mu_stated = false;
-  std::optional<double> pending_mu;  // a gravitational parameter stated before the central body
+  std::optional<double> pending_mu;                      // a gravitational parameter stated before the central body
+  std::optional<std::pair<std::string, Where>> mu_body;  // the body that gravitational parameter is of
 
   // A sentence of the controlled English: the first rule whose pattern matches it whole applies.
   struct SentenceRule {

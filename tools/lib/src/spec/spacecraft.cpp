@@ -15,6 +15,9 @@ void Builder::on_central(const std::smatch& m) {
 
 // "gravitational parameter Q", "equatorial radius Q", "J2 coefficient N" in any order.
 void Builder::central(const std::string& name, const std::string& list) {
+  if (mu_body && lowercase(mu_body->first) != lowercase(name))
+    throw sentence_error("the central body is " + name + ", but line " + std::to_string(mu_body->second.line) +
+                         " gives the gravitational parameter of " + mu_body->first);
   static const std::regex split(R"(\s*(?:,\s*and\s+|,\s*|\s+and\s+)\s*)");
   static const std::regex mu_re = re(R"((?:an? )?gravitational parameter (?:of )?)" + kQuantity);
   static const std::regex radius_re = re(R"((?:an? )?(?:equatorial )?radius (?:of )?)" + kQuantity);
