@@ -754,3 +754,62 @@ TEST(ParseFacts, BodiesInOtherWordsGiveTheSameSpec) {
   has(error_of(replaced(s02, dep, "Departure from Earth on MJD2000 400 at position [1, 2, 3] km.")),
       "both a body and the initial position");
 }
+
+// Events on the way in other words give S08's and S10's specs.
+TEST(ParseFacts, EventsInOtherWordsGiveTheSameSpec) {
+  const auto scenario = [](const char* id) {
+    return helios::io::read_text(kSource + "/scenarios/" + id + "/problem.txt");
+  };
+  const std::string s08 = scenario("S08"), s10 = scenario("S10");
+  const std::string nikko =
+      "The spacecraft rendezvouses with Nikko between day 132 and day 212, stays there for 30 days and leaves a lander "
+      "of 50 kg.";
+  const std::string flyby = "The spacecraft flies by Ast_8648 between day 374 and day 454.";
+  const std::string tengstrom =
+      "The spacecraft rendezvouses with Tengstrom between day 713 and day 793 and stays there for 30 days.";
+  const std::string words08 = replaced(
+      replaced(replaced(s08, nikko,
+                        "Rendezvous with Nikko between day 132 and day 212, then a stay of 30 days. A lander of 50 kg "
+                        "is released at the asteroid."),
+               flyby, "Ast_8648 flyby window: day 374 to day 454."),
+      tengstrom, "Rendezvous with Tengstrom from day 713 to day 793. The spacecraft stays 30 days at Tengstrom.");
+  EXPECT_EQ(parse(words08).dump(2), parse(s08).dump(2));
+  const std::string swing =
+      "The spacecraft swings by Mars between day 600 and day 1100 in an unpowered gravity assist; Mars has a "
+      "gravitational parameter of 42828.3 km^3/s^2 and the periapsis radius must be at least 3889.9 km.";
+  for (const char* to :
+       {"Mars swing-by between day 600 and day 1100, minimum periapsis radius 3889.9 km.",
+        "A gravity assist at Mars from day 600 to day 1100; the periapsis radius is at least 3889.9 km."})
+    EXPECT_EQ(parse(replaced(s10, swing, to)).dump(2), parse(s10).dump(2)) << to;
+}
+
+TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
+  const std::string s08 = helios::io::read_text(kSource + "/scenarios/S08/problem.txt");
+  const std::string flyby = "The spacecraft flies by Ast_8648 between day 374 and day 454.";
+  const auto err = [&](const std::string& to) { return error_of(replaced(s08, flyby, to)); };
+  const auto has = [](const std::string& e, const std::string& part) {
+    EXPECT_NE(e.find(part), std::string::npos) << e;
+  };
+  // an event needs a window, not a date, and its body; the suggestion names the user's body
+  has(err("A swing-by of Mars."),
+      "the swing-by needs its window: HELIOS chooses the date inside it; did you mean \"The spacecraft swings by Mars "
+      "between day N and day N in an unpowered gravity assist.\"?");
+  has(err("There is an Ast_8648 flyby on 2029-03-01."), "dates an event on the way");
+  has(err("A flyby between day 374 and day 454."), "it does not name the body of the flyby");
+  has(err("Between day 374 and day 454."), "it gives a window but no event");
+  has(err("Flyby of Mars or Venus between day 374 and day 454."), "cannot place the word 'or'");
+  has(err("Flyby of Mars and Venus between day 374 and day 454."), "it names Mars and Venus");
+  // a periapsis radius is a lower bound, of a swing-by only
+  has(err("Mars swing-by between day 374 and day 454, periapsis radius 3500 km."), "takes as a lower bound");
+  has(err("Mars flyby between day 374 and day 454, minimum periapsis radius 3500 km."), "cannot read it: a flyby");
+  has(err("Ast_8648 flyby window: day 454 to day 374."), "is empty");
+  // a stay or lander belongs to the one rendezvous stated before, named or not
+  has(error_of(replaced(s08, "Tengstrom between day 713 and day 793 and stays there for 30 days.",
+                        "Tengstrom between day 713 and day 793. The spacecraft stays 10 days at the asteroid.")),
+      "rendezvouses with Nikko and Tengstrom on the way: say which one");
+  has(err(flyby + " The spacecraft stays 10 days at Ast_8648."), "only a rendezvous can leave a lander or stay");
+  has(err(flyby + " The spacecraft stays 10 days at Nikko."), "the stay at Nikko is given twice");
+  has(err(flyby + " The spacecraft stays -10 days at Tengstrom."), "the stay must not be negative");
+  has(err(flyby + " The surface stay at Nikko lasts 10 days and 20 days."),
+      "nothing in its clause says what 20 days is");
+}

@@ -3,9 +3,13 @@
 
 namespace helios::spec::grammar {
 
-detail::SentenceFacts Builder::facts_of(const std::string& s) {
+detail::SentenceFacts Builder::facts_of(const std::string& s) const {
+  // the bodies met so far may be named in other words ("The spacecraft stays 30 days at Nikko.")
+  std::map<std::string, std::string> names;
+  for (const auto& o : orbits) names[lowercase(o.name)] = o.name;
+  for (const auto& e : events) names[lowercase(e.body)] = e.body;
   try {
-    return detail::read_facts(s);
+    return detail::read_facts(s, names);
   } catch (const detail::facts_error& e) {
     throw sentence_error(std::string(e.what()) +
                          (e.suggestion.empty() ? "" : "; did you mean \"" + e.suggestion + "\"?"));
@@ -100,12 +104,59 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
       case Field::Vf:
         state(vf, fact.field, false, vec);
         break;
+      case Field::Window:
+      case Field::Stay:
+      case Field::Drop:
+      case Field::Rmin:
+        break;  // the event's (apply_event)
     }
   }
+  if (!f.event.empty()) apply_event(f);
   if (!f.objective.empty()) {
     once("the objective");
     objective = {{"kind", f.objective}};
   }
+}
+
+// An event on the way in other words: a new one with its window, or a stay or lander at the
+// rendezvous stated before.
+void Builder::apply_event(const detail::SentenceFacts& f) {
+  using detail::Field;
+  std::optional<double> stay, drop, rmin;
+  const detail::Fact* window = nullptr;
+  for (const auto& fact : f.facts) {
+    if (fact.field == Field::Window) window = &fact;
+    if (fact.field == Field::Stay) stay = fact.value[0];
+    if (fact.field == Field::Drop) drop = fact.value[0];
+    if (fact.field == Field::Rmin) rmin = fact.value[0];
+  }
+  if (f.event == "stay") {
+    if (rmin)
+      throw sentence_error("a periapsis bound belongs to a swing-by ('" + clause_forms("gravity_assist") + "')");
+    Event& e = rendezvous_of(f.event_body);
+    const auto set = [&](std::optional<double>& slot, const std::optional<double>& v, const char* what) {
+      if (!v) return;
+      if (slot) throw sentence_error(std::string(what) + " at " + e.body + " is given twice");
+      slot = v;
+    };
+    set(e.stay, stay, "the stay");
+    set(e.drop, drop, "the lander");
+    if (drop) e.drop_where = here;
+    return;
+  }
+  Event e;
+  e.where = here;
+  e.kind = f.event;
+  e.body = body_name(f.event_body);
+  const auto ref = [&](int k) { return EpochRef{window->value[k], window->absolute[k]}; };
+  e.lo = ref(0);
+  e.hi = ref(1);
+  if ((stay || drop) && e.kind != "rendezvous") throw sentence_error("cannot read it: " + clause_forms(e.kind));
+  if (rmin && e.kind != "gravity_assist") throw sentence_error("cannot read it: " + clause_forms(e.kind));
+  e.stay = stay;
+  e.drop = drop;
+  e.rmin = rmin;
+  add_event(std::move(e));
 }
 
 // The departure and the final state from vectors stated one by one.

@@ -37,7 +37,10 @@ enum class Slot {
   R0,
   V0,
   Rf,
-  Vf
+  Vf,
+  Stay,
+  Drop,
+  Rmin
 };
 enum Role { kNoRole = 0, kInitial = 1, kFinal = 2 };
 enum Verb { kNoVerb = 0, kMinimize, kMaximize, kMinimum, kMaximum };
@@ -52,6 +55,9 @@ struct Meaning {
   // A weak fact word ("the 1500 kg spacecraft", "a 0.4 N engine"): it takes a quantity only when
   // no other fact word of its clause does, and needs none.
   bool weak = false;
+  std::string event;   // an event on the way it names: "flyby" or "gravity_assist"
+  bool lower = false;  // "at least", "minimum periapsis radius": a lower bound, which only the periapsis is
+  bool named = false;  // a body the text gives by name (`body`), met only on the way
   Meaning(Slot s = Slot::None, int r = kNoRole, int v = kNoVerb, int n = kNoNoun, bool b = false, std::string bd = "",
           bool c = false)
       : slot(s), role(r), verb(v), noun(n), bound(b), body(std::move(bd)), central(c) {}
@@ -133,6 +139,27 @@ const std::map<std::string, Meaning>& phrases() {
     for (const char* w : {"fuel optimal", "propellant optimal"}) t[w] = {Slot::None, kNoRole, kMinimize, kFuel};
     for (const char* w : {"time optimal", "fastest", "as fast as possible", "as short as possible"})
       t[w] = {Slot::None, kNoRole, kMinimize, kTime};
+    // events on the way: the event words, their stays, landers and periapsis bounds
+    for (const char* w : {"flyby", "flybys", "fly by", "flies by", "fly past", "flies past", "passes", "pass"})
+      t[w].event = "flyby";
+    for (const char* w : {"gravity assist", "swing by", "swings by", "swingby", "unpowered"})
+      t[w].event = "gravity_assist";
+    for (const char* w : {"asteroid", "comet", "there", "then", "close", "planned", "somewhere", "required", "window",
+                          "free", "uses", "include", "includes", "manoeuvre", "maneuver"})
+      t[w] = {};
+    slot({"stay", "stays", "stay time", "stay duration", "residence time", "remains", "remain", "waits", "wait",
+          "spends", "spend", "surface stay"},
+         Slot::Stay);
+    slot({"lander", "drops", "drop", "releases", "released", "release"}, Slot::Drop);
+    slot({"periapsis radius", "periapsis", "flyby radius", "pericenter radius", "pericentre radius", "closest approach",
+          "rp"},
+         Slot::Rmin);
+    for (const char* w : {"minimum periapsis radius", "minimum flyby radius", "min periapsis radius", "minimum radius",
+                          "lowest periapsis radius"}) {
+      t[w] = {Slot::Rmin};
+      t[w].lower = true;
+    }
+    t["least"].lower = true;
     return t;
   }();
   return table;
@@ -144,7 +171,10 @@ struct Quantity {
   std::vector<std::string> texts;
   std::string unit, written;
   bool vector = false;
-  bool date = false;  // an epoch: nums holds its MJD2000
+  bool date = false;               // an epoch: nums holds its MJD2000
+  bool day = false;                // "day N": N days after the epoch
+  bool window = false;             // "between E and E", "from E to E": nums holds both bounds
+  std::array<bool, 2> absolute{};  // a window's bounds: MJD2000 (a date) or days after the epoch
 };
 
 struct Token {
@@ -158,8 +188,9 @@ struct Candidate {
   Field field;
   Dimension dim;
   bool vector;
-  bool exhaust;       // an exhaust velocity, stored as the specific impulse
-  bool date = false;  // takes an epoch
+  bool exhaust;         // an exhaust velocity, stored as the specific impulse
+  bool date = false;    // takes an epoch
+  bool window = false;  // takes a window
 };
 
 constexpr double kG0 = 9.80665;  // m/s^2, exhaust velocity = Isp * g0
@@ -198,6 +229,7 @@ std::string replace_all(std::string s, const std::string& from, const std::strin
 std::string read_unit(const std::string& s, std::size_t& i) {
   std::size_t j = i;
   while (j < s.size() && s[j] == ' ') ++j;
+  if (j == i && j < s.size() && s[j] == '-') ++j;  // a 30-day stay
   std::size_t k = j;
   while (k < s.size() && (word_char(s[k]) || s[k] == '^' || s[k] == '/')) ++k;
   if (k == j || !std::isalpha(static_cast<unsigned char>(s[j]))) return "";
@@ -335,6 +367,33 @@ std::string unwrap_word_parens(std::string s) {
   return s;
 }
 
+// "between E and E", "from E to E" and "E to E" (E a date or "day N") as one window.
+std::vector<Token> windows_of(const std::vector<Token>& in) {
+  const auto epoch = [&](std::size_t k) {
+    return k < in.size() && in[k].kind == Token::Value && (in[k].q.date || in[k].q.day);
+  };
+  std::vector<Token> out;
+  for (std::size_t k = 0; k < in.size(); ++k) {
+    const bool between = !out.empty() && out.back().kind == Token::Word && out.back().word == "between";
+    const bool joined =
+        k + 1 < in.size() && ((between && in[k + 1].kind == Token::Separator && in[k + 1].word == "and") ||
+                              (in[k + 1].kind == Token::Word && in[k + 1].word == "to"));
+    if (!epoch(k) || !joined || !epoch(k + 2)) {
+      out.push_back(in[k]);
+      continue;
+    }
+    if (!out.empty() && out.back().kind == Token::Word && (between || out.back().word == "from")) out.pop_back();
+    Token t{Token::Value, "", {}};
+    t.q.window = true;
+    t.q.nums = {in[k].q.nums[0], in[k + 2].q.nums[0]};
+    t.q.absolute = {in[k].q.date, in[k + 2].q.date};
+    t.q.written = in[k].q.written + (between ? " and " : " to ") + in[k + 2].q.written;
+    out.push_back(t);
+    k += 2;
+  }
+  return out;
+}
+
 std::vector<Token> scan(const std::string& sentence) {
   // Superscripts as written in many texts: km³/s² is km^3/s^2.
   const std::string s = unwrap_word_parens(replace_all(replace_all(sentence, "\xC2\xB3", "^3"), "\xC2\xB2", "^2"));
@@ -402,8 +461,19 @@ std::vector<Token> scan(const std::string& sentence) {
       std::string w = lowercase(s.substr(i, k - i));
       if (w.size() > 2 && w.compare(w.size() - 2, 2, "'s") == 0) w.resize(w.size() - 2);
       i = k;
+      std::smatch d;
+      const std::string after = i < s.size() && s[i] == ' ' ? s.substr(i + 1) : "";
       if (w == "and") {
-        out.push_back({Token::Separator, "", {}});
+        out.push_back({Token::Separator, w, {}});
+      } else if (w == "day" && std::regex_search(after, d, num)) {
+        Quantity q;  // "day 120": a day counted from the epoch
+        q.day = true;
+        q.texts = {d.str(0)};
+        q.nums = {number_of(d.str(0))};
+        q.written = "day " + d.str(0);
+        i += 1 + d.length(0);
+        out.push_back({Token::Value, "", q});
+        continue;
       } else {
         out.push_back({Token::Word, w, {}});
       }
@@ -413,7 +483,7 @@ std::vector<Token> scan(const std::string& sentence) {
       throw facts_error(std::string("cannot read the character '") + c + "' here");
     }
   }
-  return out;
+  return windows_of(out);
 }
 
 // A phrase found in a clause, with the words as written.
@@ -428,7 +498,7 @@ struct Clause {
 };
 
 // Words into the longest phrases of the table; an unknown word is an error.
-std::vector<Clause> clauses_of(const std::vector<Token>& tokens) {
+std::vector<Clause> clauses_of(const std::vector<Token>& tokens, const std::map<std::string, std::string>& names) {
   std::vector<Clause> out(1);
   std::vector<std::string> words;
   bool after_bare_number = false;  // the words follow a number without a unit
@@ -444,6 +514,14 @@ std::vector<Clause> clauses_of(const std::vector<Token>& tokens) {
           out.back().mentions.push_back({it->second, phrase});
           break;
         }
+      }
+      if (len == 0 && names.count(words[i])) {  // a body the text gives by name
+        Meaning m;
+        m.body = names.at(words[i]);
+        m.named = true;
+        out.back().mentions.push_back({m, words[i]});
+        ++i;
+        continue;
       }
       if (len == 0) {
         if (i == 0 && after_bare_number)
@@ -523,6 +601,12 @@ std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
       return {{Field::Rf, Dimension::Length, true, false}};
     case Slot::Vf:
       return {{Field::Vf, Dimension::Speed, true, false}};
+    case Slot::Stay:
+      return {{Field::Stay, Dimension::Time, false, false}};
+    case Slot::Drop:
+      return {{Field::Drop, Dimension::Mass, false, false}};
+    case Slot::Rmin:
+      return {{Field::Rmin, Dimension::Length, false, false}};
     case Slot::None:
       break;
   }
@@ -530,8 +614,8 @@ std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
 }
 
 bool fits(const Candidate& c, const Quantity& q) {
-  if (c.vector != q.vector || c.date != q.date) return false;
-  if (q.date) return true;
+  if (c.vector != q.vector || c.date != q.date || c.window != q.window || q.day) return false;
+  if (q.date || q.window) return true;
   if (q.unit.empty()) return c.field == Field::T0 && q.nums[0] == 0;  // t = 0 needs no unit
   try {
     to_spec_unit(c.dim, q.unit);
@@ -567,6 +651,15 @@ std::string suggestion(Field f, const Quantity& q, Dimension d) {
     default:
       return "";
   }
+}
+
+// The controlled sentence of an event, with the body the user named.
+std::string event_form(const std::string& kind, const std::string& body) {
+  const std::string name = body.empty() ? "NAME" : body;
+  if (kind == "gravity_assist")
+    return "The spacecraft swings by " + name + " between day N and day N in an unpowered gravity assist.";
+  if (kind == "rendezvous") return "The spacecraft rendezvouses with " + name + " between day N and day N.";
+  return "The spacecraft flies by " + name + " between day N and day N.";
 }
 
 std::string objective_of(int verb, int noun, int role, const std::string& words) {
@@ -611,6 +704,14 @@ std::string field_name(Field f) {
       return "the final position";
     case Field::Vf:
       return "the final velocity";
+    case Field::Window:
+      return "the event's window";
+    case Field::Stay:
+      return "the stay";
+    case Field::Drop:
+      return "the lander's mass";
+    case Field::Rmin:
+      return "the lowest periapsis radius";
   }
   return "?";
 }
@@ -670,11 +771,11 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
   return suggestion(cands[0].field, *number, cands[0].dim);
 }
 
-SentenceFacts read_facts(const std::string& sentence) {
+SentenceFacts read_facts(const std::string& sentence, const std::map<std::string, std::string>& names) {
   const std::vector<Token> tokens = scan(sentence);
   std::vector<Clause> clauses;
   try {
-    clauses = clauses_of(tokens);
+    clauses = clauses_of(tokens, names);
   } catch (const facts_error& e) {
     throw facts_error(e.what(), e.modifies_fact ? "" : rough_suggestion(tokens));
   }
@@ -691,9 +792,31 @@ SentenceFacts read_facts(const std::string& sentence) {
       if (!m.meaning.body.empty()) bodies.insert(m.meaning.body);
       central_named = central_named || m.meaning.central;
     }
+  // An event on the way: its words, a stay, a lander, a periapsis bound, a day or a window, or a
+  // body given by name. Its body is the one body the sentence names, if any ("the asteroid").
+  bool event_sentence = false, rendezvous_word = false;
+  std::string event_kind;
+  for (const auto& c : clauses) {
+    for (const auto& m : c.mentions) {
+      const Slot sl = m.meaning.slot;
+      if (!m.meaning.event.empty() && event_kind != "gravity_assist") event_kind = m.meaning.event;
+      event_sentence = event_sentence || !m.meaning.event.empty() || m.meaning.named || sl == Slot::Stay ||
+                       sl == Slot::Drop || sl == Slot::Rmin;
+      rendezvous_word = rendezvous_word || m.text == "rendezvous" || m.text == "rendezvouses";
+    }
+    for (const auto& q : c.quantities) event_sentence = event_sentence || q.window || q.day;
+  }
+  if (event_sentence) {
+    if (central_named) throw facts_error("it names the central body and an event on the way: state them apart");
+    if (bodies.size() > 1)
+      throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": which one is the event at?");
+    if (bodies.count("Sun")) throw facts_error("the Sun is the central body, not a body to visit on the way");
+    if (!bodies.empty()) out.event_body = *bodies.begin();
+    bodies.clear();
+  }
   // Else a planet in a clause that says the spacecraft leaves or arrives is the body it departs
   // from or rendezvouses with ("Departure from Earth.", "Rendezvous with Mars.").
-  if (!bodies.empty() && !central_named && !sentence_roles.empty()) {
+  if (!bodies.empty() && !central_named && !sentence_roles.empty() && !event_sentence) {
     for (const auto& c : clauses) {
       std::set<int> roles;
       for (const auto& m : c.mentions)
@@ -766,6 +889,20 @@ SentenceFacts read_facts(const std::string& sentence) {
           throw facts_error("'" + m.text + "' makes '" + n.text +
                             "' a bound, not a value (a bounded time of flight reads 'The time of flight is free, at "
                             "most Q.')");
+    // The periapsis radius is a lower bound, and only it is.
+    bool lower = false, rmin = false;
+    for (const auto& m : c.mentions) {
+      lower = lower || m.meaning.lower;
+      rmin = rmin || m.meaning.slot == Slot::Rmin;
+      if (m.meaning.lower && m.meaning.slot != Slot::Rmin)
+        for (const auto& n : c.mentions)
+          if (n.meaning.slot != Slot::None && n.meaning.slot != Slot::Rmin && !n.meaning.weak)
+            throw facts_error("'" + m.text + "' makes '" + n.text + "' a lower bound, not a value");
+    }
+    if (rmin && !lower)
+      throw facts_error("'" + words +
+                        "' gives a periapsis radius, which HELIOS takes as a lower bound: say 'a minimum periapsis "
+                        "radius of Q' or 'the periapsis radius is at least Q'");
 
     // Quantities: each goes to the one fact of its clause whose dimension fits.
     struct Named {
@@ -778,6 +915,9 @@ SentenceFacts read_facts(const std::string& sentence) {
     for (const auto& m : c.mentions)
       if (m.meaning.slot != Slot::None) {
         const Slot s = m.meaning.slot;
+        // on the way, "epoch" and "date" name the event's, "lasts" and "takes" the stay's length
+        if (event_sentence && (s == Slot::Epoch || (s == Slot::Tof && (m.text == "lasts" || m.text == "takes"))))
+          continue;
         // the mass and a state take their role from their own clause, a state also from the sentence
         const int r = s == Slot::Mass ? clause_role : role;
         if ((s == Slot::Position || s == Slot::Velocity) && role == kNoRole && sentence_roles.size() > 1)
@@ -790,11 +930,21 @@ SentenceFacts read_facts(const std::string& sentence) {
     for (const auto& q : c.quantities) date_here = date_here || q.date;
     for (const auto& n : named)
       for (const auto& x : n.cands) epoch_named = epoch_named || x.date;
+    if (date_here && event_sentence)
+      throw facts_error("'" + words + "' dates an event on the way: HELIOS takes its window and chooses the date in it",
+                        event_form(event_kind, out.event_body));
     if (date_here && !epoch_named && role == kFinal)
       throw facts_error("'" + words +
                         "' gives an arrival date: HELIOS reads the departure epoch and the time of flight");
     if (date_here && !epoch_named && role == kInitial)
       named.push_back({{{Field::Epoch, Dimension::Time, false, false, true}}, words, false});
+    for (const auto& q : c.quantities)
+      if (q.window) {
+        Candidate w{Field::Window, Dimension::Time, false, false};
+        w.window = true;
+        named.push_back({{w}, words, false});
+        break;
+      }
     std::map<Field, std::string> bound_here;
     for (const auto& q : c.quantities) {
       std::vector<std::pair<Candidate, std::size_t>> fit;
@@ -852,7 +1002,7 @@ SentenceFacts read_facts(const std::string& sentence) {
       for (auto& n : named)
         for (const auto& x : n.cands)
           if (x.field == cand.field) n.bound = true;
-      Fact fact{cand.field, {}, q.written};
+      Fact fact{cand.field, {}, q.written, q.absolute};
       const double factor = q.unit.empty() ? 1.0 : to_spec_unit(cand.dim, q.unit);
       for (double v : q.nums) fact.value.push_back(cand.exhaust ? v * factor * 1000.0 / kG0 : v * factor);
       for (const auto& f : out.facts)
@@ -867,6 +1017,21 @@ SentenceFacts read_facts(const std::string& sentence) {
                           spec_unit(want.dim) + ")");
       }
   }
+  if (event_sentence) {
+    bool window = false;
+    for (const auto& f : out.facts) window = window || f.field == Field::Window;
+    if (event_kind.empty() && rendezvous_word && window) event_kind = "rendezvous";
+    if (event_kind.empty() && window)
+      throw facts_error("it gives a window but no event: a rendezvous, a flyby or a swing-by",
+                        event_form("flyby", out.event_body));
+    if (!event_kind.empty() && !window)
+      throw facts_error("the " + std::string(event_kind == "flyby" ? "flyby" : "swing-by") +
+                            " needs its window: HELIOS chooses the date inside it",
+                        event_form(event_kind, out.event_body));
+    if (!event_kind.empty() && out.event_body.empty())
+      throw facts_error("it does not name the body of the " + event_kind);
+    out.event = event_kind.empty() ? "stay" : event_kind;
+  }
   if (!unplaced.empty()) {
     bool mu = false;
     for (const auto& f : out.facts) mu = mu || f.field == Field::Mu;
@@ -876,7 +1041,7 @@ SentenceFacts read_facts(const std::string& sentence) {
     out.mu_body = unplaced;
   }
   if (out.facts.empty() && out.objective.empty() && out.central.empty() && out.departure_body.empty() &&
-      out.arrival_body.empty())
+      out.arrival_body.empty() && out.event.empty())
     throw facts_error("it states no fact HELIOS reads");
   for (const auto& f : out.facts) {
     // a body's state is its ephemeris, a gravitational parameter here would be the body's, not the central one's
@@ -891,8 +1056,10 @@ SentenceFacts read_facts(const std::string& sentence) {
   }
   for (const auto& f : out.facts) {
     const bool positive = f.field == Field::Thrust || f.field == Field::Isp || f.field == Field::InitialMass ||
-                          f.field == Field::FinalMass || f.field == Field::Tof || f.field == Field::Mu;
+                          f.field == Field::FinalMass || f.field == Field::Tof || f.field == Field::Mu ||
+                          f.field == Field::Drop || f.field == Field::Rmin;
     if (positive && !(f.value[0] > 0)) throw facts_error(field_name(f.field) + " must be positive, got " + f.written);
+    if (f.field == Field::Stay && f.value[0] < 0) throw facts_error("the stay must not be negative, got " + f.written);
   }
   return out;
 }

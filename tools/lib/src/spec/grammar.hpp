@@ -192,6 +192,8 @@ struct Builder {
   static std::string clause_forms(const std::string& kind);
   static void same_body(const Event& e, const std::string& phrase);
   void event_clause(Event& e, const std::string& part);
+  void add_event(Event e);
+  Event& rendezvous_of(const std::string& name);
   void on_drop(const std::smatch& m);
   void lander(double kg, const std::string& name);
   json resolve(const json& target, const Where& w);
@@ -211,8 +213,9 @@ struct Builder {
   TableColumns table_header(const std::vector<std::string>& cells);
 
   // ---- facts stated in other words (apply_facts.cpp) ----
-  static detail::SentenceFacts facts_of(const std::string& s);
+  detail::SentenceFacts facts_of(const std::string& s) const;
   void apply_facts(const detail::SentenceFacts& f);
+  void apply_event(const detail::SentenceFacts& f);
   void finish_facts();
 };
 
