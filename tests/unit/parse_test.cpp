@@ -664,7 +664,7 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
   EXPECT_EQ(dry.find("did you mean"), std::string::npos) << dry;
   has(err(sc + " The Sun is the central body and Earth is the central body."), "it names Earth and Sun");
   has(err(sc + " Mars has a gravitational parameter of 42828 km^3/s^2."),
-      "it gives Mars's gravitational parameter, but the central body is Sun");
+      "it is about Mars as the central body, but the central body is Sun");
   has(err(sc + " It is Mars."), "it does not say what Mars is here");
   // a weak word (spacecraft, engine) takes only a quantity of its own dimension, and yields to a fact word
   has(err("The 0.5 N spacecraft has Isp = 2000 s, m0 = 1000 kg."), "0.5 N cannot be the specific impulse");
@@ -812,4 +812,43 @@ TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
   has(err(flyby + " The spacecraft stays -10 days at Tengstrom."), "the stay must not be negative");
   has(err(flyby + " The surface stay at Nikko lasts 10 days and 20 days."),
       "nothing in its clause says what 20 days is");
+}
+
+// J2 and the solar sail in other words give S05's and S11's specs.
+TEST(ParseFacts, J2AndSailInOtherWordsGiveTheSameSpec) {
+  const auto scenario = [](const char* id) {
+    return helios::io::read_text(kSource + "/scenarios/" + id + "/problem.txt");
+  };
+  const std::string s05 = scenario("S05"), s11 = scenario("S11");
+  const std::string central =
+      "The central body is the Earth with gravitational parameter 398600.4418 km^3/s^2, equatorial radius 6378.137 km "
+      "and J2 coefficient 1.08262668e-3.";
+  const std::string j2 = "The dynamics include the J2 perturbation of the central body.";
+  for (const char* to : {"Include Earth's J2 perturbation.", "Dynamics: two-body plus J2.",
+                         "Account for the oblateness of the Earth (J2 effect)."})
+    EXPECT_EQ(parse(replaced(s05, j2, to)).dump(2), parse(s05).dump(2)) << to;
+  EXPECT_EQ(parse(replaced(replaced(s05, central,
+                                    "The central body is the Earth with gravitational parameter 398600.4418 km^3/s^2."),
+                           j2, "Model the J2 perturbation with J2 = 1.08262668e-3 and Earth radius 6378.137 km."))
+                .dump(2),
+            parse(s05).dump(2));
+  const std::string sail =
+      "The spacecraft is an ideal flat solar sail with a characteristic acceleration of 1.0 mm/s^2 "
+      "at 1 AU.";
+  for (const char* to : {"Propulsion: ideal solar sail, a_c = 1.0 mm/s^2.",
+                         "The spacecraft is propelled by a solar sail with a characteristic acceleration of 1 mm/s^2."})
+    EXPECT_EQ(parse(replaced(s11, sail, to)).dump(2), parse(s11).dump(2)) << to;
+  const auto has = [](const std::string& e, const std::string& part) {
+    EXPECT_NE(e.find(part), std::string::npos) << e;
+  };
+  has(error_of(replaced(s05, j2, "Include Mars's J2 perturbation.")),
+      "it is about Mars as the central body, but the central body is Earth");
+  has(error_of(replaced(s05, j2, "J2 = 1.08262668e-3 km.")), "nothing in its clause says what 1.08262668e-3 km is");
+  has(error_of(replaced(s05, j2, "Earth radius 6378 km.")), "the central body's radius_km is given twice");
+  has(error_of(replaced(s05, central, "Include the J2 perturbation with J2 = 1.08262668e-3.")),
+      "state the central body before its J2 coefficient or radius");
+  has(error_of(replaced(s11, sail, "The spacecraft is a solar sail.")),
+      "the solar sail needs its characteristic acceleration (at 1 AU) or lightness number; did you mean");
+  has(error_of(replaced(s11, sail, "Solar sail: lightness number 0.05, characteristic acceleration 0.3 mm/s^2.")),
+      "the propulsion is given twice");
 }

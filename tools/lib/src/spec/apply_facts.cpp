@@ -1,6 +1,8 @@
 // Facts stated in other words (read by facts.cpp) applied to the spec being built.
 #include "grammar.hpp"
 
+#include "helios/astro/constants.hpp"
+
 namespace helios::spec::grammar {
 
 detail::SentenceFacts Builder::facts_of(const std::string& s) const {
@@ -22,14 +24,25 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
     once("the central body");
     central(f.central, "");
   }
-  if (!f.mu_body.empty()) {
-    // HELIOS takes the central body's gravitational parameter here: the body must be that one.
-    const std::string name = central_body.is_object() ? central_body.value("name", "") : "";
-    if (!name.empty() && lowercase(name) != lowercase(f.mu_body))
-      throw sentence_error("it gives " + f.mu_body + "'s gravitational parameter, but the central body is " + name +
-                           " (a swing-by body's reads '; " + f.mu_body + " has a gravitational parameter of Q')");
-    mu_body = {f.mu_body, here};
+  const std::string central_name = central_body.is_object() ? central_body.value("name", "") : "";
+  if (!f.constants_of.empty()) {
+    // HELIOS takes the central body's constants and J2 here: the body must be that one.
+    if (!central_name.empty() && lowercase(central_name) != lowercase(f.constants_of))
+      throw sentence_error("it is about " + f.constants_of + " as the central body, but the central body is " +
+                           central_name + " (a swing-by body's gravitational parameter reads '; " + f.constants_of +
+                           " has a gravitational parameter of Q')");
+    constants_body = {f.constants_of, here};
   }
+  if (f.j2) {
+    once("the J2 perturbation");
+    perturbations.push_back({{"kind", "j2"}});
+  }
+  // The central body's J2 coefficient and radius: stated after it, once (a known radius is replaced).
+  const auto central_value = [&](const char* key, double v, bool stated) {
+    if (central_name.empty()) throw sentence_error("state the central body before its J2 coefficient or radius");
+    if (stated) throw sentence_error(std::string("the central body's ") + key + " is given twice");
+    central_body[key] = v;
+  };
   if (!f.departure_body.empty()) {
     once("the departure");
     departure = Endpoint{here, {{"ref", f.departure_body}}, "initial_state", std::nullopt};
@@ -103,6 +116,19 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
         break;
       case Field::Vf:
         state(vf, fact.field, false, vec);
+        break;
+      case Field::J2:
+        central_value("j2", v, central_body.contains("j2"));
+        break;
+      case Field::Radius:
+        central_value("radius_km", v, radius_stated);
+        radius_stated = true;
+        break;
+      case Field::CharAccel:
+        sail(v, 1.0);  // a characteristic acceleration is the one at 1 AU
+        break;
+      case Field::Lightness:  // the ratio of the sail's acceleration to the Sun's gravity, here at 1 AU
+        sail(v * astro::MU_SUN_KM3_S2 / (astro::AU_KM * astro::AU_KM) * 1e6, 1.0);
         break;
       case Field::Window:
       case Field::Stay:

@@ -40,7 +40,11 @@ enum class Slot {
   Vf,
   Stay,
   Drop,
-  Rmin
+  Rmin,
+  J2,
+  Radius,
+  CharAccel,
+  Lightness
 };
 enum Role { kNoRole = 0, kInitial = 1, kFinal = 2 };
 enum Verb { kNoVerb = 0, kMinimize, kMaximize, kMinimum, kMaximum };
@@ -58,6 +62,7 @@ struct Meaning {
   std::string event;   // an event on the way it names: "flyby" or "gravity_assist"
   bool lower = false;  // "at least", "minimum periapsis radius": a lower bound, which only the periapsis is
   bool named = false;  // a body the text gives by name (`body`), met only on the way
+  std::string model;   // a part of the model it names: "j2" (the perturbation) or "sail"
   Meaning(Slot s = Slot::None, int r = kNoRole, int v = kNoVerb, int n = kNoNoun, bool b = false, std::string bd = "",
           bool c = false)
       : slot(s), role(r), verb(v), noun(n), bound(b), body(std::move(bd)), central(c) {}
@@ -160,6 +165,20 @@ const std::map<std::string, Meaning>& phrases() {
       t[w].lower = true;
     }
     t["least"].lower = true;
+    // the J2 perturbation ("j2" alone with a number is the coefficient), the central body's radius
+    for (const char* w : {"j2 perturbation", "j2 term", "j2 effect", "oblateness", "zonal harmonic j2",
+                          "zonal harmonic", "j2 zonal harmonic"})
+      t[w].model = "j2";
+    slot({"j2 coefficient"}, Slot::J2);
+    t["j2"] = {Slot::J2};
+    t["j2"].weak = true;
+    slot({"radius", "equatorial radius"}, Slot::Radius);
+    for (const char* w : {"solar sail", "sail", "solar sails"}) t[w].model = "sail";
+    slot({"characteristic acceleration", "a_c", "ac"}, Slot::CharAccel);
+    slot({"lightness number", "lightness", "lightness parameter"}, Slot::Lightness);
+    for (const char* w : {"included", "dynamics", "plus", "account", "into", "model", "force", "propelled", "ideal",
+                          "flat", "perfectly", "reflecting", "instead"})
+      t[w] = {};
     return t;
   }();
   return table;
@@ -191,6 +210,7 @@ struct Candidate {
   bool exhaust;         // an exhaust velocity, stored as the specific impulse
   bool date = false;    // takes an epoch
   bool window = false;  // takes a window
+  bool pure = false;    // takes a number without unit
 };
 
 constexpr double kG0 = 9.80665;  // m/s^2, exhaust velocity = Isp * g0
@@ -607,6 +627,16 @@ std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
       return {{Field::Drop, Dimension::Mass, false, false}};
     case Slot::Rmin:
       return {{Field::Rmin, Dimension::Length, false, false}};
+    case Slot::Radius:
+      return {{Field::Radius, Dimension::Length, false, false}};
+    case Slot::CharAccel:
+      return {{Field::CharAccel, Dimension::Acceleration, false, false}};
+    case Slot::J2:
+    case Slot::Lightness: {
+      Candidate c{s == Slot::J2 ? Field::J2 : Field::Lightness, Dimension::Length, false, false};
+      c.pure = true;
+      return {c};
+    }
     case Slot::None:
       break;
   }
@@ -616,7 +646,8 @@ std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
 bool fits(const Candidate& c, const Quantity& q) {
   if (c.vector != q.vector || c.date != q.date || c.window != q.window || q.day) return false;
   if (q.date || q.window) return true;
-  if (q.unit.empty()) return c.field == Field::T0 && q.nums[0] == 0;  // t = 0 needs no unit
+  if (c.pure || q.unit.empty()) return q.unit.empty() && (c.pure || (c.field == Field::T0 && q.nums[0] == 0));
+  // t = 0 needs no unit, a J2 coefficient or a lightness number has none
   try {
     to_spec_unit(c.dim, q.unit);
     return true;
@@ -712,6 +743,14 @@ std::string field_name(Field f) {
       return "the lander's mass";
     case Field::Rmin:
       return "the lowest periapsis radius";
+    case Field::J2:
+      return "the J2 coefficient";
+    case Field::Radius:
+      return "the central body's radius";
+    case Field::CharAccel:
+      return "the sail's characteristic acceleration";
+    case Field::Lightness:
+      return "the sail's lightness number";
   }
   return "?";
 }
@@ -733,7 +772,8 @@ bool states_nothing(const std::string& sentence) {
       phrase += (k == i ? "" : " ") + tokens[k].word;
       const auto it = table.find(phrase);
       const Meaning& mean = it == table.end() ? Meaning{} : it->second;
-      if ((mean.slot != Slot::None && !mean.weak) || mean.verb != kNoVerb || !mean.body.empty() || mean.central)
+      if ((mean.slot != Slot::None && !mean.weak) || mean.verb != kNoVerb || !mean.body.empty() || mean.central ||
+          !mean.event.empty() || !mean.model.empty())
         return false;
     }
   }
@@ -1011,6 +1051,8 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
       out.facts.push_back(fact);
     }
     for (const auto& n : named)
+      out.j2 = out.j2 || (!n.bound && n.text == "j2");  // "plus J2": the perturbation, not its coefficient
+    for (const auto& n : named)
       if (!n.bound && !n.weak) {
         const Candidate& want = n.cands.front();
         throw facts_error("'" + n.text + "' has no value: give " + field_name(want.field) + " with its unit (" +
@@ -1032,16 +1074,29 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
       throw facts_error("it does not name the body of the " + event_kind);
     out.event = event_kind.empty() ? "stay" : event_kind;
   }
+  for (const auto& c : clauses)
+    for (const auto& m : c.mentions) {
+      out.j2 = out.j2 || m.meaning.model == "j2";
+      out.sail = out.sail || m.meaning.model == "sail";
+    }
+  bool sail_value = false, central_value = false;
+  for (const auto& f : out.facts) {
+    sail_value = sail_value || f.field == Field::CharAccel || f.field == Field::Lightness;
+    central_value = central_value || f.field == Field::Mu || f.field == Field::J2 || f.field == Field::Radius;
+  }
+  if (out.sail && !sail_value)
+    throw facts_error("the solar sail needs its characteristic acceleration (at 1 AU) or lightness number",
+                      "The spacecraft is an ideal flat solar sail with a characteristic acceleration of 1 mm/s^2 at 1 "
+                      "AU.");
+  out.sail = sail_value;
   if (!unplaced.empty()) {
-    bool mu = false;
-    for (const auto& f : out.facts) mu = mu || f.field == Field::Mu;
-    if (!mu)
+    if (!central_value && !out.j2)
       throw facts_error("it does not say what " + unplaced + " is here (the central body reads 'The central body is " +
                         (unplaced == "Mars" ? "" : "the ") + unplaced + ".')");
-    out.mu_body = unplaced;
+    out.constants_of = unplaced;
   }
   if (out.facts.empty() && out.objective.empty() && out.central.empty() && out.departure_body.empty() &&
-      out.arrival_body.empty() && out.event.empty())
+      out.arrival_body.empty() && out.event.empty() && !out.j2)
     throw facts_error("it states no fact HELIOS reads");
   for (const auto& f : out.facts) {
     // a body's state is its ephemeris, a gravitational parameter here would be the body's, not the central one's
@@ -1057,7 +1112,8 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
   for (const auto& f : out.facts) {
     const bool positive = f.field == Field::Thrust || f.field == Field::Isp || f.field == Field::InitialMass ||
                           f.field == Field::FinalMass || f.field == Field::Tof || f.field == Field::Mu ||
-                          f.field == Field::Drop || f.field == Field::Rmin;
+                          f.field == Field::Drop || f.field == Field::Rmin || f.field == Field::Radius ||
+                          f.field == Field::CharAccel || f.field == Field::Lightness;
     if (positive && !(f.value[0] > 0)) throw facts_error(field_name(f.field) + " must be positive, got " + f.written);
     if (f.field == Field::Stay && f.value[0] < 0) throw facts_error("the stay must not be negative, got " + f.written);
   }

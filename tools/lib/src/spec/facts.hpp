@@ -12,8 +12,30 @@
 namespace helios::spec::detail {
 
 // The facts a sentence may state.
-// The last four belong to an event on the way: its window, a stay, a lander, a lowest periapsis.
-enum class Field { Thrust, Isp, InitialMass, FinalMass, Tof, T0, Epoch, Mu, R0, V0, Rf, Vf, Window, Stay, Drop, Rmin };
+// Window, Stay, Drop and Rmin belong to an event on the way (its window, a stay, a lander, a lowest
+// periapsis); J2 and Radius to the central body; CharAccel and Lightness to a solar sail.
+enum class Field {
+  Thrust,
+  Isp,
+  InitialMass,
+  FinalMass,
+  Tof,
+  T0,
+  Epoch,
+  Mu,
+  R0,
+  V0,
+  Rf,
+  Vf,
+  Window,
+  Stay,
+  Drop,
+  Rmin,
+  J2,
+  Radius,
+  CharAccel,
+  Lightness
+};
 
 struct Fact {
   Field field;
@@ -27,7 +49,9 @@ struct SentenceFacts {
   std::string objective;                     // a spec objective kind ("minimum_fuel", ...) or ""
   std::string central;                       // the central body named ("Sun", "Earth", "Mars") or ""
   std::string departure_body, arrival_body;  // a planet the spacecraft leaves or rendezvouses with, or ""
-  std::string mu_body;                       // the body whose gravitational parameter it gives, or ""
+  std::string constants_of;                  // the body whose gravitational parameter, radius or J2 it gives, or ""
+  bool j2 = false;                           // it includes the J2 perturbation
+  bool sail = false;                         // the spacecraft is a solar sail
   // An event on the way: "flyby", "gravity_assist" or "rendezvous" with its window, or "stay" for
   // a stay or lander at a rendezvous stated before; its body as written, or "" ("the asteroid").
   std::string event, event_body;

@@ -139,8 +139,9 @@ struct Builder {
   std::optional<json> r0, v0, rf, vf;  // state vectors stated one by one
   Where initial_where, final_where;
   bool mu_stated = false;
-  std::optional<double> pending_mu;                      // a gravitational parameter stated before the central body
-  std::optional<std::pair<std::string, Where>> mu_body;  // the body that gravitational parameter is of
+  std::optional<double> pending_mu;  // a gravitational parameter stated before the central body
+  std::optional<std::pair<std::string, Where>> constants_body;  // the body whose mu, radius or J2 a sentence gave
+  bool radius_stated = false;                                   // else the radius is the known one
 
   // A sentence of the controlled English: the first rule whose pattern matches it whole applies.
   struct SentenceRule {
@@ -164,6 +165,7 @@ struct Builder {
   void on_has(const std::smatch& m);
   void spacecraft_clauses(const std::string& list);
   void on_sail(const std::smatch& m);
+  void sail(double ac_mm_s2, double ref_au);
   void on_j2(const std::smatch&);
   void on_accel(const std::smatch& m);
   static json user_acceleration(const std::string& name, const std::string& list, const std::string& unit);
