@@ -852,3 +852,37 @@ TEST(ParseFacts, J2AndSailInOtherWordsGiveTheSameSpec) {
   has(error_of(replaced(s11, sail, "Solar sail: lightness number 0.05, characteristic acceleration 0.3 mm/s^2.")),
       "the propulsion is given twice");
 }
+
+// A body's orbital elements in other words give S10's spec; incomplete ones suggest the orbit
+// sentence filled in with the user's numbers.
+TEST(ParseFacts, ElementsInOtherWordsGiveTheSameSpec) {
+  const std::string s10 = helios::io::read_text(kSource + "/scenarios/S10/problem.txt");
+  const std::string orbit =
+      "Mars moves on a Keplerian orbit about the Sun with a = 1.52363312 AU, e = 0.09327933, i = 1.84785414 deg, node "
+      "= 49.48935357 deg, argument of perihelion = 286.67090811 deg and true anomaly = 328.88755274 deg at MJD 60389.";
+  for (const char* to :
+       {"Mars's orbital elements at MJD 60389: a = 1.52363312 AU, e = 0.09327933, i = 1.84785414\xC2\xB0, "
+        "\xCE\xA9 = 49.48935357\xC2\xB0, \xCF\x89 = 286.67090811\xC2\xB0, true anomaly = 328.88755274\xC2\xB0.",
+        "Orbit of Mars (epoch MJD2000 8845): semi-major axis 1.52363312 AU, eccentricity 0.09327933, inclination "
+        "1.84785414 deg, ascending node 49.48935357 deg, argument of perihelion 286.67090811 deg, true anomaly "
+        "328.88755274 deg."})
+    EXPECT_EQ(parse(replaced(s10, orbit, to)).dump(2), parse(s10).dump(2)) << to;
+  const auto has = [](const std::string& e, const std::string& part) {
+    EXPECT_NE(e.find(part), std::string::npos) << e;
+  };
+  const auto err = [&](const std::string& to) { return error_of(replaced(s10, orbit, to)); };
+  has(err("a = 1.2 AU, e = 0.1, i = 5 deg, Omega = 80 deg, omega = 150 deg, M = 20 deg."),
+      "the orbit lacks the epoch of the elements, the body's name; did you mean \"NAME moves on a Keplerian orbit "
+      "about "
+      "the central body with a = 1.2 AU, e = 0.1, i = 5 deg, node = 80 deg, argument of perihelion = 150 deg and mean "
+      "anomaly = 20 deg at MJD N.\"?");
+  has(err("Mars: a = 1.5 AU, e = 0.1 at MJD 60389."), "the orbit lacks the inclination, the ascending node");
+  has(err("Mars: a = 1.5 AU, e = 1.2, i = 5 deg, node = 80 deg, argp = 150 deg, M = 20 deg at MJD 60389."),
+      "the eccentricity must satisfy 0 <= e < 1, got 1.2");
+  has(err("Mars: a = 1.5 AU, e = 0.1, i = 5, node = 80 deg, argp = 150 deg, M = 20 deg at MJD 60389."),
+      "5 has no unit, and the inclination needs one (deg)");
+  has(err("Mars and Venus: a = 1.5 AU, e = 0.1, i = 5 deg, node = 80 deg, argp = 150 deg, M = 20 deg at MJD 60389."),
+      "whose elements are these?");
+  has(err("Mars: a = 1.5 AU, e = 0.1, i = 5 deg, node = 80 deg, argp = 150 deg, M = 20 deg, nu = 30 deg at MJD 60389."),
+      "both a mean and a true anomaly");
+}

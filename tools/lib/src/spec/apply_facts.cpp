@@ -135,7 +135,32 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
       case Field::Drop:
       case Field::Rmin:
         break;  // the event's (apply_event)
+      case Field::A:
+      case Field::Ecc:
+      case Field::Inc:
+      case Field::Raan:
+      case Field::Argp:
+      case Field::MeanAnomaly:
+      case Field::TrueAnomaly:
+      case Field::ElementsEpoch:
+        break;  // the orbit's, below
     }
+  }
+  if (!f.orbit_of.empty()) {
+    static const std::map<Field, const char*> keys = {{Field::Ecc, "e"},
+                                                      {Field::Inc, "i"},
+                                                      {Field::Raan, "raan"},
+                                                      {Field::Argp, "argp"},
+                                                      {Field::MeanAnomaly, "mean"},
+                                                      {Field::TrueAnomaly, "true"}};
+    std::map<std::string, double> v;
+    double epoch = 0;
+    for (const auto& fact : f.facts) {
+      if (fact.field == Field::A) v["a"] = fact.value[0] / astro::AU_KM;
+      if (fact.field == Field::ElementsEpoch) epoch = fact.value[0];
+      if (keys.count(fact.field)) v[keys.at(fact.field)] = fact.value[0];
+    }
+    define_orbit(f.orbit_of, "", elements_json(epoch, v));
   }
   if (!f.event.empty()) apply_event(f);
   if (!f.objective.empty()) {

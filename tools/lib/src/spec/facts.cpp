@@ -5,6 +5,7 @@
 
 #include <cctype>
 #include <cstdio>
+#include <iomanip>
 #include <map>
 #include <optional>
 #include <regex>
@@ -44,7 +45,10 @@ enum class Slot {
   J2,
   Radius,
   CharAccel,
-  Lightness
+  Lightness,
+  A,
+  Ecc,
+  Angle  // an orbital element that is an angle: its field is the phrase's
 };
 enum Role { kNoRole = 0, kInitial = 1, kFinal = 2 };
 enum Verb { kNoVerb = 0, kMinimize, kMaximize, kMinimum, kMaximum };
@@ -179,6 +183,15 @@ const std::map<std::string, Meaning>& phrases() {
     for (const char* w : {"included", "dynamics", "plus", "account", "into", "model", "force", "propelled", "ideal",
                           "flat", "perfectly", "reflecting", "instead"})
       t[w] = {};
+    // orbital elements ("a = Q", "e = N", "i = Q", "M = Q", "nu = Q", "Omega = Q", "omega = Q" too: scan())
+    slot({"semi major axis", "semimajor axis"}, Slot::A);
+    slot({"eccentricity"}, Slot::Ecc);
+    slot({"inclination", "raan", "node", "ascending node", "longitude of the ascending node",
+          "right ascension of the ascending node", "argp", "argument of perihelion", "argument of periapsis",
+          "argument of pericenter", "argument of pericentre", "mean anomaly", "true anomaly"},
+         Slot::Angle);
+    for (const char* w : {"elements", "orbital elements", "keplerian", "orbit", "orbits", "orbital", "defined"})
+      t[w] = {};
     return t;
   }();
   return table;
@@ -200,7 +213,10 @@ struct Token {
   enum Kind { Word, Value, Separator } kind;
   std::string word;
   Quantity q;
+  std::string text = "";  // a word as written
 };
+
+constexpr std::size_t kMaxPhraseWords = 6;  // "right ascension of the ascending node"
 
 // A candidate reading of a quantity: a field, the dimension it takes, whether it is a vector.
 struct Candidate {
@@ -416,7 +432,10 @@ std::vector<Token> windows_of(const std::vector<Token>& in) {
 
 std::vector<Token> scan(const std::string& sentence) {
   // Superscripts as written in many texts: km³/s² is km^3/s^2.
-  const std::string s = unwrap_word_parens(replace_all(replace_all(sentence, "\xC2\xB3", "^3"), "\xC2\xB2", "^2"));
+  // Ω and ω are the node and the argument of periapsis, ° is deg.
+  std::string raw = replace_all(replace_all(sentence, "\xC2\xB3", "^3"), "\xC2\xB2", "^2");
+  raw = replace_all(replace_all(replace_all(raw, "\xCE\xA9", "RAAN"), "\xCF\x89", "argp"), "\xC2\xB0", " deg");
+  const std::string s = unwrap_word_parens(raw);
   static const std::regex num(R"(^[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)");
   std::vector<Token> out;
   std::size_t i = 0;
@@ -478,9 +497,16 @@ std::vector<Token> scan(const std::string& sentence) {
     } else if (word_char(c)) {
       std::size_t k = i;
       while (k < s.size() && (word_char(s[k]) || s[k] == '\'')) ++k;
-      std::string w = lowercase(s.substr(i, k - i));
-      if (w.size() > 2 && w.compare(w.size() - 2, 2, "'s") == 0) w.resize(w.size() - 2);
+      std::string text = s.substr(i, k - i);
+      if (text.size() > 2 && text.compare(text.size() - 2, 2, "'s") == 0) text.resize(text.size() - 2);
+      std::string w = lowercase(text);
       i = k;
+      // an element's symbol before '=' ("a = 1.2 AU", "Omega = 80 deg" the node, "omega" the argument)
+      static const std::map<std::string, std::string> symbols = {
+          {"a", "semi major axis"}, {"e", "eccentricity"}, {"i", "inclination"}, {"M", "mean anomaly"},
+          {"nu", "true anomaly"},   {"Omega", "raan"},     {"omega", "argp"}};
+      const std::size_t eq = s.find_first_not_of(' ', i);
+      if (eq != std::string::npos && s[eq] == '=' && symbols.count(text)) w = symbols.at(text);
       std::smatch d;
       const std::string after = i < s.size() && s[i] == ' ' ? s.substr(i + 1) : "";
       if (w == "and") {
@@ -495,7 +521,7 @@ std::vector<Token> scan(const std::string& sentence) {
         out.push_back({Token::Value, "", q});
         continue;
       } else {
-        out.push_back({Token::Word, w, {}});
+        out.push_back({Token::Word, w, {}, text});
       }
       if (i < s.size() && s[i] == '-' && i + 1 < s.size() && std::isalpha(static_cast<unsigned char>(s[i + 1]))) ++i;
     } else {
@@ -525,7 +551,7 @@ std::vector<Clause> clauses_of(const std::vector<Token>& tokens, const std::map<
   const auto flush = [&] {
     const auto& table = phrases();
     for (std::size_t i = 0; i < words.size();) {
-      std::size_t len = std::min<std::size_t>(4, words.size() - i);
+      std::size_t len = std::min(kMaxPhraseWords, words.size() - i);
       for (; len > 0; --len) {
         std::string phrase = words[i];
         for (std::size_t k = 1; k < len; ++k) phrase += " " + words[i + k];
@@ -549,7 +575,7 @@ std::vector<Clause> clauses_of(const std::vector<Token>& tokens, const std::map<
                             " is no unit HELIOS knows and no fact word");
         // a word before a fact word modifies it ("dry mass"): no form can be suggested
         bool modifies = false;
-        for (std::size_t len2 = 1; i + len2 < words.size() && len2 <= 4 && !modifies; ++len2) {
+        for (std::size_t len2 = 1; i + len2 < words.size() && len2 <= kMaxPhraseWords && !modifies; ++len2) {
           std::string next = words[i + 1];
           for (std::size_t k = 1; k < len2; ++k) next += " " + words[i + 1 + k];
           const auto it = table.find(next);
@@ -631,6 +657,22 @@ std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
       return {{Field::Radius, Dimension::Length, false, false}};
     case Slot::CharAccel:
       return {{Field::CharAccel, Dimension::Acceleration, false, false}};
+    case Slot::A:
+      return {{Field::A, Dimension::Length, false, false}};
+    case Slot::Ecc: {
+      Candidate c{Field::Ecc, Dimension::Length, false, false};
+      c.pure = true;
+      return {c};
+    }
+    case Slot::Angle: {
+      // the node's names end in "node" (or are "raan"), the argument's start with "arg"
+      const Field f = text == "inclination"            ? Field::Inc
+                      : text == "mean anomaly"         ? Field::MeanAnomaly
+                      : text == "true anomaly"         ? Field::TrueAnomaly
+                      : text.compare(0, 3, "arg") == 0 ? Field::Argp
+                                                       : Field::Raan;
+      return {{f, Dimension::Angle, false, false}};
+    }
     case Slot::J2:
     case Slot::Lightness: {
       Candidate c{s == Slot::J2 ? Field::J2 : Field::Lightness, Dimension::Length, false, false};
@@ -682,6 +724,49 @@ std::string suggestion(Field f, const Quantity& q, Dimension d) {
     default:
       return "";
   }
+}
+
+// Every word of the fact rules' phrases: a word outside them may be a body's name.
+const std::set<std::string>& phrase_words() {
+  static const std::set<std::string> words = [] {
+    std::set<std::string> w;
+    for (const auto& [phrase, _] : phrases()) {
+      std::istringstream in(phrase);
+      for (std::string x; in >> x;) w.insert(x);
+    }
+    return w;
+  }();
+  return words;
+}
+
+// A body's orbital elements are all six, one anomaly, their epoch and the body; else the error
+// suggests the orbit sentence with the user's own numbers.
+void check_elements(const SentenceFacts& out) {
+  std::map<Field, const Fact*> got;
+  for (const auto& f : out.facts) got[f.field] = &f;
+  if (got.count(Field::Ecc) && !(got[Field::Ecc]->value[0] >= 0 && got[Field::Ecc]->value[0] < 1))
+    throw facts_error("the eccentricity must satisfy 0 <= e < 1, got " + got[Field::Ecc]->written);
+  if (got.count(Field::MeanAnomaly) && got.count(Field::TrueAnomaly))
+    throw facts_error("it gives both a mean and a true anomaly: which one?");
+  const Field anomaly = got.count(Field::TrueAnomaly) ? Field::TrueAnomaly : Field::MeanAnomaly;
+  std::string missing;
+  for (Field f : {Field::A, Field::Ecc, Field::Inc, Field::Raan, Field::Argp, anomaly, Field::ElementsEpoch})
+    if (!got.count(f)) missing += (missing.empty() ? "" : ", ") + field_name(f);
+  if (out.orbit_of.empty()) missing += (missing.empty() ? "" : ", ") + std::string("the body's name");
+  if (missing.empty()) return;
+  const auto w = [&](Field f, const char* none) { return got.count(f) ? got[f]->written : std::string(none); };
+  std::ostringstream epoch;
+  if (got.count(Field::ElementsEpoch))
+    epoch << "MJD2000 " << std::setprecision(10) << got[Field::ElementsEpoch]->value[0];
+  else
+    epoch << "MJD N";
+  throw facts_error("the orbit lacks " + missing,
+                    (out.orbit_of.empty() ? "NAME" : out.orbit_of) +
+                        " moves on a Keplerian orbit about the central body with a = " + w(Field::A, "Q") +
+                        ", e = " + w(Field::Ecc, "N") + ", i = " + w(Field::Inc, "Q") +
+                        ", node = " + w(Field::Raan, "Q") + ", argument of perihelion = " + w(Field::Argp, "Q") +
+                        " and " + (anomaly == Field::TrueAnomaly ? "true" : "mean") + " anomaly = " + w(anomaly, "Q") +
+                        " at " + epoch.str() + ".");
 }
 
 // The controlled sentence of an event, with the body the user named.
@@ -751,6 +836,22 @@ std::string field_name(Field f) {
       return "the sail's characteristic acceleration";
     case Field::Lightness:
       return "the sail's lightness number";
+    case Field::A:
+      return "the semi-major axis";
+    case Field::Ecc:
+      return "the eccentricity";
+    case Field::Inc:
+      return "the inclination";
+    case Field::Raan:
+      return "the ascending node";
+    case Field::Argp:
+      return "the argument of perihelion";
+    case Field::MeanAnomaly:
+      return "the mean anomaly";
+    case Field::TrueAnomaly:
+      return "the true anomaly";
+    case Field::ElementsEpoch:
+      return "the epoch of the elements";
   }
   return "?";
 }
@@ -768,7 +869,7 @@ bool states_nothing(const std::string& sentence) {
   for (std::size_t i = 0; i < tokens.size(); ++i) {
     if (tokens[i].kind != Token::Word) continue;
     std::string phrase;
-    for (std::size_t k = i; k < tokens.size() && k < i + 4 && tokens[k].kind == Token::Word; ++k) {
+    for (std::size_t k = i; k < tokens.size() && k < i + kMaxPhraseWords && tokens[k].kind == Token::Word; ++k) {
       phrase += (k == i ? "" : " ") + tokens[k].word;
       const auto it = table.find(phrase);
       const Meaning& mean = it == table.end() ? Meaning{} : it->second;
@@ -794,7 +895,7 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
     }
     if (tokens[i].kind != Token::Word) continue;
     std::string phrase;
-    for (std::size_t len = 1; len <= 4 && i + len <= tokens.size(); ++len) {
+    for (std::size_t len = 1; len <= kMaxPhraseWords && i + len <= tokens.size(); ++len) {
       if (tokens[i + len - 1].kind != Token::Word) break;
       phrase += (len == 1 ? "" : " ") + tokens[i + len - 1].word;
       const auto it = phrases().find(phrase);
@@ -813,9 +914,27 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
 
 SentenceFacts read_facts(const std::string& sentence, const std::map<std::string, std::string>& names) {
   const std::vector<Token> tokens = scan(sentence);
+  // Orbital elements: the sentence names the body they belong to, maybe for the first time, as the
+  // one word written with a capital that is no fact word ("Nikko's orbital elements ...").
+  bool elements = false;
+  for (const auto& t : tokens) {
+    const auto it = phrases().find(t.word);
+    elements = elements || (t.kind == Token::Word && it != phrases().end() &&
+                            (it->second.slot == Slot::A || it->second.slot == Slot::Ecc ||
+                             it->second.slot == Slot::Angle || t.word == "elements"));
+  }
+  std::map<std::string, std::string> known = names;
+  if (elements) {
+    std::set<std::string> fresh;
+    for (const auto& t : tokens)
+      if (t.kind == Token::Word && std::isupper(static_cast<unsigned char>(t.text[0])) && !phrases().count(t.word) &&
+          !phrase_words().count(t.word) && !names.count(t.word))
+        fresh.insert(t.text);
+    if (fresh.size() == 1) known[lowercase(*fresh.begin())] = *fresh.begin();
+  }
   std::vector<Clause> clauses;
   try {
-    clauses = clauses_of(tokens, names);
+    clauses = clauses_of(tokens, known);
   } catch (const facts_error& e) {
     throw facts_error(e.what(), e.modifies_fact ? "" : rough_suggestion(tokens));
   }
@@ -837,6 +956,7 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
   bool event_sentence = false, rendezvous_word = false;
   std::string event_kind;
   for (const auto& c : clauses) {
+    if (elements) break;
     for (const auto& m : c.mentions) {
       const Slot sl = m.meaning.slot;
       if (!m.meaning.event.empty() && event_kind != "gravity_assist") event_kind = m.meaning.event;
@@ -845,6 +965,14 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
       rendezvous_word = rendezvous_word || m.text == "rendezvous" || m.text == "rendezvouses";
     }
     for (const auto& q : c.quantities) event_sentence = event_sentence || q.window || q.day;
+  }
+  if (elements) {  // the body orbiting, and the Sun it orbits (which must be the central body)
+    if (bodies.count("Sun")) out.constants_of = "Sun";
+    bodies.erase("Sun");
+    if (bodies.size() > 1)
+      throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": whose elements are these?");
+    if (!bodies.empty()) out.orbit_of = *bodies.begin();
+    bodies.clear();
   }
   if (event_sentence) {
     if (central_named) throw facts_error("it names the central body and an event on the way: state them apart");
@@ -958,6 +1086,7 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
         // on the way, "epoch" and "date" name the event's, "lasts" and "takes" the stay's length
         if (event_sentence && (s == Slot::Epoch || (s == Slot::Tof && (m.text == "lasts" || m.text == "takes"))))
           continue;
+        if (elements && s == Slot::Epoch) continue;  // the epoch of the elements
         // the mass and a state take their role from their own clause, a state also from the sentence
         const int r = s == Slot::Mass ? clause_role : role;
         if ((s == Slot::Position || s == Slot::Velocity) && role == kNoRole && sentence_roles.size() > 1)
@@ -970,7 +1099,9 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
     for (const auto& q : c.quantities) date_here = date_here || q.date;
     for (const auto& n : named)
       for (const auto& x : n.cands) epoch_named = epoch_named || x.date;
-    if (date_here && event_sentence)
+    if (date_here && elements)
+      named.push_back({{{Field::ElementsEpoch, Dimension::Time, false, false, true}}, words, false});
+    else if (date_here && event_sentence)
       throw facts_error("'" + words + "' dates an event on the way: HELIOS takes its window and chooses the date in it",
                         event_form(event_kind, out.event_body));
     if (date_here && !epoch_named && role == kFinal)
@@ -1059,6 +1190,7 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
                           spec_unit(want.dim) + ")");
       }
   }
+  if (elements) check_elements(out);
   if (event_sentence) {
     bool window = false;
     for (const auto& f : out.facts) window = window || f.field == Field::Window;

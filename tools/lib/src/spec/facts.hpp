@@ -13,7 +13,8 @@ namespace helios::spec::detail {
 
 // The facts a sentence may state.
 // Window, Stay, Drop and Rmin belong to an event on the way (its window, a stay, a lander, a lowest
-// periapsis); J2 and Radius to the central body; CharAccel and Lightness to a solar sail.
+// periapsis); J2 and Radius to the central body; CharAccel and Lightness to a solar sail; A to
+// ElementsEpoch to a body's orbital elements (a in km, angles in deg).
 enum class Field {
   Thrust,
   Isp,
@@ -34,7 +35,15 @@ enum class Field {
   J2,
   Radius,
   CharAccel,
-  Lightness
+  Lightness,
+  A,
+  Ecc,
+  Inc,
+  Raan,
+  Argp,
+  MeanAnomaly,
+  TrueAnomaly,
+  ElementsEpoch
 };
 
 struct Fact {
@@ -52,6 +61,7 @@ struct SentenceFacts {
   std::string constants_of;                  // the body whose gravitational parameter, radius or J2 it gives, or ""
   bool j2 = false;                           // it includes the J2 perturbation
   bool sail = false;                         // the spacecraft is a solar sail
+  std::string orbit_of;  // the body whose orbital elements it gives (all six and their epoch), or ""
   // An event on the way: "flyby", "gravity_assist" or "rendezvous" with its window, or "stay" for
   // a stay or lander at a rendezvous stated before; its body as written, or "" ("the asteroid").
   std::string event, event_body;

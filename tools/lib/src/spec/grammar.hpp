@@ -67,6 +67,8 @@ std::string body_name(const std::string& phrase);
 double mjd2000_of(const std::string& scale, const std::string& value);
 // A state, a coasting target or a body's name as {"ref": NAME} (events.cpp).
 json parse_target(const std::string& phrase);
+// Orbital elements {a [AU], e, i, raan, argp [deg], mean or true [deg]} as the spec's (tables.cpp).
+json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v);
 
 // Where an item of the text stands, for errors found after the whole text was read.
 struct Where {
