@@ -668,6 +668,7 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
   has(err(sc + " It is Mars."), "it does not say what Mars is here");
   // a weak word (spacecraft, engine) takes only a quantity of its own dimension, and yields to a fact word
   has(err("The 0.5 N spacecraft has Isp = 2000 s, m0 = 1000 kg."), "0.5 N cannot be the specific impulse");
+  has(err(sc + " The spacecraft has 200 kg of propellant."), "nothing in its clause says what 200 kg is");
   has(err("The 1000 kg spacecraft has an initial mass of 900 kg. Tmax = 0.5 N, Isp = 2000 s."),
       "two values for the initial mass: 1000 kg and 900 kg");
   // an error names the file, line and sentence on one line
@@ -810,6 +811,9 @@ TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
   has(err(flyby + " The spacecraft stays 10 days at Ast_8648."), "only a rendezvous can leave a lander or stay");
   has(err(flyby + " The spacecraft stays 10 days at Nikko."), "the stay at Nikko is given twice");
   has(err(flyby + " The spacecraft stays -10 days at Tengstrom."), "the stay must not be negative");
+  has(error_of(replaced(replaced(s08, "Nikko between day 132", "Mars between day 132"), "lander of 50 kg.",
+                        "lander of 50 kg. The spacecraft stays 5 days at the asteroid.")),
+      "it speaks of an asteroid or comet, but the rendezvous stated before is with Mars");
   has(err(flyby + " The surface stay at Nikko lasts 10 days and 20 days."),
       "nothing in its clause says what 20 days is");
 }

@@ -185,6 +185,8 @@ void Builder::apply_event(const detail::SentenceFacts& f) {
     if (rmin)
       throw sentence_error("a periapsis bound belongs to a swing-by ('" + clause_forms("gravity_assist") + "')");
     Event& e = rendezvous_of(f.event_body);
+    if (f.small_body && is_planet(lowercase(e.body)))
+      throw sentence_error("it speaks of an asteroid or comet, but the rendezvous stated before is with " + e.body);
     const auto set = [&](std::optional<double>& slot, const std::optional<double>& v, const char* what) {
       if (!v) return;
       if (slot) throw sentence_error(std::string(what) + " at " + e.body + " is given twice");

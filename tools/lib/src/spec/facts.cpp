@@ -963,6 +963,7 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
       event_sentence = event_sentence || !m.meaning.event.empty() || m.meaning.named || sl == Slot::Stay ||
                        sl == Slot::Drop || sl == Slot::Rmin;
       rendezvous_word = rendezvous_word || m.text == "rendezvous" || m.text == "rendezvouses";
+      out.small_body = out.small_body || m.text == "asteroid" || m.text == "comet";
     }
     for (const auto& q : c.quantities) event_sentence = event_sentence || q.window || q.day;
   }
@@ -1116,11 +1117,14 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
         named.push_back({{w}, words, false});
         break;
       }
+    // "The spacecraft has 200 kg of propellant": a weak word never takes what another noun qualifies.
+    bool qualified = false;
+    for (const auto& m : c.mentions) qualified = qualified || m.meaning.noun == kFuel || m.meaning.noun == kTime;
     std::map<Field, std::string> bound_here;
     for (const auto& q : c.quantities) {
       std::vector<std::pair<Candidate, std::size_t>> fit;
       for (const bool weak : {false, true}) {  // a weak fact word only when no other fits
-        if (weak && !fit.empty()) break;
+        if (weak && (!fit.empty() || qualified)) break;
         for (std::size_t k = 0; k < named.size(); ++k)
           if (named[k].weak == weak)
             for (const auto& cand : named[k].cands)

@@ -65,6 +65,7 @@ struct SentenceFacts {
   // An event on the way: "flyby", "gravity_assist" or "rendezvous" with its window, or "stay" for
   // a stay or lander at a rendezvous stated before; its body as written, or "" ("the asteroid").
   std::string event, event_body;
+  bool small_body = false;  // it calls the body "the asteroid" or "the comet": no planet
 };
 
 // Why a sentence cannot be read as facts; `suggestion` is the nearest controlled-English sentence
