@@ -14,8 +14,12 @@ using helios::io::json;
 
 const std::string kSource = HELIOS_SOURCE_DIR;
 
+std::string scenario(const std::string& id) {
+  return helios::io::read_text(kSource + "/scenarios/" + id + "/problem.txt");
+}
+
 std::string s01_text() {
-  return helios::io::read_text(kSource + "/scenarios/S01/problem.txt");
+  return scenario("S01");
 }
 
 json parse(const std::string& text) {
@@ -35,6 +39,11 @@ std::string error_of(const std::string& text) {
     return e.what();
   }
   return "";
+}
+
+// An error message `e` that says `part`.
+void has(const std::string& e, const std::string& part) {
+  EXPECT_NE(e.find(part), std::string::npos) << e;
 }
 
 TEST(Parse, S01ReadsEveryFactInSpecUnits) {
@@ -636,9 +645,6 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
   const std::string sc =
       "The spacecraft has a maximum thrust of 0.5 N, a specific impulse of 2000 s and an initial mass of 1000 kg.";
   const auto err = [&](const std::string& to) { return error_of(replaced(s01, sc, to)); };
-  const auto has = [](const std::string& e, const std::string& part) {
-    EXPECT_NE(e.find(part), std::string::npos) << e;
-  };
   has(err("The thrust is 0.5. Isp = 2000 s, m0 = 1000 kg."),
       "0.5 has no unit, and the maximum thrust needs one (N); did you mean \"The spacecraft has a maximum thrust of "
       "0.5 N.\"?");
@@ -680,9 +686,6 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
 // Epochs in other words: a calendar date or a day number on a named scale is the departure epoch
 // when its clause says the spacecraft starts, and gives the spec the controlled form gives.
 TEST(ParseFacts, EpochsInOtherWordsGiveTheSameSpec) {
-  const auto scenario = [](const char* id) {
-    return helios::io::read_text(kSource + "/scenarios/" + id + "/problem.txt");
-  };
   const std::string s02 = scenario("S02"), s04 = scenario("S04");
   const std::string want02 = parse(s02).dump(2), want04 = parse(s04).dump(2);
   // MJD2000 400 is 2001-02-04 00:00 (2000 is a leap year: 366 + 34 days)
@@ -706,13 +709,10 @@ TEST(ParseFacts, EpochsInOtherWordsGiveTheSameSpec) {
 }
 
 TEST(ParseFacts, AnEpochOfNoRoleOrNoDayIsAnError) {
-  const std::string s02 = helios::io::read_text(kSource + "/scenarios/S02/problem.txt");
+  const std::string s02 = scenario("S02");
   const auto err = [&](const std::string& to) {
     return error_of(replaced(s02, "The spacecraft departs at MJD2000 400 from Earth.",
                              to + "\nThe spacecraft departs from Earth."));
-  };
-  const auto has = [](const std::string& e, const std::string& part) {
-    EXPECT_NE(e.find(part), std::string::npos) << e;
   };
   has(err("The departure date is 2025-02-30."), "the date 2025-02-30 does not exist");
   has(err("The departure date is 2023-02-29."), "the date 2023-02-29 does not exist");
@@ -729,7 +729,7 @@ TEST(ParseFacts, AnEpochOfNoRoleOrNoDayIsAnError) {
 
 // The departure and arrival planets in other words give S02's spec.
 TEST(ParseFacts, BodiesInOtherWordsGiveTheSameSpec) {
-  const std::string s02 = helios::io::read_text(kSource + "/scenarios/S02/problem.txt");
+  const std::string s02 = scenario("S02");
   const std::string want = parse(s02).dump(2);
   const std::string dep = "The spacecraft departs at MJD2000 400 from Earth.";
   const std::string arr = "At the final time the spacecraft rendezvouses with Mars.";
@@ -742,9 +742,6 @@ TEST(ParseFacts, BodiesInOtherWordsGiveTheSameSpec) {
       parse(replaced(replaced(s02, dep, "The spacecraft leaves Earth on MJD2000 400 and arrives at Mars."), arr, ""))
           .dump(2),
       want);
-  const auto has = [](const std::string& e, const std::string& part) {
-    EXPECT_NE(e.find(part), std::string::npos) << e;
-  };
   has(error_of(replaced(s02, arr, "Rendezvous with Mars or Venus.")), "cannot place the word 'or'");
   has(error_of(replaced(s02, arr, "Arrive at Mars and Venus.")), "it names Mars and Venus as the arrival body");
   has(error_of(replaced(s02, arr, "Arrive at Venus.") + "Rendezvous with Mars.\n"), "the final rendezvous");
@@ -758,9 +755,6 @@ TEST(ParseFacts, BodiesInOtherWordsGiveTheSameSpec) {
 
 // Events on the way in other words give S08's and S10's specs.
 TEST(ParseFacts, EventsInOtherWordsGiveTheSameSpec) {
-  const auto scenario = [](const char* id) {
-    return helios::io::read_text(kSource + "/scenarios/" + id + "/problem.txt");
-  };
   const std::string s08 = scenario("S08"), s10 = scenario("S10");
   const std::string nikko =
       "The spacecraft rendezvouses with Nikko between day 132 and day 212, stays there for 30 days and leaves a lander "
@@ -785,12 +779,9 @@ TEST(ParseFacts, EventsInOtherWordsGiveTheSameSpec) {
 }
 
 TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
-  const std::string s08 = helios::io::read_text(kSource + "/scenarios/S08/problem.txt");
+  const std::string s08 = scenario("S08");
   const std::string flyby = "The spacecraft flies by Ast_8648 between day 374 and day 454.";
   const auto err = [&](const std::string& to) { return error_of(replaced(s08, flyby, to)); };
-  const auto has = [](const std::string& e, const std::string& part) {
-    EXPECT_NE(e.find(part), std::string::npos) << e;
-  };
   // an event needs a window, not a date, and its body; the suggestion names the user's body
   has(err("A swing-by of Mars."),
       "the swing-by needs its window: HELIOS chooses the date inside it; did you mean \"The spacecraft swings by Mars "
@@ -820,9 +811,6 @@ TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
 
 // J2 and the solar sail in other words give S05's and S11's specs.
 TEST(ParseFacts, J2AndSailInOtherWordsGiveTheSameSpec) {
-  const auto scenario = [](const char* id) {
-    return helios::io::read_text(kSource + "/scenarios/" + id + "/problem.txt");
-  };
   const std::string s05 = scenario("S05"), s11 = scenario("S11");
   const std::string central =
       "The central body is the Earth with gravitational parameter 398600.4418 km^3/s^2, equatorial radius 6378.137 km "
@@ -842,9 +830,6 @@ TEST(ParseFacts, J2AndSailInOtherWordsGiveTheSameSpec) {
   for (const char* to : {"Propulsion: ideal solar sail, a_c = 1.0 mm/s^2.",
                          "The spacecraft is propelled by a solar sail with a characteristic acceleration of 1 mm/s^2."})
     EXPECT_EQ(parse(replaced(s11, sail, to)).dump(2), parse(s11).dump(2)) << to;
-  const auto has = [](const std::string& e, const std::string& part) {
-    EXPECT_NE(e.find(part), std::string::npos) << e;
-  };
   has(error_of(replaced(s05, j2, "Include Mars's J2 perturbation.")),
       "it is about Mars as the central body, but the central body is Earth");
   has(error_of(replaced(s05, j2, "J2 = 1.08262668e-3 km.")), "nothing in its clause says what 1.08262668e-3 km is");
@@ -860,7 +845,7 @@ TEST(ParseFacts, J2AndSailInOtherWordsGiveTheSameSpec) {
 // A body's orbital elements in other words give S10's spec; incomplete ones suggest the orbit
 // sentence filled in with the user's numbers.
 TEST(ParseFacts, ElementsInOtherWordsGiveTheSameSpec) {
-  const std::string s10 = helios::io::read_text(kSource + "/scenarios/S10/problem.txt");
+  const std::string s10 = scenario("S10");
   const std::string orbit =
       "Mars moves on a Keplerian orbit about the Sun with a = 1.52363312 AU, e = 0.09327933, i = 1.84785414 deg, node "
       "= 49.48935357 deg, argument of perihelion = 286.67090811 deg and true anomaly = 328.88755274 deg at MJD 60389.";
@@ -871,9 +856,6 @@ TEST(ParseFacts, ElementsInOtherWordsGiveTheSameSpec) {
         "1.84785414 deg, ascending node 49.48935357 deg, argument of perihelion 286.67090811 deg, true anomaly "
         "328.88755274 deg."})
     EXPECT_EQ(parse(replaced(s10, orbit, to)).dump(2), parse(s10).dump(2)) << to;
-  const auto has = [](const std::string& e, const std::string& part) {
-    EXPECT_NE(e.find(part), std::string::npos) << e;
-  };
   const auto err = [&](const std::string& to) { return error_of(replaced(s10, orbit, to)); };
   has(err("a = 1.2 AU, e = 0.1, i = 5 deg, Omega = 80 deg, omega = 150 deg, M = 20 deg."),
       "the orbit lacks the epoch of the elements, the body's name; did you mean \"NAME moves on a Keplerian orbit "
