@@ -788,6 +788,8 @@ TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
       "between day N and day N in an unpowered gravity assist.\"?");
   has(err("There is an Ast_8648 flyby on 2029-03-01."), "dates an event on the way");
   has(err("A flyby between day 374 and day 454."), "it does not name the body of the flyby");
+  // a window's event may name a body no sentence gave yet; one never given is an error at the end
+  has(err(flyby + " Flyby of Gondor between day 500 and day 600."), "unknown body 'Gondor'");
   has(err("Between day 374 and day 454."), "it gives a window but no event");
   has(err("Flyby of Mars or Venus between day 374 and day 454."), "cannot place the word 'or'");
   has(err("Flyby of Mars and Venus between day 374 and day 454."), "it names Mars and Venus");

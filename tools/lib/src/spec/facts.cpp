@@ -914,17 +914,18 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
 
 SentenceFacts read_facts(const std::string& sentence, const std::map<std::string, std::string>& names) {
   const std::vector<Token> tokens = scan(sentence);
-  // Orbital elements: the sentence names the body they belong to, maybe for the first time, as the
+  // Orbital elements, and an event with its window, may name their body for the first time, as the
   // one word written with a capital that is no fact word ("Nikko's orbital elements ...").
-  bool elements = false;
+  bool elements = false, window = false;
   for (const auto& t : tokens) {
     const auto it = phrases().find(t.word);
     elements = elements || (t.kind == Token::Word && it != phrases().end() &&
                             (it->second.slot == Slot::A || it->second.slot == Slot::Ecc ||
                              it->second.slot == Slot::Angle || t.word == "elements"));
+    window = window || (t.kind == Token::Value && t.q.window);
   }
   std::map<std::string, std::string> known = names;
-  if (elements) {
+  if (elements || window) {
     std::set<std::string> fresh;
     for (const auto& t : tokens)
       if (t.kind == Token::Word && std::isupper(static_cast<unsigned char>(t.text[0])) && !phrases().count(t.word) &&
