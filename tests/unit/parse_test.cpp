@@ -807,6 +807,8 @@ TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
   has(error_of(replaced(replaced(s08, "Nikko between day 132", "Mars between day 132"), "lander of 50 kg.",
                         "lander of 50 kg. The spacecraft stays 5 days at the asteroid.")),
       "it speaks of an asteroid or comet, but the rendezvous stated before is with Mars");
+  has(err("Ast_8648 flyby between day 374 and day 454, mu = 5 km^3/s^2."),
+      "the gravitational parameter 5 km^3/s^2 stands beside an event on the way");
   has(err(flyby + " The surface stay at Nikko lasts 10 days and 20 days."),
       "nothing in its clause says what 20 days is");
 }
@@ -865,6 +867,11 @@ TEST(ParseFacts, ElementsInOtherWordsGiveTheSameSpec) {
       "the central body with a = 1.2 AU, e = 0.1, i = 5 deg, node = 80 deg, argument of perihelion = 150 deg and mean "
       "anomaly = 20 deg at MJD N.\"?");
   has(err("Mars: a = 1.5 AU, e = 0.1 at MJD 60389."), "the orbit lacks the inclination, the ascending node");
+  has(err("Mars: a = 1.5 AU, e = 0.1 AU, i = 5 deg, node = 80 deg, argp = 150 deg, M = 20 deg at MJD 60389."),
+      "0.1 AU cannot be the eccentricity: the eccentricity is a number without unit");
+  has(err("Mars: a = 1.5 AU, e = 0.1, i = 5 deg, node = 80 deg, argp = 150 deg, M = 20 deg at MJD 60389, flyby "
+          "between day 700 and day 800."),
+      "it gives orbital elements and an event on the way");
   has(err("Mars: a = 1.5 AU, e = 1.2, i = 5 deg, node = 80 deg, argp = 150 deg, M = 20 deg at MJD 60389."),
       "the eccentricity must satisfy 0 <= e < 1, got 1.2");
   has(err("Mars: a = 1.5 AU, e = 0.1, i = 5, node = 80 deg, argp = 150 deg, M = 20 deg at MJD 60389."),

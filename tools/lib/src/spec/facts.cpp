@@ -81,8 +81,8 @@ const std::map<std::string, Meaning>& phrases() {
     std::istringstream fillers(
         "the a an is are be of to with at from by for in its it system electric ion has have must should can set fixed "
         "equal equals given taken as assumed constant total level magnitude consumption used consumed objective goal "
-        "vector state conditions we "
-        "want find optimize optimise trajectory transfer mission operate operates possible reach target looking use "
+        "vector state conditions we want find optimize optimise trajectory transfer mission operate operates possible "
+        "reach target looking use "
         "motion problem on place utc our single trip exactly body runs run carries carry hall");
     for (std::string w; fillers >> w;) t[w] = {};
     const auto slot = [&](std::initializer_list<const char*> ws, Slot s, int noun = kNoNoun) {
@@ -688,8 +688,8 @@ std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
 bool fits(const Candidate& c, const Quantity& q) {
   if (c.vector != q.vector || c.date != q.date || c.window != q.window || q.day) return false;
   if (q.date || q.window) return true;
+  // t = 0 needs no unit; an eccentricity, a J2 coefficient or a lightness number has none
   if (c.pure || q.unit.empty()) return q.unit.empty() && (c.pure || (c.field == Field::T0 && q.nums[0] == 0));
-  // t = 0 needs no unit, a J2 coefficient or a lightness number has none
   try {
     to_spec_unit(c.dim, q.unit);
     return true;
@@ -759,7 +759,7 @@ void check_elements(const SentenceFacts& out) {
   if (got.count(Field::ElementsEpoch))
     epoch << "MJD2000 " << std::setprecision(10) << got[Field::ElementsEpoch]->value[0];
   else
-    epoch << "MJD N";
+    epoch << "MJD N";  // the controlled form's placeholder
   throw facts_error("the orbit lacks " + missing,
                     (out.orbit_of.empty() ? "NAME" : out.orbit_of) +
                         " moves on a Keplerian orbit about the central body with a = " + w(Field::A, "Q") +
@@ -957,17 +957,18 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
   bool event_sentence = false, rendezvous_word = false;
   std::string event_kind;
   for (const auto& c : clauses) {
-    if (elements) break;
     for (const auto& m : c.mentions) {
       const Slot sl = m.meaning.slot;
       if (!m.meaning.event.empty() && event_kind != "gravity_assist") event_kind = m.meaning.event;
-      event_sentence = event_sentence || !m.meaning.event.empty() || m.meaning.named || sl == Slot::Stay ||
-                       sl == Slot::Drop || sl == Slot::Rmin;
+      event_sentence = event_sentence || !m.meaning.event.empty() || (m.meaning.named && !elements) ||
+                       sl == Slot::Stay || sl == Slot::Drop || sl == Slot::Rmin;
       rendezvous_word = rendezvous_word || m.text == "rendezvous" || m.text == "rendezvouses";
       out.small_body = out.small_body || m.text == "asteroid" || m.text == "comet";
     }
     for (const auto& q : c.quantities) event_sentence = event_sentence || q.window || q.day;
   }
+  if (elements && event_sentence)
+    throw facts_error("it gives orbital elements and an event on the way: state the event in a sentence of its own");
   if (elements) {  // the body orbiting, and the Sun it orbits (which must be the central body)
     if (bodies.count("Sun")) out.constants_of = "Sun";
     bodies.erase("Sun");
@@ -1154,13 +1155,15 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
           throw facts_error(
               q.written + " has no unit, and " + field_name(want.field) + " needs one (" + spec_unit(want.dim) + ")",
               sug);
-        std::string why;
-        try {
-          to_spec_unit(want.dim, q.unit);
-          why = q.vector ? "a vector cannot be " + field_name(want.field)
-                         : "a single number cannot be " + field_name(want.field);
-        } catch (const std::invalid_argument& e) {
-          why = e.what();
+        std::string why = field_name(want.field) + " is a number without unit";
+        if (!want.pure) {
+          try {
+            to_spec_unit(want.dim, q.unit);
+            why = q.vector ? "a vector cannot be " + field_name(want.field)
+                           : "a single number cannot be " + field_name(want.field);
+          } catch (const std::invalid_argument& e) {
+            why = e.what();
+          }
         }
         throw facts_error(q.written + " cannot be " + field_name(want.field) + ": " + why, sug);
       }
@@ -1191,19 +1194,29 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
     for (const auto& n : named)
       if (!n.bound && !n.weak) {
         const Candidate& want = n.cands.front();
-        throw facts_error("'" + n.text + "' has no value: give " + field_name(want.field) + " with its unit (" +
-                          spec_unit(want.dim) + ")");
+        throw facts_error("'" + n.text + "' has no value: give " + field_name(want.field) +
+                          (want.pure ? " (a number without unit)" : " with its unit (" + spec_unit(want.dim) + ")"));
       }
   }
+  // An event's or an orbit's sentence states nothing else: a gravitational parameter or a radius
+  // beside it would be the body's, not the central body's.
+  const std::set<Field> event_fields = {Field::Window, Field::Stay, Field::Drop, Field::Rmin};
+  const std::set<Field> orbit_fields = {Field::A,    Field::Ecc,         Field::Inc,         Field::Raan,
+                                        Field::Argp, Field::MeanAnomaly, Field::TrueAnomaly, Field::ElementsEpoch};
+  for (const auto& f : out.facts)
+    if ((event_sentence && !event_fields.count(f.field)) || (elements && !orbit_fields.count(f.field)))
+      throw facts_error(field_name(f.field) + " " + f.written + " stands beside " +
+                        (elements ? "orbital elements" : "an event on the way") +
+                        ": state it in a sentence of its own");
   if (elements) check_elements(out);
   if (event_sentence) {
-    bool window = false;
-    for (const auto& f : out.facts) window = window || f.field == Field::Window;
-    if (event_kind.empty() && rendezvous_word && window) event_kind = "rendezvous";
-    if (event_kind.empty() && window)
+    bool has_window = false;
+    for (const auto& f : out.facts) has_window = has_window || f.field == Field::Window;
+    if (event_kind.empty() && rendezvous_word && has_window) event_kind = "rendezvous";
+    if (event_kind.empty() && has_window)
       throw facts_error("it gives a window but no event: a rendezvous, a flyby or a swing-by",
                         event_form("flyby", out.event_body));
-    if (!event_kind.empty() && !window)
+    if (!event_kind.empty() && !has_window)
       throw facts_error("the " + std::string(event_kind == "flyby" ? "flyby" : "swing-by") +
                             " needs its window: HELIOS chooses the date inside it",
                         event_form(event_kind, out.event_body));
