@@ -809,6 +809,8 @@ TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
       "it speaks of an asteroid or comet, but the rendezvous stated before is with Mars");
   has(err("Ast_8648 flyby between day 374 and day 454, mu = 5 km^3/s^2."),
       "the gravitational parameter 5 km^3/s^2 stands beside an event on the way");
+  has(err(flyby + " Minimize fuel at Nikko."), "it names Nikko but states no event, stay or lander there");
+  has(err("Flyby of the asteroid Mars between day 374 and day 454."), "Mars is a planet");
   has(err(flyby + " The surface stay at Nikko lasts 10 days and 20 days."),
       "nothing in its clause says what 20 days is");
 }

@@ -201,6 +201,8 @@ void Builder::apply_event(const detail::SentenceFacts& f) {
   e.where = here;
   e.kind = f.event;
   e.body = body_name(f.event_body);
+  if (f.small_body && is_planet(lowercase(e.body)))
+    throw sentence_error("it speaks of an asteroid or comet, but " + e.body + " is a planet");
   const auto ref = [&](int k) { return EpochRef{window->value[k], window->absolute[k]}; };
   e.lo = ref(0);
   e.hi = ref(1);

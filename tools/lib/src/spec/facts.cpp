@@ -1222,6 +1222,9 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
                         event_form(event_kind, out.event_body));
     if (!event_kind.empty() && out.event_body.empty())
       throw facts_error("it does not name the body of the " + event_kind);
+    if (event_kind.empty() && out.facts.empty())
+      throw facts_error("it names " + (out.event_body.empty() ? std::string("a body") : out.event_body) +
+                        " but states no event, stay or lander there");
     out.event = event_kind.empty() ? "stay" : event_kind;
   }
   for (const auto& c : clauses)
