@@ -664,7 +664,8 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
       "thrust of 3 N.\"?");
   has(err(sc + " The transfer takes 348.795 days with an Isp of 2000 s."),
       "348.795 days could be the time of flight or the specific impulse");
-  has(err(sc + " The target position is [1, 2, 3] km."), "does not say whether it is the initial or the final one");
+  has(err(sc + " The position is [1, 2, 3] km."), "does not say whether it is the initial or the final one");
+  has(err(sc + " The target position is [1, 2, 3] km."), "the final rendezvous is given twice");
   const std::string dry = err(sc + " The dry mass is 500 kg.");  // no suggestion: a dry mass is no initial mass
   has(dry, "cannot place the word 'dry'");
   EXPECT_EQ(dry.find("did you mean"), std::string::npos) << dry;
@@ -769,6 +770,12 @@ TEST(ParseFacts, EventsInOtherWordsGiveTheSameSpec) {
                flyby, "Ast_8648 flyby window: day 374 to day 454."),
       tengstrom, "Rendezvous with Tengstrom from day 713 to day 793. The spacecraft stays 30 days at Tengstrom.");
   EXPECT_EQ(parse(words08).dump(2), parse(s08).dump(2));
+  // a body given by its orbit is left or reached like a planet
+  EXPECT_EQ(parse(replaced(replaced(s08, "The spacecraft departs from Ast_9933 at MJD2000 10313.6.",
+                                    "Departure from Ast_9933 on MJD2000 10313.6."),
+                           "At the final time the spacecraft rendezvouses with SIMBAD.", "The destination is SIMBAD."))
+                .dump(2),
+            parse(s08).dump(2));
   const std::string swing =
       "The spacecraft swings by Mars between day 600 and day 1100 in an unpowered gravity assist; Mars has a "
       "gravitational parameter of 42828.3 km^3/s^2 and the periapsis radius must be at least 3889.9 km.";
@@ -809,7 +816,7 @@ TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
       "it speaks of an asteroid or comet, but the rendezvous stated before is with Mars");
   has(err("Ast_8648 flyby between day 374 and day 454, mu = 5 km^3/s^2."),
       "the gravitational parameter 5 km^3/s^2 stands beside an event on the way");
-  has(err(flyby + " Minimize fuel at Nikko."), "it names Nikko but states no event, stay or lander there");
+  has(err(flyby + " Minimize fuel at Nikko."), "it does not say what Nikko is here");
   has(err("Flyby of the asteroid Mars between day 374 and day 454."), "Mars is a planet");
   has(err(flyby + " The surface stay at Nikko lasts 10 days and 20 days."),
       "nothing in its clause says what 20 days is");

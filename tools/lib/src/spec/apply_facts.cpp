@@ -5,13 +5,18 @@
 
 namespace helios::spec::grammar {
 
-detail::SentenceFacts Builder::facts_of(const std::string& s) const {
-  // the bodies met so far may be named in other words ("The spacecraft stays 30 days at Nikko.")
+// The bodies met so far, which other words may name ("The spacecraft stays 30 days at Nikko."):
+// lower case to as written.
+std::map<std::string, std::string> Builder::body_names() const {
   std::map<std::string, std::string> names;
   for (const auto& o : orbits) names[lowercase(o.name)] = o.name;
   for (const auto& e : events) names[lowercase(e.body)] = e.body;
+  return names;
+}
+
+detail::SentenceFacts Builder::facts_of(const std::string& s) const {
   try {
-    return detail::read_facts(s, names);
+    return detail::read_facts(s, body_names());
   } catch (const detail::facts_error& e) {
     throw sentence_error(std::string(e.what()) +
                          (e.suggestion.empty() ? "" : "; did you mean \"" + e.suggestion + "\"?"));

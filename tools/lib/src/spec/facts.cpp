@@ -82,8 +82,8 @@ const std::map<std::string, Meaning>& phrases() {
         "the a an is are be of to with at from by for in its it system electric ion has have must should can set fixed "
         "equal equals given taken as assumed constant total level magnitude consumption used consumed objective goal "
         "vector state conditions we want find optimize optimise trajectory transfer mission operate operates possible "
-        "reach target looking use "
-        "motion problem on place utc our single trip exactly body runs run carries carry hall");
+        "reach looking use motion problem on place utc our single trip exactly body runs run carries carry hall "
+        "take all computed frame only");
     for (std::string w; fillers >> w;) t[w] = {};
     const auto slot = [&](std::initializer_list<const char*> ws, Slot s, int noun = kNoNoun) {
       for (const char* w : ws) t[w] = {s, kNoRole, kNoVerb, noun};
@@ -114,20 +114,20 @@ const std::map<std::string, Meaning>& phrases() {
     slot({"initial mass", "wet mass", "launch mass", "starting mass", "m0", "m_0"}, Slot::InitialMass, kInitialMass);
     slot({"final mass"}, Slot::FinalMass, kFinalMass);
     slot({"time of flight", "flight time", "transfer time", "tof", "takes", "lasts", "duration", "transfer duration",
-          "flight duration"},
+          "flight duration", "after departure"},
          Slot::Tof, kTime);
-    slot({"mu", "gm", "gravitational parameter"}, Slot::Mu);
+    slot({"mu", "gm", "gravitational parameter", "gravitational constant"}, Slot::Mu);
     slot({"position", "location", "r"}, Slot::Position);
     slot({"velocity", "v"}, Slot::Velocity);
     slot({"r0", "r_0"}, Slot::R0);
     slot({"v0", "v_0"}, Slot::V0);
     slot({"rf", "r_f"}, Slot::Rf);
     slot({"vf", "v_f"}, Slot::Vf);
-    for (const char* w :
-         {"initial", "initially", "start", "starts", "starting", "begins", "departs", "departure", "launch", "leaves"})
+    for (const char* w : {"initial", "initially", "start", "starts", "starting", "begins", "departs", "departure",
+                          "launch", "leaves", "launched"})
       t[w] = {Slot::None, kInitial};
     for (const char* w : {"final", "arrives", "arrive", "arrival", "end", "ends", "terminal", "rendezvous",
-                          "rendezvouses", "destination"})
+                          "rendezvouses", "destination", "target"})
       t[w] = {Slot::None, kFinal};
     for (const char* w : {"minimize", "minimise", "cost", "cost function", "as little"})
       t[w] = {Slot::None, kNoRole, kMinimize};
@@ -137,9 +137,18 @@ const std::map<std::string, Meaning>& phrases() {
     for (const auto& [w, b] : std::map<std::string, std::string>{
              {"sun", "Sun"}, {"earth", "Earth"}, {"mars", "Mars"}, {"venus", "Venus"}, {"jupiter", "Jupiter"}})
       t[w].body = b;
-    for (const char* w : {"central body", "gravitational attractor", "attractor"}) t[w].central = true;
-    t["heliocentric"] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Sun", true};
-    t["geocentric"] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Earth", true};
+    // the central body: what the spacecraft orbits, the one that attracts it
+    for (const char* w : {"central body", "gravitational attractor", "attractor", "attracting body", "orbits"})
+      t[w].central = true;
+    for (const char* w : {"heliocentric", "sun centered", "sun centred"})
+      t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Sun", true};
+    for (const char* w : {"geocentric", "earth centered", "earth centred", "eci"})
+      t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Earth", true};
+    // a body's own gravitational parameter ("GM_sun = Q")
+    for (const auto& [w, b] : std::map<std::string, std::string>{
+             {"gm_sun", "Sun"}, {"mu_sun", "Sun"}, {"gm_earth", "Earth"}, {"mu_earth", "Earth"}})
+      t[w] = {Slot::Mu, kNoRole, kNoVerb, kNoNoun, false, b};
+    t["near earth asteroid"] = {};  // a kind of asteroid, not the Earth
     for (const char* w : {"up", "limited", "available", "most"}) t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, true};
     for (const char* w : {"fuel", "propellant", "fuel consumption", "propellant consumption", "fuel mass",
                           "propellant mass", "fuel use"})
@@ -190,8 +199,7 @@ const std::map<std::string, Meaning>& phrases() {
           "right ascension of the ascending node", "argp", "argument of perihelion", "argument of periapsis",
           "argument of pericenter", "argument of pericentre", "mean anomaly", "true anomaly"},
          Slot::Angle);
-    for (const char* w : {"elements", "orbital elements", "keplerian", "orbit", "orbits", "orbital", "defined"})
-      t[w] = {};
+    for (const char* w : {"elements", "orbital elements", "keplerian", "orbit", "orbital", "defined"}) t[w] = {};
     return t;
   }();
   return table;
@@ -856,7 +864,7 @@ std::string field_name(Field f) {
   return "?";
 }
 
-bool states_nothing(const std::string& sentence) {
+bool states_nothing(const std::string& sentence, const std::map<std::string, std::string>& names) {
   static const std::regex digit("[0-9]");
   if (std::regex_search(sentence, digit)) return false;
   std::vector<Token> tokens;
@@ -868,6 +876,7 @@ bool states_nothing(const std::string& sentence) {
   const auto& table = phrases();
   for (std::size_t i = 0; i < tokens.size(); ++i) {
     if (tokens[i].kind != Token::Word) continue;
+    if (names.count(tokens[i].word)) return false;
     std::string phrase;
     for (std::size_t k = i; k < tokens.size() && k < i + kMaxPhraseWords && tokens[k].kind == Token::Word; ++k) {
       phrase += (k == i ? "" : " ") + tokens[k].word;
@@ -952,16 +961,17 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
       if (!m.meaning.body.empty()) bodies.insert(m.meaning.body);
       central_named = central_named || m.meaning.central;
     }
-  // An event on the way: its words, a stay, a lander, a periapsis bound, a day or a window, or a
-  // body given by name. Its body is the one body the sentence names, if any ("the asteroid").
+  // An event on the way: its words, a stay, a lander, a periapsis bound, a day or a window. Its body
+  // is the one body the sentence names, if any ("the asteroid"); a body named without them is left
+  // or reached, like a planet.
   bool event_sentence = false, rendezvous_word = false;
   std::string event_kind;
   for (const auto& c : clauses) {
     for (const auto& m : c.mentions) {
       const Slot sl = m.meaning.slot;
       if (!m.meaning.event.empty() && event_kind != "gravity_assist") event_kind = m.meaning.event;
-      event_sentence = event_sentence || !m.meaning.event.empty() || (m.meaning.named && !elements) ||
-                       sl == Slot::Stay || sl == Slot::Drop || sl == Slot::Rmin;
+      event_sentence =
+          event_sentence || !m.meaning.event.empty() || sl == Slot::Stay || sl == Slot::Drop || sl == Slot::Rmin;
       rendezvous_word = rendezvous_word || m.text == "rendezvous" || m.text == "rendezvouses";
       out.small_body = out.small_body || m.text == "asteroid" || m.text == "comet";
     }
@@ -1015,7 +1025,7 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
   // A body named with no word saying it is the central one: its gravitational parameter, if the
   // sentence gives one ("The Sun's gravitational parameter is Q"), checked below.
   const std::string unplaced = !bodies.empty() && !central_named ? *bodies.begin() : "";
-  if (bodies.empty() && central_named)
+  if (bodies.empty() && central_named && !elements)
     throw facts_error("it does not name the central body (Sun, Earth or Mars: 'The central body is the Sun.')");
   if (!bodies.empty() && central_named) out.central = *bodies.begin();
   std::string objective_words;
@@ -1222,9 +1232,6 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
                         event_form(event_kind, out.event_body));
     if (!event_kind.empty() && out.event_body.empty())
       throw facts_error("it does not name the body of the " + event_kind);
-    if (event_kind.empty() && out.facts.empty())
-      throw facts_error("it names " + (out.event_body.empty() ? std::string("a body") : out.event_body) +
-                        " but states no event, stay or lander there");
     out.event = event_kind.empty() ? "stay" : event_kind;
   }
   for (const auto& c : clauses)

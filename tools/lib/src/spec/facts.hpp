@@ -77,8 +77,9 @@ struct facts_error : std::runtime_error {
   bool modifies_fact = false;  // an unknown word qualifies a fact word ("dry mass")
 };
 
-// True when the sentence names no fact and holds no number: it is not an attempt to state one.
-bool states_nothing(const std::string& sentence);
+// True when the sentence names no fact, no body of `names` (as read_facts) and holds no number: it
+// is not an attempt to state one.
+bool states_nothing(const std::string& sentence, const std::map<std::string, std::string>& names);
 
 // The facts of `sentence` (final period removed); `names` maps the lower-case names of the bodies
 // the text has given so far to their names as written. Throws facts_error.

@@ -217,6 +217,7 @@ struct Builder {
   TableColumns table_header(const std::vector<std::string>& cells);
 
   // ---- facts stated in other words (apply_facts.cpp) ----
+  std::map<std::string, std::string> body_names() const;
   detail::SentenceFacts facts_of(const std::string& s) const;
   void apply_facts(const detail::SentenceFacts& f);
   void apply_event(const detail::SentenceFacts& f);
