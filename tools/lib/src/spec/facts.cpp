@@ -39,16 +39,7 @@ enum class Slot {
   V0,
   Rf,
   Vf,
-  Stay,
-  Drop,
-  Rmin,
-  J2,
-  Radius,
-  CharAccel,
-  Lightness,
-  A,
-  Ecc,
-  Angle  // an orbital element that is an angle: its field is the phrase's
+  Fact  // one field whatever the clause (Meaning::field): an event's, an orbit's, J2, a sail's
 };
 enum Role { kNoRole = 0, kInitial = 1, kFinal = 2 };
 enum Verb { kNoVerb = 0, kMinimize, kMaximize, kMinimum, kMaximum };
@@ -63,10 +54,11 @@ struct Meaning {
   // A weak fact word ("the 1500 kg spacecraft", "a 0.4 N engine"): it takes a quantity only when
   // no other fact word of its clause does, and needs none.
   bool weak = false;
-  std::string event;   // an event on the way it names: "flyby" or "gravity_assist"
-  bool lower = false;  // "at least", "minimum periapsis radius": a lower bound, which only the periapsis is
-  bool named = false;  // a body the text gives by name (`body`), met only on the way
-  std::string model;   // a part of the model it names: "j2" (the perturbation) or "sail"
+  std::string event;            // an event on the way it names: "flyby" or "gravity_assist"
+  bool lower = false;           // "at least", "minimum periapsis radius": a lower bound, which only the periapsis is
+  bool named = false;           // a body the text gives by name (`body`), met only on the way
+  std::string model;            // a part of the model it names: "j2" (the perturbation) or "sail"
+  Field field = Field::Thrust;  // of Slot::Fact
   Meaning(Slot s = Slot::None, int r = kNoRole, int v = kNoVerb, int n = kNoNoun, bool b = false, std::string bd = "",
           bool c = false)
       : slot(s), role(r), verb(v), noun(n), bound(b), body(std::move(bd)), central(c) {}
@@ -87,6 +79,12 @@ const std::map<std::string, Meaning>& phrases() {
     for (std::string w; fillers >> w;) t[w] = {};
     const auto slot = [&](std::initializer_list<const char*> ws, Slot s, int noun = kNoNoun) {
       for (const char* w : ws) t[w] = {s, kNoRole, kNoVerb, noun};
+    };
+    const auto fact = [&](std::initializer_list<const char*> ws, Field f) {
+      for (const char* w : ws) {
+        t[w] = {Slot::Fact};
+        t[w].field = f;
+      }
     };
     slot({"thrust", "maximum thrust", "max thrust", "delivers", "deliver", "provides", "provide", "produces", "produce",
           "gives", "give", "tmax", "t_max", "thrust force", "rated", "capable"},
@@ -165,16 +163,16 @@ const std::map<std::string, Meaning>& phrases() {
     for (const char* w : {"asteroid", "comet", "there", "then", "close", "planned", "somewhere", "required", "window",
                           "free", "uses", "include", "includes", "manoeuvre", "maneuver"})
       t[w] = {};
-    slot({"stay", "stays", "stay time", "stay duration", "residence time", "remains", "remain", "waits", "wait",
+    fact({"stay", "stays", "stay time", "stay duration", "residence time", "remains", "remain", "waits", "wait",
           "spends", "spend", "surface stay"},
-         Slot::Stay);
-    slot({"lander", "drops", "drop", "releases", "released", "release"}, Slot::Drop);
-    slot({"periapsis radius", "periapsis", "flyby radius", "pericenter radius", "pericentre radius", "closest approach",
+         Field::Stay);
+    fact({"lander", "drops", "drop", "releases", "released", "release"}, Field::Drop);
+    fact({"periapsis radius", "periapsis", "flyby radius", "pericenter radius", "pericentre radius", "closest approach",
           "rp"},
-         Slot::Rmin);
+         Field::Rmin);
     for (const char* w : {"minimum periapsis radius", "minimum flyby radius", "min periapsis radius", "minimum radius",
                           "lowest periapsis radius"}) {
-      t[w] = {Slot::Rmin};
+      fact({w}, Field::Rmin);
       t[w].lower = true;
     }
     t["least"].lower = true;
@@ -182,23 +180,26 @@ const std::map<std::string, Meaning>& phrases() {
     for (const char* w : {"j2 perturbation", "j2 term", "j2 effect", "oblateness", "zonal harmonic j2",
                           "zonal harmonic", "j2 zonal harmonic"})
       t[w].model = "j2";
-    slot({"j2 coefficient"}, Slot::J2);
-    t["j2"] = {Slot::J2};
+    fact({"j2 coefficient", "j2"}, Field::J2);
     t["j2"].weak = true;
-    slot({"radius", "equatorial radius"}, Slot::Radius);
+    fact({"radius", "equatorial radius"}, Field::Radius);
     for (const char* w : {"solar sail", "sail", "solar sails"}) t[w].model = "sail";
-    slot({"characteristic acceleration", "a_c", "ac"}, Slot::CharAccel);
-    slot({"lightness number", "lightness", "lightness parameter"}, Slot::Lightness);
+    fact({"characteristic acceleration", "a_c", "ac"}, Field::CharAccel);
+    fact({"lightness number", "lightness", "lightness parameter"}, Field::Lightness);
     for (const char* w : {"included", "dynamics", "plus", "account", "into", "model", "force", "propelled", "ideal",
                           "flat", "perfectly", "reflecting", "instead"})
       t[w] = {};
     // orbital elements ("a = Q", "e = N", "i = Q", "M = Q", "nu = Q", "Omega = Q", "omega = Q" too: scan())
-    slot({"semi major axis", "semimajor axis"}, Slot::A);
-    slot({"eccentricity"}, Slot::Ecc);
-    slot({"inclination", "raan", "node", "ascending node", "longitude of the ascending node",
-          "right ascension of the ascending node", "argp", "argument of perihelion", "argument of periapsis",
-          "argument of pericenter", "argument of pericentre", "mean anomaly", "true anomaly"},
-         Slot::Angle);
+    fact({"semi major axis", "semimajor axis"}, Field::A);
+    fact({"eccentricity"}, Field::Ecc);
+    fact({"inclination"}, Field::Inc);
+    fact({"raan", "node", "ascending node", "longitude of the ascending node", "right ascension of the ascending node"},
+         Field::Raan);
+    fact(
+        {"argp", "argument of perihelion", "argument of periapsis", "argument of pericenter", "argument of pericentre"},
+        Field::Argp);
+    fact({"mean anomaly"}, Field::MeanAnomaly);
+    fact({"true anomaly"}, Field::TrueAnomaly);
     for (const char* w : {"elements", "orbital elements", "keplerian", "orbit", "orbital", "defined"}) t[w] = {};
     return t;
   }();
@@ -613,7 +614,36 @@ std::vector<Clause> clauses_of(const std::vector<Token>& tokens, const std::map<
   return out;
 }
 
-std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
+// The facts of an event on the way and of an orbit.
+bool on_the_way(Field f) {
+  return f == Field::Window || f == Field::Stay || f == Field::Drop || f == Field::Rmin;
+}
+
+bool of_orbit(Field f) {
+  return f == Field::A || f == Field::Ecc || f == Field::Inc || f == Field::Raan || f == Field::Argp ||
+         f == Field::MeanAnomaly || f == Field::TrueAnomaly || f == Field::ElementsEpoch;
+}
+
+// How a Slot::Fact field's quantity is written: its dimension, or a number without unit.
+Candidate fact_candidate(Field f) {
+  static const std::map<Field, Dimension> dims = {{Field::Stay, Dimension::Time},
+                                                  {Field::Drop, Dimension::Mass},
+                                                  {Field::Rmin, Dimension::Length},
+                                                  {Field::Radius, Dimension::Length},
+                                                  {Field::A, Dimension::Length},
+                                                  {Field::Inc, Dimension::Angle},
+                                                  {Field::CharAccel, Dimension::Acceleration},
+                                                  {Field::Raan, Dimension::Angle},
+                                                  {Field::Argp, Dimension::Angle},
+                                                  {Field::MeanAnomaly, Dimension::Angle},
+                                                  {Field::TrueAnomaly, Dimension::Angle}};
+  Candidate c{f, dims.count(f) ? dims.at(f) : Dimension::Length, false, false};
+  c.pure = !dims.count(f);  // an eccentricity, a J2 coefficient, a lightness number
+  return c;
+}
+
+std::vector<Candidate> candidates(const Meaning& m, int role, const std::string& text) {
+  const Slot s = m.slot;
   const auto need_role = [&](Field initial, Field final_, Dimension d) -> std::vector<Candidate> {
     if (role == kNoRole) throw facts_error("'" + text + "' does not say whether it is the initial or the final one");
     return {{role == kInitial ? initial : final_, d, true, false}};
@@ -655,38 +685,8 @@ std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
       return {{Field::Rf, Dimension::Length, true, false}};
     case Slot::Vf:
       return {{Field::Vf, Dimension::Speed, true, false}};
-    case Slot::Stay:
-      return {{Field::Stay, Dimension::Time, false, false}};
-    case Slot::Drop:
-      return {{Field::Drop, Dimension::Mass, false, false}};
-    case Slot::Rmin:
-      return {{Field::Rmin, Dimension::Length, false, false}};
-    case Slot::Radius:
-      return {{Field::Radius, Dimension::Length, false, false}};
-    case Slot::CharAccel:
-      return {{Field::CharAccel, Dimension::Acceleration, false, false}};
-    case Slot::A:
-      return {{Field::A, Dimension::Length, false, false}};
-    case Slot::Ecc: {
-      Candidate c{Field::Ecc, Dimension::Length, false, false};
-      c.pure = true;
-      return {c};
-    }
-    case Slot::Angle: {
-      // the node's names end in "node" (or are "raan"), the argument's start with "arg"
-      const Field f = text == "inclination"            ? Field::Inc
-                      : text == "mean anomaly"         ? Field::MeanAnomaly
-                      : text == "true anomaly"         ? Field::TrueAnomaly
-                      : text.compare(0, 3, "arg") == 0 ? Field::Argp
-                                                       : Field::Raan;
-      return {{f, Dimension::Angle, false, false}};
-    }
-    case Slot::J2:
-    case Slot::Lightness: {
-      Candidate c{s == Slot::J2 ? Field::J2 : Field::Lightness, Dimension::Length, false, false};
-      c.pure = true;
-      return {c};
-    }
+    case Slot::Fact:
+      return {fact_candidate(m.field)};
     case Slot::None:
       break;
   }
@@ -912,7 +912,7 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
       const Slot sl = it->second.slot;
       if (sl == Slot::Thrust || sl == Slot::Isp || sl == Slot::Mass || sl == Slot::InitialMass ||
           sl == Slot::FinalMass || sl == Slot::Tof || sl == Slot::Mu)
-        for (const auto& c : candidates(sl, kNoRole, phrase))
+        for (const auto& c : candidates(it->second, kNoRole, phrase))
           if (fields.insert(c.field).second) cands.push_back(c);
     }
   }
@@ -929,8 +929,7 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
   for (const auto& t : tokens) {
     const auto it = phrases().find(t.word);
     elements = elements || (t.kind == Token::Word && it != phrases().end() &&
-                            (it->second.slot == Slot::A || it->second.slot == Slot::Ecc ||
-                             it->second.slot == Slot::Angle || t.word == "elements"));
+                            ((it->second.slot == Slot::Fact && of_orbit(it->second.field)) || t.word == "elements"));
     window = window || (t.kind == Token::Value && t.q.window);
   }
   std::map<std::string, std::string> known = names;
@@ -968,10 +967,9 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
   std::string event_kind;
   for (const auto& c : clauses) {
     for (const auto& m : c.mentions) {
-      const Slot sl = m.meaning.slot;
       if (!m.meaning.event.empty() && event_kind != "gravity_assist") event_kind = m.meaning.event;
       event_sentence =
-          event_sentence || !m.meaning.event.empty() || sl == Slot::Stay || sl == Slot::Drop || sl == Slot::Rmin;
+          event_sentence || !m.meaning.event.empty() || (m.meaning.slot == Slot::Fact && on_the_way(m.meaning.field));
       rendezvous_word = rendezvous_word || m.text == "rendezvous" || m.text == "rendezvouses";
       out.small_body = out.small_body || m.text == "asteroid" || m.text == "comet";
     }
@@ -1074,10 +1072,11 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
     bool lower = false, rmin = false;
     for (const auto& m : c.mentions) {
       lower = lower || m.meaning.lower;
-      rmin = rmin || m.meaning.slot == Slot::Rmin;
-      if (m.meaning.lower && m.meaning.slot != Slot::Rmin)
+      const auto is_rmin = [](const Meaning& x) { return x.slot == Slot::Fact && x.field == Field::Rmin; };
+      rmin = rmin || is_rmin(m.meaning);
+      if (m.meaning.lower && !is_rmin(m.meaning))
         for (const auto& n : c.mentions)
-          if (n.meaning.slot != Slot::None && n.meaning.slot != Slot::Rmin && !n.meaning.weak)
+          if (n.meaning.slot != Slot::None && !is_rmin(n.meaning) && !n.meaning.weak)
             throw facts_error("'" + m.text + "' makes '" + n.text + "' a lower bound, not a value");
     }
     if (rmin && !lower)
@@ -1104,7 +1103,7 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
         const int r = s == Slot::Mass ? clause_role : role;
         if ((s == Slot::Position || s == Slot::Velocity) && role == kNoRole && sentence_roles.size() > 1)
           throw facts_error("'" + m.text + "' could be the initial or the final one: say which in its clause");
-        named.push_back({candidates(s, r, m.text), m.text, m.meaning.weak});
+        named.push_back({candidates(m.meaning, r, m.text), m.text, m.meaning.weak});
       }
     // A date in a clause that says the spacecraft starts ("Launch is on 2025-03-01") is the
     // departure epoch; in one that says it arrives it is no fact HELIOS takes.
@@ -1210,11 +1209,8 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
   }
   // An event's or an orbit's sentence states nothing else: a gravitational parameter or a radius
   // beside it would be the body's, not the central body's.
-  const std::set<Field> event_fields = {Field::Window, Field::Stay, Field::Drop, Field::Rmin};
-  const std::set<Field> orbit_fields = {Field::A,    Field::Ecc,         Field::Inc,         Field::Raan,
-                                        Field::Argp, Field::MeanAnomaly, Field::TrueAnomaly, Field::ElementsEpoch};
   for (const auto& f : out.facts)
-    if ((event_sentence && !event_fields.count(f.field)) || (elements && !orbit_fields.count(f.field)))
+    if ((event_sentence && !on_the_way(f.field)) || (elements && !of_orbit(f.field)))
       throw facts_error(field_name(f.field) + " " + f.written + " stands beside " +
                         (elements ? "orbital elements" : "an event on the way") +
                         ": state it in a sentence of its own");
