@@ -676,6 +676,7 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
   // a weak word (spacecraft, engine) takes only a quantity of its own dimension, and yields to a fact word
   has(err("The 0.5 N spacecraft has Isp = 2000 s, m0 = 1000 kg."), "0.5 N cannot be the specific impulse");
   has(err(sc + " The spacecraft has 200 kg of propellant."), "nothing in its clause says what 200 kg is");
+  has(err("Tmax = 0.5 N, Isp = 2000 s. The engine has a mass of 50 kg."), "'mass' is said of the 'engine'");
   has(err("The 1000 kg spacecraft has an initial mass of 900 kg. Tmax = 0.5 N, Isp = 2000 s."),
       "two values for the initial mass: 1000 kg and 900 kg");
   // an error names the file, line and sentence on one line

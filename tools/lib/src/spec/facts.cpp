@@ -1131,6 +1131,13 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
     // "The spacecraft has 200 kg of propellant": a weak word never takes what another noun qualifies.
     bool qualified = false;
     for (const auto& m : c.mentions) qualified = qualified || m.meaning.noun == kFuel || m.meaning.noun == kTime;
+    // "The engine has a mass of 50 kg": a mass said of the engine is not the spacecraft's.
+    for (const auto& m : c.mentions)
+      for (const auto& n : c.mentions)
+        if (m.meaning.weak && m.meaning.slot == Slot::Thrust &&
+            (n.meaning.slot == Slot::Mass || n.meaning.slot == Slot::InitialMass) && !n.meaning.weak)
+          throw facts_error("'" + n.text + "' is said of the '" + m.text +
+                            "', not of the spacecraft: state the spacecraft's mass in a clause of its own");
     std::map<Field, std::string> bound_here;
     for (const auto& q : c.quantities) {
       std::vector<std::pair<Candidate, std::size_t>> fit;
