@@ -812,6 +812,9 @@ TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
   has(err(flyby + " The spacecraft stays 10 days at Ast_8648."), "only a rendezvous can leave a lander or stay");
   has(err(flyby + " The spacecraft stays 10 days at Nikko."), "the stay at Nikko is given twice");
   has(err(flyby + " The spacecraft stays -10 days at Tengstrom."), "the stay must not be negative");
+  has(error_of(replaced(s08, "Tengstrom between day 713 and day 793 and stays there for 30 days.",
+                        "Tengstrom between day 713 and day 793. No stay at Tengstrom, a stay of 5 days.")),
+      "the stay is stated twice: no stay and 5 days");
   has(error_of(replaced(replaced(s08, "Nikko between day 132", "Mars between day 132"), "lander of 50 kg.",
                         "lander of 50 kg. The spacecraft stays 5 days at the asteroid.")),
       "it speaks of an asteroid or comet, but the rendezvous stated before is with Mars");

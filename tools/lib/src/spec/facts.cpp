@@ -59,6 +59,7 @@ struct Meaning {
   bool named = false;           // a body the text gives by name (`body`), met only on the way
   std::string model;            // a part of the model it names: "j2" (the perturbation) or "sail"
   Field field = Field::Thrust;  // of Slot::Fact
+  bool none = false;            // "no stay": the fact, with the value 0
   Meaning(Slot s = Slot::None, int r = kNoRole, int v = kNoVerb, int n = kNoNoun, bool b = false, std::string bd = "",
           bool c = false)
       : slot(s), role(r), verb(v), noun(n), bound(b), body(std::move(bd)), central(c) {}
@@ -176,6 +177,9 @@ const std::map<std::string, Meaning>& phrases() {
       t[w].lower = true;
     }
     t["least"].lower = true;
+    fact({"no stay", "does not stay"}, Field::Stay);
+    t["no stay"].none = t["does not stay"].none = true;
+    t["immediately"] = {};
     // the J2 perturbation ("j2" alone with a number is the coefficient), the central body's radius
     for (const char* w : {"j2 perturbation", "j2 term", "j2 effect", "oblateness", "zonal harmonic j2",
                           "zonal harmonic", "j2 zonal harmonic"})
@@ -1027,6 +1031,12 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
     throw facts_error("it does not name the central body (Sun, Earth or Mars: 'The central body is the Sun.')");
   if (!bodies.empty() && central_named) out.central = *bodies.begin();
   std::string objective_words;
+  const auto add = [&](const Fact& fact) {
+    for (const auto& f : out.facts)
+      if (f.field == fact.field)
+        throw facts_error(field_name(fact.field) + " is stated twice: " + f.written + " and " + fact.written);
+    out.facts.push_back(fact);
+  };
   for (const auto& c : clauses) {
     std::set<int> roles;
     int verb = kNoVerb;
@@ -1090,6 +1100,7 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
       std::string text;
       bool weak;
       bool bound = false;
+      bool none = false;
     };
     std::vector<Named> named;
     for (const auto& m : c.mentions)
@@ -1104,6 +1115,7 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
         if ((s == Slot::Position || s == Slot::Velocity) && role == kNoRole && sentence_roles.size() > 1)
           throw facts_error("'" + m.text + "' could be the initial or the final one: say which in its clause");
         named.push_back({candidates(m.meaning, r, m.text), m.text, m.meaning.weak});
+        named.back().none = m.meaning.none;
       }
     // A date in a clause that says the spacecraft starts ("Launch is on 2025-03-01") is the
     // departure epoch; in one that says it arrives it is no fact HELIOS takes.
@@ -1200,11 +1212,13 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
       Fact fact{cand.field, {}, q.written, q.absolute};
       const double factor = q.unit.empty() ? 1.0 : to_spec_unit(cand.dim, q.unit);
       for (double v : q.nums) fact.value.push_back(cand.exhaust ? v * factor * 1000.0 / kG0 : v * factor);
-      for (const auto& f : out.facts)
-        if (f.field == fact.field)
-          throw facts_error(field_name(fact.field) + " is stated twice: " + f.written + " and " + fact.written);
-      out.facts.push_back(fact);
+      add(fact);
     }
+    for (auto& n : named)
+      if (!n.bound && n.none) {
+        add({n.cands.front().field, {0.0}, n.text});
+        n.bound = true;
+      }
     for (const auto& n : named)
       out.j2 = out.j2 || (!n.bound && n.text == "j2");  // "plus J2": the perturbation, not its coefficient
     for (const auto& n : named)
