@@ -871,7 +871,9 @@ TEST(ParseFacts, ElementsInOtherWordsGiveTheSameSpec) {
         "\xCE\xA9 = 49.48935357\xC2\xB0, \xCF\x89 = 286.67090811\xC2\xB0, true anomaly = 328.88755274\xC2\xB0.",
         "Orbit of Mars (epoch MJD2000 8845): semi-major axis 1.52363312 AU, eccentricity 0.09327933, inclination "
         "1.84785414 deg, ascending node 49.48935357 deg, argument of perihelion 286.67090811 deg, true anomaly "
-        "328.88755274 deg."})
+        "328.88755274 deg.",
+        "The target Mars has a = 1.52363312 AU, e = 0.09327933, i = 1.84785414 deg, node = 49.48935357 deg, argp = "
+        "286.67090811 deg and nu = 328.88755274 deg at MJD 60389."})
     EXPECT_EQ(parse(replaced(s10, orbit, to)).dump(2), parse(s10).dump(2)) << to;
   const auto err = [&](const std::string& to) { return error_of(replaced(s10, orbit, to)); };
   has(err("a = 1.2 AU, e = 0.1, i = 5 deg, Omega = 80 deg, omega = 150 deg, M = 20 deg."),

@@ -1128,10 +1128,10 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
     else if (date_here && event_sentence)
       throw facts_error("'" + words + "' dates an event on the way: HELIOS takes its window and chooses the date in it",
                         event_form(event_kind, out.event_body));
-    if (date_here && !epoch_named && role == kFinal)
+    else if (date_here && !epoch_named && role == kFinal)
       throw facts_error("'" + words +
                         "' gives an arrival date: HELIOS reads the departure epoch and the time of flight");
-    if (date_here && !epoch_named && role == kInitial)
+    else if (date_here && !epoch_named && role == kInitial)
       named.push_back({{{Field::Epoch, Dimension::Time, false, false, true}}, words, false});
     for (const auto& q : c.quantities)
       if (q.window) {
