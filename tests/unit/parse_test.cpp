@@ -799,6 +799,12 @@ TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
   // a window's event may name a body no sentence gave yet; one never given is an error at the end
   has(err(flyby + " Flyby of Gondor between day 500 and day 600."), "unknown body 'Gondor'");
   has(err("Between day 374 and day 454."), "it gives a window but no event");
+  // an unknown word beside a window or a day is refused like any other (no suggestion from them)
+  has(err("The spacecraft avoids Venus between day 374 and day 454."), "cannot place the word 'avoids'");
+  has(err("Thrust on day 374 or so."), "'or' after day 374 is no unit HELIOS knows and no fact word");
+  const std::string either = err("The spacecraft stays 30 days at Nikko or Tengstrom.");
+  has(either, "cannot place the word 'or'");
+  EXPECT_EQ(either.find("did you mean"), std::string::npos) << either;
   has(err("Flyby of Mars or Venus between day 374 and day 454."), "cannot place the word 'or'");
   has(err("Flyby of Mars and Venus between day 374 and day 454."), "it names Mars and Venus");
   // a periapsis radius is a lower bound, of a swing-by only

@@ -904,7 +904,8 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
   for (std::size_t i = 0; i < tokens.size(); ++i) {
     if (tokens[i].kind == Token::Value) {
       ++numbers;
-      if (!tokens[i].q.vector) number = &tokens[i].q;
+      const Quantity& q = tokens[i].q;
+      if (!q.vector && !q.date && !q.day && !q.window) number = &q;  // a plain number only
     }
     if (tokens[i].kind != Token::Word) continue;
     std::string phrase;
@@ -914,8 +915,9 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
       const auto it = phrases().find(phrase);
       if (it == phrases().end()) continue;
       const Slot sl = it->second.slot;
-      if (sl == Slot::Thrust || sl == Slot::Isp || sl == Slot::Mass || sl == Slot::InitialMass ||
-          sl == Slot::FinalMass || sl == Slot::Tof || sl == Slot::Mu)
+      const bool named_fact = sl == Slot::Thrust || sl == Slot::Isp || sl == Slot::Mass || sl == Slot::InitialMass ||
+                              sl == Slot::FinalMass || sl == Slot::Tof || sl == Slot::Mu;
+      if (named_fact && !it->second.weak)  // "spacecraft" or "engine" alone suggests nothing
         for (const auto& c : candidates(it->second, kNoRole, phrase))
           if (fields.insert(c.field).second) cands.push_back(c);
     }
@@ -1177,8 +1179,8 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
                                            "final position or velocity"
                                      : "nothing in its clause says what " + q.written + " is");
         const Candidate& want = strong.front()->cands.front();
-        const std::string sug =
-            strong.size() == 1 && !q.vector && !want.exhaust ? suggestion(want.field, q, want.dim) : "";
+        const bool plain = !q.vector && !q.date && !q.day && !q.window;
+        const std::string sug = strong.size() == 1 && plain && !want.exhaust ? suggestion(want.field, q, want.dim) : "";
         if (q.unit.empty())
           throw facts_error(
               q.written + " has no unit, and " + field_name(want.field) + " needs one (" + spec_unit(want.dim) + ")",
