@@ -811,6 +811,9 @@ TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
   has(err("Mars swing-by between day 374 and day 454, periapsis radius 3500 km."), "takes as a lower bound");
   has(err("Mars flyby between day 374 and day 454, minimum periapsis radius 3500 km."), "cannot read it: a flyby");
   has(err("Ast_8648 flyby window: day 454 to day 374."), "is empty");
+  has(err("Ast_8648 swing-by between day 374 and day 454."),
+      "the gravitational parameter of Ast_8648 is not known; did you mean \"The spacecraft swings by Ast_8648 between "
+      "day N and day N in an unpowered gravity assist; Ast_8648 has a gravitational parameter of Q km^3/s^2.\"?");
   // a stay or lander belongs to the one rendezvous stated before, named or not
   has(error_of(replaced(s08, "Tengstrom between day 713 and day 793 and stays there for 30 days.",
                         "Tengstrom between day 713 and day 793. The spacecraft stays 10 days at the asteroid.")),

@@ -216,6 +216,12 @@ void Builder::apply_event(const detail::SentenceFacts& f) {
   e.stay = stay;
   e.drop = drop;
   e.rmin = rmin;
+  // a body's own gravitational parameter is stated only in the controlled form
+  if (e.kind == "gravity_assist" && !known_mu(e.body))
+    throw sentence_error("the gravitational parameter of " + e.body +
+                         " is not known; did you mean \"The spacecraft swings by " + e.body +
+                         " between day N and day N in an unpowered gravity assist; " + e.body +
+                         " has a gravitational parameter of Q km^3/s^2.\"?");
   add_event(std::move(e));
 }
 
