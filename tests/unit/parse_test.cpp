@@ -819,6 +819,10 @@ TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
                         "Tengstrom between day 713 and day 793. The spacecraft stays 10 days at the asteroid.")),
       "rendezvouses with Nikko and Tengstrom on the way: say which one");
   has(err(flyby + " The spacecraft stays 10 days at Ast_8648."), "only a rendezvous can leave a lander or stay");
+  has(error_of(replaced(scenario("S02"), "At the final time",
+                        "Venus flyby between day 100 and day 150. The spacecraft stays 10 days at the asteroid. At the "
+                        "final time")),
+      "no rendezvous on the way is stated before this sentence");
   has(err(flyby + " The spacecraft stays 10 days at Nikko."), "the stay at Nikko is given twice");
   has(err(flyby + " The spacecraft stays -10 days at Tengstrom."), "the stay must not be negative");
   has(error_of(replaced(s08, "Tengstrom between day 713 and day 793 and stays there for 30 days.",

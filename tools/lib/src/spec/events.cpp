@@ -191,9 +191,10 @@ Event& Builder::rendezvous_of(const std::string& name) {
     found.push_back(&e);
   }
   if (found.empty())
-    throw sentence_error(others ? "only a rendezvous can leave a lander or stay, and the spacecraft only passes " + name
-                         : name.empty() ? "no rendezvous on the way is stated before this sentence"
-                                        : "no rendezvous with " + name + " is stated before this sentence");
+    throw sentence_error(name.empty() ? "no rendezvous on the way is stated before this sentence"
+                         : others
+                             ? "only a rendezvous can leave a lander or stay, and the spacecraft only passes " + name
+                             : "no rendezvous with " + name + " is stated before this sentence");
   if (found.size() > 1 && !name.empty())
     throw sentence_error("the spacecraft rendezvouses with " + name + " " + std::to_string(found.size()) +
                          " times: put the clause in the rendezvous sentence meant");
