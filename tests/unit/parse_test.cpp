@@ -14,8 +14,12 @@ using helios::io::json;
 
 const std::string kSource = HELIOS_SOURCE_DIR;
 
+std::string scenario(const std::string& id) {
+  return helios::io::read_text(kSource + "/scenarios/" + id + "/problem.txt");
+}
+
 std::string s01_text() {
-  return helios::io::read_text(kSource + "/scenarios/S01/problem.txt");
+  return scenario("S01");
 }
 
 json parse(const std::string& text) {
@@ -35,6 +39,11 @@ std::string error_of(const std::string& text) {
     return e.what();
   }
   return "";
+}
+
+// An error message `e` that says `part`.
+void has(const std::string& e, const std::string& part) {
+  EXPECT_NE(e.find(part), std::string::npos) << e;
 }
 
 TEST(Parse, S01ReadsEveryFactInSpecUnits) {
@@ -619,6 +628,13 @@ TEST(ParseFacts, IssueSentencesGiveS01sSpecByteIdentically) {
       // beyond the issue's list: the central body in other words
       {"The central body is the Sun with gravitational parameter 1.32712440018e11 km^3/s^2.",
        "The Sun is the central body; its gravitational parameter is 1.32712440018e11 km^3/s^2."},
+      // everyday words: a mass said of the spacecraft, a force of the engine, a body's mu
+      {spacecraft, "The 1000 kg spacecraft has a 0.5 N engine with Isp 2000 s."},
+      {spacecraft, "The spacecraft starts with 1000 kg, and its engine gives 0.5 N at an Isp of 2000 s."},
+      {spacecraft, "Thrust (max): 0.5 N. Our engine runs at an Isp of 2000 s. m0 = 1000 kg."},
+      {"Minimize the fuel consumption.", "We want to use as little propellant as possible."},
+      {"The central body is the Sun with gravitational parameter 1.32712440018e11 km^3/s^2.",
+       "The Sun's gravitational parameter is 1.32712440018e11 km^3/s^2."},
   };
   const std::string want = parse(s01).dump(2);
   for (const auto& [from, to] : cases) EXPECT_EQ(parse(replaced(s01, from, to)).dump(2), want) << to;
@@ -629,9 +645,6 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
   const std::string sc =
       "The spacecraft has a maximum thrust of 0.5 N, a specific impulse of 2000 s and an initial mass of 1000 kg.";
   const auto err = [&](const std::string& to) { return error_of(replaced(s01, sc, to)); };
-  const auto has = [](const std::string& e, const std::string& part) {
-    EXPECT_NE(e.find(part), std::string::npos) << e;
-  };
   has(err("The thrust is 0.5. Isp = 2000 s, m0 = 1000 kg."),
       "0.5 has no unit, and the maximum thrust needs one (N); did you mean \"The spacecraft has a maximum thrust of "
       "0.5 N.\"?");
@@ -651,12 +664,21 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
       "thrust of 3 N.\"?");
   has(err(sc + " The transfer takes 348.795 days with an Isp of 2000 s."),
       "348.795 days could be the time of flight or the specific impulse");
-  has(err(sc + " The target position is [1, 2, 3] km."), "does not say whether it is the initial or the final one");
+  has(err(sc + " The position is [1, 2, 3] km."), "does not say whether it is the initial or the final one");
+  has(err(sc + " The target position is [1, 2, 3] km."), "the final rendezvous is given twice");
   const std::string dry = err(sc + " The dry mass is 500 kg.");  // no suggestion: a dry mass is no initial mass
   has(dry, "cannot place the word 'dry'");
   EXPECT_EQ(dry.find("did you mean"), std::string::npos) << dry;
   has(err(sc + " The Sun is the central body and Earth is the central body."), "it names Earth and Sun");
-  has(err(sc + " Mars has a gravitational parameter of 42828 km^3/s^2."), "it does not say what Mars is here");
+  has(err(sc + " Mars has a gravitational parameter of 42828 km^3/s^2."),
+      "it is about Mars as the central body, but the central body is Sun");
+  has(err(sc + " It is Mars."), "it does not say what Mars is here");
+  // a weak word (spacecraft, engine) takes only a quantity of its own dimension, and yields to a fact word
+  has(err("The 0.5 N spacecraft has Isp = 2000 s, m0 = 1000 kg."), "0.5 N cannot be the specific impulse");
+  has(err(sc + " The spacecraft has 200 kg of propellant."), "nothing in its clause says what 200 kg is");
+  has(err("Tmax = 0.5 N, Isp = 2000 s. The engine has a mass of 50 kg."), "'mass' is said of the 'engine'");
+  has(err("The 1000 kg spacecraft has an initial mass of 900 kg. Tmax = 0.5 N, Isp = 2000 s."),
+      "two values for the initial mass: 1000 kg and 900 kg");
   // an error names the file, line and sentence on one line
   const std::string e = err("Thrust 0.5 N Isp. The spacecraft has an initial mass of 1000 kg.");
   has(e, "problem.txt:4: cannot use sentence \"Thrust 0.5 N Isp\": 'isp' has no value");
@@ -666,9 +688,6 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
 // Epochs in other words: a calendar date or a day number on a named scale is the departure epoch
 // when its clause says the spacecraft starts, and gives the spec the controlled form gives.
 TEST(ParseFacts, EpochsInOtherWordsGiveTheSameSpec) {
-  const auto scenario = [](const char* id) {
-    return helios::io::read_text(kSource + "/scenarios/" + id + "/problem.txt");
-  };
   const std::string s02 = scenario("S02"), s04 = scenario("S04");
   const std::string want02 = parse(s02).dump(2), want04 = parse(s04).dump(2);
   // MJD2000 400 is 2001-02-04 00:00 (2000 is a leap year: 366 + 34 days)
@@ -692,13 +711,10 @@ TEST(ParseFacts, EpochsInOtherWordsGiveTheSameSpec) {
 }
 
 TEST(ParseFacts, AnEpochOfNoRoleOrNoDayIsAnError) {
-  const std::string s02 = helios::io::read_text(kSource + "/scenarios/S02/problem.txt");
+  const std::string s02 = scenario("S02");
   const auto err = [&](const std::string& to) {
     return error_of(replaced(s02, "The spacecraft departs at MJD2000 400 from Earth.",
                              to + "\nThe spacecraft departs from Earth."));
-  };
-  const auto has = [](const std::string& e, const std::string& part) {
-    EXPECT_NE(e.find(part), std::string::npos) << e;
   };
   has(err("The departure date is 2025-02-30."), "the date 2025-02-30 does not exist");
   has(err("The departure date is 2023-02-29."), "the date 2023-02-29 does not exist");
@@ -715,7 +731,7 @@ TEST(ParseFacts, AnEpochOfNoRoleOrNoDayIsAnError) {
 
 // The departure and arrival planets in other words give S02's spec.
 TEST(ParseFacts, BodiesInOtherWordsGiveTheSameSpec) {
-  const std::string s02 = helios::io::read_text(kSource + "/scenarios/S02/problem.txt");
+  const std::string s02 = scenario("S02");
   const std::string want = parse(s02).dump(2);
   const std::string dep = "The spacecraft departs at MJD2000 400 from Earth.";
   const std::string arr = "At the final time the spacecraft rendezvouses with Mars.";
@@ -728,9 +744,6 @@ TEST(ParseFacts, BodiesInOtherWordsGiveTheSameSpec) {
       parse(replaced(replaced(s02, dep, "The spacecraft leaves Earth on MJD2000 400 and arrives at Mars."), arr, ""))
           .dump(2),
       want);
-  const auto has = [](const std::string& e, const std::string& part) {
-    EXPECT_NE(e.find(part), std::string::npos) << e;
-  };
   has(error_of(replaced(s02, arr, "Rendezvous with Mars or Venus.")), "cannot place the word 'or'");
   has(error_of(replaced(s02, arr, "Arrive at Mars and Venus.")), "it names Mars and Venus as the arrival body");
   has(error_of(replaced(s02, arr, "Arrive at Venus.") + "Rendezvous with Mars.\n"), "the final rendezvous");
@@ -740,4 +753,159 @@ TEST(ParseFacts, BodiesInOtherWordsGiveTheSameSpec) {
       "stands beside a departure or arrival body");
   has(error_of(replaced(s02, dep, "Departure from Earth on MJD2000 400 at position [1, 2, 3] km.")),
       "both a body and the initial position");
+}
+
+// Events on the way in other words give S08's and S10's specs.
+TEST(ParseFacts, EventsInOtherWordsGiveTheSameSpec) {
+  const std::string s08 = scenario("S08"), s10 = scenario("S10");
+  const std::string nikko =
+      "The spacecraft rendezvouses with Nikko between day 132 and day 212, stays there for 30 days and leaves a lander "
+      "of 50 kg.";
+  const std::string flyby = "The spacecraft flies by Ast_8648 between day 374 and day 454.";
+  const std::string tengstrom =
+      "The spacecraft rendezvouses with Tengstrom between day 713 and day 793 and stays there for 30 days.";
+  const std::string words08 = replaced(
+      replaced(replaced(s08, nikko,
+                        "Rendezvous with Nikko between day 132 and day 212, then a stay of 30 days. A lander of 50 kg "
+                        "is released at the asteroid."),
+               flyby, "Ast_8648 flyby window: day 374 to day 454."),
+      tengstrom, "Rendezvous with Tengstrom from day 713 to day 793. The spacecraft stays 30 days at Tengstrom.");
+  EXPECT_EQ(parse(words08).dump(2), parse(s08).dump(2));
+  // a body given by its orbit is left or reached like a planet
+  EXPECT_EQ(parse(replaced(replaced(s08, "The spacecraft departs from Ast_9933 at MJD2000 10313.6.",
+                                    "Departure from Ast_9933 on MJD2000 10313.6."),
+                           "At the final time the spacecraft rendezvouses with SIMBAD.", "The destination is SIMBAD."))
+                .dump(2),
+            parse(s08).dump(2));
+  const std::string swing =
+      "The spacecraft swings by Mars between day 600 and day 1100 in an unpowered gravity assist; Mars has a "
+      "gravitational parameter of 42828.3 km^3/s^2 and the periapsis radius must be at least 3889.9 km.";
+  for (const char* to :
+       {"Mars swing-by between day 600 and day 1100, minimum periapsis radius 3889.9 km.",
+        "A gravity assist at Mars from day 600 to day 1100; the periapsis radius is at least 3889.9 km."})
+    EXPECT_EQ(parse(replaced(s10, swing, to)).dump(2), parse(s10).dump(2)) << to;
+}
+
+TEST(ParseFacts, EventsInOtherWordsRefuseWhatTheyCannotPlace) {
+  const std::string s08 = scenario("S08");
+  const std::string flyby = "The spacecraft flies by Ast_8648 between day 374 and day 454.";
+  const auto err = [&](const std::string& to) { return error_of(replaced(s08, flyby, to)); };
+  // an event needs a window, not a date, and its body; the suggestion names the user's body
+  has(err("A swing-by of Mars."),
+      "the swing-by needs its window: HELIOS chooses the date inside it; did you mean \"The spacecraft swings by Mars "
+      "between day N and day N in an unpowered gravity assist.\"?");
+  has(err("There is an Ast_8648 flyby on 2029-03-01."), "dates an event on the way");
+  has(err("A flyby between day 374 and day 454."), "it does not name the body of the flyby");
+  // a window's event may name a body no sentence gave yet; one never given is an error at the end
+  has(err(flyby + " Flyby of Gondor between day 500 and day 600."), "unknown body 'Gondor'");
+  has(err("Between day 374 and day 454."), "it gives a window but no event");
+  // an unknown word beside a window or a day is refused like any other (no suggestion from them)
+  has(err("The spacecraft avoids Venus between day 374 and day 454."), "cannot place the word 'avoids'");
+  has(err("Thrust on day 374 or so."), "'or' after day 374 is no unit HELIOS knows and no fact word");
+  const std::string either = err("The spacecraft stays 30 days at Nikko or Tengstrom.");
+  has(either, "cannot place the word 'or'");
+  EXPECT_EQ(either.find("did you mean"), std::string::npos) << either;
+  has(err("Flyby of Mars or Venus between day 374 and day 454."), "cannot place the word 'or'");
+  has(err("Flyby of Mars and Venus between day 374 and day 454."), "it names Mars and Venus");
+  // a periapsis radius is a lower bound, of a swing-by only
+  has(err("Mars swing-by between day 374 and day 454, periapsis radius 3500 km."), "takes as a lower bound");
+  has(err("Mars flyby between day 374 and day 454, minimum periapsis radius 3500 km."), "cannot read it: a flyby");
+  has(err("Ast_8648 flyby window: day 454 to day 374."), "is empty");
+  has(err("Ast_8648 swing-by between day 374 and day 454."),
+      "the gravitational parameter of Ast_8648 is not known; did you mean \"The spacecraft swings by Ast_8648 between "
+      "day N and day N in an unpowered gravity assist; Ast_8648 has a gravitational parameter of Q km^3/s^2.\"?");
+  // a stay or lander belongs to the one rendezvous stated before, named or not
+  has(error_of(replaced(s08, "Tengstrom between day 713 and day 793 and stays there for 30 days.",
+                        "Tengstrom between day 713 and day 793. The spacecraft stays 10 days at the asteroid.")),
+      "rendezvouses with Nikko and Tengstrom on the way: say which one");
+  has(err(flyby + " The spacecraft stays 10 days at Ast_8648."), "only a rendezvous can leave a lander or stay");
+  has(error_of(replaced(scenario("S02"), "At the final time",
+                        "Venus flyby between day 100 and day 150. The spacecraft stays 10 days at the asteroid. At the "
+                        "final time")),
+      "no rendezvous on the way is stated before this sentence");
+  has(err(flyby + " The spacecraft stays 10 days at Nikko."), "the stay at Nikko is given twice");
+  has(err(flyby + " The spacecraft stays -10 days at Tengstrom."), "the stay must not be negative");
+  has(error_of(replaced(s08, "Tengstrom between day 713 and day 793 and stays there for 30 days.",
+                        "Tengstrom between day 713 and day 793. No stay at Tengstrom, a stay of 5 days.")),
+      "the stay is stated twice: no stay and 5 days");
+  has(error_of(replaced(replaced(s08, "Nikko between day 132", "Mars between day 132"), "lander of 50 kg.",
+                        "lander of 50 kg. The spacecraft stays 5 days at the asteroid.")),
+      "it speaks of an asteroid or comet, but the rendezvous stated before is with Mars");
+  has(err("Ast_8648 flyby between day 374 and day 454, mu = 5 km^3/s^2."),
+      "the gravitational parameter 5 km^3/s^2 stands beside an event on the way");
+  has(err(flyby + " Minimize fuel at Nikko."), "it does not say what Nikko is here");
+  has(err("Flyby of the asteroid Mars between day 374 and day 454."), "Mars is a planet");
+  has(err(flyby + " The surface stay at Nikko lasts 10 days and 20 days."),
+      "nothing in its clause says what 20 days is");
+}
+
+// J2 and the solar sail in other words give S05's and S11's specs.
+TEST(ParseFacts, J2AndSailInOtherWordsGiveTheSameSpec) {
+  const std::string s05 = scenario("S05"), s11 = scenario("S11");
+  const std::string central =
+      "The central body is the Earth with gravitational parameter 398600.4418 km^3/s^2, equatorial radius 6378.137 km "
+      "and J2 coefficient 1.08262668e-3.";
+  const std::string j2 = "The dynamics include the J2 perturbation of the central body.";
+  for (const char* to : {"Include Earth's J2 perturbation.", "Dynamics: two-body plus J2.",
+                         "Account for the oblateness of the Earth (J2 effect)."})
+    EXPECT_EQ(parse(replaced(s05, j2, to)).dump(2), parse(s05).dump(2)) << to;
+  EXPECT_EQ(parse(replaced(replaced(s05, central,
+                                    "The central body is the Earth with gravitational parameter 398600.4418 km^3/s^2."),
+                           j2, "Model the J2 perturbation with J2 = 1.08262668e-3 and Earth radius 6378.137 km."))
+                .dump(2),
+            parse(s05).dump(2));
+  const std::string sail =
+      "The spacecraft is an ideal flat solar sail with a characteristic acceleration of 1.0 mm/s^2 "
+      "at 1 AU.";
+  for (const char* to : {"Propulsion: ideal solar sail, a_c = 1.0 mm/s^2.",
+                         "The spacecraft is propelled by a solar sail with a characteristic acceleration of 1 mm/s^2."})
+    EXPECT_EQ(parse(replaced(s11, sail, to)).dump(2), parse(s11).dump(2)) << to;
+  has(error_of(replaced(s05, j2, "Include Mars's J2 perturbation.")),
+      "it is about Mars as the central body, but the central body is Earth");
+  has(error_of(replaced(s05, j2, "J2 = 1.08262668e-3 km.")), "nothing in its clause says what 1.08262668e-3 km is");
+  has(error_of(replaced(s05, j2, "Earth radius 6378 km.")), "the central body's radius_km is given twice");
+  has(error_of(replaced(s05, central, "Include the J2 perturbation with J2 = 1.08262668e-3.")),
+      "state the central body before its J2 coefficient or radius");
+  has(error_of(replaced(s11, sail, "The spacecraft is a solar sail.")),
+      "the solar sail needs its characteristic acceleration (at 1 AU) or lightness number; did you mean");
+  has(error_of(replaced(s11, sail, "Solar sail: lightness number 0.05, characteristic acceleration 0.3 mm/s^2.")),
+      "the propulsion is given twice");
+}
+
+// A body's orbital elements in other words give S10's spec; incomplete ones suggest the orbit
+// sentence filled in with the user's numbers.
+TEST(ParseFacts, ElementsInOtherWordsGiveTheSameSpec) {
+  const std::string s10 = scenario("S10");
+  const std::string orbit =
+      "Mars moves on a Keplerian orbit about the Sun with a = 1.52363312 AU, e = 0.09327933, i = 1.84785414 deg, node "
+      "= 49.48935357 deg, argument of perihelion = 286.67090811 deg and true anomaly = 328.88755274 deg at MJD 60389.";
+  for (const char* to :
+       {"Mars's orbital elements at MJD 60389: a = 1.52363312 AU, e = 0.09327933, i = 1.84785414\xC2\xB0, "
+        "\xCE\xA9 = 49.48935357\xC2\xB0, \xCF\x89 = 286.67090811\xC2\xB0, true anomaly = 328.88755274\xC2\xB0.",
+        "Orbit of Mars (epoch MJD2000 8845): semi-major axis 1.52363312 AU, eccentricity 0.09327933, inclination "
+        "1.84785414 deg, ascending node 49.48935357 deg, argument of perihelion 286.67090811 deg, true anomaly "
+        "328.88755274 deg.",
+        "The target Mars has a = 1.52363312 AU, e = 0.09327933, i = 1.84785414 deg, node = 49.48935357 deg, argp = "
+        "286.67090811 deg and nu = 328.88755274 deg at MJD 60389."})
+    EXPECT_EQ(parse(replaced(s10, orbit, to)).dump(2), parse(s10).dump(2)) << to;
+  const auto err = [&](const std::string& to) { return error_of(replaced(s10, orbit, to)); };
+  has(err("a = 1.2 AU, e = 0.1, i = 5 deg, Omega = 80 deg, omega = 150 deg, M = 20 deg."),
+      "the orbit lacks the epoch of the elements, the body's name; did you mean \"NAME moves on a Keplerian orbit "
+      "about "
+      "the central body with a = 1.2 AU, e = 0.1, i = 5 deg, node = 80 deg, argument of perihelion = 150 deg and mean "
+      "anomaly = 20 deg at MJD N.\"?");
+  has(err("Mars: a = 1.5 AU, e = 0.1 at MJD 60389."), "the orbit lacks the inclination, the ascending node");
+  has(err("Mars: a = 1.5 AU, e = 0.1 AU, i = 5 deg, node = 80 deg, argp = 150 deg, M = 20 deg at MJD 60389."),
+      "0.1 AU cannot be the eccentricity: the eccentricity is a number without unit");
+  has(err("Mars: a = 1.5 AU, e = 0.1, i = 5 deg, node = 80 deg, argp = 150 deg, M = 20 deg at MJD 60389, flyby "
+          "between day 700 and day 800."),
+      "it gives orbital elements and an event on the way");
+  has(err("Mars: a = 1.5 AU, e = 1.2, i = 5 deg, node = 80 deg, argp = 150 deg, M = 20 deg at MJD 60389."),
+      "the eccentricity must satisfy 0 <= e < 1, got 1.2");
+  has(err("Mars: a = 1.5 AU, e = 0.1, i = 5, node = 80 deg, argp = 150 deg, M = 20 deg at MJD 60389."),
+      "5 has no unit, and the inclination needs one (deg)");
+  has(err("Mars and Venus: a = 1.5 AU, e = 0.1, i = 5 deg, node = 80 deg, argp = 150 deg, M = 20 deg at MJD 60389."),
+      "whose elements are these?");
+  has(err("Mars: a = 1.5 AU, e = 0.1, i = 5 deg, node = 80 deg, argp = 150 deg, M = 20 deg, nu = 30 deg at MJD 60389."),
+      "both a mean and a true anomaly");
 }

@@ -95,7 +95,12 @@ void Builder::event(const std::string& kind, const std::string& rest) {
       throw sentence_error("cannot read '" + trimmed(tail) + "' after the window: " + clause_forms(kind));
     for (const auto& part : clauses_of(l[1].str())) event_clause(e, part);
   }
-  if (kind == "gravity_assist" && !e.mu) {
+  add_event(std::move(e));
+}
+
+// An event stated whole: a gravity assist takes the known mu of its body unless it states one.
+void Builder::add_event(Event e) {
+  if (e.kind == "gravity_assist" && !e.mu) {
     const std::string key = lowercase(e.body);
     const auto mu = key == "sun" ? std::nullopt : known_mu(e.body);
     if (!mu)
@@ -171,26 +176,37 @@ void Builder::on_drop(const std::smatch& m) {
   lander(quantity(m, 1, Dimension::Mass), body_name(m[3].str()));
 }
 
+// The one interior rendezvous with NAME stated before ("" = the one rendezvous, whatever its body).
+Event& Builder::rendezvous_of(const std::string& name) {
+  std::vector<Event*> found;
+  int others = 0;
+  std::string names;
+  for (auto& e : events) {
+    if (!name.empty() && lowercase(e.body) != lowercase(name)) continue;
+    if (e.kind != "rendezvous") {
+      ++others;
+      continue;
+    }
+    names += (found.empty() ? "" : " and ") + e.body;
+    found.push_back(&e);
+  }
+  if (found.empty())
+    throw sentence_error(name.empty() ? "no rendezvous on the way is stated before this sentence"
+                         : others
+                             ? "only a rendezvous can leave a lander or stay, and the spacecraft only passes " + name
+                             : "no rendezvous with " + name + " is stated before this sentence");
+  if (found.size() > 1 && !name.empty())
+    throw sentence_error("the spacecraft rendezvouses with " + name + " " + std::to_string(found.size()) +
+                         " times: put the clause in the rendezvous sentence meant");
+  if (found.size() > 1)
+    throw sentence_error("the spacecraft rendezvouses with " + names + " on the way: say which one");
+  return *found.front();
+}
+
 // "It leaves a lander of Q at NAME": the one rendezvous with NAME stated before.
 void Builder::lander(double kg, const std::string& name) {
   if (!(kg > 0)) throw sentence_error("the lander's mass must be positive");
-  Event* found = nullptr;
-  int rendezvous = 0, others = 0;
-  for (auto& e : events) {
-    if (lowercase(e.body) != lowercase(name)) continue;
-    if (e.kind == "rendezvous") {
-      ++rendezvous;
-      found = &e;
-    } else {
-      ++others;
-    }
-  }
-  if (rendezvous == 0)
-    throw sentence_error(others ? "only a rendezvous can leave a lander, and the spacecraft only passes " + name
-                                : "no rendezvous with " + name + " is stated before this sentence");
-  if (rendezvous > 1)
-    throw sentence_error("the spacecraft rendezvouses with " + name + " " + std::to_string(rendezvous) +
-                         " times: put ', and leaves a lander of Q' in the rendezvous sentence meant");
+  Event* found = &rendezvous_of(name);
   if (found->drop) throw sentence_error("the lander at " + name + " is given twice");
   found->drop = kg;
   found->drop_where = here;

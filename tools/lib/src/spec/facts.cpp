@@ -5,6 +5,7 @@
 
 #include <cctype>
 #include <cstdio>
+#include <iomanip>
 #include <map>
 #include <optional>
 #include <regex>
@@ -37,7 +38,8 @@ enum class Slot {
   R0,
   V0,
   Rf,
-  Vf
+  Vf,
+  Fact  // one field whatever the clause (Meaning::field): an event's, an orbit's, J2, a sail's
 };
 enum Role { kNoRole = 0, kInitial = 1, kFinal = 2 };
 enum Verb { kNoVerb = 0, kMinimize, kMaximize, kMinimum, kMaximum };
@@ -49,6 +51,15 @@ struct Meaning {
   bool bound;        // "up to", "limited to", "available", "maximum": a bound, which only the thrust is
   std::string body;  // a body with a known gravitational parameter
   bool central;      // names the central body ("central body", "heliocentric")
+  // A weak fact word ("the 1500 kg spacecraft", "a 0.4 N engine"): it takes a quantity only when
+  // no other fact word of its clause does, and needs none.
+  bool weak = false;
+  std::string event;            // an event on the way it names: "flyby" or "gravity_assist"
+  bool lower = false;           // "at least", "minimum periapsis radius": a lower bound, which only the periapsis is
+  bool named = false;           // a body the text gives by name (`body`), met only on the way
+  std::string model;            // a part of the model it names: "j2" (the perturbation) or "sail"
+  Field field = Field::Thrust;  // of Slot::Fact
+  bool none = false;            // "no stay": the fact, with the value 0
   Meaning(Slot s = Slot::None, int r = kNoRole, int v = kNoVerb, int n = kNoNoun, bool b = false, std::string bd = "",
           bool c = false)
       : slot(s), role(r), verb(v), noun(n), bound(b), body(std::move(bd)), central(c) {}
@@ -61,21 +72,37 @@ const std::map<std::string, Meaning>& phrases() {
     std::map<std::string, Meaning> t;
     // fillers: they state nothing
     std::istringstream fillers(
-        "the a an is are be of to with at from by for in its it spacecraft probe vehicle engine engines thruster "
-        "thrusters propulsion system electric ion has have must should can set fixed equal equals given taken as "
-        "assumed constant total level magnitude consumption used consumed objective goal vector state conditions we "
-        "want find optimize optimise trajectory transfer mission operate operates possible reach target looking use "
-        "motion problem on place utc our rated single trip exactly body");
+        "the a an is are be of to with at from by for in its it system electric ion has have must should can set fixed "
+        "equal equals given taken as assumed constant total level magnitude consumption used consumed objective goal "
+        "vector state conditions we want find optimize optimise trajectory transfer mission operate operates possible "
+        "reach looking use motion problem on place utc our single trip exactly body runs run carries carry hall "
+        "take all computed frame only");
     for (std::string w; fillers >> w;) t[w] = {};
     const auto slot = [&](std::initializer_list<const char*> ws, Slot s, int noun = kNoNoun) {
       for (const char* w : ws) t[w] = {s, kNoRole, kNoVerb, noun};
     };
+    const auto fact = [&](std::initializer_list<const char*> ws, Field f) {
+      for (const char* w : ws) {
+        t[w] = {Slot::Fact};
+        t[w].field = f;
+      }
+    };
     slot({"thrust", "maximum thrust", "max thrust", "delivers", "deliver", "provides", "provide", "produces", "produce",
-          "gives", "give", "tmax", "t_max", "thrust force"},
+          "gives", "give", "tmax", "t_max", "thrust force", "rated", "capable"},
          Slot::Thrust);
+    // A force said of the engine is its thrust; a mass said of the spacecraft is its mass.
+    for (const char* w : {"engine", "engines", "thruster", "thrusters", "propulsion"}) {
+      t[w] = {Slot::Thrust};
+      t[w].weak = true;
+    }
+    for (const char* w : {"spacecraft", "probe", "vehicle", "starts with"}) {
+      t[w] = {Slot::Mass, std::string(w) == "starts with" ? kInitial : kNoRole};
+      t[w].weak = true;
+    }
     slot({"t"}, Slot::ThrustOrT0);
     slot({"t0", "t_0"}, Slot::T0);
     t["takes place"] = {};
+    t["low thrust"] = {};  // a kind of engine, not a thrust value
     t["two body"] = {};
     slot({"epoch", "date", "departure epoch", "departure date", "launch date", "launch epoch", "start date",
           "start epoch", "initial epoch", "epoch of departure", "date of departure"},
@@ -86,31 +113,41 @@ const std::map<std::string, Meaning>& phrases() {
     slot({"initial mass", "wet mass", "launch mass", "starting mass", "m0", "m_0"}, Slot::InitialMass, kInitialMass);
     slot({"final mass"}, Slot::FinalMass, kFinalMass);
     slot({"time of flight", "flight time", "transfer time", "tof", "takes", "lasts", "duration", "transfer duration",
-          "flight duration"},
+          "flight duration", "after departure"},
          Slot::Tof, kTime);
-    slot({"mu", "gm", "gravitational parameter"}, Slot::Mu);
+    slot({"mu", "gm", "gravitational parameter", "gravitational constant"}, Slot::Mu);
     slot({"position", "location", "r"}, Slot::Position);
     slot({"velocity", "v"}, Slot::Velocity);
     slot({"r0", "r_0"}, Slot::R0);
     slot({"v0", "v_0"}, Slot::V0);
     slot({"rf", "r_f"}, Slot::Rf);
     slot({"vf", "v_f"}, Slot::Vf);
-    for (const char* w :
-         {"initial", "initially", "start", "starts", "starting", "begins", "departs", "departure", "launch", "leaves"})
+    for (const char* w : {"initial", "initially", "start", "starts", "starting", "begins", "departs", "departure",
+                          "launch", "leaves", "launched"})
       t[w] = {Slot::None, kInitial};
     for (const char* w : {"final", "arrives", "arrive", "arrival", "end", "ends", "terminal", "rendezvous",
-                          "rendezvouses", "destination"})
+                          "rendezvouses", "destination", "target"})
       t[w] = {Slot::None, kFinal};
-    for (const char* w : {"minimize", "minimise", "cost", "cost function"}) t[w] = {Slot::None, kNoRole, kMinimize};
+    for (const char* w : {"minimize", "minimise", "cost", "cost function", "as little"})
+      t[w] = {Slot::None, kNoRole, kMinimize};
     for (const char* w : {"maximize", "maximise", "as large as possible"}) t[w] = {Slot::None, kNoRole, kMaximize};
     t["minimum"] = {Slot::None, kNoRole, kMinimum};
-    t["maximum"] = {Slot::None, kNoRole, kMaximum, kNoNoun, true};
+    t["maximum"] = t["max"] = {Slot::None, kNoRole, kMaximum, kNoNoun, true};
     for (const auto& [w, b] : std::map<std::string, std::string>{
              {"sun", "Sun"}, {"earth", "Earth"}, {"mars", "Mars"}, {"venus", "Venus"}, {"jupiter", "Jupiter"}})
       t[w].body = b;
-    for (const char* w : {"central body", "gravitational attractor", "attractor"}) t[w].central = true;
-    t["heliocentric"] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Sun", true};
-    t["geocentric"] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Earth", true};
+    // the central body: what the spacecraft orbits, the one that attracts it
+    for (const char* w : {"central body", "gravitational attractor", "attractor", "attracting body", "orbits"})
+      t[w].central = true;
+    for (const char* w : {"heliocentric", "sun centered", "sun centred"})
+      t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Sun", true};
+    for (const char* w : {"geocentric", "earth centered", "earth centred", "eci"})
+      t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, false, "Earth", true};
+    // a body's own gravitational parameter ("GM_sun = Q")
+    for (const auto& [w, b] : std::map<std::string, std::string>{
+             {"gm_sun", "Sun"}, {"mu_sun", "Sun"}, {"gm_earth", "Earth"}, {"mu_earth", "Earth"}})
+      t[w] = {Slot::Mu, kNoRole, kNoVerb, kNoNoun, false, b};
+    t["near earth asteroid"] = {};  // a kind of asteroid, not the Earth
     for (const char* w : {"up", "limited", "available", "most"}) t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, true};
     for (const char* w : {"fuel", "propellant", "fuel consumption", "propellant consumption", "fuel mass",
                           "propellant mass", "fuel use"})
@@ -119,6 +156,55 @@ const std::map<std::string, Meaning>& phrases() {
     for (const char* w : {"fuel optimal", "propellant optimal"}) t[w] = {Slot::None, kNoRole, kMinimize, kFuel};
     for (const char* w : {"time optimal", "fastest", "as fast as possible", "as short as possible"})
       t[w] = {Slot::None, kNoRole, kMinimize, kTime};
+    // events on the way: the event words, their stays, landers and periapsis bounds
+    for (const char* w : {"flyby", "flybys", "fly by", "flies by", "fly past", "flies past", "passes", "pass"})
+      t[w].event = "flyby";
+    for (const char* w : {"gravity assist", "swing by", "swings by", "swingby", "unpowered"})
+      t[w].event = "gravity_assist";
+    for (const char* w : {"asteroid", "comet", "there", "then", "close", "planned", "somewhere", "required", "window",
+                          "free", "uses", "include", "includes", "manoeuvre", "maneuver"})
+      t[w] = {};
+    fact({"stay", "stays", "stay time", "stay duration", "residence time", "remains", "remain", "waits", "wait",
+          "spends", "spend", "surface stay"},
+         Field::Stay);
+    fact({"lander", "drops", "drop", "releases", "released", "release"}, Field::Drop);
+    fact({"periapsis radius", "periapsis", "flyby radius", "pericenter radius", "pericentre radius", "closest approach",
+          "rp"},
+         Field::Rmin);
+    for (const char* w : {"minimum periapsis radius", "minimum flyby radius", "min periapsis radius", "minimum radius",
+                          "lowest periapsis radius"}) {
+      fact({w}, Field::Rmin);
+      t[w].lower = true;
+    }
+    t["least"].lower = true;
+    fact({"no stay", "does not stay"}, Field::Stay);
+    t["no stay"].none = t["does not stay"].none = true;
+    t["immediately"] = {};
+    // the J2 perturbation ("j2" alone with a number is the coefficient), the central body's radius
+    for (const char* w : {"j2 perturbation", "j2 term", "j2 effect", "oblateness", "zonal harmonic j2",
+                          "zonal harmonic", "j2 zonal harmonic"})
+      t[w].model = "j2";
+    fact({"j2 coefficient", "j2"}, Field::J2);
+    t["j2"].weak = true;
+    fact({"radius", "equatorial radius"}, Field::Radius);
+    for (const char* w : {"solar sail", "sail", "solar sails"}) t[w].model = "sail";
+    fact({"characteristic acceleration", "a_c", "ac"}, Field::CharAccel);
+    fact({"lightness number", "lightness", "lightness parameter"}, Field::Lightness);
+    for (const char* w : {"included", "dynamics", "plus", "account", "into", "model", "force", "propelled", "ideal",
+                          "flat", "perfectly", "reflecting", "instead"})
+      t[w] = {};
+    // orbital elements ("a = Q", "e = N", "i = Q", "M = Q", "nu = Q", "Omega = Q", "omega = Q" too: scan())
+    fact({"semi major axis", "semimajor axis"}, Field::A);
+    fact({"eccentricity"}, Field::Ecc);
+    fact({"inclination"}, Field::Inc);
+    fact({"raan", "node", "ascending node", "longitude of the ascending node", "right ascension of the ascending node"},
+         Field::Raan);
+    fact(
+        {"argp", "argument of perihelion", "argument of periapsis", "argument of pericenter", "argument of pericentre"},
+        Field::Argp);
+    fact({"mean anomaly"}, Field::MeanAnomaly);
+    fact({"true anomaly"}, Field::TrueAnomaly);
+    for (const char* w : {"elements", "orbital elements", "keplerian", "orbit", "orbital", "defined"}) t[w] = {};
     return t;
   }();
   return table;
@@ -130,22 +216,30 @@ struct Quantity {
   std::vector<std::string> texts;
   std::string unit, written;
   bool vector = false;
-  bool date = false;  // an epoch: nums holds its MJD2000
+  bool date = false;               // an epoch: nums holds its MJD2000
+  bool day = false;                // "day N": N days after the epoch
+  bool window = false;             // "between E and E", "from E to E": nums holds both bounds
+  std::array<bool, 2> absolute{};  // a window's bounds: MJD2000 (a date) or days after the epoch
 };
 
 struct Token {
   enum Kind { Word, Value, Separator } kind;
   std::string word;
   Quantity q;
+  std::string text = "";  // a word as written
 };
+
+constexpr std::size_t kMaxPhraseWords = 6;  // "right ascension of the ascending node"
 
 // A candidate reading of a quantity: a field, the dimension it takes, whether it is a vector.
 struct Candidate {
   Field field;
   Dimension dim;
   bool vector;
-  bool exhaust;       // an exhaust velocity, stored as the specific impulse
-  bool date = false;  // takes an epoch
+  bool exhaust;         // an exhaust velocity, stored as the specific impulse
+  bool date = false;    // takes an epoch
+  bool window = false;  // takes a window
+  bool pure = false;    // takes a number without unit
 };
 
 constexpr double kG0 = 9.80665;  // m/s^2, exhaust velocity = Isp * g0
@@ -184,6 +278,7 @@ std::string replace_all(std::string s, const std::string& from, const std::strin
 std::string read_unit(const std::string& s, std::size_t& i) {
   std::size_t j = i;
   while (j < s.size() && s[j] == ' ') ++j;
+  if (j == i && j < s.size() && s[j] == '-') ++j;  // a 30-day stay
   std::size_t k = j;
   while (k < s.size() && (word_char(s[k]) || s[k] == '^' || s[k] == '/')) ++k;
   if (k == j || !std::isalpha(static_cast<unsigned char>(s[j]))) return "";
@@ -308,9 +403,52 @@ bool paren_vector(const std::string& s, std::size_t i) {
   return close != std::string::npos && s[close] == ')' && s.find(',', j) < close;
 }
 
+// Parentheses around words only ("Thrust (max): 0.8 N", "the central body (Earth)") qualify the
+// words before them, so they do not cut the clause; with a number inside they still do.
+std::string unwrap_word_parens(std::string s) {
+  for (std::size_t open = s.find('('); open != std::string::npos; open = s.find('(', open + 1)) {
+    const std::size_t close = s.find_first_of("()", open + 1);
+    if (close == std::string::npos || s[close] != ')') continue;
+    const std::string inside = s.substr(open + 1, close - open - 1);
+    if (inside.find_first_of("0123456789[]") != std::string::npos) continue;
+    s[open] = s[close] = ' ';
+  }
+  return s;
+}
+
+// "between E and E", "from E to E" and "E to E" (E a date or "day N") as one window.
+std::vector<Token> windows_of(const std::vector<Token>& in) {
+  const auto epoch = [&](std::size_t k) {
+    return k < in.size() && in[k].kind == Token::Value && (in[k].q.date || in[k].q.day);
+  };
+  std::vector<Token> out;
+  for (std::size_t k = 0; k < in.size(); ++k) {
+    const bool between = !out.empty() && out.back().kind == Token::Word && out.back().word == "between";
+    const bool joined =
+        k + 1 < in.size() && ((between && in[k + 1].kind == Token::Separator && in[k + 1].word == "and") ||
+                              (in[k + 1].kind == Token::Word && in[k + 1].word == "to"));
+    if (!epoch(k) || !joined || !epoch(k + 2)) {
+      out.push_back(in[k]);
+      continue;
+    }
+    if (!out.empty() && out.back().kind == Token::Word && (between || out.back().word == "from")) out.pop_back();
+    Token t{Token::Value, "", {}};
+    t.q.window = true;
+    t.q.nums = {in[k].q.nums[0], in[k + 2].q.nums[0]};
+    t.q.absolute = {in[k].q.date, in[k + 2].q.date};
+    t.q.written = in[k].q.written + (between ? " and " : " to ") + in[k + 2].q.written;
+    out.push_back(t);
+    k += 2;
+  }
+  return out;
+}
+
 std::vector<Token> scan(const std::string& sentence) {
   // Superscripts as written in many texts: km³/s² is km^3/s^2.
-  const std::string s = replace_all(replace_all(sentence, "\xC2\xB3", "^3"), "\xC2\xB2", "^2");
+  // Ω and ω are the node and the argument of periapsis, ° is deg.
+  std::string raw = replace_all(replace_all(sentence, "\xC2\xB3", "^3"), "\xC2\xB2", "^2");
+  raw = replace_all(replace_all(replace_all(raw, "\xCE\xA9", "RAAN"), "\xCF\x89", "argp"), "\xC2\xB0", " deg");
+  const std::string s = unwrap_word_parens(raw);
   static const std::regex num(R"(^[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)");
   std::vector<Token> out;
   std::size_t i = 0;
@@ -372,13 +510,31 @@ std::vector<Token> scan(const std::string& sentence) {
     } else if (word_char(c)) {
       std::size_t k = i;
       while (k < s.size() && (word_char(s[k]) || s[k] == '\'')) ++k;
-      std::string w = lowercase(s.substr(i, k - i));
-      if (w.size() > 2 && w.compare(w.size() - 2, 2, "'s") == 0) w.resize(w.size() - 2);
+      std::string text = s.substr(i, k - i);
+      if (text.size() > 2 && text.compare(text.size() - 2, 2, "'s") == 0) text.resize(text.size() - 2);
+      std::string w = lowercase(text);
       i = k;
+      // an element's symbol before '=' ("a = 1.2 AU", "Omega = 80 deg" the node, "omega" the argument)
+      static const std::map<std::string, std::string> symbols = {
+          {"a", "semi major axis"}, {"e", "eccentricity"}, {"i", "inclination"}, {"M", "mean anomaly"},
+          {"nu", "true anomaly"},   {"Omega", "raan"},     {"omega", "argp"}};
+      const std::size_t eq = s.find_first_not_of(' ', i);
+      if (eq != std::string::npos && s[eq] == '=' && symbols.count(text)) w = symbols.at(text);
+      std::smatch d;
+      const std::string after = i < s.size() && s[i] == ' ' ? s.substr(i + 1) : "";
       if (w == "and") {
-        out.push_back({Token::Separator, "", {}});
+        out.push_back({Token::Separator, w, {}});
+      } else if (w == "day" && std::regex_search(after, d, num)) {
+        Quantity q;  // "day 120": a day counted from the epoch
+        q.day = true;
+        q.texts = {d.str(0)};
+        q.nums = {number_of(d.str(0))};
+        q.written = "day " + d.str(0);
+        i += 1 + d.length(0);
+        out.push_back({Token::Value, "", q});
+        continue;
       } else {
-        out.push_back({Token::Word, w, {}});
+        out.push_back({Token::Word, w, {}, text});
       }
       if (i < s.size() && s[i] == '-' && i + 1 < s.size() && std::isalpha(static_cast<unsigned char>(s[i + 1]))) ++i;
     } else {
@@ -386,7 +542,7 @@ std::vector<Token> scan(const std::string& sentence) {
       throw facts_error(std::string("cannot read the character '") + c + "' here");
     }
   }
-  return out;
+  return windows_of(out);
 }
 
 // A phrase found in a clause, with the words as written.
@@ -401,14 +557,14 @@ struct Clause {
 };
 
 // Words into the longest phrases of the table; an unknown word is an error.
-std::vector<Clause> clauses_of(const std::vector<Token>& tokens) {
+std::vector<Clause> clauses_of(const std::vector<Token>& tokens, const std::map<std::string, std::string>& names) {
   std::vector<Clause> out(1);
   std::vector<std::string> words;
   bool after_bare_number = false;  // the words follow a number without a unit
   const auto flush = [&] {
     const auto& table = phrases();
     for (std::size_t i = 0; i < words.size();) {
-      std::size_t len = std::min<std::size_t>(4, words.size() - i);
+      std::size_t len = std::min(kMaxPhraseWords, words.size() - i);
       for (; len > 0; --len) {
         std::string phrase = words[i];
         for (std::size_t k = 1; k < len; ++k) phrase += " " + words[i + k];
@@ -418,13 +574,21 @@ std::vector<Clause> clauses_of(const std::vector<Token>& tokens) {
           break;
         }
       }
+      if (len == 0 && names.count(words[i])) {  // a body the text gives by name
+        Meaning m;
+        m.body = names.at(words[i]);
+        m.named = true;
+        out.back().mentions.push_back({m, words[i]});
+        ++i;
+        continue;
+      }
       if (len == 0) {
         if (i == 0 && after_bare_number)
           throw facts_error("'" + words[i] + "' after " + out.back().quantities.back().written +
                             " is no unit HELIOS knows and no fact word");
         // a word before a fact word modifies it ("dry mass"): no form can be suggested
         bool modifies = false;
-        for (std::size_t len2 = 1; i + len2 < words.size() && len2 <= 4 && !modifies; ++len2) {
+        for (std::size_t len2 = 1; i + len2 < words.size() && len2 <= kMaxPhraseWords && !modifies; ++len2) {
           std::string next = words[i + 1];
           for (std::size_t k = 1; k < len2; ++k) next += " " + words[i + 1 + k];
           const auto it = table.find(next);
@@ -454,7 +618,36 @@ std::vector<Clause> clauses_of(const std::vector<Token>& tokens) {
   return out;
 }
 
-std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
+// The facts of an event on the way and of an orbit.
+bool on_the_way(Field f) {
+  return f == Field::Window || f == Field::Stay || f == Field::Drop || f == Field::Rmin;
+}
+
+bool of_orbit(Field f) {
+  return f == Field::A || f == Field::Ecc || f == Field::Inc || f == Field::Raan || f == Field::Argp ||
+         f == Field::MeanAnomaly || f == Field::TrueAnomaly || f == Field::ElementsEpoch;
+}
+
+// How a Slot::Fact field's quantity is written: its dimension, or a number without unit.
+Candidate fact_candidate(Field f) {
+  static const std::map<Field, Dimension> dims = {{Field::Stay, Dimension::Time},
+                                                  {Field::Drop, Dimension::Mass},
+                                                  {Field::Rmin, Dimension::Length},
+                                                  {Field::Radius, Dimension::Length},
+                                                  {Field::A, Dimension::Length},
+                                                  {Field::Inc, Dimension::Angle},
+                                                  {Field::CharAccel, Dimension::Acceleration},
+                                                  {Field::Raan, Dimension::Angle},
+                                                  {Field::Argp, Dimension::Angle},
+                                                  {Field::MeanAnomaly, Dimension::Angle},
+                                                  {Field::TrueAnomaly, Dimension::Angle}};
+  Candidate c{f, dims.count(f) ? dims.at(f) : Dimension::Length, false, false};
+  c.pure = !dims.count(f);  // an eccentricity, a J2 coefficient, a lightness number
+  return c;
+}
+
+std::vector<Candidate> candidates(const Meaning& m, int role, const std::string& text) {
+  const Slot s = m.slot;
   const auto need_role = [&](Field initial, Field final_, Dimension d) -> std::vector<Candidate> {
     if (role == kNoRole) throw facts_error("'" + text + "' does not say whether it is the initial or the final one");
     return {{role == kInitial ? initial : final_, d, true, false}};
@@ -496,6 +689,8 @@ std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
       return {{Field::Rf, Dimension::Length, true, false}};
     case Slot::Vf:
       return {{Field::Vf, Dimension::Speed, true, false}};
+    case Slot::Fact:
+      return {fact_candidate(m.field)};
     case Slot::None:
       break;
   }
@@ -503,9 +698,10 @@ std::vector<Candidate> candidates(Slot s, int role, const std::string& text) {
 }
 
 bool fits(const Candidate& c, const Quantity& q) {
-  if (c.vector != q.vector || c.date != q.date) return false;
-  if (q.date) return true;
-  if (q.unit.empty()) return c.field == Field::T0 && q.nums[0] == 0;  // t = 0 needs no unit
+  if (c.vector != q.vector || c.date != q.date || c.window != q.window || q.day) return false;
+  if (q.date || q.window) return true;
+  // t = 0 needs no unit; an eccentricity, a J2 coefficient or a lightness number has none
+  if (c.pure || q.unit.empty()) return q.unit.empty() && (c.pure || (c.field == Field::T0 && q.nums[0] == 0));
   try {
     to_spec_unit(c.dim, q.unit);
     return true;
@@ -540,6 +736,58 @@ std::string suggestion(Field f, const Quantity& q, Dimension d) {
     default:
       return "";
   }
+}
+
+// Every word of the fact rules' phrases: a word outside them may be a body's name.
+const std::set<std::string>& phrase_words() {
+  static const std::set<std::string> words = [] {
+    std::set<std::string> w;
+    for (const auto& [phrase, _] : phrases()) {
+      std::istringstream in(phrase);
+      for (std::string x; in >> x;) w.insert(x);
+    }
+    return w;
+  }();
+  return words;
+}
+
+// A body's orbital elements are all six, one anomaly, their epoch and the body; else the error
+// suggests the orbit sentence with the user's own numbers.
+void check_elements(const SentenceFacts& out) {
+  std::map<Field, const Fact*> got;
+  for (const auto& f : out.facts) got[f.field] = &f;
+  if (got.count(Field::Ecc) && !(got[Field::Ecc]->value[0] >= 0 && got[Field::Ecc]->value[0] < 1))
+    throw facts_error("the eccentricity must satisfy 0 <= e < 1, got " + got[Field::Ecc]->written);
+  if (got.count(Field::MeanAnomaly) && got.count(Field::TrueAnomaly))
+    throw facts_error("it gives both a mean and a true anomaly: which one?");
+  const Field anomaly = got.count(Field::TrueAnomaly) ? Field::TrueAnomaly : Field::MeanAnomaly;
+  std::string missing;
+  for (Field f : {Field::A, Field::Ecc, Field::Inc, Field::Raan, Field::Argp, anomaly, Field::ElementsEpoch})
+    if (!got.count(f)) missing += (missing.empty() ? "" : ", ") + field_name(f);
+  if (out.orbit_of.empty()) missing += (missing.empty() ? "" : ", ") + std::string("the body's name");
+  if (missing.empty()) return;
+  const auto w = [&](Field f, const char* none) { return got.count(f) ? got[f]->written : std::string(none); };
+  std::ostringstream epoch;
+  if (got.count(Field::ElementsEpoch))
+    epoch << "MJD2000 " << std::setprecision(10) << got[Field::ElementsEpoch]->value[0];
+  else
+    epoch << "MJD N";  // the controlled form's placeholder
+  throw facts_error("the orbit lacks " + missing,
+                    (out.orbit_of.empty() ? "NAME" : out.orbit_of) +
+                        " moves on a Keplerian orbit about the central body with a = " + w(Field::A, "Q") +
+                        ", e = " + w(Field::Ecc, "N") + ", i = " + w(Field::Inc, "Q") +
+                        ", node = " + w(Field::Raan, "Q") + ", argument of perihelion = " + w(Field::Argp, "Q") +
+                        " and " + (anomaly == Field::TrueAnomaly ? "true" : "mean") + " anomaly = " + w(anomaly, "Q") +
+                        " at " + epoch.str() + ".");
+}
+
+// The controlled sentence of an event, with the body the user named.
+std::string event_form(const std::string& kind, const std::string& body) {
+  const std::string name = body.empty() ? "NAME" : body;
+  if (kind == "gravity_assist")
+    return "The spacecraft swings by " + name + " between day N and day N in an unpowered gravity assist.";
+  if (kind == "rendezvous") return "The spacecraft rendezvouses with " + name + " between day N and day N.";
+  return "The spacecraft flies by " + name + " between day N and day N.";
 }
 
 std::string objective_of(int verb, int noun, int role, const std::string& words) {
@@ -584,11 +832,43 @@ std::string field_name(Field f) {
       return "the final position";
     case Field::Vf:
       return "the final velocity";
+    case Field::Window:
+      return "the event's window";
+    case Field::Stay:
+      return "the stay";
+    case Field::Drop:
+      return "the lander's mass";
+    case Field::Rmin:
+      return "the lowest periapsis radius";
+    case Field::J2:
+      return "the J2 coefficient";
+    case Field::Radius:
+      return "the central body's radius";
+    case Field::CharAccel:
+      return "the sail's characteristic acceleration";
+    case Field::Lightness:
+      return "the sail's lightness number";
+    case Field::A:
+      return "the semi-major axis";
+    case Field::Ecc:
+      return "the eccentricity";
+    case Field::Inc:
+      return "the inclination";
+    case Field::Raan:
+      return "the ascending node";
+    case Field::Argp:
+      return "the argument of perihelion";
+    case Field::MeanAnomaly:
+      return "the mean anomaly";
+    case Field::TrueAnomaly:
+      return "the true anomaly";
+    case Field::ElementsEpoch:
+      return "the epoch of the elements";
   }
   return "?";
 }
 
-bool states_nothing(const std::string& sentence) {
+bool states_nothing(const std::string& sentence, const std::map<std::string, std::string>& names) {
   static const std::regex digit("[0-9]");
   if (std::regex_search(sentence, digit)) return false;
   std::vector<Token> tokens;
@@ -600,12 +880,15 @@ bool states_nothing(const std::string& sentence) {
   const auto& table = phrases();
   for (std::size_t i = 0; i < tokens.size(); ++i) {
     if (tokens[i].kind != Token::Word) continue;
+    if (names.count(tokens[i].word)) return false;
     std::string phrase;
-    for (std::size_t k = i; k < tokens.size() && k < i + 4 && tokens[k].kind == Token::Word; ++k) {
+    for (std::size_t k = i; k < tokens.size() && k < i + kMaxPhraseWords && tokens[k].kind == Token::Word; ++k) {
       phrase += (k == i ? "" : " ") + tokens[k].word;
       const auto it = table.find(phrase);
       const Meaning& mean = it == table.end() ? Meaning{} : it->second;
-      if (mean.slot != Slot::None || mean.verb != kNoVerb || !mean.body.empty() || mean.central) return false;
+      if ((mean.slot != Slot::None && !mean.weak) || mean.verb != kNoVerb || !mean.body.empty() || mean.central ||
+          !mean.event.empty() || !mean.model.empty())
+        return false;
     }
   }
   return true;
@@ -621,19 +904,21 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
   for (std::size_t i = 0; i < tokens.size(); ++i) {
     if (tokens[i].kind == Token::Value) {
       ++numbers;
-      if (!tokens[i].q.vector) number = &tokens[i].q;
+      const Quantity& q = tokens[i].q;
+      if (!q.vector && !q.date && !q.day && !q.window) number = &q;  // a plain number only
     }
     if (tokens[i].kind != Token::Word) continue;
     std::string phrase;
-    for (std::size_t len = 1; len <= 4 && i + len <= tokens.size(); ++len) {
+    for (std::size_t len = 1; len <= kMaxPhraseWords && i + len <= tokens.size(); ++len) {
       if (tokens[i + len - 1].kind != Token::Word) break;
       phrase += (len == 1 ? "" : " ") + tokens[i + len - 1].word;
       const auto it = phrases().find(phrase);
       if (it == phrases().end()) continue;
       const Slot sl = it->second.slot;
-      if (sl == Slot::Thrust || sl == Slot::Isp || sl == Slot::Mass || sl == Slot::InitialMass ||
-          sl == Slot::FinalMass || sl == Slot::Tof || sl == Slot::Mu)
-        for (const auto& c : candidates(sl, kNoRole, phrase))
+      const bool named_fact = sl == Slot::Thrust || sl == Slot::Isp || sl == Slot::Mass || sl == Slot::InitialMass ||
+                              sl == Slot::FinalMass || sl == Slot::Tof || sl == Slot::Mu;
+      if (named_fact && !it->second.weak)  // "spacecraft" or "engine" alone suggests nothing
+        for (const auto& c : candidates(it->second, kNoRole, phrase))
           if (fields.insert(c.field).second) cands.push_back(c);
     }
   }
@@ -642,11 +927,29 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
   return suggestion(cands[0].field, *number, cands[0].dim);
 }
 
-SentenceFacts read_facts(const std::string& sentence) {
+SentenceFacts read_facts(const std::string& sentence, const std::map<std::string, std::string>& names) {
   const std::vector<Token> tokens = scan(sentence);
+  // Orbital elements, and an event with its window, may name their body for the first time, as the
+  // one word written with a capital that is no fact word ("Nikko's orbital elements ...").
+  bool elements = false, window = false;
+  for (const auto& t : tokens) {
+    const auto it = phrases().find(t.word);
+    elements = elements || (t.kind == Token::Word && it != phrases().end() &&
+                            ((it->second.slot == Slot::Fact && of_orbit(it->second.field)) || t.word == "elements"));
+    window = window || (t.kind == Token::Value && t.q.window);
+  }
+  std::map<std::string, std::string> known = names;
+  if (elements || window) {
+    std::set<std::string> fresh;
+    for (const auto& t : tokens)
+      if (t.kind == Token::Word && std::isupper(static_cast<unsigned char>(t.text[0])) && !phrases().count(t.word) &&
+          !phrase_words().count(t.word) && !names.count(t.word))
+        fresh.insert(t.text);
+    if (fresh.size() == 1) known[lowercase(*fresh.begin())] = *fresh.begin();
+  }
   std::vector<Clause> clauses;
   try {
-    clauses = clauses_of(tokens);
+    clauses = clauses_of(tokens, known);
   } catch (const facts_error& e) {
     throw facts_error(e.what(), e.modifies_fact ? "" : rough_suggestion(tokens));
   }
@@ -663,9 +966,42 @@ SentenceFacts read_facts(const std::string& sentence) {
       if (!m.meaning.body.empty()) bodies.insert(m.meaning.body);
       central_named = central_named || m.meaning.central;
     }
+  // An event on the way: its words, a stay, a lander, a periapsis bound, a day or a window. Its body
+  // is the one body the sentence names, if any ("the asteroid"); a body named without them is left
+  // or reached, like a planet.
+  bool event_sentence = false, rendezvous_word = false;
+  std::string event_kind;
+  for (const auto& c : clauses) {
+    for (const auto& m : c.mentions) {
+      if (!m.meaning.event.empty() && event_kind != "gravity_assist") event_kind = m.meaning.event;
+      event_sentence =
+          event_sentence || !m.meaning.event.empty() || (m.meaning.slot == Slot::Fact && on_the_way(m.meaning.field));
+      rendezvous_word = rendezvous_word || m.text == "rendezvous" || m.text == "rendezvouses";
+      out.small_body = out.small_body || m.text == "asteroid" || m.text == "comet";
+    }
+    for (const auto& q : c.quantities) event_sentence = event_sentence || q.window || q.day;
+  }
+  if (elements && event_sentence)
+    throw facts_error("it gives orbital elements and an event on the way: state the event in a sentence of its own");
+  if (elements) {  // the body orbiting, and the Sun it orbits (which must be the central body)
+    if (bodies.count("Sun")) out.constants_of = "Sun";
+    bodies.erase("Sun");
+    if (bodies.size() > 1)
+      throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": whose elements are these?");
+    if (!bodies.empty()) out.orbit_of = *bodies.begin();
+    bodies.clear();
+  }
+  if (event_sentence) {
+    if (central_named) throw facts_error("it names the central body and an event on the way: state them apart");
+    if (bodies.size() > 1)
+      throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": which one is the event at?");
+    if (bodies.count("Sun")) throw facts_error("the Sun is the central body, not a body to visit on the way");
+    if (!bodies.empty()) out.event_body = *bodies.begin();
+    bodies.clear();
+  }
   // Else a planet in a clause that says the spacecraft leaves or arrives is the body it departs
   // from or rendezvouses with ("Departure from Earth.", "Rendezvous with Mars.").
-  if (!bodies.empty() && !central_named && !sentence_roles.empty()) {
+  if (!bodies.empty() && !central_named && !sentence_roles.empty() && !event_sentence) {
     for (const auto& c : clauses) {
       std::set<int> roles;
       for (const auto& m : c.mentions)
@@ -690,14 +1026,19 @@ SentenceFacts read_facts(const std::string& sentence) {
   }
   if (bodies.size() > 1)
     throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": which one is the central body?");
-  if (!bodies.empty() && !central_named)
-    throw facts_error("it does not say what " + *bodies.begin() +
-                      " is here (the central body reads 'The central body is " +
-                      (*bodies.begin() == "Mars" ? "" : "the ") + *bodies.begin() + ".')");
-  if (bodies.empty() && central_named)
+  // A body named with no word saying it is the central one: its gravitational parameter, if the
+  // sentence gives one ("The Sun's gravitational parameter is Q"), checked below.
+  const std::string unplaced = !bodies.empty() && !central_named ? *bodies.begin() : "";
+  if (bodies.empty() && central_named && !elements)
     throw facts_error("it does not name the central body (Sun, Earth or Mars: 'The central body is the Sun.')");
-  if (!bodies.empty()) out.central = *bodies.begin();
+  if (!bodies.empty() && central_named) out.central = *bodies.begin();
   std::string objective_words;
+  const auto add = [&](const Fact& fact) {
+    for (const auto& f : out.facts)
+      if (f.field == fact.field)
+        throw facts_error(field_name(fact.field) + " is stated twice: " + f.written + " and " + fact.written);
+    out.facts.push_back(fact);
+  };
   for (const auto& c : clauses) {
     std::set<int> roles;
     int verb = kNoVerb;
@@ -718,7 +1059,7 @@ SentenceFacts read_facts(const std::string& sentence) {
     const bool objective = c.quantities.empty() && verb != kNoVerb;
     if (objective) {
       for (const auto& m : c.mentions)
-        if (m.meaning.slot != Slot::None && m.meaning.noun == kNoNoun)
+        if (m.meaning.slot != Slot::None && m.meaning.noun == kNoNoun && !m.meaning.weak)
           throw facts_error("'" + m.text +
                             "' cannot be an objective (minimize the fuel, the time of flight or the "
                             "initial mass, or maximize the final mass)");
@@ -735,26 +1076,48 @@ SentenceFacts read_facts(const std::string& sentence) {
     // A bound on the thrust is the maximum thrust; a bound on anything else is not a value.
     for (const auto& m : c.mentions)
       for (const auto& n : c.mentions)
-        if (m.meaning.bound && n.meaning.slot != Slot::None && n.meaning.slot != Slot::Thrust)
+        if (m.meaning.bound && n.meaning.slot != Slot::None && n.meaning.slot != Slot::Thrust && !n.meaning.weak)
           throw facts_error("'" + m.text + "' makes '" + n.text +
                             "' a bound, not a value (a bounded time of flight reads 'The time of flight is free, at "
                             "most Q.')");
+    // The periapsis radius is a lower bound, and only it is.
+    bool lower = false, rmin = false;
+    for (const auto& m : c.mentions) {
+      lower = lower || m.meaning.lower;
+      const auto is_rmin = [](const Meaning& x) { return x.slot == Slot::Fact && x.field == Field::Rmin; };
+      rmin = rmin || is_rmin(m.meaning);
+      if (m.meaning.lower && !is_rmin(m.meaning))
+        for (const auto& n : c.mentions)
+          if (n.meaning.slot != Slot::None && !is_rmin(n.meaning) && !n.meaning.weak)
+            throw facts_error("'" + m.text + "' makes '" + n.text + "' a lower bound, not a value");
+    }
+    if (rmin && !lower)
+      throw facts_error("'" + words +
+                        "' gives a periapsis radius, which HELIOS takes as a lower bound: say 'a minimum periapsis "
+                        "radius of Q' or 'the periapsis radius is at least Q'");
 
     // Quantities: each goes to the one fact of its clause whose dimension fits.
     struct Named {
       std::vector<Candidate> cands;
       std::string text;
+      bool weak;
       bool bound = false;
+      bool none = false;
     };
     std::vector<Named> named;
     for (const auto& m : c.mentions)
       if (m.meaning.slot != Slot::None) {
         const Slot s = m.meaning.slot;
+        // on the way, "epoch" and "date" name the event's, "lasts" and "takes" the stay's length
+        if (event_sentence && (s == Slot::Epoch || (s == Slot::Tof && (m.text == "lasts" || m.text == "takes"))))
+          continue;
+        if (elements && s == Slot::Epoch) continue;  // the epoch of the elements
         // the mass and a state take their role from their own clause, a state also from the sentence
         const int r = s == Slot::Mass ? clause_role : role;
         if ((s == Slot::Position || s == Slot::Velocity) && role == kNoRole && sentence_roles.size() > 1)
           throw facts_error("'" + m.text + "' could be the initial or the final one: say which in its clause");
-        named.push_back({candidates(s, r, m.text), m.text});
+        named.push_back({candidates(m.meaning, r, m.text), m.text, m.meaning.weak});
+        named.back().none = m.meaning.none;
       }
     // A date in a clause that says the spacecraft starts ("Launch is on 2025-03-01") is the
     // departure epoch; in one that says it arrives it is no fact HELIOS takes.
@@ -762,44 +1125,75 @@ SentenceFacts read_facts(const std::string& sentence) {
     for (const auto& q : c.quantities) date_here = date_here || q.date;
     for (const auto& n : named)
       for (const auto& x : n.cands) epoch_named = epoch_named || x.date;
-    if (date_here && !epoch_named && role == kFinal)
+    if (date_here && elements)
+      named.push_back({{{Field::ElementsEpoch, Dimension::Time, false, false, true}}, words, false});
+    else if (date_here && event_sentence)
+      throw facts_error("'" + words + "' dates an event on the way: HELIOS takes its window and chooses the date in it",
+                        event_form(event_kind, out.event_body));
+    else if (date_here && !epoch_named && role == kFinal)
       throw facts_error("'" + words +
                         "' gives an arrival date: HELIOS reads the departure epoch and the time of flight");
-    if (date_here && !epoch_named && role == kInitial)
-      named.push_back({{{Field::Epoch, Dimension::Time, false, false, true}}, words});
+    else if (date_here && !epoch_named && role == kInitial)
+      named.push_back({{{Field::Epoch, Dimension::Time, false, false, true}}, words, false});
+    for (const auto& q : c.quantities)
+      if (q.window) {
+        Candidate w{Field::Window, Dimension::Time, false, false};
+        w.window = true;
+        named.push_back({{w}, words, false});
+        break;
+      }
+    // "The spacecraft has 200 kg of propellant": a weak word never takes what another noun qualifies.
+    bool qualified = false;
+    for (const auto& m : c.mentions) qualified = qualified || m.meaning.noun == kFuel || m.meaning.noun == kTime;
+    // "The engine has a mass of 50 kg": a mass said of the engine is not the spacecraft's.
+    for (const auto& m : c.mentions)
+      for (const auto& n : c.mentions)
+        if (m.meaning.weak && m.meaning.slot == Slot::Thrust &&
+            (n.meaning.slot == Slot::Mass || n.meaning.slot == Slot::InitialMass) && !n.meaning.weak)
+          throw facts_error("'" + n.text + "' is said of the '" + m.text +
+                            "', not of the spacecraft: state the spacecraft's mass in a clause of its own");
     std::map<Field, std::string> bound_here;
     for (const auto& q : c.quantities) {
       std::vector<std::pair<Candidate, std::size_t>> fit;
-      for (std::size_t k = 0; k < named.size(); ++k)
-        for (const auto& cand : named[k].cands)
-          if (fits(cand, q)) {
-            bool dup = false;
-            for (const auto& [f, _] : fit) dup = dup || f.field == cand.field;
-            if (!dup) fit.push_back({cand, k});
-          }
+      for (const bool weak : {false, true}) {  // a weak fact word only when no other fits
+        if (weak && (!fit.empty() || qualified)) break;
+        for (std::size_t k = 0; k < named.size(); ++k)
+          if (named[k].weak == weak)
+            for (const auto& cand : named[k].cands)
+              if (fits(cand, q)) {
+                bool dup = false;
+                for (const auto& [f, _] : fit) dup = dup || f.field == cand.field;
+                if (!dup) fit.push_back({cand, k});
+              }
+      }
       if (fit.empty() && q.date)
         throw facts_error("nothing in its clause says the date " + q.written + " is the departure epoch",
                           "The departure epoch is " + q.written + ".");
       if (fit.empty()) {
-        if (named.empty())
+        std::vector<const Named*> strong;
+        for (const auto& n : named)
+          if (!n.weak) strong.push_back(&n);
+        if (strong.empty())
           throw facts_error(q.vector ? "the vector " + q.written +
                                            " has no role: say whether it is the initial or "
                                            "final position or velocity"
                                      : "nothing in its clause says what " + q.written + " is");
-        const Candidate& want = named.front().cands.front();
-        const std::string sug =
-            named.size() == 1 && !q.vector && !want.exhaust ? suggestion(want.field, q, want.dim) : "";
+        const Candidate& want = strong.front()->cands.front();
+        const bool plain = !q.vector && !q.date && !q.day && !q.window;
+        const std::string sug = strong.size() == 1 && plain && !want.exhaust ? suggestion(want.field, q, want.dim) : "";
         if (q.unit.empty())
           throw facts_error(
               q.written + " has no unit, and " + field_name(want.field) + " needs one (" + spec_unit(want.dim) + ")",
               sug);
-        std::string why;
-        try {
-          to_spec_unit(want.dim, q.unit);
-          why = q.vector ? "a vector cannot be " + field_name(want.field)
-                         : "a single number cannot be " + field_name(want.field);
-        } catch (const std::invalid_argument& e) {
-          why = e.what();
+        std::string why = field_name(want.field) + " is a number without unit";
+        if (!want.pure) {
+          try {
+            to_spec_unit(want.dim, q.unit);
+            why = q.vector ? "a vector cannot be " + field_name(want.field)
+                           : "a single number cannot be " + field_name(want.field);
+          } catch (const std::invalid_argument& e) {
+            why = e.what();
+          }
         }
         throw facts_error(q.written + " cannot be " + field_name(want.field) + ": " + why, sug);
       }
@@ -817,23 +1211,71 @@ SentenceFacts read_facts(const std::string& sentence) {
       for (auto& n : named)
         for (const auto& x : n.cands)
           if (x.field == cand.field) n.bound = true;
-      Fact fact{cand.field, {}, q.written};
+      Fact fact{cand.field, {}, q.written, q.absolute};
       const double factor = q.unit.empty() ? 1.0 : to_spec_unit(cand.dim, q.unit);
       for (double v : q.nums) fact.value.push_back(cand.exhaust ? v * factor * 1000.0 / kG0 : v * factor);
-      for (const auto& f : out.facts)
-        if (f.field == fact.field)
-          throw facts_error(field_name(fact.field) + " is stated twice: " + f.written + " and " + fact.written);
-      out.facts.push_back(fact);
+      add(fact);
     }
+    for (auto& n : named)
+      if (!n.bound && n.none) {
+        add({n.cands.front().field, {0.0}, n.text});
+        n.bound = true;
+      }
     for (const auto& n : named)
-      if (!n.bound) {
+      out.j2 = out.j2 || (!n.bound && n.text == "j2");  // "plus J2": the perturbation, not its coefficient
+    for (const auto& n : named)
+      if (!n.bound && !n.weak) {
         const Candidate& want = n.cands.front();
-        throw facts_error("'" + n.text + "' has no value: give " + field_name(want.field) + " with its unit (" +
-                          spec_unit(want.dim) + ")");
+        throw facts_error("'" + n.text + "' has no value: give " + field_name(want.field) +
+                          (want.pure ? " (a number without unit)" : " with its unit (" + spec_unit(want.dim) + ")"));
       }
   }
+  // An event's or an orbit's sentence states nothing else: a gravitational parameter or a radius
+  // beside it would be the body's, not the central body's.
+  for (const auto& f : out.facts)
+    if ((event_sentence && !on_the_way(f.field)) || (elements && !of_orbit(f.field)))
+      throw facts_error(field_name(f.field) + " " + f.written + " stands beside " +
+                        (elements ? "orbital elements" : "an event on the way") +
+                        ": state it in a sentence of its own");
+  if (elements) check_elements(out);
+  if (event_sentence) {
+    bool has_window = false;
+    for (const auto& f : out.facts) has_window = has_window || f.field == Field::Window;
+    if (event_kind.empty() && rendezvous_word && has_window) event_kind = "rendezvous";
+    if (event_kind.empty() && has_window)
+      throw facts_error("it gives a window but no event: a rendezvous, a flyby or a swing-by",
+                        event_form("flyby", out.event_body));
+    if (!event_kind.empty() && !has_window)
+      throw facts_error("the " + std::string(event_kind == "flyby" ? "flyby" : "swing-by") +
+                            " needs its window: HELIOS chooses the date inside it",
+                        event_form(event_kind, out.event_body));
+    if (!event_kind.empty() && out.event_body.empty())
+      throw facts_error("it does not name the body of the " + event_kind);
+    out.event = event_kind.empty() ? "stay" : event_kind;
+  }
+  for (const auto& c : clauses)
+    for (const auto& m : c.mentions) {
+      out.j2 = out.j2 || m.meaning.model == "j2";
+      out.sail = out.sail || m.meaning.model == "sail";
+    }
+  bool sail_value = false, central_value = false;
+  for (const auto& f : out.facts) {
+    sail_value = sail_value || f.field == Field::CharAccel || f.field == Field::Lightness;
+    central_value = central_value || f.field == Field::Mu || f.field == Field::J2 || f.field == Field::Radius;
+  }
+  if (out.sail && !sail_value)
+    throw facts_error("the solar sail needs its characteristic acceleration (at 1 AU) or lightness number",
+                      "The spacecraft is an ideal flat solar sail with a characteristic acceleration of 1 mm/s^2 at 1 "
+                      "AU.");
+  out.sail = sail_value;
+  if (!unplaced.empty()) {
+    if (!central_value && !out.j2)
+      throw facts_error("it does not say what " + unplaced + " is here (the central body reads 'The central body is " +
+                        (unplaced == "Mars" ? "" : "the ") + unplaced + ".')");
+    out.constants_of = unplaced;
+  }
   if (out.facts.empty() && out.objective.empty() && out.central.empty() && out.departure_body.empty() &&
-      out.arrival_body.empty())
+      out.arrival_body.empty() && out.event.empty() && !out.j2)
     throw facts_error("it states no fact HELIOS reads");
   for (const auto& f : out.facts) {
     // a body's state is its ephemeris, a gravitational parameter here would be the body's, not the central one's
@@ -848,8 +1290,11 @@ SentenceFacts read_facts(const std::string& sentence) {
   }
   for (const auto& f : out.facts) {
     const bool positive = f.field == Field::Thrust || f.field == Field::Isp || f.field == Field::InitialMass ||
-                          f.field == Field::FinalMass || f.field == Field::Tof || f.field == Field::Mu;
+                          f.field == Field::FinalMass || f.field == Field::Tof || f.field == Field::Mu ||
+                          f.field == Field::Drop || f.field == Field::Rmin || f.field == Field::Radius ||
+                          f.field == Field::CharAccel || f.field == Field::Lightness;
     if (positive && !(f.value[0] > 0)) throw facts_error(field_name(f.field) + " must be positive, got " + f.written);
+    if (f.field == Field::Stay && f.value[0] < 0) throw facts_error("the stay must not be negative, got " + f.written);
   }
   return out;
 }

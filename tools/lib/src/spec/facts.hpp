@@ -3,6 +3,8 @@
 // A quantity scanner finds numbers and vectors with their units; a table of fact rules (words and
 // synonyms -> spec field, expected dimension) places each quantity on the fact its clause names.
 // Whatever cannot be placed exactly once, and without a choice, is an error: never a guess.
+#include <array>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -10,12 +12,45 @@
 namespace helios::spec::detail {
 
 // The facts a sentence may state.
-enum class Field { Thrust, Isp, InitialMass, FinalMass, Tof, T0, Epoch, Mu, R0, V0, Rf, Vf };
+// Window, Stay, Drop and Rmin belong to an event on the way (its window, a stay, a lander, a lowest
+// periapsis); J2 and Radius to the central body; CharAccel and Lightness to a solar sail; A to
+// ElementsEpoch to a body's orbital elements (a in km, angles in deg).
+enum class Field {
+  Thrust,
+  Isp,
+  InitialMass,
+  FinalMass,
+  Tof,
+  T0,
+  Epoch,
+  Mu,
+  R0,
+  V0,
+  Rf,
+  Vf,
+  Window,
+  Stay,
+  Drop,
+  Rmin,
+  J2,
+  Radius,
+  CharAccel,
+  Lightness,
+  A,
+  Ecc,
+  Inc,
+  Raan,
+  Argp,
+  MeanAnomaly,
+  TrueAnomaly,
+  ElementsEpoch
+};
 
 struct Fact {
   Field field;
-  std::vector<double> value;  // one number (an epoch as MJD2000), or three for a vector, in the spec's unit
-  std::string written;        // as written, e.g. "0.5 N"
+  std::vector<double> value;       // one number (an epoch as MJD2000), or three for a vector, in the spec's unit
+  std::string written;             // as written, e.g. "0.5 N"
+  std::array<bool, 2> absolute{};  // a window's bounds: MJD2000 (true) or days after the epoch (false)
 };
 
 struct SentenceFacts {
@@ -23,6 +58,14 @@ struct SentenceFacts {
   std::string objective;                     // a spec objective kind ("minimum_fuel", ...) or ""
   std::string central;                       // the central body named ("Sun", "Earth", "Mars") or ""
   std::string departure_body, arrival_body;  // a planet the spacecraft leaves or rendezvouses with, or ""
+  std::string constants_of;                  // the body whose gravitational parameter, radius or J2 it gives, or ""
+  bool j2 = false;                           // it includes the J2 perturbation
+  bool sail = false;                         // the spacecraft is a solar sail
+  std::string orbit_of;  // the body whose orbital elements it gives (all six and their epoch), or ""
+  // An event on the way: "flyby", "gravity_assist" or "rendezvous" with its window, or "stay" for
+  // a stay or lander at a rendezvous stated before; its body as written, or "" ("the asteroid").
+  std::string event, event_body;
+  bool small_body = false;  // it calls the body "the asteroid" or "the comet": no planet
 };
 
 // Why a sentence cannot be read as facts; `suggestion` is the nearest controlled-English sentence
@@ -34,11 +77,13 @@ struct facts_error : std::runtime_error {
   bool modifies_fact = false;  // an unknown word qualifies a fact word ("dry mass")
 };
 
-// True when the sentence names no fact and holds no number: it is not an attempt to state one.
-bool states_nothing(const std::string& sentence);
+// True when the sentence names no fact, no body of `names` (as read_facts) and holds no number: it
+// is not an attempt to state one.
+bool states_nothing(const std::string& sentence, const std::map<std::string, std::string>& names);
 
-// The facts of `sentence` (final period removed). Throws facts_error.
-SentenceFacts read_facts(const std::string& sentence);
+// The facts of `sentence` (final period removed); `names` maps the lower-case names of the bodies
+// the text has given so far to their names as written. Throws facts_error.
+SentenceFacts read_facts(const std::string& sentence, const std::map<std::string, std::string>& names = {});
 
 // "the maximum thrust", "the initial position", ...: the name errors and `once` use.
 std::string field_name(Field f);

@@ -67,6 +67,8 @@ std::string body_name(const std::string& phrase);
 double mjd2000_of(const std::string& scale, const std::string& value);
 // A state, a coasting target or a body's name as {"ref": NAME} (events.cpp).
 json parse_target(const std::string& phrase);
+// Orbital elements {a [AU], e, i, raan, argp [deg], mean or true [deg]} as the spec's (tables.cpp).
+json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v);
 
 // Where an item of the text stands, for errors found after the whole text was read.
 struct Where {
@@ -140,6 +142,8 @@ struct Builder {
   Where initial_where, final_where;
   bool mu_stated = false;
   std::optional<double> pending_mu;  // a gravitational parameter stated before the central body
+  std::optional<std::pair<std::string, Where>> constants_body;  // the body whose mu, radius or J2 a sentence gave
+  bool radius_stated = false;                                   // else the radius is the known one
 
   // A sentence of the controlled English: the first rule whose pattern matches it whole applies.
   struct SentenceRule {
@@ -163,6 +167,7 @@ struct Builder {
   void on_has(const std::smatch& m);
   void spacecraft_clauses(const std::string& list);
   void on_sail(const std::smatch& m);
+  void sail(double ac_mm_s2, double ref_au);
   void on_j2(const std::smatch&);
   void on_accel(const std::smatch& m);
   static json user_acceleration(const std::string& name, const std::string& list, const std::string& unit);
@@ -191,6 +196,8 @@ struct Builder {
   static std::string clause_forms(const std::string& kind);
   static void same_body(const Event& e, const std::string& phrase);
   void event_clause(Event& e, const std::string& part);
+  void add_event(Event e);
+  Event& rendezvous_of(const std::string& name);
   void on_drop(const std::smatch& m);
   void lander(double kg, const std::string& name);
   json resolve(const json& target, const Where& w);
@@ -210,8 +217,10 @@ struct Builder {
   TableColumns table_header(const std::vector<std::string>& cells);
 
   // ---- facts stated in other words (apply_facts.cpp) ----
-  static detail::SentenceFacts facts_of(const std::string& s);
+  std::map<std::string, std::string> body_names() const;
+  detail::SentenceFacts facts_of(const std::string& s) const;
   void apply_facts(const detail::SentenceFacts& f);
+  void apply_event(const detail::SentenceFacts& f);
   void finish_facts();
 };
 

@@ -60,6 +60,8 @@ json parse_problem_text(const std::string& text, const std::string& source) {
                       "\")");
   };
   b.finish_facts();
+  if (b.central_body.is_null() && b.constants_body)  // "The Sun's gravitational parameter is Q." names it
+    b.central(b.constants_body->first, "");
   if (b.problem.is_null()) missing("its name", "Problem S01: Earth to Mars.");
   if (b.central_body.is_null()) missing("the central body", "The central body is the Sun.");
   if (b.propulsion == "low_thrust") {

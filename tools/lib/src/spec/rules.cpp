@@ -50,7 +50,7 @@ void Builder::handle(const std::string& s) {
   std::smatch m;
   for (const auto& rule : rules)
     if (std::regex_match(s, m, rule.pattern)) return (this->*rule.apply)(m);
-  if (detail::states_nothing(s))
+  if (detail::states_nothing(s, body_names()))
     throw sentence_error("it matches no form of the controlled English (see README.md, 'Controlled English')");
   apply_facts(facts_of(s));
 }

@@ -15,6 +15,9 @@ void Builder::on_central(const std::smatch& m) {
 
 // "gravitational parameter Q", "equatorial radius Q", "J2 coefficient N" in any order.
 void Builder::central(const std::string& name, const std::string& list) {
+  if (constants_body && lowercase(constants_body->first) != lowercase(name))
+    throw sentence_error("the central body is " + name + ", but line " + std::to_string(constants_body->second.line) +
+                         " is about " + constants_body->first + " as the central body");
   static const std::regex split(R"(\s*(?:,\s*and\s+|,\s*|\s+and\s+)\s*)");
   static const std::regex mu_re = re(R"((?:an? )?gravitational parameter (?:of )?)" + kQuantity);
   static const std::regex radius_re = re(R"((?:an? )?(?:equatorial )?radius (?:of )?)" + kQuantity);
@@ -28,6 +31,7 @@ void Builder::central(const std::string& name, const std::string& list) {
         set_mu(quantity(m, 1, Dimension::GravParam));
       } else if (std::regex_match(part, m, radius_re)) {
         central_body["radius_km"] = quantity(m, 1, Dimension::Length);
+        radius_stated = true;
       } else if (std::regex_match(part, m, j2_re)) {
         central_body["j2"] = number(m[1].str());
       } else {
@@ -115,13 +119,16 @@ void Builder::spacecraft_clauses(const std::string& list) {
 }
 
 void Builder::on_sail(const std::smatch& m) {
+  sail(quantity(m, 1, Dimension::Acceleration), quantity(m, 3, Dimension::Length) / helios::astro::AU_KM);
+}
+
+void Builder::sail(double ac_mm_s2, double ref_au) {
   once("the propulsion");
   propulsion = "solar_sail";
-  const double ac = quantity(m, 1, Dimension::Acceleration);
-  const double ref = quantity(m, 3, Dimension::Length) / helios::astro::AU_KM;
-  if (ac <= 0 || ref <= 0) throw sentence_error("the characteristic acceleration and distance must be positive");
-  spacecraft["sail_characteristic_acceleration_mm_s2"] = ac;
-  spacecraft["sail_reference_distance_AU"] = ref;
+  if (ac_mm_s2 <= 0 || ref_au <= 0)
+    throw sentence_error("the characteristic acceleration and distance must be positive");
+  spacecraft["sail_characteristic_acceleration_mm_s2"] = ac_mm_s2;
+  spacecraft["sail_reference_distance_AU"] = ref_au;
 }
 
 void Builder::on_j2(const std::smatch&) {

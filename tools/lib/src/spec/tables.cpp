@@ -34,6 +34,8 @@ std::string element_field(const std::string& name) {
   return it == fields.end() ? "" : it->second;
 }
 
+}  // namespace
+
 // Classical elements in the spec's units, checked for an ellipse.
 json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v) {
   const double a = v.at("a"), e = v.at("e");
@@ -48,8 +50,6 @@ json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v)
           {"argp_deg", v.at("argp")},
           {mean ? "mean_anomaly_deg" : "true_anomaly_deg", mean ? v.at("mean") : v.at("true")}};
 }
-
-}  // namespace
 
 void Builder::on_orbit(const std::smatch& m) {
   orbit_sentence(m);
