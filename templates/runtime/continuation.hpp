@@ -43,6 +43,7 @@ class EventContinuation {
         F_(N),
         off_(
             s, [this](const double* x, double e, Propagator& p, double* F) { held_off(x, e, p, F); },
+            [this](const double* x, double e, Propagator& p, double* F, double* J) { held_off(x, e, p, F, J); },
             kContinuationStart) {}
 
   // The stages in order. `eventless` is the events-off solution (solved here when empty, else
@@ -62,14 +63,23 @@ class EventContinuation {
   int evaluations() const { return evaluations_ + off_.evaluations; }
 
  private:
-  // The problem with its events off: each event's rows hold its variables at their off values.
-  void held_off(const double* x, double eps, Propagator& prop, double* F) const {
-    shooting_function(x, eps, prop, F);
+  // The problem with its events off: each event's rows hold its variables at their off values
+  // (with J, the rows' Jacobian too: a unit row each).
+  void held_off(const double* x, double eps, Propagator& prop, double* F, double* J = nullptr) const {
+    if (J)
+      shooting_jacobian(x, eps, prop, F, J);
+    else
+      shooting_function(x, eps, prop, F);
+    const auto hold = [&](int row, int v, double value) {
+      F[row] = value;
+      if (J)
+        for (int j = 0; j < N; ++j) J[row + j * N] = j == v ? 1.0 : 0.0;
+    };
     for (int k = 0; k < nev_; ++k) {
       const EventRows& e = plan_.events[k];
-      for (const auto& [v, row] : e.constraints) F[row] = x[v];
-      if (e.epoch[0] >= 0) F[e.epoch[1]] = x[e.epoch[0]] - reference_[k];
-      for (const auto& [v, row] : e.parameters) F[row] = x[v];
+      for (const auto& [v, row] : e.constraints) hold(row, v, x[v]);
+      if (e.epoch[0] >= 0) hold(e.epoch[1], e.epoch[0], x[e.epoch[0]] - reference_[k]);
+      for (const auto& [v, row] : e.parameters) hold(row, v, x[v]);
     }
   }
 
@@ -145,22 +155,35 @@ class EventContinuation {
       xx = base;
       for (std::size_t j = 0; j < own_variables.size(); ++j) xx[own_variables[j]] = z[j];
     };
-    const Residual eventless_residual = [&](const double* z, double e, Propagator& p, double* G) {
-      std::vector<double> xx, FF(N);
-      expand(z, xx);
+    // The eventless rows G of the own variables z, on double or on Dual: the costates after each
+    // event carried over (xx[v] += its jump row) as often as there are events.
+    const auto eventless = [&](const auto* z, double e, Propagator& p, auto* G) {
+      using T = std::remove_cv_t<std::remove_pointer_t<decltype(z)>>;
+      std::vector<T> xx(base.begin(), base.end()), FF(N);
+      for (std::size_t j = 0; j < own_variables.size(); ++j) xx[own_variables[j]] = z[j];
       for (int pass = 0; pass <= nev_; ++pass) {
-        shooting_function(xx.data(), e, p, FF.data());
+        if constexpr (std::is_same_v<T, double>)
+          shooting_function(xx.data(), e, p, FF.data());
+        else
+          shooting_legs_dual(xx.data(), e, p, FF.data(), nullptr);
         bool carried = false;
         for (const auto& ev : plan_.events)
           for (const auto& [v, row] : ev.costates) {
-            xx[v] += FF[row];
+            xx[v] = xx[v] + FF[row];
             carried = true;
           }
         if (!carried) break;
       }
       for (std::size_t j = 0; j < own_rows.size(); ++j) G[j] = FF[own_rows[j]];
     };
-    Shooter shooter_eventless(s_, eventless_residual, kContinuationStart);
+    const Residual eventless_residual = [&](const double* z, double e, Propagator& p, double* G) {
+      eventless(z, e, p, G);
+    };
+    const JacobianResidual eventless_jacobian = [&](const double* z, double e, Propagator& p, double* G, double* J) {
+      dual_jacobian(static_cast<int>(own_variables.size()), z, G, J,
+                    [&](const Dual* zd, Dual* Gd) { eventless(zd, e, p, Gd); });
+    };
+    Shooter shooter_eventless(s_, eventless_residual, eventless_jacobian, kContinuationStart);
     bool off_solved = false;
     for (int tries = 0; tries < s_.leg_attempts && !off_solved; ++tries) {
       draw_eventless_guess();

@@ -277,6 +277,7 @@ class Propagator {
   const Settings& settings_;
   std::unique_ptr<Dop853> stepper_;
   std::unique_ptr<Dop853> tangent_stepper_;  // y and k tangents; its error is y's alone
+  std::vector<double> tangent_work_;         // its step's state, slopes and results
   int arc_ = 0;
 };
 

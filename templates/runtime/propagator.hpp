@@ -85,15 +85,17 @@ namespace {
 // du/dy is the JACOBIAN module's; the interior throttle u = s0 / (s0 - s1) is differentiated here.
 void variational_matrix(double t, const double* y, Mode mode, const Multipliers& mult, double* A, double* f) {
   const int n = ny(), nz = n + 1, nc = kProblem.num_controls;
+  // NOTE: the arrays are left uninitialized: the JACOBIAN module writes every entry of its outputs
+  // (zero-filling them here cost as much as the products below).
   std::array<double, kMaxControls> control{};
-  std::array<double, kMaxNY*(kMaxNY + 1)> dfdz{};
-  std::array<double, kMaxNY * kMaxControls> dfdu{};
-  std::array<double, kMaxControls*(kMaxNY + 1)> dudz{};
+  std::array<double, kMaxNY*(kMaxNY + 1)> dfdz;
+  std::array<double, kMaxNY * kMaxControls> dfdu;
+  std::array<double, kMaxControls*(kMaxNY + 1)> dudz;
   control_in_mode(y, mode, mult, control.data());
   dynamics(t, y, control.data(), mult, f);
   dynamics_jacobian(t, y, control.data(), mult, dfdz.data(), dfdu.data());
   {
-    std::array<double, kMaxControls * kMaxNY> dcontrol_dy{};
+    std::array<double, kMaxControls * kMaxNY> dcontrol_dy;
     direction_jacobian(y, dcontrol_dy.data());
     for (int k = 0; k < nc; ++k)
       for (int j = 0; j < n; ++j) dudz[k * nz + j] = dcontrol_dy[k * n + j];
@@ -110,12 +112,14 @@ void variational_matrix(double t, const double* y, Mode mode, const Multipliers&
       for (int j = 0; j < nz; ++j) dudz[u * nz + j] = (s0 * d1[j] - s1 * d0[j]) * q;
     }
   }
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < nz; ++j) {
-      double a = dfdz[i * nz + j];
-      for (int k = 0; k < nc; ++k) a += dfdu[i * nc + k] * dudz[k * nz + j];
-      A[i * nz + j] = a;
+  for (int i = 0; i < n; ++i) {
+    std::copy(dfdz.begin() + i * nz, dfdz.begin() + (i + 1) * nz, A + i * nz);
+    for (int k = 0; k < nc; ++k) {
+      const double b = dfdu[i * nc + k];
+      if (b == 0) continue;
+      for (int j = 0; j < nz; ++j) A[i * nz + j] += b * dudz[k * nz + j];
     }
+  }
 }
 
 }  // namespace
@@ -140,13 +144,14 @@ void Propagator::tangent_step(double t, const double* y, double h, Mode mode, co
         for (int c = 0; c < k; ++c) dY[i * k + c] += a * from[c];
       }
   };
-  std::vector<double> w(static_cast<std::size_t>(size)), f0(w.size()), w_new(w.size()), f_new(w.size());
-  std::copy(y, y + n, w.begin());
-  std::copy(tangents.Y, tangents.Y + n * k, w.begin() + n);
-  rhs(t, w.data(), f0.data());
-  tangent_stepper_->step(rhs, t, w.data(), f0.data(), h, w_new.data(), f_new.data(), settings_.atol, settings_.rtol);
-  std::copy(w_new.begin(), w_new.begin() + n, y_new);
-  std::copy(w_new.begin() + n, w_new.end(), tangents.Y);
+  tangent_work_.resize(static_cast<std::size_t>(4 * size));
+  double *w = tangent_work_.data(), *f0 = w + size, *w_new = f0 + size, *f_new = w_new + size;
+  std::copy(y, y + n, w);
+  std::copy(tangents.Y, tangents.Y + n * k, w + n);
+  rhs(t, w, f0);
+  tangent_stepper_->step(rhs, t, w, f0, h, w_new, f_new, settings_.atol, settings_.rtol);
+  std::copy(w_new, w_new + n, y_new);
+  std::copy(w_new + n, w_new + size, tangents.Y);
 }
 
 // At a switch the state's slope jumps from f- to f+, and the switching time moves with the
