@@ -86,7 +86,7 @@ namespace {
 void variational_matrix(double t, const double* y, Mode mode, const Multipliers& mult, double* A, double* f) {
   const int n = ny(), nz = n + 1, nc = kProblem.num_controls;
   // NOTE: the arrays are left uninitialized: the JACOBIAN module writes every entry of its outputs
-  // (zero-filling them here cost as much as the products below).
+  // and dudz is written whole below (zero-filling them here cost as much as the products below).
   std::array<double, kMaxControls> control{};
   std::array<double, kMaxNY*(kMaxNY + 1)> dfdz;
   std::array<double, kMaxNY * kMaxControls> dfdu;
@@ -97,8 +97,10 @@ void variational_matrix(double t, const double* y, Mode mode, const Multipliers&
   {
     std::array<double, kMaxControls * kMaxNY> dcontrol_dy;
     direction_jacobian(y, dcontrol_dy.data());
-    for (int k = 0; k < nc; ++k)
+    for (int k = 0; k < nc; ++k) {
       for (int j = 0; j < n; ++j) dudz[k * nz + j] = dcontrol_dy[k * n + j];
+      dudz[k * nz + n] = 0;  // the direction law does not depend on lambda0
+    }
   }
   const int u = kProblem.throttle_index;
   if (u >= 0) {
