@@ -22,15 +22,11 @@ inline bool shift_rows(const Settings& s, std::vector<double>& x, double eps, Re
     }
   }
   double sigma = 1;
-  const Residual shifted = [&](const double* z, double e, Propagator& p, double* F) {
-    shooting_function(z, e, p, F);
+  const Function shifted = [&](const double* z, double e, Propagator& p, double* F, double* J) {
+    shooting_function_and_jacobian(z, e, p, F, J);
     for (int i = 0; i < kProblem.num_vars; ++i) F[i] -= sigma * start[i];
   };
-  const JacobianResidual shifted_jacobian = [&](const double* z, double e, Propagator& p, double* F, double* J) {
-    shooting_jacobian(z, e, p, F, J);
-    for (int i = 0; i < kProblem.num_vars; ++i) F[i] -= sigma * start[i];
-  };
-  Shooter shooter(s, shifted, shifted_jacobian, kContinuationStart);
+  Shooter shooter(s, shifted, kContinuationStart);
   const auto anything = [](const double*) { return true; };
   const bool moved = continue_to_zero(s, 1.0, [&](double value) {
     sigma = value;

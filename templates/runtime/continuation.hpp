@@ -42,8 +42,7 @@ class EventContinuation {
         prop_(s),
         F_(N),
         off_(
-            s, [this](const double* x, double e, Propagator& p, double* F) { held_off(x, e, p, F); },
-            [this](const double* x, double e, Propagator& p, double* F, double* J) { held_off(x, e, p, F, J); },
+            s, [this](const double* x, double e, Propagator& p, double* F, double* J) { held_off(x, e, p, F, J); },
             kContinuationStart) {}
 
   // The stages in order. `eventless` is the events-off solution (solved here when empty, else
@@ -65,15 +64,11 @@ class EventContinuation {
  private:
   // The problem with its events off: each event's rows hold its variables at their off values
   // (with J, the rows' Jacobian too: a unit row each).
-  void held_off(const double* x, double eps, Propagator& prop, double* F, double* J = nullptr) const {
-    if (J)
-      shooting_jacobian(x, eps, prop, F, J);
-    else
-      shooting_function(x, eps, prop, F);
+  void held_off(const double* x, double eps, Propagator& prop, double* F, double* J) const {
+    shooting_function_and_jacobian(x, eps, prop, F, J);
     const auto hold = [&](int row, int v, double value) {
       F[row] = value;
-      if (J)
-        for (int j = 0; j < N; ++j) J[row + j * N] = j == v ? 1.0 : 0.0;
+      if (J) unit_row(J, N, row, v);
     };
     for (int k = 0; k < nev_; ++k) {
       const EventRows& e = plan_.events[k];
@@ -176,14 +171,14 @@ class EventContinuation {
       }
       for (std::size_t j = 0; j < own_rows.size(); ++j) G[j] = FF[own_rows[j]];
     };
-    const Residual eventless_residual = [&](const double* z, double e, Propagator& p, double* G) {
-      eventless(z, e, p, G);
+    const Function eventless_function = [&](const double* z, double e, Propagator& p, double* G, double* J) {
+      if (J)
+        dual_jacobian(static_cast<int>(own_variables.size()), z, G, J,
+                      [&](const Dual* zd, Dual* Gd) { eventless(zd, e, p, Gd); });
+      else
+        eventless(z, e, p, G);
     };
-    const JacobianResidual eventless_jacobian = [&](const double* z, double e, Propagator& p, double* G, double* J) {
-      dual_jacobian(static_cast<int>(own_variables.size()), z, G, J,
-                    [&](const Dual* zd, Dual* Gd) { eventless(zd, e, p, Gd); });
-    };
-    Shooter shooter_eventless(s_, eventless_residual, eventless_jacobian, kContinuationStart);
+    Shooter shooter_eventless(s_, eventless_function, kContinuationStart);
     bool off_solved = false;
     for (int tries = 0; tries < s_.leg_attempts && !off_solved; ++tries) {
       draw_eventless_guess();
@@ -260,23 +255,16 @@ class EventContinuation {
       return false;
     }
     double tau = 0;
-    const Residual toward_targets = [&](const double* z, double e, Propagator& p, double* G) {
-      shooting_function(z, e, p, G);
-      for (int i = 0; i < N; ++i) G[i] -= (1 - tau) * F0[i];
-      for (const auto& ev : plan_.events)
-        for (const auto& [v, row] : ev.parameters) G[row] = z[v];
-    };
-    const JacobianResidual toward_targets_jacobian = [&](const double* z, double e, Propagator& p, double* G,
-                                                         double* J) {
-      shooting_jacobian(z, e, p, G, J);
+    const Function toward_targets = [&](const double* z, double e, Propagator& p, double* G, double* J) {
+      shooting_function_and_jacobian(z, e, p, G, J);
       for (int i = 0; i < N; ++i) G[i] -= (1 - tau) * F0[i];
       for (const auto& ev : plan_.events)
         for (const auto& [v, row] : ev.parameters) {
           G[row] = z[v];
-          for (int j = 0; j < N; ++j) J[row + j * N] = j == v ? 1.0 : 0.0;
+          if (J) unit_row(J, N, row, v);
         }
     };
-    Shooter shooter(s_, toward_targets, toward_targets_jacobian, kContinuationStart);
+    Shooter shooter(s_, toward_targets, kContinuationStart);
     std::vector<double> previous = x_;
     double tau_previous = 0, step = 0.1;
     bool reached = false;
@@ -326,23 +314,20 @@ class EventContinuation {
     std::vector<double> weight(N, 1.0);
     if (!closest)
       for (auto& w : weight) w = std::pow(10.0, -1.0 + 2.0 * unit_(rng_));
-    const Residual penalized = [&](const double* z, double e, Propagator& p, double* G) {
-      shooting_function(z, e, p, G);
-      for (const auto& ev : plan_.events)
-        for (const auto& [v, row] : ev.parameters) G[row] += kappa * weight[v] * z[plan_.multiplier] * z[v];
-    };
-    const JacobianResidual penalized_jacobian = [&](const double* z, double e, Propagator& p, double* G, double* J) {
-      shooting_jacobian(z, e, p, G, J);
+    const Function penalized = [&](const double* z, double e, Propagator& p, double* G, double* J) {
+      shooting_function_and_jacobian(z, e, p, G, J);
       const int m = plan_.multiplier;
       for (const auto& ev : plan_.events)
         for (const auto& [v, row] : ev.parameters) {
           const double k = kappa * weight[v];
           G[row] += k * z[m] * z[v];
-          J[row + v * N] += k * z[m];
-          J[row + m * N] += k * z[v];
+          if (J) {
+            J[row + v * N] += k * z[m];
+            J[row + m * N] += k * z[v];
+          }
         }
     };
-    Shooter shooter(s_, penalized, penalized_jacobian, kContinuationStart);
+    Shooter shooter(s_, penalized, kContinuationStart);
     // The first kappa moves the parameters by about 1e-3.
     const double start = stationarity > 0 ? stationarity / (1e-3 * x_[plan_.multiplier]) : 1.0;
     // Secant predictor in log(kappa) from the last two solutions (the parameters move fast

@@ -198,12 +198,6 @@ Dual abs(Dual a) noexcept;
 }  // namespace ad
 
 using ad::Dual;
-inline double value_of(double a) {
-  return a;
-}
-inline double value_of(const Dual& a) {
-  return a.v;
-}
 
 // Where the targets are (targets.hpp): a planet's (or an orbit body's) normalized state at
 // normalized time t and its rate, and a coasting target's state at t1 from y0 at t0. On a Dual
@@ -277,7 +271,7 @@ class Propagator {
   const Settings& settings_;
   std::unique_ptr<Dop853> stepper_;
   std::unique_ptr<Dop853> tangent_stepper_;  // y and k tangents; its error is y's alone
-  std::vector<double> tangent_work_;         // its step's state, slopes and results
+  std::vector<double> tangent_work_;         // its step's state, slopes, results and matrix A
   int arc_ = 0;
 };
 
@@ -323,7 +317,6 @@ using Legs = LegsOf<double>;
 void shooting_legs(const double* x, double eps, Propagator& prop, double* F, const Legs* legs);
 // The same on dual numbers (RESIDUAL module, with the JACOBIAN module): the legs' exact Jacobians.
 void shooting_legs_dual(const Dual* x, double eps, Propagator& prop, Dual* F, const LegsOf<Dual>* legs);
-using Residual = std::function<void(const double* x, double eps, Propagator& prop, double* F)>;
 
 // Which shooting variables each leg solves for alone (indices into x; leg k > 0 also solves for
 // its start costates), and the variables a leg alone holds fixed: the time fractions at their

@@ -16,18 +16,19 @@ template <class Admissible>
 bool join_legs(const Settings& s, std::vector<double> x, const std::vector<double>& starts, Admissible& admissible,
                Shooter& single, Result& r, int& evaluations) {
   const int N = kProblem.num_vars;
-  const Residual multiple = [&](const double* z, double eps, Propagator& prop, double* F) {
-    const Legs legs{-1, z + N, F + N};
-    shooting_legs(z, eps, prop, F, &legs);
-  };
   const int size = N + static_cast<int>(starts.size());
-  const JacobianResidual multiple_jacobian = [&](const double* z, double eps, Propagator& prop, double* F, double* J) {
+  const Function multiple = [&](const double* z, double eps, Propagator& prop, double* F, double* J) {
+    if (!J) {
+      const Legs legs{-1, z + N, F + N};
+      shooting_legs(z, eps, prop, F, &legs);
+      return;
+    }
     dual_jacobian(size, z, F, J, [&](const Dual* zd, Dual* Fd) {
       const LegsOf<Dual> legs{-1, zd + N, Fd + N};
       shooting_legs_dual(zd, eps, prop, Fd, &legs);
     });
   };
-  Shooter shooter(s, multiple, multiple_jacobian);
+  Shooter shooter(s, multiple);
   std::vector<double> z(x);
   z.insert(z.end(), starts.begin(), starts.end());
   double res = 0;
@@ -89,11 +90,13 @@ bool legs_attempt(const Settings& s, const LegPlan& plan, Guess&& initial_guess,
       else
         shooting_legs_dual(xx.data(), eps, prop, F, &legs);
     };
-    const Residual leg = [&](const double* z, double eps, Propagator& prop, double* F) { leg_call(z, eps, prop, F); };
-    const JacobianResidual leg_jacobian = [&](const double* z, double eps, Propagator& prop, double* F, double* J) {
-      dual_jacobian(m, z, F, J, [&](const Dual* zd, Dual* Fd) { leg_call(zd, eps, prop, Fd); });
+    const Function leg = [&](const double* z, double eps, Propagator& prop, double* F, double* J) {
+      if (J)
+        dual_jacobian(m, z, F, J, [&](const Dual* zd, Dual* Fd) { leg_call(zd, eps, prop, Fd); });
+      else
+        leg_call(z, eps, prop, F);
     };
-    Shooter shooter(s, leg, leg_jacobian);
+    Shooter shooter(s, leg);
     bool solved = false;
     for (int tries = 0; tries < s.leg_attempts && !solved; ++tries) {
       std::vector<double> z(m);

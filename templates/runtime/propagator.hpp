@@ -131,12 +131,13 @@ void Propagator::tangent_step(double t, const double* y, double h, Mode mode, co
   const int n = ny(), nz = n + 1, k = tangents.k, size = n + n * k;
   if (!tangent_stepper_ || tangent_stepper_->size() != size) tangent_stepper_ = std::make_unique<Dop853>(size, n);
   const double* lambda0_row = tangents.Y + n * k;
-  std::vector<double> A(static_cast<std::size_t>(n * nz));
+  tangent_work_.resize(static_cast<std::size_t>(4 * size + n * nz));
+  double *w = tangent_work_.data(), *f0 = w + size, *w_new = f0 + size, *f_new = w_new + size, *A = f_new + size;
   // w = (y, Y's first ny rows); w' = (f, A (Y; lambda0 row)).
-  auto rhs = [&](double tt, const double* w, double* dw) {
-    variational_matrix(tt, w, mode, mult, A.data(), dw);
-    const double* Y = w + n;
-    double* dY = dw + n;
+  auto rhs = [&](double tt, const double* state, double* slope) {
+    variational_matrix(tt, state, mode, mult, A, slope);
+    const double* Y = state + n;
+    double* dY = slope + n;
     std::fill(dY, dY + n * k, 0.0);
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < nz; ++j) {
@@ -146,8 +147,6 @@ void Propagator::tangent_step(double t, const double* y, double h, Mode mode, co
         for (int c = 0; c < k; ++c) dY[i * k + c] += a * from[c];
       }
   };
-  tangent_work_.resize(static_cast<std::size_t>(4 * size));
-  double *w = tangent_work_.data(), *f0 = w + size, *w_new = f0 + size, *f_new = w_new + size;
   std::copy(y, y + n, w);
   std::copy(tangents.Y, tangents.Y + n * k, w + n);
   rhs(t, w, f0);

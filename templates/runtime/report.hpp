@@ -282,8 +282,8 @@ inline void solution_record(const Settings& s, const Result& r, const std::strin
 
 // What the solve's integrations cost (counters.hpp), as solution.json records it ("integration"):
 // taken before the final solution's re-propagation for the trajectory, so it counts the solve alone.
-// "jacobian" says which the shooting function's solves used; the homotopies of it (a leg alone,
-// the continuation onto the events) always use finite differences, counted apart.
+// "jacobian" says which every solve used: the shooting function's and its homotopies' (a leg
+// alone, multiple shooting, the continuation onto the events, the bounds' shift).
 inline nlohmann::ordered_json integration_record(const Settings& s) {
   const Counters& c = counters();
   const double seconds = static_cast<double>(c.integration_ns.load()) * 1e-9;

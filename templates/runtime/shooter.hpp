@@ -41,27 +41,30 @@ inline bool exact_jacobian(const Settings& s) {
   return shooting_jacobian != nullptr && s.jacobian == "exact";
 }
 
-// F and its Jacobian J (column-major, J[i + j n] = dF_i/dx_j) at x: shooting_jacobian, or a
-// homotopy of the shooting function with its terms differentiated.
-using JacobianResidual = std::function<void(const double* x, double eps, Propagator& prop, double* F, double* J)>;
+// A function of the shooting variables for the shooter: F at x and, where J is not null, its
+// Jacobian J (column-major, J[i + j n] = dF_i/dx_j; asked for only where exact_jacobian). The
+// shooting function, or a homotopy of it with its own terms differentiated.
+using Function = std::function<void(const double* x, double eps, Propagator& prop, double* F, double* J)>;
+
+// The shooting function as a Function: shooting_jacobian where J is asked for.
+inline void shooting_function_and_jacobian(const double* x, double eps, Propagator& prop, double* F, double* J) {
+  if (J)
+    shooting_jacobian(x, eps, prop, F, J);
+  else
+    shooting_function(x, eps, prop, F);
+}
+
+// Row `row` of an n x n column-major Jacobian: the unit row of variable v (the row is x_v itself).
+inline void unit_row(double* J, int n, int row, int v) {
+  for (int j = 0; j < n; ++j) J[row + j * n] = j == v ? 1.0 : 0.0;
+}
 
 class Shooter {
  public:
   // The shooting function itself, with its exact Jacobian where the program has one.
-  explicit Shooter(const Settings& s, HybrdStart start = {})
-      : Shooter(s, shooting_function, shooting_jacobian, start) {}
-  // A function of the variables and its exact Jacobian (used where exact_jacobian).
-  Shooter(const Settings& s, Residual residual, JacobianResidual jacobian, HybrdStart start = {})
-      : settings_(s),
-        prop_(s),
-        residual_(std::move(residual)),
-        jacobian_(std::move(jacobian)),
-        start_(start),
-        exact_(exact_jacobian(s)) {}
-  // Any other function of the variables (a leg alone, multiple shooting): hybrd's
-  // finite-difference Jacobian.
-  Shooter(const Settings& s, Residual residual, HybrdStart start = {})
-      : settings_(s), prop_(s), residual_(std::move(residual)), start_(start) {}
+  explicit Shooter(const Settings& s, HybrdStart start = {}) : Shooter(s, shooting_function_and_jacobian, start) {}
+  Shooter(const Settings& s, Function function, HybrdStart start = {})
+      : settings_(s), prop_(s), function_(std::move(function)), start_(start), exact_(exact_jacobian(s)) {}
 
   // hybrd1 (hybrj1 with the exact Jacobian) from x at eps; true if max|F| <= accept. Returns the
   // info code through `info`.
@@ -111,7 +114,7 @@ class Shooter {
 
   bool evaluate(const double* x, double* F) {
     try {
-      residual_(x, eps_, prop_, F);
+      function_(x, eps_, prop_, F, nullptr);
       ++evaluations;
       for (int i = 0; i < size_; ++i)
         if (!std::isfinite(F[i])) return false;
@@ -166,7 +169,7 @@ class Shooter {
     std::vector<double> F_at(static_cast<std::size_t>(n));
     bool finite = true;
     try {
-      me->jacobian_(x, me->eps_, me->prop_, F_at.data(), J);
+      me->function_(x, me->eps_, me->prop_, F_at.data(), J);
       for (int k = 0; k < n * ldfjac; ++k) finite = finite && std::isfinite(J[k]);
     } catch (const numerical_error&) {
       finite = false;
@@ -181,8 +184,7 @@ class Shooter {
 
   const Settings& settings_;
   Propagator prop_;
-  Residual residual_;
-  JacobianResidual jacobian_;
+  Function function_;
   HybrdStart start_;
   bool exact_ = false;
   int size_ = kProblem.num_vars;

@@ -31,7 +31,8 @@ int index_of(const char* const* names, int n, const std::string& name) {
 // Final mass (normalized) after solving the problem with equation `row` replaced by `replaced`.
 double final_mass(std::vector<double> x, int row, const std::function<double(const double*, double)>& replaced) {
   Settings s;
-  const Residual residual = [&](const double* z, double eps, Propagator& prop, double* F) {
+  s.jacobian = "finite-difference";  // the replaced row has no exact derivative here
+  const Function residual = [&](const double* z, double eps, Propagator& prop, double* F, double*) {
     shooting_function(z, eps, prop, F);
     F[row] = replaced(z, F[row]);
   };

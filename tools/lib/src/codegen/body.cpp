@@ -10,12 +10,12 @@ namespace helios::codegen::detail {
 
 std::string Body::cpp(const std::string& text, const std::string& where) {
   for (const auto& name : symbolic::free_symbols(c_.symbols.parse(text, "field " + where))) used_.insert(name);
-  return c_.cpp(text, where);
+  return c_.cpp(text, where, dialect());
 }
 
 std::string Body::cpp(const GiNaC::ex& e) {
   for (const auto& name : symbolic::free_symbols(e)) used_.insert(name);
-  return c_.cpp(e);
+  return c_.cpp(e, dialect());
 }
 
 std::string Body::use(const std::string& name) {

@@ -17,7 +17,8 @@ namespace helios::codegen::detail {
 // body prints (cpp) and the names the generator writes into code itself (use).
 class Body {
  public:
-  // `scalar`: the type of the unpacked locals (double, or T in a function template).
+  // `scalar`: the type of the unpacked locals (double, or T in a function template, whose
+  // expressions then call the math functions unqualified).
   explicit Body(Context& c, std::string scalar = "double") : c_(c), scalar_(std::move(scalar)) {}
   // The stream of plain code lines, written in order with the unpacks.
   std::ostringstream& code() { return code_; }
@@ -49,6 +50,9 @@ class Body {
   };
   // Moves the pending code into a segment.
   void flush();
+  symbolic::CppScalar dialect() const {
+    return scalar_ == "double" ? symbolic::CppScalar::Double : symbolic::CppScalar::Generic;
+  }
 
   Context& c_;
   std::string scalar_;

@@ -381,9 +381,7 @@ std::string residual_module(Context& c, bool jacobian) {
       "namespace helios_rt {\n\n";
   if (c.d.contains("coast_dynamics")) o += coast_dynamics_function(c);
   ShootingFunction shooting(c);
-  c.scalar = symbolic::CppScalar::Generic;
   o += shooting.text(jacobian);
-  c.scalar = symbolic::CppScalar::Double;
   if (!c.d.value("events", json::array()).empty()) o += legs_block(c, shooting.leg_sizes());
   return o + "}  // namespace helios_rt\n";
 }
