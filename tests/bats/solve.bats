@@ -120,6 +120,16 @@ setup() {
   jq -e --slurpfile first "$E2E/solution.json" '.x == $first[0].x and .final_mass_kg == $first[0].final_mass_kg' outcome.json
 }
 
+# The runtime's precompiled header (built with the tools) is what the recorded command reads: g++
+# -H marks a used one with "!" (an unusable one, e.g. built with other flags, is passed over).
+@test "solve: the recorded compile command reads the runtime's precompiled header" {
+  cp "$SRC/shoot.cpp" shoot.cpp
+  local command
+  command=$(jq -r .compile.command "$E2E/solution.json")
+  run -0 --separate-stderr bash -c "${command/ -o shoot / -H -Winvalid-pch -fsyntax-only }"
+  [[ $stderr == "! "*"/include/helios-runtime/helios_runtime.hpp.gch"* ]]
+}
+
 # A module's function can never replace one of the runtime's by its name: the library's only
 # external functions are those its header declares (the rest is in unnamed namespaces).
 @test "solve: the runtime library defines no external function its header does not declare" {

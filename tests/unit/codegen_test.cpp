@@ -10,6 +10,7 @@
 
 #include "helios/pmp/derive.hpp"
 #include "helios/spec/parse.hpp"
+#include "helios/symbolic/expr.hpp"
 
 namespace {
 
@@ -62,6 +63,25 @@ TEST(Codegen, TimeDependentDynamicsGetNoExactJacobian) {
   const auto g = helios::codegen::generate(d, {});
   EXPECT_EQ(g.source.find("shooting_jacobian"), std::string::npos);
   EXPECT_EQ(std::count(g.generated_modules.begin(), g.generated_modules.end(), "JACOBIAN"), 0);
+}
+
+// Integer and half-integer powers up to 9/2 are printed as products and one sqrt (pow is tens of
+// multiplications); others stay pow. Both dialects, the same text but the namespace.
+TEST(Codegen, SmallPowersArePrintedAsProductsAndOneSqrt) {
+  using helios::symbolic::CppScalar;
+  using helios::symbolic::to_csrc;
+  const GiNaC::symbol x("x"), y("y");
+  const GiNaC::ex s = x + y;
+  EXPECT_EQ(to_csrc(GiNaC::pow(x, 3)), "x*x*x");
+  EXPECT_EQ(to_csrc(GiNaC::pow(x, -4)), "1.0/(x*x*x*x)");
+  EXPECT_EQ(to_csrc(GiNaC::pow(x, -1)), "1.0/x");
+  EXPECT_EQ(to_csrc(GiNaC::pow(x, GiNaC::numeric(-1, 2))), "1.0/sqrt(x)");
+  EXPECT_EQ(to_csrc(GiNaC::pow(s, GiNaC::numeric(-7, 2))), "1.0/((x+y)*(x+y)*(x+y)*sqrt(x+y))");
+  EXPECT_EQ(to_csrc(GiNaC::pow(s, GiNaC::numeric(5, 2))), "(x+y)*(x+y)*sqrt(x+y)");
+  EXPECT_EQ(to_csrc(GiNaC::pow(x, 5)), "std::pow(x, 5.0)");
+  EXPECT_EQ(to_csrc(GiNaC::pow(x, GiNaC::numeric(9, 2)), CppScalar::Generic), "x*x*x*x*sqrt(x)");
+  EXPECT_EQ(to_csrc(GiNaC::pow(x, GiNaC::numeric(11, 2)), CppScalar::Generic), "pow(x, 11.0/2.0)");
+  EXPECT_EQ(to_csrc(GiNaC::pow(x, GiNaC::numeric(1, 3))), "std::pow(x, 1.0/3.0)");
 }
 
 TEST(Codegen, GeneratedPolicyIsDeterministic) {

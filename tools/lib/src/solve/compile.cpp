@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,15 @@ std::vector<std::string> compiler_prefix(const std::string& compiler) {
   return {real.parent_path().parent_path().string()};
 }
 
+// The flags the runtime's library and precompiled header were built with (CMakeLists.txt's
+// HELIOS_PROGRAM_FLAGS): a program compiled otherwise would not use the precompiled header.
+std::vector<std::string> program_flags() {
+  std::vector<std::string> flags;
+  std::istringstream words(HELIOS_PROGRAM_FLAGS);
+  for (std::string w; words >> w;) flags.push_back(w);
+  return flags;
+}
+
 }  // namespace
 
 std::string compile_key(const std::string& source, const std::string& command, const std::string& compiler_version,
@@ -49,7 +59,7 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   const std::string& compiler = o.compiler;
   CompileResult c;
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<std::string> flags = {"-std=c++17", "-O2", "-pthread", "-Wall", "-Wextra"};
+  const std::vector<std::string> flags = program_flags();
   std::string flag_text;
   for (const auto& f : flags) flag_text += " " + f;
   // The program includes the runtime's header and links its library (absolute paths, so the

@@ -141,14 +141,18 @@ Printed print_power(const GiNaC::ex& base, const GiNaC::ex& exponent, Dialect d)
   if (GiNaC::is_a<GiNaC::numeric>(exponent)) {
     const GiNaC::numeric k = GiNaC::ex_to<GiNaC::numeric>(exponent);
     if (k == GiNaC::numeric(1, 2)) return {"sqrt(" + b.text + ")", kAtom};
-    if (d != Dialect::Text) {
+    // In C++, an integer or half-integer power up to 9/2 is products and one sqrt: pow costs tens
+    // of multiplications, and the gravity terms' r^-5/2 and r^-7/2 sit in every right-hand side.
+    const GiNaC::numeric twice = 2 * GiNaC::abs(k);
+    if (d != Dialect::Text && twice.is_integer() && twice <= 9 && k != 1) {
       const std::string bb = wrap(b, kAtom);
-      if (k == 2) return {bb + "*" + bb, kProduct};
-      if (k == -1) return {"1.0/" + bb, kProduct};
-      if (k == -2) return {"1.0/(" + bb + "*" + bb + ")", kProduct};
-      if (k == GiNaC::numeric(-1, 2)) return {"1.0/sqrt(" + b.text + ")", kProduct};
-      if (k == GiNaC::numeric(3, 2)) return {bb + "*sqrt(" + b.text + ")", kProduct};
-      if (k == GiNaC::numeric(-3, 2)) return {"1.0/(" + bb + "*sqrt(" + b.text + "))", kProduct};
+      const int whole = twice.to_int() / 2;  // abs(k) rounded down
+      std::vector<std::string> factors(static_cast<std::size_t>(whole), bb);
+      if (!GiNaC::abs(k).is_integer()) factors.push_back("sqrt(" + b.text + ")");
+      std::string product;
+      for (const auto& f : factors) product += (product.empty() ? "" : "*") + f;
+      if (k.is_positive()) return {product, kProduct};
+      return {"1.0/" + (factors.size() == 1 ? product : "(" + product + ")"), kProduct};
     }
   }
   if (d != Dialect::Text)
