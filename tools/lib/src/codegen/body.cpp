@@ -9,13 +9,31 @@
 namespace helios::codegen::detail {
 
 std::string Body::cpp(const std::string& text, const std::string& where) {
-  for (const auto& name : symbolic::free_symbols(c_.symbols.parse(text, "field " + where))) used_.insert(name);
-  return c_.cpp(text, where, dialect());
+  return print(c_.symbols.parse(text, "field " + where));
 }
 
-std::string Body::cpp(const GiNaC::ex& e) {
-  for (const auto& name : symbolic::free_symbols(e)) used_.insert(name);
-  return c_.cpp(e, dialect());
+std::string Body::cpp(const GiNaC::ex& e) { return print(e); }
+
+std::string Body::print(const GiNaC::ex& e) {
+  GiNaC::ex chosen = e;
+  std::string text = c_.cpp(e, dialect());
+  if (!relative_.empty()) {
+    const GiNaC::ex r = e.subs(relative_).expand();
+    if (std::string t = c_.cpp(r, dialect()); t.size() < text.size()) {
+      chosen = r;
+      text = std::move(t);
+    }
+  }
+  for (const auto& name : symbolic::free_symbols(chosen)) used_.insert(name);
+  for (const auto& [name, parts] : relative_parts_)
+    if (uses(name)) used_.insert(parts.begin(), parts.end());
+  return text;
+}
+
+void Body::relative(const std::string& name, const std::string& from, const std::string& to) {
+  relative_[c_.symbols.get(from)] = c_.symbols.get(to) + GiNaC::symbol(name);
+  relative_parts_.push_back({name, {from, to}});
+  unpack(name, from + " - " + to);
 }
 
 std::string Body::use(const std::string& name) {

@@ -40,6 +40,11 @@ class Body {
   std::string unused_parameters(const std::vector<std::string>& parameters) const;
   // A line (ending in "\n") that defines all of `names`, written if any of them is used.
   void unpack_line(const std::string& line, const std::vector<std::string>& names);
+  // The local `name` = `from` - `to` (two unpacked symbols; written after them, if used). From
+  // here on, an expression that prints shorter with `from` = `to` + `name` is printed so: a
+  // swing-by's rows, expanded in the heliocentric velocities, cancel terms a thousand times their
+  // sum; in the velocity relative to the planet they do not.
+  void relative(const std::string& name, const std::string& from, const std::string& to);
   // The body's text: the code with the unpacks that are used.
   std::string str();
 
@@ -50,6 +55,8 @@ class Body {
   };
   // Moves the pending code into a segment.
   void flush();
+  // e, or e in the relative locals where that prints shorter; marks what it prints as used.
+  std::string print(const GiNaC::ex& e);
   symbolic::CppScalar dialect() const {
     return scalar_ == "double" ? symbolic::CppScalar::Double : symbolic::CppScalar::Generic;
   }
@@ -59,6 +66,8 @@ class Body {
   std::ostringstream code_;
   std::vector<Segment> segments_;
   std::set<std::string> used_;
+  GiNaC::exmap relative_;                                              // from -> to + name
+  std::vector<std::pair<std::string, std::vector<std::string>>> relative_parts_;  // name -> {from, to}
 };
 
 }  // namespace helios::codegen::detail

@@ -3,6 +3,7 @@
 #include "context.hpp"
 #include "plans.hpp"
 
+#include <algorithm>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -72,6 +73,7 @@ class ShootingFunction {
   void targets();
   void start();
   void event(std::size_t k);
+  void relative_to_target(const std::string& id);
   void leg_alone_at_event(std::size_t k);
   void jump(std::size_t k);
   void end();
@@ -274,6 +276,7 @@ void ShootingFunction::event(std::size_t k) {
   const std::string from = k == 0 ? "t0" : "t_" + events_[k - 1].at("id").get<std::string>() + "_dep";
   body_.code() << "  propagate(prop, " << from << ", t_" << id << ", y, mult);\n";
   unpack_y("_" + id + "_m");
+  relative_to_target(id);
   evaluate_h(id + "_m", "t_" + id);
   leg_alone_at_event(k);
   jump(k);
@@ -284,6 +287,25 @@ void ShootingFunction::event(std::size_t k) {
     if (!costate_map[i].contains("variable") || costate_map[i].at("variable") != c_.costates[i] + "_" + id + "_p")
       body_.unpack(c_.costates[i] + "_" + id + "_p", "y[" + std::to_string(c_.states.size() + i) + "]");
   evaluate_h(id + "_p", "t_" + id + "_dep");
+}
+
+// The spacecraft's position and velocity just before event `id` relative to the event's target
+// (a planet's or a coasting body's state there), as locals <state>_<id>_rel for the rows that
+// print shorter in them. Cartesian states only.
+void ShootingFunction::relative_to_target(const std::string& id) {
+  static const std::vector<std::string> cartesian = {"rx", "ry", "rz", "vx", "vy", "vz"};
+  if (c_.states.size() < cartesian.size() || !std::equal(cartesian.begin(), cartesian.end(), c_.states.begin()))
+    return;
+  for (const char* kind : {"ephemeris", "coast"})
+    for (const auto& [key, names] : runtime_parameters(c_.d, kind)) {
+      if (key.substr(key.find(':') + 1) != id) continue;
+      const auto name = [&](std::size_t i) { return cartesian[i] + "_" + id + "_rel"; };
+      for (std::size_t i = 0; i < cartesian.size(); ++i)
+        if (c_.symbols.has(name(i))) return;  // a name the derivation has: no relative locals
+      for (std::size_t i = 0; i < cartesian.size(); ++i)
+        body_.relative(name(i), cartesian[i] + "_" + id + "_m", names[i]);
+      return;
+    }
 }
 
 // Leg k alone ends at event k as if the trajectory ended: its conditions c = 0 and lambda(t+) = 0
