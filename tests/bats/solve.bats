@@ -39,6 +39,8 @@ setup() {
   assert_jq "$sol" '.status == "converged"'
   assert_jq "$sol" '.compile.ok == true and .compile.cached == false'
   assert_jq "$sol" '.max_residual < 1e-10'
+  # what F resolves there (x moved by 1-4 doubles): above 0, far below the gate
+  assert_jq "$sol" '.residual_noise > 0 and .residual_noise < 1e-11'
   assert_jq "$sol" '(.final_mass_kg - 603.935) | fabs <= 0.01'
   assert_jq "$sol" '.files.trajectory == "trajectory.csv"'
   assert_no_temp_files "$E2E"

@@ -56,7 +56,7 @@ for s in "${scenarios[@]}"; do
     "$(jq '.search.seconds // 0' "$work/$s/solution.json")" "$(jq '.legs // [] | length' "$work/$s/solution.json")" \
     "$(jq '.homotopy | length' "$work/$s/solution.json")" "$(jq '.passes // 1' "$work/$s/solution.json")" \
     "$(jq -r .status "$work/$s/solution.json")" \
-    "$(jq -r 'if .final_mass_kg then "m0 \(.initial_mass_kg) kg, m_f \(.final_mass_kg) kg" else "tof \(.tof_days) d" end + ", max|F| \(.max_residual)"' \
+    "$(jq -r 'if .final_mass_kg then "m0 \(.initial_mass_kg) kg, m_f \(.final_mass_kg) kg" else "tof \(.tof_days) d" end + ", max|F| \(.max_residual) (noise \(.residual_noise))"' \
       "$work/$s/solution.json"), verify $(jq -r .verdict "$work/$s/verify.json"), score $(jq .total "$work/$s/score.json")"
   # The solve's cost against its integrations (solution.json's "integration", the runtime's
   # counters): the exact Jacobians, the finite-difference ones (the homotopies without an exact
