@@ -30,7 +30,7 @@ sensitivity() {
   local dir=$BATS_FILE_TMPDIR/$1
   shift
   if [[ ! -x $dir/sensitivity ]]; then
-    g++ -std=c++17 -O2 -pthread -DSHOOT_CPP="\"$dir/shoot.cpp\"" -I"$ROOT/templates/runtime" -I"$ROOT/tools/lib/include" \
+    g++ -std=c++17 -O2 -fno-math-errno -pthread -DSHOOT_CPP="\"$dir/shoot.cpp\"" -I"$ROOT/templates/runtime" -I"$ROOT/tools/lib/include" \
       "$ROOT/tests/events/sensitivity.cpp" -o "$dir/sensitivity" -lcminpack
   fi
   "$dir/sensitivity" "$dir/solution.json" "$@"

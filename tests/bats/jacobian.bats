@@ -36,7 +36,7 @@ program() {
 shooting_check() {
   local cpp="$1"
   shift
-  g++ -std=c++17 -O2 -pthread -DSHOOT_CPP="\"$cpp\"" -I"$HELIOS_BUILD_DIR/include/helios-runtime" \
+  g++ -std=c++17 -O2 -fno-math-errno -pthread -DSHOOT_CPP="\"$cpp\"" -I"$HELIOS_BUILD_DIR/include/helios-runtime" \
     "$ROOT/tests/bats/shooting_jacobian_check.cpp" "$HELIOS_BUILD_DIR/lib/libhelios-runtime.a" -lcminpack \
     -o shooting_jacobian_check
   ./shooting_jacobian_check "$@"

@@ -117,7 +117,7 @@ if [[ " ${scenarios[*]} " == *" S13 "* ]]; then
   done
   median=$(printf '%s\n' "${times[@]}" | sort -g | sed -n 3p)
   printf 'S13 median cold solve over seeds 1-5: %.3f s (target <= 60 s: ratio %.3f)\n' "$median" "$(ratio "$median" 60)"
-  g++ -std=c++17 -O2 -pthread -DSHOOT_CPP="\"$work/S13/shoot.cpp\"" -Itemplates/runtime -Itools/lib/include \
+  g++ -std=c++17 -O2 -fno-math-errno -pthread -DSHOOT_CPP="\"$work/S13/shoot.cpp\"" -Itemplates/runtime -Itools/lib/include \
     tests/bench/search_methods.cpp -o "$work/search_methods" -lcminpack
   "$work/search_methods" 10 6000
 fi
