@@ -146,21 +146,19 @@ class EventContinuation {
     x_.assign(N, 0.0);
     const bool reduced = own_variables.size() == own_rows.size();
     std::vector<double> base(N);
-    const auto expand = [&](const double* z, std::vector<double>& xx) {
-      xx = base;
+    // The whole x (on z's scalar) from the own variables z, the rest at base's values.
+    const auto expand = [&](const auto* z, auto& xx) {
+      xx.assign(base.begin(), base.end());
       for (std::size_t j = 0; j < own_variables.size(); ++j) xx[own_variables[j]] = z[j];
     };
     // The eventless rows G of the own variables z, on double or on Dual: the costates after each
     // event carried over (xx[v] += its jump row) as often as there are events.
     const auto eventless = [&](const auto* z, double e, Propagator& p, auto* G) {
       using T = std::remove_cv_t<std::remove_pointer_t<decltype(z)>>;
-      std::vector<T> xx(base.begin(), base.end()), FF(N);
-      for (std::size_t j = 0; j < own_variables.size(); ++j) xx[own_variables[j]] = z[j];
+      std::vector<T> xx, FF(N);
+      expand(z, xx);
       for (int pass = 0; pass <= nev_; ++pass) {
-        if constexpr (std::is_same_v<T, double>)
-          shooting_function(xx.data(), e, p, FF.data());
-        else
-          shooting_legs_dual(xx.data(), e, p, FF.data(), nullptr);
+        shooting_legs(xx.data(), e, p, FF.data(), static_cast<const LegsOf<T>*>(nullptr));
         bool carried = false;
         for (const auto& ev : plan_.events)
           for (const auto& [v, row] : ev.costates) {
@@ -171,14 +169,8 @@ class EventContinuation {
       }
       for (std::size_t j = 0; j < own_rows.size(); ++j) G[j] = FF[own_rows[j]];
     };
-    const Function eventless_function = [&](const double* z, double e, Propagator& p, double* G, double* J) {
-      if (J)
-        dual_jacobian(static_cast<int>(own_variables.size()), z, G, J,
-                      [&](const Dual* zd, Dual* Gd) { eventless(zd, e, p, Gd); });
-      else
-        eventless(z, e, p, G);
-    };
-    Shooter shooter_eventless(s_, eventless_function, kContinuationStart);
+    Shooter shooter_eventless(s_, function_on_either_scalar(static_cast<int>(own_variables.size()), eventless),
+                              kContinuationStart);
     bool off_solved = false;
     for (int tries = 0; tries < s_.leg_attempts && !off_solved; ++tries) {
       draw_eventless_guess();

@@ -317,6 +317,10 @@ using Legs = LegsOf<double>;
 void shooting_legs(const double* x, double eps, Propagator& prop, double* F, const Legs* legs);
 // The same on dual numbers (RESIDUAL module, with the JACOBIAN module): the legs' exact Jacobians.
 void shooting_legs_dual(const Dual* x, double eps, Propagator& prop, Dual* F, const LegsOf<Dual>* legs);
+// shooting_legs_dual under shooting_legs's name: code written once for either scalar calls one.
+inline void shooting_legs(const Dual* x, double eps, Propagator& prop, Dual* F, const LegsOf<Dual>* legs) {
+  shooting_legs_dual(x, eps, prop, F, legs);
+}
 
 // Which shooting variables each leg solves for alone (indices into x; leg k > 0 also solves for
 // its start costates), and the variables a leg alone holds fixed: the time fractions at their

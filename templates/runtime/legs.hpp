@@ -17,18 +17,12 @@ bool join_legs(const Settings& s, std::vector<double> x, const std::vector<doubl
                Shooter& single, Result& r, int& evaluations) {
   const int N = kProblem.num_vars;
   const int size = N + static_cast<int>(starts.size());
-  const Function multiple = [&](const double* z, double eps, Propagator& prop, double* F, double* J) {
-    if (!J) {
-      const Legs legs{-1, z + N, F + N};
-      shooting_legs(z, eps, prop, F, &legs);
-      return;
-    }
-    dual_jacobian(size, z, F, J, [&](const Dual* zd, Dual* Fd) {
-      const LegsOf<Dual> legs{-1, zd + N, Fd + N};
-      shooting_legs_dual(zd, eps, prop, Fd, &legs);
-    });
+  const auto multiple = [N](const auto* z, double eps, Propagator& prop, auto* F) {
+    using T = std::remove_cv_t<std::remove_pointer_t<decltype(z)>>;
+    const LegsOf<T> legs{-1, z + N, F + N};
+    shooting_legs(z, eps, prop, F, &legs);
   };
-  Shooter shooter(s, multiple);
+  Shooter shooter(s, function_on_either_scalar(size, multiple));
   std::vector<double> z(x);
   z.insert(z.end(), starts.begin(), starts.end());
   double res = 0;
@@ -85,18 +79,9 @@ bool legs_attempt(const Settings& s, const LegPlan& plan, Guess&& initial_guess,
       if (k > 0)
         for (int i = 0; i < n; ++i) st[(k - 1) * n + i] = z[own.size() + i];
       const LegsOf<T> legs{k, st.data(), nullptr};
-      if constexpr (std::is_same_v<T, double>)
-        shooting_legs(xx.data(), eps, prop, F, &legs);
-      else
-        shooting_legs_dual(xx.data(), eps, prop, F, &legs);
+      shooting_legs(xx.data(), eps, prop, F, &legs);
     };
-    const Function leg = [&](const double* z, double eps, Propagator& prop, double* F, double* J) {
-      if (J)
-        dual_jacobian(m, z, F, J, [&](const Dual* zd, Dual* Fd) { leg_call(zd, eps, prop, Fd); });
-      else
-        leg_call(z, eps, prop, F);
-    };
-    Shooter shooter(s, leg);
+    Shooter shooter(s, function_on_either_scalar(m, leg_call));
     bool solved = false;
     for (int tries = 0; tries < s.leg_attempts && !solved; ++tries) {
       std::vector<double> z(m);

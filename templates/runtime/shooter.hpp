@@ -54,6 +54,18 @@ inline void shooting_function_and_jacobian(const double* x, double eps, Propagat
     shooting_function(x, eps, prop, F);
 }
 
+// A Function of n variables from call(z, eps, prop, F), written once for either scalar: F on
+// double, and where J is asked for, the same call on dual numbers (dual_jacobian).
+template <class Call>
+Function function_on_either_scalar(int n, Call call) {
+  return [n, call](const double* z, double eps, Propagator& prop, double* F, double* J) {
+    if (J)
+      dual_jacobian(n, z, F, J, [&](const Dual* zd, Dual* Fd) { call(zd, eps, prop, Fd); });
+    else
+      call(z, eps, prop, F);
+  };
+}
+
 // Row `row` of an n x n column-major Jacobian: the unit row of variable v (the row is x_v itself).
 inline void unit_row(double* J, int n, int row, int v) {
   for (int j = 0; j < n; ++j) J[row + j * n] = j == v ? 1.0 : 0.0;
