@@ -17,10 +17,10 @@ std::string Body::cpp(const GiNaC::ex& e) { return print(e); }
 std::string Body::print(const GiNaC::ex& e) {
   GiNaC::ex chosen = e;
   std::string text = c_.cpp(e, dialect());
-  if (!relative_.empty()) {
-    const GiNaC::ex r = e.subs(relative_).expand();
-    if (std::string t = c_.cpp(r, dialect()); t.size() < text.size()) {
-      chosen = r;
+  if (const GiNaC::ex r = e.subs(relative_); !r.is_equal(e)) {  // e has a symbol to write relative
+    const GiNaC::ex expanded = r.expand();
+    if (std::string t = c_.cpp(expanded, dialect()); t.size() < text.size()) {
+      chosen = expanded;
       text = std::move(t);
     }
   }

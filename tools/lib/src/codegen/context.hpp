@@ -31,15 +31,10 @@ struct Context : derivation::Reader {
     return {};
   }
 
-  // C++ for a stored expression; parameters are read from namespace problem. `scalar`: std::pow
-  // and the like for double code, unqualified in code templated on its scalar (the RESIDUAL module:
-  // double, or the runtime's dual numbers for the Jacobian).
-  std::string cpp(const std::string& text, const std::string& where,
-                  symbolic::CppScalar scalar = symbolic::CppScalar::Double) {
-    return cpp(symbols.parse(text, "field " + where), scalar);
-  }
-  // C++ for an expression built here (a derivative); parameters as in cpp(text, where).
-  std::string cpp(const GiNaC::ex& e, symbolic::CppScalar scalar = symbolic::CppScalar::Double) {
+  // C++ for an expression; parameters are read from namespace problem. `scalar`: std::pow and the
+  // like for double code, unqualified in code templated on its scalar (the RESIDUAL module: double,
+  // or the runtime's dual numbers for the Jacobian).
+  std::string cpp(const GiNaC::ex& e, symbolic::CppScalar scalar) {
     GiNaC::exmap qualified;
     for (const auto& p : parameters)
       if (index_of(runtime_evaluated, p) < 0) qualified[symbols.get(p)] = GiNaC::symbol("problem::" + p);
