@@ -45,17 +45,21 @@ class EventContinuation {
             s, [this](const double* x, double e, Propagator& p, double* F, double* J) { held_off(x, e, p, F, J); },
             kContinuationStart) {}
 
-  // The stages in order. `eventless` is the events-off solution (solved here when empty, else
-  // reused); `uses` counts the attempts from it: the first places the epochs closest to the
-  // targets. True when it converged (r then holds the solution).
-  bool run(std::vector<double>& eventless, int& uses) {
-    if (eventless.empty()) {
-      if (!events_off()) return false;
-      eventless = x_;
-    }
+  // The stages after events off, from the events-off solution `eventless`; `use` counts the
+  // attempts from it before this one: the first (0) places the epochs closest to the targets,
+  // later ones draw them. True when it converged (r then holds the solution).
+  bool run(const std::vector<double>& eventless, int use) {
     x_ = eventless;
-    const bool closest = uses++ == 0;
+    const bool closest = use == 0;
     return epochs(closest) && targets() && parameters(closest) && eps_to_zero();
+  }
+
+  // Events off from one scale-free random guess (the stage's draw `draw`): true with the solution
+  // in `eventless` when it converged.
+  bool solve_eventless(int draw, std::vector<double>& eventless) {
+    if (!events_off(draw)) return false;
+    eventless = x_;
+    return true;
   }
 
   // The function evaluations of every stage run.
@@ -126,10 +130,11 @@ class EventContinuation {
     carry_costates(x_);
   }
 
-  // Events off, from scale-free random guesses, in the variables and rows of no event (the
+  // Events off, from a scale-free random guess, in the variables and rows of no event (the
   // event's own are set from them: nu = 0, parameters 0, epochs at the reference, the costates
   // after it carried over); when those are not as many, in all of them with the event's rows held.
-  bool events_off() {
+  // Recorded as the events-off solve `draw`.
+  bool events_off(int draw) {
     std::vector<int> own_variables, own_rows;
     {
       std::vector<bool> event_variable(N), event_row(N);
@@ -171,26 +176,20 @@ class EventContinuation {
     };
     Shooter shooter_eventless(s_, function_on_either_scalar(static_cast<int>(own_variables.size()), eventless),
                               kContinuationStart);
-    bool off_solved = false;
-    for (int tries = 0; tries < s_.leg_attempts && !off_solved; ++tries) {
-      draw_eventless_guess();
-      if (!reduced) {
-        off_solved = solve(off_, x_, "events off", tries);
-        continue;
-      }
-      base = x_;
-      std::vector<double> z(own_variables.size());
-      for (std::size_t j = 0; j < z.size(); ++j) z[j] = x_[own_variables[j]];
-      int info = 0;
-      double res = 0;
-      ++r_.iterations;
-      off_solved = shooter_eventless.solve(z, eps_, s_.accept_residual, info, res);
-      expand(z.data(), x_);
-      carry_costates(x_);
-      off_solved = off_solved && admissible_(x_.data());
-      r_.continuation.push_back(
-          {"events off", static_cast<double>(tries), off_solved, res, shooter_eventless.last_step_evaluations});
-    }
+    draw_eventless_guess();
+    if (!reduced) return solve(off_, x_, "events off", draw);
+    base = x_;
+    std::vector<double> z(own_variables.size());
+    for (std::size_t j = 0; j < z.size(); ++j) z[j] = x_[own_variables[j]];
+    int info = 0;
+    double res = 0;
+    ++r_.iterations;
+    bool off_solved = shooter_eventless.solve(z, eps_, s_.accept_residual, info, res);
+    expand(z.data(), x_);
+    carry_costates(x_);
+    off_solved = off_solved && admissible_(x_.data());
+    r_.continuation.push_back(
+        {"events off", static_cast<double>(draw), off_solved, res, shooter_eventless.last_step_evaluations});
     evaluations_ += shooter_eventless.evaluations;
     return off_solved;
   }
@@ -322,18 +321,31 @@ class EventContinuation {
     Shooter shooter(s_, penalized, kContinuationStart);
     // The first kappa moves the parameters by about 1e-3.
     const double start = stationarity > 0 ? stationarity / (1e-3 * x_[plan_.multiplier]) : 1.0;
-    // Secant predictor in log(kappa) from the last two solutions (the parameters move fast
-    // where kappa meets the cost's own curvature).
-    std::vector<double> previous;  // the solution before x on the path (none before the first kappa)
-    double log_previous = 0, log_current = 0;
+    // The predictor: the path's tangent dx/dkappa at the last solution (with the exact Jacobian),
+    // else the secant in log(kappa) from the last two solutions (the parameters move fast where
+    // kappa meets the cost's own curvature).
+    std::vector<double> previous, tangent;  // the solution before x on the path (none before the first kappa)
+    double log_previous = 0, log_current = 0, current = 0;
     bool on_path = false;  // x solves at log_current (before the first kappa it holds p = 0)
+    bool tangent_ok = false;
+    const auto path_tangent = [&](double value) {
+      std::vector<double> G, J, dG(N, 0.0);
+      kappa = value;
+      if (!shooter.jacobian_at(x_, eps_, G, J)) return false;
+      for (const auto& ev : plan_.events)
+        for (const auto& [v, row] : ev.parameters) dG[row] = weight[v] * x_[plan_.multiplier] * x_[v];
+      tangent.resize(N);
+      for (int i = 0; i < N; ++i) tangent[i] = -dG[i];
+      return solve_linear(N, J, tangent);
+    };
     const bool ok = continue_to_zero(s_, start, [&](double value) {
       kappa = value;
       std::vector<double> trial = x_;
       bool solved = false;
-      if (value > 0 && !previous.empty()) {
+      if (on_path && (tangent_ok || (value > 0 && !previous.empty()))) {
         for (int i = 0; i < N; ++i)
-          trial[i] += (x_[i] - previous[i]) * (std::log(value) - log_current) / (log_current - log_previous);
+          trial[i] += tangent_ok ? tangent[i] * (value - current)
+                                 : (x_[i] - previous[i]) * (std::log(value) - log_current) / (log_current - log_previous);
         solved = solve(shooter, trial, "parameters", value);
         if (!solved) trial = x_;  // the path bends: from the last solution itself
       }
@@ -347,6 +359,8 @@ class EventContinuation {
         on_path = true;
       }
       x_ = trial;
+      current = value;
+      tangent_ok = value > 0 && path_tangent(value);
       return true;
     });
     evaluations_ += shooter.evaluations;
@@ -435,18 +449,29 @@ class EventContinuation {
   int evaluations_ = 0;
 };
 
-// One attempt of the continuation onto the events (EventContinuation), from `eventless` (the
-// attempt's events-off solution: solved here when empty); `uses` counts the attempts from it. True
-// when it converged (r then holds the solution); its function evaluations are added to
-// `evaluations`.
+// One attempt of the continuation onto the events (EventContinuation) from `eventless`, a
+// solution of the problem with its events off, attempted from `use` times before. True when it
+// converged (r then holds the solution); its function evaluations are added to `evaluations`.
 template <class Guess, class Admissible>
 bool continuation_attempt(const Settings& s, const EventPlan& plan, Guess&& initial_guess, Admissible&& admissible,
-                          std::mt19937_64& rng, std::vector<double>& eventless, int& uses, Result& r,
+                          std::mt19937_64& rng, const std::vector<double>& eventless, int use, Result& r,
                           int& evaluations) {
   EventContinuation<std::remove_reference_t<Guess>, std::remove_reference_t<Admissible>> attempt(s, plan, initial_guess,
                                                                                                  admissible, rng, r);
-  const bool converged = attempt.run(eventless, uses);
+  const bool converged = attempt.run(eventless, use);
   evaluations += attempt.evaluations();
+  return converged;
+}
+
+// The problem with its events off solved from one scale-free random guess (draw `draw`): true with
+// its solution in `eventless`. Its solve is recorded in r.continuation.
+template <class Guess, class Admissible>
+bool eventless_draw(const Settings& s, const EventPlan& plan, Guess&& initial_guess, Admissible&& admissible,
+                    std::mt19937_64& rng, int draw, std::vector<double>& eventless, Result& r, int& evaluations) {
+  EventContinuation<std::remove_reference_t<Guess>, std::remove_reference_t<Admissible>> stage(s, plan, initial_guess,
+                                                                                               admissible, rng, r);
+  const bool converged = stage.solve_eventless(draw, eventless);
+  evaluations += stage.evaluations();
   return converged;
 }
 

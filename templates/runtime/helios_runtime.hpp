@@ -116,6 +116,9 @@ struct Settings {
   int search_attempts = 4;
   double search_time_s = 0;
   int threads = 0;
+  // The integrator's rtol and atol during the search (never tighter than rtol and atol; 0: those):
+  // every distinct extremal it reaches at eps = 0 is then polished at rtol and atol.
+  double search_tol = 1e-10;
   int max_steps = 200000;  // integrator steps per arc
   // The shooting Jacobian: "exact" (the program's shooting_jacobian, hybrj) where the program has
   // one, else "finite-difference" (hybrd's forward differences).
@@ -436,6 +439,7 @@ struct Extremal {
   std::vector<HomotopyStep> homotopy;
   std::vector<LegStep> legs;
   std::vector<ContinuationStep> continuation;
+  bool polished = true;  // it converged again at the integrator's own tolerance (search_tol)
   bool bounded_tried = false;
   double bounded_objective = NAN;
   int bounded_passes = 0;
@@ -446,7 +450,8 @@ struct SearchRecord {
   std::string method;
   int threads = 1;
   int starts = 0;           // starts (or complete attempts) drawn
-  int converged_start = 0;  // starts converged at eps_start (problems without events)
+  int converged_start = 0;  // starts converged at eps_start (problems with events: events-off draws)
+  int eventless_draws = 0;  // draws of the problem with its events off (passable events)
   int continued = 0;        // eps_start extremals continued to eps = 0
   int converged_final = 0;  // solves that reached eps = 0
   double seconds = 0;

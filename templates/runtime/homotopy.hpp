@@ -13,6 +13,20 @@ struct AnyBranch {
   bool operator()(const std::vector<double>&, double) const { return true; }
 };
 
+// The tangent dx/deps of the eps path at its solution x: -J^-1 dF/deps, with the exact Jacobian
+// J and dF/deps a difference over 1e-4 eps toward 0. False (no predictor) without an exact
+// Jacobian, at eps = 0, or where either fails.
+inline bool eps_tangent(Shooter& shooter, const std::vector<double>& x, double eps, std::vector<double>& dx) {
+  if (!(eps > 0)) return false;
+  const int n = static_cast<int>(x.size());
+  std::vector<double> F, J, below(x.size());
+  const double d = 1e-4 * eps;
+  if (!shooter.jacobian_at(x, eps, F, J) || !shooter.evaluate_at(x.data(), eps - d, below.data())) return false;
+  dx.resize(x.size());
+  for (int i = 0; i < n; ++i) dx[i] = (below[i] - F[i]) / d;
+  return solve_linear(n, J, dx);
+}
+
 // Solves at settings.eps_start from the guess x, then continues in eps down to 0 with an adaptive
 // step in log(eps) and retreat on failure. A step whose solution `on_branch(to, eps)` rejects
 // (hybrd jumped to another extremal's branch) counts as failed. True when eps = 0 is reached (x
@@ -26,10 +40,14 @@ bool homotopy_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& 
   r.x_start.assign(x.begin(), x.begin() + kProblem.num_vars);
   double log_step = std::log(1.0 / s.eps_first_ratio);
   double zero_below = s.eps_min;  // eps at or below which the next step goes to eps = 0
+  std::vector<double> tangent;
+  bool predicted = eps_tangent(shooter, x, eps, tangent);
   while (wall_seconds() <= s.time_limit_s) {
     const bool to_zero = eps <= zero_below;
     const double next = to_zero ? 0.0 : std::max(eps * std::exp(-log_step), 0.5 * zero_below);
     std::vector<double> trial = x;
+    if (predicted)
+      for (std::size_t i = 0; i < x.size(); ++i) trial[i] += tangent[i] * (next - eps);
     const double accept = to_zero ? s.final_residual : s.accept_residual;
     bool ok = homotopy_step(shooter, trial, next, accept, r, admissible, info, res);
     if (ok && !on_branch(trial, next)) ok = r.homotopy.back().converged = false;
@@ -38,6 +56,7 @@ bool homotopy_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& 
       eps = next;
       r.info = info;
       if (to_zero) return true;
+      predicted = eps_tangent(shooter, x, eps, tangent);
       log_step = std::min(log_step * 1.5, std::log(20.0));
     } else if (to_zero) {
       zero_below = 0.01 * eps;  // the bang-bang problem is still too far: smooth less first

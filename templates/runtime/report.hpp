@@ -57,6 +57,7 @@ inline Settings read_settings(const std::string& path) {
   s.search_attempts = j.value("search_attempts", s.search_attempts);
   s.search_time_s = j.value("search_time_s", s.search_time_s);
   s.threads = j.value("threads", s.threads);
+  s.search_tol = j.value("search_integrator_tol", s.search_tol);
   s.jacobian = j.value("jacobian", s.jacobian);
   if (j.contains("warm_start")) s.warm_start = warm_start_of(j.at("warm_start"));
   return s;
@@ -177,6 +178,7 @@ inline nlohmann::ordered_json extremals_record(const std::vector<Extremal>& list
                                     {"first_start", e.first_start},
                                     {"from", e.from},
                                     {"max_residual", recorded(e.max_residual)},
+                                    {"polished", e.polished},
                                     {"method", e.method}};
     objective_in_units(entry, e.shape.cost);
     if (e.bounded_tried) {  // where the passes over the bounds led from this extremal
@@ -199,6 +201,7 @@ inline nlohmann::ordered_json search_record(const SearchRecord& rec) {
                                 {"threads", rec.threads},
                                 {"starts", rec.starts},
                                 {"converged_at_eps_start", rec.converged_start},
+                                {"events_off_draws", rec.eventless_draws},
                                 {"continued", rec.continued},
                                 {"converged_at_eps_0", rec.converged_final},
                                 {"seconds", rec.seconds},

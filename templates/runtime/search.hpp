@@ -24,10 +24,14 @@ namespace helios_rt {
 
 namespace {
 
-// The generator of start k: SplitMix64 of (seed, k), so a start's guess does not depend on which
-// thread runs it or on how many starts came before.
-inline std::mt19937_64 start_generator(unsigned seed, int k) {
-  std::uint64_t z = (static_cast<std::uint64_t>(seed) << 32) + static_cast<std::uint64_t>(k) + 0x9e3779b97f4a7c15ull;
+// A stream of draws other than the starts' own (0): the events-off draws (eventless_search).
+constexpr std::uint64_t kEventlessStream = 1;
+
+// The generator of start k (of a stream): SplitMix64 of (seed, k, stream), so a start's guess does
+// not depend on which thread runs it or on how many starts came before.
+inline std::mt19937_64 start_generator(unsigned seed, int k, std::uint64_t stream = 0) {
+  std::uint64_t z = (static_cast<std::uint64_t>(seed) << 32) + static_cast<std::uint64_t>(k) + 0x9e3779b97f4a7c15ull +
+                    stream * 0xd1b54a32d192ed03ull;
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
   return std::mt19937_64(z ^ (z >> 31));
@@ -119,11 +123,54 @@ int merge_extremal(List& list, const std::vector<double>& x, const Shape& shape,
 }
 
 // The extremal at eps = 0 with the lowest objective, the first reached among equals (-1: none).
+// Only a polished one counts.
 inline int best_index(const SearchRecord& rec) {
   int best = -1;
   for (std::size_t i = 0; i < rec.extremals.size(); ++i)
-    if (best < 0 || rec.extremals[i].shape.cost < rec.extremals[best].shape.cost) best = static_cast<int>(i);
+    if (rec.extremals[i].polished && (best < 0 || rec.extremals[i].shape.cost < rec.extremals[best].shape.cost))
+      best = static_cast<int>(i);
   return best;
+}
+
+// The settings the search runs at: the integrator at search_tol (never tighter than its own), and
+// eps = 0 accepted at accept_residual, since every extremal found is polished afterwards.
+inline Settings search_settings(const Settings& s) {
+  Settings coarse = s;
+  if (s.search_tol > 0) {
+    coarse.rtol = std::max(s.rtol, s.search_tol);
+    coarse.atol = std::max(s.atol, s.search_tol);
+  }
+  if (coarse.rtol != s.rtol || coarse.atol != s.atol)
+    coarse.final_residual = std::max(s.final_residual, s.accept_residual);
+  return coarse;
+}
+
+// Each distinct extremal at eps = 0 found at the search's tolerance, solved again at the
+// integrator's own (`fine`) from there, where the search's was looser: a single shooting solve at
+// eps = 0 to final_residual, recorded in its homotopy, its shape (and objective) taken again.
+// One that does not converge is kept in the record, marked, and not returned.
+inline void polish_extremals(const Settings& fine, const Settings& coarse, SearchRecord& rec) {
+  if (coarse.rtol == fine.rtol && coarse.atol == fine.atol) return;
+  for (Extremal& e : rec.extremals) {
+    if (wall_seconds() > fine.time_limit_s) {
+      e.polished = false;
+      continue;
+    }
+    Shooter shooter(fine, kContinuationStart);
+    std::vector<double> x = e.x;
+    int info = 0;
+    double res = 0;
+    Result step;
+    const auto anything = [](const double*) { return true; };
+    e.polished = homotopy_step(shooter, x, 0.0, fine.final_residual, step, anything, info, res);
+    e.homotopy.insert(e.homotopy.end(), step.homotopy.begin(), step.homotopy.end());
+    if (!e.polished) continue;
+    e.x = x;
+    e.F = shooter.last_F;
+    e.max_residual = res;
+    e.info = info;
+    e.shape = shape_of(fine, x, 0.0);
+  }
 }
 
 // The returned extremal: the best, and why.
@@ -179,18 +226,23 @@ inline double best_objective(const SearchRecord& rec) {
   return best < 0 ? INFINITY : rec.extremals[best].shape.cost;
 }
 
-// After a search: the best extremal into r, else why there is none (`what_failed`, or the time).
-inline void finish_search(const Settings& s, Result& r, double started, const std::string& how,
-                          const std::string& what_failed, Progress& progress) {
+// After a search at `coarse` (search_settings(fine)): its extremals polished at `fine`, the best
+// into r, else why there is none (`what_failed`, or the time).
+inline void finish_search(const Settings& fine, const Settings& coarse, Result& r, double started,
+                          const std::string& how, const std::string& what_failed, Progress& progress) {
   SearchRecord& rec = r.search;
+  polish_extremals(fine, coarse, rec);
   rec.seconds = wall_seconds() - started;
   choose_best(rec, how);
   if (rec.returned >= 0) {
     take_extremal(r);
     progress.stage("returned extremal " + std::to_string(rec.returned) + ": " + rec.reason);
-  } else if (wall_seconds() > s.time_limit_s) {
+  } else if (wall_seconds() > fine.time_limit_s) {
     r.status = "timeout";
     r.detail = "time limit reached before convergence";
+  } else if (!rec.extremals.empty()) {
+    r.detail = "none of the " + std::to_string(rec.extremals.size()) +
+               " extremals the search reached at eps = 0 converged again at the integrator's tolerance";
   } else {
     r.detail = what_failed;
   }
@@ -201,9 +253,10 @@ inline void finish_search(const Settings& s, Result& r, double started, const st
 template <class Guess, class Admissible>
 class MultiStart {
  public:
-  MultiStart(const Settings& s, Guess& guess, Admissible& admissible)
-      : s_(s), guess_(guess), admissible_(admissible), rec_(r_.search), started_(wall_seconds()) {
-    rec_.threads = search_threads(s);
+  // The search runs at `coarse` (search_settings(fine)); its extremals are polished at `fine`.
+  MultiStart(const Settings& fine, const Settings& coarse, Guess& guess, Admissible& admissible)
+      : fine_(fine), s_(coarse), guess_(guess), admissible_(admissible), rec_(r_.search), started_(wall_seconds()) {
+    rec_.threads = search_threads(coarse);
     rec_.method = "multi-start at eps = " + eps_text() + ", the lowest-cost distinct extremals continued to eps = 0";
   }
 
@@ -227,7 +280,7 @@ class MultiStart {
     r_.attempts = rec_.starts;
     r_.evaluations = evaluations_;
     r_.iterations = rec_.starts + rec_.continued;
-    finish_search(s_, r_, started_,
+    finish_search(fine_, s_, r_, started_,
                   "from " + std::to_string(rec_.continued) + " of " + std::to_string(rec_.start_extremals.size()) +
                       " distinct extremals at eps_start, found by " + std::to_string(rec_.starts) + " starts",
                   "no start reached eps = 0 (" + std::to_string(rec_.starts) + " starts, " +
@@ -389,6 +442,7 @@ class MultiStart {
     return order;
   }
 
+  const Settings& fine_;
   const Settings& s_;
   Guess& guess_;
   Admissible& admissible_;
@@ -465,29 +519,94 @@ Result warm_solve(const Settings& s, Admissible& admissible) {
 // a start.
 // With a warm start (a sweep's converged neighbour) the search runs only when the warm solve fails.
 Result homotopy_solve(const Settings& s, const Guess& initial_guess, const Admissible& admissible) {
-  if (s.warm_start.empty()) return MultiStart<const Guess, const Admissible>(s, initial_guess, admissible).solve();
+  const Settings coarse = search_settings(s);
+  if (s.warm_start.empty())
+    return MultiStart<const Guess, const Admissible>(s, coarse, initial_guess, admissible).solve();
   Result warm = warm_solve(s, admissible);
   if (warm.status == "converged") return warm;
-  Result r = MultiStart<const Guess, const Admissible>(s, initial_guess, admissible).solve();
+  Result r = MultiStart<const Guess, const Admissible>(s, coarse, initial_guess, admissible).solve();
   r.start = "cold-after-warm-failed";
   r.start_detail = warm.detail;
   r.evaluations += warm.evaluations;
   return r;
 }
 
+// Problems whose events can all be switched off: the problem without them, solved from draws
+// j = 0, 1, ... (one scale-free random guess each, from the generator of (seed, j) on a stream of
+// its own) in batches of kSearchBatch on the search's threads, until a batch has converged draws
+// or search_attempts x leg_attempts draws were made. Its distinct solutions go into
+// rec.start_extremals (converged_start, eventless_draws), lowest cost at eps_start first; returns
+// the solve that found each.
+template <class Guess, class Admissible>
+std::vector<ContinuationStep> eventless_search(const Settings& s, const EventPlan& events, Guess& initial_guess,
+                                               Admissible& admissible, double started, SearchRecord& rec,
+                                               int& evaluations, Progress& progress) {
+  std::vector<ContinuationStep> found_by;
+  const int most = std::max(1, s.search_attempts) * std::max(1, s.leg_attempts);
+  std::mutex count;
+  while (rec.eventless_draws < most && rec.converged_start == 0 && search_time_left(s, started)) {
+    const int from = rec.eventless_draws, to = std::min(most, from + kSearchBatch);
+    std::vector<Result> solves(static_cast<std::size_t>(to - from));
+    std::vector<std::vector<double>> x(solves.size());
+    std::vector<char> ran(solves.size(), 0), ok(solves.size(), 0);
+    parallel_for(to - from, rec.threads, [&](int i) {
+      if (!search_time_left(s, started)) return;
+      std::mt19937_64 rng = start_generator(s.seed, from + i, kEventlessStream);
+      int e = 0;
+      ok[i] = eventless_draw(s, events, initial_guess, admissible, rng, from + i, x[i], solves[i], e);
+      ran[i] = 1;
+      const std::lock_guard<std::mutex> lock(count);
+      evaluations += e;
+    });
+    for (int i = 0; i < to - from; ++i) {
+      if (!ran[i]) {
+        rec.cut_by_time = true;
+        continue;
+      }
+      ++rec.eventless_draws;
+      if (!ok[i]) continue;
+      ++rec.converged_start;
+      StartExtremal entry;
+      entry.max_residual = solves[i].continuation.back().max_residual;
+      const std::size_t before = rec.start_extremals.size();
+      merge_extremal(rec.start_extremals, x[i], shape_of(s, x[i], s.eps_start), from + i, std::move(entry));
+      if (rec.start_extremals.size() > before) found_by.push_back(solves[i].continuation.back());
+    }
+  }
+  std::vector<std::size_t> order(found_by.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return rec.start_extremals[a].shape.cost < rec.start_extremals[b].shape.cost;
+  });
+  std::vector<StartExtremal> sorted;
+  std::vector<ContinuationStep> sorted_by;
+  for (const std::size_t i : order) {
+    sorted.push_back(std::move(rec.start_extremals[i]));
+    sorted_by.push_back(found_by[i]);
+  }
+  rec.start_extremals = std::move(sorted);
+  progress.stage(std::to_string(rec.eventless_draws) + " draws with the events off: " +
+                 std::to_string(rec.converged_start) + " converged, " + std::to_string(rec.start_extremals.size()) +
+                 " distinct");
+  return sorted_by;
+}
+
 // Problems with interior events: search_attempts complete attempts, independent of one another.
 // Each first continues onto the events from its own solution of the problem without them when
 // every event is passable (the epochs where that solution passes closest to the targets), then
 // tries the legs. The converged ones are told apart and the
-// best kept; more attempts follow while none has converged.
-Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const EventPlan& events,
+// best kept; more attempts follow while none has converged. The attempts run at
+// search_settings(fine); the extremals are polished at `fine`.
+Result events_homotopy_solve(const Settings& fine, const LegPlan& legs, const EventPlan& events,
                              const Guess& initial_guess, const Admissible& admissible) {
+  const Settings s = search_settings(fine);
   Result r;
   if (!s.warm_start.empty())
     r.start_detail = "a warm start is not used on problems with interior events: the search starts cold";
   SearchRecord& rec = r.search;
   rec.threads = search_threads(s);
-  rec.method = events.passable ? "complete attempts: events off, then continuation onto the events; else legs, then "
+  rec.method = events.passable ? "the problem with its events off searched first; then complete attempts, each a "
+                                 "continuation onto the events from its distinct solutions in turn, else legs, then "
                                  "multiple shooting"
                                : "complete attempts: legs, then multiple shooting, then single shooting";
   r.method = rec.method;
@@ -496,15 +615,20 @@ Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const Event
   int evaluations = 0;
   std::mutex count;
   std::atomic<int> done{0};
+  // The solve that found each distinct events-off solution (rec.start_extremals).
+  const std::vector<ContinuationStep> eventless_solves =
+      events.passable ? eventless_search(s, events, initial_guess, admissible, started, rec, evaluations, progress)
+                      : std::vector<ContinuationStep>{};
+  const int eventless = static_cast<int>(rec.start_extremals.size());
   const auto attempt = [&](int k, Result& a) {
     std::mt19937_64 rng = start_generator(s.seed, k);
     Shooter single(s);
     a.attempts = k + 1;  // legs_attempt: attempt 1 starts in the middle of every window
     int attempt_evaluations = 0;
-    if (events.passable) {
-      std::vector<double> eventless;
-      int uses = 0;  // epochs where its eventless solution passes closest (converges more often than drawn ones)
-      continuation_attempt(s, events, initial_guess, admissible, rng, eventless, uses, a, attempt_evaluations);
+    if (eventless > 0) {  // the events-off solutions in turn, lowest cost first
+      a.continuation.push_back(eventless_solves[k % eventless]);
+      continuation_attempt(s, events, initial_guess, admissible, rng, rec.start_extremals[k % eventless].x,
+                           k / eventless, a, attempt_evaluations);
     }
     if (a.status != "converged" && search_time_left(s, started))
       legs_attempt(s, legs, initial_guess, admissible, rng, single, a, attempt_evaluations);
@@ -526,6 +650,7 @@ Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const Event
     entry.continuation = std::move(a.continuation);
     const int i = merge_extremal(rec.extremals, a.x, shape_of(s, a.x, 0.0), k, std::move(entry));
     rec.extremals[i].from.push_back(k);
+    if (eventless > 0 && rec.start_extremals[k % eventless].arrived < 0) rec.start_extremals[k % eventless].arrived = i;
   };
   int next = 0;
   while (search_time_left(s, started) && next < s.max_attempts && (next < s.search_attempts || rec.extremals.empty())) {
@@ -539,10 +664,15 @@ Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const Event
       progress.tick(std::to_string(next + ++done) + " attempts done");
     });
     for (int i = 0; i < to - next; ++i) {
-      if (ran[i])
-        merge(next + i, results[i]);
-      else
+      if (!ran[i]) {
         rec.cut_by_time = true;
+        continue;
+      }
+      if (eventless > 0) {
+        rec.start_extremals[(next + i) % eventless].continued = true;
+        ++rec.continued;
+      }
+      merge(next + i, results[i]);
     }
     done = 0;
     next = to;
@@ -554,7 +684,7 @@ Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const Event
   r.attempts = rec.starts;
   r.evaluations = evaluations;
   r.iterations = rec.starts;
-  finish_search(s, r, started, "from " + std::to_string(rec.starts) + " complete attempts",
+  finish_search(fine, s, r, started, "from " + std::to_string(rec.starts) + " complete attempts",
                 "no attempt reached eps = 0 (" + std::to_string(rec.starts) + " attempts)", progress);
   return r;
 }

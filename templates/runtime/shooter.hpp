@@ -71,6 +71,33 @@ inline void unit_row(double* J, int n, int row, int v) {
   for (int j = 0; j < n; ++j) J[row + j * n] = j == v ? 1.0 : 0.0;
 }
 
+// Solves A v = b in place (A n x n, column-major, overwritten) by Gaussian elimination with
+// partial pivoting. False when A is singular or v not finite.
+inline bool solve_linear(int n, std::vector<double>& A, std::vector<double>& b) {
+  for (int c = 0; c < n; ++c) {
+    int p = c;
+    for (int i = c + 1; i < n; ++i)
+      if (std::fabs(A[i + c * n]) > std::fabs(A[p + c * n])) p = i;
+    if (!(std::fabs(A[p + c * n]) > 0)) return false;
+    if (p != c) {
+      for (int j = c; j < n; ++j) std::swap(A[c + j * n], A[p + j * n]);
+      std::swap(b[c], b[p]);
+    }
+    for (int i = c + 1; i < n; ++i) {
+      const double l = A[i + c * n] / A[c + c * n];
+      if (l == 0) continue;
+      for (int j = c + 1; j < n; ++j) A[i + j * n] -= l * A[c + j * n];
+      b[i] -= l * b[c];
+    }
+  }
+  for (int c = n - 1; c >= 0; --c) {
+    for (int j = c + 1; j < n; ++j) b[c] -= A[c + j * n] * b[j];
+    b[c] /= A[c + c * n];
+    if (!std::isfinite(b[c])) return false;
+  }
+  return true;
+}
+
 class Shooter {
  public:
   // The shooting function itself, with its exact Jacobian where the program has one.
@@ -134,6 +161,35 @@ class Shooter {
     } catch (const numerical_error&) {
       return false;
     }
+  }
+
+  // F and the exact Jacobian J (column-major, n x n) at (x, eps): false when the program has no
+  // exact Jacobian or the evaluation fails or is not finite.
+  bool jacobian_at(const std::vector<double>& x, double eps, std::vector<double>& F, std::vector<double>& J) {
+    if (!exact_) return false;
+    const std::size_t n = x.size();
+    F.resize(n);
+    J.resize(n * n);
+    counters().exact_jacobian_evaluations.fetch_add(1, std::memory_order_relaxed);
+    try {
+      function_(x.data(), eps, prop_, F.data(), J.data());
+    } catch (const numerical_error&) {
+      return false;
+    }
+    for (const double v : J)
+      if (!std::isfinite(v)) return false;
+    for (const double v : F)
+      if (!std::isfinite(v)) return false;
+    return true;
+  }
+
+  // F at (x, eps): false where the function fails or is not finite.
+  bool evaluate_at(const double* x, double eps, double* F) {
+    const double kept = eps_;
+    eps_ = eps;
+    const bool ok = evaluate(x, F);
+    eps_ = kept;
+    return ok;
   }
 
   int evaluations = 0;

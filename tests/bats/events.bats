@@ -115,6 +115,41 @@ sensitivity() {
   assert_jq "$sol" '([.search.extremals[] | select(.with_bounds.converged) | .with_bounds.propellant_kg] | min) as $best | ($best - .propellant_kg | fabs) < 1e-3'
 }
 
+@test "events: the problem without its events is searched once, and every attempt continues from its solutions (S10)" {
+  local sol=$BATS_FILE_TMPDIR/S10/solution.json
+  assert_jq "$sol" '.search.events_off_draws >= 1 and .search.converged_at_eps_start >= 1'
+  assert_jq "$sol" '(.search.extremals_at_eps_start | length) >= 1 and (.search.extremals_at_eps_start | all(.continued))'
+  # never more draws than the old per-attempt budget
+  assert_jq "$sol" '.search.events_off_draws <= (.settings.search_attempts * .settings.leg_attempts)'
+  # the returned extremal's record starts with the events-off solve it continued from
+  assert_jq "$sol" '.continuation[0].stage == "events off" and .continuation[0].converged'
+  assert_jq "$sol" '.search.extremals | length >= 1 and all(.polished)'
+}
+
+@test "events: a search at the integrator's own tolerance returns S03's extremal to 1e-9; one and two threads agree" {
+  local dir=$BATS_FILE_TMPDIR/S03 run a b
+  for run in fine one two; do
+    mkdir -p "$dir/$run"
+    case $run in
+      fine) jq '.search_integrator_tol = 0' "$ROOT/scenarios/S03/settings.json" >"$dir/$run/settings.json" ;;
+      one) jq '.threads = 1' "$ROOT/scenarios/S03/settings.json" >"$dir/$run/settings.json" ;;
+      two) jq '.threads = 2' "$ROOT/scenarios/S03/settings.json" >"$dir/$run/settings.json" ;;
+    esac
+    "$BIN/helios-solve" "$dir/shoot.cpp" --settings "$dir/$run/settings.json" --cache-dir "$BATS_FILE_TMPDIR/cache" \
+      --trajectory "$dir/$run/trajectory.csv" --plots "" -o "$dir/$run/solution.json" 2>/dev/null
+    assert_jq "$dir/$run/solution.json" '.status == "converged" and .max_residual < 1e-10'
+  done
+  # the default search integrates at 1e-10 and polishes at 1e-13: the same extremal
+  a=$(jq '.final_mass_kg' "$dir/solution.json")
+  b=$(jq '.final_mass_kg' "$dir/fine/solution.json")
+  awk -v a="$a" -v b="$b" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= 1e-9 * b) }'
+  # the events-off draws run in parallel and are merged in order: the thread count changes nothing
+  assert_jq "$dir/two/solution.json" '.search.threads == 2'
+  a=$(jq -c '[.x[].value], .search.events_off_draws, [.search.extremals[].objective]' "$dir/two/solution.json")
+  b=$(jq -c '[.x[].value], .search.events_off_draws, [.search.extremals[].objective]' "$dir/one/solution.json")
+  [[ $a == "$b" ]] || { echo "two threads: $a" >&2; echo "one thread: $b" >&2; false; }
+}
+
 @test "events: S10's periapsis multiplier is the sensitivity of the final mass to the bound; the flyby epoch is stationary" {
   local fd claim first curvature
   # a shift of 1e-3: the rows of the 2201-day legs carry integration noise near 1e-11

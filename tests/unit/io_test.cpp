@@ -197,6 +197,13 @@ TEST(Io, SettingsOutOfRangeAreRefusedNamingTheField) {
   EXPECT_NE(refused(json::parse(R"({"max_attempts": 2.5})")).find("at /max_attempts"), std::string::npos);
   EXPECT_NE(refused(json::parse(R"({"max_attempts": 1e12})")).find("at /max_attempts"), std::string::npos);
   EXPECT_NE(refused(json::parse(R"({"seed": "1"})")).find("at /seed"), std::string::npos);
+  // the search's integrator tolerance: 0 (the integrator's own) up to 1e-3
+  EXPECT_EQ(refused(json::parse(R"({"search_integrator_tol": 0})")), "");
+  EXPECT_EQ(refused(json::parse(R"({"search_integrator_tol": 1e-9})")), "");
+  EXPECT_NE(refused(json::parse(R"({"search_integrator_tol": -1e-10})")).find("at /search_integrator_tol"),
+            std::string::npos);
+  EXPECT_NE(refused(json::parse(R"({"search_integrator_tol": 0.1})")).find("at /search_integrator_tol"),
+            std::string::npos);
 }
 
 TEST(Io, CliRejectsUnknownOptionsAndCountsInputs) {
