@@ -119,6 +119,9 @@ struct Settings {
   // The integrator's rtol and atol during the search (never tighter than rtol and atol; 0: those):
   // every distinct extremal it reaches at eps = 0 is then polished at rtol and atol.
   double search_tol = 1e-10;
+  // Problems with interior events: the solution polished by multiple shooting (nodes.hpp), with
+  // nodes at most this many days apart on average (0: not polished).
+  double node_spacing_days = 200;
   int max_steps = 200000;  // integrator steps per arc
   // The shooting Jacobian: "exact" (the program's shooting_jacobian, hybrj) where the program has
   // one, else "finite-difference" (hybrd's forward differences).
@@ -246,6 +249,26 @@ class Propagator {
   std::vector<Sample>* samples = nullptr;  // when set, every accepted step is recorded
   std::vector<Switch>* switches = nullptr;
   double max_step = INFINITY;  // limits steps when recording, for smooth plots
+
+  // Multiple shooting (nodes.hpp): where set, each of the RESIDUAL module's arcs is propagated in
+  // `segments` equal parts, and at every node (the start of each arc after the first, and between
+  // parts) it continues from the node's values (ny each, in order) instead of its own, which minus
+  // the node's are written to the defects; with `reached` instead, its own values (and the node's
+  // time in `times`) are only appended.
+  struct ArcNodes {
+    int segments = 1;
+    int arcs = 0, used = 0;  // arcs begun and nodes passed in this evaluation
+    const double* values = nullptr;
+    double* defects = nullptr;
+    const Dual* dual_values = nullptr;
+    Dual* dual_defects = nullptr;
+    std::vector<double>* reached = nullptr;
+    std::vector<double> times;
+  };
+  ArcNodes* nodes = nullptr;
+  // The next propagate continues the last arc from a node inside it: not a new arc, and its first
+  // sample is not recorded again.
+  bool continues_arc = false;
 
   // With `tangents`: also carries k tangent directions of z = (y, lambda0) by the variational
   // equations (the same steps as y, so they are the derivatives of the integration itself), with
@@ -473,6 +496,12 @@ struct Result {
   std::vector<double> x;
   std::vector<double> x_start;  // the solution at settings.eps_start that eps was continued from to x
   std::vector<double> F;
+  // Multiple shooting (nodes.hpp): the state and costates at each node (ny each; empty: single
+  // shooting), their continuity defects, the nodes' times, and max|F| of x alone by single
+  // shooting.
+  std::vector<double> nodes, continuity, node_times;
+  int node_segments = 1;  // each arc's parts
+  double single_shooting_residual = NAN;
   double eps = 1;
   double max_residual = 0;
   int evaluations = 0;

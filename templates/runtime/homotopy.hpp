@@ -69,19 +69,26 @@ bool homotopy_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& 
   return false;
 }
 
-// A solution re-propagated with every step recorded (steps of at most max_step) and every switch;
+// A solution re-propagated with every step recorded (steps of at most max_step) and every switch,
+// continued from `nodes` where given (multiple shooting, each arc in `segments` parts: nodes.hpp);
 // throws numerical_error where the integration fails.
 struct RecordedPath {
   std::vector<Sample> samples;
   std::vector<Switch> switches;
 };
-inline RecordedPath recorded_path(const Settings& s, const std::vector<double>& x, double eps, double max_step) {
+inline RecordedPath recorded_path(const Settings& s, const std::vector<double>& x, double eps, double max_step,
+                                  const std::vector<double>& nodes = {}, int segments = 1) {
   RecordedPath path;
   Propagator prop(s);
   prop.samples = &path.samples;
   prop.switches = &path.switches;
   prop.max_step = max_step;
-  std::vector<double> F(kProblem.num_vars);
+  std::vector<double> F(kProblem.num_vars), defects(nodes.size());
+  Propagator::ArcNodes arc_nodes;
+  arc_nodes.segments = segments;
+  arc_nodes.values = nodes.data();
+  arc_nodes.defects = defects.data();
+  if (!nodes.empty()) prop.nodes = &arc_nodes;
   shooting_function(x.data(), eps, prop, F.data());
   return path;
 }

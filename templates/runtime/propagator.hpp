@@ -11,7 +11,9 @@ Propagator::~Propagator() = default;
 
 void Propagator::propagate(double t0, double t1, double* y, const Multipliers& mult, Tangents* tangents) {
   const IntegrationTimer timer;
-  ++arc_;
+  const bool new_arc = !continues_arc;
+  continues_arc = false;
+  if (new_arc) ++arc_;
   Mode mode = mode_at(y, mult);
   double t = t0;
   double h = std::min(t1 - t0, 1e-3 * (1 + std::fabs(t1 - t0)));
@@ -22,7 +24,7 @@ void Propagator::propagate(double t0, double t1, double* y, const Multipliers& m
     control_in_mode(yy, mode, mult, control.data());
     dynamics(tt, yy, control.data(), mult, dy);
   };
-  record(t, y, mode, mult);
+  if (new_arc) record(t, y, mode, mult);
   int steps = 0;
   while (t < t1) {
     if (++steps > settings_.max_steps) throw numerical_error("integrator exceeded max_steps");
@@ -276,8 +278,55 @@ void Propagator::record(double t, const double* y, Mode mode, const Multipliers&
 
 // ---- The RESIDUAL module's calls on double and on Dual ----------------------------------------
 
+namespace {
+
+inline double value_of(double a) {
+  return a;
+}
+inline double value_of(const Dual& a) {
+  return a.v;
+}
+
+// An arc under multiple shooting (Propagator::ArcNodes): at each node it reaches (its start when
+// it is not the first arc, then every 1/segments of it) y's values are recorded, or replaced by
+// the node's with their difference as the defect; between nodes, `segment(from, to, y, inside)`
+// propagates (inside: from a node inside the arc).
+template <class T, class Segment>
+void propagate_by_nodes(Propagator::ArcNodes& nodes, const T& t0, const T& t1, T* y, const T* values, T* defects,
+                        Segment&& segment) {
+  const int n = ny();
+  const auto node = [&](const T& t) {
+    const int k = nodes.used++;
+    if (nodes.reached) {
+      for (int i = 0; i < n; ++i) nodes.reached->push_back(value_of(y[i]));
+      nodes.times.push_back(value_of(t));
+      return;
+    }
+    for (int i = 0; i < n; ++i) {
+      defects[k * n + i] = y[i] - values[k * n + i];
+      y[i] = values[k * n + i];
+    }
+  };
+  if (nodes.arcs++ > 0) node(t0);
+  const int segments = std::max(1, nodes.segments);
+  T from = t0;
+  for (int k = 1; k <= segments; ++k) {
+    const T to = k == segments ? t1 : t0 + (t1 - t0) * (static_cast<double>(k) / segments);
+    segment(from, to, y, k > 1);
+    if (k < segments) node(to);
+    from = to;
+  }
+}
+
+}  // namespace
+
 void propagate(Propagator& prop, double t0, double t1, double* y, const Multipliers& mult) {
-  prop.propagate(t0, t1, y, mult);
+  if (!prop.nodes) return prop.propagate(t0, t1, y, mult);
+  propagate_by_nodes(*prop.nodes, t0, t1, y, prop.nodes->values, prop.nodes->defects,
+                     [&](double from, double to, double* z, bool inside) {
+                       prop.continues_arc = inside;
+                       prop.propagate(from, to, z, mult);
+                     });
 }
 
 namespace {
@@ -289,12 +338,10 @@ void optimal_rhs(double t, const double* y, const Multipliers& mult, double* f) 
   dynamics(t, y, control.data(), mult, f);
 }
 
-}  // namespace
-
 // y(t1) from y(t0) with its derivatives: d y(t1) = Phi (d y(t0) - f(t0) d t0) + f(t1) d t1, where
 // Phi carries z = (y, lambda0). Only the tangent directions that are not zero are propagated; when
 // there are more of them than z has components, Phi itself is, and multiplied after.
-void propagate(Propagator& prop, const Dual& t0, const Dual& t1, Dual* y, const DualMultipliers& m) {
+void propagate_dual(Propagator& prop, const Dual& t0, const Dual& t1, Dual* y, const DualMultipliers& m) {
   const int n = ny(), nz = n + 1, nv = ad::width();
   const Multipliers mult{m.lambda0.v, m.eps};
   std::array<double, kMaxNY> yv{}, f{};
@@ -333,6 +380,18 @@ void propagate(Propagator& prop, const Dual& t0, const Dual& t1, Dual* y, const 
     }
     y[i] = ad::with_derivatives(yv[i], d.data());
   }
+}
+
+}  // namespace
+
+// y(t1) from y(t0) with its derivatives (propagate_dual), from node to node under multiple shooting.
+void propagate(Propagator& prop, const Dual& t0, const Dual& t1, Dual* y, const DualMultipliers& m) {
+  if (!prop.nodes) return propagate_dual(prop, t0, t1, y, m);
+  propagate_by_nodes(*prop.nodes, t0, t1, y, prop.nodes->dual_values, prop.nodes->dual_defects,
+                     [&](const Dual& from, const Dual& to, Dual* z, bool inside) {
+                       prop.continues_arc = inside;
+                       propagate_dual(prop, from, to, z, m);
+                     });
 }
 
 double optimal_hamiltonian(double t, const double* y, const Multipliers& mult) {

@@ -58,6 +58,7 @@ inline Settings read_settings(const std::string& path) {
   s.search_time_s = j.value("search_time_s", s.search_time_s);
   s.threads = j.value("threads", s.threads);
   s.search_tol = j.value("search_integrator_tol", s.search_tol);
+  s.node_spacing_days = j.value("node_spacing_days", s.node_spacing_days);
   s.jacobian = j.value("jacobian", s.jacobian);
   if (j.contains("warm_start")) s.warm_start = warm_start_of(j.at("warm_start"));
   return s;
@@ -91,7 +92,7 @@ struct TrajectorySummary {
 
 // Re-propagates the solution, recording samples and switches, and writes the trajectory CSV.
 inline TrajectorySummary trajectory(const Settings& s, const Result& r, const std::string& csv_path) {
-  const RecordedPath path = recorded_path(s, r.x, r.eps, (kProblem.tf - kProblem.t0) / 500);
+  const RecordedPath path = recorded_path(s, r.x, r.eps, (kProblem.tf - kProblem.t0) / 500, r.nodes, r.node_segments);
   const std::vector<Sample>& samples = path.samples;
   std::ostringstream csv;
   csv.precision(15);
@@ -258,22 +259,31 @@ inline void steps_record(const Result& r, nlohmann::ordered_json& out) {
 
 // What the shooting function resolves at the solution: the largest |F_i(x') - F_i(x)| over the
 // x' whose every component is k = 1..4 representable doubles away from x's (alternating in
-// direction). A max_residual below it is luck, not accuracy: on S10 (2201 days to Jupiter) moving
-// x by round-off moves the arrival rows by ~1e-10, at any integrator tolerance. -1 where F cannot
-// be evaluated there.
+// direction); with multiple shooting (nodes.hpp), of its variables and rows, the nodes too. A
+// max_residual below it is luck, not accuracy: on S10 (2201 days to Jupiter past a swing-by)
+// moving x by round-off moves single shooting's arrival rows by ~1e-10, at any integrator
+// tolerance. -1 where F cannot be evaluated there.
 inline double residual_noise(const Settings& s, const Result& r) {
-  const int n = kProblem.num_vars;
+  std::vector<double> solution = r.x;
+  solution.insert(solution.end(), r.nodes.begin(), r.nodes.end());
+  const int n = static_cast<int>(solution.size());
+  const auto evaluate = [&](const std::vector<double>& z, Propagator& prop, double* F) {
+    if (r.nodes.empty())
+      shooting_function(z.data(), r.eps, prop, F);
+    else
+      shooting_with_nodes(z.data(), r.eps, r.node_segments, prop, F);
+  };
   Propagator prop(s);
   std::vector<double> at(static_cast<std::size_t>(n)), moved(at), x(at);
   double noise = 0;
   try {
-    shooting_function(r.x.data(), r.eps, prop, at.data());
+    evaluate(solution, prop, at.data());
     for (int k = 1; k <= 4; ++k) {
       for (int i = 0; i < n; ++i) {
-        x[i] = r.x[i];
+        x[i] = solution[i];
         for (int ulp = 0; ulp < k; ++ulp) x[i] = std::nextafter(x[i], (i + k) % 2 ? INFINITY : -INFINITY);
       }
-      shooting_function(x.data(), r.eps, prop, moved.data());
+      evaluate(x, prop, moved.data());
       for (int i = 0; i < n; ++i) noise = std::max(noise, std::fabs(moved[i] - at[i]));
     }
   } catch (const numerical_error&) {
@@ -304,6 +314,20 @@ inline void solution_record(const Settings& s, const Result& r, const std::strin
   for (int i = 0; i < kProblem.num_vars; ++i) x.push_back({{"name", kProblem.variable_names[i]}, {"value", r.x[i]}});
   out["residuals"] = F;
   out["x"] = x;
+  if (!r.nodes.empty()) {  // multiple shooting (nodes.hpp)
+    nlohmann::ordered_json nodes = nlohmann::ordered_json::array(), continuity = nlohmann::ordered_json::array(),
+                           times = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < r.nodes.size(); ++i) {
+      nodes.push_back({{"name", node_name(static_cast<int>(i))}, {"value", r.nodes[i]}});
+      continuity.push_back({{"name", node_name(static_cast<int>(i))}, {"value", r.continuity[i]}});
+    }
+    for (const double t : r.node_times) times.push_back(t * kProblem.time_unit_days);
+    out["multiple_shooting"] = {{"node_t_days", times},
+                                {"segments_per_arc", r.node_segments},
+                                {"nodes", nodes},
+                                {"continuity", continuity},
+                                {"single_shooting_max_residual", recorded(r.single_shooting_residual)}};
+  }
   out["switches"] = nlohmann::ordered_json::array();
   for (const auto& w : path.switches)
     out["switches"].push_back({{"t_days", w.t * kProblem.time_unit_days}, {"throttle_after", w.throttle_after}});
@@ -378,7 +402,8 @@ int run(int argc, char** argv) {
   }
   const Settings s = read_settings(settings_path);
   wall_seconds();
-  const Result r = solve_problem(s);
+  Result r = solve_problem(s);
+  polish_by_nodes(s, r);
   write_atomic(outcome_path, outcome_record(s, r, trajectory_path).dump(2) + "\n");
   return 0;
 }

@@ -29,5 +29,6 @@
 #include "continuation.hpp"
 #include "bounds.hpp"
 #include "search.hpp"
+#include "nodes.hpp"
 #include "report.hpp"
 // clang-format on

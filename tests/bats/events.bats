@@ -107,9 +107,14 @@ sensitivity() {
   assert_jq "$d" '[.shooting.variables[] | select(.role == "parameter") | .name] == ["delta_mars", "phi_mars"]'
   assert_jq "$d" '.shooting.equations[] | select(.name == "psi_mars_6") | .inequality.multiplier == "nu_mars_6"'
   assert_jq "$sol" '.passes == 2'
-  # 2201 days to Jupiter: moving x by round-off moves the arrival rows by ~1e-10, so a max|F| of
-  # 1e-11 is the best of that band, and solution.json says so
-  assert_jq "$sol" '.residual_noise > 1e-11 and .max_residual < .residual_noise'
+  # 2201 days to Jupiter past a swing-by: x moved by round-off moves single shooting's arrival
+  # rows by ~1e-10; multiple shooting (a node at Mars and every ~200 days) resolves every row to
+  # well below 1e-12, continuity included, and says what x alone gives by single shooting
+  assert_jq "$sol" '.max_residual <= 1e-12 and .residual_noise < 1e-12'
+  assert_jq "$sol" '.multiple_shooting.single_shooting_max_residual > 1e-11'
+  assert_jq "$sol" '[.multiple_shooting.continuity[].value | fabs] | max <= 1e-12'
+  assert_jq "$sol" '.multiple_shooting.node_t_days | length == 11 and . == sort and first > 0 and last < 2201'
+  assert_jq "$sol" '(.multiple_shooting.nodes | length) == 11 * 14'
   assert_jq "$sol" '.bounds[] | select(.name == "psi_mars_6") | .first_pass_value > 0 and .active and .multiplier > 0 and (.value | fabs) < 1e-10'
   # the passes start from each of pass 1's distinct extremals; the solution is the best place they led to
   assert_jq "$sol" '([.search.extremals[] | select(.with_bounds.converged) | .with_bounds.propellant_kg] | min) as $best | ($best - .propellant_kg | fabs) < 1e-3'
@@ -148,6 +153,22 @@ sensitivity() {
   a=$(jq -c '[.x[].value], .search.events_off_draws, [.search.extremals[].objective]' "$dir/two/solution.json")
   b=$(jq -c '[.x[].value], .search.events_off_draws, [.search.extremals[].objective]' "$dir/one/solution.json")
   [[ $a == "$b" ]] || { echo "two threads: $a" >&2; echo "one thread: $b" >&2; false; }
+}
+
+@test "events: multiple shooting is kept only where it lowers max|F|, and node_spacing_days 0 turns it off (S09)" {
+  local dir=$BATS_FILE_TMPDIR/S09 single
+  # S09's nodes lowered max|F|: every row of the record, continuity included, within max_residual
+  assert_jq "$dir/solution.json" '.multiple_shooting.single_shooting_max_residual > .max_residual'
+  assert_jq "$dir/solution.json" '([.residuals[].value | fabs] + [.multiple_shooting.continuity[].value | fabs] | max) == .max_residual'
+  mkdir -p "$dir/single"
+  jq '.node_spacing_days = 0' "$ROOT/scenarios/S09/settings.json" >"$dir/single/settings.json"
+  "$BIN/helios-solve" "$dir/shoot.cpp" --settings "$dir/single/settings.json" --cache-dir "$BATS_FILE_TMPDIR/cache" \
+    --trajectory "$dir/single/trajectory.csv" --plots "" -o "$dir/single/solution.json" 2>/dev/null
+  assert_jq "$dir/single/solution.json" '.status == "converged" and (has("multiple_shooting") | not)'
+  single=$(jq '.final_mass_kg' "$dir/single/solution.json")
+  assert_jq "$dir/solution.json" "(.final_mass_kg - $single) | fabs <= 1e-9 * $single"
+  # the trajectory is one curve: no time repeats inside an arc (the nodes add no sample)
+  [[ $(cut -d, -f1 "$dir/trajectory.csv" | sort | uniq -d | wc -l) -eq $(cut -d, -f1 "$dir/single/trajectory.csv" | sort | uniq -d | wc -l) ]]
 }
 
 @test "events: S10's periapsis multiplier is the sensitivity of the final mass to the bound; the flyby epoch is stationary" {

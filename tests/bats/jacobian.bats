@@ -9,7 +9,9 @@
 #     switches' and the free times' corrections) against finite differences of the shooting
 #     function (tests/bats/shooting_jacobian_check.cpp), at random starts at eps = 1 (smooth) and
 #     eps = 0 (bang-bang: switching arcs), and at the scenario's solution
-#     (tests/fixtures/solutions); within 1e-6 relative to 1 + the row's largest entry.
+#     (tests/fixtures/solutions); within 1e-6 relative to 1 + the row's largest entry; and for
+#     S07 and S10 the multiple-shooting system's (nodes.hpp: the state and costates at the nodes as
+#     variables, their continuity as rows).
 
 load test_helper
 
@@ -84,6 +86,23 @@ shooting_check() {
     read -r -a x < "$ROOT/tests/fixtures/solutions/$s.txt"
     run shooting_check "$PWD/$s.cpp" 0 0 1 "${x[@]}"
     echo "$s at its solution: $output"
+    [ "$status" -eq 0 ]
+    [[ $output == "points 1 skipped 0 "* ]]
+  done
+}
+
+@test "jacobian: the multiple-shooting system's Jacobian (nodes at the events and inside the arcs) agrees with finite differences" {
+  local s x
+  export HELIOS_NODE_SEGMENTS=3
+  for s in S07 S10; do
+    program "$s" auto
+    run shooting_check "$PWD/$s.cpp" 0 1 1
+    echo "$s with nodes, a random start: $output"
+    [ "$status" -eq 0 ]
+    [[ $output == "points 1 skipped 0 "* ]]
+    read -r -a x < "$ROOT/tests/fixtures/solutions/$s.txt"
+    run shooting_check "$PWD/$s.cpp" 0 0 1 "${x[@]}"
+    echo "$s with nodes, at its solution: $output"
     [ "$status" -eq 0 ]
     [[ $output == "points 1 skipped 0 "* ]]
   done

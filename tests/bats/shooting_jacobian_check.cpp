@@ -3,6 +3,10 @@
 // differences of the shooting function: built by tests/bats/jacobian.bats with the program's
 // shoot.cpp included (its main renamed), linked with libhelios-runtime.a.
 // usage: shooting_jacobian_check EPS POINTS SEED [X0 X1 ...]
+//   With HELIOS_NODE_SEGMENTS=K (a problem with interior events): the multiple-shooting system
+//   instead (the runtime's nodes.hpp, built here on the same public calls): z = (x, the state and
+//   costates at every node, each arc in K parts), the nodes moved off the trajectory by up to 1e-6
+//   relative so that every continuity row is in play.
 //   POINTS random starts of the SOLVE module's initial_guess (points where the shooting function
 //   cannot be evaluated are skipped and counted), then X when given (a solution's variables).
 // Prints "points N skipped K max_error E" (the largest |J - J_fd| over every entry, relative to
@@ -15,6 +19,15 @@
 // D(1e-7) by 2e-7; at S10's, D(1e-7) by 9e-2 and D(1e-10) by 1e-6, each converging to J), and its
 // noise grows as the integrator's tolerance (1e-13) over h, which a free final time's row (the
 // steps move with tf) multiplies by 1e2-1e3.
+#include "helios_runtime.hpp"
+
+namespace helios_rt {
+// Weak as in the runtime library: a program without interior events defines no legs.
+void shooting_legs(const double* x, double eps, Propagator& prop, double* F, const Legs* legs) __attribute__((weak));
+void shooting_legs_dual(const Dual* x, double eps, Propagator& prop, Dual* F, const LegsOf<Dual>* legs)
+    __attribute__((weak));
+}  // namespace helios_rt
+
 #define main shoot_main
 #include SHOOT_CPP
 #undef main
@@ -24,6 +37,53 @@
 namespace {
 
 using namespace helios_rt;
+
+int node_segments = 0;  // HELIOS_NODE_SEGMENTS: the multiple-shooting system (0: single shooting)
+
+// The shooting function of z: x alone, or (x, nodes) with each arc in node_segments parts.
+void evaluate(const std::vector<double>& z, double eps, Propagator& prop, double* F) {
+  if (node_segments == 0) return shooting_function(z.data(), eps, prop, F);
+  const int N = kProblem.num_vars;
+  Propagator::ArcNodes nodes;
+  nodes.segments = node_segments;
+  nodes.values = z.data() + N;
+  nodes.defects = F + N;
+  prop.nodes = &nodes;
+  shooting_legs(z.data(), eps, prop, F, nullptr);
+  prop.nodes = nullptr;
+}
+
+// Its exact Jacobian (column-major, z.size() squared).
+void exact_jacobian(const std::vector<double>& z, double eps, Propagator& prop, double* F, double* J) {
+  if (node_segments == 0) return shooting_jacobian(z.data(), eps, prop, F, J);
+  const int N = kProblem.num_vars;
+  dual_jacobian(static_cast<int>(z.size()), z.data(), F, J, [&](const Dual* zd, Dual* Fd) {
+    Propagator::ArcNodes nodes;
+    nodes.segments = node_segments;
+    nodes.dual_values = zd + N;
+    nodes.dual_defects = Fd + N;
+    prop.nodes = &nodes;
+    shooting_legs(zd, eps, prop, Fd, static_cast<const LegsOf<Dual>*>(nullptr));
+    prop.nodes = nullptr;
+  });
+}
+
+// x with its nodes appended: the values the propagation reaches there, each moved by up to 1e-6
+// relative (x alone without nodes).
+std::vector<double> with_nodes(const std::vector<double>& x, double eps, Propagator& prop, std::mt19937_64& rng) {
+  if (node_segments == 0) return x;
+  std::vector<double> reached, F(static_cast<std::size_t>(kProblem.num_vars));
+  Propagator::ArcNodes nodes;
+  nodes.segments = node_segments;
+  nodes.reached = &reached;
+  prop.nodes = &nodes;
+  shooting_function(x.data(), eps, prop, F.data());
+  prop.nodes = nullptr;
+  std::uniform_real_distribution<double> move(-1e-6, 1e-6);
+  std::vector<double> z = x;
+  for (const double v : reached) z.push_back(v * (1 + move(rng)));
+  return z;
+}
 
 // The largest |a - b| over rows i of entries i + j n (column-major), relative to 1 + row max |a|.
 double row_error(const std::vector<double>& a, const std::vector<double>& b, int n) {
@@ -48,8 +108,8 @@ bool central_differences(const std::vector<double>& x, double eps, double step, 
       std::vector<double> xp = x, xm = x;
       xp[j] += h;
       xm[j] -= h;
-      shooting_function(xp.data(), eps, prop, up.data());
-      shooting_function(xm.data(), eps, prop, down.data());
+      evaluate(xp, eps, prop, up.data());
+      evaluate(xm, eps, prop, down.data());
       for (int i = 0; i < n; ++i) J[i + j * n] = (up[i] - down[i]) / (2 * h);
     }
   } catch (const numerical_error&) {
@@ -86,23 +146,32 @@ int main(int argc, char** argv) {
     for (int j = 0; j < n; ++j) x[j] = std::atof(argv[4 + j]);
     xs.push_back(x);
   }
+  if (const char* k = std::getenv("HELIOS_NODE_SEGMENTS")) node_segments = std::atoi(k);
   const Settings settings;
   Propagator prop(settings);
   double worst = 0;
   int checked = 0, skipped = 0;
-  for (const auto& x : xs) {
-    std::vector<double> F(n), J(n * n), J_fd(n * n), J_h(n * n);
+  for (const auto& x0 : xs) {
+    std::vector<double> x;
     bool ok = true;
     try {
-      shooting_jacobian(x.data(), eps, prop, F.data(), J.data());
+      x = with_nodes(x0, eps, prop, rng);
+    } catch (const numerical_error&) {
+      ok = false;
+      x = x0;
+    }
+    const int m = static_cast<int>(x.size());
+    std::vector<double> F(m), J(m * m), J_fd(m * m), J_h(m * m);
+    try {
+      if (ok) exact_jacobian(x, eps, prop, F.data(), J.data());
     } catch (const numerical_error&) {
       ok = false;
     }
-    std::vector<double> J_2h(n * n);
+    std::vector<double> J_2h(m * m);
     std::fill(J_fd.begin(), J_fd.end(), INFINITY);
     for (const double step : {1e-4, 1e-6, 1e-8, 1e-10}) {
       ok = ok && central_differences(x, eps, step, prop, J_h) && central_differences(x, eps, 2 * step, prop, J_2h);
-      for (int k = 0; ok && k < n * n; ++k)
+      for (int k = 0; ok && k < m * m; ++k)
         for (const double estimate : {J_h[k], (4 * J_h[k] - J_2h[k]) / 3})
           if (!(std::fabs(J_fd[k] - J[k]) <= std::fabs(estimate - J[k]))) J_fd[k] = estimate;
     }
@@ -111,7 +180,7 @@ int main(int argc, char** argv) {
       continue;
     }
     ++checked;
-    worst = std::max(worst, row_error(J, J_fd, n));
+    worst = std::max(worst, row_error(J, J_fd, m));
   }
   std::printf("points %d skipped %d max_error %.3e\n", checked, skipped, worst);
   return checked > 0 && worst <= 1e-6 ? 0 : 1;
