@@ -327,10 +327,9 @@ class EventContinuation {
     std::vector<double> previous, tangent;  // the solution before x on the path (none before the first kappa)
     double log_previous = 0, log_current = 0, current = 0;
     bool on_path = false;  // x solves at log_current (before the first kappa it holds p = 0)
-    bool tangent_ok = false;
-    const auto path_tangent = [&](double value) {
+    bool tangent_ok = false;  // `tangent` is the path's at x (kappa = current)
+    const auto path_tangent = [&] {
       std::vector<double> G, J, dG(N, 0.0);
-      kappa = value;
       if (!shooter.jacobian_at(x_, eps_, G, J)) return false;
       for (const auto& ev : plan_.events)
         for (const auto& [v, row] : ev.parameters) dG[row] = weight[v] * x_[plan_.multiplier] * x_[v];
@@ -360,7 +359,7 @@ class EventContinuation {
       }
       x_ = trial;
       current = value;
-      tangent_ok = value > 0 && path_tangent(value);
+      tangent_ok = value > 0 && path_tangent();
       return true;
     });
     evaluations_ += shooter.evaluations;

@@ -13,7 +13,9 @@
 //      next ones, while none has arrived), and the distinct extremals at eps = 0 are compared:
 //      the lowest objective is returned.
 // Problems with interior events search the same way over search_attempts complete attempts
-// (each a continuation onto the events or a solve by legs, events_homotopy_solve). Start k draws
+// (each a continuation onto the events from a solution of the problem without them, searched
+// first, or a solve by legs: events_homotopy_solve). The search integrates at search_tol and
+// polishes every extremal at eps = 0 at the integrator's own tolerance before comparing. Start k draws
 // its guess from a generator seeded by (seed, k), and the outcomes are merged in start order, so
 // the search is deterministic for a given seed whatever the thread count, unless its time budget
 // (search_time_s, time_limit_s) cuts it, which the record says.
@@ -592,11 +594,12 @@ std::vector<ContinuationStep> eventless_search(const Settings& s, const EventPla
 }
 
 // Problems with interior events: search_attempts complete attempts, independent of one another.
-// Each first continues onto the events from its own solution of the problem without them when
-// every event is passable (the epochs where that solution passes closest to the targets), then
-// tries the legs. The converged ones are told apart and the
-// best kept; more attempts follow while none has converged. The attempts run at
-// search_settings(fine); the extremals are polished at `fine`.
+// When every event is passable, the problem without them is searched first (eventless_search) and
+// attempt k continues onto the events from its distinct solutions in turn (k mod their number;
+// the first attempt from each places the epochs where it passes closest to the targets); an
+// attempt that does not converge so tries the legs. The converged ones are told apart and the best
+// kept; more attempts follow while none has converged. The attempts run at search_settings(fine);
+// the extremals are polished at `fine`.
 Result events_homotopy_solve(const Settings& fine, const LegPlan& legs, const EventPlan& events,
                              const Guess& initial_guess, const Admissible& admissible) {
   const Settings s = search_settings(fine);
