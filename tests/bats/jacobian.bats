@@ -44,6 +44,16 @@ shooting_check() {
   ./shooting_jacobian_check "$@"
 }
 
+# one_point_agrees LABEL SHOOT_CPP ARGS... -> shooting_check on exactly one point, which agrees
+one_point_agrees() {
+  local label=$1
+  shift
+  run shooting_check "$@"
+  echo "$label: $output"
+  [ "$status" -eq 0 ]
+  [[ $output == "points 1 skipped 0 "* ]]
+}
+
 @test "jacobian: every scenario's generated Jacobian agrees with central differences of its dynamics" {
   local s
   for s in $(ls "$ROOT/scenarios" | grep -E '^S[0-9]+$'); do
@@ -78,16 +88,10 @@ shooting_check() {
   for s in $(ls "$ROOT/scenarios" | grep -E '^S[0-9]+$'); do
     program "$s" auto
     for eps in 1 0; do
-      run shooting_check "$PWD/$s.cpp" "$eps" 1 1
-      echo "$s eps $eps: $output"
-      [ "$status" -eq 0 ]
-      [[ $output == "points 1 skipped 0 "* ]]
+      one_point_agrees "$s eps $eps" "$PWD/$s.cpp" "$eps" 1 1
     done
     read -r -a x < "$ROOT/tests/fixtures/solutions/$s.txt"
-    run shooting_check "$PWD/$s.cpp" 0 0 1 "${x[@]}"
-    echo "$s at its solution: $output"
-    [ "$status" -eq 0 ]
-    [[ $output == "points 1 skipped 0 "* ]]
+    one_point_agrees "$s at its solution" "$PWD/$s.cpp" 0 0 1 "${x[@]}"
   done
 }
 
@@ -96,15 +100,9 @@ shooting_check() {
   export HELIOS_NODE_SEGMENTS=3
   for s in S07 S10; do
     program "$s" auto
-    run shooting_check "$PWD/$s.cpp" 0 1 1
-    echo "$s with nodes, a random start: $output"
-    [ "$status" -eq 0 ]
-    [[ $output == "points 1 skipped 0 "* ]]
+    one_point_agrees "$s with nodes, a random start" "$PWD/$s.cpp" 0 1 1
     read -r -a x < "$ROOT/tests/fixtures/solutions/$s.txt"
-    run shooting_check "$PWD/$s.cpp" 0 0 1 "${x[@]}"
-    echo "$s with nodes, at its solution: $output"
-    [ "$status" -eq 0 ]
-    [[ $output == "points 1 skipped 0 "* ]]
+    one_point_agrees "$s with nodes, at its solution" "$PWD/$s.cpp" 0 0 1 "${x[@]}"
   done
 }
 
