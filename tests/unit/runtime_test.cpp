@@ -159,6 +159,77 @@ TEST(Runtime, HamiltonianIsConstantAlongExtremalsWithSwitches) {
   EXPECT_GT(total_switches, 0) << "the test must exercise switches";
 }
 
+// Multiple shooting (Propagator::ArcNodes, the RESIDUAL module's propagate): an arc in parts
+// records the values it reaches at each node; started from those values it reaches the same end
+// with every continuity defect exactly 0, and the end agrees with the undivided propagation to
+// the integrator's accuracy. A node moved by d moves its own defect by -d and the next one's; the
+// end depends on the last node alone.
+TEST(Runtime, ArcNodesRecordReplaceAndMeasureContinuity) {
+  helios_rt::Settings settings;
+  const Multipliers m{0.8, 0.0};
+  const auto start = random_extremal_start(3);
+  auto whole = start;
+  {
+    helios_rt::Propagator prop(settings);
+    helios_rt::propagate(prop, 0.0, 0.5, whole.data(), m);
+  }
+  std::vector<double> reached;
+  auto recorded_end = start;
+  {
+    helios_rt::Propagator prop(settings);
+    helios_rt::Propagator::ArcNodes nodes;
+    nodes.segments = 4;
+    nodes.reached = &reached;
+    prop.nodes = &nodes;
+    helios_rt::propagate(prop, 0.0, 0.5, recorded_end.data(), m);
+    EXPECT_EQ(nodes.used, 3);
+    ASSERT_EQ(nodes.times.size(), 3u);
+    EXPECT_DOUBLE_EQ(nodes.times[0], 0.125);
+    EXPECT_DOUBLE_EQ(nodes.times[2], 0.375);
+  }
+  ASSERT_EQ(reached.size(), 3u * kNY);
+  {  // the parts are one arc: no repeated sample, one arc index
+    std::vector<helios_rt::Sample> samples;
+    std::vector<double> again;
+    helios_rt::Propagator prop(settings);
+    helios_rt::Propagator::ArcNodes nodes;
+    nodes.segments = 4;
+    nodes.reached = &again;
+    prop.nodes = &nodes;
+    prop.samples = &samples;
+    auto y = start;
+    helios_rt::propagate(prop, 0.0, 0.5, y.data(), m);
+    ASSERT_GT(samples.size(), 4u);
+    for (std::size_t i = 1; i < samples.size(); ++i) {
+      EXPECT_GT(samples[i].t, samples[i - 1].t) << i;
+      EXPECT_EQ(samples[i].arc, samples[0].arc) << i;
+    }
+  }
+  for (int i = 0; i < kNY; ++i) EXPECT_NEAR(recorded_end[i], whole[i], 1e-10 * (1 + std::fabs(whole[i]))) << i;
+  const auto from_nodes = [&](const std::vector<double>& values, std::vector<double>& defects) {
+    auto y = start;
+    helios_rt::Propagator prop(settings);
+    helios_rt::Propagator::ArcNodes nodes;
+    nodes.segments = 4;
+    nodes.values = values.data();
+    nodes.defects = defects.data();
+    prop.nodes = &nodes;
+    helios_rt::propagate(prop, 0.0, 0.5, y.data(), m);
+    return y;
+  };
+  std::vector<double> defects(reached.size(), 1.0);
+  const auto end = from_nodes(reached, defects);
+  for (const double d : defects) EXPECT_EQ(d, 0.0);
+  for (int i = 0; i < kNY; ++i) EXPECT_EQ(end[i], recorded_end[i]) << i;
+  std::vector<double> moved = reached;
+  moved[kNY + 3] += 1e-6;  // the second node's vx
+  const auto moved_end = from_nodes(moved, defects);
+  EXPECT_NEAR(defects[kNY + 3], -1e-6, 1e-15);
+  // the part from the moved node reaches the third node elsewhere; the end is the third node's
+  EXPECT_GT(std::fabs(defects[2 * kNY]), 1e-8);
+  for (int i = 0; i < kNY; ++i) EXPECT_EQ(moved_end[i], recorded_end[i]) << i;
+}
+
 TEST(Runtime, SwitchTimesAreLocatedToRoundOff) {
   helios_rt::Settings settings;
   helios_rt::Propagator prop(settings);
