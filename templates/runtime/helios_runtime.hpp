@@ -119,8 +119,8 @@ struct Settings {
   // The integrator's rtol and atol during the search (never tighter than rtol and atol; 0: those):
   // every distinct extremal it reaches at eps = 0 is then polished at rtol and atol.
   double search_tol = 1e-10;
-  // Problems with interior events: the solution polished by multiple shooting (nodes.hpp), with
-  // nodes at most this many days apart on average (0: not polished).
+  // The solution polished by multiple shooting (nodes.hpp): nodes at interior events and between
+  // equal parts of each arc, at most this many days apart on average (0: not polished).
   double node_spacing_days = 200;
   int max_steps = 200000;  // integrator steps per arc
   // The shooting Jacobian: "exact" (the program's shooting_jacobian, hybrj) where the program has
@@ -324,6 +324,10 @@ void shooting_function(const double* x, double eps, Propagator& prop, double* F)
 // Its exact Jacobian (RESIDUAL module, when the program has the JACOBIAN module): F and
 // J[i + j * n] = dF_i / dx_j (column-major, as cminpack's hybrj takes it).
 void shooting_jacobian(const double* x, double eps, Propagator& prop, double* F, double* J);
+// The shooting function on dual numbers of any width (RESIDUAL module, with the JACOBIAN module,
+// of a problem without interior events; one with them has shooting_legs_dual): the Jacobian of a
+// system built on it, such as multiple shooting's (nodes.hpp).
+void shooting_function_dual(const Dual* x, double eps, Propagator& prop, Dual* F);
 // F and J (column-major) of a function of n variables at x, from the function on dual numbers:
 // x seeded as the unit directions, so F's derivatives are J's columns.
 void dual_jacobian(int n, const double* x, double* F, double* J,

@@ -40,6 +40,7 @@ void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower,
 void coast_dynamics(const double* y, double* dy) __attribute__((weak));
 void shooting_legs(const double* x, double eps, Propagator& prop, double* F, const Legs* legs) __attribute__((weak));
 void shooting_jacobian(const double* x, double eps, Propagator& prop, double* F, double* J) __attribute__((weak));
+void shooting_function_dual(const Dual* x, double eps, Propagator& prop, Dual* F) __attribute__((weak));
 void shooting_legs_dual(const Dual* x, double eps, Propagator& prop, Dual* F, const LegsOf<Dual>* legs)
     __attribute__((weak));
 void dynamics_jacobian(double t, const double* y, const double* control, const Multipliers& mult, double* dfdz,

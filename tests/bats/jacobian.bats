@@ -10,8 +10,8 @@
 #     function (tests/bats/shooting_jacobian_check.cpp), at random starts at eps = 1 (smooth) and
 #     eps = 0 (bang-bang: switching arcs), and at the scenario's solution
 #     (tests/fixtures/solutions); within 1e-6 relative to 1 + the row's largest entry; and for
-#     S07 and S10 the multiple-shooting system's (nodes.hpp: the state and costates at the nodes as
-#     variables, their continuity as rows).
+#     S07, S10 and S13 (no events) the multiple-shooting system's (nodes.hpp: the state and
+#     costates at the nodes as variables, their continuity as rows).
 
 load test_helper
 
@@ -98,7 +98,7 @@ one_point_agrees() {
 @test "jacobian: the multiple-shooting system's Jacobian (nodes at the events and inside the arcs) agrees with finite differences" {
   local s x
   export HELIOS_NODE_SEGMENTS=3
-  for s in S07 S10; do
+  for s in S07 S10 S13; do
     program "$s" auto
     one_point_agrees "$s with nodes, a random start" "$PWD/$s.cpp" 0 1 1
     read -r -a x < "$ROOT/tests/fixtures/solutions/$s.txt"

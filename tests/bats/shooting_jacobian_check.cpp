@@ -3,7 +3,7 @@
 // differences of the shooting function: built by tests/bats/jacobian.bats with the program's
 // shoot.cpp included (its main renamed), linked with libhelios-runtime.a.
 // usage: shooting_jacobian_check EPS POINTS SEED [X0 X1 ...]
-//   With HELIOS_NODE_SEGMENTS=K (a problem with interior events): the multiple-shooting system
+//   With HELIOS_NODE_SEGMENTS=K: the multiple-shooting system
 //   instead (the runtime's nodes.hpp, built here on the same public calls): z = (x, the state and
 //   costates at every node, each arc in K parts), the nodes moved off the trajectory by up to 1e-6
 //   relative so that every continuity row is in play.
@@ -22,10 +22,11 @@
 #include "helios_runtime.hpp"
 
 namespace helios_rt {
-// Weak as in the runtime library: a program without interior events defines no legs.
-void shooting_legs(const double* x, double eps, Propagator& prop, double* F, const Legs* legs) __attribute__((weak));
+// Weak as in the runtime library: a program has the legs (interior events) or the plain function
+// on dual numbers.
 void shooting_legs_dual(const Dual* x, double eps, Propagator& prop, Dual* F, const LegsOf<Dual>* legs)
     __attribute__((weak));
+void shooting_function_dual(const Dual* x, double eps, Propagator& prop, Dual* F) __attribute__((weak));
 }  // namespace helios_rt
 
 #define main shoot_main
@@ -49,7 +50,7 @@ void evaluate(const std::vector<double>& z, double eps, Propagator& prop, double
   nodes.values = z.data() + N;
   nodes.defects = F + N;
   prop.nodes = &nodes;
-  shooting_legs(z.data(), eps, prop, F, nullptr);
+  shooting_function(z.data(), eps, prop, F);
   prop.nodes = nullptr;
 }
 
@@ -63,7 +64,11 @@ void exact_jacobian(const std::vector<double>& z, double eps, Propagator& prop, 
     nodes.dual_values = zd + N;
     nodes.dual_defects = Fd + N;
     prop.nodes = &nodes;
-    shooting_legs(zd, eps, prop, Fd, static_cast<const LegsOf<Dual>*>(nullptr));
+    void (*const plain)(const Dual*, double, Propagator&, Dual*) = &shooting_function_dual;  // weak: null when absent
+    if (plain != nullptr)
+      plain(zd, eps, prop, Fd);
+    else
+      shooting_legs_dual(zd, eps, prop, Fd, nullptr);
     prop.nodes = nullptr;
   });
 }

@@ -139,6 +139,9 @@ std::string ShootingFunction::text(bool jacobian) {
     if (legs)
       o += "void shooting_legs_dual(const Dual* x, double eps, Propagator& prop, Dual* F, const LegsOf<Dual>* legs) {\n"
            "  shooting_residual(x, eps, prop, F, legs);\n}\n\n";
+    else
+      o += "void shooting_function_dual(const Dual* x, double eps, Propagator& prop, Dual* F) {\n"
+           "  shooting_residual(x, eps, prop, F);\n}\n\n";
     o += "#pragma GCC pop_options\n\n";
   }
   return o;
