@@ -83,13 +83,9 @@ inline RecordedPath recorded_path(const Settings& s, const std::vector<double>& 
   prop.samples = &path.samples;
   prop.switches = &path.switches;
   prop.max_step = max_step;
-  std::vector<double> F(kProblem.num_vars), defects(nodes.size());
-  Propagator::ArcNodes arc_nodes;
-  arc_nodes.segments = segments;
-  arc_nodes.values = nodes.data();
-  arc_nodes.defects = defects.data();
-  if (!nodes.empty()) prop.nodes = &arc_nodes;
-  shooting_function(x.data(), eps, prop, F.data());
+  std::vector<double> z = x, F(x.size() + nodes.size());
+  z.insert(z.end(), nodes.begin(), nodes.end());
+  solution_function(z.data(), nodes.size(), eps, segments, prop, F.data());
   return path;
 }
 

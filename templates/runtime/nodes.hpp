@@ -19,18 +19,6 @@ namespace helios_rt {
 
 namespace {
 
-// Installs `nodes` on a propagator for one scope.
-class NodesInstalled {
- public:
-  NodesInstalled(Propagator& prop, Propagator::ArcNodes* nodes) : prop_(prop) { prop_.nodes = nodes; }
-  ~NodesInstalled() { prop_.nodes = nullptr; }
-  NodesInstalled(const NodesInstalled&) = delete;
-  NodesInstalled& operator=(const NodesInstalled&) = delete;
-
- private:
-  Propagator& prop_;
-};
-
 // The values the propagation reaches at each node at x (ny each, in order), with the nodes' times,
 // each arc in `segments` parts; `arcs` counts the arcs. Empty: no node, or x cannot be evaluated.
 inline std::vector<double> node_values(const Settings& s, const std::vector<double>& x, double eps, int segments,
@@ -50,37 +38,6 @@ inline std::vector<double> node_values(const Settings& s, const std::vector<doub
   times = nodes.times;
   arcs = nodes.arcs;
   return reached;
-}
-
-// The shooting function of full width on dual numbers: the legs function without legs (a problem
-// with interior events) or the plain one; null when the program has neither.
-using DualShootingFunction = void (*)(const Dual*, double, Propagator&, Dual*);
-inline DualShootingFunction dual_shooting_function() {
-  if (shooting_function_dual) return &shooting_function_dual;
-  if (!shooting_legs_dual) return nullptr;
-  return [](const Dual* x, double eps, Propagator& prop, Dual* F) { shooting_legs_dual(x, eps, prop, F, nullptr); };
-}
-
-// The shooting function with nodes on z = (x, nodes), on double or on Dual: F(x) with the
-// propagation continued from each node (each arc in `segments` parts), then the nodes'
-// continuity defects.
-template <class T>
-void shooting_with_nodes(const T* z, double eps, int segments, Propagator& prop, T* G) {
-  const int N = kProblem.num_vars;
-  Propagator::ArcNodes nodes;
-  nodes.segments = segments;
-  if constexpr (std::is_same_v<T, double>) {
-    nodes.values = z + N;
-    nodes.defects = G + N;
-  } else {
-    nodes.dual_values = z + N;
-    nodes.dual_defects = G + N;
-  }
-  const NodesInstalled installed(prop, &nodes);
-  if constexpr (std::is_same_v<T, double>)
-    shooting_function(z, eps, prop, G);
-  else
-    dual_shooting_function()(z, eps, prop, G);
 }
 
 // Node k's component c: node<k>_<state> or node<k>_l_<state> (k from 1).

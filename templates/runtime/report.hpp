@@ -268,10 +268,7 @@ inline double residual_noise(const Settings& s, const Result& r) {
   solution.insert(solution.end(), r.nodes.begin(), r.nodes.end());
   const int n = static_cast<int>(solution.size());
   const auto evaluate = [&](const std::vector<double>& z, Propagator& prop, double* F) {
-    if (r.nodes.empty())
-      shooting_function(z.data(), r.eps, prop, F);
-    else
-      shooting_with_nodes(z.data(), r.eps, r.node_segments, prop, F);
+    solution_function(z.data(), r.nodes.size(), r.eps, r.node_segments, prop, F);
   };
   Propagator prop(s);
   std::vector<double> at(static_cast<std::size_t>(n)), moved(at), x(at);

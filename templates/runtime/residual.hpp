@@ -1,6 +1,7 @@
 // ---------------------------------------------------------------------------------------------
 // HELIOS shooting runtime, residual (templates/runtime/residual.hpp): the rows of the
-// bounds (the RESIDUAL module's interface is in helios_runtime.hpp).
+// bounds, and the shooting function with multiple shooting's nodes (the RESIDUAL module's
+// interface is in helios_runtime.hpp).
 // ---------------------------------------------------------------------------------------------
 #pragma once
 
@@ -16,6 +17,59 @@ struct BoundState {
 inline BoundState& bound_state() {
   thread_local BoundState state;  // each search thread its own (search.hpp's parallel_for)
   return state;
+}
+
+// Installs `nodes` on a propagator for one scope.
+class NodesInstalled {
+ public:
+  NodesInstalled(Propagator& prop, Propagator::ArcNodes* nodes) : prop_(prop) { prop_.nodes = nodes; }
+  ~NodesInstalled() { prop_.nodes = nullptr; }
+  NodesInstalled(const NodesInstalled&) = delete;
+  NodesInstalled& operator=(const NodesInstalled&) = delete;
+
+ private:
+  Propagator& prop_;
+};
+
+// The shooting function of full width on dual numbers: the legs function without legs (a problem
+// with interior events) or the plain one; null when the program has neither.
+using DualShootingFunction = void (*)(const Dual*, double, Propagator&, Dual*);
+inline DualShootingFunction dual_shooting_function() {
+  if (shooting_function_dual) return &shooting_function_dual;
+  if (!shooting_legs_dual) return nullptr;
+  return [](const Dual* x, double eps, Propagator& prop, Dual* F) { shooting_legs_dual(x, eps, prop, F, nullptr); };
+}
+
+// The shooting function with nodes on z = (x, nodes), on double or on Dual: F(x) with the
+// propagation continued from each node (each arc in `segments` parts), then the nodes'
+// continuity defects.
+template <class T>
+void shooting_with_nodes(const T* z, double eps, int segments, Propagator& prop, T* G) {
+  const int N = kProblem.num_vars;
+  Propagator::ArcNodes nodes;
+  nodes.segments = segments;
+  if constexpr (std::is_same_v<T, double>) {
+    nodes.values = z + N;
+    nodes.defects = G + N;
+  } else {
+    nodes.dual_values = z + N;
+    nodes.dual_defects = G + N;
+  }
+  const NodesInstalled installed(prop, &nodes);
+  if constexpr (std::is_same_v<T, double>)
+    shooting_function(z, eps, prop, G);
+  else
+    dual_shooting_function()(z, eps, prop, G);
+}
+
+// The shooting function of a solution on z = (x, its `nodes` node values, each arc in `segments`
+// parts): single shooting at x where it has none.
+inline void solution_function(const double* z, std::size_t nodes, double eps, int segments, Propagator& prop,
+                              double* F) {
+  if (nodes == 0)
+    shooting_function(z, eps, prop, F);
+  else
+    shooting_with_nodes(z, eps, segments, prop, F);
 }
 
 }  // namespace
