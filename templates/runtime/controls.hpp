@@ -13,6 +13,53 @@ inline int ny() {
   return 2 * kProblem.num_states;
 }
 
+// The mass flow at full throttle, Tmax/c in normalized units (the mass equation's -dm/dt at u = 1),
+// where the problem has a throttle and a mass whose flow depends on nothing but the throttle; else
+// 0. The companion problem of a minimum-time one prices its throttle by it (fuel_weight).
+inline double full_mass_flow() {
+  static const double flow = [] {
+    const int m = kProblem.mass_index, u = kProblem.throttle_index;
+    if (m < 0 || u < 0) return 0.0;
+    const auto flow_at = [&](double mass, double position) {
+      std::array<double, kMaxNY> y{}, dy{};
+      std::array<double, kMaxControls> control{};
+      y[0] = position;
+      y[1] = 0.25 * position;
+      y[4] = 1 / std::sqrt(position);
+      y[m] = mass;
+      control[u] = 1;
+      dynamics(0.0, y.data(), control.data(), Multipliers{0.0, 0.0}, dy.data());
+      return -dy[m];
+    };
+    const double a = flow_at(1.0, 1.0), b = flow_at(0.5, 2.0);
+    return std::isfinite(a) && a > 0 && a == b ? a : 0.0;
+  }();
+  return flow;
+}
+
+// dH/du at u = 0 and u = 1 (the SWITCH module's throttle_slopes), with the companion's price of
+// the throttle: w lambda0 (Tmax/c)(1 - eps + 2 eps u) more (w = mult.fuel_weight, 0 in the
+// problem itself).
+inline void slopes(const double* y, const Multipliers& mult, double& s0, double& s1) {
+  throttle_slopes(y, mult, s0, s1);
+  if (mult.fuel_weight != 0) {
+    const double price = mult.fuel_weight * mult.lambda0 * full_mass_flow();
+    s0 += price * (1 - mult.eps);
+    s1 += price * (1 + mult.eps);
+  }
+}
+
+// Their derivatives in z = (y, lambda0) (the JACOBIAN module's throttle_slopes_jacobian), the
+// companion's price in the lambda0 column.
+inline void slopes_jacobian(const double* y, const Multipliers& mult, double* d0, double* d1) {
+  throttle_slopes_jacobian(y, mult, d0, d1);
+  if (mult.fuel_weight != 0) {
+    const double price = mult.fuel_weight * full_mass_flow();
+    d0[ny()] += price * (1 - mult.eps);
+    d1[ny()] += price * (1 + mult.eps);
+  }
+}
+
 }  // namespace
 
 Mode mode_at(const double* y, const Multipliers& mult) {
@@ -20,7 +67,7 @@ Mode mode_at(const double* y, const Multipliers& mult) {
     return kFull;
   } else {
     double s0 = 0, s1 = 0;
-    throttle_slopes(y, mult, s0, s1);
+    slopes(y, mult, s0, s1);
     if (s0 >= 0) return kOff;
     if (s1 <= 0) return kFull;
     return kInterior;
@@ -33,7 +80,7 @@ void control_in_mode(const double* y, Mode mode, const Multipliers& mult, double
     double u = mode == kFull ? 1.0 : 0.0;
     if (mode == kInterior) {
       double s0 = 0, s1 = 0;
-      throttle_slopes(y, mult, s0, s1);
+      slopes(y, mult, s0, s1);
       u = std::min(1.0, std::max(0.0, s0 / (s0 - s1)));
     }
     control[kProblem.throttle_index] = u;
@@ -48,7 +95,7 @@ inline double switching_value(const double* y, const Multipliers& mult) {
     return 0.0;
   } else {
     double s0 = 0, s1 = 0;
-    throttle_slopes(y, Multipliers{mult.lambda0, 0.0}, s0, s1);
+    slopes(y, Multipliers{mult.lambda0, 0.0, mult.fuel_weight}, s0, s1);
     return s0;
   }
 }
@@ -59,7 +106,7 @@ inline int stay_functions(const double* y, Mode mode, const Multipliers& mult, d
     return 0;
   } else {
     double s0 = 0, s1 = 0;
-    throttle_slopes(y, mult, s0, s1);
+    slopes(y, mult, s0, s1);
     switch (mode) {
       case kOff:
         g[0] = s0;

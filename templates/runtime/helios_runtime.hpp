@@ -48,6 +48,7 @@ struct ProblemShape {
   int mass_index;     // -1: no mass state (a sail)
   bool minimum_fuel;  // the objective is the propellant (minimum fuel or initial mass), else the time
   double t0, tf;      // tf: the final time, or the upper end of its window when it is free
+  double tf_min;      // the lower end of the final time's window (tf when it is fixed)
   double homotopy_start;
   double time_unit_days, length_unit_km, speed_unit_km_s, epoch_mjd2000, mass_unit_kg;
   double exhaust_velocity_m_s;
@@ -66,6 +67,9 @@ extern const ProblemShape kProblem;
 struct Multipliers {
   double lambda0 = 1;
   double eps = 1;
+  // The companion problem's price of the throttle (search.hpp, minimum time from minimum fuel):
+  // 0 in the problem itself. Set by the runtime's propagate from Propagator::fuel_weight.
+  double fuel_weight = 0;
 };
 
 struct numerical_error : std::runtime_error {
@@ -95,7 +99,7 @@ void coast_dynamics(const double* y, double* dy);
 // The solver settings (schemas/settings.schema.json lists them).
 struct Settings {
   unsigned seed = 1;
-  int max_attempts = 200;
+  int max_attempts = 100000;
   double time_limit_s = 600;
   double rtol = 1e-13, atol = 1e-13;
   double hybrd_tol = 1e-12;
@@ -105,17 +109,24 @@ struct Settings {
   double eps_min = 1e-6;  // below this the next step is eps = 0
   double eps_first_ratio = 0.5;
   int leg_attempts = 20;  // random guesses per leg before the attempt is abandoned
-  // The global search (search.hpp): at most search_starts starts at eps_start, fewer once the
-  // chance that another converged start finds a new extremal is below search_saturation (0:
-  // always all); how many of the lowest-cost distinct extremals are continued to eps = 0
-  // (problems without interior events); complete attempts (problems with them); its own time
-  // budget (0: only time_limit_s) and threads (0: the cores).
-  int search_starts = 64;
-  double search_saturation = 0.05;
+  // The global search (search.hpp): starts at eps_start are drawn until the Good-Turing chance
+  // that the next one finds a new extremal is at most search_saturation (draws.hpp), at most
+  // search_starts of them (0: no cap); the lowest-cost distinct extremals are continued to eps = 0
+  // search_continued at a time (problems without interior events); complete attempts (problems
+  // with them); its own time budget (0: only time_limit_s) and threads (0: the cores).
+  int search_starts = 0;
+  double search_saturation = 0.01;
   int search_continued = 4;
   int search_attempts = 4;
-  double search_time_s = 0;
+  double search_time_s = 60;
   int threads = 0;
+  // Problems without interior events: every distinct extremal at eps_start continued (false: only
+  // those whose cost there, a lower bound of their objective, can still beat the best); the
+  // families of extremals explored by the transfer angle (families.hpp); a minimum-time problem
+  // with a throttle also solved from its minimum-fuel companion (minimum_time.hpp).
+  bool search_continue_all = false;
+  bool search_families = true;
+  bool search_fuel_companion = true;
   // The integrator's rtol and atol during the search (never tighter than rtol and atol; 0: those):
   // every distinct extremal it reaches at eps = 0 is then polished at rtol and atol.
   double search_tol = 1e-10;
@@ -266,6 +277,15 @@ class Propagator {
     std::vector<double> times;
   };
   ArcNodes* nodes = nullptr;
+
+  // Homotopy devices of the global search (search.hpp), off by default. fuel_weight > 0: the
+  // throttle of a minimum-time problem is priced as fuel, w lambda0 (Tmax/c)(u - eps u (1 - u))
+  // added to H (its companion problem at a held final time). end_rotation: the position and
+  // velocity triples of the state and the costates are rotated by this row-major 3x3 matrix at
+  // the end of each propagate() call, so the rows compare the rotated end with the target (the
+  // transfer-angle continuation).
+  double fuel_weight = 0;
+  const std::array<double, 9>* end_rotation = nullptr;
   // The next propagate continues the last arc from a node inside it: not a new arc, and its first
   // sample is not recorded again.
   bool continues_arc = false;
@@ -449,7 +469,9 @@ struct StartExtremal {
   double max_residual = 0;
   int first_start = 0, reached = 0;
   bool continued = false;
-  int arrived = -1;  // the extremal at eps = 0 it was continued to (-1: none)
+  bool pruned = false;  // not continued: its cost at eps_start, a lower bound of its branch's objective, could not beat the best
+  int arrived = -1;     // the extremal at eps = 0 it was continued to (-1: none)
+  std::string origin;   // how it was found where not by a start (the transfer angle from another)
 };
 
 // A distinct extremal at eps = 0 (it satisfies the problem's own necessary conditions), with the
@@ -472,6 +494,17 @@ struct Extremal {
   int bounded_passes = 0;
 };
 
+// A neighbour of an extremal looked for along its family (families.hpp): from the extremal at
+// eps = 0 `from`, one revolution more (+1) or fewer (-1); how (already reached by the search, an
+// extremal at eps_start of that count continued, or the transfer angle) and what it found (an
+// extremal at eps = 0, -1: none).
+struct FamilyProbe {
+  int from = -1, direction = 0;
+  double revolutions = 0;
+  std::string how;
+  int found = -1;
+};
+
 // What the global search did (search.hpp), for solution.json.
 struct SearchRecord {
   std::string method;
@@ -483,6 +516,17 @@ struct SearchRecord {
   int converged_final = 0;  // solves that reached eps = 0
   double seconds = 0;
   bool cut_by_time = false;
+  // Whether the draws stopped saturated (draws.hpp), the Good-Turing chance of a new extremal per
+  // draw where they stopped, and why they stopped.
+  bool saturated = false;
+  double unseen = 1;
+  std::string stopped;
+  std::vector<FamilyProbe> family;
+  // A minimum-time problem's minimum-fuel companion (minimum_time.hpp): its draws at the held
+  // final time and its distinct solutions (arrived: the extremal at eps = 0 reached from each).
+  double companion_tf_days = 0;
+  int companion_draws = 0, companion_converged = 0;
+  std::vector<StartExtremal> companion_solutions;
   std::vector<StartExtremal> start_extremals;
   std::vector<Extremal> extremals;
   int returned = -1;  // index into extremals

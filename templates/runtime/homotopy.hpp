@@ -18,13 +18,11 @@ struct AnyBranch {
 // Jacobian, at eps = 0, or where either fails.
 inline bool eps_tangent(Shooter& shooter, const std::vector<double>& x, double eps, std::vector<double>& dx) {
   if (!(eps > 0)) return false;
-  const int n = static_cast<int>(x.size());
-  std::vector<double> F, J, below(x.size());
+  std::vector<double> F(x.size()), dF(x.size());
   const double d = 1e-4 * eps;
-  if (!shooter.jacobian_at(x, eps, F, J) || !shooter.evaluate_at(x.data(), eps - d, below.data())) return false;
-  dx.resize(x.size());
-  for (int i = 0; i < n; ++i) dx[i] = (below[i] - F[i]) / d;
-  return solve_linear(n, J, dx);
+  if (!shooter.evaluate_at(x.data(), eps, F.data()) || !shooter.evaluate_at(x.data(), eps - d, dF.data())) return false;
+  for (std::size_t i = 0; i < x.size(); ++i) dF[i] = (F[i] - dF[i]) / d;
+  return path_tangent(shooter, x, eps, dF, dx);
 }
 
 // Solves at settings.eps_start from the guess x, then continues in eps down to 0 with an adaptive
@@ -70,16 +68,18 @@ bool homotopy_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& 
 }
 
 // A solution re-propagated with every step recorded (steps of at most max_step) and every switch,
-// continued from `nodes` where given (multiple shooting, each arc in `segments` parts: nodes.hpp);
-// throws numerical_error where the integration fails.
+// continued from `nodes` where given (multiple shooting, each arc in `segments` parts: nodes.hpp),
+// of the companion problem where fuel_weight > 0; throws numerical_error where the integration
+// fails.
 struct RecordedPath {
   std::vector<Sample> samples;
   std::vector<Switch> switches;
 };
 inline RecordedPath recorded_path(const Settings& s, const std::vector<double>& x, double eps, double max_step,
-                                  const std::vector<double>& nodes = {}, int segments = 1) {
+                                  const std::vector<double>& nodes = {}, int segments = 1, double fuel_weight = 0) {
   RecordedPath path;
   Propagator prop(s);
+  prop.fuel_weight = fuel_weight;
   prop.samples = &path.samples;
   prop.switches = &path.switches;
   prop.max_step = max_step;
@@ -101,12 +101,13 @@ inline double objective_in_named_unit(double objective) {
 
 // The Shape of a converged x at eps (the first three states are the position). At eps = 0 its
 // cost is the objective: the propellant summed over the arcs (a dropped lander is not
-// propellant), or the flight time.
-inline Shape shape_of(const Settings& s, const std::vector<double>& x, double eps) {
+// propellant), or the flight time. The companion problem of a minimum-time one (fuel_weight > 0)
+// costs its propellant.
+inline Shape shape_of(const Settings& s, const std::vector<double>& x, double eps, double fuel_weight = 0) {
   Shape out;
   RecordedPath path;
   try {
-    path = recorded_path(s, x, eps, (kProblem.tf - kProblem.t0) / 1000);
+    path = recorded_path(s, x, eps, (kProblem.tf - kProblem.t0) / 1000, {}, 1, fuel_weight);
   } catch (const numerical_error&) {
     return out;
   }
@@ -118,7 +119,7 @@ inline Shape shape_of(const Settings& s, const std::vector<double>& x, double ep
   double hn = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
   if (!(hn > 0)) h = {0, 0, 1}, hn = 1;
   double swept = 0, smoothed = 0, burned = 0, propellant = 0;
-  const bool propellant_objective = objective_is_propellant();
+  const bool propellant_objective = objective_is_propellant() || fuel_weight > 0;
   for (std::size_t i = 1; i < samples.size(); ++i) {
     const auto &a = samples[i - 1].y, &b = samples[i].y;
     const double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];

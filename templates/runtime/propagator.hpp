@@ -110,8 +110,8 @@ void variational_matrix(double t, const double* y, Mode mode, const Multipliers&
     if (mode == kInterior) {
       double s0 = 0, s1 = 0;
       std::array<double, kMaxNY + 1> d0{}, d1{};
-      throttle_slopes(y, mult, s0, s1);
-      throttle_slopes_jacobian(y, mult, d0.data(), d1.data());
+      slopes(y, mult, s0, s1);
+      slopes_jacobian(y, mult, d0.data(), d1.data());
       const double q = 1 / ((s0 - s1) * (s0 - s1));
       for (int j = 0; j < nz; ++j) dudz[u * nz + j] = (s0 * d1[j] - s1 * d0[j]) * q;
     }
@@ -171,7 +171,7 @@ void Propagator::switch_jump(double t, const double* y, Mode from, int crossed, 
   control_in_mode(y, to, mult, control.data());
   dynamics(t, y, control.data(), mult, f_after.data());
   std::array<double, kMaxNY + 1> d0{}, d1{}, grad{};
-  throttle_slopes_jacobian(y, mult, d0.data(), d1.data());
+  slopes_jacobian(y, mult, d0.data(), d1.data());
   // The stay functions (controls.hpp): off s0, full -s1, interior (-s0, s1).
   for (int j = 0; j <= n; ++j) {
     if (from == kOff) grad[j] = d0[j];
@@ -320,8 +320,59 @@ void propagate_by_nodes(Propagator::ArcNodes& nodes, const T& t0, const T& t1, T
 
 }  // namespace
 
-void propagate(Propagator& prop, double t0, double t1, double* y, const Multipliers& mult) {
-  if (!prop.nodes) return prop.propagate(t0, t1, y, mult);
+namespace {
+
+// The indices in y of the position and velocity triples and of their costates (-1: the problem
+// has no such triple by the states' names rx ... vz): what a rotation of the end turns.
+inline const std::array<std::array<int, 3>, 4>& rotated_triples() {
+  static const std::array<std::array<int, 3>, 4> triples = [] {
+    std::array<std::array<int, 3>, 4> out{};
+    const char* names[2][3] = {{"rx", "ry", "rz"}, {"vx", "vy", "vz"}};
+    for (int v = 0; v < 2; ++v)
+      for (int c = 0; c < 3; ++c) {
+        int at = -1;
+        for (int i = 0; i < kProblem.num_states; ++i)
+          if (std::string(kProblem.state_names[i]) == names[v][c]) at = i;
+        out[v][c] = at;
+        out[2 + v][c] = at < 0 ? -1 : kProblem.num_states + at;
+      }
+    return out;
+  }();
+  return triples;
+}
+
+// The rotation of the end (Propagator::end_rotation) applied to y, on double or on Dual.
+template <class T>
+void rotate_end(const std::array<double, 9>& R, T* y) {
+  for (const auto& triple : rotated_triples()) {
+    const T a = y[triple[0]], b = y[triple[1]], c = y[triple[2]];
+    for (int i = 0; i < 3; ++i) y[triple[i]] = R[3 * i] * a + R[3 * i + 1] * b + R[3 * i + 2] * c;
+  }
+}
+
+// The multipliers a propagation runs with: the module's, with the propagator's companion price.
+inline Multipliers with_companion(const Propagator& prop, double lambda0, double eps) {
+  return Multipliers{lambda0, eps, prop.fuel_weight};
+}
+
+// Whether the end of a propagation can be rotated: the problem has position and velocity states
+// named rx ... vz.
+inline bool end_rotation_possible() {
+  for (const auto& triple : rotated_triples())
+    for (const int i : triple)
+      if (i < 0) return false;
+  return true;
+}
+
+}  // namespace
+
+void propagate(Propagator& prop, double t0, double t1, double* y, const Multipliers& module_mult) {
+  const Multipliers mult = with_companion(prop, module_mult.lambda0, module_mult.eps);
+  if (!prop.nodes) {
+    prop.propagate(t0, t1, y, mult);
+    if (prop.end_rotation) rotate_end(*prop.end_rotation, y);
+    return;
+  }
   propagate_by_nodes(*prop.nodes, t0, t1, y, prop.nodes->values, prop.nodes->defects,
                      [&](double from, double to, double* z, bool inside) {
                        prop.continues_arc = inside;
@@ -343,7 +394,7 @@ void optimal_rhs(double t, const double* y, const Multipliers& mult, double* f) 
 // there are more of them than z has components, Phi itself is, and multiplied after.
 void propagate_dual(Propagator& prop, const Dual& t0, const Dual& t1, Dual* y, const DualMultipliers& m) {
   const int n = ny(), nz = n + 1, nv = ad::width();
-  const Multipliers mult{m.lambda0.v, m.eps};
+  const Multipliers mult = with_companion(prop, m.lambda0.v, m.eps);
   std::array<double, kMaxNY> yv{}, f{};
   for (int i = 0; i < n; ++i) yv[i] = y[i].v;
   optimal_rhs(t0.v, yv.data(), mult, f.data());
@@ -386,7 +437,11 @@ void propagate_dual(Propagator& prop, const Dual& t0, const Dual& t1, Dual* y, c
 
 // y(t1) from y(t0) with its derivatives (propagate_dual), from node to node under multiple shooting.
 void propagate(Propagator& prop, const Dual& t0, const Dual& t1, Dual* y, const DualMultipliers& m) {
-  if (!prop.nodes) return propagate_dual(prop, t0, t1, y, m);
+  if (!prop.nodes) {
+    propagate_dual(prop, t0, t1, y, m);
+    if (prop.end_rotation) rotate_end(*prop.end_rotation, y);
+    return;
+  }
   propagate_by_nodes(*prop.nodes, t0, t1, y, prop.nodes->dual_values, prop.nodes->dual_defects,
                      [&](const Dual& from, const Dual& to, Dual* z, bool inside) {
                        prop.continues_arc = inside;

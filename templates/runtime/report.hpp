@@ -56,6 +56,9 @@ inline Settings read_settings(const std::string& path) {
   s.search_continued = j.value("search_continued", s.search_continued);
   s.search_attempts = j.value("search_attempts", s.search_attempts);
   s.search_time_s = j.value("search_time_s", s.search_time_s);
+  s.search_continue_all = j.value("search_continue_all", s.search_continue_all);
+  s.search_families = j.value("search_families", s.search_families);
+  s.search_fuel_companion = j.value("search_fuel_companion", s.search_fuel_companion);
   s.threads = j.value("threads", s.threads);
   s.search_tol = j.value("search_integrator_tol", s.search_tol);
   s.node_spacing_days = j.value("node_spacing_days", s.node_spacing_days);
@@ -146,8 +149,10 @@ inline void objective_in_units(nlohmann::ordered_json& to, double objective, con
     to[objective_is_propellant() ? mass_key : time_key] = objective_in_named_unit(objective);
 }
 
-// The distinct extremals at eps_start as solution.json records them ("search", "extremals_at_eps_start").
-inline nlohmann::ordered_json start_extremals_record(const std::vector<StartExtremal>& list) {
+// The distinct extremals at eps_start as solution.json records them ("search", "extremals_at_eps_start"),
+// and a minimum-time problem's companion solutions, whose cost is propellant (`propellant`).
+inline nlohmann::ordered_json start_extremals_record(const std::vector<StartExtremal>& list,
+                                                     bool propellant = objective_is_propellant()) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < list.size(); ++i) {
     const StartExtremal& e = list[i];
@@ -158,9 +163,16 @@ inline nlohmann::ordered_json start_extremals_record(const std::vector<StartExtr
                                     {"reached", e.reached},
                                     {"first_start", e.first_start},
                                     {"max_residual", recorded(e.max_residual)},
-                                    {"continued", e.continued}};
-    objective_in_units(entry, e.shape.cost, "cost_kg", "cost_days");  // the smoothed problem's cost
+                                    {"continued", e.continued},
+                                    {"pruned", e.pruned}};
+    if (std::isfinite(e.shape.cost)) {  // the smoothed problem's cost
+      if (propellant)
+        entry["cost_kg"] = e.shape.cost * kProblem.mass_unit_kg;
+      else
+        entry["cost_days"] = e.shape.cost * kProblem.time_unit_days;
+    }
     if (e.arrived >= 0) entry["arrived_at"] = e.arrived;
+    if (!e.origin.empty()) entry["origin"] = e.origin;
     out.push_back(entry);
   }
   return out;
@@ -207,8 +219,26 @@ inline nlohmann::ordered_json search_record(const SearchRecord& rec) {
                                 {"converged_at_eps_0", rec.converged_final},
                                 {"seconds", rec.seconds},
                                 {"cut_by_time", rec.cut_by_time},
+                                {"saturated", rec.saturated},
+                                {"new_extremal_chance", rec.unseen},
+                                {"stopped", rec.stopped},
                                 {"extremals_at_eps_start", start_extremals_record(rec.start_extremals)},
                                 {"extremals", extremals_record(rec.extremals)}};
+  if (!rec.family.empty()) {
+    nlohmann::ordered_json family = nlohmann::ordered_json::array();
+    for (const FamilyProbe& p : rec.family) {
+      nlohmann::ordered_json probe = {
+          {"from", p.from}, {"direction", p.direction}, {"revolutions", p.revolutions}, {"how", p.how}};
+      if (p.found >= 0) probe["found"] = p.found;
+      family.push_back(probe);
+    }
+    out["family"] = family;
+  }
+  if (rec.companion_draws > 0)
+    out["minimum_fuel_companion"] = {{"held_tf_days", rec.companion_tf_days},
+                                     {"starts", rec.companion_draws},
+                                     {"converged", rec.companion_converged},
+                                     {"solutions", start_extremals_record(rec.companion_solutions, true)}};
   if (rec.returned >= 0) {
     out["returned"] = rec.returned;
     out["reason"] = rec.reason;

@@ -6,10 +6,11 @@
 // Only what that header declares has external linkage; the rest of each header is in an unnamed
 // namespace, so a module's function can never silently replace one of the runtime's own.
 //
-// Numerics (design.md section 6): normalized units; an adaptive DOP853 integrator whose control
+// Numerics: normalized units; an adaptive DOP853 integrator whose control
 // mode (throttle off / interior / full) is frozen inside each step, with the switching times
 // located to round-off so the shooting function stays smooth at eps = 0; eps-homotopy from
-// eps = 1 with adaptive steps and retreat; seeded random restarts; cminpack hybrd1.
+// eps = 1 with adaptive steps and retreat; a global search over seeded starts (search.hpp);
+// cminpack hybrj (hybrd without an exact Jacobian).
 // ---------------------------------------------------------------------------------------------
 #pragma once
 
@@ -28,6 +29,9 @@
 #include "legs.hpp"
 #include "continuation.hpp"
 #include "bounds.hpp"
+#include "draws.hpp"
+#include "families.hpp"
+#include "minimum_time.hpp"
 #include "search.hpp"
 #include "nodes.hpp"
 #include "report.hpp"

@@ -1,128 +1,32 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, global search (templates/runtime/search.hpp): the last
-// header of runtime.hpp. A converged shooting solution is an extremal, not necessarily the optimum: on
+// HELIOS shooting runtime, global search (templates/runtime/search.hpp): the last search header
+// of runtime.hpp. A converged shooting solution is an extremal, not necessarily the optimum: on
 // multi-revolution transfers the extremal a random start reaches is a matter of chance. So the
-// solve is a search:
+// solve is a search (problems without interior events, MultiStart):
 //   1. starts: seeded guesses, each solved at eps_start (eps = 1: the smooth, energy-like
-//      problem), in batches on `threads` threads, until search_starts or until the distinct
-//      extremals look complete (a Good-Turing estimate below search_saturation);
+//      problem), drawn until saturated (draws.hpp: the Good-Turing chance that another start
+//      finds a new extremal at most search_saturation) within half of the search's time budget;
+//      a minimum-time problem with a throttle is first solved from its minimum-fuel companion
+//      (minimum_time.hpp), its random starts one more source of extremals;
 //   2. the converged ones are told apart by what makes them different (revolutions about the
 //      central body, throttle mode changes, the shooting variables) and ranked by their own cost
-//      at eps_start;
-//   3. the search_continued lowest-cost distinct extremals are continued in eps to 0 (then the
-//      next ones, while none has arrived), and the distinct extremals at eps = 0 are compared:
-//      the lowest objective is returned.
-// Problems with interior events search the same way over search_attempts complete attempts
-// (each a continuation onto the events from a solution of the problem without them, searched
-// first, or a solve by legs: events_homotopy_solve). The search integrates at search_tol and
-// polishes every extremal at eps = 0 at the integrator's own tolerance before comparing. Start k draws
-// its guess from a generator seeded by (seed, k), and the outcomes are merged in start order, so
-// the search is deterministic for a given seed whatever the thread count, unless its time budget
-// (search_time_s, time_limit_s) cuts it, which the record says.
+//      at eps_start, a lower bound of the objective their branch reaches at eps = 0;
+//   3. every one whose cost could still beat the best objective found is continued in eps to 0,
+//      cheapest first;
+//   4. the family of the best extremal is walked by the transfer angle (families.hpp): its
+//      neighbours with one revolution fewer and more, then theirs, while the objective improves;
+//   5. the distinct extremals at eps = 0 are compared: the lowest objective is returned, and the
+//      record says whether the starts saturated (stderr too, where they did not).
+// Problems with interior events search over search_attempts complete attempts (each a
+// continuation onto the events from a solution of the problem without them, searched first, or a
+// solve by legs: events_homotopy_solve). The search integrates at search_tol and polishes every
+// extremal at eps = 0 at the integrator's own tolerance before comparing.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 
 namespace helios_rt {
 
 namespace {
-
-// A stream of draws other than the starts' own (0): the events-off draws (eventless_search).
-constexpr std::uint64_t kEventlessStream = 1;
-
-// The generator of start k (of a stream): SplitMix64 of (seed, k, stream), so a start's guess does
-// not depend on which thread runs it or on how many starts came before.
-inline std::mt19937_64 start_generator(unsigned seed, int k, std::uint64_t stream = 0) {
-  std::uint64_t z = (static_cast<std::uint64_t>(seed) << 32) + static_cast<std::uint64_t>(k) + 0x9e3779b97f4a7c15ull +
-                    stream * 0xd1b54a32d192ed03ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return std::mt19937_64(z ^ (z >> 31));
-}
-
-// Runs work(k) for k = 0 .. n-1 on up to `threads` threads, each index once. The active set of
-// the bounds is thread-local: each worker starts with the caller's. The first exception a work
-// item throws stops the others' next items and is rethrown here.
-template <class Work>
-void parallel_for(int n, int threads, Work&& work) {
-  std::atomic<int> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  const BoundState bounds = bound_state();
-  const auto loop = [&](bool worker) {
-    if (worker) bound_state() = bounds;
-    for (int k; (k = next++) < n;) {
-      try {
-        work(k);
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-        next = n;
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::min(threads, n); ++t) {
-    try {
-      pool.emplace_back(loop, true);
-    } catch (const std::system_error&) {
-      break;  // no more threads to be had (a process limit): the others share the work
-    }
-  }
-  loop(false);
-  for (auto& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
-}
-
-// One line on stderr per stage and at most one every two seconds in between, so a user waiting
-// for a long search sees it working.
-class Progress {
- public:
-  void stage(const std::string& line) { print(line, true); }
-  void tick(const std::string& line) { print(line, false); }
-
- private:
-  void print(const std::string& line, bool always) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    const double now = wall_seconds();
-    if (!always && now - last_ < 2.0) return;
-    last_ = now;
-    std::fprintf(stderr, "search: %s (%.1f s)\n", line.c_str(), now);
-    std::fflush(stderr);
-  }
-  std::mutex mutex_;
-  double last_ = -INFINITY;
-};
-
-// Two converged solutions are one extremal when their structure agrees (revolutions, switches)
-// and their shooting variables or their cost do.
-inline bool same_extremal(const std::vector<double>& xa, const Shape& a, const std::vector<double>& xb,
-                          const Shape& b) {
-  if (a.switches != b.switches || std::fabs(a.revolutions - b.revolutions) > 1e-3) return false;
-  double dx = 0, size = 1;
-  for (std::size_t i = 0; i < xa.size(); ++i) {
-    dx = std::max(dx, std::fabs(xa[i] - xb[i]));
-    size = std::max(size, std::fabs(xa[i]));
-  }
-  return dx <= 1e-6 * size || std::fabs(a.cost - b.cost) <= 1e-9 * std::max(1e-3, std::fabs(a.cost));
-}
-
-// Adds a converged solution to the distinct ones (`list` of StartExtremal or Extremal); returns
-// its index.
-template <class List>
-int merge_extremal(List& list, const std::vector<double>& x, const Shape& shape, int start,
-                   typename List::value_type&& entry) {
-  for (std::size_t i = 0; i < list.size(); ++i)
-    if (same_extremal(list[i].x, list[i].shape, x, shape)) {
-      ++list[i].reached;
-      return static_cast<int>(i);
-    }
-  entry.x = x;
-  entry.shape = shape;
-  entry.first_start = start;
-  entry.reached = 1;
-  list.push_back(std::move(entry));
-  return static_cast<int>(list.size()) - 1;
-}
 
 // The extremal at eps = 0 with the lowest objective, the first reached among equals (-1: none).
 // Only a polished one counts.
@@ -210,14 +114,6 @@ inline std::string objective_text(double objective) {
   return buf;
 }
 
-// Starts are drawn and merged in batches of this many.
-constexpr int kSearchBatch = 8;
-
-inline int search_threads(const Settings& s) {
-  if (s.threads > 0) return s.threads;
-  return static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
-}
-
 inline bool search_time_left(const Settings& s, double started) {
   return wall_seconds() <= s.time_limit_s && (s.search_time_s <= 0 || wall_seconds() - started <= s.search_time_s);
 }
@@ -226,6 +122,20 @@ inline bool search_time_left(const Settings& s, double started) {
 inline double best_objective(const SearchRecord& rec) {
   const int best = best_index(rec);
   return best < 0 ? INFINITY : rec.extremals[best].shape.cost;
+}
+
+// Says on stderr when the search stopped before it was saturated (rec.stopped: why), with the
+// estimate and what would let it go on.
+inline void say_if_not_saturated(const SearchRecord& rec, const Settings& s, Progress& progress) {
+  if (rec.saturated) return;
+  const bool capped = rec.stopped.rfind("the cap", 0) == 0;
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "not saturated: the chance that another start finds a new extremal is still %.3g (> %.3g); stopped by "
+                "%s. The best extremal found is returned; %s lets the search go on.",
+                rec.unseen, s.search_saturation, rec.stopped.c_str(),
+                capped ? "a larger search_starts (or max_attempts)" : "a larger search_time_s");
+  progress.stage(line);
 }
 
 // After a search at `coarse` (search_settings(fine)): its extremals polished at `fine`, the best
@@ -250,41 +160,52 @@ inline void finish_search(const Settings& fine, const Settings& coarse, Result& 
   }
 }
 
-// Problems without interior events: the multi-start search at eps_start, the lowest-cost distinct
-// extremals continued to eps = 0, the best kept (see the top of this file).
+// Problems without interior events: the multi-start search at eps_start, the distinct extremals
+// that can still beat the best continued to eps = 0, their families explored, the best kept (see
+// the top of this file).
 template <class Guess, class Admissible>
 class MultiStart {
  public:
   // The search runs at `coarse` (search_settings(fine)); its extremals are polished at `fine`.
   MultiStart(const Settings& fine, const Settings& coarse, Guess& guess, Admissible& admissible)
-      : fine_(fine), s_(coarse), guess_(guess), admissible_(admissible), rec_(r_.search), started_(wall_seconds()) {
+      : fine_(fine),
+        s_(coarse),
+        guess_(guess),
+        admissible_(admissible),
+        rec_(r_.search),
+        started_(wall_seconds()),
+        deadline_(s_.search_time_s > 0 ? std::min(s_.time_limit_s, started_ + s_.search_time_s) : s_.time_limit_s),
+        draw_deadline_(started_ + 0.5 * (deadline_ - started_)) {
     rec_.threads = search_threads(coarse);
-    rec_.method = "multi-start at eps = " + eps_text() + ", the lowest-cost distinct extremals continued to eps = 0";
+    rec_.method = "multi-start at eps = " + eps_text() +
+                  " until saturated, the distinct extremals that could beat the best continued to eps = 0, " +
+                  "their families explored by the transfer angle";
   }
 
   Result solve() {
-    int next_start = 0;
-    bool first_round = true;
-    while (time_left() && next_start < s_.max_attempts) {
-      next_start = explore(next_start, first_round);
-      // The most promising first; while none arrives, the next ones, a thread's worth at a time.
-      const std::vector<int> order = untried();
-      for (std::size_t taken = 0; taken < order.size() && time_left() && rec_.extremals.empty();) {
-        const std::size_t end =
-            std::min(order.size(), taken + (first_round ? std::max(1, s_.search_continued) : rec_.threads));
-        continue_extremals(std::vector<int>(order.begin() + taken, order.begin() + end));
-        taken = end;
-        first_round = false;
-      }
-      first_round = false;
-      if (!rec_.extremals.empty()) break;
+    if (s_.search_fuel_companion && has_fuel_companion()) {
+      rec_.method = "minimum time from the minimum-fuel companion (tf held, then released); " + rec_.method;
+      minimum_time_from_fuel();
+    }
+    explore();
+    continue_promising();
+    if (s_.search_families) walk_families();
+    // While nothing has arrived, more starts (past saturation: the estimate counts what was
+    // reached at eps_start, and none of it reached eps = 0).
+    while (rec_.extremals.empty() && time_left() && (s_.search_starts <= 0 || rec_.starts < s_.search_starts) &&
+           rec_.starts < s_.max_attempts) {
+      const int more = std::max(kMinDraws, rec_.starts);
+      draw(rec_.starts + more, deadline_);
+      continue_promising();
     }
     r_.attempts = rec_.starts;
     r_.evaluations = evaluations_;
     r_.iterations = rec_.starts + rec_.continued;
+    say_if_not_saturated(rec_, s_, progress_);
     finish_search(fine_, s_, r_, started_,
                   "from " + std::to_string(rec_.continued) + " of " + std::to_string(rec_.start_extremals.size()) +
-                      " distinct extremals at eps_start, found by " + std::to_string(rec_.starts) + " starts",
+                      " distinct extremals at eps_start, found by " + std::to_string(rec_.starts) + " starts" +
+                      (rec_.family.empty() ? "" : " and the transfer angle"),
                   "no start reached eps = 0 (" + std::to_string(rec_.starts) + " starts, " +
                       std::to_string(rec_.converged_start) + " converged at eps_start)",
                   progress_);
@@ -292,52 +213,46 @@ class MultiStart {
   }
 
  private:
-  struct StartRun {
-    bool ok = false;
-    std::vector<double> x;  // empty: not run (the time ran out)
-    Shape shape;
-    double res = INFINITY;
-  };
-
   std::string eps_text() const { return std::to_string(s_.eps_start).substr(0, 4); }
-  bool time_left() const { return search_time_left(s_, started_); }
+  bool time_left() const { return wall_seconds() < deadline_; }
   void count(int evaluations) {
     const std::lock_guard<std::mutex> lock(mutex_);
     evaluations_ += evaluations;
   }
 
-  // Starts from next_start in batches of kSearchBatch (merged in order, so the stop does not
-  // depend on the threads) until search_starts (the first round; later rounds a quarter of it),
-  // or until the extremals at eps_start look complete: at least kSearchBatch converged and the
-  // chance of a new one below search_saturation. Returns the next start.
-  int explore(int next_start, bool first_round) {
-    const int limit =
-        std::min(s_.max_attempts, first_round ? std::max(1, s_.search_starts)
-                                              : next_start + std::max(rec_.threads, s_.search_starts / 4));
-    while (next_start < limit && time_left()) {
-      const int to = std::min(limit, next_start + kSearchBatch);
-      run_starts(next_start, to);
-      next_start = to;
-      if (rec_.converged_start >= kSearchBatch && unseen() < s_.search_saturation) break;
-    }
+  // Draws starts until they are saturated, search_starts (and max_attempts) were drawn, or half of
+  // the search's budget is spent; records why they stopped.
+  void explore() {
+    int cap = s_.max_attempts;
+    if (s_.search_starts > 0) cap = std::min(cap, s_.search_starts);
+    draw(cap, draw_deadline_);
+    rec_.saturated = rec_.starts >= kMinDraws && rec_.unseen <= s_.search_saturation;
+    char why[160];
+    if (rec_.saturated)
+      std::snprintf(why, sizeof why, "saturated: the chance that another start finds a new extremal is %.3g <= %.3g",
+                    rec_.unseen, s_.search_saturation);
+    else if (rec_.starts >= cap)
+      std::snprintf(why, sizeof why, "the cap of %d starts (search_starts, max_attempts)", cap);
+    else
+      std::snprintf(why, sizeof why, "half of the search's time budget (search_time_s %.0f s, time_limit_s %.0f s)",
+                    s_.search_time_s, s_.time_limit_s);
+    rec_.stopped = why;
     progress_.stage(std::to_string(rec_.starts) + " starts at eps = " + eps_text() + ": " +
                     std::to_string(rec_.converged_start) + " converged, " +
-                    std::to_string(rec_.start_extremals.size()) + " distinct extremals");
-    return next_start;
+                    std::to_string(rec_.start_extremals.size()) + " distinct extremals; " + rec_.stopped);
   }
 
-  // Good-Turing: the chance that the next converged start reaches an extremal not seen yet is
-  // about the share of converged starts whose extremal was reached once.
-  double unseen() const {
-    int once = 0;
-    for (const auto& e : rec_.start_extremals) once += e.reached == 1;
-    return rec_.converged_start > 0 ? static_cast<double>(once) / rec_.converged_start : 1.0;
+  // Draws starts (from the next one) until saturated, `cap` starts or `deadline`.
+  void draw(int cap, double deadline) {
+    rec_.unseen = draw_until_saturated(
+        s_, rec_.threads, kStartStream, rec_.start_extremals, rec_.starts, rec_.converged_start, rec_.cut_by_time, cap,
+        deadline, [&](int k, std::mt19937_64& rng) { return start(k, rng); },
+        [&](int k) { progress_.tick(std::to_string(k) + " starts at eps = " + eps_text()); });
   }
 
-  // Start k at eps_start.
-  StartRun start(int k) {
+  // Start k at eps_start from the guess its generator draws.
+  StartRun start(int, std::mt19937_64& rng) {
     StartRun run;
-    std::mt19937_64 rng = start_generator(s_.seed, k);
     run.x.assign(kProblem.num_vars, 0.0);
     guess_(rng, run.x.data());
     Shooter shooter(s_);
@@ -348,28 +263,31 @@ class MultiStart {
     return run;
   }
 
-  // Starts [from, to), in parallel, merged in start order into the distinct eps_start extremals.
-  void run_starts(int from, int to) {
-    std::vector<StartRun> runs(static_cast<std::size_t>(to - from));
-    std::atomic<int> converged{0};
-    parallel_for(to - from, rec_.threads, [&](int i) {
-      if (!time_left()) return;
-      runs[i] = start(from + i);
-      converged += runs[i].ok;
-      progress_.tick(std::to_string(rec_.starts + i + 1) + " starts at eps = " + eps_text() + ", " +
-                     std::to_string(rec_.converged_start + converged.load()) + " converged");
-    });
-    for (int i = 0; i < to - from; ++i) {
-      if (runs[i].x.empty()) {
-        rec_.cut_by_time = true;
-        continue;
+  // Continues the eps_start extremals not continued yet, lowest cost first, search_continued of
+  // them in the first batch and a thread's worth after. The cost of an extremal at eps_start is a
+  // lower bound of the objective its branch reaches at eps = 0 (along a smooth branch
+  // dJ/deps = -integral u (1 - u) dt <= 0, the envelope theorem), so one whose cost is not below
+  // the best objective found cannot beat it: it is marked pruned instead (all are continued with
+  // search_continue_all). While none has arrived, the next ones go regardless.
+  void continue_promising() {
+    bool first = rec_.continued == 0;
+    for (;;) {
+      std::vector<int> order = untried();
+      if (order.empty() || !time_left()) return;
+      const double best = best_objective(rec_);
+      std::vector<int> batch;
+      const std::size_t size = first ? std::max(1, s_.search_continued) : rec_.threads;
+      for (const int i : order) {
+        if (batch.size() >= size) break;
+        if (!s_.search_continue_all && std::isfinite(best) && rec_.start_extremals[i].shape.cost >= best) {
+          rec_.start_extremals[i].pruned = true;
+          continue;
+        }
+        batch.push_back(i);
       }
-      ++rec_.starts;
-      if (!runs[i].ok) continue;
-      ++rec_.converged_start;
-      StartExtremal entry;
-      entry.max_residual = runs[i].res;
-      merge_extremal(rec_.start_extremals, runs[i].x, runs[i].shape, from + i, std::move(entry));
+      if (batch.empty()) return;
+      continue_extremals(batch);
+      first = false;
     }
   }
 
@@ -403,8 +321,8 @@ class MultiStart {
     e.info = path.info;
     e.homotopy = path.homotopy;
     e.shape = shape_of(s_, x, 0.0);  // its cost is the objective
-    e.method =
-        "single shooting, eps continuation from the extremal at eps_start of start " + std::to_string(from.first_start);
+    e.method = "single shooting, eps continuation from the extremal at eps_start " + std::to_string(which) +
+               (from.origin.empty() ? " (start " + std::to_string(from.first_start) + ")" : " (" + from.origin + ")");
     return true;
   }
 
@@ -444,13 +362,196 @@ class MultiStart {
     return order;
   }
 
+  // The family walk (families.hpp): from the best extremal, its neighbours with one revolution
+  // fewer and one more, each taken from the search where it has one of that count (reached, or at
+  // eps_start and not continued: continued now), else turned from the best by the transfer angle;
+  // then again from the new best, until a round finds no better one. Every neighbour looked for
+  // is recorded (rec.family).
+  void walk_families() {
+    std::vector<std::pair<int, int>> tried;  // (extremal, direction)
+    for (;;) {
+      const int best = best_index(rec_);
+      if (best < 0 || !time_left()) return;
+      const double before = best_objective(rec_);
+      for (const int direction : {-1, 1}) {
+        if (std::find(tried.begin(), tried.end(), std::make_pair(best, direction)) != tried.end()) continue;
+        tried.emplace_back(best, direction);
+        if (time_left()) look_for_neighbour(best, direction);
+      }
+      if (!(best_objective(rec_) < before)) return;
+    }
+  }
+
+  // One neighbour of extremal `of` (see walk_families).
+  void look_for_neighbour(int of, int direction) {
+    FamilyProbe probe;
+    probe.from = of;
+    probe.direction = direction;
+    probe.revolutions = rec_.extremals[of].shape.revolutions + direction;
+    const auto near = [&](const Shape& shape) { return std::fabs(shape.revolutions - probe.revolutions) < 0.5; };
+    for (std::size_t i = 0; i < rec_.extremals.size() && probe.found < 0; ++i)
+      if (near(rec_.extremals[i].shape)) {
+        probe.how = "reached by the search";
+        probe.found = static_cast<int>(i);
+      }
+    for (std::size_t i = 0; i < rec_.start_extremals.size() && probe.found < 0 && probe.how.empty(); ++i)
+      if (near(rec_.start_extremals[i].shape) && !rec_.start_extremals[i].continued) {
+        probe.how = "an extremal at eps_start of that count";
+        probe.found = continue_if_promising(static_cast<int>(i), probe.how);
+      }
+    if (probe.how.empty()) probe.found = turn(of, direction, probe.how);
+    char line[160];
+    std::snprintf(line, sizeof line, "family of extremal %d: %s %.2f revolutions (%s): %s", of,
+                  direction < 0 ? "one fewer," : "one more,", probe.revolutions, probe.how.c_str(),
+                  probe.found < 0 ? "none" : ("extremal " + std::to_string(probe.found)).c_str());
+    progress_.stage(line);
+    rec_.family.push_back(probe);
+  }
+
+  // The eps_start extremal k continued to eps = 0 where its cost, a lower bound of its objective
+  // (continue_promising), is below the best objective; else marked pruned and `how` says so.
+  // Returns the extremal at eps = 0 reached (-1: none).
+  int continue_if_promising(int k, std::string& how) {
+    StartExtremal& e = rec_.start_extremals[k];
+    if (!s_.search_continue_all && e.shape.cost >= best_objective(rec_)) {
+      e.pruned = true;
+      how += ", not continued: its cost at eps_start, a lower bound of its objective, is not below the best";
+      return -1;
+    }
+    continue_extremals({k});
+    how += ", continued";
+    return rec_.start_extremals[k].arrived;
+  }
+
+  // The transfer angle from extremal `of`: from its eps_start extremal where it has one (the turned
+  // solution joins them and is continued to eps = 0), else from itself at eps = 0. Returns the
+  // extremal at eps = 0 reached (-1: none).
+  int turn(int of, int direction, std::string& how) {
+    const Extremal& e = rec_.extremals[of];
+    std::vector<ContinuationStep> steps;
+    int evaluations = 0;
+    if (!e.from.empty()) {
+      const int parent = e.from.front();
+      std::vector<double> x = rec_.start_extremals[parent].x;
+      how = "transfer angle from the extremal at eps_start " + std::to_string(parent);
+      const bool ok = turn_one_revolution(s_, shooting_function_and_jacobian, 0.0, x, s_.eps_start, direction,
+                                          s_.accept_residual, admissible_, steps, evaluations);
+      count(evaluations);
+      if (!ok) return -1;
+      StartExtremal entry;
+      entry.origin = how;
+      const int k = merge_extremal(rec_.start_extremals, x, shape_of(s_, x, s_.eps_start), -1, std::move(entry));
+      if (rec_.start_extremals[k].continued) return rec_.start_extremals[k].arrived;
+      return continue_if_promising(k, how);
+    }
+    std::vector<double> x = e.x;
+    how = "transfer angle from it at eps = 0";
+    const bool ok = turn_one_revolution(s_, shooting_function_and_jacobian, 0.0, x, 0.0, direction,
+                                        s_.final_residual, admissible_, steps, evaluations);
+    count(evaluations);
+    if (!ok) return -1;
+    Extremal entry;
+    entry.F = shooting_residuals(x);
+    entry.max_residual = max_abs(entry.F);
+    entry.method = "single shooting, transfer angle from extremal " + std::to_string(of);
+    entry.continuation = std::move(steps);
+    return merge_extremal(rec_.extremals, x, shape_of(s_, x, 0.0), -1, std::move(entry));
+  }
+
+  // The minimum-fuel companion (minimum_time.hpp): its starts at eps = 1 with tf held (companion_hold),
+  // drawn until saturated within a quarter of the budget; each distinct solution, cheapest first,
+  // continued down in tf and released into the problem itself.
+  void minimum_time_from_fuel() {
+    const FreeFinalTime f = free_final_time();
+    const double hold = companion_hold(), eps = 1;
+    const double quarter = started_ + 0.25 * (deadline_ - started_);
+    std::vector<StartExtremal>& list = rec_.companion_solutions;
+    bool cut = false;
+    draw_until_saturated(
+        s_, rec_.threads, kCompanionStream, list, rec_.companion_draws, rec_.companion_converged, cut,
+        s_.max_attempts, quarter,
+        [&](int, std::mt19937_64& rng) {
+          StartRun run;
+          run.x.assign(kProblem.num_vars, 0.0);
+          guess_(rng, run.x.data());
+          std::vector<double> z = without_held(run.x, f.variable);
+          Shooter shooter(s_, companion_function(f, hold));
+          int info = 0;
+          run.ok = shooter.solve(z, eps, s_.accept_residual, info, run.res);
+          run.x = with_held(z, f.variable, hold);
+          run.ok = run.ok && admissible_(run.x.data());
+          if (run.ok) run.shape = shape_of(s_, run.x, eps, 1.0);
+          count(shooter.evaluations);
+          return run;
+        },
+        [&](int k) { progress_.tick(std::to_string(k) + " starts of the minimum-fuel companion"); });
+    if (!list.empty()) rec_.companion_tf_days = flight_days(list.front().x, eps);
+    progress_.stage(std::to_string(rec_.companion_draws) + " starts of the minimum-fuel companion (tf held at " +
+                    std::to_string(rec_.companion_tf_days).substr(0, 6) + " days): " +
+                    std::to_string(rec_.companion_converged) + " converged, " + std::to_string(list.size()) +
+                    " distinct");
+    std::vector<int> order(list.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return list[a].shape.cost < list[b].shape.cost; });
+    std::vector<CompanionArrival> arrivals(order.size());
+    parallel_for(static_cast<int>(order.size()), rec_.threads, [&](int i) {
+      if (!time_left()) return;
+      int evaluations = 0;
+      arrivals[i] = companion_to_minimum_time(s_, list[order[i]].x, hold, eps, admissible_, evaluations);
+      count(evaluations);
+    });
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      StartExtremal& from = list[order[i]];
+      from.continued = true;
+      CompanionArrival& a = arrivals[i];
+      if (!a.arrived) continue;
+      ++rec_.converged_final;
+      Extremal entry;
+      entry.F = a.F;
+      entry.max_residual = a.max_residual;
+      entry.info = a.info;
+      entry.method = "minimum time released from the minimum-fuel companion's solution " +
+                     std::to_string(order[i]) + ", continued down to tf held at window fraction " +
+                     std::to_string(a.held).substr(0, 6);
+      entry.continuation = std::move(a.steps);
+      from.arrived = merge_extremal(rec_.extremals, a.x, shape_of(s_, a.x, 0.0), -1, std::move(entry));
+    }
+    const double best = best_objective(rec_);
+    progress_.stage("minimum time from the companion: " + std::to_string(rec_.extremals.size()) +
+                    " distinct extremals" + (std::isfinite(best) ? ", best " + objective_text(best) : ""));
+  }
+
+  // The flight time of x in days (its trajectory's span).
+  double flight_days(const std::vector<double>& x, double eps) const {
+    try {
+      const RecordedPath path = recorded_path(s_, x, eps, INFINITY, {}, 1, 1.0);
+      return (path.samples.back().t - path.samples.front().t) * kProblem.time_unit_days;
+    } catch (const numerical_error&) {
+      return NAN;
+    }
+  }
+
+  // The shooting function's rows at x (eps = 0).
+  std::vector<double> shooting_residuals(const std::vector<double>& x) const {
+    std::vector<double> F(x.size());
+    Propagator prop(s_);
+    shooting_function(x.data(), 0.0, prop, F.data());
+    return F;
+  }
+  static double max_abs(const std::vector<double>& v) {
+    double m = 0;
+    for (const double a : v) m = std::max(m, std::fabs(a));
+    return m;
+  }
+
   const Settings& fine_;
   const Settings& s_;
   Guess& guess_;
   Admissible& admissible_;
   Result r_;
   SearchRecord& rec_;
-  const double started_;
+  const double started_, deadline_, draw_deadline_;
   Progress progress_;
   std::mutex mutex_;
   int evaluations_ = 0;
@@ -656,7 +757,14 @@ Result events_homotopy_solve(const Settings& fine, const LegPlan& legs, const Ev
     if (eventless > 0 && rec.start_extremals[k % eventless].arrived < 0) rec.start_extremals[k % eventless].arrived = i;
   };
   int next = 0;
-  while (search_time_left(s, started) && next < s.max_attempts && (next < s.search_attempts || rec.extremals.empty())) {
+  // Attempts go on past search_attempts while none has converged, or while the extremals reached
+  // do not look saturated (draws.hpp's estimate over the attempts: some extremal reached by one
+  // attempt only).
+  const auto saturated = [&] {
+    return rec.starts >= s.search_attempts && !rec.extremals.empty() &&
+           unseen_chance(rec.extremals, rec.starts) <= s.search_saturation;
+  };
+  while (search_time_left(s, started) && next < s.max_attempts && (next < s.search_attempts || !saturated())) {
     const int to = std::min(s.max_attempts, next < s.search_attempts ? s.search_attempts : next + rec.threads);
     std::vector<Result> results(static_cast<std::size_t>(to - next));
     std::vector<char> ran(results.size(), 0);
@@ -684,6 +792,12 @@ Result events_homotopy_solve(const Settings& fine, const LegPlan& legs, const Ev
                    std::to_string(rec.extremals.size()) + " distinct extremals" +
                    (std::isfinite(best) ? ", best " + objective_text(best) : ""));
   }
+  rec.saturated = saturated();
+  rec.unseen = unseen_chance(rec.extremals, rec.starts);
+  rec.stopped = rec.saturated ? "saturated: every extremal reached by more than one attempt"
+                : next >= s.max_attempts ? "the cap of " + std::to_string(s.max_attempts) + " attempts (max_attempts)"
+                                         : "the time budget (search_time_s, time_limit_s)";
+  say_if_not_saturated(rec, s, progress);
   r.attempts = rec.starts;
   r.evaluations = evaluations;
   r.iterations = rec.starts;

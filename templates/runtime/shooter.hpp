@@ -261,6 +261,17 @@ class Shooter {
   long long jacobian_calls_ = 0;  // iflag-2 calls since the last iflag-1 call
 };
 
+// The tangent dx/dp of a path F(x, p) = 0 at its solution x: -J^-1 dF/dp, with the shooter's exact
+// Jacobian at x (dF_dp is overwritten). False without an exact Jacobian or where it fails.
+inline bool path_tangent(Shooter& shooter, const std::vector<double>& x, double eps, std::vector<double>& dF_dp,
+                         std::vector<double>& dx) {
+  std::vector<double> F, J;
+  if (!shooter.jacobian_at(x, eps, F, J)) return false;
+  dx = std::move(dF_dp);
+  for (double& v : dx) v = -v;
+  return solve_linear(static_cast<int>(x.size()), J, dx);
+}
+
 // One hybrd solve from x at eps, recorded in r: true if max|F| <= accept and x is admissible.
 template <class Admissible>
 bool homotopy_step(Shooter& shooter, std::vector<double>& x, double eps, double accept, Result& r,

@@ -24,6 +24,7 @@ std::string problem_block(Context& c) {
   const json& d = c.d;
   const json& times = d.at("times");
   const json& tf = times.contains("tf") ? times.at("tf") : times.at("tf_window")[1];
+  const json& tf_min = times.contains("tf") ? times.at("tf") : times.at("tf_window")[0];
   if (!(tf.get<double>() > times.at("t0").get<double>()))
     throw std::invalid_argument("field /times: the final time " + tf.dump() + " is not after t0 " +
                                 times.at("t0").dump());
@@ -42,6 +43,8 @@ std::string problem_block(Context& c) {
     << "constexpr double kT0 = " << number(times.at("t0")) << ";\n"
     << "// The final time, or the upper end of its window when it is free.\n"
     << "constexpr double kTf = " << number(tf) << ";\n"
+    << "// The lower end of the final time's window (kTf when the final time is fixed).\n"
+    << "constexpr double kTfMin = " << number(tf_min) << ";\n"
     << "constexpr double kHomotopyStart = " << number(d.at("homotopy").at("start")) << ";\n"
     << "constexpr double kTimeUnitDays = " << number(c.units.time_s / 86400.0) << ";\n"
     << "constexpr double kLengthUnitKm = " << number(c.units.length_km) << ";\n"
@@ -89,7 +92,8 @@ std::string problem_block(Context& c) {
     << "constexpr int kNY = 2 * problem::kNumStates;  // states then costates\n"
     << "const ProblemShape kProblem = {problem::kProblemId, problem::kNumStates, problem::kNumControls,\n"
     << "                               problem::kThrottleIndex, problem::kNumVars, problem::kMassIndex,\n"
-    << "                               problem::kMinimumFuel, problem::kT0, problem::kTf, problem::kHomotopyStart,\n"
+    << "                               problem::kMinimumFuel, problem::kT0, problem::kTf, problem::kTfMin,\n"
+    << "                               problem::kHomotopyStart,\n"
     << "                               problem::kTimeUnitDays, problem::kLengthUnitKm, problem::kSpeedUnitKmS,\n"
     << "                               problem::kEpochMjd2000, problem::kMassUnitKg, problem::kExhaustVelocityMS,\n"
     << "                               problem::mu, problem::kStateNames, problem::kStateColumns,\n"
