@@ -1,7 +1,7 @@
 # HELIOS: problem text -> spec -> derivation -> verify -> shoot.cpp -> solution -> score.
 #   make scenario=S01 [BACKEND=builtin|llm] one scenario (default S01)
 #   make all                               every scenario (-j works)
-#   make scoreboard | test | bench | clean
+#   make scoreboard | test | bench | bench-search | clean
 #   make sweep sweep=P01 [SWEEP_GRID=bench] [SWEEP_START=cold]   a launch-window sweep (README "Sweeps")
 #   make test-sanitized                    unit tests and Bats under ASan/UBSan (build-asan)
 #   make fuzz [FUZZ_SECONDS=60]            libFuzzer targets, each FUZZ_SECONDS (build-fuzz)
@@ -64,7 +64,8 @@ ARTIFACTS := spec.json $(if $(filter llm,$(BACKEND)),$(ROUND_ARTIFACTS)) derivat
              solution.json trajectory.oem report.md score.json
 artifacts_of = $(addprefix $(RUNS)/$(1)/,$(ARTIFACTS))
 
-.PHONY: run all scoreboard test unit bats bench tools deps clean test-sanitized fuzz deps-fuzz sweep bench-sweep
+.PHONY: run all scoreboard test unit bats bench tools deps clean test-sanitized fuzz deps-fuzz sweep bench-sweep \
+        bench-search
 run: $(call artifacts_of,$(scenario))
 
 all: $(foreach s,$(SCENARIOS),$(call artifacts_of,$(s)))
@@ -317,8 +318,12 @@ fuzz: $(FUZZ_BUILD)/build.ninja
 	$(foreach t,$(FUZZ_TARGETS),$(FUZZ_ENV) tests/fuzz/run.sh $(FUZZ_BUILD) $(t) $(FUZZ_SECONDS) $(FUZZ_MAX_LEN_$(t)) \
 	  $(FUZZ_DICT_$(t)) $(FUZZ_SEEDS_$(t)) || status=1;) exit $$status
 
-bench: $(TOOLS_STAMP) bench-sweep
+bench: $(TOOLS_STAMP) bench-sweep bench-search
 	tests/bench/bench.sh
+
+# The search audit: the default search against an exhaustive one, seeds 1-5 (tests/bench/search_audit.sh).
+bench-search: $(TOOLS_STAMP)
+	tests/bench/search_audit.sh
 
 # The finer P01 grid (sweep.json's "bench"), with warm starts then every cell cold, each timed
 # (into RUNS_ROOT's P01-bench and P01-bench-cold: a finished grid is not redone).

@@ -9,7 +9,8 @@
 //   Good-Turing: the chance that the next draw reaches a solution not seen yet is estimated by
 //   N1 / n, the share of the n draws so far whose solution no other draw reached (a draw that
 //   did not converge reaches none). The draws are saturated when at least kMinDraws were made and
-//   that estimate is at most search_saturation.
+//   that estimate is at most search_saturation (never with search_saturation 0). With 128 draws
+//   at least, an extremal whose basin holds 2.3 % of the starts is seen with probability 0.95.
 //
 // The estimate is per draw, not per converged draw: where few starts converge, each draw is
 // unlikely to find anything new, and drawing on is cheap evidence of that; where many distinct
@@ -157,7 +158,9 @@ template <class List, class SolveStart, class Tick>
 double draw_until_saturated(const Settings& s, int threads, std::uint64_t stream, List& list, int& drawn,
                             int& converged, bool& cut_by_time, int cap, double deadline, SolveStart&& solve_start,
                             Tick&& tick) {
-  const auto saturated = [&] { return drawn >= kMinDraws && unseen_chance(list, drawn) <= s.search_saturation; };
+  const auto saturated = [&] {
+    return s.search_saturation > 0 && drawn >= kMinDraws && unseen_chance(list, drawn) <= s.search_saturation;
+  };
   while (!saturated() && (cap <= 0 || drawn < cap) && wall_seconds() < deadline) {
     const int from = drawn, to = cap > 0 ? std::min(cap, from + kSearchBatch) : from + kSearchBatch;
     std::vector<StartRun> runs(static_cast<std::size_t>(to - from));

@@ -341,10 +341,12 @@ inline const std::array<std::array<int, 3>, 4>& rotated_triples() {
   return triples;
 }
 
-// The rotation of the end (Propagator::end_rotation) applied to y, on double or on Dual.
+// The rotation of the end (Propagator::end_rotation) applied to y, on double or on Dual (a problem
+// without the triples is left as it is: the search turns only where end_rotation_possible).
 template <class T>
 void rotate_end(const std::array<double, 9>& R, T* y) {
   for (const auto& triple : rotated_triples()) {
+    if (triple[0] < 0 || triple[1] < 0 || triple[2] < 0) continue;
     const T a = y[triple[0]], b = y[triple[1]], c = y[triple[2]];
     for (int i = 0; i < 3; ++i) y[triple[i]] = R[3 * i] * a + R[3 * i + 1] * b + R[3 * i + 2] * c;
   }

@@ -226,7 +226,7 @@ class MultiStart {
     int cap = s_.max_attempts;
     if (s_.search_starts > 0) cap = std::min(cap, s_.search_starts);
     draw(cap, draw_deadline_);
-    rec_.saturated = rec_.starts >= kMinDraws && rec_.unseen <= s_.search_saturation;
+    rec_.saturated = s_.search_saturation > 0 && rec_.starts >= kMinDraws && rec_.unseen <= s_.search_saturation;
     char why[160];
     if (rec_.saturated)
       std::snprintf(why, sizeof why, "saturated: the chance that another start finds a new extremal is %.3g <= %.3g",
@@ -761,7 +761,7 @@ Result events_homotopy_solve(const Settings& fine, const LegPlan& legs, const Ev
   // do not look saturated (draws.hpp's estimate over the attempts: some extremal reached by one
   // attempt only).
   const auto saturated = [&] {
-    return rec.starts >= s.search_attempts && !rec.extremals.empty() &&
+    return s.search_saturation > 0 && rec.starts >= s.search_attempts && !rec.extremals.empty() &&
            unseen_chance(rec.extremals, rec.starts) <= s.search_saturation;
   };
   while (search_time_left(s, started) && next < s.max_attempts && (next < s.search_attempts || !saturated())) {

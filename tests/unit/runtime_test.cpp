@@ -31,7 +31,7 @@ constexpr double kSpeedUnitKmS = 149597870.691 / 31557600.0;
 constexpr double mu = 39.47692642137688;    // AU^3/yr^2
 constexpr double Tmax = 3.328530390038211;  // m0 AU/yr^2
 constexpr double c = 4.137416349718383;     // AU/yr
-const char* const kNames[] = {"x", "y", "z", "vx", "vy", "vz", "m", "u", "ax", "ay", "az"};
+const char* const kNames[] = {"rx", "ry", "rz", "vx", "vy", "vz", "m", "u", "ax", "ay", "az"};
 constexpr double kUnit[] = {1, 1, 1, 1, 1, 1, 1};
 // Nikko's GTOC7 row (a in AU; epoch MJD 56800 as years from MJD2000 400).
 constexpr helios_rt::OrbitBody kOrbitBodies[] = {
@@ -229,6 +229,59 @@ TEST(Runtime, ArcNodesRecordReplaceAndMeasureContinuity) {
   // the part from the moved node reaches the third node elsewhere; the end is the third node's
   EXPECT_GT(std::fabs(defects[2 * kNY]), 1e-8);
   for (int i = 0; i < kNY; ++i) EXPECT_EQ(moved_end[i], recorded_end[i]) << i;
+}
+
+// The companion's price of the throttle (Propagator::fuel_weight w, minimum_time.hpp) adds
+// w lambda0 (Tmax/c)(1 -+ eps) to dH/du at u = 0 and 1. The template module is minimum fuel, whose
+// slopes already hold lambda0 (Tmax/c)(1 -+ eps) and whose costate equations do not contain
+// lambda0: with w = 1 its extremal from a start is the one of lambda0 doubled, to round-off.
+TEST(Runtime, FuelWeightPricesTheThrottleAsMoreFuel) {
+  helios_rt::Settings settings;
+  int switches_seen = 0;
+  for (const double eps : {0.0, 0.3}) {
+    for (unsigned seed = 1; seed <= 4; ++seed) {
+      const auto start = random_extremal_start(seed);
+      auto priced = start, doubled = start;
+      std::vector<helios_rt::Switch> switches;
+      helios_rt::Propagator weighted(settings), plain(settings);
+      weighted.fuel_weight = 1;
+      weighted.switches = &switches;
+      helios_rt::propagate(weighted, 0.0, 0.5, priced.data(), Multipliers{0.4, eps});
+      helios_rt::propagate(plain, 0.0, 0.5, doubled.data(), Multipliers{0.8, eps});
+      switches_seen += static_cast<int>(switches.size());
+      for (int i = 0; i < kNY; ++i)
+        EXPECT_TRUE(IsClose(priced[i], doubled[i], 1e-12, 1e-12)) << "eps " << eps << " seed " << seed << " y" << i;
+    }
+  }
+  EXPECT_GT(switches_seen, 0);  // the price moved switches, not only interior throttles
+}
+
+// The transfer angle's device (Propagator::end_rotation, families.hpp): the position and velocity
+// triples and their costates at the end are turned by the matrix; the mass and its costate, and
+// the trajectory itself, are not.
+TEST(Runtime, EndRotationTurnsThePositionVelocityAndTheirCostates) {
+  helios_rt::Settings settings;
+  const double a = 0.7;
+  const std::array<double, 9> R{std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1};
+  const auto start = random_extremal_start(5);
+  auto turned = start, plain = start;
+  std::vector<helios_rt::Sample> turned_samples, plain_samples;
+  helios_rt::Propagator with(settings), without(settings);
+  with.end_rotation = &R;
+  with.samples = &turned_samples;
+  without.samples = &plain_samples;
+  helios_rt::propagate(with, 0.0, 0.5, turned.data(), Multipliers{0.8, 0.1});
+  helios_rt::propagate(without, 0.0, 0.5, plain.data(), Multipliers{0.8, 0.1});
+  for (const int first : {0, 3, 7, 10}) {  // r, v, lambda_r, lambda_v
+    for (int i = 0; i < 3; ++i) {
+      const double expected = R[3 * i] * plain[first] + R[3 * i + 1] * plain[first + 1] + R[3 * i + 2] * plain[first + 2];
+      EXPECT_TRUE(IsClose(turned[first + i], expected, 1e-15, 1e-15)) << first + i;
+    }
+  }
+  EXPECT_EQ(turned[6], plain[6]);    // mass
+  EXPECT_EQ(turned[13], plain[13]);  // its costate
+  ASSERT_EQ(turned_samples.size(), plain_samples.size());
+  for (int i = 0; i < kNY; ++i) EXPECT_EQ(turned_samples.back().y[i], plain_samples.back().y[i]) << i;
 }
 
 TEST(Runtime, SwitchTimesAreLocatedToRoundOff) {

@@ -113,6 +113,30 @@ std::string fence_for(const std::string& text) {
   return std::string(std::max<std::size_t>(3, longest + 1), '`');
 }
 
+// How far the search looked (solution.json's search record): whether its starts saturated, the
+// family of the best extremal, and a minimum-time problem's minimum-fuel companion.
+void search_coverage(std::ostringstream& o, const json& sr) {
+  if (sr.contains("saturated"))
+    o << (sr.at("saturated").get<bool>() ? "The starts saturated" : "**The starts did not saturate**") << " ("
+      << cell(sr.value("stopped", "")) << "; chance that another start finds a new extremal: "
+      << scalar(sr.value("new_extremal_chance", json())) << ").\n\n";
+  if (sr.contains("family")) {
+    o << "| family of extremal | direction | revolutions looked for | how | found |\n|---|---|---|---|---|\n";
+    for (const auto& p : sr.at("family"))
+      o << "| " << scalar(p.value("from", json())) << " | " << (p.value("direction", 0) < 0 ? "one fewer" : "one more")
+        << " | " << scalar(p.value("revolutions", json())) << " | " << cell(p.value("how", "")) << " | "
+        << (p.contains("found") ? "extremal " + scalar(p.at("found")) : std::string("none")) << " |\n";
+    o << "\n";
+  }
+  if (sr.contains("minimum_fuel_companion")) {
+    const json& c = sr.at("minimum_fuel_companion");
+    o << "Minimum-fuel companion: final time held at " << scalar(c.value("held_tf_days", json())) << " d, "
+      << scalar(c.value("converged", json())) << " of " << scalar(c.value("starts", json()))
+      << " starts converged, " << c.value("solutions", json::array()).size()
+      << " distinct solutions, each continued down in the held time and released.\n\n";
+  }
+}
+
 class Writer {
  public:
   explicit Writer(const ReportInputs& in)
@@ -527,6 +551,7 @@ void Writer::solution(std::ostringstream& o) const {
         << scalar(e.value("revolutions", json())) << " | " << scalar(e.value("switches", json())) << " | "
         << scalar(e.value("reached", json())) << " starts | " << scalar(e.value("max_residual", json())) << " |\n";
     o << "\n";
+    search_coverage(o, sr);
   }
   if (s.contains("files")) {
     o << "### Plots\n\n";
