@@ -280,9 +280,10 @@ class Propagator {
 
   // Homotopy devices of the global search (search.hpp), off by default. fuel_weight > 0: the
   // throttle of a minimum-time problem is priced as fuel, w lambda0 (Tmax/c)(u - eps u (1 - u))
-  // added to H (its companion problem at a held final time). end_rotation: the position and
-  // velocity triples of the state and the costates are rotated by this row-major 3x3 matrix at
-  // the end of each propagate() call, so the rows compare the rotated end with the target (the
+  // added to H (its companion problem at a held final time; every propagation with this
+  // propagator). end_rotation: the position and velocity triples of the state and the costates
+  // are rotated by this row-major 3x3 matrix at the end of each call of the free function
+  // propagate(prop, ...), so the rows compare the rotated end with the target (the
   // transfer-angle continuation).
   double fuel_weight = 0;
   const std::array<double, 9>* end_rotation = nullptr;

@@ -9,8 +9,9 @@ namespace helios_rt {
 Propagator::Propagator(const Settings& s) : settings_(s), stepper_(std::make_unique<Dop853>(ny())) {}
 Propagator::~Propagator() = default;
 
-void Propagator::propagate(double t0, double t1, double* y, const Multipliers& mult, Tangents* tangents) {
+void Propagator::propagate(double t0, double t1, double* y, const Multipliers& module_mult, Tangents* tangents) {
   const IntegrationTimer timer;
+  const Multipliers mult{module_mult.lambda0, module_mult.eps, fuel_weight};
   const bool new_arc = !continues_arc;
   continues_arc = false;
   if (new_arc) ++arc_;
@@ -352,11 +353,6 @@ void rotate_end(const std::array<double, 9>& R, T* y) {
   }
 }
 
-// The multipliers a propagation runs with: the module's, with the propagator's companion price.
-inline Multipliers with_companion(const Propagator& prop, double lambda0, double eps) {
-  return Multipliers{lambda0, eps, prop.fuel_weight};
-}
-
 // Whether the end of a propagation can be rotated: the problem has position and velocity states
 // named rx ... vz.
 inline bool end_rotation_possible() {
@@ -368,8 +364,7 @@ inline bool end_rotation_possible() {
 
 }  // namespace
 
-void propagate(Propagator& prop, double t0, double t1, double* y, const Multipliers& module_mult) {
-  const Multipliers mult = with_companion(prop, module_mult.lambda0, module_mult.eps);
+void propagate(Propagator& prop, double t0, double t1, double* y, const Multipliers& mult) {
   if (!prop.nodes) {
     prop.propagate(t0, t1, y, mult);
     if (prop.end_rotation) rotate_end(*prop.end_rotation, y);
@@ -396,7 +391,7 @@ void optimal_rhs(double t, const double* y, const Multipliers& mult, double* f) 
 // there are more of them than z has components, Phi itself is, and multiplied after.
 void propagate_dual(Propagator& prop, const Dual& t0, const Dual& t1, Dual* y, const DualMultipliers& m) {
   const int n = ny(), nz = n + 1, nv = ad::width();
-  const Multipliers mult = with_companion(prop, m.lambda0.v, m.eps);
+  const Multipliers mult{m.lambda0.v, m.eps, prop.fuel_weight};
   std::array<double, kMaxNY> yv{}, f{};
   for (int i = 0; i < n; ++i) yv[i] = y[i].v;
   optimal_rhs(t0.v, yv.data(), mult, f.data());
