@@ -39,30 +39,27 @@ inline bool departure_axis(const RecordedPath& path, std::array<double, 3>& k) {
   return true;
 }
 
-// The transfer-angle continuation (see the top of this file) of x, a solution at eps of `base`
-// (the shooting function, or the companion's), to one sweeping `direction` (+1 or -1) revolutions
-// more. True with x replaced by it, solved at eps to `accept` with the rotation off; every solve is
-// appended to `steps` (stage "transfer angle", value theta in degrees) and counted in evaluations.
+// The transfer-angle continuation (see the top of this file) of x, a solution of the shooting
+// function at eps, to one sweeping `direction` (+1 or -1) revolutions more. True with x replaced by
+// it, solved at eps to `accept` with the rotation off; every solve is appended to `steps` (stage
+// "transfer angle", value theta in degrees) and counted in `evaluations`.
 template <class Admissible>
-bool turn_one_revolution(const Settings& s, const Function& base, double fuel_weight, std::vector<double>& x,
-                         double eps, int direction, double accept, Admissible& admissible,
-                         std::vector<ContinuationStep>& steps, int& evaluations) {
+bool turn_one_revolution(const Settings& s, std::vector<double>& x, double eps, int direction, double accept,
+                         Admissible& admissible, std::vector<ContinuationStep>& steps, int& evaluations) {
   if (!end_rotation_possible()) return false;
   std::array<double, 3> axis{};
-  double start_revolutions = 0;
   try {
-    const RecordedPath path = recorded_path(s, x, eps, INFINITY, {}, 1, fuel_weight);
-    if (!departure_axis(path, axis)) return false;
+    if (!departure_axis(recorded_path(s, x, eps, INFINITY), axis)) return false;
   } catch (const numerical_error&) {
     return false;
   }
-  start_revolutions = shape_of(s, x, eps, fuel_weight).revolutions;
+  const double start_revolutions = shape_of(s, x, eps).revolutions;
   std::array<double, 9> R = rotation_about(axis, 0.0);
   bool rotated = true;
   const Function turned = [&](const double* z, double e, Propagator& prop, double* F, double* J) {
     prop.end_rotation = rotated ? &R : nullptr;
     try {
-      base(z, e, prop, F, J);
+      shooting_function_and_jacobian(z, e, prop, F, J);
     } catch (...) {
       prop.end_rotation = nullptr;
       throw;
@@ -90,7 +87,7 @@ bool turn_one_revolution(const Settings& s, const Function& base, double fuel_we
     at_angle(next);
     bool ok = solve_at(trial, next, s.accept_residual);
     if (ok) {
-      const double swept = shape_of(s, trial, eps, fuel_weight).revolutions - start_revolutions;
+      const double swept = shape_of(s, trial, eps).revolutions - start_revolutions;
       ok = std::fabs(swept - next / (2 * M_PI)) <= 0.25;
       if (!ok) steps.back().converged = false;  // another branch
     }

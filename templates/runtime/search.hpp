@@ -434,8 +434,8 @@ class MultiStart {
       const int parent = e.from.front();
       std::vector<double> x = rec_.start_extremals[parent].x;
       how = "transfer angle from the extremal at eps_start " + std::to_string(parent);
-      const bool ok = turn_one_revolution(s_, shooting_function_and_jacobian, 0.0, x, s_.eps_start, direction,
-                                          s_.accept_residual, admissible_, steps, evaluations);
+      const bool ok =
+          turn_one_revolution(s_, x, s_.eps_start, direction, s_.accept_residual, admissible_, steps, evaluations);
       count(evaluations);
       if (!ok) return -1;
       StartExtremal entry;
@@ -446,8 +446,7 @@ class MultiStart {
     }
     std::vector<double> x = e.x;
     how = "transfer angle from it at eps = 0";
-    const bool ok = turn_one_revolution(s_, shooting_function_and_jacobian, 0.0, x, 0.0, direction,
-                                        s_.final_residual, admissible_, steps, evaluations);
+    const bool ok = turn_one_revolution(s_, x, 0.0, direction, s_.final_residual, admissible_, steps, evaluations);
     count(evaluations);
     if (!ok) return -1;
     Extremal entry;

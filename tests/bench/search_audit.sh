@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # The search audit: does the default search return the best extremal an exhaustive one finds?
 # For each case the default search (the runtime's defaults, settings {"seed": s}) runs at every
-# seed of SEEDS, and so does an exhaustive one: ten times the starts the default drew (at least
-# 1280), no saturation stop (search_saturation 0), every distinct extremal continued
-# (search_continue_all) and no budget but the time limit. The exhaustive best is the best objective
-# over its seeds; a default run "equals" it when within 1e-6 relative. Prints a line per case and
-# seed (default objective and wall time, exhaustive best, equal or not), then the counts.
+# seed of SEEDS, and an exhaustive one at every seed of EXHAUSTIVE_SEEDS: ten times the starts the
+# default drew (at least 1280), no saturation stop (search_saturation 0), every distinct extremal
+# continued (search_continue_all) and no budget but the time limit. The exhaustive best is the best
+# objective over its seeds; a default run "equals" it when within 1e-6 relative. Prints a line per
+# case and seed (default objective and wall time, exhaustive best, equal or not), then the counts.
+# An exhaustive minimum-time search costs minutes (its thousands of random starts mostly fail
+# slowly), so one exhaustive seed is the default: EXHAUSTIVE_SEEDS="1 2 3 4 5" for all five.
 #
 # Cases: the scenarios with more than one extremal (S13, S02), the many-revolution stress case
 # tests/bench/audit/D01 (Earth to Dionysus, 3534 days), S11's sail at other departures, and P01's
@@ -14,11 +16,11 @@
 # usage: tests/bench/search_audit.sh [CASE...]   (from the repository root; needs `make tools`;
 #   HELIOS_BUILD_DIR: another build tree, default build)
 #   CASE: S13 S02 D01 SAIL<MJD> MT<MJD2000>; default: all of them
-#   SEEDS="1 2 3 4 5" (default), EXHAUSTIVE_SEEDS (default: SEEDS)
+#   SEEDS="1 2 3 4 5" (default), EXHAUSTIVE_SEEDS="1" (default)
 set -euo pipefail
 bin=${HELIOS_BUILD_DIR:-build}/bin
 seeds=${SEEDS:-1 2 3 4 5}
-exhaustive_seeds=${EXHAUSTIVE_SEEDS:-$seeds}
+exhaustive_seeds=${EXHAUSTIVE_SEEDS:-1}
 if (($# == 0)); then
   set -- S13 S02 D01 SAIL61200 SAIL61650 SAIL61950 $(seq -f 'MT%g' 9400 60 10180)
 fi
