@@ -28,12 +28,21 @@ namespace helios_rt {
 
 namespace {
 
+// Whether x's free final time (if any) lies in its window: tf_frac in [0, 1]. Nothing in the
+// shooting system keeps it there, so an extremal can end outside (a minimum time below the
+// window's start); it stays in the record and is never returned.
+inline bool within_window(const std::vector<double>& x) {
+  static const int at = free_final_time().variable;
+  return at < 0 || (x[at] >= -1e-9 && x[at] <= 1 + 1e-9);
+}
+
 // The extremal at eps = 0 with the lowest objective, the first reached among equals (-1: none).
-// Only a polished one counts.
+// Only a polished one in the final time's window counts.
 inline int best_index(const SearchRecord& rec) {
   int best = -1;
   for (std::size_t i = 0; i < rec.extremals.size(); ++i)
-    if (rec.extremals[i].polished && (best < 0 || rec.extremals[i].shape.cost < rec.extremals[best].shape.cost))
+    if (rec.extremals[i].polished && within_window(rec.extremals[i].x) &&
+        (best < 0 || rec.extremals[i].shape.cost < rec.extremals[best].shape.cost))
       best = static_cast<int>(i);
   return best;
 }
@@ -152,6 +161,16 @@ inline void finish_search(const Settings& fine, const Settings& coarse, Result& 
   } else if (wall_seconds() > fine.time_limit_s) {
     r.status = "timeout";
     r.detail = "time limit reached before convergence";
+  } else if (std::none_of(rec.extremals.begin(), rec.extremals.end(),
+                          [](const Extremal& e) { return within_window(e.x); })) {
+    const auto shortest = std::min_element(rec.extremals.begin(), rec.extremals.end(),
+                                           [](const Extremal& a, const Extremal& b) { return a.shape.cost < b.shape.cost; });
+    r.detail = "every extremal the search reached (" + std::to_string(rec.extremals.size()) +
+               ") ends outside the final time's window; the shortest takes " + objective_text(shortest->shape.cost) +
+               (shortest->x[free_final_time().variable] < 0
+                    ? ", before the window opens: the minimum time is below the window (widen it, or minimize the "
+                      "fuel at a fixed time of flight in it)"
+                    : "");
   } else if (!rec.extremals.empty()) {
     r.detail = "none of the " + std::to_string(rec.extremals.size()) +
                " extremals the search reached at eps = 0 converged again at the integrator's tolerance";

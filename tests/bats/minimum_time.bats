@@ -8,7 +8,7 @@
 #     or so converges, reach their minimum times through it.
 #
 # setup_file derives and solves S02, its minimum-fuel twin at the companion's held time, and P01's
-# minimum-time problem at MJD2000 9400.
+# minimum-time problem at MJD2000 9400, also with a window that opens after its minimum time.
 
 load test_helper
 
@@ -38,6 +38,11 @@ setup_file() {
     >"$WORK/P01/problem.txt"
   echo '{"seed": 1}' >"$WORK/P01/settings.json"
   chain "$WORK/P01"
+  # The same with a window that opens after the minimum time.
+  mkdir -p "$WORK/late"
+  sed -e 's/between 50 days and 700 days/between 350 days and 700 days/' "$WORK/P01/problem.txt" >"$WORK/late/problem.txt"
+  cp "$WORK/P01/settings.json" "$WORK/late/"
+  chain "$WORK/late"
 }
 
 setup() {
@@ -76,4 +81,13 @@ setup() {
   # the path: the held time went down, then the release converged at a shorter free time
   assert_jq "$sol" '[.continuation[] | select(.stage == "minimum time, tf free")] | length == 1 and .[0].converged'
   assert_jq "$sol" '[.continuation[] | select(.stage | test("tf held")) | select(.converged) | .value] | . == (sort | reverse)'
+}
+
+@test "minimum time: an extremal that ends outside the final time's window is recorded, never returned" {
+  local sol="$WORK/late/solution.json"
+  # the 326-day extremal is below the window [350, 700] days
+  assert_jq "$sol" 'any(.search.extremals[]; .outside_window and ((.tof_days - 325.9929) | fabs) < 1e-3)'
+  assert_jq "$sol" 'all(.search.extremals[] | select(.outside_window); .tof_days < 350 or .tof_days > 700)'
+  assert_jq "$sol" '.status != "converged" or ((.tof_days >= 350 and .tof_days <= 700) and
+    (.search.extremals[.search.returned].outside_window | not))'
 }
