@@ -8,9 +8,12 @@
 //
 //   Good-Turing: the chance that the next draw reaches a solution not seen yet is estimated by
 //   N1 / n, the share of the n draws so far whose solution no other draw reached (a draw that
-//   did not converge reaches none). The draws are saturated when at least kMinDraws were made and
-//   that estimate is at most search_saturation (never with search_saturation 0). With 128 draws
-//   at least, an extremal whose basin holds 2.3 % of the starts is seen with probability 0.95.
+//   did not converge reaches none). The draws are saturated when at least kMinDraws were made, at
+//   least kMinConverged of them converged (where no other source supplies extremals), and that
+//   estimate is at most search_saturation (never with search_saturation 0). With 128 draws at
+//   least, an extremal whose basin holds 2.3 % of the starts is seen with probability 0.95; where
+//   few starts converge (a minimum-time problem's small basins), the converged ones are what
+//   the estimate rests on, so there must be enough of them.
 //
 // The estimate is per draw, not per converged draw: where few starts converge, each draw is
 // unlikely to find anything new, and drawing on is cheap evidence of that; where many distinct
@@ -127,6 +130,7 @@ int merge_extremal(List& list, const std::vector<double>& x, const Shape& shape,
 // this many draws.
 constexpr int kSearchBatch = 8;
 constexpr int kMinDraws = 128;
+constexpr int kMinConverged = 16;
 
 inline int search_threads(const Settings& s) {
   if (s.threads > 0) return s.threads;
@@ -142,6 +146,13 @@ double unseen_chance(const List& list, int draws) {
   return draws > 0 ? static_cast<double>(once) / draws : 1.0;
 }
 
+// Whether draws whose distinct solutions are `list` look saturated (see the top of this file).
+template <class List>
+bool saturated(const Settings& s, const List& list, int drawn, int converged, int min_converged) {
+  return s.search_saturation > 0 && drawn >= kMinDraws && converged >= min_converged &&
+         unseen_chance(list, drawn) <= s.search_saturation;
+}
+
 // One start's outcome: x solved (empty x: not run, the time ran out), its shape and residual.
 struct StartRun {
   bool ok = false;
@@ -152,16 +163,14 @@ struct StartRun {
 
 // Draws starts from `drawn` on (start k solved by solve_start(k, rng), the generator of (seed, k,
 // stream)) in batches of kSearchBatch on `threads` threads, merged in start order into `list`, until
-// the draws are saturated, `cap` starts were drawn (0: no cap) or `deadline` (wall seconds) passes;
-// `drawn` and `converged` count them. Returns the Good-Turing chance of a new solution at the stop.
+// the draws are saturated (with `min_converged` converged ones at least), `cap` starts were drawn
+// (0: no cap) or `deadline` (wall seconds) passes; `drawn` and `converged` count them. Returns the
+// Good-Turing chance of a new solution at the stop.
 template <class List, class SolveStart, class Tick>
 double draw_until_saturated(const Settings& s, int threads, std::uint64_t stream, List& list, int& drawn,
-                            int& converged, bool& cut_by_time, int cap, double deadline, SolveStart&& solve_start,
-                            Tick&& tick) {
-  const auto saturated = [&] {
-    return s.search_saturation > 0 && drawn >= kMinDraws && unseen_chance(list, drawn) <= s.search_saturation;
-  };
-  while (!saturated() && (cap <= 0 || drawn < cap) && wall_seconds() < deadline) {
+                            int& converged, bool& cut_by_time, int cap, double deadline, int min_converged,
+                            SolveStart&& solve_start, Tick&& tick) {
+  while (!saturated(s, list, drawn, converged, min_converged) && (cap <= 0 || drawn < cap) && wall_seconds() < deadline) {
     const int from = drawn, to = cap > 0 ? std::min(cap, from + kSearchBatch) : from + kSearchBatch;
     std::vector<StartRun> runs(static_cast<std::size_t>(to - from));
     parallel_for(to - from, threads, [&](int i) {

@@ -9,7 +9,8 @@
 // departure's angular momentum (state and costates alike: Propagator::end_rotation), with the
 // target, so they ask for the target turned by theta. theta goes from 0 to -2 pi (one revolution
 // fewer) or 2 pi (one more) by continuation, each step predicted along the path's tangent and
-// required to sweep theta / 2 pi revolutions more than its start (within a quarter). At
+// required to sweep its step in theta / 2 pi revolutions more than the last (within a quarter;
+// with a free final time the target's own motion adds a little). At
 // |theta| = 2 pi the turned target is the target itself: the rotation is switched off and the
 // solution, solved once more, is an extremal of the problem as stated with one revolution fewer
 // (more). Nothing of the intermediate problems reaches the answer: they are a path to a start.
@@ -53,7 +54,7 @@ bool turn_one_revolution(const Settings& s, std::vector<double>& x, double eps, 
   } catch (const numerical_error&) {
     return false;
   }
-  const double start_revolutions = shape_of(s, x, eps).revolutions;
+  double revolutions = shape_of(s, x, eps).revolutions;
   std::array<double, 9> R = rotation_about(axis, 0.0);
   bool rotated = true;
   const Function turned = [&](const double* z, double e, Propagator& prop, double* F, double* J) {
@@ -86,11 +87,10 @@ bool turn_one_revolution(const Settings& s, std::vector<double>& x, double eps, 
       for (std::size_t i = 0; i < x.size(); ++i) trial[i] += tangent[i] * (next - theta);
     at_angle(next);
     bool ok = solve_at(trial, next, s.accept_residual);
-    if (ok) {
-      const double swept = shape_of(s, trial, eps).revolutions - start_revolutions;
-      ok = std::fabs(swept - next / (2 * M_PI)) <= 0.25;
-      if (!ok) steps.back().converged = false;  // another branch
-    }
+    const double now = ok ? shape_of(s, trial, eps).revolutions : 0;
+    if (ok && std::fabs(now - revolutions - (next - theta) / (2 * M_PI)) > 0.25)
+      ok = steps.back().converged = false;  // another branch
+
     if (!ok) {
       step *= 0.5;
       if (std::fabs(step) < smallest) break;
@@ -98,6 +98,7 @@ bool turn_one_revolution(const Settings& s, std::vector<double>& x, double eps, 
     }
     x = trial;
     theta = next;
+    revolutions = now;
     step = std::clamp(step * 1.5, -2 * M_PI / 4, 2 * M_PI / 4);
     // The tangent: dF/dtheta by a difference over 1e-6 rad.
     std::vector<double> F0(x.size()), F1(x.size());

@@ -138,11 +138,13 @@ inline double best_objective(const SearchRecord& rec) {
 inline void say_if_not_saturated(const SearchRecord& rec, const Settings& s, Progress& progress) {
   if (rec.saturated) return;
   const bool capped = rec.stopped.rfind("the cap", 0) == 0;
-  char line[320];
+  const int converged = rec.eventless_draws > 0 || rec.converged_start == 0 ? rec.converged_final : rec.converged_start;
+  char line[400];
   std::snprintf(line, sizeof line,
-                "not saturated: the chance that another start finds a new extremal is still %.3g (> %.3g); stopped by "
-                "%s. The best extremal found is returned; %s lets the search go on.",
-                rec.unseen, s.search_saturation, rec.stopped.c_str(),
+                "not saturated: %d of %d starts converged, and the chance that another finds a new extremal is %.3g "
+                "(saturated: at most %.3g); stopped by %s. The best extremal found is returned; %s lets the search "
+                "go on.",
+                converged, rec.starts, rec.unseen, s.search_saturation, rec.stopped.c_str(),
                 capped ? "a larger search_starts (or max_attempts)" : "a larger search_time_s");
   progress.stage(line);
 }
@@ -245,7 +247,7 @@ class MultiStart {
     int cap = s_.max_attempts;
     if (s_.search_starts > 0) cap = std::min(cap, s_.search_starts);
     draw(cap, draw_deadline_);
-    rec_.saturated = s_.search_saturation > 0 && rec_.starts >= kMinDraws && rec_.unseen <= s_.search_saturation;
+    rec_.saturated = saturated(s_, rec_.start_extremals, rec_.starts, rec_.converged_start, min_converged());
     char why[160];
     if (rec_.saturated)
       std::snprintf(why, sizeof why, "saturated: the chance that another start finds a new extremal is %.3g <= %.3g",
@@ -261,11 +263,15 @@ class MultiStart {
                     std::to_string(rec_.start_extremals.size()) + " distinct extremals; " + rec_.stopped);
   }
 
+  // The converged starts saturation asks for: none where the minimum-fuel companion supplied
+  // extremals already (the starts are one more source), else kMinConverged.
+  int min_converged() const { return rec_.companion_converged > 0 && !rec_.extremals.empty() ? 0 : kMinConverged; }
+
   // Draws starts (from the next one) until saturated, `cap` starts or `deadline`.
   void draw(int cap, double deadline) {
     rec_.unseen = draw_until_saturated(
         s_, rec_.threads, kStartStream, rec_.start_extremals, rec_.starts, rec_.converged_start, rec_.cut_by_time, cap,
-        deadline, [&](int k, std::mt19937_64& rng) { return start(k, rng); },
+        deadline, min_converged(), [&](int k, std::mt19937_64& rng) { return start(k, rng); },
         [&](int k) { progress_.tick(std::to_string(k) + " starts at eps = " + eps_text()); });
   }
 
@@ -487,7 +493,7 @@ class MultiStart {
     bool cut = false;
     draw_until_saturated(
         s_, rec_.threads, kCompanionStream, list, rec_.companion_draws, rec_.companion_converged, cut,
-        s_.max_attempts, quarter,
+        s_.max_attempts, quarter, kMinConverged,
         [&](int, std::mt19937_64& rng) {
           StartRun run;
           run.x.assign(kProblem.num_vars, 0.0);
