@@ -142,9 +142,9 @@ inline void say_if_not_saturated(const SearchRecord& rec, const Settings& s, Pro
   char line[400];
   std::snprintf(line, sizeof line,
                 "not saturated: %d of %d starts converged, and the chance that another finds a new extremal is %.3g "
-                "(saturated: at most %.3g); stopped by %s. The best extremal found is returned; %s lets the search "
-                "go on.",
+                "(saturated: at most %.3g); stopped by %s. %s; %s lets the search go on.",
                 converged, rec.starts, rec.unseen, s.search_saturation, rec.stopped.c_str(),
+                rec.extremals.empty() ? "Nothing was found" : "The best extremal found is returned",
                 capped ? "a larger search_starts (or max_attempts)" : "a larger search_time_s");
   progress.stage(line);
 }
@@ -163,8 +163,8 @@ inline void finish_search(const Settings& fine, const Settings& coarse, Result& 
   } else if (wall_seconds() > fine.time_limit_s) {
     r.status = "timeout";
     r.detail = "time limit reached before convergence";
-  } else if (std::none_of(rec.extremals.begin(), rec.extremals.end(),
-                          [](const Extremal& e) { return within_window(e.x); })) {
+  } else if (!rec.extremals.empty() && std::none_of(rec.extremals.begin(), rec.extremals.end(),
+                                                    [](const Extremal& e) { return within_window(e.x); })) {
     const auto shortest = std::min_element(rec.extremals.begin(), rec.extremals.end(),
                                            [](const Extremal& a, const Extremal& b) { return a.shape.cost < b.shape.cost; });
     r.detail = "every extremal the search reached (" + std::to_string(rec.extremals.size()) +
@@ -208,15 +208,13 @@ class MultiStart {
       rec_.method = "minimum time from the minimum-fuel companion (tf held, then released); " + rec_.method;
       minimum_time_from_fuel();
     }
-    explore();
+    explore(s_.search_starts > 0 ? std::min(s_.search_starts, s_.max_attempts) : s_.max_attempts, draw_deadline_);
     continue_promising();
     if (s_.search_families) walk_families();
-    // While nothing has arrived, more starts (past saturation: the estimate counts what was
-    // reached at eps_start, and none of it reached eps = 0).
-    while (rec_.extremals.empty() && time_left() && (s_.search_starts <= 0 || rec_.starts < s_.search_starts) &&
-           rec_.starts < s_.max_attempts) {
-      const int more = std::max(kMinDraws, rec_.starts);
-      draw(rec_.starts + more, deadline_);
+    // While nothing has arrived, more starts up to max_attempts, past search_starts and past
+    // saturation (the estimate counts what was reached at eps_start, and none of it reached eps = 0).
+    while (rec_.extremals.empty() && time_left() && rec_.starts < s_.max_attempts) {
+      explore(std::min(s_.max_attempts, rec_.starts + std::max(kMinDraws, rec_.starts)), deadline_);
       continue_promising();
     }
     r_.attempts = rec_.starts;
@@ -241,12 +239,10 @@ class MultiStart {
     evaluations_ += evaluations;
   }
 
-  // Draws starts until they are saturated, search_starts (and max_attempts) were drawn, or half of
-  // the search's budget is spent; records why they stopped.
-  void explore() {
-    int cap = s_.max_attempts;
-    if (s_.search_starts > 0) cap = std::min(cap, s_.search_starts);
-    draw(cap, draw_deadline_);
+  // Draws starts until they are saturated, `cap` starts were drawn or `deadline` passes (the
+  // first time half of the search's budget); records why they stopped.
+  void explore(int cap, double deadline) {
+    draw(cap, deadline);
     rec_.saturated = saturated(s_, rec_.start_extremals, rec_.starts, rec_.converged_start, min_converged());
     char why[160];
     if (rec_.saturated)
@@ -255,7 +251,7 @@ class MultiStart {
     else if (rec_.starts >= cap)
       std::snprintf(why, sizeof why, "the cap of %d starts (search_starts, max_attempts)", cap);
     else
-      std::snprintf(why, sizeof why, "half of the search's time budget (search_time_s %.0f s, time_limit_s %.0f s)",
+      std::snprintf(why, sizeof why, "the time budget (search_time_s %.0f s, time_limit_s %.0f s)",
                     s_.search_time_s, s_.time_limit_s);
     rec_.stopped = why;
     progress_.stage(std::to_string(rec_.starts) + " starts at eps = " + eps_text() + ": " +
