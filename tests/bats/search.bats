@@ -129,3 +129,19 @@ setup() {
   assert_jq "$sol" 'all(.search.extremals[]; .max_residual < 1e-10 and .polished)'
   assert_jq "$sol" '(.final_mass_kg - 1290.57) | fabs <= 0.01'
 }
+
+@test "search: a search that reaches nothing ends not_converged, after max_attempts starts, and says why" {
+  # 0.5 N cannot bring 1000 kg from the Earth to Mars in 200 days at MJD2000 9400 (its minimum time is 326 days)
+  sed -e 's/@DEPARTURE_MJD2000@/9400/' -e 's/@TOF_DAYS@/200/' "$ROOT/scenarios/P01/problem.txt" >problem.txt
+  "$BIN/helios-parse" problem.txt -o spec.json
+  "$BIN/helios-derive" spec.json -o derivation.json
+  "$BIN/helios-gen" derivation.json -o shoot.cpp
+  run --separate-stderr "$BIN/helios-solve" shoot.cpp --settings "$ROOT/scenarios/P01/settings.json" --cache-dir "$CACHE" \
+    --plots "" --trajectory trajectory.csv -o solution.json
+  [ "$status" -eq 0 ]
+  # search_starts 16 caps the first draws; with nothing arrived they go on to max_attempts (64)
+  assert_jq solution.json '.status == "not_converged" and .search.starts == 64 and (.search.extremals | length) == 0'
+  assert_jq solution.json '.status_detail | test("no start reached eps = 0")'
+  assert_jq solution.json '.search.saturated == false and (.search.stopped | test("cap of 64 starts"))'
+  grep -q 'not saturated: 0 of 64 starts converged.* Nothing was found' <<<"$stderr"
+}
