@@ -46,6 +46,8 @@ inline std::string node_name(int i) {
   return "node" + std::to_string(i / n + 1) + "_" + (c < ns ? "" : "l_") + kProblem.state_names[c % ns];
 }
 
+inline constexpr int kMaxNodeParts = 100;
+
 // Multiple shooting from r, converged by single shooting at eps = 0: nodes at the start of every
 // arc after the first (at interior events), and each arc cut into the same number of parts, as
 // many as make the parts no longer than s.node_spacing_days on average (none: a problem of one arc
@@ -60,7 +62,10 @@ inline void polish_by_nodes(const Settings& s, Result& r) {
   node_values(s, r.x, r.eps, 1, times, arcs);
   if (arcs < 1) return;
   const double span_days = (kProblem.tf - kProblem.t0) * kProblem.time_unit_days;
-  const int segments = std::max(1, static_cast<int>(std::ceil(span_days / s.node_spacing_days / arcs)));
+  // At most kMaxNodeParts parts in all: the polish solves for every node's state and costate with
+  // a dense Jacobian, whose size grows as the square of their number.
+  const double wanted = std::ceil(span_days / s.node_spacing_days / arcs);
+  const int segments = std::max(1, static_cast<int>(std::min<double>(wanted, kMaxNodeParts / arcs)));
   if (arcs == 1 && segments == 1) return;
   const std::vector<double> start = node_values(s, r.x, r.eps, segments, times, arcs);
   if (start.empty()) return;

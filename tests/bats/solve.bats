@@ -166,30 +166,24 @@ setup() {
   assert_no_temp_files "$CACHE"
 }
 
-# A stand-in for a generated program: it writes the text of ./outcome_text (its working directory
-# is the run folder) as its outcome (--outcome PATH).
+# A stand-in for a generated program: it writes the text $2 as its outcome (--outcome PATH). The text
+# is compiled in: the program sees no file but its private run folder.
 outcome_writer() {
-  cat >"$1" <<'CPP'
-#include <cstring>
-#include <fstream>
-#include <sstream>
-int main(int argc, char** argv) {
-  std::ostringstream text;
-  text << std::ifstream("outcome_text").rdbuf();
-  for (int i = 1; i + 1 < argc; ++i)
-    if (std::strcmp(argv[i], "--outcome") == 0) std::ofstream(argv[i + 1]) << text.str();
-}
-CPP
+  {
+    printf '#include <cstring>\n#include <fstream>\nint main(int argc, char** argv) {\n'
+    printf '  const char* text = R"HELIOS(%s)HELIOS";\n' "$2"
+    printf '  for (int i = 1; i + 1 < argc; ++i)\n'
+    printf '    if (std::strcmp(argv[i], "--outcome") == 0) std::ofstream(argv[i + 1]) << text;\n}\n'
+  } >"$1"
 }
 
 @test "solve: a program whose outcome is malformed -> status crashed with the reason, exit 0" {
-  outcome_writer prog.cpp
   local text
   for text in 'not json at all' '[1, 2]' '{"status": "converged", "compile": {}}' \
     '{"problem": {"id": "X"}, "status": "dancing", "seed": 1, "iterations": 0, "function_evaluations": 0}' \
     '{"problem": {"id": "X"}, "status": "converged", "seed": "one", "iterations": 0, "function_evaluations": 0}'; do
     rm -f solution.json
-    printf '%s' "$text" >outcome_text
+    outcome_writer prog.cpp "$text"
     run -0 --separate-stderr "$BIN/helios-solve" prog.cpp --cache-dir "$CACHE" --trajectory trajectory.csv \
       -o solution.json
     assert_jq solution.json '.status == "crashed" and .compile.ok == true'
@@ -198,15 +192,17 @@ CPP
   done
 }
 
-@test "solve: the files a killed run left are removed by the next run; a live run's are kept" {
-  outcome_writer prog.cpp
-  touch .settings.4194300.json .outcome.4194300.json.part .trajectory.4194300.csv ".settings.$$.json" \
-    .settings.notapid.json
-  echo '{}' >outcome_text
+@test "solve: the folders a killed run left are removed by the next run; a live run's are kept" {
+  outcome_writer prog.cpp '{}'
+  mkdir .run.4194300.abcdef .run.$$.abcdef .run.notapid.abcdef
+  touch .run.4194300.abcdef/outcome.json .run.$$.abcdef/outcome.json
+  ln -s /etc .run.4194301.abcdef
   run -0 --separate-stderr "$BIN/helios-solve" prog.cpp --cache-dir "$CACHE" --trajectory trajectory.csv \
     -o solution.json
-  [[ ! -e .settings.4194300.json && ! -e .outcome.4194300.json.part && ! -e .trajectory.4194300.csv ]]
-  [[ -e .settings.$$.json && -e .settings.notapid.json ]]
+  [[ ! -e .run.4194300.abcdef ]]
+  [[ -e .run.$$.abcdef/outcome.json && -d .run.notapid.abcdef && -L .run.4194301.abcdef && -e /etc/passwd ]]
+  # The run's own private folder is gone with it.
+  [[ $(find . -maxdepth 1 -name '.run.*' | wc -l) == 3 ]]
 }
 
 @test "solve: the program runs in bubblewrap: no file outside its run folder, no /etc, no network, no environment" {
@@ -220,8 +216,9 @@ CPP
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <iostream>
 int main() {
-  std::ofstream report("report.txt");
+  std::ostream& report = std::cerr;
   std::ofstream("/tmp/$marker") << "x";
   std::ofstream("../$marker") << "x";
   std::ofstream("$HOME/$marker") << "x";
@@ -241,8 +238,11 @@ CPP
   HELIOS_LLM_API_KEY=secret-key run -0 --separate-stderr "$BIN/helios-solve" escape.cpp --cache-dir "$CACHE" \
     --trajectory run/trajectory.csv -o solution.json
   assert_jq solution.json '.sandbox == "bubblewrap" and .status == "crashed"'
-  [[ ! -e /tmp/$marker && ! -e $marker && ! -e $HOME/$marker ]]
-  [[ $(cat run/report.txt) == $'passwd 0\nproject hidden\nconnect failed\nkey unset' ]] || { cat run/report.txt >&2; false; }
+  [[ ! -e /tmp/$marker && ! -e $marker && ! -e run/$marker && ! -e $HOME/$marker ]]
+  # What the program printed reaches helios-solve's stderr as progress, never its stdout.
+  [[ $(grep -E '^helios-solve: (passwd|project|connect|key) ' <<<"$stderr") == \
+     $'helios-solve: passwd 0\nhelios-solve: project hidden\nhelios-solve: connect failed\nhelios-solve: key unset' ]] ||
+    { echo "$stderr" >&2; false; }
   # Unsandboxed only when told, and then recorded.
   run -0 --separate-stderr "$BIN/helios-solve" escape.cpp --no-sandbox --cache-dir "$CACHE" \
     --trajectory run/trajectory.csv -o solution.json

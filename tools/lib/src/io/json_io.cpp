@@ -1,6 +1,7 @@
 #include "helios/io/json_io.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <array>
@@ -100,20 +101,70 @@ TempFiles::~TempFiles() {
   }
 }
 
-std::string read_text(const std::string& path) {
-  if (path == "-") {
-    std::ostringstream all;
-    all << std::cin.rdbuf();
-    return all.str();
+namespace {
+
+// Reads `fd` to its end, or throws once it holds more than `limit` bytes.
+std::string read_bounded(int fd, std::size_t limit, const std::string& name) {
+  std::string out;
+  char buf[65536];
+  while (true) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n == 0) return out;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw input_error(name + ": read error: " + std::strerror(errno));
+    }
+    out.append(buf, static_cast<std::size_t>(n));
+    if (out.size() > limit)
+      throw input_error(name + ": larger than the limit of " + std::to_string(limit) + " bytes");
   }
+}
+
+// Closes a descriptor when it goes out of scope.
+struct Descriptor {
+  explicit Descriptor(int f) : fd(f) {}
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+  int fd;
+};
+
+}  // namespace
+
+std::string read_text(const std::string& path, std::size_t limit) {
+  if (path == "-") return read_bounded(0, limit, "<stdin>");
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw input_error(path + ": is a directory, expected a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw input_error(path + ": cannot read: " + std::strerror(errno));
-  std::ostringstream all;
-  all << in.rdbuf();
-  if (in.bad()) throw input_error(path + ": read error");
-  return all.str();
+  const Descriptor in(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (in.fd < 0) throw input_error(path + ": cannot read: " + std::strerror(errno));
+  return read_bounded(in.fd, limit, path);
+}
+
+std::string read_program_file(const std::string& path, std::size_t limit) {
+  // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer that never comes.
+  const Descriptor in(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK));
+  if (in.fd < 0)
+    throw std::runtime_error(path + ": cannot open" + (errno == ELOOP ? " a symbolic link" : "") + ": " +
+                             std::strerror(errno));
+  struct stat st;
+  if (::fstat(in.fd, &st) != 0 || !S_ISREG(st.st_mode) || st.st_nlink != 1)
+    throw std::runtime_error(path + ": not a regular file with one link");
+  return read_bounded(in.fd, limit, path);
+}
+
+bool is_program_file(const std::string& path) {
+  struct stat st;
+  return ::lstat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && st.st_nlink == 1;
+}
+
+std::string create_temp_beside(const std::string& path) {
+  const std::string tmp = temp_name_for(path);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error(path + ": cannot create a temp file beside it: " + std::strerror(errno));
+  ::close(fd);
+  return tmp;
 }
 
 std::size_t json_depth_exceeded_at(const std::string& text, int limit) {

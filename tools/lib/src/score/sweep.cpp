@@ -14,6 +14,7 @@
 
 #include "helios/io/error.hpp"
 #include "helios/solve/process.hpp"
+#include "helios/solve/solve.hpp"
 
 namespace helios::score {
 
@@ -22,7 +23,10 @@ using io::json;
 
 namespace {
 
-constexpr std::size_t kMaxAxis = 1000;  // values on one axis
+constexpr std::size_t kMaxAxis = 1000;    // values on one axis
+constexpr std::size_t kMaxCells = 10000;  // cells of a grid: each is a folder and a whole chain
+// Departure epochs from 1900 to 2200 (the parser's calendar), times of flight up to a century.
+constexpr double kFirstEpoch = -36525, kLastEpoch = 73050, kLongestFlightDays = 36525;
 
 [[noreturn]] void bad(const std::string& source, const std::string& field, const std::string& why) {
   throw input_error(source + ": field /" + field + ": " + why);
@@ -42,7 +46,8 @@ double micro(double v) {
 }
 
 // One axis: {start, stop, step}, {start, stop, count} or {values: [...]}, strictly increasing.
-std::vector<double> read_axis(const json& j, const std::string& source, const std::string& field, double lowest) {
+std::vector<double> read_axis(const json& j, const std::string& source, const std::string& field, double lowest,
+                              double highest) {
   if (!j.is_object()) bad(source, field, "must be an object {start, stop, step}, {start, stop, count} or {values}");
   std::vector<double> out;
   if (j.contains("values")) {
@@ -74,6 +79,7 @@ std::vector<double> read_axis(const json& j, const std::string& source, const st
   if (out.size() > kMaxAxis) bad(source, field, "more than " + std::to_string(kMaxAxis) + " values");
   for (std::size_t i = 0; i < out.size(); ++i) {
     if (out[i] < lowest) bad(source, field, number_text(out[i]) + " is below " + number_text(lowest));
+    if (out[i] > highest) bad(source, field, number_text(out[i]) + " is above " + number_text(highest));
     if (i > 0 && !(out[i] > out[i - 1])) bad(source, field, "values must increase");
   }
   return out;
@@ -127,8 +133,13 @@ SweepGrid read_sweep(const json& sweep, const std::string& source, const std::st
   }
   for (const char* key : {"departure_mjd2000", "tof_days"})
     if (!axes->contains(key)) bad(source, prefix + key, "missing");
-  out.departures_mjd2000 = read_axis(axes->at("departure_mjd2000"), source, prefix + "departure_mjd2000", -1e5);
-  out.tofs_days = read_axis(axes->at("tof_days"), source, prefix + "tof_days", 1e-6);
+  out.departures_mjd2000 =
+      read_axis(axes->at("departure_mjd2000"), source, prefix + "departure_mjd2000", kFirstEpoch, kLastEpoch);
+  out.tofs_days = read_axis(axes->at("tof_days"), source, prefix + "tof_days", 1e-6, kLongestFlightDays);
+  const std::size_t cells = out.departures_mjd2000.size() * out.tofs_days.size();
+  if (cells > kMaxCells)
+    bad(source, prefix.empty() ? "tof_days" : prefix + "tof_days",
+        "the grid has " + std::to_string(cells) + " cells; the limit is " + std::to_string(kMaxCells));
   return out;
 }
 
@@ -243,19 +254,25 @@ void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, cons
   if (best >= 0)
     best_cell << number_text(rows[best].cell.departure_mjd2000) << ' ' << number_text(rows[best].cell.tof_days) << ' '
               << number_text(z) << "\n";
-  const std::string base = png_path + ".part";
-  const std::string grid_file = base + ".grid", bad_file = base + ".bad", best_file = base + ".best",
-                    script_file = base + ".gp", tmp_png = base + ".png";
-  const io::TempFiles guard({grid_file, bad_file, best_file, script_file, tmp_png});
+  const std::string grid_file = io::create_temp_beside(png_path + ".grid");
+  const io::TempFiles grid_guard({grid_file});
+  const std::string bad_file = io::create_temp_beside(png_path + ".bad");
+  const io::TempFiles bad_guard({bad_file});
+  const std::string best_file = io::create_temp_beside(png_path + ".best");
+  const io::TempFiles best_guard({best_file});
+  const std::string tmp_png = io::create_temp_beside(png_path);
+  const io::TempFiles png_guard({tmp_png});
   io::write_text_atomic(grid_file, data.str());
   io::write_text_atomic(bad_file, bad_cells.str().empty() ? "NaN NaN NaN\n" : bad_cells.str());
   io::write_text_atomic(best_file, best_cell.str().empty() ? "NaN NaN NaN\n" : best_cell.str());
   const std::string unit = grid.plot == "tof_days"        ? "time of flight [days]"
                            : grid.plot == "final_mass_kg" ? "final mass [kg]"
                                                           : "propellant [kg]";
+  // The title and the file names reach gnuplot as data (solve::run_gnuplot): ARG1 the PNG, ARG2 the
+  // title, ARG3 the grid, ARG4 the unconverged cells, ARG5 the best cell.
   std::ostringstream gp;
-  gp << "set terminal pngcairo size 1000,800 noenhanced\nset output '" << tmp_png << "'\n"
-     << "set title '" << title << ": " << unit << " (x: not converged, circled: best)'\n"
+  gp << "set terminal pngcairo size 1000,800 noenhanced\nset output ARG1\n"
+     << "set title ARG2.': " << unit << " (x: not converged, circled: best)'\n"
      << "set xlabel 'departure [MJD2000]'\nset ylabel 'time of flight [days]'\nset cblabel '" << unit << "'\n"
      << "set view map\nset pm3d at b interpolate 8,8\nset contour base\nset cntrparam levels auto 10\nunset clabel\n"
      << "set bmargin 7\nset key at screen 0.5,0.06 center center horizontal maxrows 1 box\n"
@@ -263,15 +280,13 @@ void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, cons
      << "set xrange [" << number_text(grid.departures_mjd2000.front()) << ":"
      << number_text(grid.departures_mjd2000.back()) << "]\nset yrange [" << number_text(grid.tofs_days.front()) << ":"
      << number_text(grid.tofs_days.back()) << "]\n"
-     << "splot '" << grid_file << "' using 1:2:3 with pm3d notitle, '" << grid_file
-     << "' using 1:2:3 with lines nosurface lc rgb 'black' notitle, '" << bad_file
-     << "' using 1:2:3 with points nocontours pt 2 ps 2 lw 2 lc rgb 'black' title 'not converged', '" << best_file
-     << "' using 1:2:3 with points nocontours pt 6 ps 3 lw 2 lc rgb 'black' title 'best', '" << best_file
-     << "' using 1:2:3 with points nocontours pt 3 ps 3 lw 3 lc rgb 'white' notitle\n";
-  io::write_text_atomic(script_file, gp.str());
-  const std::string out = solve::capture({"gnuplot", script_file});
+     << "splot ARG3 using 1:2:3 with pm3d notitle, ARG3 using 1:2:3 with lines nosurface lc rgb 'black' notitle, "
+     << "ARG4 using 1:2:3 with points nocontours pt 2 ps 2 lw 2 lc rgb 'black' title 'not converged', "
+     << "ARG5 using 1:2:3 with points nocontours pt 6 ps 3 lw 2 lc rgb 'black' title 'best', "
+     << "ARG5 using 1:2:3 with points nocontours pt 3 ps 3 lw 3 lc rgb 'white' notitle\n";
+  const std::string out = solve::run_gnuplot(gp.str(), {tmp_png, title, grid_file, bad_file, best_file});
   std::error_code ec;
-  if (!fs::exists(tmp_png, ec) || fs::file_size(tmp_png, ec) == 0)
+  if (fs::file_size(tmp_png, ec) == 0)
     throw std::runtime_error("gnuplot did not draw " + png_path + " (is gnuplot installed?): " + out.substr(0, 300));
   fs::rename(tmp_png, png_path);
 }

@@ -4,8 +4,6 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -23,6 +21,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using io::json;
+
+// The cached compile.log holds a compile's diagnostics (at most 64 KiB of them); more is not ours.
+constexpr std::size_t kMaxCompileLog = std::size_t{1} << 20;
 
 // How often the compiler's diagnostics say `kind` ("warning:", "error:").
 int count_of(const std::string& diagnostics, const std::string& kind) {
@@ -74,8 +75,8 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   c.binary = (dir / "shoot").string();
   if (fs::exists(c.binary)) {
     c.ok = c.cached = true;
-    std::ifstream log((dir / "compile.log").string());
-    c.diagnostics.assign(std::istreambuf_iterator<char>(log), std::istreambuf_iterator<char>());
+    // The log holds at most the 64 KiB of diagnostics a compile keeps.
+    c.diagnostics = io::read_text((dir / "compile.log").string(), kMaxCompileLog);
     c.warnings = count_of(c.diagnostics, "warning:");
     c.seconds = seconds_since(start);
     return c;

@@ -37,6 +37,19 @@ std::pair<std::vector<std::string>, std::vector<double>> csv_head(const std::str
 
 }  // namespace
 
+std::string run_gnuplot(const std::string& script, const std::vector<std::string>& args) {
+  char script_path[] = "/tmp/helios-plot-XXXXXX";
+  const int fd = ::mkstemp(script_path);
+  if (fd < 0) throw std::runtime_error("cannot create a gnuplot script file");
+  const io::TempFiles guard({script_path});
+  const bool written = ::write(fd, script.data(), script.size()) == static_cast<ssize_t>(script.size());
+  ::close(fd);
+  if (!written) throw std::runtime_error("cannot write the gnuplot script");
+  std::vector<std::string> argv = {"gnuplot", "-c", script_path};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return capture(argv);
+}
+
 json plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title) {
   const auto [columns, first] = csv_head(csv_path);
   // A lambda may not capture a structured binding in C++17 (clang refuses it): a reference it may.
@@ -51,40 +64,36 @@ json plot_trajectory(const std::string& csv_path, const std::string& prefix, con
   const std::string colour = engine ? "(column('u'))" : cone;
   const std::string panel = engine ? "throttle_mass" : "cone_angle";
   const std::string traj_png = prefix + "trajectory.png", panel_png = prefix + panel + ".png";
-  const std::string tmp1 = prefix + ".trajectory.png.tmp", tmp2 = prefix + "." + panel + ".png.tmp";
-  const io::TempFiles guard({tmp1, tmp2});
+  // Fresh files gnuplot only fills: nothing planted under a predictable name is followed.
+  const std::string tmp1 = io::create_temp_beside(traj_png);
+  const io::TempFiles guard1({tmp1});
+  const std::string tmp2 = io::create_temp_beside(panel_png);
+  const io::TempFiles guard2({tmp2});
+  // ARG1 the trajectory CSV, ARG2 the title, ARG3 and ARG4 the two PNGs (run_gnuplot).
   std::string script = "set datafile separator ','\nset terminal pngcairo size 1000,800 noenhanced\n";
-  script += "set output '" + tmp1 + "'\nset title '" + title +
-            ": trajectory (colour = " + (engine ? "throttle" : "cone angle") + ")'\n";
+  script += "set output ARG3\nset title ARG2.': trajectory (colour = " +
+            std::string(engine ? "throttle" : "cone angle") + ")'\n";
   script += "set xlabel 'x [" + length + "]'\nset ylabel 'y [" + length + "]'\nset zlabel 'z [" + length + "]'\n";
   script += "set view equal xy\nset ticslevel 0\nset grid\nset palette defined (0 '#2b6cb0', 1 '#e53e3e')\n";
   script +=
       engine ? "set cbrange [0:1]\nset cblabel 'throttle u'\n" : "set cbrange [0:90]\nset cblabel 'cone angle [deg]'\n";
-  script += "L = " + scale + "\nsplot '" + csv_path + "' every ::1 using ($2/L):($3/L):($4/L):" + colour +
+  script += "L = " + scale + "\nsplot ARG1 every ::1 using ($2/L):($3/L):($4/L):" + colour +
             " with lines lw 2 palette title 'spacecraft', '< echo 0,0,0' using 1:2:3 with points pt 7 ps 2 lc rgb "
             "'#d69e2e' title 'central body'\n";
-  script += "set output '" + tmp2 + "'\nset xlabel 'time [days]'\nunset zlabel\n";
+  script += "set output ARG4\nset xlabel 'time [days]'\nunset zlabel\n";
   if (engine)
-    script += "set title '" + title +
-              ": throttle and mass'\nset ylabel 'throttle u'\nset y2label 'mass [kg]'\n"
-              "set yrange [-0.05:1.05]\nset y2tics\nset ytics nomirror\nplot '" +
-              csv_path +
-              "' every ::1 using 1:(column('u')) with lines lw 2 lc rgb '#e53e3e' title 'throttle', "
-              "'' every ::1 using 1:(column('m_kg')) axes x1y2 with lines lw 2 lc rgb '#2b6cb0' title 'mass'\n";
+    script +=
+        "set title ARG2.': throttle and mass'\nset ylabel 'throttle u'\nset y2label 'mass [kg]'\n"
+        "set yrange [-0.05:1.05]\nset y2tics\nset ytics nomirror\nplot ARG1 every ::1 using 1:(column('u')) with "
+        "lines lw 2 lc rgb '#e53e3e' title 'throttle', "
+        "'' every ::1 using 1:(column('m_kg')) axes x1y2 with lines lw 2 lc rgb '#2b6cb0' title 'mass'\n";
   else
-    script += "set title '" + title + ": sail cone angle'\nset ylabel 'cone angle [deg]'\nset yrange [0:90]\nplot '" +
-              csv_path + "' every ::1 using 1:" + cone + " with lines lw 2 lc rgb '#e53e3e' title 'cone angle'\n";
-  char script_path[] = "/tmp/helios-plot-XXXXXX";
-  const int fd = ::mkstemp(script_path);
-  if (fd < 0) throw std::runtime_error("cannot create a gnuplot script file");
-  if (::write(fd, script.data(), script.size()) != static_cast<ssize_t>(script.size())) {
-    ::close(fd);
-    throw std::runtime_error("cannot write the gnuplot script");
-  }
-  ::close(fd);
-  const std::string out = capture({"gnuplot", script_path});
-  ::unlink(script_path);
-  if (!fs::exists(tmp1) || !fs::exists(tmp2))
+    script += "set title ARG2.': sail cone angle'\nset ylabel 'cone angle [deg]'\nset yrange [0:90]\nplot ARG1 "
+              "every ::1 using 1:" +
+              cone + " with lines lw 2 lc rgb '#e53e3e' title 'cone angle'\n";
+  const std::string out = run_gnuplot(script, {csv_path, title, tmp1, tmp2});
+  std::error_code ec;
+  if (fs::file_size(tmp1, ec) == 0 || fs::file_size(tmp2, ec) == 0)
     throw std::runtime_error("gnuplot did not draw the plots (is gnuplot installed?): " + first_line(out));
   fs::rename(tmp1, traj_png);
   fs::rename(tmp2, panel_png);

@@ -92,32 +92,39 @@ int kill_leftovers(pid_t group) {
   return killed;
 }
 
-// Collects a program's stderr: the first 64 KiB as text, and each complete line, cleaned, to
-// on_line as it arrives.
-class StderrLines {
+// Collects what a program prints (stderr and stdout alike): the first 64 KiB as text, each
+// complete line, cleaned, to on_line as it arrives, and the line that says why it failed (the last
+// one naming an error, else the last one).
+class OutputLines {
  public:
-  StderrLines(std::string& text, const std::function<void(const std::string&)>& on_line)
-      : text_(text), on_line_(on_line) {}
+  OutputLines(RunResult& result, const std::function<void(const std::string&)>& on_line)
+      : result_(result), on_line_(on_line) {}
   void add(const char* data, std::size_t n) {
-    if (text_.size() < 65536) text_.append(data, std::min(n, 65536 - text_.size()));
-    if (!on_line_) return;
+    std::string& text = result_.stderr_text;
+    if (text.size() < kMaxText) text.append(data, std::min(n, kMaxText - text.size()));
     for (std::size_t i = 0; i < n; ++i) {
       if (data[i] == '\n') {
         flush();
         continue;
       }
-      if (line_.size() < 300) line_ += std::isprint(static_cast<unsigned char>(data[i])) ? data[i] : '?';
+      if (line_.size() < kMaxLine) line_ += std::isprint(static_cast<unsigned char>(data[i])) ? data[i] : '?';
     }
   }
   void flush() {
-    if (on_line_ && !line_.empty()) on_line_(line_);
+    if (line_.empty()) return;
+    if (on_line_) on_line_(line_);
+    const bool names_error = line_.find("error") != std::string::npos;
+    if (names_error || !names_error_) result_.error_line = line_;
+    names_error_ = names_error_ || names_error;
     line_.clear();
   }
 
  private:
-  std::string& text_;
+  static constexpr std::size_t kMaxText = 65536, kMaxLine = 300;
+  RunResult& result_;
   const std::function<void(const std::string&)>& on_line_;
   std::string line_;
+  bool names_error_ = false;
 };
 
 }  // namespace
@@ -129,9 +136,12 @@ std::vector<std::string> sandboxed(const std::vector<std::string>& argv, const s
     throw std::runtime_error(
         "bubblewrap (bwrap) is not installed, so the program cannot run sandboxed: install it "
         "(tools/install-deps.sh, Debian package bubblewrap) or pass --no-sandbox");
-  std::vector<std::string> out = {bwrap,      "--unshare-all", "--die-with-parent", "--new-session", "--clearenv",
-                                  "--setenv", "PATH",          "/usr/bin",          "--ro-bind",     "/usr",
-                                  "/usr"};
+  // The fresh /tmp comes before every bind: a bind under /tmp (a build tree, cache or run folder
+  // there) mounted first would be hidden by it.
+  std::vector<std::string> out = {bwrap,    "--unshare-all", "--die-with-parent", "--new-session", "--clearenv",
+                                  "--setenv", "PATH",        "/usr/bin",          "--proc",        "/proc",
+                                  "--dev",    "/dev",        "--tmpfs",           "/tmp",          "--ro-bind",
+                                  "/usr",     "/usr"};
   // The top-level links into /usr of a merged-/usr system stay links; a real folder is bound.
   for (const char* top : {"/lib", "/lib64", "/lib32", "/bin", "/sbin"}) {
     std::error_code ec;
@@ -141,8 +151,8 @@ std::vector<std::string> sandboxed(const std::vector<std::string>& argv, const s
       out.insert(out.end(), {"--ro-bind", top, top});
   }
   for (const auto& folder : read_only) out.insert(out.end(), {"--ro-bind", folder, folder});
-  out.insert(out.end(), {"--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp", "--ro-bind", argv.at(0), argv.at(0),
-                         "--bind", workdir, workdir, "--chdir", workdir, "--"});
+  out.insert(out.end(),
+             {"--ro-bind", argv.at(0), argv.at(0), "--bind", workdir, workdir, "--chdir", workdir, "--"});
   out.insert(out.end(), argv.begin(), argv.end());
   return out;
 }
@@ -168,6 +178,9 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
     if (::getppid() != parent) _exit(126);
     // Its own process group, so a timeout kills everything it started.
     ::setpgid(0, 0);
+    // stdout joins stderr in the collector: what the program prints never reaches helios-solve's
+    // own output (with -o - that is the solution document).
+    ::dup2(err_pipe[1], 1);
     ::dup2(err_pipe[1], 2);
     if (!workdir.empty() && ::chdir(workdir.c_str()) != 0) _exit(126);
     const rlim_t cpu = static_cast<rlim_t>(std::ceil(wall_limit_s)) * cores + 5;
@@ -186,7 +199,7 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
   ::close(err_pipe[1]);
   ::fcntl(err_pipe[0], F_SETFL, O_NONBLOCK);
   ::setpgid(pid, pid);  // also from the parent, so the group exists before any kill
-  StderrLines lines(r.stderr_text, on_line);
+  OutputLines lines(r, on_line);
   char buf[4096];
   const auto drain = [&] {
     ssize_t n;

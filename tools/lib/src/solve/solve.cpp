@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstring>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -92,7 +93,7 @@ std::string run_failure(const RunResult& run, double time_limit_s) {
   std::string detail = run.timed_out
                            ? "killed after " + limit_text(time_limit_s) + " s wall clock"
                            : "exit code " + std::to_string(run.exit_code) + ", signal " + std::to_string(run.signal) +
-                                 ": " + printable_line(first_line(run.stderr_text));
+                                 ": " + printable_line(run.error_line);
   if (run.leftover_processes > 0)
     detail += "; killed " + std::to_string(run.leftover_processes) + " leftover processes";
   return detail;
@@ -100,7 +101,7 @@ std::string run_failure(const RunResult& run, double time_limit_s) {
 
 // The outcome the program wrote: an object of solution.json's keys, none of them helios-solve's.
 json read_outcome(const std::string& path) {
-  const json outcome = io::read_json(path);
+  const json outcome = io::parse_json_text(io::read_program_file(path), path);
   if (!outcome.is_object()) throw std::runtime_error(path + ": the program's outcome is not a JSON object");
   static const std::vector<std::string> known = io::schema_properties("solution");
   for (auto it = outcome.begin(); it != outcome.end(); ++it)
@@ -110,17 +111,17 @@ json read_outcome(const std::string& path) {
   return outcome;
 }
 
-// Removes the files of earlier runs in `dir` whose helios-solve is gone (a SIGKILL leaves them):
-// .settings.<pid>.json, .outcome.<pid>.json, .trajectory.<pid>.csv and their .part files.
-void remove_stale_run_files(const fs::path& dir) {
-  static const std::regex run_file(R"(\.(settings|outcome|trajectory)\.([0-9]+)\.(json|csv)(\.part)?)");
+// Removes the private folders of earlier runs in `dir` whose helios-solve is gone (a SIGKILL
+// leaves them): .run.<pid>.<random>, with whatever the program left in them.
+void remove_stale_run_folders(const fs::path& dir) {
+  static const std::regex run_folder(R"(\.run\.([0-9]{1,9})\.[A-Za-z0-9]{6})");
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir.empty() ? fs::path(".") : dir, ec)) {
     std::smatch m;
     const std::string name = entry.path().filename().string();
-    if (!std::regex_match(name, m, run_file) || m[2].length() > 9) continue;
-    const pid_t pid = static_cast<pid_t>(std::stol(m[2].str()));
-    if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) fs::remove(entry.path(), ec);
+    if (!std::regex_match(name, m, run_folder) || !entry.is_directory(ec) || entry.is_symlink(ec)) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(m[1].str()));
+    if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
   }
 }
 
@@ -138,17 +139,30 @@ std::string merge_outcome(json& doc, const std::string& outcome_path, const std:
   }
 }
 
-// The files of one run, in the trajectory's directory: the settings it reads, the outcome and
-// trajectory it writes (as .part, renamed when complete); all removed when this goes.
-struct RunFiles {
-  explicit RunFiles(const fs::path& dir)
-      : settings((dir / (".settings." + tag() + ".json")).string()),
-        outcome((dir / (".outcome." + tag() + ".json")).string()),
-        trajectory((dir / (".trajectory." + tag() + ".csv")).string()),
-        guard({settings, outcome, trajectory, outcome + ".part", trajectory + ".part"}) {}
-  static std::string tag() { return std::to_string(::getpid()); }
-  const std::string settings, outcome, trajectory;
-  const io::TempFiles guard;
+// The private folder of one run, beside the trajectory, and the only folder the sandboxed program
+// may write: it holds the settings the program reads and the outcome and trajectory it writes, so
+// nothing the program leaves (a link, a FIFO) lands where helios-solve writes its own files. The
+// folder goes, with whatever is in it, when this does.
+struct RunFolder {
+  explicit RunFolder(const fs::path& dir)
+      : path(create(dir)),
+        settings((fs::path(path) / "settings.json").string()),
+        outcome((fs::path(path) / "outcome.json").string()),
+        trajectory((fs::path(path) / "trajectory.csv").string()) {}
+  ~RunFolder() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  RunFolder(const RunFolder&) = delete;
+  RunFolder& operator=(const RunFolder&) = delete;
+  static std::string create(const fs::path& dir) {
+    std::string name = fs::absolute(dir.empty() ? fs::path(".") : dir).lexically_normal().string();
+    name += "/.run." + std::to_string(::getpid()) + ".XXXXXX";
+    if (::mkdtemp(name.data()) == nullptr)
+      throw std::runtime_error(name + ": cannot create the run's private folder: " + std::strerror(errno));
+    return name;
+  }
+  const std::string path, settings, outcome, trajectory;
 };
 
 }  // namespace
@@ -190,22 +204,21 @@ json solve(const SolveOptions& o) {
     o.progress(c.cached ? "compiled program from the cache" : "compiled in " + limit_text(c.seconds) + " s");
 
   const fs::path out_dir = fs::path(o.trajectory_path).parent_path();
-  remove_stale_run_files(out_dir);
-  const RunFiles files(out_dir);
+  remove_stale_run_folders(out_dir);
+  const RunFolder files(out_dir);
   // The program reads the warm start beside its settings; solution.json's settings stay the user's.
   json program_settings = settings;
   if (!warm.is_null()) program_settings["warm_start"] = warm;
   io::write_json_atomic(files.settings, program_settings);
-  const std::string workdir = fs::absolute(out_dir.empty() ? fs::path(".") : out_dir).lexically_normal().string();
   const std::vector<std::string> program = {fs::absolute(c.binary).lexically_normal().string(),
                                             "--settings",
-                                            fs::absolute(files.settings).string(),
+                                            files.settings,
                                             "--outcome",
-                                            fs::absolute(files.outcome).string(),
+                                            files.outcome,
                                             "--trajectory",
-                                            fs::absolute(files.trajectory).string()};
-  const RunResult run = run_limited(o.sandbox ? sandboxed(program, workdir) : program, o.time_limit_s,
-                                    o.memory_limit_mb, workdir, o.progress);
+                                            files.trajectory};
+  const RunResult run = run_limited(o.sandbox ? sandboxed(program, files.path) : program, o.time_limit_s,
+                                    o.memory_limit_mb, files.path, o.progress);
   doc["timings"]["run_s"] = run.seconds;
   if (run.timed_out || run.exit_code != 0 || !fs::exists(files.outcome)) {
     doc["status"] = run.timed_out ? "timeout" : "crashed";
@@ -222,6 +235,10 @@ json solve(const SolveOptions& o) {
   if (!warm_record.is_null() && !warm_record.at("used").get<bool>())
     doc["start_detail"] = "the neighbour " + o.warm_start_path + " did not converge (" +
                           warm_record.at("neighbour_status").get<std::string>() + "): the search started cold";
+  if (doc.at("status") == "converged" && !io::is_program_file(files.trajectory)) {
+    doc["status"] = "crashed";
+    doc["status_detail"] = "the program's trajectory is missing or not a regular file";
+  }
   if (doc.at("status") == "converged") {
     fs::rename(files.trajectory, o.trajectory_path);
     doc["files"] = {{"trajectory", fs::path(o.trajectory_path).filename().string()}};

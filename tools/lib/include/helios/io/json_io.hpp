@@ -10,13 +10,27 @@ namespace helios::io {
 
 using json = nlohmann::ordered_json;
 
-// Whole text of `path` ("-" reads stdin). Throws input_error naming the file.
-std::string read_text(const std::string& path);
-
 // Bounds of every JSON document the tools read (README "Limits"): checked before parsing, since a
 // deep nesting exhausts the stack of the recursive code that walks a document afterwards.
 inline constexpr std::size_t kMaxJsonBytes = std::size_t{64} << 20;
 inline constexpr int kMaxJsonDepth = 256;
+
+// Whole text of `path` ("-" reads stdin), of at most `limit` bytes: at most limit + 1 bytes are
+// read, so /dev/zero or an endless pipe is refused at the limit, not when memory runs out. Throws
+// input_error naming the file.
+std::string read_text(const std::string& path, std::size_t limit = kMaxJsonBytes);
+
+// A file an untrusted program left behind, read on the host: refused unless it is a regular file
+// reached without following a symbolic link (so neither a link to a host file nor a FIFO that would
+// block the read), with one link and at most `limit` bytes. Throws std::runtime_error saying why.
+std::string read_program_file(const std::string& path, std::size_t limit = kMaxJsonBytes);
+
+// Whether `path` is such a file (a regular file, not a symbolic link, one link).
+bool is_program_file(const std::string& path);
+
+// A new empty file beside `path` (same folder, a random name starting with '.'), created with
+// O_EXCL | O_NOFOLLOW so that nothing planted there is followed or reused; returns its path.
+std::string create_temp_beside(const std::string& path);
 
 // The first byte offset at which `text` nests arrays and objects deeper than `limit` (strings
 // skipped), or std::string::npos.

@@ -68,7 +68,8 @@ struct RunResult {
   int exit_code = -1;
   int signal = 0;
   bool timed_out = false;
-  std::string stderr_text;
+  std::string stderr_text;  // the first 64 KiB the program printed (stderr and stdout)
+  std::string error_line;   // the last line naming an error, else the last line
   double seconds = 0;
   int leftover_processes = 0;  // processes the program left running, killed after it ended
 };
@@ -94,6 +95,11 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
 // Draws the 3-D trajectory coloured by the control, and the control panel versus time, with
 // gnuplot: throttle + mass (throttle_mass.png) for an engine, the cone angle (cone_angle.png) for
 // a sail. Returns the file names by role ({"trajectory_plot": .., "<panel>_plot": ..}).
+// Runs gnuplot on `script`; the strings that come from outside it (titles, file names) reach it as
+// data, gnuplot's ARG1, ARG2, ... (gnuplot -c), never as its language, whatever quotes, backquotes
+// or macros they hold. Returns what gnuplot printed.
+std::string run_gnuplot(const std::string& script, const std::vector<std::string>& args);
+
 io::json plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title);
 
 // Compiles only (into the cache) and returns the compile artifact: ok, diagnostics, error count.
