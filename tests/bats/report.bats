@@ -32,10 +32,13 @@ report() {
 }
 
 # compiles MD: the mathematics of MD compiles with pdflatex -halt-on-error (the log on failure).
+# The document is data: no shell escape, no file read or written outside its folder (TeX's
+# paranoid openin_any/openout_any), and a minute at most.
 compiles() {
   local md="$1" tex="${1%.md}.tex"
   awk -f "$LATEX_DOCUMENT" "$md" >"$tex"
-  (cd "$(dirname "$tex")" && pdflatex -interaction=nonstopmode -halt-on-error "$(basename "$tex")" >/dev/null 2>&1) || {
+  (cd "$(dirname "$tex")" && openin_any=p openout_any=p timeout 60 pdflatex -no-shell-escape -interaction=nonstopmode \
+    -halt-on-error "$(basename "$tex")" >/dev/null 2>&1) || {
     grep -A3 '^!' "${tex%.tex}.log" >&2
     return 1
   }
@@ -125,7 +128,7 @@ compiles() {
   grep -qF '## Solution (solution.json)' r/report.md
   grep -qF '| `final_mass_kg` | 1500' r/report.md
   grep -qF '### Switches' r/report.md
-  grep -qF '![trajectory_plot](trajectory.png)' r/report.md
+  grep -qF '![trajectory\_plot](trajectory.png)' r/report.md
   run grep -cF '](trajectory.csv)' r/report.md
   [[ $output == 0 ]]
   compiles r/report.md
@@ -145,4 +148,53 @@ compiles() {
   assert_one_error_line score
   [[ $stderr == *"r/missing.json"* ]]
   [[ ! -e out.md ]]
+}
+
+@test "report: hostile strings in the artifacts stay text: no math, TeX, HTML or link is made of them" {
+  local fixtures="$ROOT/tests/fixtures/oem"
+  local evil='3 $\input{/etc/hostname}$ <script>alert(1)</script> `x` [a](http://e) |'
+  mkdir r
+  cp "$fixtures/spec.json" r/
+  "$BIN/helios-derive" r/spec.json -o r/derivation.json
+  "$BIN/helios-verify" r/derivation.json -o r/verify.json
+  jq --arg e "$evil" '.checks[0].verdict = "fail" | .checks[0].id = $e | .checks[0].feedback = ($e + "\n# heading")' r/verify.json >r/v.json
+  mv r/v.json r/verify.json
+  # The keys the report prints as numbers are numbers by the schema: a string there is refused.
+  jq --arg e "$evil" '.homotopy = [{"eps": 0, "converged": true, "evaluations": $e}]' "$fixtures/solution.json" >r/solution.json
+  run -3 --separate-stderr report S08 r --solution r/solution.json
+  [[ $stderr == *"r/solution.json: solution schema violation at /homotopy/0/evaluations"* ]]
+  jq --arg e "$evil" '.method = $e | .timings[$e] = 1
+    | .search = {"method": $e, "threads": 1, "starts": 2, "converged_at_eps_start": 1, "continued": 1,
+                 "converged_at_eps_0": 1, "seconds": 1, "cut_by_time": false, "saturated": false, "stopped": $e,
+                 "reason": $e, "extremals_at_eps_start": [], "extremals": [],
+                 "family": [{"from": 0, "direction": 1, "revolutions": 2, "how": $e}]}
+    | .files = {"trajectory_plot": "../../etc/x.png", ($e): "trajectory.png"}' "$fixtures/solution.json" >r/solution.json
+  report S08 r --solution r/solution.json
+  # Not one unescaped character of the hostile string opens markup: with the backslash escapes and
+  # the code spans taken out (left to right, as Markdown reads them), no math, HTML or link is left.
+  perl -pe 's/\\.|`[^`]*`//g' r/report.md >r/outside_code.md
+  run grep -nF -e '<script' -e '/etc/hostname}$' -e '](http' r/outside_code.md
+  [[ $status -eq 1 ]] || { echo "$output" >&2; false; }
+  grep -qF '`../../etc/x.png`' r/report.md
+  run grep -cF '](../../etc/x.png)' r/report.md
+  [[ $output == 0 ]]
+  # The LaTeX document holds only the derivation's formulas, and compiles without reading a host file.
+  compiles r/report.md
+  run grep -c 'input\|hostname' r/report.tex
+  [[ $output == 0 ]]
+  run grep -F "$(cat /etc/hostname)" r/report.log
+  [[ $status -eq 1 || -z $(cat /etc/hostname) ]]
+}
+
+@test "report: the LaTeX check lifts no formula out of a code block or a code span" {
+  printf '%s\n' '# t' '```text' 'a $\input{/etc/hostname}$ b' '~~~' '$x$ still code' '```' \
+    'text `$\input{/etc/passwd}$` and $y$ and \$z\$' '~~~~' '$w$' '~~~~' >doc.md
+  awk -f "$LATEX_DOCUMENT" doc.md >doc.tex
+  [[ $(grep -c 'par$' doc.tex) == 1 ]]
+  grep -qxF '$y$\par' doc.tex
+  run grep -c 'input\|\$x\$\|\$w\$\|\$z' doc.tex
+  [[ $output == 0 ]]
+  printf '%s\n' '```' 'never closed' >open.md
+  run awk -f "$LATEX_DOCUMENT" open.md
+  [[ $status -eq 1 ]]
 }

@@ -207,4 +207,31 @@ TEST(Report, AnExpressionItCannotReadIsShownAsText) {
   EXPECT_NE(md.find("`rx +* 2` (not an expression this report can typeset)"), std::string::npos);
 }
 
+// Strings of the artifacts are text wherever they land: escaped outside code, quoted inside it, and
+// a key typed as a number prints only a number.
+TEST(Report, HostileArtifactStringsAreTextAndNumbersAreNumbers) {
+  const std::string evil = "3 $\\input{/etc/hostname}$ <script>x</script> `c` [a](http://e) |\n# h";
+  helios::score::ReportInputs in;
+  in.problem_text = "```\n$x$\n";
+  in.spec = spec_of("S01");
+  in.derivation = helios::pmp::derive_from_spec(in.spec);
+  in.derivation_source = evil;
+  in.solution = json{{"status", "converged"},
+                     {"method", evil},
+                     {"timings", {{evil, evil}}},
+                     {"homotopy", json::array({{{"eps", evil}, {"converged", true}, {"evaluations", "7 $x$"}}})},
+                     {"files", {{"plot", "../x.png"}, {evil, "t.png"}}}};
+  const std::string md = helios::score::report_markdown(in);
+  const std::string text = "3 \\$\\\\input{/etc/hostname}\\$ \\<script\\>x\\</script\\> \\`c\\` \\[a\\](http://e) \\| \\# h";
+  EXPECT_NE(md.find("| " + text + " |"), std::string::npos);
+  EXPECT_NE(md.find("| `timings/3 $\\input{/etc/hostname}$ <script>x</script> 'c' [a](http://e) \\| # h` | *(not a number)* |"),
+            std::string::npos);
+  EXPECT_NE(md.find("| *(not a number)* | yes | *(not a number)* |  |"), std::string::npos);
+  EXPECT_NE(md.find("plot: `../x.png`"), std::string::npos);
+  EXPECT_NE(md.find("![" + text + "](t.png)"), std::string::npos);
+  EXPECT_EQ(md.find("<script>x</script> `"), std::string::npos);
+  // The problem text's own fence line cannot close the report's fence around it.
+  EXPECT_NE(md.find("````text\n```\n$x$\n````"), std::string::npos);
+}
+
 }  // namespace

@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <vector>
 
@@ -27,38 +28,60 @@ std::string number(double v) {
   return buf;
 }
 
-std::string scalar(const json& v) {
-  if (v.is_string()) return v.get<std::string>();
+// Artifact text as Markdown that stays text: every character that opens markup in Markdown or
+// pandoc's extensions (math, raw TeX, code, emphasis, links, HTML and entities, sub/superscript,
+// citations, table cells) is backslash-escaped, and a
+// line break or other control character becomes a space, so a string cannot open math, a code
+// span, a link, an HTML element or a new line of the document.
+std::string escaped(const std::string& text) {
+  static const std::string markup = "\\`*_[]<>|$^~&@#";
+  std::string out;
+  for (char c : text) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      out += ' ';
+    else if (markup.find(c) != std::string::npos)
+      out += std::string("\\") + c;
+    else
+      out += c;
+  }
+  return out;
+}
+
+// A code span of artifact text: pandoc typesets its characters verbatim (no math, no TeX, no
+// HTML); a backtick becomes a quote, a cell separator is escaped and a control character a space.
+std::string code(const std::string& text) {
+  std::string out = "`";
+  for (char c : text) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      out += ' ';
+    else
+      out += c == '`' ? std::string("'") : c == '|' ? std::string("\\|") : std::string(1, c);
+  }
+  return out + "`";
+}
+
+// A value of an artifact as report text: numbers formatted, strings escaped, booleans as words.
+std::string value(const json& v) {
+  if (v.is_string()) return escaped(v.get<std::string>());
   if (v.is_number_integer()) return std::to_string(v.get<long long>());
   if (v.is_number()) return number(v.get<double>());
   if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
   if (v.is_null()) return "";
   if (v.is_array() && std::all_of(v.begin(), v.end(), [](const json& x) { return x.is_primitive(); })) {
     std::string out = "[";
-    for (const auto& x : v) out += (out.size() > 1 ? ", " : "") + scalar(x);
+    for (const auto& x : v) out += (out.size() > 1 ? ", " : "") + value(x);
     return out + "]";
   }
-  return v.dump();
+  return escaped(v.dump());
 }
 
-// Text inside a Markdown table cell or a line: no line break, no cell separator, no HTML.
-std::string cell(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '|')
-      out += "\\|";
-    else if (c == '\n' || c == '\r')
-      out += ' ';
-    else if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '$' || c == '*' || c == '_' || c == '`' || c == '\\')
-      out += std::string("\\") + c;
-    else
-      out += c;
-  }
-  return out;
+// A key the schemas type as a number: its value when it is one, blank when absent, and a marked
+// "not a number" otherwise (a hand-edited or hostile artifact), never the text it holds.
+std::string numeric(const json& v) {
+  if (v.is_null()) return "";
+  if (v.is_number() || v.is_boolean()) return value(v);
+  if (v.is_array() && std::all_of(v.begin(), v.end(), [](const json& x) { return x.is_number(); })) return value(v);
+  return "*(not a number)*";
 }
 
 // The unit a key of the spec names by its suffix (thrust_N, mu_km3_s2, tof_days).
@@ -93,14 +116,7 @@ void spec_rows(const json& v, const std::string& pointer, const std::string& key
     for (std::size_t i = 0; i < v.size(); ++i) spec_rows(v[i], pointer + "/" + std::to_string(i), key, out);
     return;
   }
-  out << "| `" << pointer << "` | " << cell(scalar(v)) << " | " << unit_of_key(key) << " |\n";
-}
-
-// A code span: backticks inside become quotes, and a cell separator is escaped.
-std::string code(const std::string& text) {
-  std::string out = "`";
-  for (char c : text) out += c == '`' ? std::string("'") : c == '|' ? std::string("\\|") : std::string(1, c);
-  return out + "`";
+  out << "| " << code(pointer) << " | " << value(v) << " | " << unit_of_key(key) << " |\n";
 }
 
 // A fence for a code block holding `text`: longer than any run of backticks in it.
@@ -118,20 +134,20 @@ std::string fence_for(const std::string& text) {
 void search_coverage(std::ostringstream& o, const json& sr) {
   if (sr.contains("saturated"))
     o << (sr.at("saturated").get<bool>() ? "The starts saturated" : "**The starts did not saturate**") << " ("
-      << cell(sr.value("stopped", "")) << "; chance that another start finds a new extremal: "
-      << scalar(sr.value("new_extremal_chance", json())) << ").\n\n";
+      << escaped(sr.value("stopped", "")) << "; chance that another start finds a new extremal: "
+      << numeric(sr.value("new_extremal_chance", json())) << ").\n\n";
   if (sr.contains("family")) {
     o << "| family of extremal | direction | revolutions looked for | how | found |\n|---|---|---|---|---|\n";
     for (const auto& p : sr.at("family"))
-      o << "| " << scalar(p.value("from", json())) << " | " << (p.value("direction", 0) < 0 ? "one fewer" : "one more")
-        << " | " << scalar(p.value("revolutions", json())) << " | " << cell(p.value("how", "")) << " | "
-        << (p.contains("found") ? "extremal " + scalar(p.at("found")) : std::string("none")) << " |\n";
+      o << "| " << numeric(p.value("from", json())) << " | " << (p.value("direction", 0) < 0 ? "one fewer" : "one more")
+        << " | " << numeric(p.value("revolutions", json())) << " | " << escaped(p.value("how", "")) << " | "
+        << (p.contains("found") ? "extremal " + numeric(p.at("found")) : std::string("none")) << " |\n";
     o << "\n";
   }
   if (sr.contains("minimum_fuel_companion")) {
     const json& c = sr.at("minimum_fuel_companion");
-    o << "Minimum-fuel companion: final time held at " << scalar(c.value("held_tf_days", json())) << " d, "
-      << scalar(c.value("converged", json())) << " of " << scalar(c.value("starts", json()))
+    o << "Minimum-fuel companion: final time held at " << numeric(c.value("held_tf_days", json())) << " d, "
+      << numeric(c.value("converged", json())) << " of " << numeric(c.value("starts", json()))
       << " starts converged, " << c.value("solutions", json::array()).size()
       << " distinct solutions, each continued down in the held time and released.\n\n";
   }
@@ -262,7 +278,7 @@ std::string Writer::condition(const std::string& text, const std::string& where)
     const auto lhs = parsed(text.substr(0, eq), where), rhs = parsed(text.substr(eq + 3), where);
     if (lhs && rhs) return display_expression(tex_.latex(*lhs), *rhs);
   }
-  return "- " + cell(text) + "\n";
+  return "- " + escaped(text) + "\n";
 }
 
 std::string Writer::findings(const std::function<bool(const json&)>& concerns) const {
@@ -272,10 +288,10 @@ std::string Writer::findings(const std::function<bool(const json&)>& concerns) c
   for (const auto& c : in_.verify->at("checks")) {
     if (!concerns(c)) continue;
     const bool pass = c.value("verdict", "") == "pass";
-    o << (shown++ ? "; " : "> helios-verify: ") << "`" << c.value("id", "") << "` "
-      << (pass ? c.value("verdict", "") : "**" + c.value("verdict", "") + "**");
+    o << (shown++ ? "; " : "> helios-verify: ") << code(c.value("id", "")) << " "
+      << (pass ? escaped(c.value("verdict", "")) : "**" + escaped(c.value("verdict", "")) + "**");
     const std::string feedback = c.value("feedback", "");
-    if (!pass && !feedback.empty()) o << ": " << cell(feedback);
+    if (!pass && !feedback.empty()) o << ": " << escaped(feedback);
   }
   return shown ? o.str() + "\n\n" : "";
 }
@@ -296,28 +312,28 @@ bool concerns_event(const json& check, const std::string& id) {
 
 void Writer::header(std::ostringstream& o) const {
   const json& p = in_.spec.at("problem");
-  o << "# " << cell(p.value("id", "")) << ": " << cell(p.value("title", "")) << "\n\n";
+  o << "# " << escaped(p.value("id", "")) << ": " << escaped(p.value("title", "")) << "\n\n";
   const json& producer = d_.at("producer");
-  o << "Derivation by " << cell(producer.value("tool", "")) << " " << cell(producer.value("version", "")) << " ("
-    << cell(producer.value("backend", "")) << " backend)";
+  o << "Derivation by " << escaped(producer.value("tool", "")) << " " << escaped(producer.value("version", "")) << " ("
+    << escaped(producer.value("backend", "")) << " backend)";
   if (in_.verify) {
     int passed = 0, total = 0;
     for (const auto& c : in_.verify->at("checks")) {
       ++total;
       passed += c.value("verdict", "") == "pass";
     }
-    o << "; verification **" << cell(in_.verify->value("verdict", "")) << "** (" << passed << " of " << total
+    o << "; verification **" << escaped(in_.verify->value("verdict", "")) << "** (" << passed << " of " << total
       << " checks pass)";
   } else {
     o << "; not verified (no verify.json given)";
   }
   if (in_.solution)
-    o << "; solution **" << cell(in_.solution->value("status", "")) << "**.\n\n";
+    o << "; solution **" << escaped(in_.solution->value("status", "")) << "**.\n\n";
   else
     o << "; not solved (no solution.json given).\n\n";
   o << "Written by `helios-score --report` from the run's artifacts. Every formula is an exact rewrite of the "
        "expression stored in "
-    << cell(in_.derivation_source)
+    << escaped(in_.derivation_source)
     << ": norms and differences are named (see *Named quantities*), terms collected and factored where "
        "that is shorter.\n\n";
 }
@@ -340,28 +356,28 @@ void Writer::specification(std::ostringstream& o) const {
 void Writer::symbols(std::ostringstream& o) {
   const json& u = d_.at("units");
   o << "## The derivation\n\n### Units and symbols\n\nThe solver works in normalized units: length "
-    << cell(u.value("length", "")) << " = " << number(u.value("length_km", 0.0)) << " km, time "
-    << cell(u.value("time", "")) << " = " << number(u.value("time_s", 0.0)) << " s, mass "
+    << escaped(u.value("length", "")) << " = " << number(u.value("length_km", 0.0)) << " km, time "
+    << escaped(u.value("time", "")) << " = " << number(u.value("time_s", 0.0)) << " s, mass "
     << number(u.value("mass_kg", 0.0)) << " kg.\n\n| symbol | name | meaning | unit | value |\n|---|---|---|---|---|\n";
   for (const auto& s : d_.at("states"))
-    o << "| " << inline_symbol(s.at("name")) << " | `" << s.at("name").get<std::string>()
-      << "` | state: " << cell(s.value("meaning", "")) << " | " << cell(s.value("unit", "")) << " | |\n";
+    o << "| " << inline_symbol(s.at("name")) << " | " << code(s.at("name"))
+      << " | state: " << escaped(s.value("meaning", "")) << " | " << escaped(s.value("unit", "")) << " | |\n";
   for (const auto& s : d_.at("states"))
-    o << "| " << inline_symbol(s.at("costate")) << " | `" << s.at("costate").get<std::string>() << "` | costate of "
-      << cell(s.value("meaning", "")) << " | | |\n";
+    o << "| " << inline_symbol(s.at("costate")) << " | " << code(s.at("costate")) << " | costate of "
+      << escaped(s.value("meaning", "")) << " | | |\n";
   for (const auto& c : d_.at("controls"))
-    o << "| " << inline_symbol(c.at("name")) << " | `" << c.at("name").get<std::string>()
-      << "` | control: " << cell(c.value("meaning", "")) << " | | |\n";
+    o << "| " << inline_symbol(c.at("name")) << " | " << code(c.at("name"))
+      << " | control: " << escaped(c.value("meaning", "")) << " | | |\n";
   for (const auto& p : d_.at("parameters"))
-    o << "| " << inline_symbol(p.at("name")) << " | `" << p.at("name").get<std::string>() << "` | "
-      << cell(p.value("meaning", "")) << " | " << cell(p.value("unit", "")) << " | "
+    o << "| " << inline_symbol(p.at("name")) << " | " << code(p.at("name")) << " | "
+      << escaped(p.value("meaning", "")) << " | " << escaped(p.value("unit", "")) << " | "
       << (p.value("source", "").empty() ? number(p.value("value", 0.0))
                                         : "evaluated by the program: " + code(p.at("source")))
       << " |\n";
-  o << "| " << inline_symbol(reader_.multiplier) << " | `" << reader_.multiplier << "` | cost multiplier | | |\n";
+  o << "| " << inline_symbol(reader_.multiplier) << " | " << code(reader_.multiplier) << " | cost multiplier | | |\n";
   if (!reader_.homotopy.empty())
-    o << "| " << inline_symbol(reader_.homotopy) << " | `" << reader_.homotopy << "` | "
-      << cell(d_.at("homotopy").value("meaning", "")) << " | | |\n";
+    o << "| " << inline_symbol(reader_.homotopy) << " | " << code(reader_.homotopy) << " | "
+      << escaped(d_.at("homotopy").value("meaning", "")) << " | | |\n";
   o << "\n";
 }
 
@@ -397,15 +413,15 @@ void Writer::control(std::ostringstream& o) {
   const json& law = d_.at("control_law");
   if (law.contains("direction")) {
     const json& dir = law.at("direction");
-    o << "Thrust direction: " << cell(dir.value("reason", "")) << "\n";
+    o << "Thrust direction: " << escaped(dir.value("reason", "")) << "\n";
     for (std::size_t i = 0; i < dir.at("controls").size(); ++i)
       o << display(tex_.symbol(dir.at("controls")[i]) + "^{*}", dir.at("law")[i], "/control_law/direction/law");
   }
   if (law.contains("throttle")) {
     const json& th = law.at("throttle");
     const std::string u = tex_.symbol(th.at("control"));
-    o << "Throttle " << inline_symbol(th.at("control")) << " in [" << scalar(th.at("bounds")[0]) << ", "
-      << scalar(th.at("bounds")[1]) << "], smoothing " << cell(th.value("smoothing", "")) << ". Switching function:\n"
+    o << "Throttle " << inline_symbol(th.at("control")) << " in [" << numeric(th.at("bounds")[0]) << ", "
+      << numeric(th.at("bounds")[1]) << "], smoothing " << escaped(th.value("smoothing", "")) << ". Switching function:\n"
       << display("S", th.at("switching_function"), "/control_law/throttle/switching_function")
       << display("\\left.\\frac{\\partial H}{\\partial " + u + "}\\right|_{" + u + "=0}", th.at("dH_du_at_lower"),
                  "/control_law/throttle/dH_du_at_lower")
@@ -414,17 +430,17 @@ void Writer::control(std::ostringstream& o) {
       << display("\\frac{\\partial^2 H}{\\partial " + u + "^2}", th.at("d2H_du2"), "/control_law/throttle/d2H_du2")
       << "Interior throttle (stationarity of H):\n"
       << display(u + "_{\\mathrm{int}}", th.at("interior"), "/control_law/throttle/interior")
-      << "Law: " << cell(th.value("law", "")) << "\n\n";
+      << "Law: " << escaped(th.value("law", "")) << "\n\n";
   }
   if (law.contains("sail")) {
     const json& sail = law.at("sail");
-    o << "Sail normal: " << cell(sail.value("reason", "")) << "\n";
+    o << "Sail normal: " << escaped(sail.value("reason", "")) << "\n";
     for (const auto& def : sail.value("definitions", json::array()))
       o << display(tex_.symbol(def.at("name")), def.at("expression"), "/control_law/sail/definitions");
     for (std::size_t i = 0; i < sail.at("controls").size(); ++i)
       o << display(tex_.symbol(sail.at("controls")[i]) + "^{*}", sail.at("law")[i], "/control_law/sail/law");
-    o << "Stationarity: " << cell(sail.value("stationarity", ""))
-      << ". Admissible: " << cell(sail.value("admissible", "")) << ".\n\n";
+    o << "Stationarity: " << escaped(sail.value("stationarity", ""))
+      << ". Admissible: " << escaped(sail.value("admissible", "")) << ".\n\n";
   }
   o << findings([](const json& c) { return c.value("category", "") == "control"; });
 }
@@ -432,22 +448,22 @@ void Writer::control(std::ostringstream& o) {
 void Writer::boundaries(std::ostringstream& o) {
   o << "### Boundary conditions and transversality\n\n";
   const json& times = d_.at("times");
-  o << "Times (normalized): t0 = " << scalar(times.at("t0")) << ", final time " << cell(times.value("final_time", ""));
-  if (times.contains("tf")) o << ", tf = " << scalar(times.at("tf"));
-  if (times.contains("tf_window")) o << ", tf in " << scalar(times.at("tf_window"));
+  o << "Times (normalized): t0 = " << numeric(times.at("t0")) << ", final time " << escaped(times.value("final_time", ""));
+  if (times.contains("tf")) o << ", tf = " << numeric(times.at("tf"));
+  if (times.contains("tf_window")) o << ", tf in " << numeric(times.at("tf_window"));
   o << ".\n";
   if (times.contains("tf_expression")) o << display("t_f", times.at("tf_expression"), "/times/tf_expression");
   o << "\n";
   for (const auto& c : d_.at("constraints")) {
     const std::string id = c.at("id");
-    o << "#### " << cell(id) << " (" << cell(c.value("kind", "")) << " at " << cell(c.value("at", "")) << ")\n\n"
+    o << "#### " << escaped(id) << " (" << escaped(c.value("kind", "")) << " at " << escaped(c.value("at", "")) << ")\n\n"
       << "Target: " << code(c.at("target").dump()) << "\n";
     const json& psi = c.value("psi", json::array());
     for (std::size_t i = 0; i < psi.size(); ++i)
       o << display("\\psi_{" + std::to_string(i + 1) + "}", psi[i], "/constraints/" + id + "/psi", " = 0");
     o << "Conditions:\n\n";
     for (const auto& cond : c.value("conditions", json::array())) o << condition(cond, "/constraints/" + id);
-    if (c.contains("time_condition")) o << "- " << cell(c.at("time_condition")) << "\n";
+    if (c.contains("time_condition")) o << "- " << escaped(c.at("time_condition")) << "\n";
     o << "\n"
       << findings([&](const json& check) {
            return c.at("at") != "interior" && check.value("category", "") == "transversality" &&
@@ -463,9 +479,9 @@ void Writer::events(std::ostringstream& o) {
   for (const auto& ev : evs) {
     const std::string id = ev.at("id");
     const json& time = ev.at("time");
-    o << "#### " << cell(id) << " (" << cell(ev.value("kind", "")) << ")\n\nTarget: " << code(ev.at("target").dump())
-      << ". Epoch " << inline_symbol(time.at("symbol")) << " in " << scalar(time.value("window", json::array()))
-      << ", stay " << scalar(time.value("duration", json(0.0))) << " (normalized):\n"
+    o << "#### " << escaped(id) << " (" << escaped(ev.value("kind", "")) << ")\n\nTarget: " << code(ev.at("target").dump())
+      << ". Epoch " << inline_symbol(time.at("symbol")) << " in " << numeric(time.value("window", json::array()))
+      << ", stay " << numeric(time.value("duration", json(0.0))) << " (normalized):\n"
       << display(tex_.symbol(time.at("symbol")), time.at("expression"), "/events/" + id + "/time/expression");
     const json& psi = ev.value("psi", json::array());
     for (std::size_t i = 0; i < psi.size(); ++i)
@@ -489,13 +505,13 @@ void Writer::shooting(std::ostringstream& o) {
        "|\n|---|---|---|---|---|\n";
   int i = 0;
   for (const auto& v : sh.at("variables"))
-    o << "| " << ++i << " | " << inline_symbol(v.at("name")) << " | " << cell(v.value("meaning", "")) << " | "
-      << scalar(v.value("scale", json(1.0))) << " | " << cell(v.value("init", "")) << " |\n";
+    o << "| " << ++i << " | " << inline_symbol(v.at("name")) << " | " << escaped(v.value("meaning", "")) << " | "
+      << numeric(v.value("scale", json(1.0))) << " | " << escaped(v.value("init", "")) << " |\n";
   o << "\n" << sh.at("equations").size() << " equations in " << sh.at("variables").size() << " unknowns:\n\n";
   i = 0;
   for (const auto& e : sh.at("equations")) {
     ++i;
-    o << "**F" << i << "** `" << cell(e.value("name", "")) << "`: " << cell(e.value("meaning", "")) << "\n"
+    o << "**F" << i << "** " << code(e.value("name", "")) << ": " << escaped(e.value("meaning", "")) << "\n"
       << display("F_{" + std::to_string(i) + "}", e.at("expression"), "/shooting/equations/" + std::to_string(i - 1));
   }
   o << findings([](const json& c) { return c.value("category", "") == "counts"; });
@@ -503,12 +519,12 @@ void Writer::shooting(std::ostringstream& o) {
 
 void Writer::verification(std::ostringstream& o) const {
   if (!in_.verify) return;
-  o << "## Verification (verify.json)\n\nVerdict: **" << cell(in_.verify->value("verdict", ""))
+  o << "## Verification (verify.json)\n\nVerdict: **" << escaped(in_.verify->value("verdict", ""))
     << "**.\n\n| check | category | verdict | method | max rel. error | finding |\n|---|---|---|---|---|---|\n";
   for (const auto& c : in_.verify->at("checks"))
-    o << "| `" << cell(c.value("id", "")) << "` | " << cell(c.value("category", "")) << " | "
-      << cell(c.value("verdict", "")) << " | " << cell(c.value("method", "")) << " | "
-      << (c.contains("max_rel_error") ? scalar(c.at("max_rel_error")) : "") << " | " << cell(c.value("feedback", ""))
+    o << "| " << code(c.value("id", "")) << " | " << escaped(c.value("category", "")) << " | "
+      << escaped(c.value("verdict", "")) << " | " << escaped(c.value("method", "")) << " | "
+      << (c.contains("max_rel_error") ? numeric(c.at("max_rel_error")) : "") << " | " << escaped(c.value("feedback", ""))
       << " |\n";
   o << "\n";
 }
@@ -520,44 +536,49 @@ void Writer::solution(std::ostringstream& o) const {
   for (const char* key : {"status", "tof_days", "departure_mjd2000", "initial_mass_kg", "final_mass_kg",
                           "propellant_kg", "delta_v_m_s", "epsilon", "max_residual", "hamiltonian_drift", "iterations",
                           "function_evaluations", "restarts", "seed", "method"})
-    if (s.contains(key)) o << "| `" << key << "` | " << cell(scalar(s.at(key))) << " |\n";
+    if (s.contains(key)) o << "| " << code(key) << " | " << value(s.at(key)) << " |\n";
   if (s.contains("timings"))
-    for (const auto& [k, v] : s.at("timings").items()) o << "| `timings/" << k << "` | " << scalar(v) << " |\n";
+    for (const auto& [k, v] : s.at("timings").items()) o << "| " << code("timings/" + k) << " | " << numeric(v) << " |\n";
   o << "\n";
   if (s.contains("switches") && !s.at("switches").empty()) {
     o << "### Switches\n\n| t (d) | throttle after |\n|---|---|\n";
     for (const auto& w : s.at("switches"))
-      o << "| " << scalar(w.value("t_days", json())) << " | " << scalar(w.value("throttle_after", json())) << " |\n";
+      o << "| " << numeric(w.value("t_days", json())) << " | " << numeric(w.value("throttle_after", json())) << " |\n";
     o << "\n";
   }
   if (s.contains("homotopy")) {
     o << "### Homotopy\n\n| eps | converged | evaluations | max residual |\n|---|---|---|---|\n";
     for (const auto& h : s.at("homotopy"))
-      o << "| " << scalar(h.value("eps", json())) << " | " << scalar(h.value("converged", json())) << " | "
-        << scalar(h.value("evaluations", json())) << " | " << scalar(h.value("max_residual", json())) << " |\n";
+      o << "| " << numeric(h.value("eps", json())) << " | " << numeric(h.value("converged", json())) << " | "
+        << numeric(h.value("evaluations", json())) << " | " << numeric(h.value("max_residual", json())) << " |\n";
     o << "\n";
   }
   if (s.contains("search")) {
     const json& sr = s.at("search");
     o << "### The search\n\n"
-      << cell(sr.value("method", "")) << ": " << scalar(sr.value("starts", json())) << " starts on "
-      << scalar(sr.value("threads", json())) << " threads, " << scalar(sr.value("seconds", json())) << " s"
-      << (sr.value("cut_by_time", false) ? ", cut by the time limit" : "") << ". " << cell(sr.value("reason", ""))
+      << escaped(sr.value("method", "")) << ": " << numeric(sr.value("starts", json())) << " starts on "
+      << numeric(sr.value("threads", json())) << " threads, " << numeric(sr.value("seconds", json())) << " s"
+      << (sr.value("cut_by_time", false) ? ", cut by the time limit" : "") << ". " << escaped(sr.value("reason", ""))
       << ".\n\n| extremal | objective | propellant (kg) | revolutions | switches | reached from | max residual "
          "|\n|---|---|---|---|---|---|---|\n";
     for (const auto& e : sr.value("extremals", json::array()))
-      o << "| " << scalar(e.value("id", json())) << (e.value("id", -1) == sr.value("returned", -2) ? " (returned)" : "")
-        << " | " << scalar(e.value("objective", json())) << " | " << scalar(e.value("propellant_kg", json())) << " | "
-        << scalar(e.value("revolutions", json())) << " | " << scalar(e.value("switches", json())) << " | "
-        << scalar(e.value("reached", json())) << " starts | " << scalar(e.value("max_residual", json())) << " |\n";
+      o << "| " << numeric(e.value("id", json())) << (e.value("id", -1) == sr.value("returned", -2) ? " (returned)" : "")
+        << " | " << numeric(e.value("objective", json())) << " | " << numeric(e.value("propellant_kg", json())) << " | "
+        << numeric(e.value("revolutions", json())) << " | " << numeric(e.value("switches", json())) << " | "
+        << numeric(e.value("reached", json())) << " starts | " << numeric(e.value("max_residual", json())) << " |\n";
     o << "\n";
     search_coverage(o, sr);
   }
   if (s.contains("files")) {
     o << "### Plots\n\n";
+    // An image only for a plain file name beside the report; any other name is shown as text.
+    static const std::regex png(R"([A-Za-z0-9][A-Za-z0-9._-]*\.png)");
     for (const auto& [k, v] : s.at("files").items()) {
-      const std::string file = v.get<std::string>();
-      if (file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0) o << "![" << k << "](" << file << ")\n\n";
+      const std::string file = v.is_string() ? v.get<std::string>() : "";
+      if (std::regex_match(file, png))
+        o << "![" << escaped(k) << "](" << file << ")\n\n";
+      else if (file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0)
+        o << escaped(k) << ": " << code(file) << "\n\n";
     }
   }
 }
