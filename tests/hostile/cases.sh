@@ -244,6 +244,13 @@ case_dir solve-usage-memory-limit; cp "$BASE/settings.json" .; echo 'int main() 
 expect 2 'memory-limit' solve shoot.cpp --settings settings.json --memory-limit abc
 case_dir solve-usage-time-limit; cp "$BASE/settings.json" .; echo 'int main() {}' >shoot.cpp
 expect 2 'time-limit' solve shoot.cpp --settings settings.json --time-limit 0
+case_dir solve-settings-node-spacing-tiny; jq_settings '.node_spacing_days = 0.001' >settings.json; echo 'int main() {}' >shoot.cpp
+expect 3 'settings.json: field /node_spacing_days: 0.001 is below 1 day' solve shoot.cpp --settings settings.json --cache-dir cache --trajectory t.csv
+# Readers stop at their limit: a device that never ends is refused, not read until memory runs out.
+case_dir solve-settings-dev-zero; echo 'int main() {}' >shoot.cpp
+expect 3 '/dev/zero: .*larger than the limit' solve shoot.cpp --settings /dev/zero --cache-dir cache --trajectory t.csv
+case_dir solve-warm-start-dev-zero; cp "$BASE/settings.json" .; echo 'int main() {}' >shoot.cpp
+expect 3 '/dev/zero: .*larger than the limit' solve shoot.cpp --settings settings.json --warm-start /dev/zero --cache-dir cache --trajectory t.csv
 
 # ---- helios-score: the scored artifacts ------------------------------------------------------
 
@@ -268,6 +275,22 @@ case_dir score-report-problem-binary; printf 'The thrust is 0.5 N.\n\001\002\n' 
 case_dir score-report-problem-not-utf8; printf 'The thrust is 0.5 N \377.\n' >p.txt; report_case 3 'p.txt:1: the problem text is not valid UTF-8'
 case_dir score-report-problem-missing; report_case 3 'p.txt'
 case_dir score-report-usage-no-derivation; echo x >p.txt; expect 2 'needs --derivation' score --report --problem p.txt --spec "$BASE/spec.json"
+case_dir score-report-problem-dev-zero; expect 3 '/dev/zero: .*larger than the limit' score --report --problem /dev/zero --spec "$BASE/spec.json" --derivation "$BASE/derivation.json"
+
+# ---- helios-score --sweep-cells: the grid of a sweep.json -------------------------------------
+# sweep_case ID JSON EXIT PATTERN: helios-score --sweep-cells on ./sweep.json holding JSON.
+sweep_case() {
+  case_dir "score-sweep-$1"; printf '%s\n' "$2" >sweep.json; cp "$BASE/problem.txt" .
+  expect "$3" "$4" score --sweep-cells sweep.json --cells cells
+}
+sweep_case million-cells '{"departure_mjd2000": {"start": 0, "stop": 999, "step": 1}, "tof_days": {"start": 1, "stop": 1000, "step": 1}}' \
+  3 'sweep.json: field /tof_days: the grid has 1000000 cells; the limit is 10000'
+sweep_case value-1e300 '{"departure_mjd2000": {"values": [1e300]}, "tof_days": {"values": [300]}}' \
+  3 'sweep.json: field /departure_mjd2000: 1e\+300 is above 73050'
+sweep_case tof-zero '{"departure_mjd2000": {"values": [9700]}, "tof_days": {"values": [0]}}' 3 'sweep.json: field /tof_days: 0 is below'
+sweep_case tof-millennium '{"departure_mjd2000": {"values": [9700]}, "tof_days": {"values": [365250]}}' 3 'sweep.json: field /tof_days: 365250 is above'
+sweep_case step-tiny '{"departure_mjd2000": {"start": 0, "stop": 1, "step": 1e-300}, "tof_days": {"values": [300]}}' \
+  3 'sweep.json: field /departure_mjd2000/step: more than 1000 values'
 
 # ---- helios-score --oem: trajectory.csv and the run it belongs to ---------------------------
 

@@ -35,6 +35,11 @@ void check_settings(const json& settings, const std::string& source) {
       throw input_error(source + ": field /" + it.key() + " is not a solver setting (known: " + names + ")");
     }
   }
+  // The schema's own words for this one (an anyOf) would not say what is allowed.
+  if (const auto it = settings.find("node_spacing_days"); it != settings.end() && it->is_number() &&
+                                                           it->get<double>() > 0 && it->get<double>() < 1)
+    throw input_error(source + ": field /node_spacing_days: " + limit_text(it->get<double>()) +
+                      " is below 1 day (0 turns the multiple-shooting polish off)");
   io::validate("settings", settings, source);
 }
 
