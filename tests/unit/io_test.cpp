@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -40,6 +41,55 @@ TEST(Io, AtomicWriteLeavesOnlyTheTarget) {
   helios::io::write_json_atomic((dir / "a.json").string(), json{{"x", 2}});
   EXPECT_EQ(helios::io::read_json((dir / "a.json").string())["x"], 2);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  fs::remove_all(dir);
+}
+
+// Readers stop at their limit: at most limit + 1 bytes are read, from a file or an endless device.
+TEST(Io, ReadTextStopsAtItsLimit) {
+  const fs::path dir = fresh_dir("limit");
+  helios::io::write_text_atomic((dir / "ten.txt").string(), "0123456789");
+  EXPECT_EQ(helios::io::read_text((dir / "ten.txt").string(), 10), "0123456789");
+  EXPECT_THROW(helios::io::read_text((dir / "ten.txt").string(), 9), helios::input_error);
+  try {
+    helios::io::read_text("/dev/zero", 1000);
+    ADD_FAILURE() << "/dev/zero was read";
+  } catch (const helios::input_error& e) {
+    EXPECT_STREQ(e.what(), "/dev/zero: larger than the limit of 1000 bytes");
+  }
+  fs::remove_all(dir);
+}
+
+// What an untrusted program left is read only as a regular file of its own: a link to a host file,
+// a FIFO (which would block the reader), a hard link to a host file and an oversized file are refused.
+TEST(Io, AProgramsFileIsReadOnlyWhenItIsARegularFileOfItsOwn) {
+  const fs::path dir = fresh_dir("program-file");
+  const std::string plain = (dir / "plain.json").string(), link = (dir / "link.json").string(),
+                    fifo = (dir / "fifo.json").string(), hard = (dir / "hard.json").string();
+  helios::io::write_text_atomic(plain, "{}");
+  fs::create_symlink("/etc/passwd", link);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  fs::create_hard_link(plain, hard);
+  EXPECT_FALSE(helios::io::is_program_file(link));
+  EXPECT_FALSE(helios::io::is_program_file(fifo));
+  EXPECT_FALSE(helios::io::is_program_file(plain)) << "two links";
+  EXPECT_THROW(helios::io::read_program_file(link), std::runtime_error);
+  EXPECT_THROW(helios::io::read_program_file(fifo), std::runtime_error);  // at once, not blocked
+  EXPECT_THROW(helios::io::read_program_file(hard), std::runtime_error);
+  fs::remove(hard);
+  EXPECT_TRUE(helios::io::is_program_file(plain));
+  EXPECT_EQ(helios::io::read_program_file(plain), "{}");
+  EXPECT_THROW(helios::io::read_program_file(plain, 1), std::runtime_error);
+  fs::remove_all(dir);
+}
+
+// A temporary file beside a target is new: a link planted under any name is never opened.
+TEST(Io, ATempFileBesideATargetIsAlwaysNew) {
+  const fs::path dir = fresh_dir("temp-beside");
+  const std::string target = (dir / "plot.png").string();
+  const std::string a = helios::io::create_temp_beside(target), b = helios::io::create_temp_beside(target);
+  EXPECT_NE(a, b);
+  EXPECT_EQ(fs::path(a).parent_path(), dir);
+  EXPECT_TRUE(fs::is_regular_file(a) && !fs::is_symlink(a) && fs::file_size(a) == 0);
   fs::remove_all(dir);
 }
 

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -56,6 +57,41 @@ TEST(Sandbox, StderrLinesAreForwardedAsTheyComeCleaned) {
   EXPECT_EQ(lines[2], "three");  // the last line without its newline, at the end
   EXPECT_LT(arrived[0], arrived[1] - 0.3) << "the first line came while the program slept";
   EXPECT_EQ(r.stderr_text, "one\n\033[31mtwo\nthree");
+  fs::remove_all(dir);
+}
+
+// What a program prints on stdout joins its stderr in the capped collector (never the tool's own
+// stdout), and the line quoted as the failure is the last one naming an error.
+TEST(Sandbox, StdoutIsCollectedAndTheErrorLineIsTheOneNamingAnError) {
+  const fs::path dir = fresh_dir("stdout");
+  std::vector<std::string> lines;
+  const auto r = helios::solve::run_limited(
+      {"/bin/sh", "-c",
+       "echo '{\"schema\": \"fake\"}'; echo 'shoot: error: the settings are unusable' >&2; "
+       "echo 'progress 3 of 4' >&2; head -c 200000 /dev/zero | tr '\\0' x; exit 3"},
+      10, 512, dir.string(), [&](const std::string& line) { lines.push_back(line); });
+  EXPECT_EQ(r.exit_code, 3);
+  ASSERT_GE(lines.size(), 3u);
+  EXPECT_EQ(lines[0], "{\"schema\": \"fake\"}");
+  EXPECT_EQ(r.error_line, "shoot: error: the settings are unusable");
+  EXPECT_EQ(r.stderr_text.size(), 64u * 1024u) << "capped";
+  fs::remove_all(dir);
+}
+
+// Titles and file names reach gnuplot as its ARG1.. data: quotes, system() and backquotes in them
+// run nothing.
+TEST(Gnuplot, ArgumentsAreDataNotCommands) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot is not installed";
+  const fs::path dir = fresh_dir("gnuplot");
+  const std::string marker = (dir / "PWNED").string();
+  const std::string png = (dir / "t.png").string();
+  for (const std::string& title : {"x'.system('touch " + marker + "').'", "`touch " + marker + "`",
+                                   "@ARG9 \"; system(\"touch " + marker + "\")"}) {
+    helios::solve::run_gnuplot("set terminal pngcairo noenhanced\nset output ARG1\nset title ARG2\nplot x\n",
+                               {png, title});
+    EXPECT_FALSE(fs::exists(marker)) << title;
+    EXPECT_GT(fs::file_size(png), 0u) << title;
+  }
   fs::remove_all(dir);
 }
 

@@ -82,6 +82,8 @@ int kill_leftovers(pid_t group) {
     }
     quiet = 0;
     for (const pid_t p : stray) {
+      // One that has already exited (bubblewrap's own init, reparented to us as it ends) is only reaped.
+      if (::waitpid(p, nullptr, WNOHANG) == p) continue;
       ::kill(p, SIGKILL);
       ::waitpid(p, nullptr, 0);
       ++killed;

@@ -92,14 +92,14 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
                       const std::string& workdir = "",
                       const std::function<void(const std::string&)>& on_line = nullptr);
 
-// Draws the 3-D trajectory coloured by the control, and the control panel versus time, with
-// gnuplot: throttle + mass (throttle_mass.png) for an engine, the cone angle (cone_angle.png) for
-// a sail. Returns the file names by role ({"trajectory_plot": .., "<panel>_plot": ..}).
 // Runs gnuplot on `script`; the strings that come from outside it (titles, file names) reach it as
 // data, gnuplot's ARG1, ARG2, ... (gnuplot -c), never as its language, whatever quotes, backquotes
 // or macros they hold. Returns what gnuplot printed.
 std::string run_gnuplot(const std::string& script, const std::vector<std::string>& args);
 
+// Draws the 3-D trajectory coloured by the control, and the control panel versus time, with
+// gnuplot: throttle + mass (throttle_mass.png) for an engine, the cone angle (cone_angle.png) for
+// a sail. Returns the file names by role ({"trajectory_plot": .., "<panel>_plot": ..}).
 io::json plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title);
 
 // Compiles only (into the cache) and returns the compile artifact: ok, diagnostics, error count.
