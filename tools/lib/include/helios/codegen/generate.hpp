@@ -1,8 +1,7 @@
 #pragma once
 // helios-gen (builtin): a derivation -> one C++ shooting program made of the PROBLEM block, the
 // generated (or template) modules and the entry point; it links the prebuilt runtime
-// libhelios-runtime.a (templates/runtime) through its header helios_runtime.hpp (design.md
-// section 1 and 6).
+// libhelios-runtime.a (templates/runtime) through its header helios_runtime.hpp.
 #include <string>
 #include <vector>
 

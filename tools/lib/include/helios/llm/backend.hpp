@@ -1,5 +1,5 @@
 #pragma once
-// The llm backend of helios-parse, helios-derive and helios-gen (design.md section 2): prompts
+// The llm backend of helios-parse, helios-derive and helios-gen: prompts
 // from prompts/, a conversation per artifact with its transcript, replies schema-checked, and the
 // refinement rounds (derive <-> verify, gen <-> compile) one round per call.
 #include <filesystem>

@@ -1,5 +1,5 @@
 #pragma once
-// The OpenAI-compatible chat-completions client of the llm backend (design.md section 2):
+// The OpenAI-compatible chat-completions client of the llm backend:
 // POST {base}/chat/completions over libcurl with bounded retries, or answers replayed from
 // recorded transcripts. The API key is read from the environment, sent as a header and never
 // kept in any value this API returns (requests, replies, errors, transcripts).

@@ -1,5 +1,5 @@
 #pragma once
-// The necessary conditions of a problem (Pontryagin, design.md section 4) as a typed result:
+// The necessary conditions of a problem (Pontryagin) as a typed result:
 // the Hamiltonian, the canonical system, the control law, the boundary, jump, stationarity and
 // transversality conditions, and the shooting system built from them. Expressions are GiNaC
 // expressions in the symbols of `problem.symbols`; pmp::derivation_json writes the artifact.

@@ -1,5 +1,5 @@
 #pragma once
-// The builtin symbolic PMP engine (design.md section 4): from a problem to the Hamiltonian,
+// The builtin symbolic PMP engine: from a problem to the Hamiltonian,
 // state/costate ODEs, optimal control law, transversality conditions and the shooting system.
 #include "helios/io/json_io.hpp"
 #include "helios/pmp/derivation.hpp"

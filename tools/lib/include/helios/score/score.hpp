@@ -1,6 +1,6 @@
 #pragma once
 // helios-score: a run's artifacts scored against scenarios/SNN/reference.json on the paper's
-// five-dimension rubric (design.md section 1). This is the only code that reads a reference.
+// five-dimension rubric. This is the only code that reads a reference.
 #include <optional>
 #include <string>
 #include <utility>
