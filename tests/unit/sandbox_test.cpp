@@ -56,7 +56,7 @@ TEST(Sandbox, StderrLinesAreForwardedAsTheyComeCleaned) {
   EXPECT_EQ(lines[1], "?[31mtwo");
   EXPECT_EQ(lines[2], "three");  // the last line without its newline, at the end
   EXPECT_LT(arrived[0], arrived[1] - 0.3) << "the first line came while the program slept";
-  EXPECT_EQ(r.stderr_text, "one\n\033[31mtwo\nthree");
+  EXPECT_EQ(r.output_text, "one\n\033[31mtwo\nthree");
   fs::remove_all(dir);
 }
 
@@ -74,7 +74,7 @@ TEST(Sandbox, StdoutIsCollectedAndTheErrorLineIsTheOneNamingAnError) {
   ASSERT_GE(lines.size(), 3u);
   EXPECT_EQ(lines[0], "{\"schema\": \"fake\"}");
   EXPECT_EQ(r.error_line, "shoot: error: the settings are unusable");
-  EXPECT_EQ(r.stderr_text.size(), 64u * 1024u) << "capped";
+  EXPECT_EQ(r.output_text.size(), 64u * 1024u) << "capped";
   fs::remove_all(dir);
 }
 

@@ -97,7 +97,7 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   read_only.push_back(fs::path(runtime.library).parent_path().string());
   const RunResult run =
       run_limited(o.sandbox ? sandboxed(argv, dir.string(), read_only) : argv, o.time_limit_s, o.memory_limit_mb);
-  c.diagnostics = run.stderr_text;
+  c.diagnostics = run.output_text;
   if (run.timed_out || run.signal != 0)
     c.diagnostics += "\nhelios-solve: the compiler was stopped: " +
                      (run.timed_out ? "killed after " + limit_text(o.time_limit_s) + " s wall clock"

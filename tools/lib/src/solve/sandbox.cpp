@@ -102,7 +102,7 @@ class OutputLines {
   OutputLines(RunResult& result, const std::function<void(const std::string&)>& on_line)
       : result_(result), on_line_(on_line) {}
   void add(const char* data, std::size_t n) {
-    std::string& text = result_.stderr_text;
+    std::string& text = result_.output_text;
     if (text.size() < kMaxText) text.append(data, std::min(n, kMaxText - text.size()));
     for (std::size_t i = 0; i < n; ++i) {
       if (data[i] == '\n') {

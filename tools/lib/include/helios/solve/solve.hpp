@@ -68,7 +68,7 @@ struct RunResult {
   int exit_code = -1;
   int signal = 0;
   bool timed_out = false;
-  std::string stderr_text;  // the first 64 KiB the program printed (stderr and stdout)
+  std::string output_text;  // the first 64 KiB the program printed (stderr and stdout)
   std::string error_line;   // the last line naming an error, else the last line
   double seconds = 0;
   int leftover_processes = 0;  // processes the program left running, killed after it ended
