@@ -21,9 +21,14 @@ namespace {
 namespace fs = std::filesystem;
 using io::json;
 
-// The trajectory CSV's header and first data row, to pick the plots' units and panels.
+// The trajectory CSV's header and first data row, to pick the plots' units and panels: read from
+// its first 64 KiB only (the program wrote the file; a line without an end is not read whole).
 std::pair<std::vector<std::string>, std::vector<double>> csv_head(const std::string& csv_path) {
-  std::ifstream in(csv_path);
+  std::string head(65536, '\0');
+  std::ifstream file(csv_path, std::ios::binary);
+  file.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(file.gcount()));
+  std::istringstream in(head);
   std::string header, row;
   std::getline(in, header);
   std::getline(in, row);
