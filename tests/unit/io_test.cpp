@@ -86,10 +86,14 @@ TEST(Io, AProgramsFileIsReadOnlyWhenItIsARegularFileOfItsOwn) {
 TEST(Io, ATempFileBesideATargetIsAlwaysNew) {
   const fs::path dir = fresh_dir("temp-beside");
   const std::string target = (dir / "plot.png").string();
-  const std::string a = helios::io::create_temp_beside(target), b = helios::io::create_temp_beside(target);
-  EXPECT_NE(a, b);
-  EXPECT_EQ(fs::path(a).parent_path(), dir);
-  EXPECT_TRUE(fs::is_regular_file(a) && !fs::is_symlink(a) && fs::file_size(a) == 0);
+  {
+    helios::io::TempFiles temps;
+    const std::string a = temps.create_beside(target), b = temps.create_beside(target);
+    EXPECT_NE(a, b);
+    EXPECT_EQ(fs::path(a).parent_path(), dir);
+    EXPECT_TRUE(fs::is_regular_file(a) && !fs::is_symlink(a) && fs::file_size(a) == 0);
+  }
+  EXPECT_TRUE(fs::is_empty(dir)) << "the guard removes what it created";
   fs::remove_all(dir);
 }
 

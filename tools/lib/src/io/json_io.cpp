@@ -158,11 +158,17 @@ bool is_program_file(const std::string& path) {
   return ::lstat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && st.st_nlink == 1;
 }
 
-std::string create_temp_beside(const std::string& path) {
+std::string TempFiles::create_beside(const std::string& path) {
   const std::string tmp = temp_name_for(path);
+  register_temp(tmp);  // before it exists: a signal between the two leaves nothing behind
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error(path + ": cannot create a temp file beside it: " + std::strerror(errno));
+  if (fd < 0) {
+    const int error = errno;
+    unregister_temp(tmp);  // what is there is not ours to delete
+    throw std::runtime_error(path + ": cannot create a temp file beside it: " + std::strerror(error));
+  }
   ::close(fd);
+  paths_.push_back(tmp);
   return tmp;
 }
 

@@ -261,14 +261,10 @@ void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, cons
   if (best >= 0)
     best_cell << number_text(rows[best].cell.departure_mjd2000) << ' ' << number_text(rows[best].cell.tof_days) << ' '
               << number_text(z) << "\n";
-  const std::string grid_file = io::create_temp_beside(png_path + ".grid");
-  const io::TempFiles grid_guard({grid_file});
-  const std::string bad_file = io::create_temp_beside(png_path + ".bad");
-  const io::TempFiles bad_guard({bad_file});
-  const std::string best_file = io::create_temp_beside(png_path + ".best");
-  const io::TempFiles best_guard({best_file});
-  const std::string tmp_png = io::create_temp_beside(png_path);
-  const io::TempFiles png_guard({tmp_png});
+  io::TempFiles temps;
+  const std::string grid_file = temps.create_beside(png_path + ".grid"),
+                    bad_file = temps.create_beside(png_path + ".bad"),
+                    best_file = temps.create_beside(png_path + ".best"), tmp_png = temps.create_beside(png_path);
   io::write_text_atomic(grid_file, data.str());
   io::write_text_atomic(bad_file, bad_cells.str().empty() ? "NaN NaN NaN\n" : bad_cells.str());
   io::write_text_atomic(best_file, best_cell.str().empty() ? "NaN NaN NaN\n" : best_cell.str());

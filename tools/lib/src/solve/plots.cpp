@@ -70,10 +70,8 @@ json plot_trajectory(const std::string& csv_path, const std::string& prefix, con
   const std::string panel = engine ? "throttle_mass" : "cone_angle";
   const std::string traj_png = prefix + "trajectory.png", panel_png = prefix + panel + ".png";
   // Fresh files gnuplot only fills: nothing planted under a predictable name is followed.
-  const std::string tmp1 = io::create_temp_beside(traj_png);
-  const io::TempFiles guard1({tmp1});
-  const std::string tmp2 = io::create_temp_beside(panel_png);
-  const io::TempFiles guard2({tmp2});
+  io::TempFiles temps;
+  const std::string tmp1 = temps.create_beside(traj_png), tmp2 = temps.create_beside(panel_png);
   // ARG1 the trajectory CSV, ARG2 the title, ARG3 and ARG4 the two PNGs (run_gnuplot).
   std::string script = "set datafile separator ','\nset terminal pngcairo size 1000,800 noenhanced\n";
   script += "set output ARG3\nset title ARG2.': trajectory (colour = " +

@@ -28,10 +28,6 @@ std::string read_program_file(const std::string& path, std::size_t limit = kMaxJ
 // Whether `path` is such a file (a regular file, not a symbolic link, one link).
 bool is_program_file(const std::string& path);
 
-// A new empty file beside `path` (same folder, a random name starting with '.'), created with
-// O_EXCL | O_NOFOLLOW so that nothing planted there is followed or reused; returns its path.
-std::string create_temp_beside(const std::string& path);
-
 // The first byte offset at which `text` nests arrays and objects deeper than `limit` (strings
 // skipped), or std::string::npos.
 std::size_t json_depth_exceeded_at(const std::string& text, int limit);
@@ -61,8 +57,12 @@ void write_json_atomic(const std::string& path, const json& doc);
 // before then is simply gone; deleting it is a no-op.
 class TempFiles {
  public:
-  explicit TempFiles(std::vector<std::string> paths);
+  explicit TempFiles(std::vector<std::string> paths = {});
   ~TempFiles();
+  // A new empty file beside `path` (same folder, a random name starting with '.'), created with
+  // O_EXCL | O_NOFOLLOW so that nothing planted there is followed or reused, and guarded by this
+  // from before it exists; returns its path.
+  std::string create_beside(const std::string& path);
   TempFiles(const TempFiles&) = delete;
   TempFiles& operator=(const TempFiles&) = delete;
 
