@@ -153,6 +153,12 @@ std::string read_program_file(const std::string& path, std::size_t limit) {
   return read_bounded(in.fd, limit, path);
 }
 
+std::string short_number(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", value);
+  return buf;
+}
+
 bool is_program_file(const std::string& path) {
   struct stat st;
   return ::lstat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && st.st_nlink == 1;

@@ -22,12 +22,6 @@ using io::json;
 // Width of a display line of LaTeX before a sum is broken (about a page's width rendered).
 constexpr std::size_t kLineWidth = 150;
 
-std::string number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
 // Artifact text as Markdown that stays text: every character that opens markup in Markdown or
 // pandoc's extensions (math, raw TeX, code, emphasis, links, HTML and entities, sub/superscript,
 // citations, table cells) is backslash-escaped, and a
@@ -64,7 +58,7 @@ std::string code(const std::string& text) {
 std::string value(const json& v) {
   if (v.is_string()) return escaped(v.get<std::string>());
   if (v.is_number_integer()) return std::to_string(v.get<long long>());
-  if (v.is_number()) return number(v.get<double>());
+  if (v.is_number()) return io::short_number(v.get<double>());
   if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
   if (v.is_null()) return "";
   if (v.is_array() && std::all_of(v.begin(), v.end(), [](const json& x) { return x.is_primitive(); })) {
@@ -356,9 +350,10 @@ void Writer::specification(std::ostringstream& o) const {
 void Writer::symbols(std::ostringstream& o) {
   const json& u = d_.at("units");
   o << "## The derivation\n\n### Units and symbols\n\nThe solver works in normalized units: length "
-    << escaped(u.value("length", "")) << " = " << number(u.value("length_km", 0.0)) << " km, time "
-    << escaped(u.value("time", "")) << " = " << number(u.value("time_s", 0.0)) << " s, mass "
-    << number(u.value("mass_kg", 0.0)) << " kg.\n\n| symbol | name | meaning | unit | value |\n|---|---|---|---|---|\n";
+    << escaped(u.value("length", "")) << " = " << io::short_number(u.value("length_km", 0.0)) << " km, time "
+    << escaped(u.value("time", "")) << " = " << io::short_number(u.value("time_s", 0.0)) << " s, mass "
+    << io::short_number(u.value("mass_kg", 0.0))
+    << " kg.\n\n| symbol | name | meaning | unit | value |\n|---|---|---|---|---|\n";
   for (const auto& s : d_.at("states"))
     o << "| " << inline_symbol(s.at("name")) << " | " << code(s.at("name"))
       << " | state: " << escaped(s.value("meaning", "")) << " | " << escaped(s.value("unit", "")) << " | |\n";
@@ -369,9 +364,9 @@ void Writer::symbols(std::ostringstream& o) {
     o << "| " << inline_symbol(c.at("name")) << " | " << code(c.at("name"))
       << " | control: " << escaped(c.value("meaning", "")) << " | | |\n";
   for (const auto& p : d_.at("parameters"))
-    o << "| " << inline_symbol(p.at("name")) << " | " << code(p.at("name")) << " | "
-      << escaped(p.value("meaning", "")) << " | " << escaped(p.value("unit", "")) << " | "
-      << (p.value("source", "").empty() ? number(p.value("value", 0.0))
+    o << "| " << inline_symbol(p.at("name")) << " | " << code(p.at("name")) << " | " << escaped(p.value("meaning", ""))
+      << " | " << escaped(p.value("unit", "")) << " | "
+      << (p.value("source", "").empty() ? io::short_number(p.value("value", 0.0))
                                         : "evaluated by the program: " + code(p.at("source")))
       << " |\n";
   o << "| " << inline_symbol(reader_.multiplier) << " | " << code(reader_.multiplier) << " | cost multiplier | | |\n";

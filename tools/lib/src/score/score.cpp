@@ -24,10 +24,6 @@ std::string fmt(double v, const char* format) {
   return buf;
 }
 
-std::string num(double v) {
-  return fmt(v, "%.10g");
-}
-
 json detail(const std::string& id, const std::string& verdict, double points, double max, const std::string& note) {
   return json{{"id", id}, {"verdict", verdict}, {"points", points}, {"max", max}, {"note", note}};
 }
@@ -58,12 +54,14 @@ std::string string_at(const std::optional<json>& doc, const char* pointer) {
 // |found - expected| <= abs_tol + rel_tol * |expected|.
 std::string compare(const json& found, const json& expected, double rel_tol, double abs_tol) {
   const auto close = [&](double f, double e) { return std::fabs(f - e) <= abs_tol + rel_tol * std::fabs(e); };
-  const std::string tol =
-      " (rel_tol " + num(rel_tol) + (abs_tol > 0 ? ", abs_tol " + num(abs_tol) : std::string()) + ")";
+  const std::string tol = " (rel_tol " + io::short_number(rel_tol) +
+                          (abs_tol > 0 ? ", abs_tol " + io::short_number(abs_tol) : std::string()) + ")";
   if (expected.is_number()) {
-    if (!found.is_number()) return "expected a number " + num(expected.get<double>()) + ", found " + found.dump();
+    if (!found.is_number())
+      return "expected a number " + io::short_number(expected.get<double>()) + ", found " + found.dump();
     if (!close(found.get<double>(), expected.get<double>()))
-      return "found " + num(found.get<double>()) + ", expected " + num(expected.get<double>()) + tol;
+      return "found " + io::short_number(found.get<double>()) + ", expected " +
+             io::short_number(expected.get<double>()) + tol;
     return "";
   }
   if (expected.is_array()) {
@@ -72,8 +70,8 @@ std::string compare(const json& found, const json& expected, double rel_tol, dou
     for (std::size_t i = 0; i < expected.size(); ++i) {
       if (!found[i].is_number()) return "component " + std::to_string(i) + " is " + found[i].dump() + ", not a number";
       if (!close(found[i].get<double>(), expected[i].get<double>()))
-        return "component " + std::to_string(i) + ": found " + num(found[i].get<double>()) + ", expected " +
-               num(expected[i].get<double>()) + tol;
+        return "component " + std::to_string(i) + ": found " + io::short_number(found[i].get<double>()) +
+               ", expected " + io::short_number(expected[i].get<double>()) + tol;
     }
     return "";
   }
@@ -308,7 +306,8 @@ json score_accuracy(const json& reference, const std::optional<json>& solution) 
     const std::string u = " " + q.unit;
     d = detail(q.id, verdict, points, kAccuracyMax,
                q.symbol + " " + fmt(*mf, "%.6f") + u + " vs " + fmt(ref, "%.6f") + u + ": error " + fmt(err, "%.6f") +
-                   u + ", tolerance " + num(tol) + u + ", 0 points at " + num(kAccuracyZeroAt * tol) + u);
+                   u + ", tolerance " + io::short_number(tol) + u + ", 0 points at " +
+                   io::short_number(kAccuracyZeroAt * tol) + u);
   }
   d["expected"] = ref;
   d["found"] = mf ? json(*mf) : json(nullptr);

@@ -45,13 +45,6 @@ double micro(double v) {
   return std::round(v * 1e6) / 1e6;
 }
 
-// A value as an error message quotes it (1e+300, not its 301 digits).
-std::string short_number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
 // One axis: {start, stop, step}, {start, stop, count} or {values: [...]}, strictly increasing.
 std::vector<double> read_axis(const json& j, const std::string& source, const std::string& field, double lowest,
                               double highest) {
@@ -85,8 +78,8 @@ std::vector<double> read_axis(const json& j, const std::string& source, const st
   }
   if (out.size() > kMaxAxis) bad(source, field, "more than " + std::to_string(kMaxAxis) + " values");
   for (std::size_t i = 0; i < out.size(); ++i) {
-    if (out[i] < lowest) bad(source, field, short_number(out[i]) + " is below " + short_number(lowest));
-    if (out[i] > highest) bad(source, field, short_number(out[i]) + " is above " + short_number(highest));
+    if (out[i] < lowest) bad(source, field, io::short_number(out[i]) + " is below " + io::short_number(lowest));
+    if (out[i] > highest) bad(source, field, io::short_number(out[i]) + " is above " + io::short_number(highest));
     if (i > 0 && !(out[i] > out[i - 1])) bad(source, field, "values must increase");
   }
   return out;

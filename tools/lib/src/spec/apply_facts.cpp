@@ -104,7 +104,7 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
         if (time.value("t0_days", 0.0) != 0.0)
           throw sentence_error("the departure epoch " + fact.written +
                                " is the time 0 of the problem, but the departure time was stated as t = " +
-                               num_text(time["t0_days"].get<double>()) + " days");
+                               io::short_number(time["t0_days"].get<double>()) + " days");
         set_epoch(v);
         break;
       case Field::Mu:

@@ -282,31 +282,32 @@ void Builder::finish_events() {
   for (auto& e : events) {
     e.window_lo = e.lo.absolute ? e.lo.value - epoch : e.lo.value;
     e.window_hi = e.hi.absolute ? e.hi.value - epoch : e.hi.value;
-    const std::string window = "day " + num_text(e.window_lo) + " to day " + num_text(e.window_hi);
+    const std::string window = "day " + io::short_number(e.window_lo) + " to day " + io::short_number(e.window_hi);
     if (!(e.window_hi > e.window_lo)) fail(e.where, "its window, " + window + ", is empty");
     if (!(e.window_lo > start && e.window_hi < end))
-      fail(e.where, "its window, " + window + ", must lie inside the flight: after day " + num_text(start) +
-                        " and before day " + num_text(end) + " (days count from the epoch)");
+      fail(e.where, "its window, " + window + ", must lie inside the flight: after day " + io::short_number(start) +
+                        " and before day " + io::short_number(end) + " (days count from the epoch)");
     if (previous && e.window_lo < previous->window_hi)
       fail(e.where, "its window, " + window + ", starts before the window of the event at " + previous->body +
-                        " (day " + num_text(previous->window_lo) + " to day " + num_text(previous->window_hi) +
+                        " (day " + io::short_number(previous->window_lo) + " to day " +
+                        io::short_number(previous->window_hi) +
                         ") ends: state the events in the order they happen, with windows that do not overlap");
     if (previous && previous->stay && !(e.window_hi > previous->window_lo + *previous->stay))
       fail(e.where, "its window, " + window + ", ends before the stay at " + previous->body + " can end (day " +
-                        num_text(previous->window_lo + *previous->stay) +
+                        io::short_number(previous->window_lo + *previous->stay) +
                         " at the earliest): widen or move the windows");
     previous = &e;
   }
   if (previous && previous->stay && !(end > previous->window_lo + *previous->stay))
     fail(previous->where,
-         "the stay at " + previous->body + " cannot end before the final time (day " + num_text(end) + ")");
+         "the stay at " + previous->body + " cannot end before the final time (day " + io::short_number(end) + ")");
   double dropped = 0;
   for (const auto& e : events) {
     if (!e.drop) continue;
     if (propulsion == "solar_sail") fail(e.drop_where, "a solar sail has no mass to leave behind");
     dropped += *e.drop;
     if (spacecraft.contains("initial_mass_kg") && !(dropped < spacecraft["initial_mass_kg"].get<double>()))
-      fail(e.drop_where, "the landers weigh " + num_text(dropped) + " kg, not less than the initial mass");
+      fail(e.drop_where, "the landers weigh " + io::short_number(dropped) + " kg, not less than the initial mass");
   }
 }
 

@@ -74,12 +74,6 @@ std::vector<std::string> top_level_items(const std::string& list) {
   return items;
 }
 
-std::string num_text(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
 std::string trimmed(const std::string& s) {
   const auto b = s.find_first_not_of(' ');
   if (b == std::string::npos) return "";

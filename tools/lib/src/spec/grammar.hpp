@@ -54,7 +54,6 @@ std::optional<double> known_mu(const std::string& body);
 std::optional<double> known_radius(const std::string& body);
 // Splits "a, b, c" at the commas outside parentheses.
 std::vector<std::string> top_level_items(const std::string& list);
-std::string num_text(double v);
 std::string trimmed(const std::string& s);
 // Factor converting `unit` into the spec unit of `d`, as a sentence error when unknown.
 double unit_factor(Dimension d, const std::string& unit);

@@ -39,8 +39,8 @@ std::string element_field(const std::string& name) {
 // Classical elements in the spec's units, checked for an ellipse.
 json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v) {
   const double a = v.at("a"), e = v.at("e");
-  if (!(a > 0)) throw sentence_error("the semi-major axis must be positive, got " + num_text(a) + " AU");
-  if (!(e >= 0 && e < 1)) throw sentence_error("the eccentricity must satisfy 0 <= e < 1, got " + num_text(e));
+  if (!(a > 0)) throw sentence_error("the semi-major axis must be positive, got " + io::short_number(a) + " AU");
+  if (!(e >= 0 && e < 1)) throw sentence_error("the eccentricity must satisfy 0 <= e < 1, got " + io::short_number(e));
   const bool mean = v.count("mean") != 0;
   return {{"epoch_mjd2000", epoch_mjd2000},
           {"a_AU", a},

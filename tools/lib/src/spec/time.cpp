@@ -37,8 +37,8 @@ void Builder::depart(const std::string& at, const std::string& target) {
 
 void Builder::set_epoch(double mjd2000) {
   if (time.contains("epoch_mjd2000") && time["epoch_mjd2000"].get<double>() != mjd2000)
-    throw sentence_error("the epoch MJD2000 " + num_text(mjd2000) + " contradicts the epoch MJD2000 " +
-                         num_text(time["epoch_mjd2000"].get<double>()) + " stated before");
+    throw sentence_error("the epoch MJD2000 " + io::short_number(mjd2000) + " contradicts the epoch MJD2000 " +
+                         io::short_number(time["epoch_mjd2000"].get<double>()) + " stated before");
   time["t0_days"] = 0.0;
   time["epoch_mjd2000"] = mjd2000;
 }

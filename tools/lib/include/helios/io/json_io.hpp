@@ -25,6 +25,10 @@ std::string read_text(const std::string& path, std::size_t limit = kMaxJsonBytes
 // block the read), with one link and at most `limit` bytes. Throws std::runtime_error saying why.
 std::string read_program_file(const std::string& path, std::size_t limit = kMaxJsonBytes);
 
+// A number as messages and documents quote it: at most 10 significant digits, an exponent where
+// that is shorter (1e+300, not its 301 digits).
+std::string short_number(double value);
+
 // Whether `path` is such a file (a regular file, not a symbolic link, one link).
 bool is_program_file(const std::string& path);
 
