@@ -132,7 +132,7 @@ TEST(Parse, ANumberOutsideTheRangeOfADoubleIsAnErrorAtItsSentence) {
 
 TEST(Parse, WrongUnitNamesTheUnit) {
   const std::string err = error_of(replaced(s01_text(), "0.5 N", "0.5 kg"));
-  EXPECT_NE(err.find("unit 'kg' is not a force unit (use N, mN)"), std::string::npos) << err;
+  EXPECT_NE(err.find("unit 'kg' is not a force unit (use N, mN, kN)"), std::string::npos) << err;
 }
 
 TEST(Parse, MissingFactsAndRepeatsAreErrors) {
@@ -207,7 +207,10 @@ TEST(Parse, UserAccelerationIsCheckedAtParseTime) {
   const std::string two = replaced(text, ", 1.6416e-4/m*(149597870.691/r)^2*z/r]", "]");
   EXPECT_NE(error_of(two).find("three components"), std::string::npos) << error_of(two);
   const std::string unit = replaced(text, "z/r] m/s^2", "z/r] N");
-  EXPECT_NE(error_of(unit).find("not an acceleration unit"), std::string::npos) << error_of(unit);
+  EXPECT_NE(error_of(unit).find("their unit must be mm/s^2, m/s^2 or km/s^2"), std::string::npos) << error_of(unit);
+  // the case of a prefix is kept: Mm/s^2 is not mm/s^2
+  const std::string mega = replaced(text, "z/r] m/s^2", "z/r] Mm/s^2");
+  EXPECT_NE(error_of(mega).find("written in 'Mm/s^2'"), std::string::npos) << error_of(mega);
 }
 
 }  // namespace
@@ -411,7 +414,9 @@ TEST(ParseEvents, RendezvousErrors) {
                "the landers weigh 2500 kg, not less than the initial mass");
   expect_error(tour(kNikko + kDeparture + visit + " and leaves a lander of 50 kg at Rock_1423.\n"),
                "the clause names Rock_1423 but the event is at Nikko");
+  // a rendezvous without a window is the final one, so a second final rendezvous names it
   expect_error(tour(kNikko + kDeparture + "The spacecraft rendezvouses with Nikko.\n"),
+               "\"The spacecraft rendezvouses with Nikko\" (line 7) has no window, so it was read as the final one; "
                "an event on the way needs its window");
   expect_error(tour(kNikko + kDeparture + "The spacecraft rendezvouses with Nikko between 200 days and 320 days.\n"),
                "the window must read 'between day N and day N'");
@@ -658,7 +663,8 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
   has(err(sc + " Tmax = 0.6 N."), "the maximum thrust is given twice");
   has(err("Tmax = 0.5 N, Isp = 2000 s, m0 = -1000 kg."), "the initial mass must be positive, got -1000 kg");
   has(err(sc + " The maximum time of flight is 500 days."), "'maximum' makes 'time of flight' a bound, not a value");
-  has(err(sc + " The time of flight is up to 500 days."), "'up' makes 'time of flight' a bound, not a value");
+  has(err(sc + " The time of flight is up to 500 days."),
+      "'up to 500 days' is an upper bound on the time of flight, not its value (a bounded time of flight reads");
   has(err(sc + " The thrust is 3 furlongs."),
       "'furlongs' after 3 is no unit HELIOS knows and no fact word; did you mean \"The spacecraft has a maximum "
       "thrust of 3 N.\"?");
@@ -693,7 +699,7 @@ TEST(ParseFacts, EpochsInOtherWordsGiveTheSameSpec) {
   // MJD2000 400 is 2001-02-04 00:00 (2000 is a leap year: 366 + 34 days)
   for (const char* epoch :
        {"Launch date: 2001-02-04.", "Launch on 4 February 2001.", "The spacecraft leaves on Feb 4, 2001.",
-        "Departure epoch: MJD 51944.", "The departure date is 2001-02-04 00:00 UTC.", "t0 = 400 MJD2000.",
+        "Departure epoch: MJD 51944.", "The departure date is 2001-02-04 00:00 TDB.", "t0 = 400 MJD2000.",
         "The start epoch is 400 (MJD2000).", "Launch is at JD 2451944.5."})
     EXPECT_EQ(parse(replaced(s02, "The spacecraft departs at MJD2000 400 from Earth.",
                              std::string(epoch) + "\nThe spacecraft departs from Earth."))
@@ -719,8 +725,10 @@ TEST(ParseFacts, AnEpochOfNoRoleOrNoDayIsAnError) {
   has(err("The departure date is 2025-02-30."), "the date 2025-02-30 does not exist");
   has(err("The departure date is 2023-02-29."), "the date 2023-02-29 does not exist");
   has(err("The departure date is 2024-02-29 25:00."), "the time of day in 2024-02-29 25:00 does not exist");
-  has(err("The arrival date is 2026-01-01."), "is an arrival date");
-  has(err("The spacecraft arrives on 2026-01-01."), "gives an arrival date");
+  // an arrival date is the arrival time; S02's time of flight is free, so it is stated twice
+  has(err("The arrival date is 2026-01-01."),
+      "it gives the arrival date MJD2000 9497, and the time of flight is stated");
+  has(err("The spacecraft arrives on 2026-01-01."), "it gives the arrival date MJD2000 9497, and the time of flight");
   has(err("The thrust is 2026-01-01."), "nothing in its clause says the date 2026-01-01 is the departure epoch");
   has(err("Launch on 2026-01-01, launch on 2027-01-01."), "the departure epoch is stated twice");
   has(err("Launch on MJD2000."), "cannot place the word 'mjd2000'");  // a scale with no day number
@@ -909,3 +917,188 @@ TEST(ParseFacts, ElementsInOtherWordsGiveTheSameSpec) {
   has(err("Mars: a = 1.5 AU, e = 0.1, i = 5 deg, node = 80 deg, argp = 150 deg, M = 20 deg, nu = 30 deg at MJD 60389."),
       "both a mean and a true anomaly");
 }
+
+// ---- sentences that were once misread, or refused though reasonable ----------------------------
+
+namespace {
+
+const std::string kS01Thrust =
+    "The spacecraft has a maximum thrust of 0.5 N, a specific impulse of 2000 s and an "
+    "initial mass of 1000 kg.";
+const std::string kS01Departure =
+    "The spacecraft departs at t = 0 days from position [-140699693, -51614428, 980] km with velocity [9.774596, "
+    "-28.07828, 4.337725e-4] km/s.";
+const std::string kS01Tof = "The time of flight is 348.795 days.";
+const std::string kR0 = "[-140699693, -51614428, 980] km", kV0 = "[9.774596, -28.07828, 4.337725e-4] km/s";
+
+// S01 with `from` replaced by `to`.
+std::string s01_with(const std::string& from, const std::string& to) {
+  return replaced(s01_text(), from, to);
+}
+
+// Units keep their case where it decides the prefix, and every unit is read by its parts.
+TEST(ParseNeverMisreads, UnitsAreReadWithTheirCaseAndByTheirParts) {
+  const auto thrust = [&](const std::string& q) {
+    return parse(s01_with("a maximum thrust of 0.5 N", "a maximum thrust of " + q))["spacecraft"]["thrust_N"];
+  };
+  EXPECT_DOUBLE_EQ(thrust("0.0000005 MN"), 0.5);
+  EXPECT_DOUBLE_EQ(thrust("500 mN"), 0.5);
+  EXPECT_DOUBLE_EQ(thrust("0.0005 kN"), 0.5);
+  EXPECT_DOUBLE_EQ(thrust("0.5 newtons"), 0.5);
+  const auto tof = [&](const std::string& q) {
+    return parse(s01_with(kS01Tof, "The time of flight is " + q + "."))["time"]["tof_days"].get<double>();
+  };
+  EXPECT_DOUBLE_EQ(tof("50 weeks"), 350.0);
+  EXPECT_DOUBLE_EQ(tof("1440 minutes"), 1.0);
+  EXPECT_DOUBLE_EQ(tof("2 yr"), 730.5);
+  EXPECT_DOUBLE_EQ(
+      parse(s01_with("an initial mass of 1000 kg", "an initial mass of 1000000 g"))["spacecraft"]["initial_mass_kg"]
+          .get<double>(),
+      1000.0);
+  // km/sec and AU/yr are speeds; "3,100 s" is 3100 s
+  const json sec = parse(s01_with("4.337725e-4] km/s.", "4.337725e-4] km/sec."));
+  EXPECT_DOUBLE_EQ(sec["constraints"][0]["target"]["velocity_km_s"][0].get<double>(), 9.774596);
+  EXPECT_DOUBLE_EQ(
+      parse(
+          s01_with(kS01Thrust,
+                   "Tmax = 0.5 N. The engine has a specific impulse of 3,100 s. m0 = 1000 kg."))["spacecraft"]["isp_s"]
+          .get<double>(),
+      3100.0);
+  // case is ignored only where it cannot change the unit: m/M is milli or mega
+  EXPECT_DOUBLE_EQ(
+      parse(s01_with("an initial mass of 1000 kg", "an initial mass of 1000 KG"))["spacecraft"]["initial_mass_kg"]
+          .get<double>(),
+      1000.0);
+  has(error_of(s01_with("980] km with", "980] KM with")), "unit 'KM' is not a length unit");
+}
+
+// Epochs: a day number lies in the years 1900 to 2200 like a date; UTC is converted to TDB with
+// its leap seconds; the same epoch on two scales is one epoch.
+TEST(ParseNeverMisreads, EpochsHaveTheirScaleAndTheirRange) {
+  const std::string s02 = scenario("S02");
+  const std::string dep = "The spacecraft departs at MJD2000 400 from Earth.";
+  const auto epoch = [&](const std::string& to) {
+    return parse(replaced(s02, dep, to))["time"]["epoch_mjd2000"].get<double>();
+  };
+  has(error_of(replaced(s02, dep, "The spacecraft departs from Earth at MJD 400.")),
+      "the epoch MJD 400 falls in the year 1859; epochs lie in the years 1900 to 2200");
+  has(error_of(replaced(s02, dep, "Launch from Earth at JD 51944.")), "the epoch JD 51944 falls in the year");
+  EXPECT_EQ(epoch("The spacecraft departs from Earth on 2001-02-04 00:00 TDB."), 400.0);
+  EXPECT_NEAR(epoch("The spacecraft departs from Earth on 2001-02-04 00:00 TT."), 400.0, 2e-3 / 86400.0);
+  // 2001: TAI - UTC = 32 s, TT - TAI = 32.184 s; TDB - TT is below 2 ms
+  for (const char* utc : {"The spacecraft departs from Earth on 2001-02-04T00:00:00Z.",
+                          "The spacecraft departs from Earth at 2001-02-04 00:00 UTC."})
+    EXPECT_NEAR(epoch(utc), 400.0 + 64.184 / 86400.0, 2e-3 / 86400.0) << utc;
+  // 2017 on: 37 leap seconds
+  EXPECT_NEAR(epoch("The spacecraft departs from Earth on 2026-07-04 00:00 UTC.") - epoch("Launch is on 2026-07-04. "
+                                                                                          "The spacecraft departs "
+                                                                                          "from Earth."),
+              69.184 / 86400.0, 2e-3 / 86400.0);
+  has(error_of(replaced(s02, dep, "The spacecraft departs from Earth on 1965-02-04 00:00 UTC.")),
+      "is in UTC before 1972");
+  // MJD 61880.6 is MJD2000 10336.6 though the subtraction rounds
+  EXPECT_EQ(parse(tour("The spacecraft departs at MJD 61880.6 from Earth.\nThe departure epoch is free, between 10 "
+                       "days before and 10 days after MJD2000 10336.6.\nThe total time of flight is 981.1 days.\n"))
+                ["time"]["t0_window_days"],
+            json::array({-10.0, 10.0}));
+}
+
+// A time said of the arrival is the arrival's: "arrives at t = Q", "arrives on DATE", "Q after it departs".
+TEST(ParseNeverMisreads, AnArrivalTimeIsTheArrivals) {
+  const std::string start = "The spacecraft starts from position " + kR0 + " with velocity " + kV0;
+  const json want = parse(s01_text());
+  for (const std::string& to :
+       {start + " and arrives at t = 348.795 days.", start + "; the rendezvous is at t = 348.795 days.",
+        start + ".\nThe spacecraft arrives 348.795 days after it departs."}) {
+    const json got = parse(s01_with(kS01Departure + "\n" + kS01Tof, to));
+    EXPECT_EQ(got["time"], want["time"]) << to;
+    EXPECT_EQ(got["constraints"], want["constraints"]) << to;
+  }
+  has(error_of(s01_with(kS01Departure, start + " and arrives at t = 348.795 days.")),
+      "it gives the arrival time t = 348.795 days, and the time of flight is stated too");
+  const json dated = parse(replaced(scenario("S01"), kS01Departure + "\n" + kS01Tof,
+                                    "The spacecraft departs from Earth on 2030-01-01 and arrives on 2030-12-27."));
+  EXPECT_EQ(dated["time"]["tof_days"], 360.0);
+  EXPECT_EQ(dated["time"]["epoch_mjd2000"], 10958.0);
+}
+
+// Bounds are values only where the fact is a bound by nature: the maximum thrust.
+TEST(ParseNeverMisreads, BoundsAreValuesOnlyForTheMaximumThrust) {
+  for (const char* ok :
+       {"The thrust is no more than 0.5 N. Isp = 2000 s. m0 = 1000 kg.",
+        "The spacecraft weighs 1000 kg at launch; its engine gives at most 0.5 N with an Isp of 2000 s.",
+        "The engine gives up to 0.5 N. Isp = 2000 s. m0 = 1000 kg."})
+    EXPECT_EQ(parse(s01_with(kS01Thrust, ok))["spacecraft"], parse(s01_text())["spacecraft"]) << ok;
+  const auto err = [&](const std::string& to) {
+    return error_of(s01_with(kS01Thrust, std::string(to) + " Isp = 2000 s."));
+  };
+  has(err("An engine of at least 0.5 N. m0 = 1000 kg."), "'at least 0.5 N' is a lower bound on the maximum thrust");
+  has(err("Tmax = 0.5 N. The spacecraft is at most 1000 kg."),
+      "'at most 1000 kg' is an upper bound on the initial mass");
+  has(err("Tmax = 0.5 N. The spacecraft carries up to 1000 kg."), "'up to 1000 kg' is an upper bound on the initial");
+  has(err("Tmax = 0.5 N. The spacecraft is at least 1000 kg."), "'at least 1000 kg' is a lower bound on the initial");
+}
+
+// Words that change the meaning are understood or refused, never dropped.
+TEST(ParseNeverMisreads, NegationsOrbitsAndLivesAreRefused) {
+  const std::string s07 = scenario("S07");
+  has(error_of(s01_with(kS01Tof, "The time of flight from the start of the departure window is 1011.1 days.")),
+      "counts the time from the departure window, not from the departure");
+  has(error_of(s01_with(kS01Tof, "The engine lasts 24000 hours.")), "'lasts' is said of the 'engine'");
+  has(error_of(s01_with(kS01Tof, "The propellant lasts 1000 days.")), "'lasts' is said of the 'propellant'");
+  const std::string mars = replaced(scenario("S02"), "At the final time the spacecraft rendezvouses with Mars.",
+                                    "The destination is the orbit of Mars.");
+  has(error_of(mars), "it names an orbit, not the body on it");
+  has(error_of(s01_with(kS01Tof, kS01Tof + " The spacecraft does not coast.")), "'not' negates what follows it");
+}
+
+TEST(ParseNeverMisreads, ANegatedStayWithALengthIsRefused) {
+  const std::string text = kHead + kNikko + kDeparture +
+                           "The spacecraft rendezvouses with Nikko between day 100 and "
+                           "day 200.\n";
+  has(error_of(text + "The spacecraft does not stay there for 30 days.\n" + kEnd),
+      "'does not stay' negates the stay, so 30 days is not its value");
+  has(error_of(text + "There is no stay of 30 days.\n" + kEnd), "'no stay' negates the stay");
+  // without a length, "no stay" is a stay of 0 days
+  EXPECT_EQ(parse(text + "There is no stay.\n" + kEnd)["constraints"][1].value("stay_days", -1.0), 0.0);
+}
+
+// Sentences a careful user writes, read as the controlled forms read them.
+TEST(ParseNeverMisreads, ReasonableSentencesAreRead) {
+  const json s01 = parse(s01_text());
+  for (const std::string& to : {"At time zero the spacecraft is at position " + kR0 + " with velocity " + kV0 + ".",
+                                "At t = 0 the spacecraft is at position " + kR0 + " with velocity " + kV0 + ".",
+                                "The spacecraft leaves position " + kR0 + " with velocity " + kV0 + "."})
+    EXPECT_EQ(parse(s01_with(kS01Departure, to))["constraints"], s01["constraints"]) << to;
+  EXPECT_EQ(parse(s01_with("At the final time the spacecraft rendezvouses with position",
+                           "At arrival the spacecraft must match position"))["constraints"],
+            s01["constraints"]);
+  EXPECT_EQ(parse(s01_with("Minimize the fuel consumption.", "Minimize the mass of propellant."))["objective"],
+            s01["objective"]);
+  const std::string s02 = scenario("S02");
+  EXPECT_EQ(parse(replaced(s02, "At the final time the spacecraft rendezvouses with Mars.",
+                           "The spacecraft must rendezvous with Mars."))
+                .dump(),
+            parse(s02).dump());
+}
+
+// Names whose symbols would meet another's are refused at the sentence that gives them.
+TEST(ParseNeverMisreads, BodyNamesWhoseSymbolsCollideAreRefused) {
+  const auto orbit = [](const std::string& name) {
+    return name +
+           " moves on a Keplerian orbit about the Sun with a = 1.3 AU, e = 0.1, i = 2 deg, node = 80 deg, argument of "
+           "perihelion = 30 deg and mean anomaly = 10 deg at MJD2000 5256.\n";
+  };
+  const auto flyby = [](const std::string& name, int day) {
+    return "The spacecraft flies by " + name + " between day " + std::to_string(day) + " and day " +
+           std::to_string(day + 50) + ".\n";
+  };
+  has(error_of(tour(kDeparture + orbit("L") + flyby("L", 100))),
+      "the body name 'L' would name a symbol of the derivation");
+  has(error_of(tour(kDeparture + orbit("A") + orbit("A_frac") + flyby("A", 100) + flyby("A_frac", 300))),
+      "the body names 'A' and 'A_frac' would give two symbols one name");
+  // a repeated visit's own suffix is safe
+  EXPECT_NO_THROW(parse(tour(kDeparture + orbit("Rock") + flyby("Rock", 100) + flyby("Rock", 300))));
+}
+
+}  // namespace

@@ -99,6 +99,10 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
         time["t0_days"] = v;
         departure_at_t = true;
         break;
+      case Field::Tf:
+        once(detail::field_name(fact.field));
+        arrival_time = ArrivalTime{v, fact.absolute[0], here};
+        break;
       case Field::Epoch:
         once(detail::field_name(fact.field));
         if (time.value("t0_days", 0.0) != 0.0)
@@ -235,6 +239,22 @@ void Builder::finish_facts() {
                   which + (r ? " velocity" : " position"));
     out = Endpoint{w, {{"kind", "fixed_state"}, {"position_km", *r}, {"velocity_km_s", *v}}, kind, std::nullopt};
   };
+  if (arrival_time) {  // the time of flight from the departure to the arrival
+    const auto& [tf, date, w] = *arrival_time;
+    const std::string what = date ? "the arrival date MJD2000 " + io::short_number(tf)
+                                  : "the arrival time t = " + io::short_number(tf) + " days";
+    if (time.contains("final_time")) fail(w, "it gives " + what + ", and the time of flight is stated too");
+    if (date && !time.contains("epoch_mjd2000"))
+      fail(w, "it gives " + what + " but the text gives no departure epoch to count the time of flight from");
+    if (date && time.value("departure", "") == "free")
+      fail(w,
+           "it gives " + what +
+               ", but the departure is free in its window: HELIOS reads a time of flight, not an arrival date, then");
+    const double t0 = date ? time["epoch_mjd2000"].get<double>() : time.value("t0_days", 0.0);
+    if (!(tf > t0)) fail(w, what + " is not after the departure");
+    time["tof_days"] = tf - t0;
+    time["final_time"] = "fixed";
+  }
   endpoint(r0, v0, initial_where, "initial", departure, "initial_state");
   endpoint(rf, vf, final_where, "final", arrival, "rendezvous");
 }

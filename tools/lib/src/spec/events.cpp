@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <set>
 
 namespace helios::spec::grammar {
 
@@ -72,6 +73,13 @@ void Builder::event(const std::string& kind, const std::string& rest) {
       throw sentence_error(
           "the window must read 'between day N and day N' (days after the epoch) or 'between "
           "MJD2000 N and MJD2000 N'");
+    // "The spacecraft must rendezvous with Mars.": with no window, the rendezvous that ends the flight
+    if (kind == "rendezvous" && rest.find_first_of("[,;") == std::string::npos) {
+      once("the final rendezvous");
+      arrival = Endpoint{here, {{"ref", body_name(rest)}}, "rendezvous", std::nullopt};
+      windowless_rendezvous = here;
+      return;
+    }
     throw sentence_error(
         "an event on the way needs its window ('... between day N and day N'); a rendezvous at "
         "the end reads 'At the final time the spacecraft rendezvouses with NAME'");
@@ -311,6 +319,34 @@ void Builder::finish_events() {
   }
 }
 
+// The derivation names its symbols after the constraints' ids: "t_<id>", "t_<id>_frac",
+// "<id>_rx" (a body's ephemeris), "<x>_<id>_m", "nu_<id>_<k>", beside the costates "l_<x>". An id
+// that is one of those prefixes, or another id followed by "_" and a word, would give two symbols
+// one name: such a body name is refused.
+void Builder::check_event_ids(const std::vector<std::string>& ids) const {
+  static const std::set<std::string> reserved = {"l",    "t",    "h",    "nu",    "psi",   "mu",           "drop",
+                                                 "rmin", "vmax", "jump", "time",  "delta", "stationarity", "phi",
+                                                 "eps",  "u",    "c",    "alone", "rx",    "ry",           "rz",
+                                                 "vx",   "vy",   "vz",   "m",     "tf",    "t0",           "lambda0"};
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const std::string& id = ids[k];
+    if (reserved.count(id) || id.rfind("l_", 0) == 0 || id.rfind("departure_", 0) == 0 || id.rfind("arrival_", 0) == 0)
+      fail(events[k].where, "the body name '" + events[k].body + "' would name a symbol of the derivation ('" + id +
+                                "_rx', 'l_...' or 'arrival_...'): choose another name, e.g. '" + events[k].body +
+                                "_body'");
+    for (std::size_t j = 0; j < ids.size(); ++j) {
+      const std::string& other = ids[j];
+      if (j == k || id.size() <= other.size() + 1 || id.compare(0, other.size() + 1, other + "_") != 0) continue;
+      const std::string suffix = id.substr(other.size() + 1);
+      if (suffix.find_first_not_of("0123456789") != std::string::npos)
+        fail(events[k].where, "the body names '" + events[j].body + "' and '" + events[k].body +
+                                  "' would give two symbols one name ('t_" + id + "' would be both the time of " +
+                                  events[k].body + " and 't_" + other + "' of " + events[j].body + " followed by '_" +
+                                  suffix + "'): rename one so that neither is the other followed by '_'");
+    }
+  }
+}
+
 json Builder::constraints() {
   json out = json::array();
   out.push_back({{"id", "departure"}, {"kind", "initial_state"}, {"at", "t0"}, {"target", departure->target}});
@@ -322,6 +358,11 @@ json Builder::constraints() {
     std::string id = ++n == 1 ? base : base + "_" + std::to_string(n);
     while (std::find(ids.begin(), ids.end(), id) != ids.end()) id = base + "_" + std::to_string(++n);
     ids.push_back(id);
+  }
+  check_event_ids(ids);
+  for (std::size_t k = 0; k < events.size(); ++k) {
+    const Event& e = events[k];
+    const std::string& id = ids[k];
     json c = {{"id", id},
               {"kind", e.kind},
               {"at", "interior"},

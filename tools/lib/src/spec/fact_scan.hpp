@@ -18,6 +18,9 @@ struct Quantity {
   bool day = false;                // "day N": N days after the epoch
   bool window = false;             // "between E and E", "from E to E": nums holds both bounds
   std::array<bool, 2> absolute{};  // a window's bounds: MJD2000 (a date) or days after the epoch
+  // A bound written just before it ("at most 0.5 N", "at least 300 km"), with its words.
+  bool at_most = false, at_least = false;
+  std::string bound_words;
 };
 
 struct Token {
@@ -26,6 +29,14 @@ struct Token {
   Quantity q;
   std::string text = "";  // a word as written
 };
+
+// Epochs lie in these years: a day number outside them is a misread scale, not a date.
+constexpr int kFirstEpochYear = 1900;
+constexpr int kLastEpochYear = 2200;
+
+// A day number on the scale "MJD2000", "MJD" or "JD" as MJD2000; throws facts_error naming `text`
+// when it falls outside the years above.
+double day_number_epoch(const std::string& scale, double value, const std::string& text);
 
 // The tokens of `sentence`; throws facts_error on a character, date or unit it cannot read.
 std::vector<Token> scan(const std::string& sentence);

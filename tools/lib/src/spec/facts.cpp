@@ -59,6 +59,7 @@ struct Meaning {
   std::string model;            // a part of the model it names: "j2" (the perturbation) or "sail"
   Field field = Field::Thrust;  // of Slot::Fact
   bool none = false;            // "no stay": the fact, with the value 0
+  bool negation = false;        // "not", "no": a fact negated, which HELIOS does not read
   Meaning(Slot s = Slot::None, int r = kNoRole, int v = kNoVerb, int n = kNoNoun, bool b = false, std::string bd = "",
           bool c = false)
       : slot(s), role(r), verb(v), noun(n), bound(b), body(std::move(bd)), central(c) {}
@@ -74,8 +75,9 @@ const std::map<std::string, Meaning>& phrases() {
         "the a an is are be of to with at from by for in its it system electric ion has have must should can set fixed "
         "equal equals given taken as assumed constant total level magnitude consumption used consumed objective goal "
         "vector state conditions we want find optimize optimise trajectory transfer mission operate operates possible "
-        "reach looking use motion problem on place utc our single trip exactly body runs run carries carry hall "
-        "take all computed frame only");
+        "reach looking use motion problem on place our single trip exactly body runs run carries carry hall "
+        "take all computed frame only match matches equipped located scheduled expended spent solve occurs occur "
+        "achieved");
     for (std::string w; fillers >> w;) t[w] = {};
     const auto slot = [&](std::initializer_list<const char*> ws, Slot s, int noun = kNoNoun) {
       for (const char* w : ws) t[w] = {s, kNoRole, kNoVerb, noun};
@@ -87,7 +89,7 @@ const std::map<std::string, Meaning>& phrases() {
       }
     };
     slot({"thrust", "maximum thrust", "max thrust", "delivers", "deliver", "provides", "provide", "produces", "produce",
-          "gives", "give", "tmax", "t_max", "thrust force", "rated", "capable"},
+          "gives", "give", "tmax", "t_max", "thrust force", "rated", "capable", "thrusts"},
          Slot::Thrust);
     // A force said of the engine is its thrust; a mass said of the spacecraft is its mass.
     for (const char* w : {"engine", "engines", "thruster", "thrusters", "propulsion"}) {
@@ -112,7 +114,8 @@ const std::map<std::string, Meaning>& phrases() {
     slot({"initial mass", "wet mass", "launch mass", "starting mass", "m0", "m_0"}, Slot::InitialMass, kInitialMass);
     slot({"final mass"}, Slot::FinalMass, kFinalMass);
     slot({"time of flight", "flight time", "transfer time", "tof", "takes", "lasts", "duration", "transfer duration",
-          "flight duration", "after departure"},
+          "flight duration", "after departure", "after it departs", "after departing", "after launch",
+          "after it leaves", "after leaving", "after the departure", "after the launch"},
          Slot::Tof, kTime);
     slot({"mu", "gm", "gravitational parameter", "gravitational constant"}, Slot::Mu);
     slot({"position", "location", "r"}, Slot::Position);
@@ -122,14 +125,15 @@ const std::map<std::string, Meaning>& phrases() {
     slot({"rf", "r_f"}, Slot::Rf);
     slot({"vf", "v_f"}, Slot::Vf);
     for (const char* w : {"initial", "initially", "start", "starts", "starting", "begins", "departs", "departure",
-                          "launch", "leaves", "launched"})
+                          "launch", "leaves", "launched", "time zero"})
       t[w] = {Slot::None, kInitial};
     for (const char* w : {"final", "arrives", "arrive", "arrival", "end", "ends", "terminal", "rendezvous",
                           "rendezvouses", "destination", "target"})
       t[w] = {Slot::None, kFinal};
-    for (const char* w : {"minimize", "minimise", "cost", "cost function", "as little"})
+    for (const char* w : {"minimize", "minimise", "minimized", "minimised", "cost", "cost function", "as little"})
       t[w] = {Slot::None, kNoRole, kMinimize};
-    for (const char* w : {"maximize", "maximise", "as large as possible"}) t[w] = {Slot::None, kNoRole, kMaximize};
+    for (const char* w : {"maximize", "maximise", "maximized", "maximised", "as large as possible"})
+      t[w] = {Slot::None, kNoRole, kMaximize};
     t["minimum"] = {Slot::None, kNoRole, kMinimum};
     t["maximum"] = t["max"] = {Slot::None, kNoRole, kMaximum, kNoNoun, true};
     for (const auto& [w, b] : std::map<std::string, std::string>{
@@ -147,13 +151,16 @@ const std::map<std::string, Meaning>& phrases() {
              {"gm_sun", "Sun"}, {"mu_sun", "Sun"}, {"gm_earth", "Earth"}, {"mu_earth", "Earth"}})
       t[w] = {Slot::Mu, kNoRole, kNoVerb, kNoNoun, false, b};
     t["near earth asteroid"] = {};  // a kind of asteroid, not the Earth
-    for (const char* w : {"up", "limited", "available", "most"}) t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, true};
+    for (const char* w : {"up", "up to", "limited", "available", "most", "at most", "no more than", "not more than",
+                          "not exceeding", "not to exceed", "no greater than", "not greater than", "at the most"})
+      t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, true};
     for (const char* w : {"fuel", "propellant", "fuel consumption", "propellant consumption", "fuel mass",
-                          "propellant mass", "fuel use"})
+                          "propellant mass", "fuel use", "mass of propellant", "mass of fuel", "mass of the propellant",
+                          "mass of the fuel", "propellant used", "fuel used"})
       t[w] = {Slot::None, kNoRole, kNoVerb, kFuel};
     for (const char* w : {"time", "final time"}) t[w] = {Slot::None, kNoRole, kNoVerb, kTime};
     for (const char* w : {"fuel optimal", "propellant optimal"}) t[w] = {Slot::None, kNoRole, kMinimize, kFuel};
-    for (const char* w : {"time optimal", "fastest", "as fast as possible", "as short as possible"})
+    for (const char* w : {"time optimal", "fastest", "quickest", "as fast as possible", "as short as possible"})
       t[w] = {Slot::None, kNoRole, kMinimize, kTime};
     // events on the way: the event words, their stays, landers and periapsis bounds
     for (const char* w : {"flyby", "flybys", "fly by", "flies by", "fly past", "flies past", "passes", "pass"})
@@ -175,10 +182,13 @@ const std::map<std::string, Meaning>& phrases() {
       fact({w}, Field::Rmin);
       t[w].lower = true;
     }
-    t["least"].lower = true;
+    for (const char* w : {"least", "at least", "no less than", "not less than", "no fewer than"}) t[w].lower = true;
     fact({"no stay", "does not stay"}, Field::Stay);
     t["no stay"].none = t["does not stay"].none = true;
     t["immediately"] = {};
+    // a negation the phrases above do not hold ("no stay", "no more than") negates a fact
+    for (const char* w : {"not", "no", "never", "without", "neither", "nor", "cannot", "doesn't", "don't", "isn't"})
+      t[w].negation = true;
     // the J2 perturbation ("j2" alone with a number is the coefficient), the central body's radius
     for (const char* w : {"j2 perturbation", "j2 term", "j2 effect", "oblateness", "zonal harmonic j2",
                           "zonal harmonic", "j2 zonal harmonic"})
@@ -229,7 +239,35 @@ constexpr double kG0 = 9.80665;  // m/s^2, exhaust velocity = Isp * g0
 struct Mention {
   Meaning meaning;
   std::string text;
+  bool on_quantity = false;  // a bound word written just before a quantity: it bounds that quantity
 };
+
+facts_error negation_error(const std::string& word) {
+  return facts_error("'" + word +
+                     "' negates what follows it: HELIOS reads facts stated as they are, never their negation");
+}
+
+// A word that states nothing ("the", "of", "to").
+bool filler(const Meaning& m) {
+  return m.slot == Slot::None && m.role == kNoRole && m.verb == kNoVerb && m.noun == kNoNoun && !m.bound &&
+         m.body.empty() && !m.central && m.event.empty() && !m.lower && !m.named && m.model.empty() && !m.negation;
+}
+
+// A bound word ("at most", "up to", "at least") with only fillers between it and the quantity
+// after it bounds that quantity.
+void mark_bound(std::vector<Mention>& mentions, std::size_t from, Quantity& q) {
+  for (std::size_t k = mentions.size(); k > from; --k) {
+    Mention& m = mentions[k - 1];
+    if (filler(m.meaning)) continue;
+    if (m.meaning.bound || m.meaning.lower) {
+      m.on_quantity = true;
+      q.at_most = m.meaning.bound;
+      q.at_least = m.meaning.lower;
+      q.bound_words = m.text;
+    }
+    return;
+  }
+}
 
 struct Clause {
   std::vector<Mention> mentions;
@@ -241,8 +279,10 @@ std::vector<Clause> clauses_of(const std::vector<Token>& tokens, const std::map<
   std::vector<Clause> out(1);
   std::vector<std::string> words;
   bool after_bare_number = false;  // the words follow a number without a unit
+  std::size_t flushed_from = 0;    // the first mention of the words flushed last
   const auto flush = [&] {
     const auto& table = phrases();
+    flushed_from = out.back().mentions.size();
     for (std::size_t i = 0; i < words.size();) {
       std::size_t len = std::min(kMaxPhraseWords, words.size() - i);
       for (; len > 0; --len) {
@@ -289,7 +329,10 @@ std::vector<Clause> clauses_of(const std::vector<Token>& tokens, const std::map<
     }
     flush();
     after_bare_number = t.kind == Token::Value && t.q.unit.empty();
-    if (t.kind == Token::Value) out.back().quantities.push_back(t.q);
+    if (t.kind == Token::Value) {
+      out.back().quantities.push_back(t.q);
+      mark_bound(out.back().mentions, flushed_from, out.back().quantities.back());
+    }
     if (t.kind == Token::Separator && (!out.back().mentions.empty() || !out.back().quantities.empty()))
       out.emplace_back();
   }
@@ -335,14 +378,13 @@ std::vector<Candidate> candidates(const Meaning& m, int role, const std::string&
   switch (s) {
     case Slot::Thrust:
       return {{Field::Thrust, Dimension::Force, false, false}};
-    case Slot::ThrustOrT0:
-      return {{Field::Thrust, Dimension::Force, false, false}, {Field::T0, Dimension::Time, false, false}};
+    case Slot::ThrustOrT0:  // "t = Q": the departure time, or the arrival time in a clause of the arrival
+      return {{Field::Thrust, Dimension::Force, false, false},
+              {role == kFinal ? Field::Tf : Field::T0, Dimension::Time, false, false}};
     case Slot::T0:
       return {{Field::T0, Dimension::Time, false, false}, {Field::Epoch, Dimension::Time, false, false, true}};
-    case Slot::Epoch:
-      if (role == kFinal)
-        throw facts_error("'" + text + "' is an arrival date: HELIOS reads the departure epoch and the time of flight");
-      return {{Field::Epoch, Dimension::Time, false, false, true}};
+    case Slot::Epoch:  // "the arrival date": the arrival time as a date
+      return {{role == kFinal ? Field::Tf : Field::Epoch, Dimension::Time, false, false, true}};
     case Slot::Isp:
       return {{Field::Isp, Dimension::Duration, false, false}};
     case Slot::ExhaustV:
@@ -500,6 +542,8 @@ std::string field_name(Field f) {
       return "the time of flight";
     case Field::T0:
       return "the departure time";
+    case Field::Tf:
+      return "the arrival time";
     case Field::Epoch:
       return "the departure epoch";
     case Field::Mu:
@@ -567,7 +611,7 @@ bool states_nothing(const std::string& sentence, const std::map<std::string, std
       const auto it = table.find(phrase);
       const Meaning& mean = it == table.end() ? Meaning{} : it->second;
       if ((mean.slot != Slot::None && !mean.weak) || mean.verb != kNoVerb || !mean.body.empty() || mean.central ||
-          !mean.event.empty() || !mean.model.empty())
+          !mean.event.empty() || !mean.model.empty() || mean.negation)
         return false;
     }
   }
@@ -631,8 +675,16 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
   try {
     clauses = clauses_of(tokens, known);
   } catch (const facts_error& e) {
+    // a word it cannot place beside a negation: the negation is the reason
+    for (const auto& t : tokens) {
+      const auto it = phrases().find(t.word);
+      if (t.kind == Token::Word && it != phrases().end() && it->second.negation) throw negation_error(t.text);
+    }
     throw facts_error(e.what(), e.modifies_fact ? "" : rough_suggestion(tokens));
   }
+  for (const auto& c : clauses)
+    for (const auto& m : c.mentions)
+      if (m.meaning.negation) throw negation_error(m.text);
   SentenceFacts out;
   std::set<int> sentence_roles;
   for (const auto& c : clauses)
@@ -656,7 +708,8 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
       if (!m.meaning.event.empty() && event_kind != "gravity_assist") event_kind = m.meaning.event;
       event_sentence =
           event_sentence || !m.meaning.event.empty() || (m.meaning.slot == Slot::Fact && on_the_way(m.meaning.field));
-      rendezvous_word = rendezvous_word || m.text == "rendezvous" || m.text == "rendezvouses";
+      rendezvous_word = rendezvous_word || m.text == "rendezvous" || m.text == "rendezvouses" || m.text == "arrives" ||
+                        m.text == "arrive";
       out.small_body = out.small_body || m.text == "asteroid" || m.text == "comet";
     }
     for (const auto& q : c.quantities) event_sentence = event_sentence || q.window || q.day;
@@ -682,6 +735,13 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
   // Else a planet in a clause that says the spacecraft leaves or arrives is the body it departs
   // from or rendezvouses with ("Departure from Earth.", "Rendezvous with Mars.").
   if (!bodies.empty() && !central_named && !sentence_roles.empty() && !event_sentence) {
+    for (const auto& c : clauses)
+      for (const auto& m : c.mentions)
+        if (m.text == "orbit" || m.text == "orbital")
+          throw facts_error(
+              "it names an orbit, not the body on it: HELIOS reads a departure from or a rendezvous "
+              "with a body ('At the final time the spacecraft rendezvouses with " +
+              *bodies.begin() + ".'); a target that is a whole orbit is not a fact it reads yet");
     for (const auto& c : clauses) {
       std::set<int> roles;
       for (const auto& m : c.mentions)
@@ -709,8 +769,8 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
   // A body named with no word saying it is the central one: its gravitational parameter, if the
   // sentence gives one ("The Sun's gravitational parameter is Q"), checked below.
   const std::string unplaced = !bodies.empty() && !central_named ? *bodies.begin() : "";
-  if (bodies.empty() && central_named && !elements)
-    throw facts_error("it does not name the central body (Sun, Earth or Mars: 'The central body is the Sun.')");
+  // "The gravitational parameter of the central body is Q": a constant of the central body named elsewhere
+  const bool central_unnamed = bodies.empty() && central_named && !elements;
   if (!bodies.empty() && central_named) out.central = *bodies.begin();
   std::string objective_words;
   const auto add = [&](const Fact& fact) {
@@ -732,6 +792,16 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
     }
     if (roles.size() > 1) throw facts_error("'" + words + "' names both the initial and the final state");
     int role = roles.empty() ? kNoRole : *roles.begin();
+    // "At t = 0 the spacecraft is at position ...": the time 0 makes the clause the departure's
+    if (role == kNoRole && sentence_roles.empty()) {
+      bool time_mention = false;
+      for (const auto& m : c.mentions)
+        time_mention = time_mention || m.meaning.slot == Slot::ThrustOrT0 || m.meaning.slot == Slot::T0;
+      for (const auto& q : c.quantities)
+        if (time_mention && !q.vector && !q.date && !q.window && q.nums[0] == 0 &&
+            (q.unit.empty() || fits({Field::T0, Dimension::Time, false, false}, q)))
+          role = kInitial;
+    }
     const int clause_role = role;
     if (role == kNoRole && sentence_roles.size() == 1) role = *sentence_roles.begin();
 
@@ -756,17 +826,19 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
     // A bound on the thrust is the maximum thrust; a bound on anything else is not a value.
     for (const auto& m : c.mentions)
       for (const auto& n : c.mentions)
-        if (m.meaning.bound && n.meaning.slot != Slot::None && n.meaning.slot != Slot::Thrust && !n.meaning.weak)
-          throw facts_error("'" + m.text + "' makes '" + n.text +
-                            "' a bound, not a value (a bounded time of flight reads 'The time of flight is free, at "
-                            "most Q.')");
+        if (m.meaning.bound && !m.on_quantity && n.meaning.slot != Slot::None && n.meaning.slot != Slot::Thrust &&
+            !n.meaning.weak)
+          throw facts_error("'" + m.text + "' makes '" + n.text + "' a bound, not a value" +
+                            (n.meaning.slot == Slot::Tof
+                                 ? " (a bounded time of flight reads 'The time of flight is free, at most Q.')"
+                                 : ""));
     // The periapsis radius is a lower bound, and only it is.
     bool lower = false, rmin = false;
     for (const auto& m : c.mentions) {
       lower = lower || m.meaning.lower;
       const auto is_rmin = [](const Meaning& x) { return x.slot == Slot::Fact && x.field == Field::Rmin; };
       rmin = rmin || is_rmin(m.meaning);
-      if (m.meaning.lower && !is_rmin(m.meaning))
+      if (m.meaning.lower && !m.on_quantity && !is_rmin(m.meaning))
         for (const auto& n : c.mentions)
           if (n.meaning.slot != Slot::None && !is_rmin(n.meaning) && !n.meaning.weak)
             throw facts_error("'" + m.text + "' makes '" + n.text + "' a lower bound, not a value");
@@ -776,6 +848,20 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
                         "' gives a periapsis radius, which HELIOS takes as a lower bound: say 'a minimum periapsis "
                         "radius of Q' or 'the periapsis radius is at least Q'");
 
+    // A time of flight is the flight's: not the engine's or the propellant's life, and counted from
+    // the departure.
+    for (const auto& m : c.mentions) {
+      if (m.meaning.slot != Slot::Tof || event_sentence) continue;
+      for (const auto& n : c.mentions) {
+        if ((n.meaning.weak && n.meaning.slot == Slot::Thrust) || n.meaning.noun == kFuel)
+          throw facts_error("'" + m.text + "' is said of the '" + n.text +
+                            "', not of the flight: the time of flight reads 'The time of flight is Q.'");
+        if (n.text == "window")
+          throw facts_error("'" + words +
+                            "' counts the time from the departure window, not from the departure: HELIOS reads the "
+                            "time of flight from the departure ('The time of flight is Q.')");
+      }
+    }
     // Quantities: each goes to the one fact of its clause whose dimension fits.
     struct Named {
       std::vector<Candidate> cands;
@@ -811,8 +897,7 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
       throw facts_error("'" + words + "' dates an event on the way: HELIOS takes its window and chooses the date in it",
                         event_form(event_kind, out.event_body));
     else if (date_here && !epoch_named && role == kFinal)
-      throw facts_error("'" + words +
-                        "' gives an arrival date: HELIOS reads the departure epoch and the time of flight");
+      named.push_back({{{Field::Tf, Dimension::Time, false, false, true}}, words, false});
     else if (date_here && !epoch_named && role == kInitial)
       named.push_back({{{Field::Epoch, Dimension::Time, false, false, true}}, words, false});
     for (const auto& q : c.quantities)
@@ -884,14 +969,27 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
         throw facts_error(q.written + " could be " + names + ": state one fact per clause");
       }
       const Candidate& cand = fit.front().first;
+      if ((q.at_most && cand.field != Field::Thrust) || (q.at_least && cand.field != Field::Rmin))
+        throw facts_error("'" + q.bound_words + " " + q.written + "' is " + (q.at_most ? "an upper" : "a lower") +
+                          " bound on " + field_name(cand.field) + ", not its value" +
+                          (cand.field == Field::Tof ? " (a bounded time of flight reads 'The time of flight is free, "
+                                                      "at most Q.')"
+                                                    : ""));
       if (bound_here.count(cand.field))
         throw facts_error("two values for " + field_name(cand.field) + ": " + bound_here[cand.field] + " and " +
                           q.written);
       bound_here[cand.field] = q.written;
       for (auto& n : named)
         for (const auto& x : n.cands)
-          if (x.field == cand.field) n.bound = true;
+          if (x.field == cand.field) {
+            if (n.none)
+              throw facts_error("'" + n.text + "' negates " + field_name(x.field) + ", so " + q.written +
+                                " is not its value: state the " + field_name(x.field).substr(4) +
+                                " HELIOS should use, or none");
+            n.bound = true;
+          }
       Fact fact{cand.field, {}, q.written, q.absolute};
+      if (q.date) fact.absolute = {true, true};  // an epoch, MJD2000
       const double factor = q.unit.empty() ? 1.0 : to_spec_unit(cand.dim, q.unit);
       for (double v : q.nums) fact.value.push_back(cand.exhaust ? v * factor * 1000.0 / kG0 : v * factor);
       add(fact);
@@ -943,6 +1041,8 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
     sail_value = sail_value || f.field == Field::CharAccel || f.field == Field::Lightness;
     central_value = central_value || f.field == Field::Mu || f.field == Field::J2 || f.field == Field::Radius;
   }
+  if (central_unnamed && !central_value)
+    throw facts_error("it does not name the central body (Sun, Earth or Mars: 'The central body is the Sun.')");
   if (out.sail && !sail_value)
     throw facts_error("the solar sail needs its characteristic acceleration (at 1 AU) or lightness number",
                       "The spacecraft is an ideal flat solar sail with a characteristic acceleration of 1 mm/s^2 at 1 "

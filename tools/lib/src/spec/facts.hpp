@@ -11,7 +11,8 @@
 
 namespace helios::spec::detail {
 
-// The facts a sentence may state.
+// The facts a sentence may state. Tf is the arrival time: on the problem's clock ("arrives at t = Q")
+// or a date ("arrives on 2030-12-27", absolute).
 // Window, Stay, Drop and Rmin belong to an event on the way (its window, a stay, a lander, a lowest
 // periapsis); J2 and Radius to the central body; CharAccel and Lightness to a solar sail; A to
 // ElementsEpoch to a body's orbital elements (a in km, angles in deg).
@@ -22,6 +23,7 @@ enum class Field {
   FinalMass,
   Tof,
   T0,
+  Tf,
   Epoch,
   Mu,
   R0,
@@ -50,7 +52,7 @@ struct Fact {
   Field field;
   std::vector<double> value;       // one number (an epoch as MJD2000), or three for a vector, in the spec's unit
   std::string written;             // as written, e.g. "0.5 N"
-  std::array<bool, 2> absolute{};  // a window's bounds: MJD2000 (true) or days after the epoch (false)
+  std::array<bool, 2> absolute{};  // a window's bounds or a date: MJD2000 (true) or days after the epoch (false)
 };
 
 struct SentenceFacts {

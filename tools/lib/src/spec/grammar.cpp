@@ -1,5 +1,6 @@
 // The pieces every sentence form uses: numbers with units, vectors, names and clause lists.
 #include "grammar.hpp"
+#include "fact_scan.hpp"
 
 #include <cctype>
 #include <cstdio>
@@ -120,8 +121,11 @@ std::string body_name(const std::string& phrase) {
 
 // "MJD N" or "MJD2000 N" as MJD2000.
 double mjd2000_of(const std::string& scale, const std::string& value) {
-  const double v = number(value);
-  return lowercase(scale) == "mjd" ? v - helios::astro::MJD_MINUS_MJD2000 : v;
+  try {
+    return detail::day_number_epoch(scale, number(value), scale + " " + value);
+  } catch (const detail::facts_error& e) {
+    throw sentence_error(e.what());
+  }
 }
 
 }  // namespace helios::spec::grammar

@@ -135,6 +135,14 @@ struct Builder {
   std::string table_about;
   Where free_departure_where;
   bool departure_at_t = false;
+  std::optional<Where> windowless_rendezvous;  // "The spacecraft rendezvouses with Mars.", read as the final one
+  // "arrives at t = Q" [days] or "arrives on DATE" [MJD2000], made a time of flight at the end
+  struct ArrivalTime {
+    double value;
+    bool date;
+    Where where;
+  };
+  std::optional<ArrivalTime> arrival_time;
   std::string propulsion = "low_thrust";
   std::map<std::string, int> seen;     // what each sentence set, to refuse contradictions
   std::optional<json> r0, v0, rf, vf;  // state vectors stated one by one
@@ -202,6 +210,7 @@ struct Builder {
   json resolve(const json& target, const Where& w);
   void finish_events();
   json constraints();
+  void check_event_ids(const std::vector<std::string>& ids) const;
 
   // ---- bodies given by their orbits, elements tables (tables.cpp) ----
   void on_orbit(const std::smatch& m);

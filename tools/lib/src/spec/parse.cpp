@@ -7,7 +7,13 @@
 namespace helios::spec::grammar {
 
 void Builder::once(const std::string& what) {
-  if (seen[what]++) throw sentence_error(what + " is given twice");
+  if (!seen[what]++) return;
+  if (what == "the final rendezvous" && windowless_rendezvous)
+    throw sentence_error("the final rendezvous is given twice: \"" + windowless_rendezvous->text + "\" (line " +
+                         std::to_string(windowless_rendezvous->line) +
+                         ") has no window, so it was read as the final one; an event on the way needs its window "
+                         "('... between day N and day N')");
+  throw sentence_error(what + " is given twice");
 }
 
 void Builder::fail(const Where& w, const std::string& why) const {

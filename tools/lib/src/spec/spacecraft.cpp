@@ -148,11 +148,10 @@ json Builder::user_acceleration(const std::string& name, const std::string& list
   if (items.size() != 3)
     throw sentence_error("the acceleration " + name + " needs three components [ax, ay, az], got " +
                          std::to_string(items.size()));
-  try {
-    to_spec_unit(Dimension::Acceleration, unit);
-  } catch (const std::invalid_argument& e) {
-    throw sentence_error(e.what());
-  }
+  // The components are expressions, so their unit is kept as written: one of the spec's.
+  if (unit != "mm/s^2" && unit != "m/s^2" && unit != "km/s^2")
+    throw sentence_error("the acceleration " + name + " is written in '" + unit +
+                         "'; its components are expressions, so their unit must be mm/s^2, m/s^2 or km/s^2");
   symbolic::SymbolTable vars;
   for (const char* v : kAccelerationVariables) vars.get(v);
   for (const auto& item : items) {
@@ -163,7 +162,7 @@ json Builder::user_acceleration(const std::string& name, const std::string& list
                            " (variables: x, y, z, r [km], vx, vy, vz [km/s], m [kg], t [s since departure])");
     }
   }
-  return {{"kind", "acceleration"}, {"name", name}, {"components", items}, {"unit", lowercase(unit)}};
+  return {{"kind", "acceleration"}, {"name", name}, {"components", items}, {"unit", unit}};
 }
 
 void Builder::on_initial_mass(const std::smatch&) {

@@ -1,6 +1,8 @@
 // Sentences about time: the time of flight (fixed or free), the departure, its epoch and its window.
 #include "grammar.hpp"
 
+#include <cmath>
+
 namespace helios::spec::grammar {
 
 void Builder::on_tof(const std::smatch& m) {
@@ -29,18 +31,39 @@ void Builder::on_depart(const std::smatch& m) {
   depart(m[1].matched ? m[1].str() : "", m[2].str());
 }
 
-void Builder::depart(const std::string& at, const std::string& target) {
+void Builder::depart(const std::string& at, const std::string& target_text) {
+  json target;
+  try {
+    target = parse_target(target_text);
+  } catch (const sentence_error& form) {
+    // "departs from Earth on 2001-02-04": the facts in other words read what the form does not
+    detail::SentenceFacts facts;
+    try {
+      facts = detail::read_facts(here.text, body_names());
+    } catch (const detail::facts_error& e) {
+      // a body named, then words the form does not take: the facts' reason is the one to give
+      static const std::regex named_then_more = re(R"([A-Za-z][A-Za-z0-9_]* (?:on|at|in) .+)");
+      if (std::regex_match(target_text, named_then_more)) throw sentence_error(e.what());
+      throw form;
+    }
+    return apply_facts(facts);
+  }
   once("the departure");
   if (!at.empty()) epoch(at);
-  departure = Endpoint{here, parse_target(target), "initial_state", std::nullopt};
+  departure = Endpoint{here, target, "initial_state", std::nullopt};
 }
 
 void Builder::set_epoch(double mjd2000) {
-  if (time.contains("epoch_mjd2000") && time["epoch_mjd2000"].get<double>() != mjd2000)
-    throw sentence_error("the epoch MJD2000 " + io::short_number(mjd2000) + " contradicts the epoch MJD2000 " +
-                         io::short_number(time["epoch_mjd2000"].get<double>()) + " stated before");
+  // The same epoch written on two scales (MJD 61880.6, MJD2000 10336.6) differs by rounding only.
+  constexpr double kSameEpochDays = 1e-6;
+  if (time.contains("epoch_mjd2000")) {
+    const double before = time["epoch_mjd2000"].get<double>();
+    if (std::fabs(before - mjd2000) > kSameEpochDays)
+      throw sentence_error("the epoch MJD2000 " + io::short_number(mjd2000) + " contradicts the epoch MJD2000 " +
+                           io::short_number(before) + " stated before");
+  }
   time["t0_days"] = 0.0;
-  time["epoch_mjd2000"] = mjd2000;
+  if (!time.contains("epoch_mjd2000")) time["epoch_mjd2000"] = mjd2000;
 }
 
 void Builder::epoch(const std::string& phrase) {

@@ -1,6 +1,13 @@
+// Units of the problem language, read compositionally: a unit is a product of symbols with powers
+// ("km^3/s^2", "km3/s2", "AU/yr", "km/sec"), each symbol an SI symbol with an optional prefix
+// (m, k, M), a named unit (AU, d, h, min, yr, t, lb, deg, rad) or a word (newtons, kilometres,
+// weeks). Symbols are read with their case, since the case decides the prefix (MN is a meganewton,
+// mN a millinewton); words are read without case.
 #include "helios/spec/units.hpp"
 
+#include <array>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "helios/astro/constants.hpp"
@@ -8,64 +15,164 @@
 namespace helios::spec {
 namespace {
 
-struct Table {
-  std::string spec_unit;
-  std::string accepted;
-  std::map<std::string, double> factor;
+using astro::AU_KM;
+using astro::DAY_S;
+using astro::DEG_TO_RAD;
+using astro::JULIAN_YEAR_DAYS;
+
+// A unit's size in SI (m, s, kg; rad for angles) and its powers of length, time and mass.
+struct Measure {
+  double si = 1.0;
+  std::array<int, 3> powers{};  // length, time, mass
+  bool angle = false;
 };
 
-const Table& table(Dimension d) {
-  using namespace helios::astro;
-  static const std::map<Dimension, Table> tables = {
-      {Dimension::Length, {"km", "m, km, AU", {{"m", 1e-3}, {"km", 1.0}, {"au", AU_KM}}}},
-      {Dimension::Speed, {"km/s", "m/s, km/s", {{"m/s", 1e-3}, {"km/s", 1.0}}}},
-      {Dimension::Force,
-       {"N",
-        "N, mN",
-        {{"n", 1.0}, {"mn", 1e-3}, {"newton", 1.0}, {"newtons", 1.0}, {"millinewton", 1e-3}, {"millinewtons", 1e-3}}}},
-      {Dimension::Time,
-       {"days",
-        "s, days, years",
-        {{"s", 1.0 / DAY_S},
-         {"seconds", 1.0 / DAY_S},
-         {"day", 1.0},
-         {"days", 1.0},
-         {"d", 1.0},
-         {"h", 1.0 / 24},
-         {"hour", 1.0 / 24},
-         {"hours", 1.0 / 24},
-         {"sec", 1.0 / DAY_S},
-         {"yr", JULIAN_YEAR_DAYS},
-         {"year", JULIAN_YEAR_DAYS},
-         {"years", JULIAN_YEAR_DAYS}}}},
-      {Dimension::Duration,
-       {"s", "s, days", {{"s", 1.0}, {"sec", 1.0}, {"seconds", 1.0}, {"day", DAY_S}, {"days", DAY_S}, {"d", DAY_S}}}},
-      {Dimension::Mass,
-       {"kg",
-        "kg",
-        {{"kg", 1.0},
-         {"kilogram", 1.0},
-         {"kilograms", 1.0},
-         {"t", 1e3},
-         {"tonne", 1e3},
-         {"tonnes", 1e3},
-         {"lb", 0.45359237},
-         {"lbs", 0.45359237}}}},
-      {Dimension::GravParam,
-       {"km^3/s^2", "km^3/s^2, m^3/s^2", {{"km^3/s^2", 1.0}, {"m^3/s^2", 1e-9}, {"km3/s2", 1.0}, {"m3/s2", 1e-9}}}},
-      {Dimension::Acceleration,
-       {"mm/s^2", "mm/s^2, m/s^2, km/s^2", {{"mm/s^2", 1.0}, {"m/s^2", 1e3}, {"km/s^2", 1e6}}}},
-      {Dimension::Angle,
-       {"deg",
-        "deg, rad",
-        {{"deg", 1.0},
-         {"degree", 1.0},
-         {"degrees", 1.0},
-         {"rad", 1.0 / DEG_TO_RAD},
-         {"radian", 1.0 / DEG_TO_RAD},
-         {"radians", 1.0 / DEG_TO_RAD}}}},
+Measure length(double m) {
+  return {m, {1, 0, 0}};
+}
+Measure duration(double s) {
+  return {s, {0, 1, 0}};
+}
+Measure mass(double kg) {
+  return {kg, {0, 0, 1}};
+}
+Measure force(double n) {
+  return {n, {1, -2, 1}};
+}
+Measure angle(double rad) {
+  return {rad, {}, true};
+}
+
+constexpr double kLb = 0.45359237;
+constexpr double kWeekDays = 7.0;
+
+// Symbols taking a prefix: metre, second, gram, newton.
+const std::map<std::string, Measure>& prefixable() {
+  static const std::map<std::string, Measure> t = {
+      {"m", length(1.0)}, {"s", duration(1.0)}, {"g", mass(1e-3)}, {"N", force(1.0)}};
+  return t;
+}
+
+// Symbols that take no prefix.
+const std::map<std::string, Measure>& plain_symbols() {
+  static const std::map<std::string, Measure> t = {{"AU", length(AU_KM * 1e3)},
+                                                   {"au", length(AU_KM * 1e3)},
+                                                   {"min", duration(60.0)},
+                                                   {"h", duration(3600.0)},
+                                                   {"d", duration(DAY_S)},
+                                                   {"yr", duration(JULIAN_YEAR_DAYS * DAY_S)},
+                                                   {"t", mass(1e3)},
+                                                   {"lb", mass(kLb)},
+                                                   {"lbs", mass(kLb)},
+                                                   {"deg", angle(DEG_TO_RAD)},
+                                                   {"rad", angle(1.0)}};
+  return t;
+}
+
+// Words, matched without case.
+const std::map<std::string, Measure>& words() {
+  static const std::map<std::string, Measure> t = [] {
+    std::map<std::string, Measure> w;
+    const auto add = [&](std::initializer_list<const char*> names, Measure m) {
+      for (const char* n : names) w[n] = m;
+    };
+    add({"newton", "newtons"}, force(1.0));
+    add({"millinewton", "millinewtons"}, force(1e-3));
+    add({"kilonewton", "kilonewtons"}, force(1e3));
+    add({"metre", "metres", "meter", "meters"}, length(1.0));
+    add({"kilometre", "kilometres", "kilometer", "kilometers"}, length(1e3));
+    add({"second", "seconds", "sec", "secs"}, duration(1.0));
+    add({"minute", "minutes", "mins"}, duration(60.0));
+    add({"hour", "hours", "hr", "hrs"}, duration(3600.0));
+    add({"day", "days"}, duration(DAY_S));
+    add({"week", "weeks"}, duration(kWeekDays * DAY_S));
+    add({"year", "years", "yrs"}, duration(JULIAN_YEAR_DAYS * DAY_S));
+    add({"kilogram", "kilograms", "kilogramme", "kilogrammes"}, mass(1.0));
+    add({"gram", "grams", "gramme", "grammes"}, mass(1e-3));
+    add({"tonne", "tonnes"}, mass(1e3));
+    add({"degree", "degrees"}, angle(DEG_TO_RAD));
+    add({"radian", "radians"}, angle(1.0));
+    return w;
+  }();
+  return t;
+}
+
+std::optional<Measure> symbol(const std::string& s) {
+  if (const auto it = plain_symbols().find(s); it != plain_symbols().end()) return it->second;
+  if (const auto it = prefixable().find(s); it != prefixable().end()) return it->second;
+  static const std::map<char, double> prefixes = {{'m', 1e-3}, {'k', 1e3}, {'M', 1e6}};
+  if (s.size() > 1 && prefixes.count(s[0]))
+    if (const auto it = prefixable().find(s.substr(1)); it != prefixable().end()) {
+      Measure m = it->second;
+      m.si *= prefixes.at(s[0]);
+      return m;
+    }
+  if (const auto it = words().find(lowercase(s)); it != words().end()) return it->second;
+  return std::nullopt;
+}
+
+// One factor of a unit: a symbol with a power written "^3", "^-2" or "3" ("km3/s2").
+std::optional<Measure> factor(const std::string& text) {
+  std::string name = text;
+  int power = 1;
+  const std::size_t caret = text.find('^');
+  if (caret != std::string::npos) {
+    name = text.substr(0, caret);
+    const std::string p = text.substr(caret + 1);
+    if (p.empty() || p.find_first_not_of("-0123456789") != std::string::npos || p == "-") return std::nullopt;
+    power = std::stoi(p);
+  } else {
+    const std::size_t digits = text.find_last_not_of("0123456789");
+    if (digits != std::string::npos && digits + 1 < text.size()) {
+      name = text.substr(0, digits + 1);
+      power = std::stoi(text.substr(digits + 1));
+    }
+  }
+  if (name.empty() || power == 0 || power > 9 || power < -9) return std::nullopt;
+  const auto m = symbol(name);
+  if (!m || (m->angle && power != 1)) return std::nullopt;
+  Measure out = *m;
+  out.si = 1.0;
+  for (int k = 0; k < std::abs(power); ++k) out.si *= m->si;
+  if (power < 0) out.si = 1.0 / out.si;
+  for (auto& p : out.powers) p *= power;
+  return out;
+}
+
+// The whole unit: factors joined by '/', each after the first dividing.
+std::optional<Measure> measure(const std::string& unit) {
+  Measure out;
+  std::size_t from = 0;
+  for (bool first = true;; first = false) {
+    const std::size_t slash = unit.find('/', from);
+    const auto f = factor(unit.substr(from, slash == std::string::npos ? std::string::npos : slash - from));
+    if (!f || (f->angle && !first)) return std::nullopt;
+    out.si = first ? f->si : out.si / f->si;
+    for (std::size_t k = 0; k < 3; ++k) out.powers[k] += first ? f->powers[k] : -f->powers[k];
+    out.angle = out.angle || f->angle;
+    if (slash == std::string::npos) return out;
+    from = slash + 1;
+  }
+}
+
+struct SpecUnit {
+  std::string name, examples;
+  Measure measure;
+};
+
+const SpecUnit& spec_of(Dimension d) {
+  static const std::map<Dimension, SpecUnit> t = {
+      {Dimension::Length, {"km", "m, km, AU", length(1e3)}},
+      {Dimension::Speed, {"km/s", "m/s, km/s, AU/yr", {1e3, {1, -1, 0}}}},
+      {Dimension::Force, {"N", "N, mN, kN", force(1.0)}},
+      {Dimension::Time, {"days", "s, min, h, days, weeks, years", duration(DAY_S)}},
+      {Dimension::Duration, {"s", "s, days", duration(1.0)}},
+      {Dimension::Mass, {"kg", "kg, g, t, lb", mass(1.0)}},
+      {Dimension::GravParam, {"km^3/s^2", "km^3/s^2, m^3/s^2", {1e9, {3, -2, 0}}}},
+      {Dimension::Acceleration, {"mm/s^2", "mm/s^2, m/s^2, km/s^2", {1e-3, {1, -2, 0}}}},
+      {Dimension::Angle, {"deg", "deg, rad", angle(DEG_TO_RAD)}},
   };
-  return tables.at(d);
+  return t.at(d);
 }
 
 std::string dimension_name(Dimension d) {
@@ -100,18 +207,21 @@ std::string lowercase(const std::string& text) {
 }
 
 std::string spec_unit(Dimension d) {
-  return table(d).spec_unit;
+  return spec_of(d).name;
 }
 
 double to_spec_unit(Dimension d, const std::string& unit) {
-  const Table& t = table(d);
-  const auto it = t.factor.find(lowercase(unit));
-  if (it == t.factor.end()) {
-    const std::string name = dimension_name(d);
-    const std::string article = std::string("aeiou").find(name[0]) == std::string::npos ? "a " : "an ";
-    throw std::invalid_argument("unit '" + unit + "' is not " + article + name + " unit (use " + t.accepted + ")");
-  }
-  return it->second;
+  const SpecUnit& want = spec_of(d);
+  const auto fits = [&](const std::optional<Measure>& m) {
+    return m && m->powers == want.measure.powers && m->angle == want.measure.angle;
+  };
+  auto m = measure(unit);
+  // A unit is read without case only where case cannot change it: m/M is milli or mega.
+  if (!m && unit.find_first_of("mM") == std::string::npos) m = measure(lowercase(unit));
+  if (fits(m)) return m->si / want.measure.si;
+  const std::string name = dimension_name(d);
+  const std::string article = std::string("aeiou").find(name[0]) == std::string::npos ? "a " : "an ";
+  throw std::invalid_argument("unit '" + unit + "' is not " + article + name + " unit (use " + want.examples + ")");
 }
 
 }  // namespace helios::spec
