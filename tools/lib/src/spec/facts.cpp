@@ -234,7 +234,6 @@ struct Candidate {
 
 constexpr double kG0 = 9.80665;  // m/s^2, exhaust velocity = Isp * g0
 
-
 // A phrase found in a clause, with the words as written.
 struct Mention {
   Meaning meaning;
@@ -651,178 +650,237 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
   return suggestion(cands[0].field, *number, cands[0].dim);
 }
 
-SentenceFacts read_facts(const std::string& sentence, const std::map<std::string, std::string>& names) {
-  const std::vector<Token> tokens = scan(sentence);
-  // Orbital elements, and an event with its window, may name their body for the first time, as the
-  // one word written with a capital that is no fact word ("Nikko's orbital elements ...").
-  bool elements = false, window = false;
-  for (const auto& t : tokens) {
-    const auto it = phrases().find(t.word);
-    elements = elements || (t.kind == Token::Word && it != phrases().end() &&
-                            ((it->second.slot == Slot::Fact && of_orbit(it->second.field)) || t.word == "elements"));
-    window = window || (t.kind == Token::Value && t.q.window);
+namespace {
+
+// A fact word of a clause, the facts it may name and whether a quantity took it.
+struct Named {
+  std::vector<Candidate> cands;
+  std::string text;
+  bool weak;
+  bool bound = false;
+  bool none = false;
+};
+
+// What a clause's words say besides its quantities: its role (from the clause, else the
+// sentence), the role of its own words, an objective's verb and nouns, and the words as read.
+struct ClauseWords {
+  int role = kNoRole, clause_role = kNoRole, verb = kNoVerb;
+  std::set<int> nouns;
+  std::string words;
+};
+
+// One sentence read as facts, stage by stage: its clauses, the kind of sentence, the bodies it
+// names, each clause's facts, then the checks of the whole.
+class SentenceReader {
+ public:
+  SentenceReader(const std::string& sentence, const std::map<std::string, std::string>& known_names)
+      : names(known_names), tokens(scan(sentence)) {}
+
+  SentenceFacts read() {
+    read_clauses();
+    find_kind();
+    place_bodies();
+    place_role_bodies();
+    for (const auto& c : clauses) read_clause(c);
+    check_kind();
+    check_values();
+    return out;
   }
-  std::map<std::string, std::string> known = names;
-  if (elements || window) {
-    std::set<std::string> fresh;
-    for (const auto& t : tokens)
-      if (t.kind == Token::Word && std::isupper(static_cast<unsigned char>(t.text[0])) && !phrases().count(t.word) &&
-          !phrase_words().count(t.word) && !names.count(t.word))
-        fresh.insert(t.text);
-    if (fresh.size() == 1) known[lowercase(*fresh.begin())] = *fresh.begin();
-  }
+
+ private:
+  const std::map<std::string, std::string>& names;
+  std::vector<Token> tokens;
   std::vector<Clause> clauses;
-  try {
-    clauses = clauses_of(tokens, known);
-  } catch (const facts_error& e) {
-    // a word it cannot place beside a negation: the negation is the reason
-    for (const auto& t : tokens) {
-      const auto it = phrases().find(t.word);
-      if (t.kind == Token::Word && it != phrases().end() && it->second.negation) throw negation_error(t.text);
-    }
-    throw facts_error(e.what(), e.modifies_fact ? "" : rough_suggestion(tokens));
-  }
-  for (const auto& c : clauses)
-    for (const auto& m : c.mentions)
-      if (m.meaning.negation) throw negation_error(m.text);
   SentenceFacts out;
   std::set<int> sentence_roles;
-  for (const auto& c : clauses)
-    for (const auto& m : c.mentions)
-      if (m.meaning.role != kNoRole) sentence_roles.insert(m.meaning.role);
-  // The central body: a known body and a word saying it is the central one, once in the sentence.
   std::set<std::string> bodies;
-  bool central_named = false;
-  for (const auto& c : clauses)
-    for (const auto& m : c.mentions) {
-      if (!m.meaning.body.empty()) bodies.insert(m.meaning.body);
-      central_named = central_named || m.meaning.central;
-    }
-  // An event on the way: its words, a stay, a lander, a periapsis bound, a day or a window. Its body
-  // is the one body the sentence names, if any ("the asteroid"); a body named without them is left
-  // or reached, like a planet.
-  bool event_sentence = false, rendezvous_word = false;
-  std::string event_kind;
-  for (const auto& c : clauses) {
-    for (const auto& m : c.mentions) {
-      if (!m.meaning.event.empty() && event_kind != "gravity_assist") event_kind = m.meaning.event;
-      event_sentence =
-          event_sentence || !m.meaning.event.empty() || (m.meaning.slot == Slot::Fact && on_the_way(m.meaning.field));
-      rendezvous_word = rendezvous_word || m.text == "rendezvous" || m.text == "rendezvouses" || m.text == "arrives" ||
-                        m.text == "arrive";
-      out.small_body = out.small_body || m.text == "asteroid" || m.text == "comet";
-    }
-    for (const auto& q : c.quantities) event_sentence = event_sentence || q.window || q.day;
-  }
-  if (elements && event_sentence)
-    throw facts_error("it gives orbital elements and an event on the way: state the event in a sentence of its own");
-  if (elements) {  // the body orbiting, and the Sun it orbits (which must be the central body)
-    if (bodies.count("Sun")) out.constants_of = "Sun";
-    bodies.erase("Sun");
-    if (bodies.size() > 1)
-      throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": whose elements are these?");
-    if (!bodies.empty()) out.orbit_of = *bodies.begin();
-    bodies.clear();
-  }
-  if (event_sentence) {
-    if (central_named) throw facts_error("it names the central body and an event on the way: state them apart");
-    if (bodies.size() > 1)
-      throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": which one is the event at?");
-    if (bodies.count("Sun")) throw facts_error("the Sun is the central body, not a body to visit on the way");
-    if (!bodies.empty()) out.event_body = *bodies.begin();
-    bodies.clear();
-  }
-  // Else a planet in a clause that says the spacecraft leaves or arrives is the body it departs
-  // from or rendezvouses with ("Departure from Earth.", "Rendezvous with Mars.").
-  if (!bodies.empty() && !central_named && !sentence_roles.empty() && !event_sentence) {
-    for (const auto& c : clauses)
-      for (const auto& m : c.mentions)
-        if (m.text == "orbit" || m.text == "orbital")
-          throw facts_error(
-              "it names an orbit, not the body on it: HELIOS reads a departure from or a rendezvous "
-              "with a body ('At the final time the spacecraft rendezvouses with " +
-              *bodies.begin() + ".'); a target that is a whole orbit is not a fact it reads yet");
-    for (const auto& c : clauses) {
-      std::set<int> roles;
-      for (const auto& m : c.mentions)
-        if (m.meaning.role != kNoRole) roles.insert(m.meaning.role);
-      if (roles.empty() && sentence_roles.size() == 1) roles = sentence_roles;
-      for (const auto& m : c.mentions) {
-        const std::string& b = m.meaning.body;
-        if (b.empty()) continue;
-        if (roles.size() != 1)
-          throw facts_error("'" + b + "' could be the departure or the arrival body: say which in its clause");
-        if (b == "Sun")
-          throw facts_error("the spacecraft cannot " + std::string(*roles.begin() == kInitial ? "leave" : "reach") +
-                            " the Sun; the central body reads 'The central body is the Sun.'");
-        std::string& slot = *roles.begin() == kInitial ? out.departure_body : out.arrival_body;
-        const char* which = *roles.begin() == kInitial ? "departure" : "arrival";
-        if (!slot.empty() && slot != b)
-          throw facts_error("it names " + slot + " and " + b + " as the " + which + " body: which one?");
-        slot = b;
-      }
-    }
-    bodies.clear();
-  }
-  if (bodies.size() > 1)
-    throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": which one is the central body?");
-  // A body named with no word saying it is the central one: its gravitational parameter, if the
-  // sentence gives one ("The Sun's gravitational parameter is Q"), checked below.
-  const std::string unplaced = !bodies.empty() && !central_named ? *bodies.begin() : "";
-  // "The gravitational parameter of the central body is Q": a constant of the central body named elsewhere
-  const bool central_unnamed = bodies.empty() && central_named && !elements;
-  if (!bodies.empty() && central_named) out.central = *bodies.begin();
-  std::string objective_words;
-  const auto add = [&](const Fact& fact) {
+  bool elements = false, central_named = false, central_unnamed = false, event_sentence = false,
+       rendezvous_word = false;
+  std::string event_kind, unplaced, objective_words;
+
+  void add(const Fact& fact) {
     for (const auto& f : out.facts)
       if (f.field == fact.field)
         throw facts_error(field_name(fact.field) + " is stated twice: " + f.written + " and " + fact.written);
     out.facts.push_back(fact);
-  };
-  for (const auto& c : clauses) {
+  }
+
+  // The clauses, with a body named for the first time by orbital elements or an event's window.
+  void read_clauses() {
+    // Orbital elements, and an event with its window, may name their body for the first time, as the
+    // one word written with a capital that is no fact word ("Nikko's orbital elements ...").
+    bool window = false;
+    for (const auto& t : tokens) {
+      const auto it = phrases().find(t.word);
+      elements = elements || (t.kind == Token::Word && it != phrases().end() &&
+                              ((it->second.slot == Slot::Fact && of_orbit(it->second.field)) || t.word == "elements"));
+      window = window || (t.kind == Token::Value && t.q.window);
+    }
+    std::map<std::string, std::string> known = names;
+    if (elements || window) {
+      std::set<std::string> fresh;
+      for (const auto& t : tokens)
+        if (t.kind == Token::Word && std::isupper(static_cast<unsigned char>(t.text[0])) && !phrases().count(t.word) &&
+            !phrase_words().count(t.word) && !names.count(t.word))
+          fresh.insert(t.text);
+      if (fresh.size() == 1) known[lowercase(*fresh.begin())] = *fresh.begin();
+    }
+    try {
+      clauses = clauses_of(tokens, known);
+    } catch (const facts_error& e) {
+      // a word it cannot place beside a negation: the negation is the reason
+      for (const auto& t : tokens) {
+        const auto it = phrases().find(t.word);
+        if (t.kind == Token::Word && it != phrases().end() && it->second.negation) throw negation_error(t.text);
+      }
+      throw facts_error(e.what(), e.modifies_fact ? "" : rough_suggestion(tokens));
+    }
+    for (const auto& c : clauses)
+      for (const auto& m : c.mentions)
+        if (m.meaning.negation) throw negation_error(m.text);
+  }
+
+  // Which roles, bodies and events the sentence speaks of.
+  void find_kind() {
+    for (const auto& c : clauses)
+      for (const auto& m : c.mentions)
+        if (m.meaning.role != kNoRole) sentence_roles.insert(m.meaning.role);
+    // The central body: a known body and a word saying it is the central one, once in the sentence.
+    for (const auto& c : clauses)
+      for (const auto& m : c.mentions) {
+        if (!m.meaning.body.empty()) bodies.insert(m.meaning.body);
+        central_named = central_named || m.meaning.central;
+      }
+    // An event on the way: its words, a stay, a lander, a periapsis bound, a day or a window. Its body
+    // is the one body the sentence names, if any ("the asteroid"); a body named without them is left
+    // or reached, like a planet.
+    for (const auto& c : clauses) {
+      for (const auto& m : c.mentions) {
+        if (!m.meaning.event.empty() && event_kind != "gravity_assist") event_kind = m.meaning.event;
+        event_sentence =
+            event_sentence || !m.meaning.event.empty() || (m.meaning.slot == Slot::Fact && on_the_way(m.meaning.field));
+        rendezvous_word = rendezvous_word || m.text == "rendezvous" || m.text == "rendezvouses" ||
+                          m.text == "arrives" || m.text == "arrive";
+        out.small_body = out.small_body || m.text == "asteroid" || m.text == "comet";
+      }
+      for (const auto& q : c.quantities) event_sentence = event_sentence || q.window || q.day;
+    }
+  }
+
+  // The body of orbital elements or of an event on the way.
+  void place_bodies() {
+    if (elements && event_sentence)
+      throw facts_error("it gives orbital elements and an event on the way: state the event in a sentence of its own");
+    if (elements) {  // the body orbiting, and the Sun it orbits (which must be the central body)
+      if (bodies.count("Sun")) out.constants_of = "Sun";
+      bodies.erase("Sun");
+      if (bodies.size() > 1)
+        throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": whose elements are these?");
+      if (!bodies.empty()) out.orbit_of = *bodies.begin();
+      bodies.clear();
+    }
+    if (event_sentence) {
+      if (central_named) throw facts_error("it names the central body and an event on the way: state them apart");
+      if (bodies.size() > 1)
+        throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() + ": which one is the event at?");
+      if (bodies.count("Sun")) throw facts_error("the Sun is the central body, not a body to visit on the way");
+      if (!bodies.empty()) out.event_body = *bodies.begin();
+      bodies.clear();
+    }
+  }
+
+  // A planet left or reached, else the central body or the one whose constants it gives.
+  void place_role_bodies() {
+    // Else a planet in a clause that says the spacecraft leaves or arrives is the body it departs
+    // from or rendezvouses with ("Departure from Earth.", "Rendezvous with Mars.").
+    if (!bodies.empty() && !central_named && !sentence_roles.empty() && !event_sentence) {
+      for (const auto& c : clauses)
+        for (const auto& m : c.mentions)
+          if (m.text == "orbit" || m.text == "orbital")
+            throw facts_error(
+                "it names an orbit, not the body on it: HELIOS reads a departure from or a rendezvous "
+                "with a body ('At the final time the spacecraft rendezvouses with " +
+                *bodies.begin() + ".'); a target that is a whole orbit is not a fact it reads yet");
+      for (const auto& c : clauses) {
+        std::set<int> roles;
+        for (const auto& m : c.mentions)
+          if (m.meaning.role != kNoRole) roles.insert(m.meaning.role);
+        if (roles.empty() && sentence_roles.size() == 1) roles = sentence_roles;
+        for (const auto& m : c.mentions) {
+          const std::string& b = m.meaning.body;
+          if (b.empty()) continue;
+          if (roles.size() != 1)
+            throw facts_error("'" + b + "' could be the departure or the arrival body: say which in its clause");
+          if (b == "Sun")
+            throw facts_error("the spacecraft cannot " + std::string(*roles.begin() == kInitial ? "leave" : "reach") +
+                              " the Sun; the central body reads 'The central body is the Sun.'");
+          std::string& slot = *roles.begin() == kInitial ? out.departure_body : out.arrival_body;
+          const char* which = *roles.begin() == kInitial ? "departure" : "arrival";
+          if (!slot.empty() && slot != b)
+            throw facts_error("it names " + slot + " and " + b + " as the " + which + " body: which one?");
+          slot = b;
+        }
+      }
+      bodies.clear();
+    }
+    if (bodies.size() > 1)
+      throw facts_error("it names " + *bodies.begin() + " and " + *bodies.rbegin() +
+                        ": which one is the central body?");
+    // A body named with no word saying it is the central one: its gravitational parameter, if the
+    // sentence gives one ("The Sun's gravitational parameter is Q"), checked below.
+    unplaced = !bodies.empty() && !central_named ? *bodies.begin() : "";
+    // "The gravitational parameter of the central body is Q": a constant of the central body named elsewhere
+    central_unnamed = bodies.empty() && central_named && !elements;
+    if (!bodies.empty() && central_named) out.central = *bodies.begin();
+  }
+
+  ClauseWords words_of(const Clause& c) const {
+    ClauseWords w;
     std::set<int> roles;
-    int verb = kNoVerb;
-    std::set<int> nouns;
-    std::string words;
     for (const auto& m : c.mentions) {
       if (m.meaning.role != kNoRole) roles.insert(m.meaning.role);
-      if (m.meaning.verb != kNoVerb) verb = m.meaning.verb;
-      if (m.meaning.noun != kNoNoun) nouns.insert(m.meaning.noun);
-      words += (words.empty() ? "" : " ") + m.text;
+      if (m.meaning.verb != kNoVerb) w.verb = m.meaning.verb;
+      if (m.meaning.noun != kNoNoun) w.nouns.insert(m.meaning.noun);
+      w.words += (w.words.empty() ? "" : " ") + m.text;
     }
-    if (roles.size() > 1) throw facts_error("'" + words + "' names both the initial and the final state");
-    int role = roles.empty() ? kNoRole : *roles.begin();
+    if (roles.size() > 1) throw facts_error("'" + w.words + "' names both the initial and the final state");
+    w.role = roles.empty() ? kNoRole : *roles.begin();
     // "At t = 0 the spacecraft is at position ...": the time 0 makes the clause the departure's
-    if (role == kNoRole && sentence_roles.empty()) {
+    if (w.role == kNoRole && sentence_roles.empty()) {
       bool time_mention = false;
       for (const auto& m : c.mentions)
         time_mention = time_mention || m.meaning.slot == Slot::ThrustOrT0 || m.meaning.slot == Slot::T0;
       for (const auto& q : c.quantities)
         if (time_mention && !q.vector && !q.date && !q.window && q.nums[0] == 0 &&
             (q.unit.empty() || fits({Field::T0, Dimension::Time, false, false}, q)))
-          role = kInitial;
+          w.role = kInitial;
     }
-    const int clause_role = role;
-    if (role == kNoRole && sentence_roles.size() == 1) role = *sentence_roles.begin();
+    w.clause_role = w.role;
+    if (w.role == kNoRole && sentence_roles.size() == 1) w.role = *sentence_roles.begin();
+    return w;
+  }
 
-    // An objective: a verb and what it applies to, no quantity.
-    const bool objective = c.quantities.empty() && verb != kNoVerb;
-    if (objective) {
-      for (const auto& m : c.mentions)
-        if (m.meaning.slot != Slot::None && m.meaning.noun == kNoNoun && !m.meaning.weak)
-          throw facts_error("'" + m.text +
-                            "' cannot be an objective (minimize the fuel, the time of flight or the "
-                            "initial mass, or maximize the final mass)");
-      if (nouns.size() > 1) throw facts_error("'" + words + "' names more than one thing to optimize");
-      const std::string kind = objective_of(verb, nouns.empty() ? kNoNoun : *nouns.begin(), clause_role, words);
-      if (!out.objective.empty())
-        throw facts_error("it states two objectives (" + objective_words + "; " + words + "): choose one");
-      out.objective = kind;
-      objective_words = words;
-      continue;
-    }
-    if (verb == kMinimum || verb == kMinimize || verb == kMaximize)
-      throw facts_error("'" + words + "' mixes an objective with a value");
+  // An objective: a verb and what it applies to, no quantity. False when the clause is none.
+  bool read_objective(const Clause& c, const ClauseWords& w) {
+    if (!c.quantities.empty() || w.verb == kNoVerb) return false;
+    for (const auto& m : c.mentions)
+      if (m.meaning.slot != Slot::None && m.meaning.noun == kNoNoun && !m.meaning.weak)
+        throw facts_error("'" + m.text +
+                          "' cannot be an objective (minimize the fuel, the time of flight or the "
+                          "initial mass, or maximize the final mass)");
+    if (w.nouns.size() > 1) throw facts_error("'" + w.words + "' names more than one thing to optimize");
+    const std::string kind = objective_of(w.verb, w.nouns.empty() ? kNoNoun : *w.nouns.begin(), w.clause_role, w.words);
+    if (!out.objective.empty())
+      throw facts_error("it states two objectives (" + objective_words + "; " + w.words + "): choose one");
+    out.objective = kind;
+    objective_words = w.words;
+    return true;
+  }
+
+  // Bound words that make a fact word a bound, not a value; a periapsis radius that is one.
+  void check_bounds(const Clause& c, const ClauseWords& w) const {
+    if (w.verb == kMinimum || w.verb == kMinimize || w.verb == kMaximize)
+      throw facts_error("'" + w.words + "' mixes an objective with a value");
     // A bound on the thrust is the maximum thrust; a bound on anything else is not a value.
     for (const auto& m : c.mentions)
       for (const auto& n : c.mentions)
@@ -844,10 +902,12 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
             throw facts_error("'" + m.text + "' makes '" + n.text + "' a lower bound, not a value");
     }
     if (rmin && !lower)
-      throw facts_error("'" + words +
+      throw facts_error("'" + w.words +
                         "' gives a periapsis radius, which HELIOS takes as a lower bound: say 'a minimum periapsis "
                         "radius of Q' or 'the periapsis radius is at least Q'");
+  }
 
+  void check_time_of_flight(const Clause& c, const ClauseWords& w) const {
     // A time of flight is the flight's: not the engine's or the propellant's life, and counted from
     // the departure.
     for (const auto& m : c.mentions) {
@@ -857,19 +917,15 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
           throw facts_error("'" + m.text + "' is said of the '" + n.text +
                             "', not of the flight: the time of flight reads 'The time of flight is Q.'");
         if (n.text == "window")
-          throw facts_error("'" + words +
+          throw facts_error("'" + w.words +
                             "' counts the time from the departure window, not from the departure: HELIOS reads the "
                             "time of flight from the departure ('The time of flight is Q.')");
       }
     }
-    // Quantities: each goes to the one fact of its clause whose dimension fits.
-    struct Named {
-      std::vector<Candidate> cands;
-      std::string text;
-      bool weak;
-      bool bound = false;
-      bool none = false;
-    };
+  }
+
+  // The clause's fact words with what each may name: a date and a window named by the clause.
+  std::vector<Named> fact_words(const Clause& c, const ClauseWords& w) const {
     std::vector<Named> named;
     for (const auto& m : c.mentions)
       if (m.meaning.slot != Slot::None) {
@@ -879,8 +935,8 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
           continue;
         if (elements && s == Slot::Epoch) continue;  // the epoch of the elements
         // the mass and a state take their role from their own clause, a state also from the sentence
-        const int r = s == Slot::Mass ? clause_role : role;
-        if ((s == Slot::Position || s == Slot::Velocity) && role == kNoRole && sentence_roles.size() > 1)
+        const int r = s == Slot::Mass ? w.clause_role : w.role;
+        if ((s == Slot::Position || s == Slot::Velocity) && w.role == kNoRole && sentence_roles.size() > 1)
           throw facts_error("'" + m.text + "' could be the initial or the final one: say which in its clause");
         named.push_back({candidates(m.meaning, r, m.text), m.text, m.meaning.weak});
         named.back().none = m.meaning.none;
@@ -892,21 +948,32 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
     for (const auto& n : named)
       for (const auto& x : n.cands) epoch_named = epoch_named || x.date;
     if (date_here && elements)
-      named.push_back({{{Field::ElementsEpoch, Dimension::Time, false, false, true}}, words, false});
+      named.push_back({{{Field::ElementsEpoch, Dimension::Time, false, false, true}}, w.words, false});
     else if (date_here && event_sentence)
-      throw facts_error("'" + words + "' dates an event on the way: HELIOS takes its window and chooses the date in it",
-                        event_form(event_kind, out.event_body));
-    else if (date_here && !epoch_named && role == kFinal)
-      named.push_back({{{Field::Tf, Dimension::Time, false, false, true}}, words, false});
-    else if (date_here && !epoch_named && role == kInitial)
-      named.push_back({{{Field::Epoch, Dimension::Time, false, false, true}}, words, false});
+      throw facts_error(
+          "'" + w.words + "' dates an event on the way: HELIOS takes its window and chooses the date in it",
+          event_form(event_kind, out.event_body));
+    else if (date_here && !epoch_named && w.role == kFinal)
+      named.push_back({{{Field::Tf, Dimension::Time, false, false, true}}, w.words, false});
+    else if (date_here && !epoch_named && w.role == kInitial)
+      named.push_back({{{Field::Epoch, Dimension::Time, false, false, true}}, w.words, false});
     for (const auto& q : c.quantities)
       if (q.window) {
-        Candidate w{Field::Window, Dimension::Time, false, false};
-        w.window = true;
-        named.push_back({{w}, words, false});
+        Candidate window{Field::Window, Dimension::Time, false, false};
+        window.window = true;
+        named.push_back({{window}, w.words, false});
         break;
       }
+    return named;
+  }
+
+  // The facts of one clause: an objective, or each quantity placed on its fact.
+  void read_clause(const Clause& c) {
+    const ClauseWords w = words_of(c);
+    if (read_objective(c, w)) return;
+    check_bounds(c, w);
+    check_time_of_flight(c, w);
+    std::vector<Named> named = fact_words(c, w);
     // "The spacecraft has 200 kg of propellant": a weak word never takes what another noun qualifies.
     bool qualified = false;
     for (const auto& m : c.mentions) qualified = qualified || m.meaning.noun == kFuel || m.meaning.noun == kTime;
@@ -918,82 +985,7 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
           throw facts_error("'" + n.text + "' is said of the '" + m.text +
                             "', not of the spacecraft: state the spacecraft's mass in a clause of its own");
     std::map<Field, std::string> bound_here;
-    for (const auto& q : c.quantities) {
-      std::vector<std::pair<Candidate, std::size_t>> fit;
-      for (const bool weak : {false, true}) {  // a weak fact word only when no other fits
-        if (weak && (!fit.empty() || qualified)) break;
-        for (std::size_t k = 0; k < named.size(); ++k)
-          if (named[k].weak == weak)
-            for (const auto& cand : named[k].cands)
-              if (fits(cand, q)) {
-                bool dup = false;
-                for (const auto& [f, _] : fit) dup = dup || f.field == cand.field;
-                if (!dup) fit.push_back({cand, k});
-              }
-      }
-      if (fit.empty() && q.date)
-        throw facts_error("nothing in its clause says the date " + q.written + " is the departure epoch",
-                          "The departure epoch is " + q.written + ".");
-      if (fit.empty()) {
-        std::vector<const Named*> strong;
-        for (const auto& n : named)
-          if (!n.weak) strong.push_back(&n);
-        if (strong.empty())
-          throw facts_error(q.vector ? "the vector " + q.written +
-                                           " has no role: say whether it is the initial or "
-                                           "final position or velocity"
-                                     : "nothing in its clause says what " + q.written + " is");
-        const Candidate& want = strong.front()->cands.front();
-        const bool plain = !q.vector && !q.date && !q.day && !q.window;
-        const std::string sug = strong.size() == 1 && plain && !want.exhaust ? suggestion(want.field, q, want.dim) : "";
-        if (q.unit.empty())
-          throw facts_error(
-              q.written + " has no unit, and " + field_name(want.field) + " needs one (" + spec_unit(want.dim) + ")",
-              sug);
-        std::string why = field_name(want.field) + " is a number without unit";
-        if (!want.pure) {
-          try {
-            to_spec_unit(want.dim, q.unit);
-            why = q.vector ? "a vector cannot be " + field_name(want.field)
-                           : "a single number cannot be " + field_name(want.field);
-          } catch (const std::invalid_argument& e) {
-            why = e.what();
-          }
-        }
-        throw facts_error(q.written + " cannot be " + field_name(want.field) + ": " + why, sug);
-      }
-      // Ambiguity: a number that fits two facts is an error, whatever the order.
-      if (fit.size() > 1) {
-        std::string names;
-        for (const auto& f : fit) names += (names.empty() ? "" : " or ") + field_name(f.first.field);
-        throw facts_error(q.written + " could be " + names + ": state one fact per clause");
-      }
-      const Candidate& cand = fit.front().first;
-      if ((q.at_most && cand.field != Field::Thrust) || (q.at_least && cand.field != Field::Rmin))
-        throw facts_error("'" + q.bound_words + " " + q.written + "' is " + (q.at_most ? "an upper" : "a lower") +
-                          " bound on " + field_name(cand.field) + ", not its value" +
-                          (cand.field == Field::Tof ? " (a bounded time of flight reads 'The time of flight is free, "
-                                                      "at most Q.')"
-                                                    : ""));
-      if (bound_here.count(cand.field))
-        throw facts_error("two values for " + field_name(cand.field) + ": " + bound_here[cand.field] + " and " +
-                          q.written);
-      bound_here[cand.field] = q.written;
-      for (auto& n : named)
-        for (const auto& x : n.cands)
-          if (x.field == cand.field) {
-            if (n.none)
-              throw facts_error("'" + n.text + "' negates " + field_name(x.field) + ", so " + q.written +
-                                " is not its value: state the " + field_name(x.field).substr(4) +
-                                " HELIOS should use, or none");
-            n.bound = true;
-          }
-      Fact fact{cand.field, {}, q.written, q.absolute};
-      if (q.date) fact.absolute = {true, true};  // an epoch, MJD2000
-      const double factor = q.unit.empty() ? 1.0 : to_spec_unit(cand.dim, q.unit);
-      for (double v : q.nums) fact.value.push_back(cand.exhaust ? v * factor * 1000.0 / kG0 : v * factor);
-      add(fact);
-    }
+    for (const auto& q : c.quantities) place(q, named, qualified, bound_here);
     for (auto& n : named)
       if (!n.bound && n.none) {
         add({n.cands.front().field, {0.0}, n.text});
@@ -1008,75 +1000,181 @@ SentenceFacts read_facts(const std::string& sentence, const std::map<std::string
                           (want.pure ? " (a number without unit)" : " with its unit (" + spec_unit(want.dim) + ")"));
       }
   }
-  // An event's or an orbit's sentence states nothing else: a gravitational parameter or a radius
-  // beside it would be the body's, not the central body's.
-  for (const auto& f : out.facts)
-    if ((event_sentence && !on_the_way(f.field)) || (elements && !of_orbit(f.field)))
-      throw facts_error(field_name(f.field) + " " + f.written + " stands beside " +
-                        (elements ? "orbital elements" : "an event on the way") +
-                        ": state it in a sentence of its own");
-  if (elements) check_elements(out);
-  if (event_sentence) {
-    bool has_window = false;
-    for (const auto& f : out.facts) has_window = has_window || f.field == Field::Window;
-    if (event_kind.empty() && rendezvous_word && has_window) event_kind = "rendezvous";
-    if (event_kind.empty() && has_window)
-      throw facts_error("it gives a window but no event: a rendezvous, a flyby or a swing-by",
-                        event_form("flyby", out.event_body));
-    if (!event_kind.empty() && !has_window)
-      throw facts_error("the " + std::string(event_kind == "flyby" ? "flyby" : "swing-by") +
-                            " needs its window: HELIOS chooses the date inside it",
-                        event_form(event_kind, out.event_body));
-    if (!event_kind.empty() && out.event_body.empty())
-      throw facts_error("it does not name the body of the " + event_kind);
-    out.event = event_kind.empty() ? "stay" : event_kind;
-  }
-  for (const auto& c : clauses)
-    for (const auto& m : c.mentions) {
-      out.j2 = out.j2 || m.meaning.model == "j2";
-      out.sail = out.sail || m.meaning.model == "sail";
+
+  // The facts a quantity fits: strong fact words first, a weak one only when none fits.
+  std::vector<std::pair<Candidate, std::size_t>> fits_of(const Quantity& q, const std::vector<Named>& named,
+                                                         bool qualified) const {
+    std::vector<std::pair<Candidate, std::size_t>> fit;
+    for (const bool weak : {false, true}) {  // a weak fact word only when no other fits
+      if (weak && (!fit.empty() || qualified)) break;
+      for (std::size_t k = 0; k < named.size(); ++k)
+        if (named[k].weak == weak)
+          for (const auto& cand : named[k].cands)
+            if (fits(cand, q)) {
+              bool dup = false;
+              for (const auto& [f, _] : fit) dup = dup || f.field == cand.field;
+              if (!dup) fit.push_back({cand, k});
+            }
     }
-  bool sail_value = false, central_value = false;
-  for (const auto& f : out.facts) {
-    sail_value = sail_value || f.field == Field::CharAccel || f.field == Field::Lightness;
-    central_value = central_value || f.field == Field::Mu || f.field == Field::J2 || f.field == Field::Radius;
+    return fit;
   }
-  if (central_unnamed && !central_value)
-    throw facts_error("it does not name the central body (Sun, Earth or Mars: 'The central body is the Sun.')");
-  if (out.sail && !sail_value)
-    throw facts_error("the solar sail needs its characteristic acceleration (at 1 AU) or lightness number",
-                      "The spacecraft is an ideal flat solar sail with a characteristic acceleration of 1 mm/s^2 at 1 "
-                      "AU.");
-  out.sail = sail_value;
-  if (!unplaced.empty()) {
-    if (!central_value && !out.j2)
-      throw facts_error("it does not say what " + unplaced + " is here (the central body reads 'The central body is " +
-                        (unplaced == "Mars" ? "" : "the ") + unplaced + ".')");
-    out.constants_of = unplaced;
+
+  // Why a quantity fits no fact word of its clause.
+  [[noreturn]] void no_fit(const Quantity& q, const std::vector<Named>& named) const {
+    if (q.date)
+      throw facts_error("nothing in its clause says the date " + q.written + " is the departure epoch",
+                        "The departure epoch is " + q.written + ".");
+    {
+      std::vector<const Named*> strong;
+      for (const auto& n : named)
+        if (!n.weak) strong.push_back(&n);
+      if (strong.empty())
+        throw facts_error(q.vector ? "the vector " + q.written +
+                                         " has no role: say whether it is the initial or "
+                                         "final position or velocity"
+                                   : "nothing in its clause says what " + q.written + " is");
+      const Candidate& want = strong.front()->cands.front();
+      const bool plain = !q.vector && !q.date && !q.day && !q.window;
+      const std::string sug = strong.size() == 1 && plain && !want.exhaust ? suggestion(want.field, q, want.dim) : "";
+      if (q.unit.empty())
+        throw facts_error(
+            q.written + " has no unit, and " + field_name(want.field) + " needs one (" + spec_unit(want.dim) + ")",
+            sug);
+      std::string why = field_name(want.field) + " is a number without unit";
+      if (!want.pure) {
+        try {
+          to_spec_unit(want.dim, q.unit);
+          why = q.vector ? "a vector cannot be " + field_name(want.field)
+                         : "a single number cannot be " + field_name(want.field);
+        } catch (const std::invalid_argument& e) {
+          why = e.what();
+        }
+      }
+      throw facts_error(q.written + " cannot be " + field_name(want.field) + ": " + why, sug);
+    }
   }
-  if (out.facts.empty() && out.objective.empty() && out.central.empty() && out.departure_body.empty() &&
-      out.arrival_body.empty() && out.event.empty() && !out.j2)
-    throw facts_error("it states no fact HELIOS reads");
-  for (const auto& f : out.facts) {
-    // a body's state is its ephemeris, a gravitational parameter here would be the body's, not the central one's
-    const bool initial_state = f.field == Field::R0 || f.field == Field::V0;
-    const bool final_state = f.field == Field::Rf || f.field == Field::Vf;
-    if ((!out.departure_body.empty() && initial_state) || (!out.arrival_body.empty() && final_state))
-      throw facts_error("it gives both a body and " + field_name(f.field) + ": the body's ephemeris is the state");
-    if ((!out.departure_body.empty() || !out.arrival_body.empty()) && f.field == Field::Mu)
-      throw facts_error("the gravitational parameter " + f.written +
-                        " stands beside a departure or arrival body: the central body's reads 'The central body is "
-                        "the Sun with mu = Q.'");
+
+  // Places a quantity on the one fact it fits.
+  void place(const Quantity& q, std::vector<Named>& named, bool qualified, std::map<Field, std::string>& bound_here) {
+    const auto fit = fits_of(q, named, qualified);
+    if (fit.empty()) no_fit(q, named);
+    // Ambiguity: a number that fits two facts is an error, whatever the order.
+    if (fit.size() > 1) {
+      std::string names;
+      for (const auto& f : fit) names += (names.empty() ? "" : " or ") + field_name(f.first.field);
+      throw facts_error(q.written + " could be " + names + ": state one fact per clause");
+    }
+    const Candidate& cand = fit.front().first;
+    if ((q.at_most && cand.field != Field::Thrust) || (q.at_least && cand.field != Field::Rmin))
+      throw facts_error("'" + q.bound_words + " " + q.written + "' is " + (q.at_most ? "an upper" : "a lower") +
+                        " bound on " + field_name(cand.field) + ", not its value" +
+                        (cand.field == Field::Tof ? " (a bounded time of flight reads 'The time of flight is free, "
+                                                    "at most Q.')"
+                                                  : ""));
+    if (bound_here.count(cand.field))
+      throw facts_error("two values for " + field_name(cand.field) + ": " + bound_here[cand.field] + " and " +
+                        q.written);
+    bound_here[cand.field] = q.written;
+    for (auto& n : named)
+      for (const auto& x : n.cands)
+        if (x.field == cand.field) {
+          if (n.none)
+            throw facts_error("'" + n.text + "' negates " + field_name(x.field) + ", so " + q.written +
+                              " is not its value: state the " + field_name(x.field).substr(4) +
+                              " HELIOS should use, or none");
+          n.bound = true;
+        }
+    Fact fact{cand.field, {}, q.written, q.absolute};
+    if (q.date) fact.absolute = {true, true};  // an epoch, MJD2000
+    const double factor = q.unit.empty() ? 1.0 : to_spec_unit(cand.dim, q.unit);
+    for (double v : q.nums) fact.value.push_back(cand.exhaust ? v * factor * 1000.0 / kG0 : v * factor);
+    add(fact);
   }
-  for (const auto& f : out.facts) {
-    const bool positive = f.field == Field::Thrust || f.field == Field::Isp || f.field == Field::InitialMass ||
-                          f.field == Field::FinalMass || f.field == Field::Tof || f.field == Field::Mu ||
-                          f.field == Field::Drop || f.field == Field::Rmin || f.field == Field::Radius ||
-                          f.field == Field::CharAccel || f.field == Field::Lightness;
-    if (positive && !(f.value[0] > 0)) throw facts_error(field_name(f.field) + " must be positive, got " + f.written);
-    if (f.field == Field::Stay && f.value[0] < 0) throw facts_error("the stay must not be negative, got " + f.written);
+
+  // An event's, an orbit's, a sail's and the central body's sentence hold what they need and no more.
+  void check_kind() {
+    // An event's or an orbit's sentence states nothing else: a gravitational parameter or a radius
+    // beside it would be the body's, not the central body's.
+    for (const auto& f : out.facts)
+      if ((event_sentence && !on_the_way(f.field)) || (elements && !of_orbit(f.field)))
+        throw facts_error(field_name(f.field) + " " + f.written + " stands beside " +
+                          (elements ? "orbital elements" : "an event on the way") +
+                          ": state it in a sentence of its own");
+    if (elements) check_elements(out);
+    if (event_sentence) {
+      bool has_window = false;
+      for (const auto& f : out.facts) has_window = has_window || f.field == Field::Window;
+      if (event_kind.empty() && rendezvous_word && has_window) event_kind = "rendezvous";
+      if (event_kind.empty() && has_window)
+        throw facts_error("it gives a window but no event: a rendezvous, a flyby or a swing-by",
+                          event_form("flyby", out.event_body));
+      if (!event_kind.empty() && !has_window)
+        throw facts_error("the " + std::string(event_kind == "flyby" ? "flyby" : "swing-by") +
+                              " needs its window: HELIOS chooses the date inside it",
+                          event_form(event_kind, out.event_body));
+      if (!event_kind.empty() && out.event_body.empty())
+        throw facts_error("it does not name the body of the " + event_kind);
+      out.event = event_kind.empty() ? "stay" : event_kind;
+    }
+    for (const auto& c : clauses)
+      for (const auto& m : c.mentions) {
+        out.j2 = out.j2 || m.meaning.model == "j2";
+        out.sail = out.sail || m.meaning.model == "sail";
+      }
+    bool sail_value = false, central_value = false;
+    for (const auto& f : out.facts) {
+      sail_value = sail_value || f.field == Field::CharAccel || f.field == Field::Lightness;
+      central_value = central_value || f.field == Field::Mu || f.field == Field::J2 || f.field == Field::Radius;
+    }
+    if (central_unnamed && !central_value)
+      throw facts_error("it does not name the central body (Sun, Earth or Mars: 'The central body is the Sun.')");
+    if (out.sail && !sail_value)
+      throw facts_error(
+          "the solar sail needs its characteristic acceleration (at 1 AU) or lightness number",
+          "The spacecraft is an ideal flat solar sail with a characteristic acceleration of 1 mm/s^2 at 1 "
+          "AU.");
+    out.sail = sail_value;
+    if (!unplaced.empty()) {
+      if (!central_value && !out.j2)
+        throw facts_error("it does not say what " + unplaced +
+                          " is here (the central body reads 'The central body is " +
+                          (unplaced == "Mars" ? "" : "the ") + unplaced + ".')");
+      out.constants_of = unplaced;
+    }
   }
-  return out;
+
+  // A sentence states something; a body's state is its ephemeris; values are positive.
+  void check_values() const {
+    if (out.facts.empty() && out.objective.empty() && out.central.empty() && out.departure_body.empty() &&
+        out.arrival_body.empty() && out.event.empty() && !out.j2)
+      throw facts_error("it states no fact HELIOS reads");
+    for (const auto& f : out.facts) {
+      // a body's state is its ephemeris, a gravitational parameter here would be the body's, not the central one's
+      const bool initial_state = f.field == Field::R0 || f.field == Field::V0;
+      const bool final_state = f.field == Field::Rf || f.field == Field::Vf;
+      if ((!out.departure_body.empty() && initial_state) || (!out.arrival_body.empty() && final_state))
+        throw facts_error("it gives both a body and " + field_name(f.field) + ": the body's ephemeris is the state");
+      if ((!out.departure_body.empty() || !out.arrival_body.empty()) && f.field == Field::Mu)
+        throw facts_error("the gravitational parameter " + f.written +
+                          " stands beside a departure or arrival body: the central body's reads 'The central body is "
+                          "the Sun with mu = Q.'");
+    }
+    for (const auto& f : out.facts) {
+      const bool positive = f.field == Field::Thrust || f.field == Field::Isp || f.field == Field::InitialMass ||
+                            f.field == Field::FinalMass || f.field == Field::Tof || f.field == Field::Mu ||
+                            f.field == Field::Drop || f.field == Field::Rmin || f.field == Field::Radius ||
+                            f.field == Field::CharAccel || f.field == Field::Lightness;
+      if (positive && !(f.value[0] > 0)) throw facts_error(field_name(f.field) + " must be positive, got " + f.written);
+      if (f.field == Field::Stay && f.value[0] < 0)
+        throw facts_error("the stay must not be negative, got " + f.written);
+    }
+  }
+};
+
+}  // namespace
+
+SentenceFacts read_facts(const std::string& sentence, const std::map<std::string, std::string>& names) {
+  return SentenceReader(sentence, names).read();
 }
 
 }  // namespace helios::spec::detail
