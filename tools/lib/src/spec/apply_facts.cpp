@@ -56,13 +56,13 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
     once("the final rendezvous");
     arrival = Endpoint{here, {{"ref", f.arrival_body}}, "rendezvous", std::nullopt};
   }
-  const auto engine = [&](Field field, const char* key, double v) {
-    once(detail::field_name(field));
+  const auto engine = [&](Field field, double v) {
+    once(field);
     ++seen["the spacecraft's engine"];
-    spacecraft[key] = v;
+    spacecraft[detail::spec_key(field)] = v;
   };
   const auto state = [&](std::optional<json>& slot, Field field, bool initial, const json& v) {
-    once(detail::field_name(field));
+    once(field);
     if (initial && !r0 && !v0) {
       once("the departure");
       initial_where = here;
@@ -78,33 +78,33 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
     const json vec = fact.value.size() == 3 ? json(fact.value) : json();
     switch (fact.field) {
       case Field::Thrust:
-        engine(fact.field, "thrust_N", v);
+        engine(fact.field, v);
         break;
       case Field::Isp:
-        engine(fact.field, "isp_s", v);
+        engine(fact.field, v);
         break;
       case Field::InitialMass:
-        engine(fact.field, "initial_mass_kg", v);
+        engine(fact.field, v);
         break;
       case Field::FinalMass:
-        engine(fact.field, "final_mass_kg", v);
+        engine(fact.field, v);
         break;
       case Field::Tof:
-        once("the time of flight");
+        once(fact.field);
         time["tof_days"] = v;
         time["final_time"] = "fixed";
         break;
       case Field::T0:
-        once("the departure time");
+        once(fact.field);
         time["t0_days"] = v;
         departure_at_t = true;
         break;
       case Field::Tf:
-        once(detail::field_name(fact.field));
+        once(fact.field);
         arrival_time = ArrivalTime{v, fact.absolute[0], here};
         break;
       case Field::Epoch:
-        once(detail::field_name(fact.field));
+        once(fact.field);
         if (time.value("t0_days", 0.0) != 0.0)
           throw sentence_error("the departure epoch " + fact.written +
                                " is the time 0 of the problem, but the departure time was stated as t = " +

@@ -352,19 +352,9 @@ bool of_orbit(Field f) {
 
 // How a Slot::Fact field's quantity is written: its dimension, or a number without unit.
 Candidate fact_candidate(Field f) {
-  static const std::map<Field, Dimension> dims = {{Field::Stay, Dimension::Time},
-                                                  {Field::Drop, Dimension::Mass},
-                                                  {Field::Rmin, Dimension::Length},
-                                                  {Field::Radius, Dimension::Length},
-                                                  {Field::A, Dimension::Length},
-                                                  {Field::Inc, Dimension::Angle},
-                                                  {Field::CharAccel, Dimension::Acceleration},
-                                                  {Field::Raan, Dimension::Angle},
-                                                  {Field::Argp, Dimension::Angle},
-                                                  {Field::MeanAnomaly, Dimension::Angle},
-                                                  {Field::TrueAnomaly, Dimension::Angle}};
-  Candidate c{f, dims.count(f) ? dims.at(f) : Dimension::Length, false, false};
-  c.pure = !dims.count(f);  // an eccentricity, a J2 coefficient, a lightness number
+  const auto& dim = fact_info(f).dim;
+  Candidate c{f, dim.value_or(Dimension::Length), false, false};
+  c.pure = !dim;  // an eccentricity, a J2 coefficient, a lightness number
   return c;
 }
 
@@ -440,23 +430,7 @@ std::string suggestion(Field f, const Quantity& q, Dimension d) {
     unit.clear();
   }
   if (unit.empty()) unit = spec_unit(d);
-  const std::string v = q.texts[0] + " " + unit;
-  switch (f) {
-    case Field::Thrust:
-      return "The spacecraft has a maximum thrust of " + v + ".";
-    case Field::Isp:
-      return "The spacecraft has a specific impulse of " + v + ".";
-    case Field::InitialMass:
-      return "The spacecraft has an initial mass of " + v + ".";
-    case Field::FinalMass:
-      return "The spacecraft has a final mass of " + v + ".";
-    case Field::Tof:
-      return "The time of flight is " + v + ".";
-    case Field::Mu:
-      return "The central body is the Sun with gravitational parameter " + v + ".";
-    default:
-      return "";
-  }
+  return controlled_form(f, q.texts[0] + " " + unit);
 }
 
 // Every word of the fact rules' phrases: a word outside them may be a body's name.
@@ -526,70 +500,6 @@ std::string objective_of(int verb, int noun, int role, const std::string& words)
 }
 
 }  // namespace
-
-std::string field_name(Field f) {
-  switch (f) {
-    case Field::Thrust:
-      return "the maximum thrust";
-    case Field::Isp:
-      return "the specific impulse";
-    case Field::InitialMass:
-      return "the initial mass";
-    case Field::FinalMass:
-      return "the final mass";
-    case Field::Tof:
-      return "the time of flight";
-    case Field::T0:
-      return "the departure time";
-    case Field::Tf:
-      return "the arrival time";
-    case Field::Epoch:
-      return "the departure epoch";
-    case Field::Mu:
-      return "the gravitational parameter";
-    case Field::R0:
-      return "the initial position";
-    case Field::V0:
-      return "the initial velocity";
-    case Field::Rf:
-      return "the final position";
-    case Field::Vf:
-      return "the final velocity";
-    case Field::Window:
-      return "the event's window";
-    case Field::Stay:
-      return "the stay";
-    case Field::Drop:
-      return "the lander's mass";
-    case Field::Rmin:
-      return "the lowest periapsis radius";
-    case Field::J2:
-      return "the J2 coefficient";
-    case Field::Radius:
-      return "the central body's radius";
-    case Field::CharAccel:
-      return "the sail's characteristic acceleration";
-    case Field::Lightness:
-      return "the sail's lightness number";
-    case Field::A:
-      return "the semi-major axis";
-    case Field::Ecc:
-      return "the eccentricity";
-    case Field::Inc:
-      return "the inclination";
-    case Field::Raan:
-      return "the ascending node";
-    case Field::Argp:
-      return "the argument of perihelion";
-    case Field::MeanAnomaly:
-      return "the mean anomaly";
-    case Field::TrueAnomaly:
-      return "the true anomaly";
-    case Field::ElementsEpoch:
-      return "the epoch of the elements";
-  }
-  return "?";
-}
 
 bool states_nothing(const std::string& sentence, const std::map<std::string, std::string>& names) {
   static const std::regex digit("[0-9]");
@@ -1159,15 +1069,7 @@ class SentenceReader {
                           " stands beside a departure or arrival body: the central body's reads 'The central body is "
                           "the Sun with mu = Q.'");
     }
-    for (const auto& f : out.facts) {
-      const bool positive = f.field == Field::Thrust || f.field == Field::Isp || f.field == Field::InitialMass ||
-                            f.field == Field::FinalMass || f.field == Field::Tof || f.field == Field::Mu ||
-                            f.field == Field::Drop || f.field == Field::Rmin || f.field == Field::Radius ||
-                            f.field == Field::CharAccel || f.field == Field::Lightness;
-      if (positive && !(f.value[0] > 0)) throw facts_error(field_name(f.field) + " must be positive, got " + f.written);
-      if (f.field == Field::Stay && f.value[0] < 0)
-        throw facts_error("the stay must not be negative, got " + f.written);
-    }
+    for (const auto& f : out.facts) check_value(f.field, f.value[0], f.written);
   }
 };
 

@@ -5,9 +5,12 @@
 // Whatever cannot be placed exactly once, and without a choice, is an error: never a guess.
 #include <array>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "helios/spec/units.hpp"
 
 namespace helios::spec::detail {
 
@@ -87,7 +90,27 @@ bool states_nothing(const std::string& sentence, const std::map<std::string, std
 // the text has given so far to their names as written. Throws facts_error.
 SentenceFacts read_facts(const std::string& sentence, const std::map<std::string, std::string>& names = {});
 
+// ---- the table of facts (fact_table.cpp) -------------------------------------------------------
+
+enum class Check { None, Positive, NonNegative };
+
+struct FactInfo {
+  Field field;
+  std::string name;              // in messages and in "given twice": "the maximum thrust"
+  std::string spec_pointer;      // where the spec keeps it, "" when not in one field of its own
+  std::optional<Dimension> dim;  // none: a number without unit
+  std::string form;              // the controlled sentence stating it, "{}" for the value, or ""
+  Check check;
+};
+
+const FactInfo& fact_info(Field f);
 // "the maximum thrust", "the initial position", ...: the name errors and `once` use.
 std::string field_name(Field f);
+// The last key of the fact's spec pointer ("thrust_N").
+std::string spec_key(Field f);
+// The controlled sentence stating `f` with `value` ("0.5 N"), or "" when it has none.
+std::string controlled_form(Field f, const std::string& value);
+// Throws facts_error when `v` fails the fact's check.
+void check_value(Field f, double v, const std::string& written);
 
 }  // namespace helios::spec::detail

@@ -160,6 +160,9 @@ struct Builder {
 
   // ---- reading the text (parse.cpp) ----
   void once(const std::string& what);
+  // A fact of the table (facts.hpp), keyed by its field; its value checked as the table says.
+  void once(detail::Field f);
+  void check_value(detail::Field f, double v, const std::string& written) const;
   [[noreturn]] void fail(const Where& w, const std::string& why) const;
   void read(const Sentence& item);
   void on_problem(const std::smatch& m);

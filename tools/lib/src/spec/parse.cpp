@@ -6,6 +6,18 @@
 
 namespace helios::spec::grammar {
 
+void Builder::once(detail::Field f) {
+  once(detail::field_name(f));
+}
+
+void Builder::check_value(detail::Field f, double v, const std::string& written) const {
+  try {
+    detail::check_value(f, v, written);
+  } catch (const detail::facts_error& e) {
+    throw sentence_error(e.what());
+  }
+}
+
 void Builder::once(const std::string& what) {
   if (!seen[what]++) return;
   if (what == "the final rendezvous" && windowless_rendezvous)
@@ -73,13 +85,13 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   if (b.propulsion == "low_thrust") {
     // Minimizing the initial mass needs the final mass instead of the initial one.
     const bool find_m0 = b.objective.is_object() && b.objective.value("kind", "") == "minimum_initial_mass";
-    for (const auto& [field, example] :
-         std::vector<std::pair<std::string, std::string>>{{"thrust_N", "The spacecraft has a maximum thrust of 0.5 N."},
-                                                          {"isp_s", "The spacecraft has a specific impulse of 2000 s."},
-                                                          {find_m0 ? "final_mass_kg" : "initial_mass_kg",
-                                                           find_m0 ? "The spacecraft has a final mass of 1500 kg."
-                                                                   : "The spacecraft has an initial mass of 1000 kg."}})
-      if (!b.spacecraft.contains(field)) missing("the spacecraft's " + field, example);
+    using detail::Field;
+    for (const auto& [field, example] : std::vector<std::pair<Field, std::string>>{
+             {Field::Thrust, "0.5 N"},
+             {Field::Isp, "2000 s"},
+             {find_m0 ? Field::FinalMass : Field::InitialMass, find_m0 ? "1500 kg" : "1000 kg"}})
+      if (!b.spacecraft.contains(detail::spec_key(field)))
+        missing("the spacecraft's " + detail::spec_key(field), detail::controlled_form(field, example));
     const std::string extra = find_m0 ? "initial_mass_kg" : "final_mass_kg";
     if (b.spacecraft.contains(extra))
       throw input_error(source + ": the spacecraft's " + extra + " is stated, but the objective " +
@@ -89,7 +101,8 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   if (b.propulsion == "solar_sail" && b.seen.count("the spacecraft's engine"))
     throw input_error(source + ": the spacecraft is a solar sail, so it has no thrust, specific impulse or mass");
   if (!b.seen.count("the departure")) missing("the departure", "The spacecraft departs at MJD2000 400 from Earth.");
-  if (!b.time.contains("final_time")) missing("the time of flight", "The time of flight is 348.795 days.");
+  if (!b.time.contains("final_time"))
+    missing(detail::field_name(detail::Field::Tof), detail::controlled_form(detail::Field::Tof, "348.795 days"));
   for (const auto& p : b.perturbations)
     if (p["kind"] == "j2" && (!b.central_body.contains("j2") || !b.central_body.contains("radius_km")))
       throw input_error(source +

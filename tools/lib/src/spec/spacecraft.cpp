@@ -79,11 +79,10 @@ void Builder::spacecraft_clauses(const std::string& list) {
   static const std::regex split(R"(\s*(?:,\s*and\s+|,\s*|\s+and\s+)\s*)");
   static const std::regex clause =
       re(R"((?:an? )?(maximum thrust|specific impulse|initial mass|final mass) of )" + kQuantity);
-  static const std::map<std::string, std::pair<std::string, Dimension>> fields = {
-      {"maximum thrust", {"thrust_N", Dimension::Force}},
-      {"specific impulse", {"isp_s", Dimension::Duration}},
-      {"initial mass", {"initial_mass_kg", Dimension::Mass}},
-      {"final mass", {"final_mass_kg", Dimension::Mass}}};
+  static const std::map<std::string, detail::Field> fields = {{"maximum thrust", detail::Field::Thrust},
+                                                              {"specific impulse", detail::Field::Isp},
+                                                              {"initial mass", detail::Field::InitialMass},
+                                                              {"final mass", detail::Field::FinalMass}};
   // Clauses in other words ("an Isp of 2000 s", "Tmax = 0.5 N") make the sentence one of facts.
   for (std::sregex_token_iterator it(list.begin(), list.end(), split, -1), end; it != end; ++it) {
     const std::string part = *it;
@@ -108,13 +107,12 @@ void Builder::spacecraft_clauses(const std::string& list) {
           "cannot read '" + part +
           "': expected 'a maximum thrust of Q', 'a specific impulse of Q', 'an initial mass of Q' or 'a final "
           "mass of Q'");
-    const std::string key = lowercase(m[1].str());
-    const auto& [field, dim] = fields.at(key);
-    once("the " + key);
+    const detail::Field field = fields.at(lowercase(m[1].str()));
+    once(field);
     ++seen["the spacecraft's engine"];
-    const double value = quantity(m, 2, dim);
-    if (value <= 0) throw sentence_error("the " + key + " must be positive, got " + m[2].str() + " " + m[3].str());
-    spacecraft[field] = value;
+    const double value = quantity(m, 2, *detail::fact_info(field).dim);
+    check_value(field, value, m[2].str() + " " + m[3].str());
+    spacecraft[detail::spec_key(field)] = value;
   }
 }
 

@@ -6,15 +6,15 @@
 namespace helios::spec::grammar {
 
 void Builder::on_tof(const std::smatch& m) {
-  once("the time of flight");
+  once(detail::Field::Tof);
   const double tof = quantity(m, 1, Dimension::Time);
-  if (tof <= 0) throw sentence_error("time of flight must be positive, got " + m[1].str() + " " + m[2].str());
+  check_value(detail::Field::Tof, tof, m[1].str() + " " + m[2].str());
   time["tof_days"] = tof;
   time["final_time"] = "fixed";
 }
 
 void Builder::on_free_tof(const std::smatch& m) {
-  once("the time of flight");
+  once(detail::Field::Tof);
   const double lo = m[1].matched ? 0.0 : quantity(m, 3, Dimension::Time);
   const double hi = m[1].matched ? quantity(m, 1, Dimension::Time) : quantity(m, 5, Dimension::Time);
   if (!(lo >= 0 && hi > lo)) throw sentence_error("the time-of-flight window must satisfy 0 <= min < max");
@@ -71,7 +71,7 @@ void Builder::epoch(const std::string& phrase) {
   static const std::regex t_re = re(R"(t\s*=\s*)" + kQuantity);
   static const std::regex mjd_re = re("(MJD2000|MJD) (" + kNum + ")");
   if (std::regex_match(phrase, m, t_re)) {
-    once("the departure time");
+    once(detail::Field::T0);
     time["t0_days"] = quantity(m, 1, Dimension::Time);
     departure_at_t = true;
   } else if (std::regex_match(phrase, m, mjd_re)) {
