@@ -42,12 +42,6 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
     once("the J2 perturbation");
     perturbations.push_back({{"kind", "j2"}});
   }
-  // The central body's J2 coefficient and radius: stated after it, once (a known radius is replaced).
-  const auto central_value = [&](const char* key, double v, bool stated) {
-    if (central_name.empty()) throw sentence_error("state the central body before its J2 coefficient or radius");
-    if (stated) throw sentence_error(std::string("the central body's ") + key + " is given twice");
-    central_body[key] = v;
-  };
   if (!f.departure_body.empty()) {
     once("the departure");
     departure = Endpoint{here, {{"ref", f.departure_body}}, "initial_state", std::nullopt};
@@ -56,126 +50,145 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
     once("the final rendezvous");
     arrival = Endpoint{here, {{"ref", f.arrival_body}}, "rendezvous", std::nullopt};
   }
-  const auto engine = [&](Field field, double v) {
-    once(field);
-    ++seen["the spacecraft's engine"];
-    spacecraft[detail::spec_key(field)] = v;
-  };
-  const auto state = [&](std::optional<json>& slot, Field field, bool initial, const json& v) {
-    once(field);
-    if (initial && !r0 && !v0) {
-      once("the departure");
-      initial_where = here;
-    }
-    if (!initial && !rf && !vf) {
-      once("the final rendezvous");
-      final_where = here;
-    }
-    slot = v;
-  };
-  for (const auto& fact : f.facts) {
-    const double v = fact.value[0];
-    const json vec = fact.value.size() == 3 ? json(fact.value) : json();
-    switch (fact.field) {
-      case Field::Thrust:
-        engine(fact.field, v);
-        break;
-      case Field::Isp:
-        engine(fact.field, v);
-        break;
-      case Field::InitialMass:
-        engine(fact.field, v);
-        break;
-      case Field::FinalMass:
-        engine(fact.field, v);
-        break;
-      case Field::Tof:
-        once(fact.field);
-        time["tof_days"] = v;
-        time["final_time"] = "fixed";
-        break;
-      case Field::T0:
-        once(fact.field);
-        time["t0_days"] = v;
-        departure_at_t = true;
-        break;
-      case Field::Tf:
-        once(fact.field);
-        arrival_time = ArrivalTime{v, fact.absolute[0], here};
-        break;
-      case Field::Epoch:
-        once(fact.field);
-        if (time.value("t0_days", 0.0) != 0.0)
-          throw sentence_error("the departure epoch " + fact.written +
-                               " is the time 0 of the problem, but the departure time was stated as t = " +
-                               io::short_number(time["t0_days"].get<double>()) + " days");
-        set_epoch(v);
-        break;
-      case Field::Mu:
-        set_mu(v);
-        break;
-      case Field::R0:
-        state(r0, fact.field, true, vec);
-        break;
-      case Field::V0:
-        state(v0, fact.field, true, vec);
-        break;
-      case Field::Rf:
-        state(rf, fact.field, false, vec);
-        break;
-      case Field::Vf:
-        state(vf, fact.field, false, vec);
-        break;
-      case Field::J2:
-        central_value("j2", v, central_body.contains("j2"));
-        break;
-      case Field::Radius:
-        central_value("radius_km", v, radius_stated);
-        radius_stated = true;
-        break;
-      case Field::CharAccel:
-        sail(v, 1.0);  // a characteristic acceleration is the one at 1 AU
-        break;
-      case Field::Lightness:  // the ratio of the sail's acceleration to the Sun's gravity, here at 1 AU
-        sail(v * astro::MU_SUN_KM3_S2 / (astro::AU_KM * astro::AU_KM) * 1e6, 1.0);
-        break;
-      case Field::Window:
-      case Field::Stay:
-      case Field::Drop:
-      case Field::Rmin:
-        break;  // the event's (apply_event)
-      case Field::A:
-      case Field::Ecc:
-      case Field::Inc:
-      case Field::Raan:
-      case Field::Argp:
-      case Field::MeanAnomaly:
-      case Field::TrueAnomaly:
-      case Field::ElementsEpoch:
-        break;  // the orbit's, below
-    }
-  }
-  if (!f.orbit_of.empty()) {
-    static const std::map<Field, const char*> keys = {{Field::Ecc, "e"},
-                                                      {Field::Inc, "i"},
-                                                      {Field::Raan, "raan"},
-                                                      {Field::Argp, "argp"},
-                                                      {Field::MeanAnomaly, "mean"},
-                                                      {Field::TrueAnomaly, "true"}};
-    std::map<std::string, double> v;
-    double epoch = 0;
-    for (const auto& fact : f.facts) {
-      if (fact.field == Field::A) v["a"] = fact.value[0] / astro::AU_KM;
-      if (fact.field == Field::ElementsEpoch) epoch = fact.value[0];
-      if (keys.count(fact.field)) v[keys.at(fact.field)] = fact.value[0];
-    }
-    define_orbit(f.orbit_of, "", elements_json(epoch, v));
-  }
+  for (const auto& fact : f.facts) apply_fact(fact);
+  if (!f.orbit_of.empty()) apply_orbit(f);
   if (!f.event.empty()) apply_event(f);
   if (!f.objective.empty()) {
     once("the objective");
     objective = {{"kind", f.objective}};
   }
+}
+
+// The central body's J2 coefficient and radius: stated after it, once (a known radius is replaced).
+void Builder::set_central_value(const char* key, double v, bool stated) {
+  if (!central_body.is_object() || central_body.value("name", "").empty())
+    throw sentence_error("state the central body before its J2 coefficient or radius");
+  if (stated) throw sentence_error(std::string("the central body's ") + key + " is given twice");
+  central_body[key] = v;
+}
+
+void Builder::set_engine(detail::Field field, double v) {
+  once(field);
+  ++seen["the spacecraft's engine"];
+  spacecraft[detail::spec_key(field)] = v;
+}
+
+// A state vector stated alone: the first of the departure's or the final rendezvous's makes it.
+void Builder::set_state(std::optional<json>& slot, detail::Field field, bool initial, const json& v) {
+  once(field);
+  if (initial && !r0 && !v0) {
+    once("the departure");
+    initial_where = here;
+  }
+  if (!initial && !rf && !vf) {
+    once("the final rendezvous");
+    final_where = here;
+  }
+  slot = v;
+}
+
+// One fact of a sentence in other words, into the spec being built.
+void Builder::apply_fact(const detail::Fact& fact) {
+  using detail::Field;
+  const double v = fact.value[0];
+  const json vec = fact.value.size() == 3 ? json(fact.value) : json();
+  switch (fact.field) {
+    case Field::Thrust:
+      set_engine(fact.field, v);
+      break;
+    case Field::Isp:
+      set_engine(fact.field, v);
+      break;
+    case Field::InitialMass:
+      set_engine(fact.field, v);
+      break;
+    case Field::FinalMass:
+      set_engine(fact.field, v);
+      break;
+    case Field::Tof:
+      once(fact.field);
+      time["tof_days"] = v;
+      time["final_time"] = "fixed";
+      break;
+    case Field::T0:
+      once(fact.field);
+      time["t0_days"] = v;
+      departure_at_t = true;
+      break;
+    case Field::Tf:
+      once(fact.field);
+      arrival_time = ArrivalTime{v, fact.absolute[0], here};
+      break;
+    case Field::Epoch:
+      once(fact.field);
+      if (time.value("t0_days", 0.0) != 0.0)
+        throw sentence_error("the departure epoch " + fact.written +
+                             " is the time 0 of the problem, but the departure time was stated as t = " +
+                             io::short_number(time["t0_days"].get<double>()) + " days");
+      set_epoch(v);
+      break;
+    case Field::Mu:
+      set_mu(v);
+      break;
+    case Field::R0:
+      set_state(r0, fact.field, true, vec);
+      break;
+    case Field::V0:
+      set_state(v0, fact.field, true, vec);
+      break;
+    case Field::Rf:
+      set_state(rf, fact.field, false, vec);
+      break;
+    case Field::Vf:
+      set_state(vf, fact.field, false, vec);
+      break;
+    case Field::J2:
+      set_central_value("j2", v, central_body.contains("j2"));
+      break;
+    case Field::Radius:
+      set_central_value("radius_km", v, radius_stated);
+      radius_stated = true;
+      break;
+    case Field::CharAccel:
+      sail(v, 1.0);  // a characteristic acceleration is the one at 1 AU
+      break;
+    case Field::Lightness:  // the ratio of the sail's acceleration to the Sun's gravity, here at 1 AU
+      sail(v * astro::MU_SUN_KM3_S2 / (astro::AU_KM * astro::AU_KM) * 1e6, 1.0);
+      break;
+    case Field::Window:
+    case Field::Stay:
+    case Field::Drop:
+    case Field::Rmin:
+      break;  // the event's (apply_event)
+    case Field::A:
+    case Field::Ecc:
+    case Field::Inc:
+    case Field::Raan:
+    case Field::Argp:
+    case Field::MeanAnomaly:
+    case Field::TrueAnomaly:
+    case Field::ElementsEpoch:
+      break;  // the orbit's, below
+  }
+}
+
+// A body's orbital elements given in other words.
+void Builder::apply_orbit(const detail::SentenceFacts& f) {
+  using detail::Field;
+  static const std::map<Field, const char*> keys = {{Field::Ecc, "e"},
+                                                    {Field::Inc, "i"},
+                                                    {Field::Raan, "raan"},
+                                                    {Field::Argp, "argp"},
+                                                    {Field::MeanAnomaly, "mean"},
+                                                    {Field::TrueAnomaly, "true"}};
+  std::map<std::string, double> v;
+  double epoch = 0;
+  for (const auto& fact : f.facts) {
+    if (fact.field == Field::A) v["a"] = fact.value[0] / astro::AU_KM;
+    if (fact.field == Field::ElementsEpoch) epoch = fact.value[0];
+    if (keys.count(fact.field)) v[keys.at(fact.field)] = fact.value[0];
+  }
+  define_orbit(f.orbit_of, "", elements_json(epoch, v));
 }
 
 // An event on the way in other words: a new one with its window, or a stay or lander at the

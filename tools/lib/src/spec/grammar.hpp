@@ -231,6 +231,11 @@ struct Builder {
   std::map<std::string, std::string> body_names() const;
   detail::SentenceFacts facts_of(const std::string& s) const;
   void apply_facts(const detail::SentenceFacts& f);
+  void apply_fact(const detail::Fact& fact);
+  void apply_orbit(const detail::SentenceFacts& f);
+  void set_engine(detail::Field field, double v);
+  void set_state(std::optional<json>& slot, detail::Field field, bool initial, const json& v);
+  void set_central_value(const char* key, double v, bool stated);
   void apply_event(const detail::SentenceFacts& f);
   void finish_facts();
 };
