@@ -171,16 +171,17 @@ $(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp $(SCENARIOS_DIR)/%/settings.json $(
 	$(LAUNCH) $(BIN)/helios-solve --backend $(BACKEND) $< --settings $(SCENARIOS_DIR)/$*/settings.json --cache-dir $(CACHE) \
 	  --time-limit $(SOLVE_TIME_LIMIT) --trajectory $(@D)/trajectory.csv --plots $(@D)/ -o $@
 
-# The converged trajectory as a CCSDS OEM 2.0 (README "trajectory.oem"). trajectory.csv is written
-# before solution.json and only for a converged solution, so it is no prerequisite: for a run that
-# did not converge helios-score writes nothing (and removes a stale OEM) and exits 0, so make goes
-# on; the target stays missing and this cheap step runs again at each make of that run.
+# The converged trajectory as a CCSDS OEM 2.0 (tools/lib/src/score/README.md, "trajectory.oem").
+# trajectory.csv is written before solution.json and only for a converged solution, so it is no
+# prerequisite: for a run that did not converge helios-score writes nothing (and removes a stale
+# OEM) and exits 0, so make goes on; the target stays missing and this cheap step runs again at each
+# make of that run.
 $(RUNS)/%/trajectory.oem: $(RUNS)/%/spec.json $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
 	$(BIN)/helios-score --oem --spec $(@D)/spec.json --solution $(@D)/solution.json \
 	  --trajectory $(@D)/trajectory.csv -o $@
 
 # The run as a document: the derivation as LaTeX mathematics beside verify's verdicts, the
-# solution and its plots (README "report.md").
+# solution and its plots (tools/lib/src/score/README.md, "report.md").
 $(RUNS)/%/report.md: $(SCENARIOS_DIR)/%/problem.txt $(RUNS)/%/spec.json $(RUNS)/%/derivation.json $(RUNS)/%/verify.json \
                      $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
 	$(BIN)/helios-score --report --problem $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
@@ -191,7 +192,7 @@ $(RUNS)/%/score.json: $(SCENARIOS_DIR)/%/reference.json $(RUNS)/%/spec.json $(RU
 	$(BIN)/helios-score --reference $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
 	  --verify $(@D)/verify.json --solution $(@D)/solution.json -o $@
 
-# ---- launch-window sweeps (README "Sweeps") --------------------------------------------------
+# ---- launch-window sweeps (tools/lib/src/score/SWEEPS.md) ------------------------------------
 # make sweep sweep=P01 [SWEEP_GRID=bench] [LAUNCH="srun -n1 -c1"] [-j N]: every cell d<epoch>_t<tof>
 # of scenarios/P01/sweep.json is a run folder under $(RUNS)/P01 (the bench grid: P01-bench) with
 # the normal chain parse -> derive -> verify -> gen -> solve. The cells of one departure row are
