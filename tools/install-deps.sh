@@ -70,9 +70,9 @@ export DEBIAN_FRONTEND=noninteractive
 # upgrade) rather than failing on it at once.
 lock_wait_s=600
 apt_get=(apt-get -o "DPkg::Lock::Timeout=$lock_wait_s")
-# fail WHAT: the one line that says the install failed, what is still missing, and exit 1.
+# fail WHAT: the one line that says what failed and what it was to install, and exit 1.
 fail() {
-  echo "install-deps: error: $1; the packages ${all[*]} are not all installed (apt-get's messages above say why)" >&2
+  echo "install-deps: error: $1 (to install: ${all[*]}; apt-get's messages above say why)" >&2
   exit 1
 }
 # apt-get update takes the lock of the package lists, which DPkg::Lock::Timeout does not cover in
@@ -91,11 +91,11 @@ done
 cat "$update_log" >&2
 install=("${apt_get[@]}" install -y -qq)
 if [[ ${#missing[@]} -gt 0 ]]; then
-  "${install[@]}" "${missing[@]}" >/dev/null || fail "apt-get install ${missing[*]} failed (exit $?)"
+  "${install[@]}" "${missing[@]}" >/dev/null || fail "apt-get install failed (exit $?)"
 fi
 if [[ ${#lean[@]} -gt 0 ]]; then
   "${install[@]}" --no-install-recommends "${lean[@]}" >/dev/null ||
-    fail "apt-get install --no-install-recommends ${lean[*]} failed (exit $?)"
+    fail "apt-get install --no-install-recommends failed (exit $?)"
 fi
 # apt-get may exit 0 and leave a probe failing (a package that no longer installs the probed file).
 mapfile -t still < <(missing_of ${checks[@]+"${checks[@]}"} ${lean_checks[@]+"${lean_checks[@]}"})

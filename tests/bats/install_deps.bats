@@ -48,7 +48,8 @@ assert_one_deps_error() {
 @test "install-deps: a failed install exits 1 with one error line, and every apt-get waits for the lock" {
   FAKE_APT_INSTALL=lock run -1 --separate-stderr deps
   assert_one_deps_error
-  assert_stderr_contains "Could not get lock /var/lib/dpkg/lock-frontend" "apt-get install g++ " "failed (exit 100)"
+  assert_stderr_contains "Could not get lock /var/lib/dpkg/lock-frontend" "apt-get install failed (exit 100)" \
+    "(to install: g++ cmake "
   [[ -z $output ]]
   local calls
   calls=$(wc -l <apt.log)
@@ -68,4 +69,15 @@ assert_one_deps_error() {
   assert_one_deps_error
   assert_stderr_contains "run: sudo apt-get install g++ cmake"
   [[ ! -e apt.log ]]
+}
+
+@test "install-deps: make stops when install-deps fails, before it builds or runs anything" {
+  local cmd
+  for cmd in env make find seq; do ln -s "$(command -v "$cmd")" "$FAKE/$cmd"; done
+  FAKE_APT_INSTALL=lock PATH="$FAKE" run -2 --separate-stderr \
+    env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
+    make --no-print-directory -C "$ROOT" scenario=S01 RUNS_ROOT="$BATS_TEST_TMPDIR/runs"
+  [[ ${stderr_lines[-2]} == "install-deps: error: apt-get install failed (exit 100)"* ]] || { echo "$stderr" >&2; false; }
+  [[ ${stderr_lines[-1]} == "make: *** ["*": deps] Error 1" ]] || { echo "$stderr" >&2; false; }
+  [[ -z $output && ! -e $BATS_TEST_TMPDIR/runs ]]
 }
