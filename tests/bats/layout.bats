@@ -5,6 +5,10 @@
 
 load test_helper
 
+setup() {
+  common_setup
+}
+
 # The paths column of the Layout block (what stands before a run of three or more spaces), one
 # path per line; a {a,b} group is expanded, a <placeholder> stands for any name (a glob's *).
 layout_paths() {
