@@ -1,17 +1,29 @@
 # HELIOS: problem text -> spec -> derivation -> verify -> shoot.cpp -> solution -> score.
-#   make scenario=S01 [BACKEND=builtin|llm] one scenario (default S01)
-#   make all                               every scenario (-j works)
-#   make scoreboard | test | bench | bench-search | clean
-#   make sweep sweep=P01 [SWEEP_GRID=bench] [SWEEP_START=cold]   a launch-window sweep (README "Sweeps")
-#   make test-sanitized                    unit tests and Bats under ASan/UBSan (build-asan)
-#   make fuzz [FUZZ_SECONDS=60]            libFuzzer targets, each FUZZ_SECONDS (build-fuzz)
+# make help lists the targets and variables; make scenario=S01 runs one scenario, make test the tests.
 SHELL := bash
 .SHELLFLAGS := -euo pipefail -c
 .DELETE_ON_ERROR:
 .SUFFIXES:
 MAKEFLAGS += --warn-undefined-variables --no-builtin-rules
 
+# The scenario and the sweep may be spelled scenario= / sweep= or SCENARIO= / SWEEP=; the Makefile
+# uses the lower-case names, and refuses both spellings with different values.
+define one_spelling
+ifneq ($$(origin $(2)),undefined)
+  ifneq ($$(origin $(1)),undefined)
+    ifneq ($$($(1)),$$($(2)))
+      $$(error $(1)=$$($(1)) and $(2)=$$($(2)) differ: give one of them)
+    endif
+  endif
+  override $(1) := $$($(2))
+endif
+endef
+$(eval $(call one_spelling,scenario,SCENARIO))
+$(eval $(call one_spelling,sweep,SWEEP))
 scenario ?= S01
+# Where the scenarios are (tests point it at a private folder), each a folder of problem.txt,
+# settings.json and reference.json (a sweep's: problem.txt, settings.json, sweep.json).
+SCENARIOS_DIR ?= scenarios
 BACKEND ?= builtin
 # advisory: a failed verification is recorded and scored but does not stop the chain; strict: it stops.
 VERIFY_MODE ?= advisory
@@ -32,7 +44,7 @@ BUILD := build
 BIN := $(BUILD)/bin
 RUNS := $(RUNS_ROOT)/$(BACKEND)$(if $(RUN_TAG),-$(RUN_TAG))
 CACHE := $(RUNS_ROOT)/.cache
-SCENARIOS := $(notdir $(wildcard scenarios/S[0-9]*))
+SCENARIOS := $(notdir $(wildcard $(SCENARIOS_DIR)/S[0-9]*))
 TOOLS := parse derive verify gen solve score
 TOOL_BINS := $(addprefix $(BIN)/helios-,$(TOOLS))
 TOOL_SOURCES := CMakeLists.txt $(shell find tools templates schemas prompts cmake -type f -not -name '*.sh')
@@ -64,8 +76,7 @@ ARTIFACTS := spec.json $(if $(filter llm,$(BACKEND)),$(ROUND_ARTIFACTS)) derivat
              solution.json trajectory.oem report.md score.json
 artifacts_of = $(addprefix $(RUNS)/$(1)/,$(ARTIFACTS))
 
-.PHONY: run all scoreboard test unit bats bench tools deps clean test-sanitized fuzz deps-fuzz sweep bench-sweep \
-        bench-search
+.PHONY: run all scoreboard test unit bats tools deps clean sweep help
 run: $(call artifacts_of,$(scenario))
 
 all: $(foreach s,$(SCENARIOS),$(call artifacts_of,$(s)))
@@ -96,7 +107,7 @@ TOOL_STAMPS := $(foreach t,$(TOOLS),$(call TOOL_STAMP,$(t)))
 
 tools: $(TOOLS_STAMP) $(TOOL_STAMPS)
 
-$(RUNS)/%/spec.json: scenarios/%/problem.txt $(call TOOL_STAMP,parse) $(call LLM_PROMPT,parse.txt,$(PARSE_BACKEND))
+$(RUNS)/%/spec.json: $(SCENARIOS_DIR)/%/problem.txt $(call TOOL_STAMP,parse) $(call LLM_PROMPT,parse.txt,$(PARSE_BACKEND))
 	@mkdir -p $(@D)
 	$(BIN)/helios-parse --backend $(PARSE_BACKEND) $< -o $@
 
@@ -156,31 +167,32 @@ $(call each_run,shoot.cpp): $(RUNS)/%/shoot.cpp: $(RUNS)/%/shoot.r$(GEN_ROUNDS).
 endif
 
 # trajectory.csv and the plots are written before solution.json, which marks the stage done.
-$(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp scenarios/%/settings.json $(call TOOL_STAMP,solve)
-	$(LAUNCH) $(BIN)/helios-solve --backend $(BACKEND) $< --settings scenarios/$*/settings.json --cache-dir $(CACHE) \
+$(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp $(SCENARIOS_DIR)/%/settings.json $(call TOOL_STAMP,solve)
+	$(LAUNCH) $(BIN)/helios-solve --backend $(BACKEND) $< --settings $(SCENARIOS_DIR)/$*/settings.json --cache-dir $(CACHE) \
 	  --time-limit $(SOLVE_TIME_LIMIT) --trajectory $(@D)/trajectory.csv --plots $(@D)/ -o $@
 
-# The converged trajectory as a CCSDS OEM 2.0 (README "trajectory.oem"). trajectory.csv is written
-# before solution.json and only for a converged solution, so it is no prerequisite: for a run that
-# did not converge helios-score writes nothing (and removes a stale OEM) and exits 0, so make goes
-# on; the target stays missing and this cheap step runs again at each make of that run.
+# The converged trajectory as a CCSDS OEM 2.0 (tools/lib/src/score/README.md, "trajectory.oem").
+# trajectory.csv is written before solution.json and only for a converged solution, so it is no
+# prerequisite: for a run that did not converge helios-score writes nothing (and removes a stale
+# OEM) and exits 0, so make goes on; the target stays missing and this cheap step runs again at each
+# make of that run.
 $(RUNS)/%/trajectory.oem: $(RUNS)/%/spec.json $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
 	$(BIN)/helios-score --oem --spec $(@D)/spec.json --solution $(@D)/solution.json \
 	  --trajectory $(@D)/trajectory.csv -o $@
 
 # The run as a document: the derivation as LaTeX mathematics beside verify's verdicts, the
-# solution and its plots (README "report.md").
-$(RUNS)/%/report.md: scenarios/%/problem.txt $(RUNS)/%/spec.json $(RUNS)/%/derivation.json $(RUNS)/%/verify.json \
+# solution and its plots (tools/lib/src/score/README.md, "report.md").
+$(RUNS)/%/report.md: $(SCENARIOS_DIR)/%/problem.txt $(RUNS)/%/spec.json $(RUNS)/%/derivation.json $(RUNS)/%/verify.json \
                      $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
 	$(BIN)/helios-score --report --problem $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
 	  --verify $(@D)/verify.json --solution $(@D)/solution.json -o $@
 
-$(RUNS)/%/score.json: scenarios/%/reference.json $(RUNS)/%/spec.json $(RUNS)/%/derivation.json \
+$(RUNS)/%/score.json: $(SCENARIOS_DIR)/%/reference.json $(RUNS)/%/spec.json $(RUNS)/%/derivation.json \
                       $(RUNS)/%/verify.json $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
 	$(BIN)/helios-score --reference $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
 	  --verify $(@D)/verify.json --solution $(@D)/solution.json -o $@
 
-# ---- launch-window sweeps (README "Sweeps") --------------------------------------------------
+# ---- launch-window sweeps (tools/lib/src/score/SWEEPS.md) ------------------------------------
 # make sweep sweep=P01 [SWEEP_GRID=bench] [LAUNCH="srun -n1 -c1"] [-j N]: every cell d<epoch>_t<tof>
 # of scenarios/P01/sweep.json is a run folder under $(RUNS)/P01 (the bench grid: P01-bench) with
 # the normal chain parse -> derive -> verify -> gen -> solve. The cells of one departure row are
@@ -197,13 +209,24 @@ endif
 ifneq ($(filter P%,$(scenario)),)
   $(error scenario=$(scenario) is a sweep template: use make sweep sweep=$(scenario))
 endif
+# A scenario is a folder of SCENARIOS_DIR with a problem.txt; make scenario=X (the goal run, make's
+# default) of any other X says so with the list, rather than make's "No rule to make target".
+KNOWN_SCENARIOS := $(sort $(patsubst $(SCENARIOS_DIR)/%/problem.txt,%,$(wildcard $(SCENARIOS_DIR)/*/problem.txt)))
+ifneq ($(filter run,$(or $(MAKECMDGOALS),run)),)
+  ifeq ($(filter $(scenario),$(KNOWN_SCENARIOS)),)
+    $(error scenario=$(scenario) is not a scenario of $(SCENARIOS_DIR)/: use one of $(filter-out P%,$(KNOWN_SCENARIOS))$(if $(filter P%,$(KNOWN_SCENARIOS)), (sweeps, make sweep sweep=P..: $(filter P%,$(KNOWN_SCENARIOS)))))
+  endif
+endif
 ifneq ($(sweep),)
 ifneq ($(BACKEND),builtin)
   $(error make sweep runs the builtin backend only (BACKEND=$(BACKEND)))
 endif
+ifeq ($(wildcard $(SCENARIOS_DIR)/$(sweep)/sweep.json),)
+  $(error sweep=$(sweep) is not a sweep of $(SCENARIOS_DIR)/ (no sweep.json): use one of $(patsubst $(SCENARIOS_DIR)/%/sweep.json,%,$(wildcard $(SCENARIOS_DIR)/*/sweep.json)))
+endif
 SWEEP_DIR := $(RUNS)/$(sweep)$(if $(SWEEP_GRID),-$(SWEEP_GRID))$(if $(filter cold,$(SWEEP_START)),-cold)
 SWEEP_CELLS :=
-$(SWEEP_DIR)/cells.mk: scenarios/$(sweep)/sweep.json scenarios/$(sweep)/problem.txt $(call TOOL_STAMP,score)
+$(SWEEP_DIR)/cells.mk: $(SCENARIOS_DIR)/$(sweep)/sweep.json $(SCENARIOS_DIR)/$(sweep)/problem.txt $(call TOOL_STAMP,score)
 	@mkdir -p $(@D)
 	$(BIN)/helios-score --sweep-cells $< --cells $(@D) $(if $(SWEEP_GRID),--grid $(SWEEP_GRID)) -o $@
 -include $(SWEEP_DIR)/cells.mk
@@ -215,14 +238,14 @@ $(SWEEP_DIR)/%/spec.json: $(SWEEP_DIR)/%/problem.txt $(call TOOL_STAMP,parse)
 	$(BIN)/helios-parse --backend builtin $< -o $@
 
 # A cell's solve, warm from its neighbour's solution.json when the chain gives it one.
-$(SWEEP_SOLUTIONS): $(SWEEP_DIR)/%/solution.json: $(SWEEP_DIR)/%/shoot.cpp scenarios/$(sweep)/settings.json \
+$(SWEEP_SOLUTIONS): $(SWEEP_DIR)/%/solution.json: $(SWEEP_DIR)/%/shoot.cpp $(SCENARIOS_DIR)/$(sweep)/settings.json \
                     $(call TOOL_STAMP,solve)
-	$(LAUNCH) $(BIN)/helios-solve --backend builtin $< --settings scenarios/$(sweep)/settings.json --cache-dir $(CACHE) \
+	$(LAUNCH) $(BIN)/helios-solve --backend builtin $< --settings $(SCENARIOS_DIR)/$(sweep)/settings.json --cache-dir $(CACHE) \
 	  --time-limit $(SOLVE_TIME_LIMIT) --quiet $(if $(and $(filter warm,$(SWEEP_START)),$(SWEEP_WARM_$*)),--warm-start $(SWEEP_DIR)/$(SWEEP_WARM_$*)/solution.json) \
 	  --trajectory $(@D)/trajectory.csv -o $@
 
 # porkchop.png is drawn before sweep.csv, which marks the sweep done.
-$(SWEEP_DIR)/sweep.csv: scenarios/$(sweep)/sweep.json $(SWEEP_DIR)/cells.mk $(SWEEP_SOLUTIONS) $(call TOOL_STAMP,score)
+$(SWEEP_DIR)/sweep.csv: $(SCENARIOS_DIR)/$(sweep)/sweep.json $(SWEEP_DIR)/cells.mk $(SWEEP_SOLUTIONS) $(call TOOL_STAMP,score)
 	$(BIN)/helios-score --sweep $< --cells $(@D) $(if $(SWEEP_GRID),--grid $(SWEEP_GRID)) \
 	  --porkchop $(@D)/porkchop.png -o $@
 sweep: $(SWEEP_DIR)/sweep.csv
@@ -252,86 +275,43 @@ bats: $(TOOLS_STAMP) $(TOOL_STAMPS)
 
 test: unit bats
 
-# ---- the suite under ASan and UBSan, in its own build tree ------------------------------------
-# Every sanitizer error is fatal and exits 134 (abort), a code no test expects; a leak at exit too,
-# except CLN's one allocation that lives until exit (tests/sanitize/lsan.supp). Each sanitized
-# process writes its report to $(SANITIZE_LOGS)/report.<pid>, not into the output the tests compare;
-# check-logs.sh then accepts only the table of that one suppressed 26-byte leak. A program
-# helios-solve compiles at run time is built unsanitized by the system g++ and runs in the sandbox
-# with an empty environment.
-ASAN_BUILD := build-asan
-SANITIZE_LOGS := $(CURDIR)/$(ASAN_BUILD)/sanitizer-logs
-SANITIZE_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_string_checks=1:log_path=$(SANITIZE_LOGS)/report \
-  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitize/lsan.supp:print_suppressions=1 \
-  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-# The Bats files run under the sanitizers (the whole suite is too slow for CI's budget there): the
-# readers of hostile input, and hostile.bats when the tree has it.
-SANITIZED_BATS := $(wildcard $(addprefix tests/bats/,parse.bats derive.bats verify.bats gen.bats hostile.bats))
-
-$(ASAN_BUILD)/build.ninja: CMakeLists.txt | deps
-	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBUILD_TESTING=ON -DHELIOS_SANITIZE=ON >/dev/null
-
-# The build runs under the same options: it runs the test executables to list their tests.
-test-sanitized: $(ASAN_BUILD)/build.ninja
-	rm -rf $(SANITIZE_LOGS) && mkdir -p $(SANITIZE_LOGS)
-	$(SANITIZE_ENV) cmake --build $(ASAN_BUILD)
-	status=0; \
-	$(SANITIZE_ENV) ctest --test-dir $(ASAN_BUILD) --output-on-failure -j2 || status=1; \
-	$(SANITIZE_ENV) HELIOS_BUILD_DIR=$(ASAN_BUILD) tests/run-bats.sh $(SANITIZED_BATS) || status=1; \
-	tests/sanitize/check-logs.sh $(SANITIZE_LOGS) || status=1; \
-	exit $$status
-
-# ---- libFuzzer targets (tests/fuzz), built by clang++ in their own tree ------------------------
-# Each target runs FUZZ_SECONDS from its seed corpus (tests/fuzz/corpus/<target>, and for the
-# parser every scenario's problem.txt), a crash, a leak, a sanitizer error, an input running over
-# 10 s or 2 GB is a finding written to build-fuzz/findings/<target>/; make fuzz fails on any.
-FUZZ_BUILD := build-fuzz
-FUZZ_SECONDS ?= 60
-FUZZ_TARGETS := parse json_spec json_derivation json_settings
-FUZZ_MAX_LEN_parse := 8192
-FUZZ_MAX_LEN_json_spec := 16384
-FUZZ_MAX_LEN_json_derivation := 32768
-FUZZ_MAX_LEN_json_settings := 2048
-FUZZ_DICT_parse := tests/fuzz/parse.dict
-FUZZ_DICT_json_spec := tests/fuzz/json.dict
-FUZZ_DICT_json_derivation := tests/fuzz/json.dict
-FUZZ_DICT_json_settings := tests/fuzz/json.dict
-FUZZ_SEEDS_parse := $(wildcard scenarios/*/problem.txt) $(wildcard tests/fuzz/corpus/parse)
-FUZZ_SEEDS_json_spec := $(wildcard tests/fuzz/corpus/json_spec)
-FUZZ_SEEDS_json_derivation := $(wildcard tests/fuzz/corpus/json_derivation)
-FUZZ_SEEDS_json_settings := $(wildcard scenarios/*/settings.json) $(wildcard tests/fuzz/corpus/json_settings)
-FUZZ_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
-  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitize/lsan.supp:print_suppressions=0 \
-  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-
-deps-fuzz:
-	@tools/install-deps.sh --fuzz
-
-$(FUZZ_BUILD)/build.ninja: CMakeLists.txt | deps-fuzz
-	cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-	  -DBUILD_TESTING=OFF -DHELIOS_FUZZ=ON >/dev/null
-
-# Every target runs even when one has findings; make fuzz then fails.
-fuzz: $(FUZZ_BUILD)/build.ninja
-	cmake --build $(FUZZ_BUILD) --target fuzzers
-	@status=0; \
-	$(foreach t,$(FUZZ_TARGETS),$(FUZZ_ENV) tests/fuzz/run.sh $(FUZZ_BUILD) $(t) $(FUZZ_SECONDS) $(FUZZ_MAX_LEN_$(t)) \
-	  $(FUZZ_DICT_$(t)) $(FUZZ_SEEDS_$(t)) || status=1;) exit $$status
-
-bench: $(TOOLS_STAMP) bench-sweep bench-search
-	tests/bench/bench.sh
-
-# The search audit: the default search against an exhaustive one, seeds 1-5 (tests/bench/search_audit.sh).
-bench-search: $(TOOLS_STAMP)
-	tests/bench/search_audit.sh
-
-# The finer P01 grid (sweep.json's "bench"), with warm starts then every cell cold, each timed
-# (into RUNS_ROOT's P01-bench and P01-bench-cold: a finished grid is not redone).
-bench-sweep: $(TOOLS_STAMP)
-	@for start in warm cold; do t0=$$(date +%s.%N); \
-	  $(MAKE) --no-print-directory sweep sweep=P01 SWEEP_GRID=bench SWEEP_START=$$start >/dev/null; \
-	  echo "bench-sweep: P01 bench grid, $$start starts: $$(echo "$$(date +%s.%N) - $$t0" | bc) s wall"; \
-	  tail -n +2 $(RUNS)/P01-bench$$([[ $$start == cold ]] && echo -cold)/sweep.csv | cut -d, -f4,7 | sort | uniq -c; done
+# ---- the rules of the test tree's tools, each in a fragment beside them -------------------------
+# make test-sanitized: the suite under ASan and UBSan (build-asan).
+include tests/sanitize/rules.mk
+# make fuzz: the libFuzzer targets (build-fuzz).
+include tests/fuzz/rules.mk
+# make bench, bench-search, bench-sweep: the benchmarks.
+include tests/bench/rules.mk
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) runs/builtin runs/llm runs/llm-* runs/scoreboard.md runs/.cache
+
+# make help: the targets and variables a user sets (the rest of this file says how they work).
+define HELP_TEXT
+HELIOS: a low-thrust problem in words -> a solved, checked, scored trajectory (README.md).
+
+Targets:
+  make [scenario=S01]          one scenario's chain into runs/<backend>/<scenario>/ (the default goal)
+  make all                     every scenario (-j works)
+  make scoreboard              runs/<backend>/scoreboard.md, and the tables over every run in runs/scoreboard.md
+  make sweep sweep=P01         a launch-window sweep (SWEEP_GRID=bench, SWEEP_START=cold)
+  make test                    the unit tests (ctest) and the Bats suite
+  make test-sanitized          the unit tests and the hostile-input Bats files under ASan/UBSan (build-asan)
+  make fuzz                    each libFuzzer target for FUZZ_SECONDS (build-fuzz)
+  make bench                   stage timings, the search audit (bench-search) and the P01 bench grid (bench-sweep)
+  make tools | deps | clean    build the tools | install missing Debian packages | remove build trees and runs
+  make help                    this text
+
+Variables (scenario and sweep may also be spelled SCENARIO and SWEEP):
+  scenario=S01                 one of: $(filter-out P%,$(KNOWN_SCENARIOS))
+  BACKEND=builtin|llm          who parses, derives and writes the program ($(BACKEND))
+  VERIFY_MODE=advisory|strict  strict: a failed verification stops the chain ($(VERIFY_MODE))
+  LAUNCH=                      a prefix of the solve step, e.g. LAUNCH="srun -n1 -c1"
+  SOLVE_TIME_LIMIT=900         seconds of one solve
+  RUNS_ROOT=runs               where run folders go; SCENARIOS_DIR=scenarios where scenarios are read
+  DERIVE_ROUNDS=3 GEN_ROUNDS=4 RUN_TAG= PARSE_BACKEND=   the llm backend's rounds, run folder tag, parser
+  FUZZ_SECONDS=60              make fuzz: seconds of each target
+endef
+export HELP_TEXT
+help:
+	@echo "$$HELP_TEXT"

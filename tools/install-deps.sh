@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Checks that the Debian packages HELIOS builds and runs with are installed; installs the missing
-# ones with apt-get when run as root, otherwise prints the command to run.
+# ones with apt-get when run as root (every apt-get waiting for another one's lock; a failed install
+# exits 1 with one error line, and make stops), otherwise prints the command to run.
 # usage: tools/install-deps.sh [--quiet] [--fuzz] [--slurm]
 #   --fuzz:  also clang and libFuzzer, for make fuzz
 #   --slurm: also Slurm (slurmctld, slurmd, srun) and munge, for tests/slurm/cluster.sh and slurm.bats;
@@ -59,15 +60,43 @@ mapfile -t missing < <(missing_of "${checks[@]}")
 mapfile -t lean < <(missing_of ${lean_checks[@]+"${lean_checks[@]}"})
 all=(${missing[@]+"${missing[@]}"} ${lean[@]+"${lean[@]}"})
 [[ ${#all[@]} -eq 0 ]] && exit 0
-if [[ $(id -u) -eq 0 ]] && command -v apt-get >/dev/null 2>&1; then
-  echo "install-deps: installing ${all[*]}" >&2
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  # Wait for another apt-get (a colleague's, an unattended upgrade) rather than fail on its lock.
-  apt=(apt-get install -y -qq -o DPkg::Lock::Timeout=600)
-  [[ ${#missing[@]} -eq 0 ]] || "${apt[@]}" "${missing[@]}" >/dev/null
-  [[ ${#lean[@]} -eq 0 ]] || "${apt[@]}" --no-install-recommends "${lean[@]}" >/dev/null
-else
+if [[ $(id -u) -ne 0 ]] || ! command -v apt-get >/dev/null 2>&1; then
   echo "install-deps: error: missing Debian packages: ${all[*]}; run: sudo apt-get install ${all[*]}" >&2
   exit 1
 fi
+echo "install-deps: installing ${all[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+# Every apt-get waits up to 10 minutes for another one's lock (a colleague's, an unattended
+# upgrade) rather than failing on it at once.
+lock_wait_s=600
+apt_get=(apt-get -o "DPkg::Lock::Timeout=$lock_wait_s")
+# fail WHAT: the one line that says what failed and what it was to install, and exit 1.
+fail() {
+  echo "install-deps: error: $1 (to install: ${all[*]}; apt-get's messages above say why)" >&2
+  exit 1
+}
+# apt-get update takes the lock of the package lists, which DPkg::Lock::Timeout does not cover in
+# every apt version: a run that fails on a held lock is retried until the same 10 minutes pass.
+update_log=$(mktemp)
+trap 'rm -f "$update_log"' EXIT
+deadline=$((SECONDS + lock_wait_s))
+until "${apt_get[@]}" update -qq 2>"$update_log"; do
+  if grep -q 'Could not get lock' "$update_log" && ((SECONDS < deadline)); then
+    sleep 2
+    continue
+  fi
+  cat "$update_log" >&2
+  fail "apt-get update failed"
+done
+cat "$update_log" >&2
+install=("${apt_get[@]}" install -y -qq)
+if [[ ${#missing[@]} -gt 0 ]]; then
+  "${install[@]}" "${missing[@]}" >/dev/null || fail "apt-get install failed (exit $?)"
+fi
+if [[ ${#lean[@]} -gt 0 ]]; then
+  "${install[@]}" --no-install-recommends "${lean[@]}" >/dev/null ||
+    fail "apt-get install --no-install-recommends failed (exit $?)"
+fi
+# apt-get may exit 0 and leave a probe failing (a package that no longer installs the probed file).
+mapfile -t still < <(missing_of ${checks[@]+"${checks[@]}"} ${lean_checks[@]+"${lean_checks[@]}"})
+[[ ${#still[@]} -eq 0 ]] || fail "after apt-get, still missing: ${still[*]}"

@@ -6,11 +6,17 @@
 // Only what that header declares has external linkage; the rest of each header is in an unnamed
 // namespace, so a module's function can never silently replace one of the runtime's own.
 //
-// Numerics: normalized units; an adaptive DOP853 integrator whose control
-// mode (throttle off / interior / full) is frozen inside each step, with the switching times
-// located to round-off so the shooting function stays smooth at eps = 0; eps-homotopy from
-// eps = 1 with adaptive steps and retreat; a global search over seeded starts (search.hpp);
-// cminpack hybrj (hybrd without an exact Jacobian).
+// Numerics (templates/runtime/DESIGN.md says why): normalized units; an adaptive DOP853 integrator
+// whose control mode (throttle off / interior / full) is frozen inside each step, with the switching
+// times located to round-off so the shooting function stays smooth at eps = 0 (propagator.hpp);
+// cminpack hybrj on the exact shooting Jacobian, carried by dual numbers through the same steps, or
+// hybrd's differences without it (shooter.hpp); eps-homotopy from eps = 1 with adaptive steps,
+// tangent predictors and retreat (homotopy.hpp); interior events reached by continuation from the
+// problem without them, else leg by leg (continuation.hpp, legs.hpp); bounds psi <= 0 by passes
+// over the active set (bounds.hpp); a global search over seeded starts until saturated, with the
+// revolution families and a minimum-time problem's minimum-fuel companion (search.hpp,
+// families.hpp, minimum_time.hpp); and the last polish of a converged solution by multiple
+// shooting (nodes.hpp).
 // ---------------------------------------------------------------------------------------------
 #pragma once
 

@@ -70,3 +70,8 @@ setup() {
   run -0 jq -n --slurpfile a "$BATS_FILE_TMPDIR/S12/solution.json" '$a[0].final_mass_kg < 603.94'
   [[ $output == true ]]
 }
+
+@test "dynamics: each converged run's trajectory.oem passes the independent OEM parser (S05, S06, S11, S12)" {
+  local s
+  for s in S05 S06 S11 S12; do assert_oem_of_run "$BATS_FILE_TMPDIR/$s"; done
+}

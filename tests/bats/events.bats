@@ -213,3 +213,8 @@ sensitivity() {
     awk -v a="$first" -v b="$curvature" 'BEGIN { exit !(a <= 0.01 * b) }'
   done
 }
+
+@test "events: each converged run's trajectory.oem passes the independent OEM parser (S03, S04, S07, S08, S09, S10)" {
+  local s
+  for s in S03 S04 S07 S08 S09 S10; do assert_oem_of_run "$BATS_FILE_TMPDIR/$s"; done
+}

@@ -1,8 +1,13 @@
 #!/usr/bin/env bats
 # README.md's "Layout" section against the tree: it names every top-level entry of the repository
-# and every library area, and every path it names exists.
+# and every library area, and every path it names exists. And every repository path, document and
+# section that a source comment or a document cites exists (cited_paths.pl says what it reads).
 
 load test_helper
+
+setup() {
+  common_setup
+}
 
 # The paths column of the Layout block (what stands before a run of three or more spaces), one
 # path per line; a {a,b} group is expanded, a <placeholder> stands for any name (a glob's *).
@@ -44,4 +49,28 @@ layout_paths() {
     [[ $areas == *" $area"[,\ ]* || $areas == *" $area" ]] || unnamed+=("tools/lib/src/$area")
   done
   ((${#unnamed[@]} == 0)) || { echo "in the tree but not in README's Layout: ${unnamed[*]}" >&2; false; }
+}
+
+@test "layout: every path, .md document and section cited in a comment or a document exists" {
+  run -0 perl "$ROOT/tests/bats/cited_paths.pl" "$ROOT"
+  [[ -z $output ]] || { echo "$output" >&2; false; }
+}
+
+@test "layout: the citation check finds a missing path, document and section, and passes patterns" {
+  mkdir -p tree/tools/lib tree/tests
+  cd tree
+  git init -q .
+  printf '# T\n\n## Set up\n\n**Limits of input** (exit 3)\n' >README.md
+  cat >tools/lib/a.hpp <<'SRC'
+// See tools/lib/a.hpp, tools/lib/b.hpp and design.md section 4; tools/helios-<verb>/main.cpp,
+// scenarios/S<NN>/problem.txt, scenarios/SNN/settings.json and runs/builtin are not checked.
+// README "Set up" and README "Limits" resolve; README "Results" does not.
+const char* code_is_not_read = "tools/lib/c.hpp";
+SRC
+  printf '# Tests\n\nSee `tools/lib/a.hpp` and (`README.md`, "Set up"): the one beside this file.\n' >tests/README.md
+  run -1 perl "$ROOT/tests/bats/cited_paths.pl" "$PWD"
+  [[ $output == "tests/README.md:3: tests/README.md has no section \"Set up\"
+tools/lib/a.hpp:1: no such path: tools/lib/b.hpp
+tools/lib/a.hpp:1: no document named design.md in the tree
+tools/lib/a.hpp:3: README.md has no section \"Results\"" ]] || { echo "$output" >&2; false; }
 }

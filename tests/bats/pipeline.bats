@@ -1,59 +1,71 @@
 #!/usr/bin/env bats
 # The Makefile pipeline: problem.txt -> spec -> derivation -> verify -> shoot.cpp -> solution -> score.
 #
-# Runs make in the repository on a private scenario, scenarios/T01 (a copy of S01), so it never
-# touches the S01 runs of others: setup_file creates scenarios/T01, teardown_file removes it and
-# runs/builtin/T01. A lock (/tmp/helios-bats-T01.lock) serializes concurrent runs of this file.
+# Runs make in the repository on a private scenario T01 (a copy of S01) in a private scenarios
+# folder and runs root (SCENARIOS_DIR, RUNS_ROOT under $BATS_FILE_TMPDIR), so it writes nothing into
+# the tree and never touches the runs of others.
 #
 # make is run with `-o build/tools.stamp`: the tools are taken as built (as in the other files, run
 # `make tools` first; `make bats` does), so that a colleague editing a tool source meanwhile does not
-# turn these runs into tool rebuilds. The compile cache is a private one (CACHE=...).
+# turn these runs into tool rebuilds. The compile cache is a private one (CACHE=...). The two tests
+# that edit a tool's source and rebuild do it on a copy of the tree and its build tree, mounted at
+# the tree's own path for the make that rebuilds (on_copy): the tree and its build are left as they were.
 
 load test_helper
 
 BATS_NO_PARALLELIZE_WITHIN_FILE=true
 
-T01_LOCK=/tmp/helios-bats-T01.lock
-T01_LOCK_FD=201
 ARTIFACTS=(spec.json derivation.json verify.json shoot.cpp solution.json trajectory.oem report.md score.json)
 EARLY=(spec.json derivation.json verify.json shoot.cpp)
 LATE=(solution.json trajectory.oem score.json)
 
 setup_file() {
   require_tool parse derive verify gen solve score
-  eval "exec $T01_LOCK_FD>\"\$T01_LOCK\""
-  if ! flock -w 600 "$T01_LOCK_FD"; then
-    echo "another run of pipeline.bats holds $T01_LOCK" >&2
-    return 1
-  fi
-  T01_OWNED=1
-  rm -rf "$ROOT/scenarios/T01" "$ROOT/runs/builtin/T01"
-  mkdir "$ROOT/scenarios/T01"
-  sed 's/^Problem S01:/Problem T01:/' "$S01/problem.txt" >"$ROOT/scenarios/T01/problem.txt"
-  grep -q '^Problem T01:' "$ROOT/scenarios/T01/problem.txt"
-  jq '.scenario = "T01"' "$S01/reference.json" >"$ROOT/scenarios/T01/reference.json"
-  cp "$S01/settings.json" "$ROOT/scenarios/T01/settings.json"
+  export PIPE_SCENARIOS="$BATS_FILE_TMPDIR/scenarios" PIPE_RUNS="$BATS_FILE_TMPDIR/runs"
   export PIPE_CACHE="$BATS_FILE_TMPDIR/cache"
-}
-
-teardown_file() {
-  if [[ ${T01_OWNED:-} == 1 ]]; then
-    rm -rf "$ROOT/scenarios/T01" "$ROOT/runs/builtin/T01"
-    flock -u "$T01_LOCK_FD" || true
-  fi
-  eval "exec $T01_LOCK_FD>&-"
+  mkdir -p "$PIPE_SCENARIOS/T01"
+  sed 's/^Problem S01:/Problem T01:/' "$S01/problem.txt" >"$PIPE_SCENARIOS/T01/problem.txt"
+  grep -q '^Problem T01:' "$PIPE_SCENARIOS/T01/problem.txt"
+  jq '.scenario = "T01"' "$S01/reference.json" >"$PIPE_SCENARIOS/T01/reference.json"
+  cp "$S01/settings.json" "$PIPE_SCENARIOS/T01/settings.json"
 }
 
 setup() {
   common_setup
-  RUNDIR="$ROOT/runs/builtin/T01"
+  RUNDIR="$PIPE_RUNS/builtin/T01"
   MAKE_CACHE="$PIPE_CACHE"
 }
 
-# make for T01, isolated from an enclosing make (`make bats`) and from tool rebuilds.
-pmake() {
+# make_t01 ARGS...: make for T01 in the private folders, isolated from an enclosing make (`make bats`).
+make_t01() {
   env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
-    make --no-print-directory -C "$ROOT" -o build/tools.stamp scenario=T01 CACHE="$MAKE_CACHE" "$@"
+    make --no-print-directory -C "$ROOT" scenario=T01 SCENARIOS_DIR="$PIPE_SCENARIOS" RUNS_ROOT="$PIPE_RUNS" \
+    CACHE="$MAKE_CACHE" "$@"
+}
+
+# pmake ARGS...: make_t01 with the tools taken as built.
+pmake() {
+  make_t01 -o build/tools.stamp "$@"
+}
+
+# tree_copy -> $COPY: a copy of the tree with its build tree (object files, stamps and times kept, so
+# a rebuild compiles only what changed); not runs/, .git or the other build trees.
+tree_copy() {
+  COPY="$BATS_TEST_TMPDIR/tree"
+  mkdir "$COPY"
+  local entry
+  for entry in "$ROOT"/* "$ROOT"/.[!.]*; do
+    case ${entry##*/} in runs | .git | build-asan | build-fuzz) continue ;; esac
+    cp -a "$entry" "$COPY/"
+  done
+  [[ -x $COPY/build/bin/helios-score ]] || { echo "the copy of the tree has no build/bin/helios-score" >&2; return 1; }
+}
+
+# make_on_copy ARGS...: make_t01 ARGS in a mount namespace (bubblewrap) where $COPY is mounted at
+# $ROOT: the make rebuilds and stamps the copy's tools; every other path is the host's.
+make_on_copy() {
+  bwrap --dev-bind / / --bind "$COPY" "$ROOT" --chdir "$BATS_TEST_TMPDIR" \
+    bash -c "$(declare -p MAKE_CACHE); $(declare -f make_t01); make_t01 \"\$@\"" make_on_copy "$@"
 }
 
 # Builds T01 unless it is complete and up to date.
@@ -66,7 +78,7 @@ ensure_built() {
   pmake >"$BATS_TEST_TMPDIR/ensure.log" 2>&1 || { cat "$BATS_TEST_TMPDIR/ensure.log" >&2; return 1; }
 }
 
-# mtime_of FILE: mtime of runs/builtin/T01/FILE in nanoseconds.
+# mtime_of FILE: mtime of $RUNDIR/FILE in nanoseconds.
 mtime_of() {
   local t
   t="$(stat -c %.9Y "$RUNDIR/$1")"
@@ -150,7 +162,7 @@ assert_not_ran() {
   declare -A before_late
   for f in "${LATE[@]}"; do before_late[$f]="$(mtime_of "$f")"; done
   sleep 0.05 # past the file system's timestamp granularity
-  touch "$ROOT/scenarios/T01/settings.json"
+  touch "$PIPE_SCENARIOS/T01/settings.json"
   run -1 pmake -q
   run -0 pmake
   assert_ran solve score
@@ -167,11 +179,11 @@ assert_not_ran() {
   ensure_built
   local before
   before="$(snapshot "${ARTIFACTS[@]}")"
+  tree_copy
   sleep 0.05 # past the file system's timestamp granularity
-  touch "$ROOT/tools/lib/src/score/score.cpp"
-  # without -o: the tools are rebuilt (the library and every tool relinked), byte for byte the same
-  run -0 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
-    make --no-print-directory -C "$ROOT" scenario=T01 CACHE="$MAKE_CACHE"
+  touch "$COPY/tools/lib/src/score/score.cpp"
+  # without -o: the copy's tools are rebuilt (the library and every tool relinked), byte for byte the same
+  run -0 make_on_copy
   [[ $output == *"Linking CXX executable bin/helios-score"* ]] || { echo "the tools were not rebuilt: $output" >&2; false; }
   assert_not_ran parse derive verify gen solve score
   [[ $(snapshot "${ARTIFACTS[@]}") == "$before" ]]
@@ -180,20 +192,14 @@ assert_not_ran() {
 
 @test "pipeline: an edit of score.cpp rebuilds the tools and re-runs helios-score alone" {
   ensure_built
-  local score="$ROOT/tools/lib/src/score/score.cpp" saved="$BATS_TEST_TMPDIR/score.cpp" before
-  cp -p "$score" "$saved"
+  tree_copy
+  local before
   before="$(snapshot "${ARTIFACTS[@]:0:5}")"
   # A real change of helios-score's bytes (an unreferenced constant, no change of behaviour); no
   # other tool links the score module, so their bytes and stamps stay the same.
   printf '\nnamespace helios::score {\nextern const char kPipelineProbe[];\nconst char kPipelineProbe[] = "%s";\n}\n' \
-    "$BATS_TEST_NAME" >>"$score"
-  run env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
-    make --no-print-directory -C "$ROOT" scenario=T01 CACHE="$MAKE_CACHE"
-  local status_edit=$status output_edit=$output
-  cat "$saved" >"$score" # a new mtime: make rebuilds the tools from the restored source
-  run -0 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES make --no-print-directory -C "$ROOT" tools
-  status=$status_edit output=$output_edit
-  ((status == 0)) || { echo "$output" >&2; false; }
+    "$BATS_TEST_NAME" >>"$COPY/tools/lib/src/score/score.cpp"
+  run -0 make_on_copy
   assert_ran score
   assert_not_ran parse derive verify gen solve
   [[ $(snapshot "${ARTIFACTS[@]:0:5}") == "$before" ]]
@@ -229,11 +235,10 @@ assert_not_ran() {
   mkdir -p "$slow_bin"
   printf '#!/bin/sh\n[ "$1" = --version ] || sleep 30\nexec /usr/bin/g++ "$@"\n' >"$slow_bin/g++"
   chmod +x "$slow_bin/g++"
-  setsid env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES PATH="$slow_bin:$PATH" \
-    make --no-print-directory -C "$ROOT" -o build/tools.stamp scenario=T01 CACHE="$MAKE_CACHE" \
+  PATH="$slow_bin:$PATH" setsid bash -c "$(declare -p MAKE_CACHE); $(declare -f make_t01 pmake); pmake" \
     >"$BATS_TEST_TMPDIR/make.log" 2>&1 3>&- &
   local pid=$!
-  # setsid execs make as the leader of a new process group; never signal any other group.
+  # setsid execs the bash that runs make as the leader of a new process group; never signal any other group.
   if ! poll 5 is_group_leader "$pid"; then
     kill "$pid" 2>/dev/null || true
     cat "$BATS_TEST_TMPDIR/make.log" >&2

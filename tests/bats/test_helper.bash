@@ -3,7 +3,7 @@
 #   load test_helper        (at the top of every *.bats file)
 #
 # Every test runs in its own $BATS_TEST_TMPDIR (the working directory); nothing is written to the
-# source tree except by pipeline.bats, which owns scenarios/T01 and runs/builtin/T01.
+# source tree (pipeline.bats runs make with SCENARIOS_DIR and RUNS_ROOT in its temporary folder).
 # The tools are NOT rebuilt here: run `make tools` first (`make bats` does).
 
 bats_require_minimum_version 1.5.0
@@ -205,6 +205,18 @@ chain() {
     --trajectory "$dir/trajectory.csv" --plots "$dir/" -o "$dir/solution.json"
   "$BIN/helios-score" --reference "$ROOT/scenarios/$s/reference.json" --spec "$dir/spec.json" \
     --derivation "$dir/derivation.json" --verify "$dir/verify.json" --solution "$dir/solution.json" -o "$dir/score.json"
+}
+
+# assert_oem_of_run DIR: helios-score --oem writes DIR's converged trajectory as DIR/trajectory.oem,
+# and the independent parser of oem.bats (oem_check.awk) accepts it and finds trajectory.csv in it.
+assert_oem_of_run() {
+  local dir=$1 epoch
+  "$BIN/helios-score" --oem --spec "$dir/spec.json" --solution "$dir/solution.json" \
+    --trajectory "$dir/trajectory.csv" -o "$dir/trajectory.oem"
+  [[ -s $dir/trajectory.oem ]] || { echo "$dir: no trajectory.oem (did the run converge?)" >&2; return 1; }
+  epoch=$(jq -r '.time.epoch_mjd2000 // 0.5' "$dir/spec.json")
+  awk -v epoch0="$epoch" -f "$ROOT/tests/bats/oem_check.awk" "$dir/trajectory.csv" "$dir/trajectory.oem" \
+    >"$dir/oem_check.log" 2>&1 || { echo "$dir: the OEM parser refused trajectory.oem:" >&2; cat "$dir/oem_check.log" >&2; return 1; }
 }
 
 # converged_and_verified DIR: verify passes, converged at max|F| < 1e-10, score 100

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A real single-node Slurm cluster on this machine, as root, from Debian's slurm-wlm and munge,
-# for running the solve step through LAUNCH="srun ..." (README "Running on a Slurm cluster").
+# for running the solve step through LAUNCH="srun ..." (tests/README.md, "A Slurm cluster").
 #
 # usage: tests/slurm/cluster.sh start | stop | status | env
 #   start   install slurmctld, slurmd, slurm-client and munge if missing (tools/install-deps.sh --slurm),

@@ -29,8 +29,8 @@ int main(int argc, char** argv) {
       {"DERIVATION"},
       "The program is one C++17 file of the problem and its modules (RESIDUAL and SOLVE generated\n"
       "from the shooting system); it links the prebuilt runtime libhelios-runtime.a (ephemeris,\n"
-      "DOP853 with switch detection, eps-homotopy, seeded restarts, cminpack hybrj with the exact\n"
-      "Jacobian (hybrd1 without it), JSON output).\n"
+      "DOP853 with switch detection, eps-homotopy, a global search over seeded starts, cminpack hybrj\n"
+      "with the exact Jacobian (hybrd without it), a multiple-shooting polish, JSON output).\n"
       "With --backend llm the model writes the four modules (prompts/codegen.txt); round N > 1 sends\n"
       "the compiler's errors of --previous (prompts/repair.txt), and when --compile-report says the\n"
       "previous program compiled, writes it unchanged without asking the model.",

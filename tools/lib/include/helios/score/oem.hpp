@@ -2,7 +2,7 @@
 // trajectory.oem: a converged run's trajectory.csv as a CCSDS Orbit Ephemeris Message, OEM 2.0 in
 // KVN form (CCSDS 502.0-B-3): one segment per arc between interior events, positions in km and
 // velocities in km/s at the trajectory's own samples, TIME_SYSTEM TDB, and COMMENT lines for the
-// frame, the epoch, the mass and the throttle (README "trajectory.oem").
+// frame, the epoch, the mass and the throttle (tools/lib/src/score/README.md, "trajectory.oem").
 #include <cstddef>
 #include <optional>
 #include <string>

@@ -1,8 +1,9 @@
 #pragma once
-// report.md: a run as a document a reviewer can sign off (README "report.md"). The problem in
-// words, the spec as a table with units, the derivation as mathematics (LaTeX in $...$ / $$...$$,
-// compact: symbolic::Typesetter), helios-verify's verdict beside each condition it checked, the
-// solution (status, objective, residual, switches, the search record) and the plots.
+// report.md: a run as a document a reviewer can sign off (tools/lib/src/score/README.md,
+// "report.md"). The problem in words, the spec as a table with units, the derivation as mathematics
+// (LaTeX in $...$ / $$...$$, compact: symbolic::Typesetter), helios-verify's verdict beside each
+// condition it checked, the solution (status, objective, residual, switches, the search record) and
+// the plots.
 #include <optional>
 #include <string>
 

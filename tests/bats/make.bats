@@ -1,0 +1,59 @@
+#!/usr/bin/env bats
+# The Makefile's interface: the spellings of its variables, its errors for an unknown scenario or
+# sweep, and make help. make runs with -n (nothing is built or run) into a private RUNS_ROOT.
+
+load test_helper
+
+setup() {
+  common_setup
+}
+
+# mk ARGS...: make -n in the repository, isolated from an enclosing make.
+mk() {
+  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
+    make --no-print-directory -C "$ROOT" -n RUNS_ROOT="$BATS_TEST_TMPDIR/runs" "$@"
+}
+
+@test "make: SCENARIO= and scenario= are one variable; two different values are refused" {
+  run -0 mk SCENARIO=S07
+  [[ $output == *"helios-parse --backend builtin scenarios/S07/problem.txt"* ]] || { echo "$output" >&2; false; }
+  [[ $output != *"/S01/"* ]]
+  run -0 mk scenario=S07 SCENARIO=S07
+  [[ $output == *"scenarios/S07/problem.txt"* ]]
+  run -2 --separate-stderr mk scenario=S07 SCENARIO=S01
+  [[ ${#stderr_lines[@]} -eq 1 && $stderr == *"scenario=S07 and SCENARIO=S01 differ: give one of them"* ]] || { echo "$stderr" >&2; false; }
+}
+
+@test "make: an unknown scenario or sweep is one line that lists the known ones" {
+  local known
+  known=$(cd "$ROOT/scenarios" && ls -d S[0-9]* | sort | tr '\n' ' ')
+  run -2 --separate-stderr mk scenario=S99
+  [[ ${#stderr_lines[@]} -eq 1 ]] || { echo "$stderr" >&2; false; }
+  assert_stderr_contains "scenario=S99 is not a scenario of scenarios/: use one of ${known% }" "P01"
+  run -2 --separate-stderr mk sweep SWEEP=P99
+  [[ ${#stderr_lines[@]} -eq 1 ]] || { echo "$stderr" >&2; false; }
+  assert_stderr_contains "sweep=P99 is not a sweep of scenarios/ (no sweep.json): use one of P01"
+  # A goal that runs no scenario does not check it.
+  run -0 mk help scenario=S99
+  [[ ! -e $BATS_TEST_TMPDIR/runs ]]
+}
+
+@test "make: a scenario of SCENARIOS_DIR is made from there" {
+  mkdir -p mine/X01
+  cp "$S01"/{problem.txt,settings.json,reference.json} mine/X01/
+  run -0 mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=X01
+  [[ $output == *"helios-parse --backend builtin $BATS_TEST_TMPDIR/mine/X01/problem.txt -o $BATS_TEST_TMPDIR/runs/builtin/X01/spec.json"* ]] ||
+    { echo "$output" >&2; false; }
+  run -2 --separate-stderr mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=S01
+  assert_stderr_contains "scenario=S01 is not a scenario of $BATS_TEST_TMPDIR/mine/: use one of X01"
+}
+
+@test "make help: lists the main targets and variables" {
+  run -0 --separate-stderr env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -C "$ROOT" help
+  local word
+  for word in "make [scenario=S01]" "make test" "make all" "make scoreboard" "make sweep sweep=P01" "make bench" \
+    "make test-sanitized" "make fuzz" "BACKEND=builtin|llm" "VERIFY_MODE" "LAUNCH=" "RUNS_ROOT" "SCENARIOS_DIR" "SCENARIO"; do
+    [[ $output == *"$word"* ]] || { echo "make help does not mention '$word':" >&2; echo "$output" >&2; false; }
+  done
+  [[ -z $stderr ]]
+}
