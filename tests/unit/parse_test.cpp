@@ -89,7 +89,7 @@ TEST(Parse, UnusableSentenceIsQuotedWithItsLine) {
   const std::string text = s01_text() + "The spacecraft likes jazz.\n";
   EXPECT_EQ(error_of(text),
             "problem.txt:9: cannot use sentence \"The spacecraft likes jazz\": it matches no form of the controlled "
-            "English (see README.md, 'Controlled English')");
+            "English (see tools/lib/src/spec/LANGUAGE.md)");
 }
 
 TEST(Parse, TextBeyondItsBoundsIsRefusedBeforeAnyPatternIsMatched) {

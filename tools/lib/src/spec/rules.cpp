@@ -51,7 +51,7 @@ void Builder::handle(const std::string& s) {
   for (const auto& rule : rules)
     if (std::regex_match(s, m, rule.pattern)) return (this->*rule.apply)(m);
   if (detail::states_nothing(s, body_names()))
-    throw sentence_error("it matches no form of the controlled English (see README.md, 'Controlled English')");
+    throw sentence_error("it matches no form of the controlled English (see tools/lib/src/spec/LANGUAGE.md)");
   apply_facts(facts_of(s));
 }
 

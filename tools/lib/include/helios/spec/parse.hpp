@@ -1,6 +1,6 @@
 #pragma once
 // The builtin backend of helios-parse: a controlled English read sentence by sentence.
-// The grammar is documented in README.md ("Controlled English"); every sentence must match one
+// The grammar is documented in tools/lib/src/spec/LANGUAGE.md; every sentence must match one
 // of its forms, and one that does not is an error quoting it (never silently dropped).
 //
 // Bodies, epochs and events (Q = number with unit, N = number, NAME = [A-Za-z][A-Za-z0-9_]*):
