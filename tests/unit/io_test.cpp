@@ -297,3 +297,41 @@ TEST(Cli, NamingInputPrefixesTheFileOnce) {
   EXPECT_EQ(error_of("d.json", [] { throw std::runtime_error("disk full"); }), "disk full");
   EXPECT_THROW(helios::cli::naming_input("d.json", [] { throw std::invalid_argument("x"); }), helios::input_error);
 }
+
+// A tool of several jobs: the flag given selects one, which refuses the options of the others and
+// names a missing one; with no flag, the default job.
+TEST(Cli, SelectModeRefusesTheOptionsOfOtherJobs) {
+  helios::cli::ToolInfo info;
+  info.name = "helios-x";
+  info.options = {{"in", "", "FILE", "", ""},   {"report", "", "", "", ""}, {"problem", "", "FILE", "", ""},
+                  {"level", "", "N", "", "3"}, {"oem", "", "", "", ""},    {"track", "", "FILE", "", ""}};
+  const std::vector<helios::cli::Mode> modes = {{"", {"in"}, {"level"}, [](const auto&) { return 0; }},
+                                                {"report", {"problem"}, {"level"}, [](const auto&) { return 1; }},
+                                                {"oem", {"track"}, {}, [](const auto&) { return 2; }}};
+  const auto args_of = [](std::map<std::string, std::string> values) {
+    helios::cli::Args a;
+    a.values = std::move(values);
+    a.values.emplace("level", "3");  // a default is not an option given
+    return a;
+  };
+  const auto error_of = [&](const helios::cli::Args& a) {
+    try {
+      helios::cli::select_mode(info, a, modes);
+    } catch (const helios::usage_error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(helios::cli::select_mode(info, args_of({{"in", "f"}}), modes).run({}), 0);
+  EXPECT_EQ(helios::cli::select_mode(info, args_of({{"report", "1"}, {"problem", "p"}}), modes).run({}), 1);
+  EXPECT_EQ(helios::cli::select_mode(info, args_of({{"oem", "1"}, {"track", "t"}}), modes).run({}), 2);
+  EXPECT_EQ(error_of(args_of({{"report", "1"}, {"oem", "1"}})),
+            "--report and --oem are two jobs: give one, see helios-x --help");
+  EXPECT_EQ(error_of(args_of({{"report", "1"}})), "--report needs --problem FILE, see helios-x --help");
+  EXPECT_EQ(error_of(args_of({})), "missing --in FILE, see helios-x --help");
+  EXPECT_EQ(error_of(args_of({{"in", "f"}, {"problem", "p"}})), "--problem goes with --report, see helios-x --help");
+  EXPECT_EQ(error_of(args_of({{"report", "1"}, {"problem", "p"}, {"track", "t"}})),
+            "--report takes no --track (it goes with --oem), see helios-x --help");
+  EXPECT_EQ(error_of(args_of({{"oem", "1"}, {"track", "t"}, {"level", "4"}})),
+            "--oem takes no --level (it goes with --report), see helios-x --help");
+}

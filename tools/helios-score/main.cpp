@@ -2,7 +2,6 @@
 // score.json files -> scoreboard.md, or a converged run's trajectory -> trajectory.oem.
 #include <cstdio>
 #include <filesystem>
-#include <initializer_list>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -19,23 +18,106 @@
 
 namespace {
 
-// A mode of the tool (--report, --oem, ...) refuses the options of the others and needs its own.
-void refuse_options(const helios::cli::Args& args, const std::string& mode, std::initializer_list<const char*> others) {
-  for (const char* other : others)
-    if (args.has(other)) throw helios::usage_error("--" + mode + " takes no --" + other + ", see helios-score --help");
-}
-
-void require_options(const helios::cli::Args& args, const std::string& mode,
-                     std::initializer_list<const char*> needed) {
-  for (const char* option : needed)
-    if (!args.has(option))
-      throw helios::usage_error("--" + mode + " needs --" + option + " FILE, see helios-score --help");
-}
+using helios::cli::Args;
+namespace score = helios::score;
 
 // The stage artifact of option `kind` (spec, verify, ...), if it was given.
-std::optional<helios::io::json> optional_artifact(const helios::cli::Args& args, const char* kind) {
+std::optional<helios::io::json> optional_artifact(const Args& args, const char* kind) {
   if (!args.has(kind)) return std::nullopt;
   return helios::io::read_artifact(kind, args.get(kind));
+}
+
+int score_run(const Args& args) {
+  score::ScoreInputs in;
+  in.reference_source = args.get("reference") == "-" ? "<stdin>" : args.get("reference");
+  in.reference = helios::io::read_json(args.get("reference"));
+  in.spec = optional_artifact(args, "spec");
+  in.derivation = optional_artifact(args, "derivation");
+  in.verify = optional_artifact(args, "verify");
+  in.solution = optional_artifact(args, "solution");
+  helios::io::write_artifact("score", score::score_run(in), args.output);
+  return 0;
+}
+
+int report(const Args& args) {
+  score::ReportInputs in;
+  in.problem_text = helios::io::read_text(args.get("problem"));
+  helios::spec::check_problem_text(in.problem_text, args.get("problem"));
+  in.spec = helios::io::read_artifact("spec", args.get("spec"));
+  in.derivation = helios::io::read_artifact("derivation", args.get("derivation"));
+  in.derivation_source = args.get("derivation");
+  in.verify = optional_artifact(args, "verify");
+  in.solution = optional_artifact(args, "solution");
+  std::string text;
+  helios::cli::naming_input(args.get("derivation"), [&] { text = score::report_markdown(in); });
+  helios::io::write_text_atomic(args.output, text);
+  return 0;
+}
+
+int oem(const Args& args) {
+  const helios::io::json spec = helios::io::read_artifact("spec", args.get("spec"));
+  const helios::io::json solution = helios::io::read_artifact("solution", args.get("solution"));
+  if (solution.at("status") != "converged") {
+    if (args.output != "-") std::remove(args.output.c_str());
+    std::cerr << "helios-score: " << args.get("solution") << " is " << solution.at("status").get<std::string>()
+              << ": no trajectory, no OEM written\n";
+    return 0;
+  }
+  const score::OemSources sources{args.get("spec"), args.get("solution"), args.get("trajectory")};
+  const auto text = score::oem_from_run(spec, solution, helios::io::read_text(args.get("trajectory")), sources);
+  helios::io::write_text_atomic(args.output, *text);
+  return 0;
+}
+
+score::SweepGrid sweep_grid(const Args& args, const std::string& sweep_path) {
+  return score::read_sweep(helios::io::read_json(sweep_path), sweep_path, args.get("grid"));
+}
+
+int sweep_cells(const Args& args) {
+  const std::string sweep_path = args.get("sweep-cells");
+  const score::SweepGrid grid = sweep_grid(args, sweep_path);
+  const std::string template_path = (std::filesystem::path(sweep_path).parent_path() / grid.template_file).string();
+  const std::string fragment =
+      score::write_sweep_cells(grid, helios::io::read_text(template_path), template_path, args.get("cells"));
+  helios::io::write_text_atomic(args.output, fragment);
+  return 0;
+}
+
+int sweep(const Args& args) {
+  const std::string sweep_path = args.get("sweep");
+  const score::SweepGrid grid = sweep_grid(args, sweep_path);
+  const std::vector<score::SweepRow> rows = score::sweep_rows(grid, args.get("cells"));
+  if (args.has("porkchop"))
+    score::porkchop_png(grid, rows, args.get("porkchop"),
+                        std::filesystem::path(sweep_path).parent_path().filename().string());
+  helios::io::write_text_atomic(args.output, score::sweep_csv(grid, rows));
+  return 0;
+}
+
+// The tool's jobs: each names the options it needs and may take; any other is refused.
+const std::vector<helios::cli::Mode>& jobs() {
+  static const std::vector<helios::cli::Mode> modes = {
+      {"", {"reference"}, {"spec", "derivation", "verify", "solution"}, score_run},
+      {"report", {"problem", "spec", "derivation"}, {"verify", "solution"}, report},
+      {"oem", {"spec", "solution", "trajectory"}, {}, oem},
+      {"scoreboard",
+       {},
+       {},
+       [](const Args& args) {
+         helios::io::write_text_atomic(args.output, score::scoreboard_from_dir(args.get("scoreboard")));
+         return 0;
+       }},
+      {"tables",
+       {},
+       {},
+       [](const Args& args) {
+         helios::io::write_text_atomic(args.output, score::tables_from_runs(args.get("tables")));
+         return 0;
+       }},
+      {"sweep-cells", {"cells"}, {"grid"}, sweep_cells},
+      {"sweep", {"cells"}, {"grid", "porkchop"}, sweep},
+  };
+  return modes;
 }
 
 }  // namespace
@@ -90,89 +172,6 @@ int main(int argc, char** argv) {
       "helios-score --reference scenarios/S01/reference.json --spec runs/builtin/S01/spec.json "
       "--derivation runs/builtin/S01/derivation.json --verify runs/builtin/S01/verify.json "
       "--solution runs/builtin/S01/solution.json -o runs/builtin/S01/score.json"};
-  return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
-    if (args.has("report")) {
-      refuse_options(args, "report", {"scoreboard", "tables", "reference", "oem", "trajectory"});
-      require_options(args, "report", {"problem", "spec", "derivation"});
-      helios::score::ReportInputs in;
-      in.problem_text = helios::io::read_text(args.get("problem"));
-      helios::spec::check_problem_text(in.problem_text, args.get("problem"));
-      in.spec = helios::io::read_artifact("spec", args.get("spec"));
-      in.derivation = helios::io::read_artifact("derivation", args.get("derivation"));
-      in.derivation_source = args.get("derivation");
-      in.verify = optional_artifact(args, "verify");
-      in.solution = optional_artifact(args, "solution");
-      std::string report;
-      helios::cli::naming_input(args.get("derivation"), [&] { report = helios::score::report_markdown(in); });
-      helios::io::write_text_atomic(args.output, report);
-      return 0;
-    }
-    if (args.has("sweep-cells") || args.has("sweep")) {
-      const std::string mode = args.has("sweep-cells") ? "sweep-cells" : "sweep";
-      refuse_options(args, mode,
-                     {"scoreboard", "tables", "reference", "oem", "report", "spec", "derivation", "verify", "solution",
-                      "problem", "trajectory", mode == "sweep" ? "sweep-cells" : "porkchop"});
-      if (!args.has("cells")) throw helios::usage_error("--" + mode + " needs --cells DIR, see helios-score --help");
-      const std::string sweep_path = args.get(mode);
-      const helios::score::SweepGrid grid =
-          helios::score::read_sweep(helios::io::read_json(sweep_path), sweep_path, args.get("grid"));
-      if (mode == "sweep-cells") {
-        const std::string template_path =
-            (std::filesystem::path(sweep_path).parent_path() / grid.template_file).string();
-        const std::string fragment = helios::score::write_sweep_cells(grid, helios::io::read_text(template_path),
-                                                                      template_path, args.get("cells"));
-        helios::io::write_text_atomic(args.output, fragment);
-        return 0;
-      }
-      const std::vector<helios::score::SweepRow> rows = helios::score::sweep_rows(grid, args.get("cells"));
-      if (args.has("porkchop"))
-        helios::score::porkchop_png(grid, rows, args.get("porkchop"),
-                                    std::filesystem::path(sweep_path).parent_path().filename().string());
-      helios::io::write_text_atomic(args.output, helios::score::sweep_csv(grid, rows));
-      return 0;
-    }
-    if (args.has("cells") || args.has("grid") || args.has("porkchop"))
-      throw helios::usage_error(
-          "--cells, --grid and --porkchop go with --sweep or --sweep-cells, see helios-score --help");
-    if (args.has("problem")) throw helios::usage_error("--problem goes with --report, see helios-score --help");
-    if (args.has("oem")) {
-      refuse_options(args, "oem", {"scoreboard", "tables", "reference", "derivation", "verify"});
-      require_options(args, "oem", {"spec", "solution", "trajectory"});
-      const helios::io::json spec = helios::io::read_artifact("spec", args.get("spec"));
-      const helios::io::json solution = helios::io::read_artifact("solution", args.get("solution"));
-      if (solution.at("status") != "converged") {
-        if (args.output != "-") std::remove(args.output.c_str());
-        std::cerr << "helios-score: " << args.get("solution") << " is " << solution.at("status").get<std::string>()
-                  << ": no trajectory, no OEM written\n";
-        return 0;
-      }
-      const helios::score::OemSources sources{args.get("spec"), args.get("solution"), args.get("trajectory")};
-      const auto oem =
-          helios::score::oem_from_run(spec, solution, helios::io::read_text(args.get("trajectory")), sources);
-      helios::io::write_text_atomic(args.output, *oem);
-      return 0;
-    }
-    if (args.has("trajectory")) throw helios::usage_error("--trajectory goes with --oem, see helios-score --help");
-    if (args.has("tables")) {
-      refuse_options(args, "tables", {"scoreboard", "reference", "spec", "derivation", "verify", "solution"});
-      helios::io::write_text_atomic(args.output, helios::score::tables_from_runs(args.get("tables")));
-      return 0;
-    }
-    if (args.has("scoreboard")) {
-      refuse_options(args, "scoreboard", {"reference", "spec", "derivation", "verify", "solution"});
-      helios::io::write_text_atomic(args.output, helios::score::scoreboard_from_dir(args.get("scoreboard")));
-      return 0;
-    }
-    if (!args.has("reference"))
-      throw helios::usage_error("missing --reference FILE (or --scoreboard DIR), see helios-score --help");
-    helios::score::ScoreInputs in;
-    in.reference_source = args.get("reference") == "-" ? "<stdin>" : args.get("reference");
-    in.reference = helios::io::read_json(args.get("reference"));
-    in.spec = optional_artifact(args, "spec");
-    in.derivation = optional_artifact(args, "derivation");
-    in.verify = optional_artifact(args, "verify");
-    in.solution = optional_artifact(args, "solution");
-    helios::io::write_artifact("score", helios::score::score_run(in), args.output);
-    return 0;
-  });
+  return helios::cli::run_tool(
+      info, argc, argv, [&info](const Args& args) { return helios::cli::select_mode(info, args, jobs()).run(args); });
 }

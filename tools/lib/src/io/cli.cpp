@@ -5,6 +5,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
@@ -218,6 +219,44 @@ double positive_option(const Args& args, const std::string& name) {
   if (used == 0 || used != text.size() || !(value > 0) || !std::isfinite(value))
     throw usage_error("--" + name + " " + text + " is not a positive number");
   return value;
+}
+
+const Mode& select_mode(const ToolInfo& info, const Args& args, const std::vector<Mode>& modes) {
+  const std::string see = ", see " + info.name + " --help";
+  const Mode* chosen = nullptr;
+  const Mode* fallback = nullptr;
+  for (const auto& m : modes) {
+    if (m.flag.empty()) fallback = &m;
+    if (m.flag.empty() || !args.has(m.flag)) continue;
+    if (chosen) throw usage_error("--" + chosen->flag + " and --" + m.flag + " are two jobs: give one" + see);
+    chosen = &m;
+  }
+  if (!chosen) chosen = fallback;
+  if (!chosen) throw usage_error("no job given" + see);
+  const auto declared = [&](const std::string& option) {
+    for (const auto& o : info.options)
+      if (o.name == option) return o;
+    return Option{};
+  };
+  const auto takes = [](const Mode& m, const std::string& option) {
+    return option == m.flag || std::find(m.needs.begin(), m.needs.end(), option) != m.needs.end() ||
+           std::find(m.takes.begin(), m.takes.end(), option) != m.takes.end();
+  };
+  for (const auto& [option, value] : args.values) {
+    if (value.empty() || value == declared(option).default_value || takes(*chosen, option)) continue;
+    std::string others;
+    for (const auto& m : modes)
+      if (!m.flag.empty() && takes(m, option)) others += (others.empty() ? "--" : " or --") + m.flag;
+    if (chosen->flag.empty())
+      throw usage_error("--" + option + " goes with " + (others.empty() ? "another job" : others) + see);
+    throw usage_error("--" + chosen->flag + " takes no --" + option +
+                      (others.empty() ? "" : " (it goes with " + others + ")") + see);
+  }
+  for (const auto& option : chosen->needs)
+    if (!args.has(option))
+      throw usage_error((chosen->flag.empty() ? "missing" : "--" + chosen->flag + " needs") + " --" + option + " " +
+                        declared(option).value_name + see);
+  return *chosen;
 }
 
 std::string backend_option(const Args& args, const std::vector<std::string>& available) {

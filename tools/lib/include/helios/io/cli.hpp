@@ -59,6 +59,21 @@ void limit_work(const std::string& tool, const Args& args);
 // "field /x: ..." names the file too.
 void naming_input(const std::string& source, const std::function<void()>& work);
 
+// A mode of a tool that does several jobs (helios-score --report, --oem, ...): the flag that
+// selects it ("" for the default mode), the options it needs and those it may take besides them.
+struct Mode {
+  std::string flag;
+  std::vector<std::string> needs;
+  std::vector<std::string> takes;
+  std::function<int(const Args&)> run;
+};
+
+// The one mode `args` select: the mode whose flag was given, else the default one. Throws
+// usage_error naming the two flags given, a needed option missing ("--report needs --problem
+// FILE"), or an option the mode does not take ("--report takes no --trajectory (it goes with
+// --oem)", "--problem goes with --report").
+const Mode& select_mode(const ToolInfo& info, const Args& args, const std::vector<Mode>& modes);
+
 // Parses argv; throws usage_error. Returns false if --help or --version was handled.
 bool parse_args(const ToolInfo& info, int argc, char** argv, Args& args);
 
