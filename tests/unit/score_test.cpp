@@ -267,6 +267,26 @@ TEST(Score, ScoreboardHasARowPerScenarioAndTotals) {
   fs::create_directories(dir / "S01");
   helios::io::write_json_atomic((dir / "S01" / "score.json").string(), s);
   EXPECT_EQ(helios::score::scoreboard_from_dir(dir.string()), md);
+  // With the run's solution beside it, the table of solutions and their search follows.
+  json solution = solution_doc(603.935);
+  solution["tof_days"] = 348.795;
+  solution["propellant_kg"] = 396.065;
+  solution["search"] = {{"method", "multi-start"},
+                        {"threads", 2},
+                        {"starts", 128},
+                        {"converged_at_eps_start", 36},
+                        {"continued", 1},
+                        {"converged_at_eps_0", 1},
+                        {"seconds", 0.8},
+                        {"cut_by_time", false},
+                        {"saturated", true},
+                        {"extremals_at_eps_start", json::array()},
+                        {"extremals", json::array()}};
+  helios::io::write_json_atomic((dir / "S01" / "solution.json").string(), solution);
+  const std::string with_solution = helios::score::scoreboard_from_dir(dir.string());
+  EXPECT_EQ(with_solution.rfind(md, 0), 0u);
+  EXPECT_NE(with_solution.find("| S01 | converged | 348.795 | 396.065 | 0 | yes | 128 | 1.5 |"), std::string::npos)
+      << with_solution;
   fs::remove_all(dir / "S01");
   EXPECT_THROW(helios::score::scoreboard_from_dir(dir.string()), helios::input_error);
   fs::remove_all(dir);

@@ -460,6 +460,30 @@ std::string render_scoreboard(const std::vector<json>& scores) {
   return md.str();
 }
 
+std::string render_search_table(const std::vector<json>& scores, const std::vector<std::optional<json>>& solutions) {
+  std::ostringstream md;
+  md << "\n## The solutions and their search\n\n"
+     << "From each run's solution.json: the extremals the search compared, whether it saturated (the chance "
+        "that another start finds a new extremal fell below its bound), its starts, and the solve's wall time.\n\n"
+     << "| scenario | status | tof [d] | propellant [kg] | extremals | saturated | starts | solve [s] |\n"
+     << "|---|---|--:|--:|--:|---|--:|--:|\n";
+  for (std::size_t k = 0; k < scores.size(); ++k) {
+    if (!solutions[k]) continue;
+    const json& sol = *solutions[k];
+    const json& search = sol.value("search", json::object());
+    const json extremals =
+        search.contains("extremals") && search["extremals"].is_array() ? json(search["extremals"].size()) : json();
+    const json saturated = search.value("saturated", json());
+    md << "| " << md_escape(scores[k].value("scenario", "?")) << " | " << md_escape(sol.value("status", "?")) << " | "
+       << cell(sol.value("tof_days", json()), "%.3f") << " | " << cell(sol.value("propellant_kg", json()), "%.3f")
+       << " | " << cell(extremals, "%.0f") << " | "
+       << (saturated.is_boolean() ? (saturated.get<bool>() ? "yes" : "no") : "-") << " | "
+       << cell(search.value("starts", json()), "%.0f") << " | "
+       << cell(sol.value("timings", json::object()).value("total_s", json()), "%.1f") << " |\n";
+  }
+  return md.str();
+}
+
 std::string scoreboard_from_dir(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -473,8 +497,17 @@ std::string scoreboard_from_dir(const std::string& dir) {
   if (files.empty()) throw input_error(dir + ": no */score.json found, run helios-score for a scenario first");
   std::sort(files.begin(), files.end());
   std::vector<json> scores;
-  for (const auto& f : files) scores.push_back(io::read_artifact("score", f.string()));
-  return render_scoreboard(scores);
+  std::vector<std::optional<json>> solutions;
+  bool any_solution = false;
+  for (const auto& f : files) {
+    scores.push_back(io::read_artifact("score", f.string()));
+    const fs::path solution = f.parent_path() / "solution.json";
+    solutions.push_back(fs::is_regular_file(solution, ec)
+                            ? std::optional<json>(io::read_artifact("solution", solution.string()))
+                            : std::nullopt);
+    any_solution = any_solution || solutions.back().has_value();
+  }
+  return render_scoreboard(scores) + (any_solution ? render_search_table(scores, solutions) : "");
 }
 
 namespace {

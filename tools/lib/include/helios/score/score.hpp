@@ -44,9 +44,15 @@ io::json score_run(const ScoreInputs& inputs);
 // Renders score artifacts as a Markdown table: one row per scenario, then a totals row.
 std::string render_scoreboard(const std::vector<io::json>& scores);
 
-// Reads every DIR/*/score.json (sorted by folder name) and renders them. Throws input_error
-// if DIR is not a folder or holds no score.json; a malformed one is an error naming it.
+// Reads every DIR/*/score.json (sorted by folder name) and renders them, followed by the table of
+// solutions where a solution.json stands beside a score.json. Throws input_error if DIR is not a
+// folder or holds no score.json; a malformed score or solution is an error naming it.
 std::string scoreboard_from_dir(const std::string& dir);
+// The second table of the scoreboard: per run with a solution (solutions[k] beside scores[k]), its
+// status, time of flight, propellant, the extremals its search compared, whether the search
+// saturated, its starts and the solve's wall time.
+std::string render_search_table(const std::vector<io::json>& scores,
+                                const std::vector<std::optional<io::json>>& solutions);
 
 // The paper's three tables from a runs tree ROOT/<run folder>/<scenario>/ (run folders such as
 // builtin, llm, llm-<tag>): per-scenario comparison of backends and models (mean score, compiled
