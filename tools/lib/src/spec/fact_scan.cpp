@@ -112,7 +112,8 @@ double civil_date(const std::string& text, int y, int m, int d) {
   return days_from_2000(y, m, d);
 }
 
-// TAI - UTC [s] from each date on which it changed (IERS Bulletin C), as MJD2000 of the day.
+// TAI - UTC [s] from the first day of each month in which it changed (IERS Bulletin C); no leap
+// second has been announced since 2017, so later dates take 37 s.
 struct LeapStep {
   int y, m;
   double tai_minus_utc;

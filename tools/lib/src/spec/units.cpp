@@ -216,8 +216,9 @@ double to_spec_unit(Dimension d, const std::string& unit) {
     return m && m->powers == want.measure.powers && m->angle == want.measure.angle;
   };
   auto m = measure(unit);
-  // A unit is read without case only where case cannot change it: m/M is milli or mega.
-  if (!m && unit.find_first_of("mM") == std::string::npos) m = measure(lowercase(unit));
+  // A unit is read without case only where case cannot change it: m/M is milli or mega, and a
+  // single letter is a symbol of its own in either case (T, G, S).
+  if (!m && unit.size() > 1 && unit.find_first_of("mM") == std::string::npos) m = measure(lowercase(unit));
   if (fits(m)) return m->si / want.measure.si;
   const std::string name = dimension_name(d);
   const std::string article = std::string("aeiou").find(name[0]) == std::string::npos ? "a " : "an ";
