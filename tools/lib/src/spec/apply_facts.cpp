@@ -94,14 +94,8 @@ void Builder::apply_fact(const detail::Fact& fact) {
   const json vec = fact.value.size() == 3 ? json(fact.value) : json();
   switch (fact.field) {
     case Field::Thrust:
-      set_engine(fact.field, v);
-      break;
     case Field::Isp:
-      set_engine(fact.field, v);
-      break;
     case Field::InitialMass:
-      set_engine(fact.field, v);
-      break;
     case Field::FinalMass:
       set_engine(fact.field, v);
       break;
