@@ -193,12 +193,15 @@ $(RUNS)/%/score.json: $(SCENARIOS_DIR)/%/reference.json $(RUNS)/%/spec.json $(RU
 	  --verify $(@D)/verify.json --solution $(@D)/solution.json -o $@
 
 # ---- launch-window sweeps (tools/lib/src/score/SWEEPS.md) ------------------------------------
-# make sweep sweep=P01 [SWEEP_GRID=bench] [LAUNCH="srun -n1 -c1"] [-j N]: every cell d<epoch>_t<tof>
-# of scenarios/P01/sweep.json is a run folder under $(RUNS)/P01 (the bench grid: P01-bench) with
-# the normal chain parse -> derive -> verify -> gen -> solve. The cells of one departure row are
-# a chain along increasing tof: the first solved cold, each next one warm from the one before
-# (its solution.json is a prerequisite), so make -j runs the rows in parallel. cells.mk (written
-# by helios-score --sweep-cells with the cells' problem texts) names the cells and the chains.
+# make sweep sweep=P01 [SWEEP_GRID=bench] [LAUNCH="srun -n1 -c1"] [-j N]: first each departure's
+# feasibility boundary b<epoch>/ (the template's problem in minimum time; boundary.mk names them),
+# then every cell d<epoch>_t<tof> of scenarios/P01/sweep.json not below its boundary, each a run
+# folder under $(RUNS)/P01 (the bench grid: P01-bench) with the normal chain parse -> derive ->
+# verify -> gen -> solve. The cells of one departure row are a chain along increasing tof: the
+# first feasible one solved cold, each next one warm from the one before (its solution.json is a
+# prerequisite), so make -j runs the rows in parallel. cells.mk (written by helios-score
+# --sweep-cells once the boundaries are solved) names the cells and the chains. Then the
+# neighbour cross-check (crosscheck.json) and sweep.csv with porkchop.png.
 sweep ?=
 SWEEP_GRID ?=
 # cold: every cell searches cold (no --warm-start; its own folder <P>-cold), to measure the warm starts.
@@ -206,6 +209,8 @@ SWEEP_START ?= warm
 ifeq ($(filter $(SWEEP_START),warm cold),)
   $(error SWEEP_START=$(SWEEP_START) is not warm or cold)
 endif
+# Cross-check solves at a time (make's -j does not reach into one recipe).
+SWEEP_JOBS ?= 2
 ifneq ($(filter P%,$(scenario)),)
   $(error scenario=$(scenario) is a sweep template: use make sweep sweep=$(scenario))
 endif
@@ -225,28 +230,49 @@ ifeq ($(wildcard $(SCENARIOS_DIR)/$(sweep)/sweep.json),)
   $(error sweep=$(sweep) is not a sweep of $(SCENARIOS_DIR)/ (no sweep.json): use one of $(patsubst $(SCENARIOS_DIR)/%/sweep.json,%,$(wildcard $(SCENARIOS_DIR)/*/sweep.json)))
 endif
 SWEEP_DIR := $(RUNS)/$(sweep)$(if $(SWEEP_GRID),-$(SWEEP_GRID))$(if $(filter cold,$(SWEEP_START)),-cold)
-SWEEP_CELLS :=
-$(SWEEP_DIR)/cells.mk: $(SCENARIOS_DIR)/$(sweep)/sweep.json $(SCENARIOS_DIR)/$(sweep)/problem.txt $(call TOOL_STAMP,score)
+SWEEP_SOURCES := $(SCENARIOS_DIR)/$(sweep)/sweep.json $(SCENARIOS_DIR)/$(sweep)/problem.txt
+SWEEP_SETTINGS := $(SCENARIOS_DIR)/$(sweep)/settings.json
+SWEEP_GRID_FLAG := $(if $(SWEEP_GRID),--grid $(SWEEP_GRID))
+SWEEP_BOUNDARY :=
+$(SWEEP_DIR)/boundary.mk: $(SWEEP_SOURCES) $(SWEEP_SETTINGS) $(call TOOL_STAMP,score) $(call TOOL_STAMP,parse)
 	@mkdir -p $(@D)
-	$(BIN)/helios-score --sweep-cells $< --cells $(@D) $(if $(SWEEP_GRID),--grid $(SWEEP_GRID)) -o $@
+	$(BIN)/helios-score --sweep-boundary $< --cells $(@D) --settings $(SWEEP_SETTINGS) $(SWEEP_GRID_FLAG) -o $@
+-include $(SWEEP_DIR)/boundary.mk
+SWEEP_BOUNDARY_SOLUTIONS := $(foreach b,$(SWEEP_BOUNDARY),$(SWEEP_DIR)/$(b)/solution.json)
+SWEEP_CELLS :=
+$(SWEEP_DIR)/cells.mk: $(SWEEP_SOURCES) $(SWEEP_DIR)/boundary.mk $(SWEEP_BOUNDARY_SOLUTIONS) $(call TOOL_STAMP,score)
+	@mkdir -p $(@D)
+	$(BIN)/helios-score --sweep-cells $< --cells $(@D) $(SWEEP_GRID_FLAG) -o $@
 -include $(SWEEP_DIR)/cells.mk
 SWEEP_SOLUTIONS := $(foreach c,$(SWEEP_CELLS),$(SWEEP_DIR)/$(c)/solution.json)
-# A cell's artifacts are kept (make would delete them as intermediate, and redo the cell).
-.SECONDARY: $(foreach c,$(SWEEP_CELLS),$(addprefix $(SWEEP_DIR)/$(c)/,problem.txt spec.json derivation.json verify.json shoot.cpp))
+# A cell's and a boundary's artifacts are kept (make would delete them as intermediate, and redo them).
+.SECONDARY: $(foreach c,$(SWEEP_CELLS) $(SWEEP_BOUNDARY),$(addprefix $(SWEEP_DIR)/$(c)/,problem.txt spec.json derivation.json verify.json shoot.cpp))
 
 $(SWEEP_DIR)/%/spec.json: $(SWEEP_DIR)/%/problem.txt $(call TOOL_STAMP,parse)
 	$(BIN)/helios-parse --backend builtin $< -o $@
 
+# A boundary's solve: its own settings (the sweep's without the search budget), always cold.
+$(SWEEP_BOUNDARY_SOLUTIONS): $(SWEEP_DIR)/%/solution.json: $(SWEEP_DIR)/%/shoot.cpp $(SWEEP_DIR)/boundary.mk \
+                             $(call TOOL_STAMP,solve)
+	$(LAUNCH) $(BIN)/helios-solve --backend builtin $< --settings $(@D)/settings.json --cache-dir $(CACHE) \
+	  --time-limit $(SOLVE_TIME_LIMIT) --quiet --trajectory $(@D)/trajectory.csv -o $@
+
 # A cell's solve, warm from its neighbour's solution.json when the chain gives it one.
-$(SWEEP_SOLUTIONS): $(SWEEP_DIR)/%/solution.json: $(SWEEP_DIR)/%/shoot.cpp $(SCENARIOS_DIR)/$(sweep)/settings.json \
-                    $(call TOOL_STAMP,solve)
-	$(LAUNCH) $(BIN)/helios-solve --backend builtin $< --settings $(SCENARIOS_DIR)/$(sweep)/settings.json --cache-dir $(CACHE) \
+$(SWEEP_SOLUTIONS): $(SWEEP_DIR)/%/solution.json: $(SWEEP_DIR)/%/shoot.cpp $(SWEEP_SETTINGS) $(call TOOL_STAMP,solve)
+	$(LAUNCH) $(BIN)/helios-solve --backend builtin $< --settings $(SWEEP_SETTINGS) --cache-dir $(CACHE) \
 	  --time-limit $(SOLVE_TIME_LIMIT) --quiet $(if $(and $(filter warm,$(SWEEP_START)),$(SWEEP_WARM_$*)),--warm-start $(SWEEP_DIR)/$(SWEEP_WARM_$*)/solution.json) \
 	  --trajectory $(@D)/trajectory.csv -o $@
 
+# Every cell re-solved warm from its converged neighbours until none improves.
+$(SWEEP_DIR)/crosscheck.json: $(SWEEP_DIR)/cells.mk $(SWEEP_SOLUTIONS) $(call TOOL_STAMP,score) $(call TOOL_STAMP,solve)
+	$(BIN)/helios-score --sweep-crosscheck $(SCENARIOS_DIR)/$(sweep)/sweep.json --cells $(@D) --settings $(SWEEP_SETTINGS) \
+	  --cache-dir $(CACHE) --solver $(BIN)/helios-solve --jobs $(SWEEP_JOBS) --time-limit $(SOLVE_TIME_LIMIT) \
+	  $(if $(LAUNCH),--launch "$(LAUNCH)") $(SWEEP_GRID_FLAG) -o $@
+
 # porkchop.png is drawn before sweep.csv, which marks the sweep done.
-$(SWEEP_DIR)/sweep.csv: $(SCENARIOS_DIR)/$(sweep)/sweep.json $(SWEEP_DIR)/cells.mk $(SWEEP_SOLUTIONS) $(call TOOL_STAMP,score)
-	$(BIN)/helios-score --sweep $< --cells $(@D) $(if $(SWEEP_GRID),--grid $(SWEEP_GRID)) \
+$(SWEEP_DIR)/sweep.csv: $(SWEEP_SOURCES) $(SWEEP_DIR)/cells.mk $(SWEEP_SOLUTIONS) $(SWEEP_DIR)/crosscheck.json \
+                        $(call TOOL_STAMP,score)
+	$(BIN)/helios-score --sweep $< --cells $(@D) --crosscheck $(@D)/crosscheck.json $(SWEEP_GRID_FLAG) \
 	  --porkchop $(@D)/porkchop.png -o $@
 sweep: $(SWEEP_DIR)/sweep.csv
 else

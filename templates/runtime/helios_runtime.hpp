@@ -140,6 +140,9 @@ struct Settings {
   // A neighbour's converged shooting variables at eps = 0 (a sweep's cell, helios-solve
   // --warm-start), in kProblem.variable_names' order; empty: a cold start (the global search).
   std::vector<double> warm_start;
+  // With a warm start: return the warm solve's result even when it fails, with no search (a
+  // sweep's cross-check of a cell from a neighbour asks only what that neighbour's extremal reaches).
+  bool warm_only = false;
 };
 
 // Seconds since the program's first call.

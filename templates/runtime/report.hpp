@@ -63,7 +63,10 @@ inline Settings read_settings(const std::string& path) {
   s.search_tol = j.value("search_integrator_tol", s.search_tol);
   s.node_spacing_days = j.value("node_spacing_days", s.node_spacing_days);
   s.jacobian = j.value("jacobian", s.jacobian);
-  if (j.contains("warm_start")) s.warm_start = warm_start_of(j.at("warm_start"));
+  if (j.contains("warm_start")) {
+    s.warm_start = warm_start_of(j.at("warm_start"));
+    s.warm_only = j.at("warm_start").value("only", false);
+  }
   return s;
 }
 

@@ -640,13 +640,14 @@ Result warm_solve(const Settings& s, Admissible& admissible) {
 
 // Problems without interior events: the global search (MultiStart). `initial_guess(rng, x)` draws
 // a start.
-// With a warm start (a sweep's converged neighbour) the search runs only when the warm solve fails.
+// With a warm start (a sweep's converged neighbour) the search runs only when the warm solve fails
+// and the settings allow it (not warm_only).
 Result homotopy_solve(const Settings& s, const Guess& initial_guess, const Admissible& admissible) {
   const Settings coarse = search_settings(s);
   if (s.warm_start.empty())
     return MultiStart<const Guess, const Admissible>(s, coarse, initial_guess, admissible).solve();
   Result warm = warm_solve(s, admissible);
-  if (warm.status == "converged") return warm;
+  if (warm.status == "converged" || s.warm_only) return warm;
   Result r = MultiStart<const Guess, const Admissible>(s, coarse, initial_guess, admissible).solve();
   r.start = "cold-after-warm-failed";
   r.start_detail = warm.detail;

@@ -1,8 +1,10 @@
 #!/usr/bin/env bats
-# Launch-window sweeps (issue 17): make sweep sweep=P01 on its small CI grid (3 departures x 3
-# times of flight): sweep.csv and porkchop.png, the chains' warm starts, a second make that does
-# nothing, a killed sweep that resumes without redoing a cell, and helios-solve --warm-start's
-# refusals. Runs go to private RUNS_ROOTs under $BATS_FILE_TMPDIR.
+# Launch-window sweeps (tools/lib/src/score/SWEEPS.md): make sweep sweep=P01 on its small CI grid
+# (3 departures x 3 times of flight): each departure's minimum-time boundary, sweep.csv and
+# porkchop.png, the chains' warm starts, the neighbour cross-check, a cell below its boundary
+# called infeasible and not solved, a second make that does nothing, a killed sweep that resumes
+# without redoing a cell, and helios-solve --warm-start's refusals. Runs go to private RUNS_ROOTs
+# under $BATS_FILE_TMPDIR.
 
 load test_helper
 
@@ -23,10 +25,10 @@ CELLS=(d9700_t300 d9700_t350 d9700_t400 d9740_t300 d9740_t350 d9740_t400 d9780_t
   run -0 sweep_make "$RUNS"
   local dir="$RUNS/builtin/P01"
   [[ -s $dir/sweep.csv ]]
-  [[ $(head -n 1 "$dir/sweep.csv") == "departure_mjd2000,tof_days,cell,status,propellant_kg,max_residual,start" ]]
+  [[ $(head -n 1 "$dir/sweep.csv") == "departure_mjd2000,tof_days,cell,status,propellant_kg,max_residual,start,answer_from,extremals_compared,t_min_days,boundary_saturated" ]]
   [[ $(tail -n +2 "$dir/sweep.csv" | wc -l) -eq 9 ]]
-  local cell dep tof name status objective residual start
-  while IFS=, read -r dep tof name status objective residual start; do
+  local cell dep tof name status objective residual start from compared t_min saturated
+  while IFS=, read -r dep tof name status objective residual start from compared t_min saturated; do
     [[ $name == "d${dep}_t${tof}" ]] || { echo "row $name is not d${dep}_t${tof}" >&2; false; }
     [[ $status == converged ]] || { echo "$name: $status" >&2; false; }
     # Earth -> Mars at 0.5 N, Isp 2000 s, 1000 kg: some hundred kg of propellant, a tight residual.
@@ -44,8 +46,59 @@ CELLS=(d9700_t300 d9700_t350 d9700_t400 d9740_t300 d9740_t350 d9740_t400 d9780_t
     # The cell's problem text is the template's with the swept values.
     grep -qx "The spacecraft departs at MJD2000 $dep from Earth." "$dir/$name/problem.txt"
     grep -qx "The time of flight is $tof days." "$dir/$name/problem.txt"
+    # Every cell is above its departure's boundary: the minimum-time transfer of the same problem,
+    # solved to a saturated search (0.5 N Earth -> Mars: some 250-300 days in this window).
+    awk -v t="$t_min" -v f="$tof" 'BEGIN { exit !(t > 240 && t < 300 && t <= f) }' ||
+      { echo "$name: t_min $t_min" >&2; false; }
+    [[ $saturated == true && $from == own && $compared -ge 1 ]] || { echo "$name: $from $compared $saturated" >&2; false; }
   done < <(tail -n +2 "$dir/sweep.csv")
   [[ $(head -c 8 "$dir/porkchop.png" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]]
+  # The boundary's problem: the template's with the time of flight free and minimized.
+  grep -qx "The spacecraft departs at MJD2000 9740 from Earth." "$dir/b9740/problem.txt"
+  grep -qx "The time of flight is free, between 50 days and 700 days." "$dir/b9740/problem.txt"
+  grep -qx "Minimize the time of flight." "$dir/b9740/problem.txt"
+  assert_jq "$dir/b9740/solution.json" '.status == "converged" and .search.saturated and .max_residual < 1e-9'
+  assert_jq "$dir/b9740/settings.json" 'has("search_starts") | not'
+}
+
+@test "sweep: the cross-check re-solves each cell from its converged neighbours and keeps the best" {
+  run -0 sweep_make "$RUNS"
+  local dir="$RUNS/builtin/P01"
+  assert_jq "$dir/crosscheck.json" '.schema == "helios/sweep-crosscheck" and .saturated and .rounds >= 1 and (.cells | length) == 9'
+  # Round 1 tries every cell from each of its grid neighbours (all converged): 24 tries on 3 x 3.
+  assert_jq "$dir/crosscheck.json" '[.cells[].tried[] | select(.round == 1)] | length == 24'
+  # A cell's answer is never worse than any converged try from a neighbour (1e-9 relative).
+  assert_jq "$dir/crosscheck.json" '[.cells[] | .propellant_kg as $m | .tried[] | select(.status == "converged")
+    | .propellant_kg >= $m * (1 - 1e-9)] | all'
+  # sweep.csv reports each cell's answer: the objective and where it came from.
+  local name objective from
+  while IFS=, read -r name objective from; do
+    assert_jq "$dir/crosscheck.json" ".cells[\"$name\"] | .answer_from == \"$from\" and ((.propellant_kg - $objective) | fabs) <= 1e-6"
+  done < <(tail -n +2 "$dir/sweep.csv" | cut -d, -f3,5,8)
+  # The tries ran warm only: no search.
+  local f
+  for f in "$dir"/*/crosscheck/*/solution.json; do
+    assert_jq "$f" '.start == "warm" and (.search.starts // 0) == 0'
+  done
+}
+
+@test "sweep: a cell below its departure's minimum time is infeasible, with the t_min that proves it, and not solved" {
+  local scenarios="$BATS_TEST_TMPDIR/scenarios" runs="$BATS_TEST_TMPDIR/runs"
+  mkdir -p "$scenarios"
+  cp -r "$ROOT/scenarios/P01" "$scenarios/P01"
+  cat >"$scenarios/P01/sweep.json" <<'JSON'
+{"departure_mjd2000": {"values": [9700]}, "tof_days": {"values": [250, 300]},
+ "boundary": {"tof_min_days": 50, "tof_max_days": 700}}
+JSON
+  run -0 sweep_make "$runs" SCENARIOS_DIR="$scenarios"
+  local dir="$runs/builtin/P01"
+  cat "$dir/sweep.csv" >&2
+  [[ $(sed -n 2p "$dir/sweep.csv" | cut -d, -f3,4) == d9700_t250,infeasible ]]
+  [[ $(sed -n 3p "$dir/sweep.csv" | cut -d, -f3,4) == d9700_t300,converged ]]
+  # t_min (0.5 N, 2000 s, 1000 kg, Earth -> Mars from MJD2000 9700) lies between the two cells.
+  awk -F, 'NR == 2 { exit !($10 > 250 && $10 < 300 && $11 == "true") }' "$dir/sweep.csv"
+  [[ ! -e $dir/d9700_t250 ]]
+  [[ -s $dir/porkchop.png ]]
 }
 
 @test "sweep: a second make does nothing" {
@@ -75,14 +128,14 @@ CELLS=(d9700_t300 d9700_t350 d9700_t400 d9740_t300 d9740_t350 d9740_t400 d9780_t
   setsid bash -c 'sweep_make "$1" >"$2" 2>&1' _ "$runs" "$BATS_TEST_TMPDIR/first.log" &
   local pid=$! i n=0
   for ((i = 0; i < 1200; i++)); do
-    n=$(compgen -G "$dir/*/solution.json" | wc -l)
+    n=$(compgen -G "$dir/d*/solution.json" | wc -l)
     ((n >= 2)) && break
     kill -0 "$pid" 2>/dev/null || break
     sleep 0.05
   done
   kill -TERM -- "-$pid" 2>/dev/null || true
   wait "$pid" || true
-  n=$(compgen -G "$dir/*/solution.json" | wc -l)
+  n=$(compgen -G "$dir/d*/solution.json" | wc -l)
   echo "# killed with $n of 9 cells solved" >&3
   ((n >= 1 && n < 9)) || { echo "the kill came at $n cells: $(cat "$BATS_TEST_TMPDIR/first.log")" >&2; false; }
   [[ ! -e $dir/sweep.csv ]]
@@ -98,7 +151,8 @@ CELLS=(d9700_t300 d9700_t350 d9700_t400 d9740_t300 d9740_t350 d9740_t400 d9780_t
   while read -r f t; do
     [[ $(stat -c %Y "$f") == "$t" ]] || { echo "$f was redone" >&2; false; }
   done <<<"$before"
-  [[ $(compgen -G "$dir/*/solution.json" | wc -l) -eq 9 ]]
+  [[ $(compgen -G "$dir/d*/solution.json" | wc -l) -eq 9 ]]
+  [[ $(compgen -G "$dir/b*/solution.json" | wc -l) -eq 3 ]]
   [[ $(tail -n +2 "$dir/sweep.csv" | cut -d, -f4 | sort -u) == converged ]]
 }
 

@@ -9,10 +9,12 @@ bench: $(TOOLS_STAMP) bench-sweep bench-search
 bench-search: $(TOOLS_STAMP)
 	tests/bench/search_audit.sh
 
-# The finer P01 grid (sweep.json's "bench"), with warm starts then every cell cold, each timed
-# (into RUNS_ROOT's P01-bench and P01-bench-cold: a finished grid is not redone).
+# The finer P01 grid (sweep.json's "bench"), with warm starts then every cell cold, each from an
+# empty compile cache in a fresh runs folder, timed; tests/bench/sweep_summary.sh prints its figures.
 bench-sweep: $(TOOLS_STAMP)
-	@for start in warm cold; do t0=$$(date +%s.%N); \
-	  $(MAKE) --no-print-directory sweep sweep=P01 SWEEP_GRID=bench SWEEP_START=$$start >/dev/null; \
-	  echo "bench-sweep: P01 bench grid, $$start starts: $$(echo "$$(date +%s.%N) - $$t0" | bc) s wall"; \
-	  tail -n +2 $(RUNS)/P01-bench$$([[ $$start == cold ]] && echo -cold)/sweep.csv | cut -d, -f4,7 | sort | uniq -c; done
+	@for start in warm cold; do runs=$$(mktemp -d); t0=$$(date +%s.%N); \
+	  $(MAKE) --no-print-directory sweep sweep=P01 SWEEP_GRID=bench SWEEP_START=$$start RUNS_ROOT=$$runs >/dev/null; \
+	  wall=$$(echo "$$(date +%s.%N) - $$t0" | bc); \
+	  echo "bench-sweep: P01 bench grid, $$start starts, empty compile cache: $$wall s wall"; \
+	  tests/bench/sweep_summary.sh $$runs/$(BACKEND)/P01-bench$$([[ $$start == cold ]] && echo -cold) $$wall; \
+	  rm -rf $$runs; done

@@ -291,6 +291,16 @@ sweep_case tof-zero '{"departure_mjd2000": {"values": [9700]}, "tof_days": {"val
 sweep_case tof-millennium '{"departure_mjd2000": {"values": [9700]}, "tof_days": {"values": [365250]}}' 3 'sweep.json: field /tof_days: 365250 is above'
 sweep_case step-tiny '{"departure_mjd2000": {"start": 0, "stop": 1, "step": 1e-300}, "tof_days": {"values": [300]}}' \
   3 'sweep.json: field /departure_mjd2000/step: more than 1000 values'
+sweep_case boundary-short '{"departure_mjd2000": {"values": [9700]}, "tof_days": {"values": [300]}, "boundary": {"tof_max_days": 100}}' \
+  3 'sweep.json: field /boundary/tof_max_days: 100 must be at least the longest time of flight 300'
+sweep_case boundary-nan '{"departure_mjd2000": {"values": [9700]}, "tof_days": {"values": [300]}, "boundary": {"tof_min_days": "x"}}' \
+  3 'sweep.json: field /boundary/tof_min_days: missing or not a number'
+# A template whose objective the boundary cannot replace: refused, naming the template.
+case_dir score-sweep-boundary-no-objective
+echo '{"departure_mjd2000": {"values": [9700]}, "tof_days": {"values": [300]}}' >sweep.json
+grep -v '^Minimize' "$ROOT/scenarios/P01/problem.txt" >problem.txt; echo '{}' >settings.json
+expect 3 "problem.txt: the sweep's boundary .its minimum-time form.: the template must state its objective in exactly one sentence" \
+  score --sweep-boundary sweep.json --cells cells --settings settings.json
 
 # ---- helios-score --oem: trajectory.csv and the run it belongs to ---------------------------
 

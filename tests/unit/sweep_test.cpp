@@ -19,6 +19,7 @@ const json kSweep = json::parse(R"({
   "departure_mjd2000": {"start": 9700, "stop": 9780, "step": 40},
   "tof_days": {"start": 300, "stop": 400, "count": 3},
   "plot": "propellant_kg",
+  "boundary": false,
   "bench": {"departure_mjd2000": {"values": [1, 2.5]}, "tof_days": {"start": 0.1, "stop": 0.3, "step": 0.1}}
 })");
 
@@ -92,14 +93,174 @@ TEST(SweepCells, ProblemTextsAndFragment) {
   helios::io::write_text_atomic((dir / "d9700_t350" / "solution.json").string(),
                                 R"({"status": "not_converged", "start": "cold-after-warm-failed"})");
   const std::string csv = sweep_csv(g, sweep_rows(g, dir.string()));
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "departure_mjd2000,tof_days,cell,status,propellant_kg,max_residual,start");
-  EXPECT_NE(csv.find("\n9700,300,d9700_t300,converged,123.5,1.000e-12,cold\n"), std::string::npos) << csv;
-  EXPECT_NE(csv.find("\n9700,350,d9700_t350,not_converged,,,cold-after-warm-failed\n"), std::string::npos) << csv;
-  EXPECT_NE(csv.find("\n9780,400,d9780_t400,missing,,,\n"), std::string::npos) << csv;
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "departure_mjd2000,tof_days,cell,status,propellant_kg,max_residual,start,answer_from,extremals_compared,"
+            "t_min_days,boundary_saturated");
+  EXPECT_NE(csv.find("\n9700,300,d9700_t300,converged,123.5,1.000e-12,cold,own,1,,\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n9700,350,d9700_t350,not_converged,,,cold-after-warm-failed,,,,\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n9780,400,d9780_t400,missing,,,,,,,\n"), std::string::npos) << csv;
   // A converged solution without the plotted key is refused.
   helios::io::write_text_atomic((dir / "d9700_t300" / "solution.json").string(), R"({"status": "converged"})");
   EXPECT_THROW(sweep_rows(g, dir.string()), input_error);
   fs::remove_all(dir);
+}
+
+// A sweep's folder under the test's temporary directory, removed at the end.
+struct SweepDir {
+  fs::path path = fs::temp_directory_path() / ("helios-sweep-test-" + std::to_string(::getpid()) + "-" +
+                                               ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  SweepDir() { fs::remove_all(path); fs::create_directories(path); }
+  ~SweepDir() { fs::remove_all(path); }
+  void write(const std::string& file, const std::string& text) const {
+    fs::create_directories((path / file).parent_path());
+    helios::io::write_text_atomic((path / file).string(), text);
+  }
+};
+
+const std::string kTemplate =
+    "# a comment. With a sentence end.\n"
+    "Problem P99: Earth to Mars.\n"
+    "The central body is the Sun with gravitational parameter 1.32712440018e11 km^3/s^2.\n"
+    "The spacecraft has a maximum thrust of 0.5 N, a specific impulse of 2000 s and an initial mass of 1000 kg.\n"
+    "The spacecraft departs at MJD2000 @DEPARTURE_MJD2000@ from Earth. The time of flight is @TOF_DAYS@ days.\n"
+    "At the final time the spacecraft rendezvouses with Mars.\n"
+    "Minimize the fuel consumption.\n";
+
+TEST(SweepBoundary, WindowFromTheGridOrStated) {
+  json j = kSweep;
+  j.erase("boundary");
+  const SweepGrid g = read_sweep(j, "s");
+  EXPECT_TRUE(g.boundary);
+  EXPECT_EQ(g.boundary_tof_min_days, 75);
+  EXPECT_EQ(g.boundary_tof_max_days, 800);
+  j["boundary"] = {{"tof_min_days", 50}, {"tof_max_days", 700}};
+  EXPECT_EQ(read_sweep(j, "s").boundary_tof_max_days, 700);
+  EXPECT_FALSE(read_sweep(kSweep, "s").boundary);
+  for (const json& bad : {json{{"tof_min_days", 301}}, json{{"tof_max_days", 399}}, json{{"tof_min_days", 0}},
+                          json{{"tmin", 1}}, json(true), json("no")}) {
+    j["boundary"] = bad;
+    try {
+      read_sweep(j, "P01/sweep.json");
+      ADD_FAILURE() << bad.dump() << " accepted";
+    } catch (const input_error& e) {
+      EXPECT_NE(std::string(e.what()).find("P01/sweep.json: field /boundary"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(SweepBoundary, TheTemplatesProblemInMinimumTime) {
+  json j = kSweep;
+  j["boundary"] = {{"tof_min_days", 50}, {"tof_max_days", 700}};
+  const SweepGrid g = read_sweep(j, "s");
+  const std::string text = boundary_problem(g, kTemplate, "P99/problem.txt", 9740);
+  EXPECT_EQ(text,
+            "# a comment. With a sentence end.\n"
+            "Problem P99: Earth to Mars.\n"
+            "The central body is the Sun with gravitational parameter 1.32712440018e11 km^3/s^2.\n"
+            "The spacecraft has a maximum thrust of 0.5 N, a specific impulse of 2000 s and an initial mass of 1000 "
+            "kg.\n"
+            "The spacecraft departs at MJD2000 9740 from Earth. The time of flight is free, between 50 days and 700 "
+            "days.\n"
+            "At the final time the spacecraft rendezvouses with Mars.\n"
+            "Minimize the time of flight.\n");
+  EXPECT_EQ(boundary_name(9740), "b9740");
+  // No objective sentence, two of them, an objective already minimum time: refused, naming the template.
+  for (const std::string& bad :
+       {std::string(kTemplate).replace(kTemplate.find("Minimize the fuel consumption."), 30, ""),
+        kTemplate + "Minimize the propellant mass.\n",
+        std::string(kTemplate).replace(kTemplate.find("Minimize the fuel consumption."), 30,
+                                       "Minimize the time of flight.")}) {
+    try {
+      boundary_problem(g, bad, "P99/problem.txt", 9740);
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const input_error& e) {
+      EXPECT_NE(std::string(e.what()).find("P99/problem.txt: the sweep's boundary"), std::string::npos) << e.what();
+    }
+  }
+  // The boundary's settings: the sweep's without its search budget.
+  EXPECT_EQ(boundary_settings(json{{"seed", 1}, {"search_starts", 16}, {"max_attempts", 64}}), json({{"seed", 1}}));
+}
+
+TEST(SweepBoundary, CellsBelowItAreInfeasibleAndNotSolved) {
+  const SweepDir dir;
+  json j = kSweep;
+  j["boundary"] = {{"tof_min_days", 50}, {"tof_max_days", 700}};
+  const SweepGrid g = read_sweep(j, "s");
+  const std::string fragment = write_sweep_boundary(g, kTemplate, "t", json{{"seed", 1}}, dir.path.string());
+  EXPECT_NE(fragment.find("SWEEP_BOUNDARY := b9700 b9740 b9780\n"), std::string::npos) << fragment;
+  EXPECT_TRUE(fs::exists(dir.path / "b9740" / "settings.json"));
+  // While a boundary is missing, no cell.
+  EXPECT_TRUE(feasible_cells(g, dir.path.string()).empty());
+  EXPECT_EQ(write_sweep_cells(g, kTemplate, "t", dir.path.string()).find("SWEEP_CELLS :=\n") != std::string::npos, true);
+  // t_min 320 d at 9700: its 300-day cell is infeasible, the row starts cold at 350; 9740 failed
+  // (every cell solved); 9780's t_min is a grid value: that cell is feasible.
+  dir.write("b9700/solution.json",
+            R"({"status": "converged", "tof_days": 320, "search": {"saturated": true, "starts": 128, "extremals": [{}, {}]}})");
+  dir.write("b9740/solution.json", R"({"status": "not_converged"})");
+  dir.write("b9780/solution.json", R"({"status": "converged", "tof_days": 300.0000000001})");
+  const auto cells = feasible_cells(g, dir.path.string());
+  ASSERT_EQ(cells.size(), 8u);
+  EXPECT_EQ(cells[0].name, "d9700_t350");
+  EXPECT_EQ(cells[0].warm_from, "");
+  EXPECT_EQ(cells[1].warm_from, "d9700_t350");
+  EXPECT_EQ(cells[2].name, "d9740_t300");
+  EXPECT_EQ(cells[5].name, "d9780_t300");
+  write_sweep_cells(g, kTemplate, "t", dir.path.string());
+  EXPECT_FALSE(fs::exists(dir.path / "d9700_t300"));
+  const auto rows = sweep_rows(g, dir.path.string());
+  EXPECT_EQ(rows[0].status, "infeasible");
+  EXPECT_EQ(rows[0].boundary.t_min_days, 320);
+  EXPECT_TRUE(rows[0].boundary.saturated);
+  EXPECT_EQ(rows[0].boundary.extremals, 2);
+  EXPECT_EQ(rows[1].status, "missing");
+  const std::string csv = sweep_csv(g, rows);
+  EXPECT_NE(csv.find("\n9700,300,d9700_t300,infeasible,,,,,,320,true\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n9740,300,d9740_t300,missing,,,,,,,\n"), std::string::npos) << csv;
+}
+
+// The cross-check's rounds with a stand-in solver: a try's objective is its neighbour answer's
+// plus 10 kg (continuation loses a little), so an answer spreads only to worse or missing cells.
+TEST(SweepCrosscheck, ImprovesUntilNoCellDoesAndResumes) {
+  const SweepDir dir;
+  const SweepGrid g = read_sweep(json::parse(R"({"departure_mjd2000": {"values": [1]},
+      "tof_days": {"values": [10, 20, 30]}, "boundary": false})"), "s");
+  for (const char* cell : {"d1_t10", "d1_t20", "d1_t30"}) dir.write(std::string(cell) + "/shoot.cpp", "");
+  dir.write("d1_t10/solution.json", R"({"status": "converged", "propellant_kg": 100})");
+  dir.write("d1_t20/solution.json", R"({"status": "converged", "propellant_kg": 200})");
+  dir.write("d1_t30/solution.json", R"({"status": "not_converged"})");
+  dir.write("solver.sh",
+            "#!/bin/sh\n"
+            "while [ $# -gt 0 ]; do case $1 in --warm-start) from=$2; shift;; -o) out=$2; shift;; esac; shift; done\n"
+            "m=$(sed -n 's/.*\"propellant_kg\": *\\([0-9.]*\\).*/\\1/p' \"$from\")\n"
+            "printf '{\"status\": \"converged\", \"propellant_kg\": %s, \"warm_start\": {\"from\": \"%s\"}}' "
+            "$((m + 10)) \"$from\" >\"$out\"\n");
+  fs::permissions(dir.path / "solver.sh", fs::perms::owner_all);
+  CrosscheckOptions o;
+  o.solver = (dir.path / "solver.sh").string();
+  o.jobs = 2;
+  const json first = crosscheck(g, dir.path.string(), o);
+  EXPECT_EQ(first.at("rounds"), 3) << first.dump(1);
+  EXPECT_EQ(first.at("runs"), 7);
+  EXPECT_EQ(first.at("improved"), json({"d1_t20", "d1_t30"}));
+  const json& cells = first.at("cells");
+  EXPECT_EQ(cells.at("d1_t10").at("answer_from"), "own");
+  EXPECT_EQ(cells.at("d1_t10").at("propellant_kg"), 100);
+  EXPECT_EQ(cells.at("d1_t20").at("answer_from"), "d1_t10");
+  EXPECT_EQ(cells.at("d1_t20").at("propellant_kg"), 110);
+  EXPECT_EQ(cells.at("d1_t20").at("answer"), "d1_t20/crosscheck/r1_from_d1_t10/solution.json");
+  EXPECT_EQ(cells.at("d1_t30").at("answer_from"), "d1_t20");
+  EXPECT_EQ(cells.at("d1_t30").at("propellant_kg"), 120);
+  // d1_t20 compared its own 200 kg, 110 from d1_t10, and 220 and 130 from d1_t30's two answers.
+  EXPECT_EQ(cells.at("d1_t20").at("extremals_compared"), 4);
+  EXPECT_EQ(cells.at("d1_t20").at("tried").size(), 3u);
+  const auto rows = sweep_rows(g, dir.path.string(), first);
+  EXPECT_EQ(rows[2].status, "converged");
+  EXPECT_EQ(rows[2].objective, 120);
+  EXPECT_EQ(rows[2].answer_from, "d1_t20");
+  // A second cross-check reuses every try on disk.
+  const json second = crosscheck(g, dir.path.string(), o);
+  EXPECT_EQ(second.at("runs"), 0);
+  EXPECT_EQ(second.at("cells"), cells);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "helios/io/cli.hpp"
@@ -83,10 +84,38 @@ int sweep_cells(const Args& args) {
   return 0;
 }
 
+int sweep_boundary(const Args& args) {
+  const std::string sweep_path = args.get("sweep-boundary");
+  const score::SweepGrid grid = sweep_grid(args, sweep_path);
+  const std::string template_path = (std::filesystem::path(sweep_path).parent_path() / grid.template_file).string();
+  const std::string fragment =
+      score::write_sweep_boundary(grid, helios::io::read_text(template_path), template_path,
+                                  helios::io::read_json(args.get("settings")), args.get("cells"));
+  helios::io::write_text_atomic(args.output, fragment);
+  return 0;
+}
+
+int sweep_crosscheck(const Args& args) {
+  const std::string sweep_path = args.get("sweep-crosscheck");
+  score::CrosscheckOptions o;
+  o.solver = args.get("solver");
+  o.settings = args.get("settings");
+  o.cache_dir = args.get("cache-dir");
+  std::istringstream launch(args.get("launch"));
+  for (std::string word; launch >> word;) o.launch.push_back(word);
+  o.time_limit_s = helios::cli::positive_option(args, "time-limit");
+  o.jobs = static_cast<int>(helios::cli::positive_option(args, "jobs"));
+  const auto doc = score::crosscheck(sweep_grid(args, sweep_path), args.get("cells"), o);
+  helios::io::write_text_atomic(args.output, doc.dump(2) + "\n");
+  return 0;
+}
+
 int sweep(const Args& args) {
   const std::string sweep_path = args.get("sweep");
   const score::SweepGrid grid = sweep_grid(args, sweep_path);
-  const std::vector<score::SweepRow> rows = score::sweep_rows(grid, args.get("cells"));
+  const std::vector<score::SweepRow> rows = score::sweep_rows(
+      grid, args.get("cells"),
+      args.has("crosscheck") ? helios::io::read_json(args.get("crosscheck")) : helios::io::json(nullptr));
   if (args.has("porkchop"))
     score::porkchop_png(grid, rows, args.get("porkchop"),
                         std::filesystem::path(sweep_path).parent_path().filename().string());
@@ -115,7 +144,10 @@ const std::vector<helios::cli::Mode>& jobs() {
          return 0;
        }},
       {"sweep-cells", {"cells"}, {"grid"}, sweep_cells},
-      {"sweep", {"cells"}, {"grid", "porkchop"}, sweep},
+      {"sweep-boundary", {"cells", "settings"}, {"grid"}, sweep_boundary},
+      {"sweep-crosscheck", {"cells", "settings", "cache-dir", "solver"}, {"grid", "launch", "jobs", "time-limit"},
+       sweep_crosscheck},
+      {"sweep", {"cells"}, {"grid", "porkchop", "crosscheck"}, sweep},
   };
   return modes;
 }
@@ -130,8 +162,12 @@ int main(int argc, char** argv) {
       "       helios-score --scoreboard DIR [options]\n"
       "       helios-score --oem --spec F --solution F --trajectory F.csv [options]\n"
       "       helios-score --report --problem F.txt --spec F --derivation F [--verify F] [--solution F] [options]\n"
+      "       helios-score --sweep-boundary SWEEP.json --cells DIR --settings F [--grid bench] -o DIR/boundary.mk\n"
       "       helios-score --sweep-cells SWEEP.json --cells DIR [--grid bench] -o DIR/cells.mk\n"
-      "       helios-score --sweep SWEEP.json --cells DIR [--grid bench] [--porkchop F.png] -o DIR/sweep.csv",
+      "       helios-score --sweep-crosscheck SWEEP.json --cells DIR --settings F --cache-dir D --solver BIN\n"
+      "                    [--launch WORDS] [--jobs N] [--time-limit S] [--grid bench] -o DIR/crosscheck.json\n"
+      "       helios-score --sweep SWEEP.json --cells DIR [--crosscheck F] [--grid bench] [--porkchop F.png]\n"
+      "                    -o DIR/sweep.csv",
       {{"reference", "", "FILE", "scenarios/SNN/reference.json to score against", ""},
        {"spec", "", "FILE", "spec.json of the run (omitted: d1 scores 0)", ""},
        {"derivation", "", "FILE", "derivation.json of the run (omitted: no shooting-variable points)", ""},
@@ -143,9 +179,20 @@ int main(int argc, char** argv) {
        {"trajectory", "", "FILE", "trajectory.csv of the run (with --oem)", ""},
        {"report", "", "", "write the run as report.md (the derivation as LaTeX mathematics) instead", ""},
        {"problem", "", "FILE", "problem.txt of the run (with --report)", ""},
-       {"sweep-cells", "", "FILE", "write a sweep's cell problem texts under --cells and its make fragment", ""},
+       {"sweep-boundary", "", "FILE", "write each departure's minimum-time problem under --cells and its make fragment",
+        ""},
+       {"sweep-cells", "", "FILE", "write a sweep's feasible cells' problem texts under --cells and their make fragment",
+        ""},
+       {"sweep-crosscheck", "", "FILE", "re-solve each cell warm from its converged neighbours, keep the best", ""},
+       {"settings", "", "FILE", "the sweep's solver settings (with --sweep-boundary, --sweep-crosscheck)", ""},
+       {"cache-dir", "", "DIR", "compiled programs (with --sweep-crosscheck)", ""},
+       {"solver", "", "FILE", "helios-solve (with --sweep-crosscheck)", ""},
+       {"launch", "", "WORDS", "a prefix of each cross-check solve, e.g. \"srun -n1 -c1\"", ""},
+       {"jobs", "", "N", "cross-check solves at a time", "2"},
+       {"time-limit", "", "SECONDS", "wall-clock limit of one cross-check solve", "900"},
+       {"crosscheck", "", "FILE", "crosscheck.json: each cell's best answer (with --sweep)", ""},
        {"sweep", "", "FILE", "write a sweep's sweep.csv (and --porkchop) from its cells' solution.json", ""},
-       {"cells", "", "DIR", "the sweep's run folder, one sub-folder per cell (with --sweep, --sweep-cells)", ""},
+       {"cells", "", "DIR", "the sweep's run folder, one sub-folder per cell (with the --sweep options)", ""},
        {"grid", "", "NAME", "a named grid of sweep.json (bench) instead of its top level", ""},
        {"porkchop", "", "FILE", "porkchop.png to draw with --sweep (gnuplot)", ""}},
       {},
@@ -165,10 +212,14 @@ int main(int argc, char** argv) {
       "With --report, writes the run as Markdown: the problem, the spec with units, the derivation as\n"
       "LaTeX mathematics in a compact exact form, verify's verdict beside each condition, the solution\n"
       "and its plots (verify and solution may be omitted: a report before verifying or solving).\n"
+      "With --sweep-boundary, writes DIR/b<epoch>/problem.txt and settings.json for each departure:\n"
+      "the template's problem with its time of flight free and minimized (the feasibility boundary).\n"
       "With --sweep-cells, writes DIR/<cell>/problem.txt for every cell d<epoch>_t<tof> of the sweep\n"
-      "(the template beside SWEEP.json with @DEPARTURE_MJD2000@ and @TOF_DAYS@ replaced; an unchanged\n"
-      "text is not rewritten) and the make fragment of the chains. With --sweep, writes sweep.csv\n"
-      "(one row per cell) and with --porkchop the contour plot of the objective.",
+      "not below its departure's boundary (the template beside SWEEP.json with @DEPARTURE_MJD2000@\n"
+      "and @TOF_DAYS@ replaced; an unchanged text is not rewritten) and the make fragment of the\n"
+      "chains. With --sweep-crosscheck, re-solves each cell warm from its converged neighbours' answers\n"
+      "until no cell improves (tools/lib/src/score/SWEEPS.md). With --sweep, writes sweep.csv (one\n"
+      "row per cell) and with --porkchop the contour plot of the objective.",
       "helios-score --reference scenarios/S01/reference.json --spec runs/builtin/S01/spec.json "
       "--derivation runs/builtin/S01/derivation.json --verify runs/builtin/S01/verify.json "
       "--solution runs/builtin/S01/solution.json -o runs/builtin/S01/score.json"};

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
        {"memory-limit", "", "MB", "address-space limit of the run", "4096"},
        {"warm-start", "", "FILE",
         "a neighbour's solution.json: its shooting variables are the first guess (a sweep's cell)", ""},
+       {"warm-only", "", "", "with --warm-start: no search when the warm solve fails (a sweep's cross-check)", ""},
        {"backend", "", "NAME", "backend label recorded in the solution (builtin or llm)", "builtin"},
        {"compile-only", "", "", "only compile (into the cache) and write a compile report instead", ""},
        {"quiet", "", "", "no progress lines on stderr", ""},
@@ -47,6 +48,9 @@ int main(int argc, char** argv) {
     o.plot_prefix = args.get("plots");
     o.cache_dir = args.get("cache-dir");
     o.warm_start_path = args.get("warm-start");
+    o.warm_only = args.has("warm-only");
+    if (o.warm_only && o.warm_start_path.empty())
+      throw helios::input_error("--warm-only: needs --warm-start");
     o.backend = helios::cli::backend_option(args, {"builtin", "llm"});
     o.time_limit_s = helios::cli::positive_option(args, "time-limit");
     o.memory_limit_mb = helios::cli::positive_option(args, "memory-limit");

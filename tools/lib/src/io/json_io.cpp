@@ -225,6 +225,14 @@ json read_json(const std::string& path) {
   return parse_json_text(read_text(path), path == "-" ? "<stdin>" : path);
 }
 
+void write_text_if_changed(const std::string& path, const std::string& text) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && read_text(path) == text) return;
+  if (const auto parent = std::filesystem::path(path).parent_path(); !parent.empty())
+    std::filesystem::create_directories(parent);
+  write_text_atomic(path, text);
+}
+
 void write_text_atomic(const std::string& path, const std::string& text) {
   if (path == "-") {
     std::cout << text << std::flush;

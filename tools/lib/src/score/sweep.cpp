@@ -85,6 +85,39 @@ std::vector<double> read_axis(const json& j, const std::string& source, const st
   return out;
 }
 
+// "boundary": false, or {tof_min_days, tof_max_days} (either may be left out), which must hold the
+// grid's times of flight.
+void read_boundary_window(const json& sweep, const std::string& source, SweepGrid& out) {
+  out.boundary_tof_min_days = micro(out.tofs_days.front() / 4);
+  out.boundary_tof_max_days = std::min(kLongestFlightDays, micro(2 * out.tofs_days.back()));
+  if (!sweep.contains("boundary")) return;
+  const json& b = sweep.at("boundary");
+  if (b == json(false)) {
+    out.boundary = false;
+    return;
+  }
+  if (!b.is_object()) bad(source, "boundary", "must be false or an object {tof_min_days, tof_max_days}");
+  for (auto it = b.begin(); it != b.end(); ++it)
+    if (it.key() != "tof_min_days" && it.key() != "tof_max_days")
+      bad(source, "boundary/" + it.key(), "not a boundary field (known: tof_min_days, tof_max_days)");
+  if (b.contains("tof_min_days")) out.boundary_tof_min_days = number_at(b, "tof_min_days", source, "boundary");
+  if (b.contains("tof_max_days")) out.boundary_tof_max_days = number_at(b, "tof_max_days", source, "boundary");
+  if (!(out.boundary_tof_min_days > 0) || out.boundary_tof_min_days > out.tofs_days.front())
+    bad(source, "boundary/tof_min_days",
+        io::short_number(out.boundary_tof_min_days) + " must be positive and at most the shortest time of flight " +
+            io::short_number(out.tofs_days.front()));
+  if (out.boundary_tof_max_days < out.tofs_days.back() || out.boundary_tof_max_days > kLongestFlightDays)
+    bad(source, "boundary/tof_max_days",
+        io::short_number(out.boundary_tof_max_days) + " must be at least the longest time of flight " +
+            io::short_number(out.tofs_days.back()) + " and at most " + io::short_number(kLongestFlightDays));
+}
+
+// A plot axis over the grid's values: [first:last], or a day either side of a single value.
+std::string axis_range(const std::vector<double>& values) {
+  const double pad = values.front() == values.back() ? 1 : 0;
+  return "[" + number_text(values.front() - pad) + ":" + number_text(values.back() + pad) + "]";
+}
+
 std::string replace_all(std::string text, const std::string& what, const std::string& with) {
   for (std::size_t at = 0; (at = text.find(what, at)) != std::string::npos; at += with.size())
     text.replace(at, what.size(), with);
@@ -106,10 +139,10 @@ std::string number_text(double value) {
 SweepGrid read_sweep(const json& sweep, const std::string& source, const std::string& grid) {
   if (!sweep.is_object()) throw input_error(source + ": a sweep must be a JSON object");
   static const std::vector<std::string> known = {"template", "departure_mjd2000", "tof_days", "plot",
-                                                 "bench",    "description"};
+                                                 "bench",    "boundary",          "description"};
   for (auto it = sweep.begin(); it != sweep.end(); ++it)
     if (std::find(known.begin(), known.end(), it.key()) == known.end())
-      bad(source, it.key(), "not a sweep field (known: template, departure_mjd2000, tof_days, plot, bench)");
+      bad(source, it.key(), "not a sweep field (known: template, departure_mjd2000, tof_days, plot, bench, boundary)");
   SweepGrid out;
   if (sweep.contains("template")) {
     if (!sweep.at("template").is_string() || sweep.at("template").get<std::string>().empty() ||
@@ -140,6 +173,7 @@ SweepGrid read_sweep(const json& sweep, const std::string& source, const std::st
   if (cells > kMaxCells)
     bad(source, prefix.empty() ? "tof_days" : prefix + "tof_days",
         "the grid has " + std::to_string(cells) + " cells; the limit is " + std::to_string(kMaxCells));
+  read_boundary_window(sweep, source, out);
   return out;
 }
 
@@ -168,20 +202,37 @@ std::vector<SweepCell> sweep_cells(const SweepGrid& grid) {
   return cells;
 }
 
+std::vector<SweepCell> feasible_cells(const SweepGrid& grid, const std::string& dir) {
+  std::vector<SweepCell> cells;
+  for (const double d : grid.departures_mjd2000) {
+    const Boundary b = read_boundary(grid, dir, d);
+    if (b.status == "missing") return {};
+    std::string previous;
+    for (const double t : grid.tofs_days) {
+      if (below_boundary(b, t)) continue;
+      cells.push_back({d, t, cell_name(d, t), previous});
+      previous = cells.back().name;
+    }
+  }
+  return cells;
+}
+
 std::string write_sweep_cells(const SweepGrid& grid, const std::string& template_text,
                               const std::string& template_source, const std::string& dir) {
-  const std::vector<SweepCell> cells = sweep_cells(grid);
+  const std::vector<SweepCell> cells = feasible_cells(grid, dir);
   std::ostringstream mk;
   mk << "# Written by helios-score --sweep-cells from " << template_source << "'s sweep: do not edit.\n";
+  for (const double d : grid.departures_mjd2000)
+    if (read_boundary(grid, dir, d).status == "missing") {
+      mk << "# No cell yet: the boundaries are not all solved.\n";
+      break;
+    }
   mk << "SWEEP_CELLS :=";
   for (const auto& c : cells) mk << ' ' << c.name;
   mk << "\n";
   for (const auto& c : cells) {
     const std::string text = cell_problem(template_text, template_source, c.departure_mjd2000, c.tof_days);
-    const fs::path path = fs::path(dir) / c.name / "problem.txt";
-    fs::create_directories(path.parent_path());
-    std::error_code ec;
-    if (!fs::exists(path, ec) || io::read_text(path.string()) != text) io::write_text_atomic(path.string(), text);
+    io::write_text_if_changed((fs::path(dir) / c.name / "problem.txt").string(), text);
     mk << "SWEEP_WARM_" << c.name << " :=" << (c.warm_from.empty() ? "" : " " + c.warm_from) << "\n";
     if (!c.warm_from.empty()) {
       mk << (fs::path(dir) / c.name / "solution.json").string() << ": "
@@ -191,11 +242,23 @@ std::string write_sweep_cells(const SweepGrid& grid, const std::string& template
   return mk.str();
 }
 
-std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const std::string& dir) {
+std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const std::string& dir, const json& crosscheck) {
   std::vector<SweepRow> rows;
+  Boundary boundary;
   for (const auto& c : sweep_cells(grid)) {
-    SweepRow row{c, "missing", "", NAN, NAN};
-    const fs::path path = fs::path(dir) / c.name / "solution.json";
+    if (rows.empty() || rows.back().cell.departure_mjd2000 != c.departure_mjd2000)
+      boundary = read_boundary(grid, dir, c.departure_mjd2000);
+    SweepRow row{c, "missing", "", NAN, NAN, "", 0, boundary};
+    if (below_boundary(boundary, c.tof_days)) {
+      row.status = "infeasible";
+      rows.push_back(row);
+      continue;
+    }
+    const json* checked = crosscheck.is_object() && crosscheck.contains("cells") && crosscheck.at("cells").contains(c.name)
+                              ? &crosscheck.at("cells").at(c.name)
+                              : nullptr;
+    const fs::path path = checked ? fs::path(dir) / checked->at("answer").get<std::string>()
+                                  : fs::path(dir) / c.name / "solution.json";
     std::error_code ec;
     if (fs::exists(path, ec)) {
       const json s = io::read_json(path.string());
@@ -206,7 +269,13 @@ std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const std::string& dir) 
           throw input_error(path.string() + ": field /" + grid.plot + ": missing in a converged solution");
         row.objective = s.at(grid.plot).get<double>();
         row.max_residual = s.value("max_residual", NAN);
+        row.answer_from = "own";
+        row.extremals_compared = 1;
       }
+    }
+    if (checked) {
+      row.answer_from = checked->value("answer_from", "");
+      row.extremals_compared = checked->value("extremals_compared", 0);
     }
     rows.push_back(row);
   }
@@ -215,18 +284,26 @@ std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const std::string& dir) 
 
 std::string sweep_csv(const SweepGrid& grid, const std::vector<SweepRow>& rows) {
   std::ostringstream csv;
-  csv << "departure_mjd2000,tof_days,cell,status," << grid.plot << ",max_residual,start\n";
+  csv << "departure_mjd2000,tof_days,cell,status," << grid.plot
+      << ",max_residual,start,answer_from,extremals_compared,t_min_days,boundary_saturated\n";
   for (const auto& r : rows) {
-    std::string objective, residual;
+    std::string objective, residual, t_min, saturated;
+    char buf[40];
     if (r.status == "converged") {
-      char buf[40];
       std::snprintf(buf, sizeof buf, "%.12g", r.objective);
       objective = buf;
       std::snprintf(buf, sizeof buf, "%.3e", r.max_residual);
       residual = buf;
     }
+    if (r.boundary.status == "converged") {
+      std::snprintf(buf, sizeof buf, "%.9g", r.boundary.t_min_days);
+      t_min = buf;
+      saturated = r.boundary.saturated ? "true" : "false";
+    }
     csv << number_text(r.cell.departure_mjd2000) << ',' << number_text(r.cell.tof_days) << ',' << r.cell.name << ','
-        << r.status << ',' << objective << ',' << residual << ',' << r.start << "\n";
+        << r.status << ',' << objective << ',' << residual << ',' << r.start << ',' << r.answer_from << ','
+        << (r.status == "converged" ? std::to_string(r.extremals_compared) : "") << ',' << t_min << ',' << saturated
+        << "\n";
   }
   return csv.str();
 }
@@ -234,8 +311,8 @@ std::string sweep_csv(const SweepGrid& grid, const std::vector<SweepRow>& rows) 
 void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, const std::string& png_path,
                   const std::string& title) {
   // The grid as gnuplot's blocks (one per departure row, NaN where a cell has no objective), the
-  // unconverged cells and the best one.
-  std::ostringstream data, bad_cells, best_cell;
+  // infeasible cells, the failed ones, the best one and the boundary line.
+  std::ostringstream data, infeasible_cells, failed_cells, best_cell, boundary_line;
   const bool maximize = grid.plot == "final_mass_kg";
   int best = -1;
   for (std::size_t i = 0; i < rows.size(); ++i)
@@ -247,40 +324,48 @@ void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, cons
   for (const auto& r : rows) {
     const std::string at = number_text(r.cell.departure_mjd2000) + ' ' + number_text(r.cell.tof_days) + ' ';
     if (!std::isnan(last) && r.cell.departure_mjd2000 != last) data << "\n";
+    if (r.cell.departure_mjd2000 != last && r.boundary.status == "converged")
+      boundary_line << number_text(r.cell.departure_mjd2000) << ' ' << number_text(r.boundary.t_min_days) << ' '
+                    << number_text(z) << "\n";
     last = r.cell.departure_mjd2000;
     data << at << (std::isfinite(r.objective) ? number_text(r.objective) : "NaN") << "\n";
-    if (!std::isfinite(r.objective)) bad_cells << at << number_text(z) << "\n";
+    if (r.status == "infeasible") infeasible_cells << at << number_text(z) << "\n";
+    else if (!std::isfinite(r.objective)) failed_cells << at << number_text(z) << "\n";
   }
   if (best >= 0)
     best_cell << number_text(rows[best].cell.departure_mjd2000) << ' ' << number_text(rows[best].cell.tof_days) << ' '
               << number_text(z) << "\n";
   io::TempFiles temps;
-  const std::string grid_file = temps.create_beside(png_path + ".grid"),
-                    bad_file = temps.create_beside(png_path + ".bad"),
-                    best_file = temps.create_beside(png_path + ".best"), tmp_png = temps.create_beside(png_path);
-  io::write_text_atomic(grid_file, data.str());
-  io::write_text_atomic(bad_file, bad_cells.str().empty() ? "NaN NaN NaN\n" : bad_cells.str());
-  io::write_text_atomic(best_file, best_cell.str().empty() ? "NaN NaN NaN\n" : best_cell.str());
+  const auto points_file = [&](const std::string& suffix, const std::ostringstream& points) {
+    const std::string file = temps.create_beside(png_path + suffix);
+    io::write_text_atomic(file, points.str().empty() ? "NaN NaN NaN\n" : points.str());
+    return file;
+  };
+  const std::string grid_file = points_file(".grid", data), infeasible_file = points_file(".infeasible", infeasible_cells),
+                    failed_file = points_file(".failed", failed_cells), best_file = points_file(".best", best_cell),
+                    boundary_file = points_file(".boundary", boundary_line), tmp_png = temps.create_beside(png_path);
   const std::string unit = grid.plot == "tof_days"        ? "time of flight [days]"
                            : grid.plot == "final_mass_kg" ? "final mass [kg]"
                                                           : "propellant [kg]";
   // The title and the file names reach gnuplot as data (solve::run_gnuplot): ARG1 the PNG, ARG2 the
-  // title, ARG3 the grid, ARG4 the unconverged cells, ARG5 the best cell.
+  // title, ARG3 the grid, ARG4 the infeasible cells, ARG5 the failed ones, ARG6 the best cell, ARG7
+  // the boundary.
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1000,800 noenhanced\nset output ARG1\n"
-     << "set title ARG2.': " << unit << " (x: not converged, circled: best)'\n"
+     << "set title ARG2.': " << unit << "'\n"
      << "set xlabel 'departure [MJD2000]'\nset ylabel 'time of flight [days]'\nset cblabel '" << unit << "'\n"
      << "set view map\nset pm3d at b interpolate 8,8\nset contour base\nset cntrparam levels auto 10\nunset clabel\n"
-     << "set bmargin 7\nset key at screen 0.5,0.06 center center horizontal maxrows 1 box\n"
+     << "set bmargin 7\nset key at screen 0.5,0.05 center center horizontal maxrows 2 box\n"
      << "set palette defined (0 '#2b6cb0', 0.5 '#f6e05e', 1 '#e53e3e')\nset datafile missing 'NaN'\n"
-     << "set xrange [" << number_text(grid.departures_mjd2000.front()) << ":"
-     << number_text(grid.departures_mjd2000.back()) << "]\nset yrange [" << number_text(grid.tofs_days.front()) << ":"
-     << number_text(grid.tofs_days.back()) << "]\n"
+     << "set xrange " << axis_range(grid.departures_mjd2000) << "\nset yrange " << axis_range(grid.tofs_days) << "\n"
      << "splot ARG3 using 1:2:3 with pm3d notitle, ARG3 using 1:2:3 with lines nosurface lc rgb 'black' notitle, "
-     << "ARG4 using 1:2:3 with points nocontours pt 2 ps 2 lw 2 lc rgb 'black' title 'not converged', "
-     << "ARG5 using 1:2:3 with points nocontours pt 6 ps 3 lw 2 lc rgb 'black' title 'best', "
-     << "ARG5 using 1:2:3 with points nocontours pt 3 ps 3 lw 3 lc rgb 'white' notitle\n";
-  const std::string out = solve::run_gnuplot(gp.str(), {tmp_png, title, grid_file, bad_file, best_file});
+     << "ARG7 using 1:2:3 with lines nocontours lw 3 lc rgb '#444444' title 'minimum time', "
+     << "ARG4 using 1:2:3 with points nocontours pt 7 ps 1 lc rgb '#888888' title 'infeasible', "
+     << "ARG5 using 1:2:3 with points nocontours pt 2 ps 2 lw 2 lc rgb 'black' title 'failed', "
+     << "ARG6 using 1:2:3 with points nocontours pt 6 ps 3 lw 2 lc rgb 'black' title 'best', "
+     << "ARG6 using 1:2:3 with points nocontours pt 3 ps 3 lw 3 lc rgb 'white' notitle\n";
+  const std::string out = solve::run_gnuplot(
+      gp.str(), {tmp_png, title, grid_file, infeasible_file, failed_file, best_file, boundary_file});
   std::error_code ec;
   if (fs::file_size(tmp_png, ec) == 0)
     throw std::runtime_error("gnuplot did not draw " + png_path + " (is gnuplot installed?): " + out.substr(0, 300));

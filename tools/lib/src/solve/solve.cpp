@@ -200,6 +200,10 @@ json solve(const SolveOptions& o) {
   const json settings = run_settings(o);
   json warm_record;
   const json warm = o.warm_start_path.empty() ? json(nullptr) : warm_start_of(o.warm_start_path, warm_record);
+  if (o.warm_only && warm.is_null())
+    throw input_error(o.warm_start_path + ": field /status: " +
+                      (warm_record.is_null() ? std::string("no warm start") : warm_record.value("neighbour_status", "")) +
+                      ": --warm-only needs a converged neighbour");
   const CompileResult c = compile_cached(source, o);
   json doc = record_before_run(o, settings, c);
   if (!warm_record.is_null()) doc["warm_start"] = warm_record;
@@ -213,7 +217,10 @@ json solve(const SolveOptions& o) {
   const RunFolder files(out_dir);
   // The program reads the warm start beside its settings; solution.json's settings stay the user's.
   json program_settings = settings;
-  if (!warm.is_null()) program_settings["warm_start"] = warm;
+  if (!warm.is_null()) {
+    program_settings["warm_start"] = warm;
+    if (o.warm_only) program_settings["warm_start"]["only"] = true;
+  }
   io::write_json_atomic(files.settings, program_settings);
   const std::vector<std::string> program = {fs::absolute(c.binary).lexically_normal().string(),
                                             "--settings",

@@ -47,6 +47,10 @@ json read_json(const std::string& path);
 // to stdout. The temp file is removed if the process is interrupted (SIGINT/SIGTERM/SIGHUP).
 void write_text_atomic(const std::string& path, const std::string& text);
 
+// write_text_atomic unless `path` already holds `text` (its time stamp then stays: make does not
+// redo what depends on it), creating the parent folders.
+void write_text_if_changed(const std::string& path, const std::string& text);
+
 // Calls visit(value, pointer) for every value of `doc` that is neither an object nor an array,
 // with its JSON pointer below `where` ("/constraints/0/id"; "" for a scalar document).
 void for_each_scalar(const json& doc, const std::function<void(const json&, const std::string&)>& visit,

@@ -19,6 +19,9 @@ struct SolveOptions {
   // A neighbour's solution.json (a sweep's cell): when it converged, its shooting variables are
   // the program's first guess (Settings::warm_start), else the solve starts cold; empty: cold.
   std::string warm_start_path;
+  // With warm_start_path: no search when the warm solve fails (the result is the warm solve's, not
+  // converged); a sweep's neighbour cross-check.
+  bool warm_only = false;
   std::string compiler = "g++";
   double time_limit_s = 600;  // wall clock for the run (the program also stops itself)
   double memory_limit_mb = 4096;
