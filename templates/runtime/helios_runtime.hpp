@@ -7,6 +7,7 @@
 //
 // The program defines what the library calls:
 //   - kProblem, the problem's shape (its sizes, units, names), read by the runtime at run time;
+//   - the problem's numbers, each a HELIOS_PARAMETER (below), which a parameters file may replace;
 //   - the modules DYNAMICS (dynamics, hamiltonian), SWITCH (direction_control, throttle_slopes
 //     when the problem has a throttle), RESIDUAL (shooting_function; shooting_legs with events;
 //     coast_dynamics with a coasting target) and SOLVE (solve_problem);
@@ -32,14 +33,38 @@ constexpr int kMaxStates = 16;
 constexpr int kMaxControls = 8;
 constexpr int kMaxNY = 2 * kMaxStates;  // states then costates
 
-// A body propagated on its Keplerian orbit instead of the ephemeris model.
+// A body propagated on its Keplerian orbit instead of the ephemeris model: its elements a
+// (normalized), e, i, raan, argp, mean anomaly (rad) and their epoch (normalized time), a
+// HELIOS_PARAMETER_ARRAY of the program.
 struct OrbitBody {
   const char* name;
-  double a, e, i_rad, raan_rad, argp_rad, mean_anomaly_rad;  // normalized a
-  double epoch;                                              // normalized time of the elements
+  const double* elements;  // a, e, i_rad, raan_rad, argp_rad, mean_anomaly_rad, epoch
 };
 
+// The problem's numbers (times, units, the derivation's parameters) are run-time values of the
+// program, not compiled constants, so that one compiled program serves every problem of its
+// structure (helios-solve's compile cache, tools/lib/src/solve/README.md). Each is a global set
+// from its literal, registered by name; `shoot --parameters FILE` replaces every one of them
+// before anything reads them (load_parameters). Without a file the literals stand.
+//   HELIOS_PARAMETER(Tmax, 3.3285303900382108);            // double Tmax
+//   HELIOS_PARAMETER_ARRAY(kStateToPhysical, 1.0, 2.0);     // double kStateToPhysical[2]
+struct ParameterRegistration {
+  ParameterRegistration(const char* name, double* values, int count, bool array);
+};
+#define HELIOS_PARAMETER(name, value) \
+  double name = value;                \
+  const ::helios_rt::ParameterRegistration name##_parameter(#name, &name, 1, false)
+#define HELIOS_PARAMETER_ARRAY(name, ...) \
+  double name[] = {__VA_ARGS__};          \
+  const ::helios_rt::ParameterRegistration name##_parameter(#name, name, sizeof(name) / sizeof(double), true)
+
+// Reads a parameters file, {"schema": "helios/parameters", "values": {"NAME": number or [numbers]}},
+// into the registered parameters: every one of them, no other name, finite numbers, an array's
+// length. Throws std::runtime_error with a one-line message naming the file and the value.
+void load_parameters(const std::string& path);
+
 // The problem as the runtime reads it (the PROBLEM block's constants, defined by the program).
+// Its numbers are references to the program's parameters, so they read the loaded values.
 struct ProblemShape {
   const char* id;
   int num_states, num_controls;
@@ -47,12 +72,13 @@ struct ProblemShape {
   int num_vars;
   int mass_index;     // -1: no mass state (a sail)
   bool minimum_fuel;  // the objective is the propellant (minimum fuel or initial mass), else the time
-  double t0, tf;      // tf: the final time, or the upper end of its window when it is free
-  double tf_min;      // the lower end of the final time's window (tf when it is fixed)
-  double homotopy_start;
-  double time_unit_days, length_unit_km, speed_unit_km_s, epoch_mjd2000, mass_unit_kg;
-  double exhaust_velocity_m_s;
-  double mu;
+  const double& t0;
+  const double& tf;      // the final time, or the upper end of its window when it is free
+  const double& tf_min;  // the lower end of the final time's window (tf when it is fixed)
+  const double& homotopy_start;
+  const double &time_unit_days, &length_unit_km, &speed_unit_km_s, &epoch_mjd2000, &mass_unit_kg;
+  const double& exhaust_velocity_m_s;
+  const double& mu;
   const char* const* state_names;
   const char* const* state_columns;
   const double* state_to_physical;

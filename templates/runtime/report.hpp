@@ -1,7 +1,9 @@
 // ---------------------------------------------------------------------------------------------
 // HELIOS shooting runtime, report (templates/runtime/report.hpp): what the program's entry point
 // (main.hpp) runs.
-// usage: shoot --settings SETTINGS.json --outcome OUTCOME.json --trajectory TRAJECTORY.csv
+// usage: shoot [--parameters PARAMETERS.json] --settings SETTINGS.json --outcome OUTCOME.json
+//              --trajectory TRAJECTORY.csv
+// PARAMETERS.json replaces the problem's numbers (load_parameters) before anything reads them.
 // Writes OUTCOME.json (solution.json's keys but helios-solve's own: normalized and physical
 // numbers) and the trajectory of the final solution.
 // ---------------------------------------------------------------------------------------------
@@ -418,12 +420,13 @@ inline void check_problem_shape() {
 }  // namespace
 
 int run(int argc, char** argv) {
-  check_problem_shape();
-  std::string settings_path, outcome_path = "outcome.json", trajectory_path = "trajectory.csv";
+  std::string settings_path, parameters_path, outcome_path = "outcome.json", trajectory_path = "trajectory.csv";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--settings")
       settings_path = argv[i + 1];
+    else if (a == "--parameters")
+      parameters_path = argv[i + 1];
     else if (a == "--outcome")
       outcome_path = argv[i + 1];
     else if (a == "--trajectory")
@@ -431,6 +434,9 @@ int run(int argc, char** argv) {
     else
       throw std::runtime_error("unknown option " + a);
   }
+  // The problem's numbers first: everything below reads them (the settings' eps_start too).
+  if (!parameters_path.empty()) load_parameters(parameters_path);
+  check_problem_shape();
   const Settings s = read_settings(settings_path);
   wall_seconds();
   Result r = solve_problem(s);

@@ -23,6 +23,7 @@
 // The headers in the runtime's order, each after what it uses.
 // clang-format off
 #include "helios_runtime.hpp"
+#include "parameters.hpp"
 #include "dop853.hpp"
 #include "dual.hpp"
 #include "counters.hpp"

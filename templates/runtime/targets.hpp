@@ -19,8 +19,9 @@ const OrbitBody* orbit_body(const std::string& body) {
 
 std::array<double, 6> ephemeris_state(const std::string& body, double t) {
   if (const OrbitBody* b = orbit_body(body)) {
-    const helios::astro::Elements elements{b->a, b->e, b->i_rad, b->raan_rad, b->argp_rad, b->mean_anomaly_rad};
-    return helios::astro::propagate(helios::astro::elements_to_state(elements, kProblem.mu), t - b->epoch, kProblem.mu);
+    const double* el = b->elements;
+    const helios::astro::Elements elements{el[0], el[1], el[2], el[3], el[4], el[5]};
+    return helios::astro::propagate(helios::astro::elements_to_state(elements, kProblem.mu), t - el[6], kProblem.mu);
   }
   const auto s = helios::astro::jpl_lp_state(helios::astro::planet_from_name(body),
                                              kProblem.epoch_mjd2000 + t * kProblem.time_unit_days);

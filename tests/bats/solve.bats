@@ -111,6 +111,60 @@ setup() {
   assert_no_temp_files "$CACHE"
 }
 
+# p01_cell DIR EPOCH TOF [THRUST_N] -> DIR/shoot.cpp: a cell of the P01 sweep (tools/lib/src/score/SWEEPS.md).
+p01_cell() {
+  local dir="$1"
+  mkdir -p "$dir"
+  sed -e "s/@DEPARTURE_MJD2000@/$2/g" -e "s/@TOF_DAYS@/$3/g" -e "s/maximum thrust of 0.5 N/maximum thrust of ${4:-0.5} N/" \
+    "$ROOT/scenarios/P01/problem.txt" >"$dir/problem.txt"
+  "$BIN/helios-parse" "$dir/problem.txt" -o "$dir/spec.json"
+  "$BIN/helios-derive" "$dir/spec.json" -o "$dir/derivation.json"
+  "$BIN/helios-gen" "$dir/derivation.json" -o "$dir/shoot.cpp"
+}
+
+# p01_solve DIR CACHE: the cell's solution.json (one thread: the same search whatever the machine).
+p01_solve() {
+  jq '. + {threads: 1}' "$ROOT/scenarios/P01/settings.json" >"$1/settings.json"
+  "$BIN/helios-solve" "$1/shoot.cpp" --settings "$1/settings.json" --cache-dir "$2" --plots "" --quiet \
+    --trajectory "$1/trajectory.csv" -o "$1/solution.json"
+}
+
+@test "solve: two cells of a sweep are one compile, each solved with its own numbers" {
+  p01_cell a 9700 350
+  p01_cell b 9740 400 0.6
+  ! cmp -s a/shoot.cpp b/shoot.cpp
+  p01_solve a cache
+  p01_solve b cache
+  assert_jq a/solution.json '.compile.cached == false and .status == "converged"'
+  assert_jq b/solution.json '.compile.cached == true and .status == "converged"'
+  jq -e --slurpfile a a/solution.json '.compile.structure_sha256 == $a[0].compile.structure_sha256 and
+    .compile.source_sha256 != $a[0].compile.source_sha256' b/solution.json
+  [[ $(ls cache | wc -l) == 1 ]]
+  # b's program compiled from b's own source gives the same solution, bit for bit
+  cp -r b own
+  p01_solve own own-cache
+  assert_jq own/solution.json '.compile.cached == false and .status == "converged"'
+  jq -e --slurpfile own own/solution.json '.propellant_kg == $own[0].propellant_kg and .x == $own[0].x and
+    .departure_mjd2000 == 9740 and .tof_days == 400' b/solution.json
+  assert_no_temp_files "$BATS_TEST_TMPDIR"
+}
+
+# The parameters file is helios-solve's, but the program refuses a bad one cleanly: exit 1 and one line.
+@test "solve: a program refuses a parameters file that is not its own numbers" {
+  cp "$SRC/shoot.cpp" shoot.cpp
+  eval "$(jq -r .compile.command "$E2E/solution.json")"
+  local bad
+  for bad in '{"schema": "helios/parameters", "values": {"Tmin": 1}}' '{"schema": "helios/parameters", "values": {' \
+    '[1, 2]' ''; do
+    printf '%s' "$bad" >parameters.json
+    run -1 --separate-stderr ./shoot --parameters parameters.json --outcome outcome.json --trajectory trajectory.csv
+    [[ ${#stderr_lines[@]} == 1 && ${stderr_lines[0]} == "shoot: error: parameters parameters.json: "* ]]
+    [[ ! -e outcome.json ]]
+  done
+  run -1 --separate-stderr ./shoot --parameters no-such.json
+  [[ $stderr == "shoot: error: cannot read parameters no-such.json" ]]
+}
+
 @test "solve: the recorded compile command rebuilds the program by hand, against the prebuilt runtime" {
   cp "$SRC/shoot.cpp" shoot.cpp
   local command

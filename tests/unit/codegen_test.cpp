@@ -3,12 +3,18 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
+#include <cmath>
+#include <cstdint>
+#include <random>
 
+#include "../../tools/lib/src/codegen/context.hpp"  // number(): how codegen prints a double
 #include "helios/pmp/derive.hpp"
+#include "helios/solve/solve.hpp"
 #include "helios/spec/parse.hpp"
 #include "helios/symbolic/expr.hpp"
 
@@ -198,4 +204,117 @@ TEST(Codegen, CountMismatchIsAnError) {
   EXPECT_THROW(helios::codegen::generate(d, {}), std::invalid_argument);
 }
 
+// The program of a P01 cell (tools/lib/src/score/SWEEPS.md), its template's text changed by `edits`
+// (each a {from, to} replacement).
+std::string p01_program(const std::string& departure, const std::string& tof,
+                        const std::vector<std::pair<std::string, std::string>>& edits = {}) {
+  std::string text = helios::io::read_text(std::string(HELIOS_SOURCE_DIR) + "/scenarios/P01/problem.txt");
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"@DEPARTURE_MJD2000@", departure}, {"@TOF_DAYS@", tof}})
+    for (std::size_t at; (at = text.find(from)) != std::string::npos;) text.replace(at, from.size(), to);
+  for (const auto& [from, to] : edits) {
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+  }
+  return helios::codegen::generate(helios::pmp::derive_from_spec(helios::spec::parse_problem_text(text, "P01")), {})
+      .source;
+}
+
+// Two cells of a sweep, with another thrust too, are one program: their sources differ (the
+// numbers are in them) but their structure, the compile cache's key, is the same; the numbers
+// helios-solve passes are each cell's own.
+TEST(Codegen, CellsOfASweepDifferOnlyInTheirParameters) {
+  const std::string a = p01_program("9700", "350");
+  const std::string b = p01_program("9740", "400", {{"maximum thrust of 0.5 N", "maximum thrust of 0.6 N"}});
+  EXPECT_NE(a, b);
+  const auto pa = helios::solve::program_parameters(a), pb = helios::solve::program_parameters(b);
+  ASSERT_TRUE(pa.readable);
+  ASSERT_TRUE(pb.readable);
+  EXPECT_EQ(pa.structure, pb.structure);
+  EXPECT_EQ(pa.values["kEpochMjd2000"], 9700.0);
+  EXPECT_EQ(pb.values["kEpochMjd2000"], 9740.0);
+  EXPECT_NE(pa.values["kTf"], pb.values["kTf"]);
+  EXPECT_NE(pa.values["Tmax"], pb.values["Tmax"]);
+  EXPECT_EQ(pa.values["mu"], pb.values["mu"]);
+  // Only the numbers of the parameter lines are masked: the structure is the source line for line.
+  const auto la = lines_of(a), ls = lines_of(pa.structure);
+  ASSERT_EQ(la.size(), ls.size());
+  int masked = 0;
+  for (std::size_t i = 0; i < la.size(); ++i) {
+    if (la[i] == ls[i]) continue;
+    ++masked;
+    EXPECT_EQ(la[i].rfind("HELIOS_PARAMETER", 0), 0u) << la[i];
+  }
+  EXPECT_EQ(masked, static_cast<int>(pa.values.size()));
+  EXPECT_NE(pa.structure.find("HELIOS_PARAMETER(kTf, #);"), std::string::npos);
+  EXPECT_NE(pa.structure.find("HELIOS_PARAMETER(Tmax, #);  // maximum thrust ["), std::string::npos);
+}
+
+// Anything but the numbers is structure: another target body, another objective.
+TEST(Codegen, AnotherTargetOrObjectiveIsAnotherStructure) {
+  const std::string structure = helios::solve::program_parameters(p01_program("9700", "350")).structure;
+  const auto other = [](const std::string& source) { return helios::solve::program_parameters(source).structure; };
+  EXPECT_NE(other(p01_program("9700", "350", {{"rendezvouses with Mars", "rendezvouses with Venus"}})), structure);
+  EXPECT_NE(other(p01_program("9700", "", {{"The time of flight is  days.", "The time of flight is free, between 50 "
+                                            "days and 600 days."},
+                                           {"Minimize the fuel consumption.", "Minimize the time of flight."}})),
+            structure);
+}
+
+// A literal codegen prints (17 significant digits) and helios-solve reads back is the same double,
+// through the parameters file's JSON too.
+TEST(Codegen, ParameterValuesAreTheDerivationsDoublesBitForBit) {
+  const json d = s01();
+  const auto p = helios::solve::program_parameters(helios::codegen::generate(d, {}).source);
+  ASSERT_TRUE(p.readable);
+  const json file = json::parse(helios::solve::parameters_document(p.values).dump(2));
+  const auto same = [](double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  int checked = 0;
+  for (const auto& q : d.at("parameters")) {
+    if (q.contains("source")) continue;
+    const std::string name = q.at("name");
+    EXPECT_TRUE(same(file.at("values").at(name).get<double>(), q.at("value").get<double>())) << name;
+    ++checked;
+  }
+  EXPECT_GT(checked, 3);
+  EXPECT_TRUE(same(file.at("values").at("kTf").get<double>(), d.at("times").at("tf").get<double>()));
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<std::uint64_t> bits;
+  for (int i = 0; i < 20000; ++i) {
+    const std::uint64_t u = bits(rng);
+    double v;
+    std::memcpy(&v, &u, sizeof v);
+    if (!std::isfinite(v)) continue;
+    const std::string source = "HELIOS_PARAMETER(x, " + helios::codegen::detail::number(v) + ");\n";
+    const auto r = helios::solve::program_parameters(source);
+    ASSERT_TRUE(r.readable) << source;
+    const double back = json::parse(helios::solve::parameters_document(r.values).dump()).at("values").at("x");
+    ASSERT_TRUE(same(back, v)) << source;
+  }
+}
+
+// A source whose numbers helios-solve cannot read for sure keys the cache on its whole text and
+// runs on its literals: a parameter line of another form, a macro before the parameters, a
+// HELIOS_PARAMETER elsewhere in code; a comment line may name it.
+TEST(Codegen, ParameterLinesOfAnotherFormAreNotMasked) {
+  const std::string good = "#include \"helios_runtime.hpp\"\n// HELIOS_PARAMETER lines:\nHELIOS_PARAMETER(a, 1.5);\n"
+                           "HELIOS_PARAMETER_ARRAY(b, -2.0, 3e-05);  // note\nint main() {}\n";
+  const auto p = helios::solve::program_parameters(good);
+  ASSERT_TRUE(p.readable);
+  EXPECT_EQ(p.structure, "#include \"helios_runtime.hpp\"\n// HELIOS_PARAMETER lines:\nHELIOS_PARAMETER(a, #);\n"
+                         "HELIOS_PARAMETER_ARRAY(b, #, #);  // note\nint main() {}\n");
+  EXPECT_EQ(p.values, (json{{"a", 1.5}, {"b", {-2.0, 3e-05}}}));
+  for (const std::string bad :
+       {"HELIOS_PARAMETER(a, 1.5 * 2);\n", "HELIOS_PARAMETER(a, 1.5f);\n", "HELIOS_PARAMETER(a, 1.5); int x;\n",
+        "HELIOS_PARAMETER(a, 1.5);\nHELIOS_PARAMETER(a, 2.5);\n", "#define double float\nHELIOS_PARAMETER(a, 1.5);\n",
+        "  HELIOS_PARAMETER(a, 1.5);\n", "HELIOS_PARAMETER(a, 1e999);\n", "HELIOS_PARAMETER(a, 1.5);\r\n",
+        "HELIOS_PARAMETER_ARRAY(a);\n", "HELIOS_PARAMETER(a, 1.5, 2.5);\n", "int HELIOS_PARAMETER = 1;\n"}) {
+    const auto q = helios::solve::program_parameters(bad);
+    EXPECT_FALSE(q.readable) << bad;
+    EXPECT_EQ(q.structure, bad);
+    EXPECT_TRUE(q.values.empty()) << bad;
+  }
+}
+
 }  // namespace
+

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -25,19 +27,25 @@ constexpr int kNumControls = 4;
 constexpr int kThrottleIndex = 0;
 constexpr int kNumVars = 8;
 constexpr int kMassIndex = 6;
-constexpr double kTimeUnitDays = 365.25;
-constexpr double kLengthUnitKm = 149597870.691;
-constexpr double kSpeedUnitKmS = 149597870.691 / 31557600.0;
-constexpr double mu = 39.47692642137688;    // AU^3/yr^2
-constexpr double Tmax = 3.328530390038211;  // m0 AU/yr^2
-constexpr double c = 4.137416349718383;     // AU/yr
+HELIOS_PARAMETER(kT0, 0.0);
+HELIOS_PARAMETER(kTf, 348.795 / 365.25);
+HELIOS_PARAMETER(kHomotopyStart, 1.0);
+HELIOS_PARAMETER(kTimeUnitDays, 365.25);
+HELIOS_PARAMETER(kLengthUnitKm, 149597870.691);
+HELIOS_PARAMETER(kSpeedUnitKmS, 149597870.691 / 31557600.0);
+HELIOS_PARAMETER(kEpochMjd2000, 400.0);
+HELIOS_PARAMETER(kMassUnitKg, 1000.0);
+HELIOS_PARAMETER(kExhaustVelocityMS, 0.0);
+HELIOS_PARAMETER(mu, 39.47692642137688);    // AU^3/yr^2
+HELIOS_PARAMETER(Tmax, 3.328530390038211);  // m0 AU/yr^2
+HELIOS_PARAMETER(c, 4.137416349718383);     // AU/yr
 const char* const kNames[] = {"rx", "ry", "rz", "vx", "vy", "vz", "m", "u", "ax", "ay", "az"};
-constexpr double kUnit[] = {1, 1, 1, 1, 1, 1, 1};
+HELIOS_PARAMETER_ARRAY(kUnit, 1, 1, 1, 1, 1, 1, 1);
 // Nikko's GTOC7 row (a in AU; epoch MJD 56800 as years from MJD2000 400).
-constexpr helios_rt::OrbitBody kOrbitBodies[] = {
-    {"Nikko", 2.2375176, 0.1052183, 5.70117 * helios::astro::DEG_TO_RAD, 71.94548 * helios::astro::DEG_TO_RAD,
-     2.08462 * helios::astro::DEG_TO_RAD, 287.3844555 * helios::astro::DEG_TO_RAD,
-     (56800.0 - 51544.0 - 400.0) / 365.25}};
+HELIOS_PARAMETER_ARRAY(kOrbitBody0, 2.2375176, 0.1052183, 5.70117 * helios::astro::DEG_TO_RAD,
+                       71.94548 * helios::astro::DEG_TO_RAD, 2.08462 * helios::astro::DEG_TO_RAD,
+                       287.3844555 * helios::astro::DEG_TO_RAD, (56800.0 - 51544.0 - 400.0) / 365.25);
+const helios_rt::OrbitBody kOrbitBodies[] = {{"Nikko", kOrbitBody0}};
 }  // namespace problem
 
 namespace helios_rt {
@@ -49,16 +57,16 @@ const ProblemShape kProblem = {"runtime-test",
                                problem::kNumVars,
                                problem::kMassIndex,
                                true,
-                               0.0,
-                               348.795 / 365.25,
-                               348.795 / 365.25,
-                               1.0,
+                               problem::kT0,
+                               problem::kTf,
+                               problem::kTf,
+                               problem::kHomotopyStart,
                                problem::kTimeUnitDays,
                                problem::kLengthUnitKm,
                                problem::kSpeedUnitKmS,
-                               400.0,
-                               1000.0,
-                               0.0,
+                               problem::kEpochMjd2000,
+                               problem::kMassUnitKg,
+                               problem::kExhaustVelocityMS,
                                problem::mu,
                                problem::kNames,
                                problem::kNames,
@@ -415,13 +423,12 @@ TEST(Runtime, DualNumbersCarryExactDerivatives) {
 // A body given by elements moves on its Kepler orbit: at its epoch it is at the elements' state,
 // and the model's rate is (v, -mu r/|r|^3) to the rate's truncation error.
 TEST(Runtime, OrbitBodyFollowsItsElements) {
-  const auto& body = problem::kOrbitBodies[0];
-  const auto at_epoch = helios_rt::ephemeris_state("Nikko", body.epoch);
-  const helios::astro::Elements elements{body.a,        body.e,        body.i_rad,
-                                         body.raan_rad, body.argp_rad, body.mean_anomaly_rad};
+  const double* el = problem::kOrbitBodies[0].elements;
+  const auto at_epoch = helios_rt::ephemeris_state("Nikko", el[6]);
+  const helios::astro::Elements elements{el[0], el[1], el[2], el[3], el[4], el[5]};
   const auto expected = helios::astro::elements_to_state(elements, problem::mu);
   for (int i = 0; i < 6; ++i) EXPECT_TRUE(IsClose(at_epoch[i], expected[i], 1e-13, 1e-13)) << i;
-  const double t = body.epoch + 1.3;
+  const double t = el[6] + 1.3;
   const auto state = helios_rt::ephemeris_state("Nikko", t);
   const auto rate = helios_rt::ephemeris_rate("Nikko", t);
   const double r = std::sqrt(state[0] * state[0] + state[1] * state[1] + state[2] * state[2]);
@@ -430,6 +437,91 @@ TEST(Runtime, OrbitBodyFollowsItsElements) {
     EXPECT_TRUE(IsClose(rate[3 + i], -problem::mu * state[i] / (r * r * r), 1e-9, 1e-10)) << i;
   }
   EXPECT_TRUE(IsClose(r, 2.2375176 * (1 - 0.1052183), 0, 0.5));  // within the orbit's range
+}
+
+// The parameters file (helios_runtime.hpp's load_parameters): this program's every number by name.
+nlohmann::json parameter_values() {
+  nlohmann::json v = {{"kT0", problem::kT0},
+                      {"kTf", problem::kTf},
+                      {"kHomotopyStart", problem::kHomotopyStart},
+                      {"kTimeUnitDays", problem::kTimeUnitDays},
+                      {"kLengthUnitKm", problem::kLengthUnitKm},
+                      {"kSpeedUnitKmS", problem::kSpeedUnitKmS},
+                      {"kEpochMjd2000", problem::kEpochMjd2000},
+                      {"kMassUnitKg", problem::kMassUnitKg},
+                      {"kExhaustVelocityMS", problem::kExhaustVelocityMS},
+                      {"mu", problem::mu},
+                      {"Tmax", problem::Tmax},
+                      {"c", problem::c}};
+  v["kUnit"] = std::vector<double>(problem::kUnit, problem::kUnit + 7);
+  v["kOrbitBody0"] = std::vector<double>(problem::kOrbitBody0, problem::kOrbitBody0 + 7);
+  return v;
+}
+
+// The file's text, and load_parameters' message on it ("" when it loads).
+std::string load_text(const std::string& text) {
+  const std::string path = ::testing::TempDir() + "parameters.json";
+  std::ofstream(path) << text;
+  try {
+    helios_rt::load_parameters(path);
+    return "";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    return what.substr(what.find(": ") + 2);  // without "parameters <path>"
+  }
+}
+
+std::string load(const nlohmann::json& values) {
+  return load_text(nlohmann::json{{"schema", "helios/parameters"}, {"values", values}}.dump());
+}
+
+// Every number is replaced, the shape reads the new values, and the round trip of a double through
+// the file is exact.
+TEST(Runtime, ParametersFileReplacesTheProblemsNumbers) {
+  const nlohmann::json original = parameter_values();
+  nlohmann::json changed = original;
+  changed["Tmax"] = 0.1 + 0.2;
+  changed["kTf"] = 1.0 / 3.0;
+  changed["kOrbitBody0"][6] = -2.5e-300;
+  ASSERT_EQ(load(changed), "");
+  EXPECT_EQ(problem::Tmax, 0.1 + 0.2);
+  EXPECT_EQ(helios_rt::kProblem.tf, 1.0 / 3.0);
+  EXPECT_EQ(helios_rt::kProblem.tf_min, 1.0 / 3.0);
+  EXPECT_EQ(problem::kOrbitBodies[0].elements[6], -2.5e-300);
+  ASSERT_EQ(load(original), "");
+  EXPECT_EQ(problem::Tmax, 3.328530390038211);
+  EXPECT_EQ(parameter_values(), original);
+}
+
+// Each refusal is one line naming the value; nothing is replaced unless everything is good.
+TEST(Runtime, ParametersFileRefusesWhatIsNotThisProgramsNumbers) {
+  const nlohmann::json good = parameter_values();
+  nlohmann::json unknown = good, missing = good, text = good, short_array = good, nested = good;
+  unknown["Tmin"] = 1.0;
+  unknown["Tmax"] = 99.0;
+  missing.erase("mu");
+  text["c"] = "4.1";
+  short_array["kUnit"] = {1, 1};
+  nested["kT0"] = {0.0};
+  EXPECT_EQ(load(unknown), "values/Tmin is not a parameter of this program");
+  EXPECT_EQ(load(missing), "values/mu is missing (the program's parameter)");
+  EXPECT_EQ(load(text), "values/c is not a finite number");
+  EXPECT_EQ(load(short_array), "values/kUnit is not an array of 7 finite numbers");
+  EXPECT_EQ(load(nested), "values/kT0 is not a finite number");
+  nlohmann::json marked = good;
+  marked["Tmax"] = 12345.5;
+  std::string huge = nlohmann::json{{"schema", "helios/parameters"}, {"values", marked}}.dump();
+  huge.replace(huge.find("12345.5"), 7, "1e999");
+  EXPECT_EQ(load_text(huge), "not JSON: [json.exception.out_of_range.406] number overflow parsing '1e999'");
+  EXPECT_EQ(load_text(R"({"schema": "helios/parameters", "values": {)"),
+            "not JSON: [json.exception.parse_error.101] parse error at line 1, column 44: syntax error while parsing "
+            "object key - unexpected end of input; expected string literal");
+  EXPECT_EQ(load_text("[]"), "not {\"schema\": \"helios/parameters\", \"values\": {...}}");
+  EXPECT_EQ(load_text(R"({"schema": "helios/settings", "values": {}})"),
+            "not {\"schema\": \"helios/parameters\", \"values\": {...}}");
+  EXPECT_EQ(problem::Tmax, 3.328530390038211);
+  EXPECT_EQ(parameter_values(), good);
+  EXPECT_THROW(helios_rt::load_parameters(::testing::TempDir() + "no-such-file.json"), std::runtime_error);
 }
 
 }  // namespace

@@ -40,51 +40,58 @@ std::string problem_block(Context& c) {
     << "// The objective: the propellant (minimum fuel or minimum initial mass), else minimum time.\n"
     << "constexpr bool kMinimumFuel = " << (d.at("problem").value("objective", "") != "minimum_time" ? "true" : "false")
     << ";\n"
-    << "constexpr double kT0 = " << number(times.at("t0")) << ";\n"
+    << "// The problem's numbers: globals set from these literals, which a parameters file may replace\n"
+    << "// at run time (shoot --parameters; helios_runtime.hpp's HELIOS_PARAMETER).\n"
+    << "HELIOS_PARAMETER(kT0, " << number(times.at("t0")) << ");\n"
     << "// The final time, or the upper end of its window when it is free.\n"
-    << "constexpr double kTf = " << number(tf) << ";\n"
+    << "HELIOS_PARAMETER(kTf, " << number(tf) << ");\n"
     << "// The lower end of the final time's window (kTf when the final time is fixed).\n"
-    << "constexpr double kTfMin = " << number(tf_min) << ";\n"
-    << "constexpr double kHomotopyStart = " << number(d.at("homotopy").at("start")) << ";\n"
-    << "constexpr double kTimeUnitDays = " << number(c.units.time_s / 86400.0) << ";\n"
-    << "constexpr double kLengthUnitKm = " << number(c.units.length_km) << ";\n"
-    << "constexpr double kSpeedUnitKmS = " << number(c.units.length_km / c.units.time_s) << ";\n"
-    << "constexpr double kEpochMjd2000 = " << number(times.value("epoch_mjd2000", 0.0)) << ";\n"
-    << "constexpr double kMassUnitKg = " << number(c.units.mass_kg) << ";\n";
+    << "HELIOS_PARAMETER(kTfMin, " << number(tf_min) << ");\n"
+    << "HELIOS_PARAMETER(kHomotopyStart, " << number(d.at("homotopy").at("start")) << ");\n"
+    << "HELIOS_PARAMETER(kTimeUnitDays, " << number(c.units.time_s / 86400.0) << ");\n"
+    << "HELIOS_PARAMETER(kLengthUnitKm, " << number(c.units.length_km) << ");\n"
+    << "HELIOS_PARAMETER(kSpeedUnitKmS, " << number(c.units.length_km / c.units.time_s) << ");\n"
+    << "HELIOS_PARAMETER(kEpochMjd2000, " << number(times.value("epoch_mjd2000", 0.0)) << ");\n"
+    << "HELIOS_PARAMETER(kMassUnitKg, " << number(c.units.mass_kg) << ");\n";
   const derivation::Quantity* exhaust = c.exhaust_velocity();
-  o << "constexpr double kExhaustVelocityMS = " << number(exhaust ? c.units.to_si(exhaust->value, exhaust->unit) : 0.0)
-    << ";\n";
+  o << "HELIOS_PARAMETER(kExhaustVelocityMS, "
+    << number(exhaust ? c.units.to_si(exhaust->value, exhaust->unit) : 0.0) << ");\n";
   std::vector<std::string> columns;
   std::string factors;
   for (const auto& s : c.state_quantities) {
     const auto [col, f] = physical(c.units, s);
     columns.push_back(col);
-    factors += (factors.empty() ? "" : ", ") + number(f);
+    factors += ", " + number(f);
   }
   std::vector<std::string> vars, eqs;
   for (const auto& v : d.at("shooting").at("variables")) vars.push_back(v.at("name"));
   for (const auto& e : d.at("shooting").at("equations")) eqs.push_back(e.at("name"));
-  o << "const char* const kStateNames[] = {" << quoted_list(c.states) << "};\n"
+  o << "HELIOS_PARAMETER_ARRAY(kStateToPhysical" << factors << ");\n"
+    << "const char* const kStateNames[] = {" << quoted_list(c.states) << "};\n"
     << "const char* const kStateColumns[] = {" << quoted_list(columns) << "};\n"
-    << "constexpr double kStateToPhysical[] = {" << factors << "};\n"
     << "const char* const kControlNames[] = {" << quoted_list(c.controls) << "};\n"
     << "const char* const kVariableNames[] = {" << quoted_list(vars) << "};\n"
     << "const char* const kEquationNames[] = {" << quoted_list(eqs) << "};\n";
   const json bodies = d.value("bodies", json::array());
   if (!bodies.empty()) {
-    o << "// Bodies on their Keplerian orbits (normalized a, rad; epoch: normalized time of the elements).\n"
-      << "constexpr helios_rt::OrbitBody kOrbitBodies[] = {\n";
-    for (const auto& b : bodies) {
+    o << "// Bodies on their Keplerian orbits: a (normalized), e, i, raan, argp, mean anomaly (rad) and the\n"
+      << "// normalized time of the elements.\n";
+    std::string list;
+    for (std::size_t k = 0; k < bodies.size(); ++k) {
+      const json& b = bodies[k];
       const json& el = b.at("elements");
-      o << "    {" << cpp_string(b.at("name")) << ", " << number(el.at("a")) << ", " << number(el.at("e")) << ", "
+      const std::string name = "kOrbitBody" + std::to_string(k);
+      o << "HELIOS_PARAMETER_ARRAY(" << name << ", " << number(el.at("a")) << ", " << number(el.at("e")) << ", "
         << number(el.at("i_rad")) << ", " << number(el.at("raan_rad")) << ", " << number(el.at("argp_rad")) << ", "
-        << number(el.at("mean_anomaly_rad")) << ", " << number(b.at("epoch")) << "},\n";
+        << number(el.at("mean_anomaly_rad")) << ", " << number(b.at("epoch")) << ");  // "
+        << comment_text(b.at("name").get<std::string>()) << "\n";
+      list += (list.empty() ? "" : ", ") + std::string("{") + cpp_string(b.at("name")) + ", " + name + "}";
     }
-    o << "};\n";
+    o << "const helios_rt::OrbitBody kOrbitBodies[] = {" << list << "};\n";
   }
   for (const auto& p : d.at("parameters"))
     if (!p.contains("source"))
-      o << "constexpr double " << p.at("name").get<std::string>() << " = " << number(p.at("value")) << ";  // "
+      o << "HELIOS_PARAMETER(" << p.at("name").get<std::string>() << ", " << number(p.at("value")) << ");  // "
         << comment_text(p.at("meaning").get<std::string>() + " [" + p.value("unit", "") + "]") << "\n";
   o << "}  // namespace problem\n\n"
     << "// The problem's shape as the runtime library reads it (helios_runtime.hpp's ProblemShape).\n"

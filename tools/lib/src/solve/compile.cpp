@@ -1,5 +1,5 @@
-// The compile step: g++ against the prebuilt runtime, into a cache keyed by the SHA-256 of source,
-// command, compiler and runtime.
+// The compile step: g++ against the prebuilt runtime, into a cache keyed by the SHA-256 of the
+// source's structure (its numbers masked), command, compiler and runtime.
 #include <unistd.h>
 
 #include <chrono>
@@ -68,10 +68,15 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   const RuntimeFiles& runtime = runtime_files();
   c.command =
       compiler + flag_text + " -I" + runtime.include_dir + " shoot.cpp -o shoot " + runtime.library + " -lcminpack";
-  // The key covers the source, the command, the compiler's identity and the runtime's bytes.
-  c.sha256 = compile_key(source, c.command, first_line(capture({compiler, "--version"})), runtime.sha256);
+  // The key covers the source, the command, the compiler's identity and the runtime's bytes; the
+  // cache's is the same over the source's structure, its numbers masked, which the program reads
+  // at run time from the parameters file.
+  const std::string compiler_version = first_line(capture({compiler, "--version"}));
+  c.parameters = program_parameters(source);
+  c.sha256 = compile_key(source, c.command, compiler_version, runtime.sha256);
+  c.structure_sha256 = compile_key(c.parameters.structure, c.command, compiler_version, runtime.sha256);
   // Absolute, as the sandbox binds the folder at its absolute path.
-  const fs::path dir = fs::absolute(fs::path(o.cache_dir) / c.sha256).lexically_normal();
+  const fs::path dir = fs::absolute(fs::path(o.cache_dir) / c.structure_sha256).lexically_normal();
   c.binary = (dir / "shoot").string();
   if (fs::exists(c.binary)) {
     c.ok = c.cached = true;
@@ -121,6 +126,7 @@ json compile_report(const SolveOptions& o) {
   doc["ok"] = c.ok;
   doc["cached"] = c.cached;
   doc["source_sha256"] = c.sha256;
+  doc["structure_sha256"] = c.structure_sha256;
   doc["command"] = c.command;
   doc["warnings"] = c.warnings;
   doc["errors"] = count_of(c.diagnostics, "error:");

@@ -82,8 +82,13 @@ json record_before_run(const SolveOptions& o, const json& settings, const Compil
   json doc = io::artifact_header("solution", "helios-solve", o.backend);
   doc["problem"] = {{"id", "unknown"}};
   doc["status"] = "compile_failed";
-  doc["compile"] = {{"ok", c.ok},           {"cached", c.cached},     {"source_sha256", c.sha256},
-                    {"command", c.command}, {"warnings", c.warnings}, {"diagnostics", c.diagnostics.substr(0, 8000)}};
+  doc["compile"] = {{"ok", c.ok},
+                    {"cached", c.cached},
+                    {"source_sha256", c.sha256},
+                    {"structure_sha256", c.structure_sha256},
+                    {"command", c.command},
+                    {"warnings", c.warnings},
+                    {"diagnostics", c.diagnostics.substr(0, 8000)}};
   doc["sandbox"] = o.sandbox ? "bubblewrap" : "none";
   doc["seed"] = settings.value("seed", 1);
   doc["iterations"] = 0;
@@ -145,13 +150,14 @@ std::string merge_outcome(json& doc, const std::string& outcome_path, const std:
 }
 
 // The private folder of one run, beside the trajectory, and the only folder the sandboxed program
-// may write: it holds the settings the program reads and the outcome and trajectory it writes, so
-// nothing the program leaves (a link, a FIFO) lands where helios-solve writes its own files. The
-// folder goes, with whatever is in it, when this does.
+// may write: it holds the settings and parameters the program reads and the outcome and trajectory
+// it writes, so nothing the program leaves (a link, a FIFO) lands where helios-solve writes its own
+// files. The folder goes, with whatever is in it, when this does.
 struct RunFolder {
   explicit RunFolder(const fs::path& dir)
       : path(create(dir)),
         settings((fs::path(path) / "settings.json").string()),
+        parameters((fs::path(path) / "parameters.json").string()),
         outcome((fs::path(path) / "outcome.json").string()),
         trajectory((fs::path(path) / "trajectory.csv").string()) {}
   ~RunFolder() {
@@ -167,7 +173,7 @@ struct RunFolder {
       throw std::runtime_error(name + ": cannot create the run's private folder: " + std::strerror(errno));
     return name;
   }
-  const std::string path, settings, outcome, trajectory;
+  const std::string path, settings, parameters, outcome, trajectory;
 };
 
 }  // namespace
@@ -222,13 +228,18 @@ json solve(const SolveOptions& o) {
     if (o.warm_only) program_settings["warm_start"]["only"] = true;
   }
   io::write_json_atomic(files.settings, program_settings);
-  const std::vector<std::string> program = {fs::absolute(c.binary).lexically_normal().string(),
-                                            "--settings",
-                                            files.settings,
-                                            "--outcome",
-                                            files.outcome,
-                                            "--trajectory",
-                                            files.trajectory};
+  std::vector<std::string> program = {fs::absolute(c.binary).lexically_normal().string(),
+                                      "--settings",
+                                      files.settings,
+                                      "--outcome",
+                                      files.outcome,
+                                      "--trajectory",
+                                      files.trajectory};
+  // This source's numbers: the cached program may have been compiled from another problem's.
+  if (c.parameters.readable) {
+    io::write_json_atomic(files.parameters, parameters_document(c.parameters.values));
+    program.insert(program.end(), {"--parameters", files.parameters});
+  }
   const RunResult run = run_limited(o.sandbox ? sandboxed(program, files.path) : program, o.time_limit_s,
                                     o.memory_limit_mb, files.path, o.progress);
   doc["timings"]["run_s"] = run.seconds;

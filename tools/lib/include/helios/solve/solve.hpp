@@ -50,14 +50,38 @@ io::json run_settings(const SolveOptions& o);
 // one without x) is an input_error naming the file and field.
 io::json warm_start_of(const std::string& path, io::json& record);
 
+// A program's numbers: its HELIOS_PARAMETER and HELIOS_PARAMETER_ARRAY lines (the PROBLEM block,
+// templates/runtime/helios_runtime.hpp), each at the start of its line as
+// `HELIOS_PARAMETER(name, number);` or `HELIOS_PARAMETER_ARRAY(name, number, ...);` with an
+// optional `  // comment`. `structure` is the source with each of their numbers replaced by `#`
+// (nothing else), `values` the parameters file's values ({name: number or [numbers]}, each the
+// double its literal denotes). When the source names HELIOS_PARAMETER anywhere else outside a
+// comment line, has a parameter line of another form, or a preprocessor line other than the
+// runtime's #include before its last parameter line, its numbers are not readable: `readable` is
+// false, `structure` the whole source and `values` empty (the program runs on its literals).
+struct ProgramParameters {
+  bool readable = false;
+  std::string structure;
+  io::json values = io::json::object();
+};
+ProgramParameters program_parameters(const std::string& source);
+
+// {"schema": "helios/parameters", "values": values}: the file the program reads with --parameters.
+io::json parameters_document(const io::json& values);
+
 struct CompileResult {
   bool ok = false, cached = false;
-  std::string binary, sha256, command, diagnostics;
+  // sha256: the key of the source itself (solution.json's source_sha256); structure_sha256: the
+  // key of its structure (ProgramParameters), under which the program is cached.
+  std::string binary, sha256, structure_sha256, command, diagnostics;
+  ProgramParameters parameters;
   int warnings = 0;
   double seconds = 0;
 };
 
-// Compiles `source` with o.compiler -O2 into o.cache_dir/<sha256>/shoot unless already there. The
+// Compiles `source` with o.compiler -O2 into o.cache_dir/<structure_sha256>/shoot unless already
+// there (a program of the same structure, compiled from another problem's numbers, which the
+// parameters file replaces at run time). The
 // compiler runs under the run's limits (run_limited: o.time_limit_s wall clock, o.memory_limit_mb
 // of address space, CPU, file size, processes): a source that makes it loop or grow fails the
 // compile, with the reason last in its diagnostics.
