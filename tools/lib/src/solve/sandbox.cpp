@@ -68,6 +68,16 @@ long processes_of_user() {
   return n;
 }
 
+// Whether child `p` ends (and is reaped) within `grace`.
+bool ends_within(pid_t p, std::chrono::milliseconds grace) {
+  const auto until = std::chrono::steady_clock::now() + grace;
+  do {
+    if (::waitpid(p, nullptr, WNOHANG) == p) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  } while (std::chrono::steady_clock::now() < until);
+  return false;
+}
+
 // Kills whatever the program left behind: its process group, then (as a child subreaper) every
 // orphan reparented to us, including those that left the group with setsid(). Returns how many.
 int kill_leftovers(pid_t group) {
@@ -82,8 +92,9 @@ int kill_leftovers(pid_t group) {
     }
     quiet = 0;
     for (const pid_t p : stray) {
-      // One that has already exited (bubblewrap's own init, reparented to us as it ends) is only reaped.
-      if (::waitpid(p, nullptr, WNOHANG) == p) continue;
+      // One that is ending on its own (bubblewrap's init, reparented to us as its program ends) is
+      // only reaped: it gets a moment to finish before it counts as left behind.
+      if (ends_within(p, std::chrono::milliseconds(200))) continue;
       ::kill(p, SIGKILL);
       ::waitpid(p, nullptr, 0);
       ++killed;
