@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "helios/io/error.hpp"
@@ -163,6 +164,24 @@ TEST(Compile, TheCommandNamesTheRuntimeByAbsolutePath) {
   const auto c = helios::solve::compile_cached("#include \"helios_runtime.hpp\"\nint main() {}\n", o);
   EXPECT_NE(c.command.find(" -I" + runtime.include_dir + " "), std::string::npos) << c.command;
   EXPECT_NE(c.command.find(" " + runtime.library + " "), std::string::npos) << c.command;
+  fs::remove_all(dir);
+}
+
+// Two solves of one structure at once (a sweep's rows under make -j): one compiles, the other waits
+// for it and takes the program from the cache.
+TEST(Compile, ConcurrentCompilesOfOneStructureCompileOnce) {
+  const fs::path dir = fresh_dir("compile-once");
+  helios::solve::SolveOptions o;
+  o.cache_dir = dir.string();
+  o.sandbox = false;
+  const std::string source = "#include \"helios_runtime.hpp\"\nint main() {}\n";
+  helios::solve::CompileResult first, second;
+  std::thread other([&] { second = helios::solve::compile_cached(source, o); });
+  first = helios::solve::compile_cached(source, o);
+  other.join();
+  ASSERT_TRUE(first.ok && second.ok);
+  EXPECT_NE(first.cached, second.cached) << "both compiled, or neither";
+  EXPECT_EQ(first.binary, second.binary);
   fs::remove_all(dir);
 }
 

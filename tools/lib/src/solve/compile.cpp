@@ -1,5 +1,7 @@
 // The compile step: g++ against the prebuilt runtime, into a cache keyed by the SHA-256 of the
 // source's structure (its numbers masked), command, compiler and runtime.
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -49,6 +51,25 @@ std::vector<std::string> program_flags() {
   return flags;
 }
 
+// An exclusive lock on a cache folder's lock file, held for its lifetime (flock: released when the
+// process ends, however it ends). A lock that cannot be taken is no error: the compile then runs
+// unserialized, as two compiles of one structure are harmless (each renames its own binary).
+class CacheLock {
+ public:
+  explicit CacheLock(const std::string& path)
+      : fd_(::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0600)) {
+    if (fd_ >= 0) ::flock(fd_, LOCK_EX);
+  }
+  ~CacheLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  CacheLock(const CacheLock&) = delete;
+  CacheLock& operator=(const CacheLock&) = delete;
+
+ private:
+  int fd_;
+};
+
 }  // namespace
 
 std::string compile_key(const std::string& source, const std::string& command, const std::string& compiler_version,
@@ -78,15 +99,20 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   // Absolute, as the sandbox binds the folder at its absolute path.
   const fs::path dir = fs::absolute(fs::path(o.cache_dir) / c.structure_sha256).lexically_normal();
   c.binary = (dir / "shoot").string();
-  if (fs::exists(c.binary)) {
+  const auto from_cache = [&] {
     c.ok = c.cached = true;
     // The log holds at most the 64 KiB of diagnostics a compile keeps.
     c.diagnostics = io::read_text((dir / "compile.log").string(), kMaxCompileLog);
     c.warnings = count_of(c.diagnostics, "warning:");
     c.seconds = seconds_since(start);
     return c;
-  }
+  };
+  if (fs::exists(c.binary)) return from_cache();
   fs::create_directories(dir);
+  // One compile per structure at a time: a second solve of the same structure (a sweep's next row
+  // under make -j) waits for the first one's compile and takes it from the cache.
+  const CacheLock lock((dir / ".lock").string());
+  if (fs::exists(c.binary)) return from_cache();
   const std::string src = (dir / "shoot.cpp").string();
   io::write_text_atomic(src, source);
   const std::string tmp_bin = (dir / (".shoot.tmp." + std::to_string(::getpid()))).string();
