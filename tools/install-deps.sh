@@ -27,6 +27,8 @@ checks=(
   "bats:cmd/bats"
   "jq:cmd/jq"
   "bc:cmd/bc"
+  # Bats runs its files two at a time (bats --jobs needs GNU parallel).
+  "parallel:cmd/parallel"
   # make test compiles every report's LaTeX with pdflatex (amsmath: texlive-latex-base, amssymb: texlive-base).
   "texlive-latex-base:cmd/pdflatex"
 )

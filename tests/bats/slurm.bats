@@ -153,7 +153,7 @@ slurm_make() {
     '($a | length) == 3 and ([range(3) | (($a[.] - $b[.]) | fabs) <= 1e-9 * ($b[.] | fabs)] | all)' >/dev/null
 }
 
-@test "slurm: the P01 sweep with LAUNCH=\"srun -n1 -c1\" solves every cell as a Slurm step, objectives as without LAUNCH" {
+@test "slurm: the P01 sweep with LAUNCH=\"srun -n1 -c1\" solves every cell, boundary and cross-check try as a Slurm step, objectives as without LAUNCH" {
   run -0 sweep_make "$SLURM_RUNS" LAUNCH="srun -n1 -c1 $RECORD_STEP"
   run -0 sweep_make "$PLAIN_RUNS"
   local s="$SLURM_RUNS/builtin/P01" p="$PLAIN_RUNS/builtin/P01" cell jobs=()
@@ -169,6 +169,13 @@ slurm_make() {
   done
   # Each cell was its own srun (job): nine distinct job ids.
   [[ $(printf '%s\n' "${jobs[@]}" | sort -u | wc -l) -eq 9 ]]
+  # So were the boundaries' minimum-time solves and the cross-check's tries.
+  local f tries=0
+  for f in "$s"/b*/solution.json "$s"/*/crosscheck/*/solution.json; do
+    [[ -s $(dirname "$f")/slurm-step.env ]] || { echo "$f: its solve was no Slurm step" >&2; false; }
+    [[ $f == */crosscheck/* ]] && tries=$((tries + 1))
+  done
+  ((tries == 24)) || { echo "$tries cross-check tries" >&2; false; }
   # Same cells, same status and start, objectives within 1e-9 relative.
   paste -d, <(tail -n +2 "$s/sweep.csv" | cut -d, -f3,4,5,7) <(tail -n +2 "$p/sweep.csv" | cut -d, -f3,4,5,7) |
     awk -F, '{ d = $3 - $7; if (d < 0) d = -d
