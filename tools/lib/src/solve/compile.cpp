@@ -111,7 +111,7 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   fs::create_directories(dir);
   // One compile per structure at a time: a second solve of the same structure (a sweep's next row
   // under make -j) waits for the first one's compile and takes it from the cache.
-  const CacheLock lock((dir / ".lock").string());
+  const CacheLock lock((dir / "compile.lock").string());
   if (fs::exists(c.binary)) return from_cache();
   const std::string src = (dir / "shoot.cpp").string();
   io::write_text_atomic(src, source);

@@ -68,6 +68,14 @@ long processes_of_user() {
   return n;
 }
 
+// A process's command name (/proc/<pid>/comm), "" when it cannot be read.
+std::string command_name(pid_t p) {
+  std::ifstream in("/proc/" + std::to_string(p) + "/comm");
+  std::string name;
+  std::getline(in, name);
+  return name;
+}
+
 // Whether child `p` ends (and is reaped) within `grace`.
 bool ends_within(pid_t p, std::chrono::milliseconds grace) {
   const auto until = std::chrono::steady_clock::now() + grace;
@@ -92,11 +100,20 @@ int kill_leftovers(pid_t group) {
     }
     quiet = 0;
     for (const pid_t p : stray) {
-      // One that is ending on its own (bubblewrap's init, reparented to us as its program ends) is
-      // only reaped: it gets a moment to finish before it counts as left behind.
-      if (ends_within(p, std::chrono::milliseconds(200))) continue;
-      ::kill(p, SIGKILL);
-      ::waitpid(p, nullptr, 0);
+      // bubblewrap's own init, reparented to us as its program ends, is no leftover of the
+      // program's: it gets a moment to end on its own, and is not counted.
+      if (command_name(p) == "bwrap") {
+        if (!ends_within(p, std::chrono::milliseconds(200))) {
+          ::kill(p, SIGKILL);
+          ::waitpid(p, nullptr, 0);
+        }
+        continue;
+      }
+      // Anything else the program started outlived it (killed here, or with its namespace).
+      if (::waitpid(p, nullptr, WNOHANG) != p) {
+        ::kill(p, SIGKILL);
+        ::waitpid(p, nullptr, 0);
+      }
       ++killed;
     }
   }
