@@ -181,7 +181,7 @@ $(RUNS)/%/trajectory.oem: $(RUNS)/%/spec.json $(RUNS)/%/solution.json $(call TOO
 	  --trajectory $(@D)/trajectory.csv -o $@
 
 # The run as a document: the derivation as LaTeX mathematics beside verify's verdicts, the
-# solution and its plots (tools/lib/src/score/README.md, "report.md").
+# solution and its plots (tools/lib/src/report/README.md).
 $(RUNS)/%/report.md: $(SCENARIOS_DIR)/%/problem.txt $(RUNS)/%/spec.json $(RUNS)/%/derivation.json $(RUNS)/%/verify.json \
                      $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
 	$(BIN)/helios-score --report --problem $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \

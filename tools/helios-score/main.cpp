@@ -11,8 +11,8 @@
 #include "helios/io/error.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/io/schema.hpp"
+#include "helios/report/report.hpp"
 #include "helios/score/oem.hpp"
-#include "helios/score/report.hpp"
 #include "helios/score/score.hpp"
 #include "helios/score/sweep.hpp"
 #include "helios/spec/parse.hpp"
@@ -41,7 +41,7 @@ int score_run(const Args& args) {
 }
 
 int report(const Args& args) {
-  score::ReportInputs in;
+  helios::report::ReportInputs in;
   in.problem_text = helios::io::read_text(args.get("problem"));
   helios::spec::check_problem_text(in.problem_text, args.get("problem"));
   in.spec = helios::io::read_artifact("spec", args.get("spec"));
@@ -50,7 +50,7 @@ int report(const Args& args) {
   in.verify = optional_artifact(args, "verify");
   in.solution = optional_artifact(args, "solution");
   std::string text;
-  helios::cli::naming_input(args.get("derivation"), [&] { text = score::report_markdown(in); });
+  helios::cli::naming_input(args.get("derivation"), [&] { text = helios::report::report_markdown(in); });
   helios::io::write_text_atomic(args.output, text);
   return 0;
 }
