@@ -171,7 +171,7 @@ $(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp $(SCENARIOS_DIR)/%/settings.json $(
 	$(LAUNCH) $(BIN)/helios-solve --backend $(BACKEND) $< --settings $(SCENARIOS_DIR)/$*/settings.json --cache-dir $(CACHE) \
 	  --time-limit $(SOLVE_TIME_LIMIT) --trajectory $(@D)/trajectory.csv --plots $(@D)/ -o $@
 
-# The converged trajectory as a CCSDS OEM 2.0 (tools/lib/src/score/README.md, "trajectory.oem").
+# The converged trajectory as a CCSDS OEM 2.0 (tools/lib/src/oem/README.md).
 # trajectory.csv is written before solution.json and only for a converged solution, so it is no
 # prerequisite: for a run that did not converge helios-score writes nothing (and removes a stale
 # OEM) and exits 0, so make goes on; the target stays missing and this cheap step runs again at each

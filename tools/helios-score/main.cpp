@@ -11,8 +11,8 @@
 #include "helios/io/error.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/io/schema.hpp"
+#include "helios/oem/oem.hpp"
 #include "helios/report/report.hpp"
-#include "helios/score/oem.hpp"
 #include "helios/score/score.hpp"
 #include "helios/score/sweep.hpp"
 #include "helios/spec/parse.hpp"
@@ -64,8 +64,8 @@ int oem(const Args& args) {
               << ": no trajectory, no OEM written\n";
     return 0;
   }
-  const score::OemSources sources{args.get("spec"), args.get("solution"), args.get("trajectory")};
-  const auto text = score::oem_from_run(spec, solution, helios::io::read_text(args.get("trajectory")), sources);
+  const helios::oem::OemSources sources{args.get("spec"), args.get("solution"), args.get("trajectory")};
+  const auto text = helios::oem::oem_from_run(spec, solution, helios::io::read_text(args.get("trajectory")), sources);
   helios::io::write_text_atomic(args.output, *text);
   return 0;
 }
