@@ -192,7 +192,7 @@ $(RUNS)/%/score.json: $(SCENARIOS_DIR)/%/reference.json $(RUNS)/%/spec.json $(RU
 	$(BIN)/helios-score --reference $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
 	  --verify $(@D)/verify.json --solution $(@D)/solution.json -o $@
 
-# ---- launch-window sweeps (tools/lib/src/score/SWEEPS.md) ------------------------------------
+# ---- launch-window sweeps (tools/lib/src/sweep/README.md) ------------------------------------
 # make sweep sweep=P01 [SWEEP_GRID=bench] [LAUNCH="srun -n1 -c1"] [-j N]: first each departure's
 # feasibility boundary b<epoch>/ (the template's problem in minimum time; boundary.mk names them),
 # then every cell d<epoch>_t<tof> of scenarios/P01/sweep.json not below its boundary, each a run

@@ -1,6 +1,6 @@
 // Launch-window sweeps: the grid of a sweep.json, the cells' problem texts and chains, sweep.csv
-// and porkchop.png (helios/score/sweep.hpp).
-#include "helios/score/sweep.hpp"
+// and porkchop.png (helios/sweep/sweep.hpp).
+#include "helios/sweep/sweep.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,7 +16,7 @@
 #include "helios/solve/process.hpp"
 #include "helios/solve/solve.hpp"
 
-namespace helios::score {
+namespace helios::sweep {
 
 namespace fs = std::filesystem;
 using io::json;
@@ -372,4 +372,4 @@ void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, cons
   fs::rename(tmp_png, png_path);
 }
 
-}  // namespace helios::score
+}  // namespace helios::sweep

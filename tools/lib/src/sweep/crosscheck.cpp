@@ -1,4 +1,4 @@
-// A sweep's neighbour cross-check (helios/score/sweep.hpp): each cell re-solved warm from each
+// A sweep's neighbour cross-check (helios/sweep/sweep.hpp): each cell re-solved warm from each
 // converged neighbour's answer, the best kept, until no cell improves. A cell's first-pass answer
 // comes from one chain (or one cold search); its neighbours' extremals are other candidates, and
 // a sweep's answer should never be worse than a neighbour's continuation reaches.
@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "helios/io/error.hpp"
-#include "helios/score/sweep.hpp"
 #include "helios/solve/process.hpp"
+#include "helios/sweep/sweep.hpp"
 
-namespace helios::score {
+namespace helios::sweep {
 
 namespace fs = std::filesystem;
 using io::json;
@@ -219,4 +219,4 @@ json crosscheck(const SweepGrid& grid, const std::string& dir, const CrosscheckO
           {"cells", cells}};
 }
 
-}  // namespace helios::score
+}  // namespace helios::sweep
