@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "helios/io/error.hpp"
-#include "helios/solve/process.hpp"
 #include "helios/solve/solve.hpp"
 
 namespace helios::sweep {
