@@ -171,7 +171,7 @@ $(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp $(SCENARIOS_DIR)/%/settings.json $(
 	$(LAUNCH) $(BIN)/helios-solve --backend $(BACKEND) $< --settings $(SCENARIOS_DIR)/$*/settings.json --cache-dir $(CACHE) \
 	  --time-limit $(SOLVE_TIME_LIMIT) --trajectory $(@D)/trajectory.csv --plots $(@D)/ -o $@
 
-# The converged trajectory as a CCSDS OEM 2.0 (tools/lib/src/score/README.md, "trajectory.oem").
+# The converged trajectory as a CCSDS OEM 2.0 (tools/lib/src/oem/README.md).
 # trajectory.csv is written before solution.json and only for a converged solution, so it is no
 # prerequisite: for a run that did not converge helios-score writes nothing (and removes a stale
 # OEM) and exits 0, so make goes on; the target stays missing and this cheap step runs again at each
@@ -181,7 +181,7 @@ $(RUNS)/%/trajectory.oem: $(RUNS)/%/spec.json $(RUNS)/%/solution.json $(call TOO
 	  --trajectory $(@D)/trajectory.csv -o $@
 
 # The run as a document: the derivation as LaTeX mathematics beside verify's verdicts, the
-# solution and its plots (tools/lib/src/score/README.md, "report.md").
+# solution and its plots (tools/lib/src/report/README.md).
 $(RUNS)/%/report.md: $(SCENARIOS_DIR)/%/problem.txt $(RUNS)/%/spec.json $(RUNS)/%/derivation.json $(RUNS)/%/verify.json \
                      $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
 	$(BIN)/helios-score --report --problem $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
@@ -192,7 +192,7 @@ $(RUNS)/%/score.json: $(SCENARIOS_DIR)/%/reference.json $(RUNS)/%/spec.json $(RU
 	$(BIN)/helios-score --reference $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
 	  --verify $(@D)/verify.json --solution $(@D)/solution.json -o $@
 
-# ---- launch-window sweeps (tools/lib/src/score/SWEEPS.md) ------------------------------------
+# ---- launch-window sweeps (tools/lib/src/sweep/README.md) ------------------------------------
 # make sweep sweep=P01 [SWEEP_GRID=bench] [LAUNCH="srun -n1 -c1"] [-j N]: first each departure's
 # feasibility boundary b<epoch>/ (the template's problem in minimum time; boundary.mk names them),
 # then every cell d<epoch>_t<tof> of scenarios/P01/sweep.json not below its boundary, each a run

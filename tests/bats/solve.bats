@@ -111,7 +111,7 @@ setup() {
   assert_no_temp_files "$CACHE"
 }
 
-# p01_cell DIR EPOCH TOF [THRUST_N] -> DIR/shoot.cpp: a cell of the P01 sweep (tools/lib/src/score/SWEEPS.md).
+# p01_cell DIR EPOCH TOF [THRUST_N] -> DIR/shoot.cpp: a cell of the P01 sweep (tools/lib/src/sweep/README.md).
 p01_cell() {
   local dir="$1"
   mkdir -p "$dir"

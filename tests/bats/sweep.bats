@@ -1,5 +1,5 @@
 #!/usr/bin/env bats
-# Launch-window sweeps (tools/lib/src/score/SWEEPS.md): make sweep sweep=P01 on its small CI grid
+# Launch-window sweeps (tools/lib/src/sweep/README.md): make sweep sweep=P01 on its small CI grid
 # (3 departures x 3 times of flight): each departure's minimum-time boundary, sweep.csv and
 # porkchop.png, the chains' warm starts, the neighbour cross-check, a cell below its boundary
 # called infeasible and not solved, a second make that does nothing, a killed sweep that resumes

@@ -204,7 +204,7 @@ TEST(Codegen, CountMismatchIsAnError) {
   EXPECT_THROW(helios::codegen::generate(d, {}), std::invalid_argument);
 }
 
-// The program of a P01 cell (tools/lib/src/score/SWEEPS.md), its template's text changed by `edits`
+// The program of a P01 cell (tools/lib/src/sweep/README.md), its template's text changed by `edits`
 // (each a {from, to} replacement).
 std::string p01_program(const std::string& departure, const std::string& tof,
                         const std::vector<std::pair<std::string, std::string>>& edits = {}) {

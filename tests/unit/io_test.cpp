@@ -8,11 +8,13 @@
 #include <regex>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "helios/io/cli.hpp"
 #include "helios/io/embedded.hpp"
 #include "helios/io/error.hpp"
 #include "helios/io/json_io.hpp"
+#include "helios/io/process.hpp"
 #include "helios/io/schema.hpp"
 #include "helios/io/sha256.hpp"
 
@@ -334,4 +336,43 @@ TEST(Cli, SelectModeRefusesTheOptionsOfOtherJobs) {
             "--report takes no --track (it goes with --oem), see helios-x --help");
   EXPECT_EQ(error_of(args_of({{"oem", "1"}, {"track", "t"}, {"level", "4"}})),
             "--oem takes no --level (it goes with --report), see helios-x --help");
+}
+
+// run_all: each command's exit code in the order given, whatever order they end in.
+TEST(Process, RunAllGivesEachExitCodeInOrder) {
+  using helios::io::run_all;
+  EXPECT_EQ(run_all({{"sh", "-c", "exit 3"}, {"sh", "-c", "exit 0"}, {"sh", "-c", "exit 5"}}, 2),
+            (std::vector<int>{3, 0, 5}));
+  // The first ends last: its code stays first.
+  EXPECT_EQ(run_all({{"sh", "-c", "sleep 0.3; exit 4"}, {"sh", "-c", "exit 1"}, {"sh", "-c", "exit 2"}}, 2),
+            (std::vector<int>{4, 1, 2}));
+  // A program that cannot be executed is 127, one a signal ends is -1; jobs below 1 is one at a time.
+  EXPECT_EQ(run_all({{"helios-no-such-program"}, {"sh", "-c", "kill -KILL $$"}}, 0), (std::vector<int>{127, -1}));
+  EXPECT_TRUE(run_all({}, 2).empty());
+}
+
+// run_all with two jobs runs two at once: each command waits (5 s at most) for the other's file.
+TEST(Process, RunAllRunsJobsAtATime) {
+  const fs::path dir = fresh_dir("run-all");
+  const auto waits_for = [&](const std::string& mine, const std::string& other) {
+    const std::string theirs = "'" + (dir / other).string() + "'";
+    return std::vector<std::string>{"sh", "-c",
+                                    "touch '" + (dir / mine).string() + "'; i=0; while [ ! -e " + theirs +
+                                        " ] && [ $i -lt 100 ]; do sleep 0.05; i=$((i+1)); done; [ -e " + theirs + " ]"};
+  };
+  EXPECT_EQ(helios::io::run_all({waits_for("a", "b"), waits_for("b", "a")}, 2), (std::vector<int>{0, 0}));
+  fs::remove_all(dir);
+}
+
+TEST(Process, CaptureOnPathAndTheTextOfALine) {
+  EXPECT_EQ(helios::io::capture({"sh", "-c", "echo out; echo err >&2"}), "out\nerr\n");
+  const std::string sh = helios::io::on_path("sh");
+  EXPECT_EQ(fs::path(sh).filename(), "sh");
+  EXPECT_EQ(::access(sh.c_str(), X_OK), 0);
+  EXPECT_EQ(helios::io::on_path("./x"), "./x");
+  EXPECT_EQ(helios::io::first_line("one\ntwo"), "one");
+  EXPECT_EQ(helios::io::printable_line("a\nb\x1b[1m", 500), "a?b?[1m");
+  EXPECT_EQ(helios::io::printable_line(std::string(10, 'x'), 4), "xxxx...");
+  EXPECT_EQ(helios::io::limit_text(900), "900");
+  EXPECT_EQ(helios::io::limit_text(0.5), "0.5");
 }

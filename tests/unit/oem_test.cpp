@@ -1,4 +1,4 @@
-#include "helios/score/oem.hpp"
+#include "helios/oem/oem.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,11 +14,11 @@
 namespace {
 
 using helios::io::json;
-using helios::score::oem_epoch;
-using helios::score::oem_from_run;
-using helios::score::oem_segment_starts;
-using helios::score::read_trajectory;
-using helios::score::TrajectorySample;
+using helios::oem::oem_epoch;
+using helios::oem::oem_from_run;
+using helios::oem::oem_segment_starts;
+using helios::oem::read_trajectory;
+using helios::oem::TrajectorySample;
 
 const std::string kFixtures = std::string(HELIOS_SOURCE_DIR) + "/tests/fixtures/oem";
 
@@ -29,7 +29,7 @@ TEST(OemEpoch, Mjd2000ZeroIsMidnightAndJ2000IsNoon) {
   // J2000.0 (JD 2451545.0) is MJD2000 0.5.
   EXPECT_EQ(oem_epoch(0.0), "2000-01-01T00:00:00.000000");
   EXPECT_EQ(oem_epoch(helios::astro::JD_J2000 - helios::astro::JD_OF_MJD2000), "2000-01-01T12:00:00.000000");
-  EXPECT_EQ(oem_epoch(helios::score::kOemDefaultEpochMjd2000), "2000-01-01T12:00:00.000000");
+  EXPECT_EQ(oem_epoch(helios::oem::kOemDefaultEpochMjd2000), "2000-01-01T12:00:00.000000");
 }
 
 TEST(OemEpoch, HalfDaysAndTheDayBefore) {

@@ -1,4 +1,4 @@
-#include "helios/score/report.hpp"
+#include "helios/report/report.hpp"
 
 #include <gtest/gtest.h>
 
@@ -182,11 +182,11 @@ TEST(Typesetter, S10PeriapsisRowIsAFifthOfItsStoredLength) {
 // ---- the report ----------------------------------------------------------------------------
 
 TEST(Report, HasEverySectionAndEveryShootingEquation) {
-  helios::score::ReportInputs in;
+  helios::report::ReportInputs in;
   in.problem_text = "The problem.\n";
   in.spec = spec_of("S04");
   in.derivation = helios::pmp::derive_from_spec(in.spec);
-  const std::string md = helios::score::report_markdown(in);
+  const std::string md = helios::report::report_markdown(in);
   for (const char* section : {"## The problem", "## Specification", "### Hamiltonian", "### State equations",
                               "### Costate equations", "### Optimal control", "### Boundary conditions",
                               "### Interior events", "### Shooting variables and equations", "### Named quantities"})
@@ -199,11 +199,11 @@ TEST(Report, HasEverySectionAndEveryShootingEquation) {
 }
 
 TEST(Report, AnExpressionItCannotReadIsShownAsText) {
-  helios::score::ReportInputs in;
+  helios::report::ReportInputs in;
   in.spec = spec_of("S01");
   in.derivation = helios::pmp::derive_from_spec(in.spec);
   in.derivation["hamiltonian"] = "rx +* 2";
-  const std::string md = helios::score::report_markdown(in);
+  const std::string md = helios::report::report_markdown(in);
   EXPECT_NE(md.find("`rx +* 2` (not an expression this report can typeset)"), std::string::npos);
 }
 
@@ -211,7 +211,7 @@ TEST(Report, AnExpressionItCannotReadIsShownAsText) {
 // a key typed as a number prints only a number.
 TEST(Report, HostileArtifactStringsAreTextAndNumbersAreNumbers) {
   const std::string evil = "3 $\\input{/etc/hostname}$ <script>x</script> `c` [a](http://e) |\n# h";
-  helios::score::ReportInputs in;
+  helios::report::ReportInputs in;
   in.problem_text = "```\n$x$\n";
   in.spec = spec_of("S01");
   in.derivation = helios::pmp::derive_from_spec(in.spec);
@@ -221,7 +221,7 @@ TEST(Report, HostileArtifactStringsAreTextAndNumbersAreNumbers) {
                      {"timings", {{evil, evil}}},
                      {"homotopy", json::array({{{"eps", evil}, {"converged", true}, {"evaluations", "7 $x$"}}})},
                      {"files", {{"plot", "../x.png"}, {evil, "t.png"}}}};
-  const std::string md = helios::score::report_markdown(in);
+  const std::string md = helios::report::report_markdown(in);
   const std::string text = "3 \\$\\\\input{/etc/hostname}\\$ \\<script\\>x\\</script\\> \\`c\\` \\[a\\](http://e) \\| \\# h";
   EXPECT_NE(md.find("| " + text + " |"), std::string::npos);
   EXPECT_NE(md.find("| `timings/3 $\\input{/etc/hostname}$ <script>x</script> 'c' [a](http://e) \\| # h` | *(not a number)* |"),

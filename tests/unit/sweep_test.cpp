@@ -1,4 +1,4 @@
-#include "helios/score/sweep.hpp"
+#include "helios/sweep/sweep.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@ namespace {
 namespace fs = std::filesystem;
 using helios::input_error;
 using helios::io::json;
-using namespace helios::score;
+using namespace helios::sweep;
 
 const json kSweep = json::parse(R"({
   "departure_mjd2000": {"start": 9700, "stop": 9780, "step": 40},

@@ -1,5 +1,7 @@
 // helios-score: a run's artifacts + scenarios/SNN/reference.json -> score.json, or a folder of
-// score.json files -> scoreboard.md, or a converged run's trajectory -> trajectory.oem.
+// score.json files -> scoreboard.md, or a run -> report.md, or a converged run's trajectory ->
+// trajectory.oem, or a launch-window sweep's cells and outcome. Each job is a helios::cli::Mode
+// here; its work is in its library room: score, report, oem, sweep (tools/lib/src/<room>).
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -11,11 +13,11 @@
 #include "helios/io/error.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/io/schema.hpp"
-#include "helios/score/oem.hpp"
-#include "helios/score/report.hpp"
+#include "helios/oem/oem.hpp"
+#include "helios/report/report.hpp"
 #include "helios/score/score.hpp"
-#include "helios/score/sweep.hpp"
 #include "helios/spec/parse.hpp"
+#include "helios/sweep/sweep.hpp"
 
 namespace {
 
@@ -41,7 +43,7 @@ int score_run(const Args& args) {
 }
 
 int report(const Args& args) {
-  score::ReportInputs in;
+  helios::report::ReportInputs in;
   in.problem_text = helios::io::read_text(args.get("problem"));
   helios::spec::check_problem_text(in.problem_text, args.get("problem"));
   in.spec = helios::io::read_artifact("spec", args.get("spec"));
@@ -50,7 +52,7 @@ int report(const Args& args) {
   in.verify = optional_artifact(args, "verify");
   in.solution = optional_artifact(args, "solution");
   std::string text;
-  helios::cli::naming_input(args.get("derivation"), [&] { text = score::report_markdown(in); });
+  helios::cli::naming_input(args.get("derivation"), [&] { text = helios::report::report_markdown(in); });
   helios::io::write_text_atomic(args.output, text);
   return 0;
 }
@@ -64,40 +66,40 @@ int oem(const Args& args) {
               << ": no trajectory, no OEM written\n";
     return 0;
   }
-  const score::OemSources sources{args.get("spec"), args.get("solution"), args.get("trajectory")};
-  const auto text = score::oem_from_run(spec, solution, helios::io::read_text(args.get("trajectory")), sources);
+  const helios::oem::OemSources sources{args.get("spec"), args.get("solution"), args.get("trajectory")};
+  const auto text = helios::oem::oem_from_run(spec, solution, helios::io::read_text(args.get("trajectory")), sources);
   helios::io::write_text_atomic(args.output, *text);
   return 0;
 }
 
-score::SweepGrid sweep_grid(const Args& args, const std::string& sweep_path) {
-  return score::read_sweep(helios::io::read_json(sweep_path), sweep_path, args.get("grid"));
+helios::sweep::SweepGrid sweep_grid(const Args& args, const std::string& sweep_path) {
+  return helios::sweep::read_sweep(helios::io::read_json(sweep_path), sweep_path, args.get("grid"));
 }
 
 int sweep_cells(const Args& args) {
   const std::string sweep_path = args.get("sweep-cells");
-  const score::SweepGrid grid = sweep_grid(args, sweep_path);
+  const helios::sweep::SweepGrid grid = sweep_grid(args, sweep_path);
   const std::string template_path = (std::filesystem::path(sweep_path).parent_path() / grid.template_file).string();
   const std::string fragment =
-      score::write_sweep_cells(grid, helios::io::read_text(template_path), template_path, args.get("cells"));
+      helios::sweep::write_sweep_cells(grid, helios::io::read_text(template_path), template_path, args.get("cells"));
   helios::io::write_text_atomic(args.output, fragment);
   return 0;
 }
 
 int sweep_boundary(const Args& args) {
   const std::string sweep_path = args.get("sweep-boundary");
-  const score::SweepGrid grid = sweep_grid(args, sweep_path);
+  const helios::sweep::SweepGrid grid = sweep_grid(args, sweep_path);
   const std::string template_path = (std::filesystem::path(sweep_path).parent_path() / grid.template_file).string();
   const std::string fragment =
-      score::write_sweep_boundary(grid, helios::io::read_text(template_path), template_path,
-                                  helios::io::read_json(args.get("settings")), args.get("cells"));
+      helios::sweep::write_sweep_boundary(grid, helios::io::read_text(template_path), template_path,
+                                          helios::io::read_json(args.get("settings")), args.get("cells"));
   helios::io::write_text_atomic(args.output, fragment);
   return 0;
 }
 
 int sweep_crosscheck(const Args& args) {
   const std::string sweep_path = args.get("sweep-crosscheck");
-  score::CrosscheckOptions o;
+  helios::sweep::CrosscheckOptions o;
   o.solver = args.get("solver");
   o.settings = args.get("settings");
   o.cache_dir = args.get("cache-dir");
@@ -105,21 +107,21 @@ int sweep_crosscheck(const Args& args) {
   for (std::string word; launch >> word;) o.launch.push_back(word);
   o.time_limit_s = helios::cli::positive_option(args, "time-limit");
   o.jobs = static_cast<int>(helios::cli::positive_option(args, "jobs"));
-  const auto doc = score::crosscheck(sweep_grid(args, sweep_path), args.get("cells"), o);
+  const auto doc = helios::sweep::crosscheck(sweep_grid(args, sweep_path), args.get("cells"), o);
   helios::io::write_text_atomic(args.output, doc.dump(2) + "\n");
   return 0;
 }
 
 int sweep(const Args& args) {
   const std::string sweep_path = args.get("sweep");
-  const score::SweepGrid grid = sweep_grid(args, sweep_path);
-  const std::vector<score::SweepRow> rows = score::sweep_rows(
+  const helios::sweep::SweepGrid grid = sweep_grid(args, sweep_path);
+  const std::vector<helios::sweep::SweepRow> rows = helios::sweep::sweep_rows(
       grid, args.get("cells"),
       args.has("crosscheck") ? helios::io::read_json(args.get("crosscheck")) : helios::io::json(nullptr));
   if (args.has("porkchop"))
-    score::porkchop_png(grid, rows, args.get("porkchop"),
-                        std::filesystem::path(sweep_path).parent_path().filename().string());
-  helios::io::write_text_atomic(args.output, score::sweep_csv(grid, rows));
+    helios::sweep::porkchop_png(grid, rows, args.get("porkchop"),
+                                std::filesystem::path(sweep_path).parent_path().filename().string());
+  helios::io::write_text_atomic(args.output, helios::sweep::sweep_csv(grid, rows));
   return 0;
 }
 
@@ -218,7 +220,7 @@ int main(int argc, char** argv) {
       "not below its departure's boundary (the template beside SWEEP.json with @DEPARTURE_MJD2000@\n"
       "and @TOF_DAYS@ replaced; an unchanged text is not rewritten) and the make fragment of the\n"
       "chains. With --sweep-crosscheck, re-solves each cell warm from its converged neighbours' answers\n"
-      "until no cell improves (tools/lib/src/score/SWEEPS.md). With --sweep, writes sweep.csv (one\n"
+      "until no cell improves (tools/lib/src/sweep/README.md). With --sweep, writes sweep.csv (one\n"
       "row per cell) and with --porkchop the contour plot of the objective.",
       "helios-score --reference scenarios/S01/reference.json --spec runs/builtin/S01/spec.json "
       "--derivation runs/builtin/S01/derivation.json --verify runs/builtin/S01/verify.json "

@@ -12,9 +12,9 @@
 
 #include "helios/io/error.hpp"
 #include "helios/io/json_io.hpp"
+#include "helios/io/process.hpp"
 #include "helios/io/schema.hpp"
 #include "helios/io/sha256.hpp"
-#include "helios/solve/process.hpp"
 #include "helios/solve/runtime_files.hpp"
 #include "helios/solve/solve.hpp"
 
@@ -92,7 +92,7 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   // The key covers the source, the command, the compiler's identity and the runtime's bytes; the
   // cache's is the same over the source's structure, its numbers masked, which the program reads
   // at run time from the parameters file.
-  const std::string compiler_version = first_line(capture({compiler, "--version"}));
+  const std::string compiler_version = io::first_line(io::capture({compiler, "--version"}));
   c.parameters = program_parameters(source);
   c.sha256 = compile_key(source, c.command, compiler_version, runtime.sha256);
   c.structure_sha256 = compile_key(c.parameters.structure, c.command, compiler_version, runtime.sha256);
@@ -104,7 +104,7 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
     // The log holds at most the 64 KiB of diagnostics a compile keeps.
     c.diagnostics = io::read_text((dir / "compile.log").string(), kMaxCompileLog);
     c.warnings = count_of(c.diagnostics, "warning:");
-    c.seconds = seconds_since(start);
+    c.seconds = io::seconds_since(start);
     return c;
   };
   if (fs::exists(c.binary)) return from_cache();
@@ -117,7 +117,7 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   io::write_text_atomic(src, source);
   const std::string tmp_bin = (dir / (".shoot.tmp." + std::to_string(::getpid()))).string();
   const io::TempFiles guard({tmp_bin});
-  std::vector<std::string> argv = {on_path(compiler)};
+  std::vector<std::string> argv = {io::on_path(compiler)};
   argv.insert(argv.end(), flags.begin(), flags.end());
   argv.insert(argv.end(), {"-I" + runtime.include_dir, src, "-o", tmp_bin, runtime.library, "-lcminpack"});
   // The compiler is sandboxed as the program is: a source that includes /etc/passwd or a project
@@ -131,7 +131,7 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   c.diagnostics = run.output_text;
   if (run.timed_out || run.signal != 0)
     c.diagnostics += "\nhelios-solve: the compiler was stopped: " +
-                     (run.timed_out ? "killed after " + limit_text(o.time_limit_s) + " s wall clock"
+                     (run.timed_out ? "killed after " + io::limit_text(o.time_limit_s) + " s wall clock"
                                     : "signal " + std::to_string(run.signal) + " (CPU, memory or file-size limit)") +
                      "\n";
   c.warnings = count_of(c.diagnostics, "warning:");
@@ -140,7 +140,7 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
     io::write_text_atomic((dir / "compile.log").string(), c.diagnostics);
     fs::rename(tmp_bin, c.binary);
   }
-  c.seconds = seconds_since(start);
+  c.seconds = io::seconds_since(start);
   return c;
 }
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "helios/io/json_io.hpp"
-#include "helios/solve/process.hpp"
+#include "helios/io/process.hpp"
 #include "helios/solve/solve.hpp"
 
 namespace helios::solve {
@@ -52,7 +52,7 @@ std::string run_gnuplot(const std::string& script, const std::vector<std::string
   if (!written) throw std::runtime_error("cannot write the gnuplot script");
   std::vector<std::string> argv = {"gnuplot", "-c", script_path};
   argv.insert(argv.end(), args.begin(), args.end());
-  return capture(argv);
+  return io::capture(argv);
 }
 
 json plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title) {
@@ -97,7 +97,7 @@ json plot_trajectory(const std::string& csv_path, const std::string& prefix, con
   const std::string out = run_gnuplot(script, {csv_path, title, tmp1, tmp2});
   std::error_code ec;
   if (fs::file_size(tmp1, ec) == 0 || fs::file_size(tmp2, ec) == 0)
-    throw std::runtime_error("gnuplot did not draw the plots (is gnuplot installed?): " + first_line(out));
+    throw std::runtime_error("gnuplot did not draw the plots (is gnuplot installed?): " + io::first_line(out));
   fs::rename(tmp1, traj_png);
   fs::rename(tmp2, panel_png);
   return {{"trajectory_plot", fs::path(traj_png).filename().string()},

@@ -21,7 +21,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "helios/solve/process.hpp"
+#include "helios/io/process.hpp"
 #include "helios/solve/solve.hpp"
 
 namespace helios::solve {
@@ -161,7 +161,7 @@ class OutputLines {
 
 std::vector<std::string> sandboxed(const std::vector<std::string>& argv, const std::string& workdir,
                                    const std::vector<std::string>& read_only) {
-  const std::string bwrap = on_path("bwrap");
+  const std::string bwrap = io::on_path("bwrap");
   if (bwrap.find('/') == std::string::npos)
     throw std::runtime_error(
         "bubblewrap (bwrap) is not installed, so the program cannot run sandboxed: install it "
@@ -224,7 +224,7 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
     ::setrlimit(RLIMIT_CORE, &no_core);
     // NOTE: the kernel does not apply RLIMIT_NPROC to root; kill_leftovers() is the bound there.
     ::setrlimit(RLIMIT_NPROC, &proc_limit);
-    exec_or_exit(argv, false);
+    io::exec_or_exit(argv, false);
   }
   ::close(err_pipe[1]);
   ::fcntl(err_pipe[0], F_SETFL, O_NONBLOCK);
@@ -239,7 +239,7 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
   while (true) {
     const pid_t done = ::waitpid(pid, &status, WNOHANG);
     if (done == pid) break;
-    if (seconds_since(start) > wall_limit_s) {
+    if (io::seconds_since(start) > wall_limit_s) {
       ::kill(-pid, SIGKILL);
       ::kill(pid, SIGKILL);
       ::waitpid(pid, &status, 0);
@@ -251,7 +251,7 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
     drain();
   }
   r.leftover_processes = kill_leftovers(pid);
-  r.seconds = seconds_since(start);
+  r.seconds = io::seconds_since(start);
   if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
   drain();

@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "helios/io/error.hpp"
+#include "helios/io/process.hpp"
 #include "helios/io/schema.hpp"
-#include "helios/solve/process.hpp"
 
 namespace helios::solve {
 
@@ -38,7 +38,7 @@ void check_settings(const json& settings, const std::string& source) {
   // The schema's own words for this one (an anyOf) would not say what is allowed.
   if (const auto it = settings.find("node_spacing_days"); it != settings.end() && it->is_number() &&
                                                            it->get<double>() > 0 && it->get<double>() < 1)
-    throw input_error(source + ": field /node_spacing_days: " + limit_text(it->get<double>()) +
+    throw input_error(source + ": field /node_spacing_days: " + io::limit_text(it->get<double>()) +
                       " is below 1 day (0 turns the multiple-shooting polish off)");
   io::validate("settings", settings, source);
 }
@@ -101,9 +101,9 @@ json record_before_run(const SolveOptions& o, const json& settings, const Compil
 // it left behind.
 std::string run_failure(const RunResult& run, double time_limit_s) {
   std::string detail = run.timed_out
-                           ? "killed after " + limit_text(time_limit_s) + " s wall clock"
+                           ? "killed after " + io::limit_text(time_limit_s) + " s wall clock"
                            : "exit code " + std::to_string(run.exit_code) + ", signal " + std::to_string(run.signal) +
-                                 ": " + printable_line(run.error_line);
+                                 ": " + io::printable_line(run.error_line);
   if (run.leftover_processes > 0)
     detail += "; killed " + std::to_string(run.leftover_processes) + " leftover processes";
   return detail;
@@ -213,10 +213,10 @@ json solve(const SolveOptions& o) {
   const CompileResult c = compile_cached(source, o);
   json doc = record_before_run(o, settings, c);
   if (!warm_record.is_null()) doc["warm_start"] = warm_record;
-  doc["timings"] = {{"compile_s", c.seconds}, {"run_s", 0.0}, {"total_s", seconds_since(start)}};
+  doc["timings"] = {{"compile_s", c.seconds}, {"run_s", 0.0}, {"total_s", io::seconds_since(start)}};
   if (!c.ok) return doc;
   if (o.progress)
-    o.progress(c.cached ? "compiled program from the cache" : "compiled in " + limit_text(c.seconds) + " s");
+    o.progress(c.cached ? "compiled program from the cache" : "compiled in " + io::limit_text(c.seconds) + " s");
 
   const fs::path out_dir = fs::path(o.trajectory_path).parent_path();
   remove_stale_run_folders(out_dir);
@@ -246,13 +246,13 @@ json solve(const SolveOptions& o) {
   if (run.timed_out || run.exit_code != 0 || !fs::exists(files.outcome)) {
     doc["status"] = run.timed_out ? "timeout" : "crashed";
     doc["status_detail"] = run_failure(run, o.time_limit_s);
-    doc["timings"]["total_s"] = seconds_since(start);
+    doc["timings"]["total_s"] = io::seconds_since(start);
     return doc;
   }
   if (const std::string why = merge_outcome(doc, files.outcome, o.source_path); !why.empty()) {
     doc["status"] = "crashed";
-    doc["status_detail"] = "the program's outcome is unusable: " + printable_line(why);
-    doc["timings"]["total_s"] = seconds_since(start);
+    doc["status_detail"] = "the program's outcome is unusable: " + io::printable_line(why);
+    doc["timings"]["total_s"] = io::seconds_since(start);
     return doc;
   }
   if (!warm_record.is_null() && !warm_record.at("used").get<bool>())
@@ -268,7 +268,7 @@ json solve(const SolveOptions& o) {
     if (!o.plot_prefix.empty())
       doc["files"].update(plot_trajectory(o.trajectory_path, o.plot_prefix, doc["problem"]["id"].get<std::string>()));
   }
-  doc["timings"]["total_s"] = seconds_since(start);
+  doc["timings"]["total_s"] = io::seconds_since(start);
   return doc;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Expressions as mathematics for people (tools/lib/src/score/README.md, "report.md"): LaTeX of a
+// Expressions as mathematics for people (tools/lib/src/report/README.md, "Compact form"): LaTeX of a
 // compact form of a stored expression. The stored form is fully expanded (S10's periapsis row is
 // 5.7 kB of polynomial); the compact form is an exact rewrite of it:
 //   - a norm named: a power of a sum of squares, (rx^2+ry^2+rz^2)^(-3/2), becomes r^{-3} with

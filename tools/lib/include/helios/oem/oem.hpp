@@ -2,7 +2,7 @@
 // trajectory.oem: a converged run's trajectory.csv as a CCSDS Orbit Ephemeris Message, OEM 2.0 in
 // KVN form (CCSDS 502.0-B-3): one segment per arc between interior events, positions in km and
 // velocities in km/s at the trajectory's own samples, TIME_SYSTEM TDB, and COMMENT lines for the
-// frame, the epoch, the mass and the throttle (tools/lib/src/score/README.md, "trajectory.oem").
+// frame, the epoch, the mass and the throttle (tools/lib/src/oem/README.md).
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -10,7 +10,7 @@
 
 #include "helios/io/json_io.hpp"
 
-namespace helios::score {
+namespace helios::oem {
 
 // The epoch of t = 0 when the problem states no calendar epoch: J2000.0 = 2000-01-01T12:00:00 TDB,
 // MJD2000 0.5 (MJD2000 = MJD - 51544: day 0 starts at 2000-01-01T00:00). The OEM then says so in a COMMENT.
@@ -64,4 +64,4 @@ struct OemSources {
 std::optional<std::string> oem_from_run(const io::json& spec, const io::json& solution,
                                         const std::string& trajectory_csv, const OemSources& sources = {});
 
-}  // namespace helios::score
+}  // namespace helios::oem

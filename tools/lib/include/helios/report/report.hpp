@@ -1,15 +1,14 @@
 #pragma once
-// report.md: a run as a document a reviewer can sign off (tools/lib/src/score/README.md,
-// "report.md"). The problem in words, the spec as a table with units, the derivation as mathematics
-// (LaTeX in $...$ / $$...$$, compact: symbolic::Typesetter), helios-verify's verdict beside each
-// condition it checked, the solution (status, objective, residual, switches, the search record) and
-// the plots.
+// report.md: a run as a document a reviewer can sign off (tools/lib/src/report/README.md). The
+// problem in words, the spec as a table with units, the derivation as mathematics (LaTeX in $...$ /
+// $$...$$, compact: symbolic::Typesetter), helios-verify's verdict beside each condition it
+// checked, the solution (status, objective, residual, switches, the search record) and the plots.
 #include <optional>
 #include <string>
 
 #include "helios/io/json_io.hpp"
 
-namespace helios::score {
+namespace helios::report {
 
 // The artifacts of one run, already read (schema-valid for the builtin backend; a model's
 // derivation is read as verify reads it). Sources name the files in the report.
@@ -24,4 +23,4 @@ struct ReportInputs {
 // be read (an expression the verifier could not read either is shown as its text instead).
 std::string report_markdown(const ReportInputs& in);
 
-}  // namespace helios::score
+}  // namespace helios::report

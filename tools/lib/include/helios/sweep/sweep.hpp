@@ -1,5 +1,5 @@
-// Launch-window sweeps (tools/lib/src/score/SWEEPS.md): a sweep description (scenarios/<P>/sweep.json)
-// as a grid of cells over departure epoch x time of flight, each departure's feasibility boundary
+// Launch-window sweeps (tools/lib/src/sweep/README.md): a sweep description (scenarios/<P>/sweep.json) as
+// a grid of cells over departure epoch x time of flight, each departure's feasibility boundary
 // (its minimum-time transfer), each feasible cell's problem text from the scenario's template, the
 // make fragments that chain the cells for warm starts, the neighbour cross-check, and the sweep's
 // outcome (sweep.csv, porkchop.png).
@@ -10,7 +10,7 @@
 
 #include "helios/io/json_io.hpp"
 
-namespace helios::score {
+namespace helios::sweep {
 
 // What sweep.json's "plot" may name: a key of solution.json in its unit.
 struct SweepGrid {
@@ -156,4 +156,4 @@ std::string sweep_csv(const SweepGrid& grid, const std::vector<SweepRow>& rows);
 void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, const std::string& png_path,
                   const std::string& title);
 
-}  // namespace helios::score
+}  // namespace helios::sweep

@@ -1,6 +1,6 @@
 // Launch-window sweeps: the grid of a sweep.json, the cells' problem texts and chains, sweep.csv
-// and porkchop.png (helios/score/sweep.hpp).
-#include "helios/score/sweep.hpp"
+// and porkchop.png (helios/sweep/sweep.hpp).
+#include "helios/sweep/sweep.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,10 +13,9 @@
 #include <vector>
 
 #include "helios/io/error.hpp"
-#include "helios/solve/process.hpp"
 #include "helios/solve/solve.hpp"
 
-namespace helios::score {
+namespace helios::sweep {
 
 namespace fs = std::filesystem;
 using io::json;
@@ -372,4 +371,4 @@ void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, cons
   fs::rename(tmp_png, png_path);
 }
 
-}  // namespace helios::score
+}  // namespace helios::sweep

@@ -1,4 +1,4 @@
-#include "helios/solve/process.hpp"
+#include "helios/io/process.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <stdexcept>
 
-namespace helios::solve {
+namespace helios::io {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -59,6 +61,34 @@ std::string capture(const std::vector<std::string>& argv) {
   return out;
 }
 
+std::vector<int> run_all(const std::vector<std::vector<std::string>>& commands, int jobs) {
+  std::vector<int> codes(commands.size(), -1);
+  std::map<pid_t, std::size_t> running;
+  std::size_t next = 0;
+  bool fork_failed = false;
+  while ((!fork_failed && next < commands.size()) || !running.empty()) {
+    while (!fork_failed && next < commands.size() && static_cast<int>(running.size()) < std::max(1, jobs)) {
+      const pid_t pid = ::fork();
+      if (pid < 0) {
+        fork_failed = true;
+        break;
+      }
+      if (pid == 0) exec_or_exit(commands[next], true);
+      running[pid] = next++;
+    }
+    if (running.empty()) break;
+    int status = 0;
+    const pid_t pid = ::waitpid(-1, &status, 0);
+    if (pid < 0) break;
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    codes[it->second] = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    running.erase(it);
+  }
+  if (fork_failed) throw std::runtime_error("cannot start a process (fork failed)");
+  return codes;
+}
+
 std::string first_line(const std::string& s) {
   return s.substr(0, s.find('\n'));
 }
@@ -76,4 +106,4 @@ std::string limit_text(double seconds) {
   return buf;
 }
 
-}  // namespace helios::solve
+}  // namespace helios::io

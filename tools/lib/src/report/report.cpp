@@ -1,4 +1,4 @@
-#include "helios/score/report.hpp"
+#include "helios/report/report.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -13,7 +13,7 @@
 #include "helios/derivation/reader.hpp"
 #include "helios/symbolic/latex.hpp"
 
-namespace helios::score {
+namespace helios::report {
 
 namespace {
 
@@ -607,4 +607,4 @@ std::string report_markdown(const ReportInputs& in) {
   return Writer(in).write();
 }
 
-}  // namespace helios::score
+}  // namespace helios::report

@@ -1,11 +1,13 @@
 #pragma once
-// Small process helpers shared by helios-solve's units (compile, sandbox, plots, solve).
+// Running other programs: fork/exec without a shell, their output captured, several at a time; and
+// the text helpers for what they print. Used by helios-solve (the compiler, the sandboxed program,
+// gnuplot) and by the sweep's cross-check (helios-solve, N at a time).
 #include <chrono>
 #include <cstddef>
 #include <string>
 #include <vector>
 
-namespace helios::solve {
+namespace helios::io {
 
 // Seconds since `start` on the steady clock.
 double seconds_since(std::chrono::steady_clock::time_point start);
@@ -21,6 +23,14 @@ std::string on_path(const std::string& name);
 // The combined stdout and stderr of a shell-free command (argv[0] looked up on PATH).
 std::string capture(const std::vector<std::string>& argv);
 
+// Runs shell-free commands (argv[0] looked up on PATH; their stdin, stdout and stderr the caller's),
+// `jobs` at a time (at least one), each next one started as soon as one ends. Returns each one's
+// exit code in the order of `commands`: 127 when it could not be executed, -1 when a signal ended
+// it. Throws std::runtime_error when a process cannot be started (fork fails), after waiting for
+// the ones already running. It waits for any child (waitpid(-1)): the caller must have no other
+// child running, whose status it would take.
+std::vector<int> run_all(const std::vector<std::vector<std::string>>& commands, int jobs);
+
 // The text up to its first newline.
 std::string first_line(const std::string& s);
 
@@ -31,4 +41,4 @@ std::string printable_line(std::string text, std::size_t max_bytes = 500);
 // A number of seconds as text ("%g").
 std::string limit_text(double seconds);
 
-}  // namespace helios::solve
+}  // namespace helios::io

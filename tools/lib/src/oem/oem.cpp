@@ -1,4 +1,4 @@
-#include "helios/score/oem.hpp"
+#include "helios/oem/oem.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -11,7 +11,7 @@
 
 #include "helios/io/error.hpp"
 
-namespace helios::score {
+namespace helios::oem {
 namespace {
 
 using io::json;
@@ -360,4 +360,4 @@ std::optional<std::string> oem_from_run(const json& spec, const json& solution, 
   return o.str();
 }
 
-}  // namespace helios::score
+}  // namespace helios::oem

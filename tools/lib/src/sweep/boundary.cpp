@@ -1,4 +1,4 @@
-// A sweep's feasibility boundary: each departure's minimum-time transfer (helios/score/sweep.hpp).
+// A sweep's feasibility boundary: each departure's minimum-time transfer (helios/sweep/sweep.hpp).
 // A cell whose time of flight is below it cannot be flown by the stated engine; the boundary's
 // problem is the template's own, with the time of flight freed and minimized.
 #include <algorithm>
@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "helios/io/error.hpp"
-#include "helios/score/sweep.hpp"
 #include "helios/spec/parse.hpp"
+#include "helios/sweep/sweep.hpp"
 
-namespace helios::score {
+namespace helios::sweep {
 
 namespace fs = std::filesystem;
 using io::json;
@@ -173,4 +173,4 @@ bool below_boundary(const Boundary& b, double tof_days) {
   return b.status == "converged" && tof_days < b.t_min_days - kBoundaryToleranceDays;
 }
 
-}  // namespace helios::score
+}  // namespace helios::sweep

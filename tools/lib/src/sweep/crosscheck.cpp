@@ -1,22 +1,20 @@
-// A sweep's neighbour cross-check (helios/score/sweep.hpp): each cell re-solved warm from each
+// A sweep's neighbour cross-check (helios/sweep/sweep.hpp): each cell re-solved warm from each
 // converged neighbour's answer, the best kept, until no cell improves. A cell's first-pass answer
 // comes from one chain (or one cold search); its neighbours' extremals are other candidates, and
 // a sweep's answer should never be worse than a neighbour's continuation reaches.
-#include <sys/wait.h>
-#include <unistd.h>
-
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "helios/io/error.hpp"
-#include "helios/score/sweep.hpp"
-#include "helios/solve/process.hpp"
+#include "helios/io/process.hpp"
+#include "helios/sweep/sweep.hpp"
 
-namespace helios::score {
+namespace helios::sweep {
 
 namespace fs = std::filesystem;
 using io::json;
@@ -67,29 +65,6 @@ double objective_of(const SweepGrid& grid, const fs::path& path, std::string* st
   if (!s.contains(grid.plot) || !s.at(grid.plot).is_number())
     throw input_error(path.string() + ": field /" + grid.plot + ": missing in a converged solution");
   return s.at(grid.plot).get<double>();
-}
-
-// Runs the commands, `jobs` at a time; returns each one's exit code (-1: killed by a signal).
-std::vector<int> run_all(const std::vector<std::vector<std::string>>& commands, int jobs) {
-  std::vector<int> codes(commands.size(), -1);
-  std::map<pid_t, std::size_t> running;
-  std::size_t next = 0;
-  while (next < commands.size() || !running.empty()) {
-    while (next < commands.size() && static_cast<int>(running.size()) < std::max(1, jobs)) {
-      const pid_t pid = ::fork();
-      if (pid < 0) throw std::runtime_error("cross-check: cannot start a solve (fork failed)");
-      if (pid == 0) solve::exec_or_exit(commands[next], true);
-      running[pid] = next++;
-    }
-    int status = 0;
-    const pid_t pid = ::waitpid(-1, &status, 0);
-    if (pid < 0) break;
-    const auto it = running.find(pid);
-    if (it == running.end()) continue;
-    codes[it->second] = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    running.erase(it);
-  }
-  return codes;
 }
 
 // A try's run on disk is reusable when it started from the same neighbour answer, after it was written.
@@ -162,7 +137,7 @@ json crosscheck(const SweepGrid& grid, const std::string& dir, const CrosscheckO
       for (const std::string& w :
            {o.solver, (fs::path(dir) / names[tries[t].cell] / "shoot.cpp").string(), std::string("--backend"),
             std::string("builtin"), std::string("--settings"), o.settings, std::string("--cache-dir"), o.cache_dir,
-            std::string("--time-limit"), solve::limit_text(o.time_limit_s), std::string("--quiet"),
+            std::string("--time-limit"), io::limit_text(o.time_limit_s), std::string("--quiet"),
             std::string("--warm-start"), tries[t].warm_from.string(), std::string("--warm-only"),
             std::string("--trajectory"), (tries[t].candidate.parent_path() / "trajectory.csv").string(),
             std::string("-o"), tries[t].candidate.string()})
@@ -170,7 +145,12 @@ json crosscheck(const SweepGrid& grid, const std::string& dir, const CrosscheckO
       commands.push_back(argv);
       commanded.push_back(t);
     }
-    const std::vector<int> codes = run_all(commands, o.jobs);
+    std::vector<int> codes;
+    try {
+      codes = io::run_all(commands, o.jobs);
+    } catch (const std::runtime_error&) {
+      throw std::runtime_error("cross-check: cannot start a solve (fork failed)");
+    }
     for (std::size_t c = 0; c < codes.size(); ++c)
       if (codes[c] != 0)
         throw std::runtime_error("cross-check: helios-solve exited with " + std::to_string(codes[c]) + " on " +
@@ -219,4 +199,4 @@ json crosscheck(const SweepGrid& grid, const std::string& dir, const CrosscheckO
           {"cells", cells}};
 }
 
-}  // namespace helios::score
+}  // namespace helios::sweep
