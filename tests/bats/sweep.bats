@@ -139,10 +139,11 @@ JSON
   echo "# killed with $n of 9 cells solved" >&3
   ((n >= 1 && n < 9)) || { echo "the kill came at $n cells: $(cat "$BATS_TEST_TMPDIR/first.log")" >&2; false; }
   [[ ! -e $dir/sweep.csv ]]
-  # No partial artifact: every solution.json there is a whole one; no .part file is left.
+  # No partial artifact: every solution.json there is a whole one; no .part file is left but in a
+  # killed program's private run folder (.run.PID.*), which the next solve of that cell removes.
   local f
   for f in "$dir"/*/solution.json; do assert_jq "$f" '.status == "converged"'; done
-  [[ -z $(find "$dir" -name '*.part') ]] || { find "$dir" -name '*.part' >&2; false; }
+  [[ -z $(find "$dir" -name '*.part' -not -path '*/.run.*') ]] || { find "$dir" -name '*.part' >&2; false; }
   local before
   before="$(stat -c '%n %Y' "$dir"/*/solution.json)"
   sleep 1
@@ -153,6 +154,7 @@ JSON
   done <<<"$before"
   [[ $(compgen -G "$dir/d*/solution.json" | wc -l) -eq 9 ]]
   [[ $(compgen -G "$dir/b*/solution.json" | wc -l) -eq 3 ]]
+  [[ -z $(find "$dir" -name '.run.*' -o -name '*.part') ]] || { find "$dir" -name '.run.*' -o -name '*.part' >&2; false; }
   [[ $(tail -n +2 "$dir/sweep.csv" | cut -d, -f4 | sort -u) == converged ]]
 }
 
