@@ -271,6 +271,9 @@ TEST(Score, ScoreboardHasARowPerScenarioAndTotals) {
   json solution = solution_doc(603.935);
   solution["tof_days"] = 348.795;
   solution["propellant_kg"] = 396.065;
+  solution["x"] = json::array();
+  for (const char* name : {"lambda0", "l_x_t0", "l_y_t0", "l_z_t0", "l_vx_t0", "l_vy_t0", "l_vz_t0", "l_m_t0"})
+    solution["x"].push_back({{"name", name}, {"value", 0.1}});
   solution["search"] = {{"method", "multi-start"},
                         {"threads", 2},
                         {"starts", 128},
@@ -285,7 +288,7 @@ TEST(Score, ScoreboardHasARowPerScenarioAndTotals) {
   helios::io::write_json_atomic((dir / "S01" / "solution.json").string(), solution);
   const std::string with_solution = helios::score::scoreboard_from_dir(dir.string());
   EXPECT_EQ(with_solution.rfind(md, 0), 0u);
-  EXPECT_NE(with_solution.find("| S01 | converged | 348.795 | 396.065 | 0 | yes | 128 | 1.5 |"), std::string::npos)
+  EXPECT_NE(with_solution.find("| S01 | converged | 348.795 | 396.065 | 8 | 0 | yes | 128 | 1.5 |"), std::string::npos)
       << with_solution;
   fs::remove_all(dir / "S01");
   EXPECT_THROW(helios::score::scoreboard_from_dir(dir.string()), helios::input_error);

@@ -463,10 +463,11 @@ std::string render_scoreboard(const std::vector<json>& scores) {
 std::string render_search_table(const std::vector<json>& scores, const std::vector<std::optional<json>>& solutions) {
   std::ostringstream md;
   md << "\n## The solutions and their search\n\n"
-     << "From each run's solution.json: the extremals the search compared, whether it saturated (the chance "
-        "that another start finds a new extremal fell below its bound), its starts, and the solve's wall time.\n\n"
-     << "| scenario | status | tof [d] | propellant [kg] | extremals | saturated | starts | solve [s] |\n"
-     << "|---|---|--:|--:|--:|---|--:|--:|\n";
+     << "From each run's solution.json: the shooting variables it solved for, the extremals the search compared, "
+        "whether it saturated (the chance that another start finds a new extremal fell below its bound), its starts, "
+        "and the solve's wall time.\n\n"
+     << "| scenario | status | tof [d] | propellant [kg] | variables | extremals | saturated | starts | solve [s] |\n"
+     << "|---|---|--:|--:|--:|--:|---|--:|--:|\n";
   for (std::size_t k = 0; k < scores.size(); ++k) {
     if (!solutions[k]) continue;
     const json& sol = *solutions[k];
@@ -474,9 +475,10 @@ std::string render_search_table(const std::vector<json>& scores, const std::vect
     const json extremals =
         search.contains("extremals") && search["extremals"].is_array() ? json(search["extremals"].size()) : json();
     const json saturated = search.value("saturated", json());
+    const json variables = sol.contains("x") && sol["x"].is_array() ? json(sol["x"].size()) : json();
     md << "| " << md_escape(scores[k].value("scenario", "?")) << " | " << md_escape(sol.value("status", "?")) << " | "
        << cell(sol.value("tof_days", json()), "%.3f") << " | " << cell(sol.value("propellant_kg", json()), "%.3f")
-       << " | " << cell(extremals, "%.0f") << " | "
+       << " | " << cell(variables, "%.0f") << " | " << cell(extremals, "%.0f") << " | "
        << (saturated.is_boolean() ? (saturated.get<bool>() ? "yes" : "no") : "-") << " | "
        << cell(search.value("starts", json()), "%.0f") << " | "
        << cell(sol.value("timings", json::object()).value("total_s", json()), "%.1f") << " |\n";
