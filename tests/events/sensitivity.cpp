@@ -18,6 +18,8 @@
 #undef main
 #include "runtime.cpp"
 
+#include "helios/derivation/names.hpp"
+
 namespace {
 
 using namespace helios_rt;
@@ -66,8 +68,8 @@ int main(int argc, char** argv) {
     const std::string what = argv[2], event = argv[3];
     const int nv = problem::kNumVars;
     if (what == "epoch") {
-      const int frac = index_of(problem::kVariableNames, nv, "t_" + event + "_frac");
-      const int row = index_of(problem::kEquationNames, nv, "time_" + event);
+      const int frac = index_of(problem::kVariableNames, nv, helios::derivation::names::event_fraction(event));
+      const int row = index_of(problem::kEquationNames, nv, helios::derivation::names::time_row(event));
       const double h = 5e-4, star = x[frac];
       const auto at = [&](double value) {
         return final_mass(x, row, [&](const double* z, double) { return z[frac] - value; });
@@ -75,9 +77,9 @@ int main(int argc, char** argv) {
       const double m0 = at(star), mp = at(star + h), mm = at(star - h);
       std::printf("%.6e %.6e\n", std::fabs(mp - mm), std::fabs(mp + mm - 2 * m0));
     } else if (what == "psi" && (argc == 5 || argc == 6)) {
-      const int k = std::atoi(argv[4]);
-      const int row = index_of(problem::kEquationNames, nv, "psi_" + event + "_" + std::to_string(k));
-      const double nu = x[index_of(problem::kVariableNames, nv, "nu_" + event + "_" + std::to_string(k))];
+      const std::size_t k = static_cast<std::size_t>(std::atoi(argv[4]));
+      const int row = index_of(problem::kEquationNames, nv, helios::derivation::names::constraint_row(event, k));
+      const double nu = x[index_of(problem::kVariableNames, nv, helios::derivation::names::multiplier(event, k))];
       const double lambda0 = x[index_of(problem::kVariableNames, nv, "lambda0")];
       const double d = argc == 6 ? std::atof(argv[5]) : 1e-6;
       const auto shifted = [&](double delta) {

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "helios/derivation/names.hpp"
 #include "helios/io/error.hpp"
 #include "helios/pmp/derive.hpp"
 #include "helios/spec/parse.hpp"
@@ -135,6 +136,51 @@ TEST(DerivationReader, ReadsStrictlyWhatAModelMayHaveWrittenWrong) {
 TEST(DerivationReader, ASailHasNoExhaustVelocity) {
   const json d = derivation_of("S11");
   EXPECT_EQ(Reader(d).exhaust_velocity(), nullptr);
+}
+
+// The grammar of names.hpp, spelled out once here as the artifacts have it.
+TEST(DerivationNames, MakesTheNamesOfTheArtifact) {
+  namespace names = helios::derivation::names;
+  EXPECT_EQ(names::costate("vx"), "l_vx");
+  EXPECT_EQ(names::at_t0("l_m"), "l_m_t0");
+  EXPECT_EQ(names::at_tf("rx"), "rx_tf");
+  EXPECT_EQ(names::before("rx", "mars"), "rx_mars_m");
+  EXPECT_EQ(names::after(names::costate("m"), "mars"), "l_m_mars_p");
+  EXPECT_EQ(names::event_time("mars"), "t_mars");
+  EXPECT_EQ(names::event_departure_time("mars"), "t_mars_dep");
+  EXPECT_EQ(names::event_fraction("mars"), "t_mars_frac");
+  EXPECT_EQ(names::fraction("t0"), "t0_frac");
+  EXPECT_EQ(names::multiplier("mars_2", 3), "nu_mars_2_3");
+  EXPECT_EQ(names::hamiltonian("tf"), "H_tf");
+  EXPECT_EQ(names::hamiltonian_before("mars"), "H_mars_m");
+  EXPECT_EQ(names::hamiltonian_after("mars"), "H_mars_p");
+  EXPECT_EQ(names::constraint_row("arrival", 7), "psi_arrival_7");
+  EXPECT_EQ(names::jump_row("mars", "m"), "jump_mars_m");
+  EXPECT_EQ(names::time_row("mars"), "time_mars");
+  EXPECT_EQ(names::stationarity_row("mars", "delta_mars"), "stationarity_mars_delta_mars");
+  EXPECT_EQ(names::transversality_row("m"), "transversality_m");
+  EXPECT_EQ(names::transversality_row(names::at_t0("m")), "transversality_m_t0");
+  EXPECT_EQ(names::transversality_row("tf"), "transversality_tf");
+  EXPECT_EQ(names::target_component(names::departure_label("mars"), "vx"), "mars_dep_vx");
+  EXPECT_EQ(names::rate("mars_rx"), "mars_rx_rate");
+  EXPECT_EQ(names::initial_value("ceres_rx"), "ceres_rx_0");
+  EXPECT_EQ(names::relative("rx", "mars"), "rx_mars_rel");
+}
+
+TEST(DerivationNames, ReadsTheNamesBack) {
+  namespace names = helios::derivation::names;
+  EXPECT_EQ(names::costate_state("l_vx"), "vx");
+  EXPECT_EQ(names::costate_state("vx"), "");
+  EXPECT_TRUE(names::is_costate("l_"));
+  EXPECT_TRUE(names::is_before_or_after("rx_mars_m"));
+  EXPECT_TRUE(names::is_before_or_after("l_m_mars_p"));
+  EXPECT_FALSE(names::is_before_or_after("_m"));
+  EXPECT_FALSE(names::is_before_or_after("rx_tf"));
+  EXPECT_TRUE(names::is_multiplier_of("nu_mars_2_3", "mars_2"));
+  EXPECT_FALSE(names::is_multiplier_of("nu_mars_2_3", "mars"));  // mars_2's, not mars's
+  EXPECT_FALSE(names::is_multiplier_of("nu_mars_", "mars"));
+  EXPECT_TRUE(names::is_constraint_row("psi_arrival_1"));
+  EXPECT_FALSE(names::is_constraint_row("jump_mars_m"));
 }
 
 }  // namespace

@@ -289,7 +289,7 @@ TEST(Derivation, CanonicalSystemIsThePartialsOfH) {
     auto S = d.problem.symbols;
     GiNaC::ex H = S.get("lambda0") * d.problem.running_cost;
     for (std::size_t i = 0; i < d.problem.states.size(); ++i)
-      H += S.get(helios::pmp::costate_name(d.problem.states[i].name)) * d.problem.f[i];
+      H += S.get(helios::derivation::names::costate(d.problem.states[i].name)) * d.problem.f[i];
     EXPECT_TRUE((d.hamiltonian - H).expand().is_zero()) << scenario;
     ASSERT_EQ(d.costate_odes.size(), d.problem.states.size());
     for (std::size_t i = 0; i < d.problem.states.size(); ++i) {

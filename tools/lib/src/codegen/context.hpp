@@ -7,11 +7,14 @@
 #include <utility>
 #include <vector>
 
+#include "helios/derivation/names.hpp"
 #include "helios/derivation/reader.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/symbolic/expr.hpp"
 
 namespace helios::codegen::detail {
+
+namespace names = derivation::names;
 
 using io::json;
 using symbolic::SymbolTable;

@@ -32,7 +32,7 @@ bool is_passable_map(Context& c, const json& e, const std::vector<std::string>& 
       try {
         const double after = symbolic::evaluate(
             c.symbols.parse(e.at("state_map")[i].at("expression"), "field /events/state_map"), c.symbols, values);
-        const double before = values.at(c.states[i] + "_" + id + "_m");
+        const double before = values.at(names::before(c.states[i], id));
         if (std::fabs(after - before) > 1e-10 * (1 + std::fabs(after) + std::fabs(before))) return false;
       } catch (const std::exception&) {
         return false;
@@ -58,13 +58,13 @@ std::string event_plan_entry(Context& c, const json& e, const std::vector<std::s
     const json& m = e.at("costate_map")[i];
     if (!m.contains("variable")) continue;
     const int v = index_of(var_names, m.at("variable").get<std::string>());
-    const int row = index_of(eq_names, "jump_" + id + "_" + c.states[i]);
+    const int row = index_of(eq_names, names::jump_row(id, c.states[i]));
     if (v < 0 || row < 0) passable = false;
     append_pair(costates, v, row);
   }
   for (std::size_t j = 0; j < nc && j < multipliers.size(); ++j) {
     const int v = index_of(var_names, multipliers[j].get<std::string>());
-    const int row = index_of(eq_names, "psi_" + id + "_" + std::to_string(j + 1));
+    const int row = index_of(eq_names, names::constraint_row(id, j + 1));
     if (v < 0 || row < 0) passable = false;
     append_pair(constraints, v, row);
   }
@@ -76,7 +76,7 @@ std::string event_plan_entry(Context& c, const json& e, const std::vector<std::s
     const int v = index_of(var_names, name);
     if (v >= 0 && vars[v].value("role", "") == "time_fraction") epoch_var = v;
   }
-  const int epoch_row = index_of(eq_names, "time_" + id);
+  const int epoch_row = index_of(eq_names, names::time_row(id));
   if ((epoch_var < 0) != (epoch_row < 0)) passable = false;
   // The event's parameters: role "parameter" variables its psi or state map depends on.
   std::vector<std::string> used;
@@ -87,7 +87,7 @@ std::string event_plan_entry(Context& c, const json& e, const std::vector<std::s
   std::vector<std::string> own_parameters;
   for (std::size_t i = 0; i < vars.size(); ++i)
     if (vars[i].value("role", "") == "parameter" && index_of(used, var_names[i]) >= 0) {
-      const int row = index_of(eq_names, "stationarity_" + id + "_" + var_names[i]);
+      const int row = index_of(eq_names, names::stationarity_row(id, var_names[i]));
       if (row < 0) passable = false;
       own_parameters.push_back(var_names[i]);
       append_pair(parameters, static_cast<int>(i), row);
@@ -142,20 +142,14 @@ std::string legs_block(Context& c, const std::vector<int>& leg_sizes) {
   std::string final_id;
   for (const auto& k : d.at("constraints"))
     if (k.at("at") == "tf") final_id = k.at("id");
-  // nu_<id>_<row>, exactly (an id may itself end in _<n>, as a second visit's does).
-  const auto multiplier_of = [](const std::string& name, const std::string& id) {
-    const std::string prefix = "nu_" + id + "_";
-    return name.size() > prefix.size() && name.rfind(prefix, 0) == 0 &&
-           name.find_first_not_of("0123456789", prefix.size()) == std::string::npos;
-  };
   std::vector<std::vector<int>> own(events.size() + 1);
   for (std::size_t i = 0; i < vars.size(); ++i) {
     const std::string name = vars[i].at("name");
     if (index_of(sphere, name) >= 0) own[0].push_back(static_cast<int>(i));
     for (std::size_t k = 0; k < events.size(); ++k)
-      if (multiplier_of(name, events[k].at("id"))) own[k].push_back(static_cast<int>(i));
+      if (names::is_multiplier_of(name, events[k].at("id").get<std::string>())) own[k].push_back(static_cast<int>(i));
     // The final constraint's multipliers left as variables (a bound's) belong to the last leg.
-    if (multiplier_of(name, final_id)) own[events.size()].push_back(static_cast<int>(i));
+    if (names::is_multiplier_of(name, final_id)) own[events.size()].push_back(static_cast<int>(i));
   }
   // Alone, a leg holds the time fractions at their guesses and the event's other variables (the
   // costates after a state map, Category-C parameters) at 0.

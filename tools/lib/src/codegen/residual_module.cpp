@@ -31,7 +31,7 @@ std::map<std::string, std::vector<std::string>> runtime_parameters(const json& d
 std::string event_time(const Context& c, const std::string& event) {
   if (event == "t0" || event == "tf") return event;
   for (const auto& id : c.events)
-    if (event == id || event == id + "_dep") return "t_" + event;
+    if (event == id || event == names::departure_label(id)) return names::event_time(event);
   throw std::invalid_argument("field /parameters: unknown event '" + event + "' (t0, tf or an interior event)");
 }
 
@@ -84,8 +84,8 @@ class ShootingFunction {
   void alone_row(int& row, const std::string& name, const std::string& field = "expression");
   // H just before or after an event (`at`), at `time`, if the derivation asks for it.
   void evaluate_h(const std::string& at, const std::string& time);
-  // Locals for y[] named <state><suffix>, <costate><suffix>.
-  void unpack_y(const std::string& suffix);
+  // Locals for y[] named <state>_<label>, <costate>_<label> (names::at).
+  void unpack_y(const std::string& label);
 
   Context& c_;
   const json& eqs_;
@@ -177,11 +177,11 @@ void ShootingFunction::evaluate_h(const std::string& at, const std::string& time
   hamiltonian_at_.erase(it);
 }
 
-void ShootingFunction::unpack_y(const std::string& suffix) {
+void ShootingFunction::unpack_y(const std::string& label) {
   for (std::size_t i = 0; i < c_.states.size(); ++i)
-    body_.unpack(c_.states[i] + suffix, "y[" + std::to_string(i) + "]");
+    body_.unpack(names::at(c_.states[i], label), "y[" + std::to_string(i) + "]");
   for (std::size_t i = 0; i < c_.costates.size(); ++i)
-    body_.unpack(c_.costates[i] + suffix, "y[" + std::to_string(c_.states.size() + i) + "]");
+    body_.unpack(names::at(c_.costates[i], label), "y[" + std::to_string(c_.states.size() + i) + "]");
 }
 
 // The shooting variables x[] as locals, each with its meaning.
@@ -206,9 +206,10 @@ void ShootingFunction::epochs() {
   for (std::size_t k = 0; k < events_.size(); ++k) {
     const json& e = events_[k];
     const std::string id = e.at("id"), where = "/events/" + std::to_string(k);
-    o << "  const T t_" << id << " = " << body_.cpp(e.at("time").at("expression"), where + "/time/expression") << ";\n"
-      << "  const T t_" << id << "_dep = t_" << id << " + " << number(e.at("time").at("duration")) << ";\n";
-    order += ", t_" + id + ", t_" + id + "_dep";
+    const std::string t = names::event_time(id), departure = names::event_departure_time(id);
+    o << "  const T " << t << " = " << body_.cpp(e.at("time").at("expression"), where + "/time/expression") << ";\n"
+      << "  const T " << departure << " = " << t << " + " << number(e.at("time").at("duration")) << ";\n";
+    order += ", " + t + ", " + departure;
   }
   order += ", tf";
   o << "  {\n    const T epochs[] = {" << order << "};\n"
@@ -223,25 +224,26 @@ void ShootingFunction::epochs() {
 void ShootingFunction::targets() {
   int block = 0;
   for (const char* kind : {"ephemeris", "ephemeris_rate", "coast"})
-    for (const auto& [key, names] : runtime_parameters(c_.d, kind)) {
+    for (const auto& [key, components] : runtime_parameters(c_.d, kind)) {
       const std::string what = key.substr(0, key.find(':')), event = key.substr(key.find(':') + 1);
       const std::string var = std::string(kind) + "_" + std::to_string(block++);
       std::string call;
       if (std::string(kind) == "coast") {
         std::string start;
-        for (const auto& n : names) {
-          if (index_of(c_.parameters, n + "_0") < 0)
-            throw std::invalid_argument("field /parameters: coasting target " + what + " has no initial value " + n +
-                                        "_0");
-          start += (start.empty() ? "" : ", ") + std::string("problem::") + n + "_0";
+        for (const auto& n : components) {
+          const std::string initial = names::initial_value(n);
+          if (index_of(c_.parameters, initial) < 0)
+            throw std::invalid_argument("field /parameters: coasting target " + what + " has no initial value " +
+                                        initial);
+          start += (start.empty() ? "" : ", ") + std::string("problem::") + initial;
         }
         call = "coast_state({" + start + "}, problem::kT0, " + event_time(c_, event) + ")";
       } else {
         const std::string function = std::string(kind) == "ephemeris" ? "ephemeris_state" : "ephemeris_rate";
         call = function + "(\"" + what + "\", " + event_time(c_, event) + ")";
       }
-      body_.unpack_line("  const auto " + var + " = " + call + ";\n", names);
-      for (std::size_t i = 0; i < 6; ++i) body_.unpack(names[i], var + "[" + std::to_string(i) + "]");
+      body_.unpack_line("  const auto " + var + " = " + call + ";\n", components);
+      for (std::size_t i = 0; i < 6; ++i) body_.unpack(components[i], var + "[" + std::to_string(i) + "]");
     }
 }
 
@@ -255,7 +257,7 @@ void ShootingFunction::start() {
       << ";\n";
   }
   for (std::size_t i = 0; i < c_.costates.size(); ++i) {
-    const std::string v = c_.costates[i] + "_t0";
+    const std::string v = names::at_t0(c_.costates[i]);
     bool found = false;
     for (const auto& var : vars_) found = found || var.at("name") == v;
     if (!found) throw std::invalid_argument("field /shooting/variables: no variable " + v + " for the initial costate");
@@ -276,20 +278,20 @@ void ShootingFunction::start() {
 void ShootingFunction::event(std::size_t k) {
   const json& e = events_[k];
   const std::string id = e.at("id");
-  const std::string from = k == 0 ? "t0" : "t_" + events_[k - 1].at("id").get<std::string>() + "_dep";
-  body_.code() << "  propagate(prop, " << from << ", t_" << id << ", y, mult);\n";
-  unpack_y("_" + id + "_m");
+  const std::string from = k == 0 ? "t0" : names::event_departure_time(events_[k - 1].at("id").get<std::string>());
+  body_.code() << "  propagate(prop, " << from << ", " << names::event_time(id) << ", y, mult);\n";
+  unpack_y(names::before_label(id));
   relative_to_target(id);
-  evaluate_h(id + "_m", "t_" + id);
+  evaluate_h(names::before_label(id), names::event_time(id));
   leg_alone_at_event(k);
   jump(k);
   const json& costate_map = e.at("costate_map");
   for (std::size_t i = 0; i < c_.states.size(); ++i)
-    body_.unpack(c_.states[i] + "_" + id + "_p", "y[" + std::to_string(i) + "]");
+    body_.unpack(names::after(c_.states[i], id), "y[" + std::to_string(i) + "]");
   for (std::size_t i = 0; i < c_.costates.size(); ++i)
-    if (!costate_map[i].contains("variable") || costate_map[i].at("variable") != c_.costates[i] + "_" + id + "_p")
-      body_.unpack(c_.costates[i] + "_" + id + "_p", "y[" + std::to_string(c_.states.size() + i) + "]");
-  evaluate_h(id + "_p", "t_" + id + "_dep");
+    if (!costate_map[i].contains("variable") || costate_map[i].at("variable") != names::after(c_.costates[i], id))
+      body_.unpack(names::after(c_.costates[i], id), "y[" + std::to_string(c_.states.size() + i) + "]");
+  evaluate_h(names::after_label(id), names::event_departure_time(id));
 }
 
 // The spacecraft's position and velocity just before event `id` relative to the event's target
@@ -300,13 +302,13 @@ void ShootingFunction::relative_to_target(const std::string& id) {
   if (c_.states.size() < cartesian.size() || !std::equal(cartesian.begin(), cartesian.end(), c_.states.begin()))
     return;
   for (const char* kind : {"ephemeris", "coast"})
-    for (const auto& [key, names] : runtime_parameters(c_.d, kind)) {
+    for (const auto& [key, components] : runtime_parameters(c_.d, kind)) {
       if (key.substr(key.find(':') + 1) != id) continue;
-      const auto name = [&](std::size_t i) { return cartesian[i] + "_" + id + "_rel"; };
+      const auto name = [&](std::size_t i) { return names::relative(cartesian[i], id); };
       for (std::size_t i = 0; i < cartesian.size(); ++i)
         if (c_.symbols.has(name(i))) return;  // a name the derivation has: no relative locals
       for (std::size_t i = 0; i < cartesian.size(); ++i)
-        body_.relative(name(i), cartesian[i] + "_" + id + "_m", names[i]);
+        body_.relative(name(i), names::before(cartesian[i], id), components[i]);
       return;
     }
 }
@@ -320,11 +322,11 @@ void ShootingFunction::leg_alone_at_event(std::size_t k) {
   int row = 0;
   if (k == 0) alone_row(row, "normalization");
   for (std::size_t j = 0; j < e.at("psi").size() - c_.states.size(); ++j)
-    alone_row(row, "psi_" + id + "_" + std::to_string(j + 1), "alone_expression");
+    alone_row(row, names::constraint_row(id, j + 1), "alone_expression");
   for (std::size_t i = 0; i < c_.costates.size(); ++i) {
     const json& m = e.at("costate_map")[i];
     if (m.contains("variable"))
-      alone_row(row, "jump_" + id + "_" + c_.states[i]);
+      alone_row(row, names::jump_row(id, c_.states[i]));
     else
       body_.code() << "    F[" << row++
                    << "] = " << body_.cpp(m.at("expression"), where + "/costate_map/" + std::to_string(i)) << ";  // "
@@ -368,9 +370,10 @@ void ShootingFunction::jump(std::size_t k) {
 // The last leg to tf, the values there (<name>_tf), the last leg alone's rows (the final
 // constraint's own equations, its epoch held at its guess) and the rows of the whole problem.
 void ShootingFunction::end() {
-  const std::string from = events_.empty() ? "t0" : "t_" + events_.back().at("id").get<std::string>() + "_dep";
+  const std::string from =
+      events_.empty() ? "t0" : names::event_departure_time(events_.back().at("id").get<std::string>());
   body_.code() << "  propagate(prop, " << from << ", tf, y, mult);\n";
-  unpack_y("_tf");
+  unpack_y("tf");
   evaluate_h("tf", "tf");
   if (!hamiltonian_at_.empty())
     throw std::invalid_argument("field /event_values: no event '" + hamiltonian_at_.begin()->first + "'");

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "helios/derivation/names.hpp"
 #include "helios/io/error.hpp"
 
 namespace helios::derivation {
@@ -162,21 +163,21 @@ void Reader::register_symbols() {
   // The symbols, in a fixed order: GiNaC orders the terms of a printed expression by the order in
   // which its symbols were made, so the generated code depends on it.
   symbols.get("t");
-  for (const auto* names : {&event_values, &variables, &definitions, &states, &costates, &controls, &parameters})
-    for (const auto& n : *names) symbols.get(n);
+  for (const auto* of : {&event_values, &variables, &definitions, &states, &costates, &controls, &parameters})
+    for (const auto& n : *of) symbols.get(n);
   symbols.get(multiplier);
   symbols.get(homotopy);
-  for (const auto* names : {&states, &costates})
-    for (const auto& n : *names) {
-      symbols.get(n + "_tf");
-      symbols.get(n + "_t0");
+  for (const auto* of : {&states, &costates})
+    for (const auto& n : *of) {
+      symbols.get(names::at_tf(n));
+      symbols.get(names::at_t0(n));
     }
   for (const auto& id : events) {
-    symbols.get("t_" + id);
-    for (const auto* names : {&states, &costates})
-      for (const auto& n : *names) {
-        symbols.get(n + "_" + id + "_m");
-        symbols.get(n + "_" + id + "_p");
+    symbols.get(names::event_time(id));
+    for (const auto* of : {&states, &costates})
+      for (const auto& n : *of) {
+        symbols.get(names::before(n, id));
+        symbols.get(names::after(n, id));
       }
   }
 }

@@ -49,13 +49,13 @@ void initial_constraint(Derivation& d, EndpointConditions& c, TimeConditions& ti
   GiNaC::lst rows, nus;
   for (const auto& m : c.multipliers) nus.append(S.get(m));
   for (const auto& s : k.fixed_states) {
-    ex row = S.get(at_event(costate_name(s), "t0"));
+    ex row = S.get(names::at_t0(names::costate(s)));
     for (std::size_t j = 0; j < k.psi.size(); ++j) row += S.get(c.multipliers[j]) * k.psi[j].diff(S.get(s));
     rows.append(row == 0);
   }
   const GiNaC::exmap nu_value =
       multiplier_values(rows, nus, "constraint '" + k.id + "': its multipliers are not determined by lambda(t0)");
-  time.departure = -S.get("H_t0");
+  time.departure = -S.get(names::hamiltonian("t0"));
   for (std::size_t j = 0; j < k.psi.size(); ++j) time.departure += S.get(c.multipliers[j]).subs(nu_value) * k.psi_t[j];
   c.time_condition = "-H(t0) + nu^T dpsi/dt0, added to the final time's terms (tf = t0 + tof)";
 }
@@ -74,7 +74,7 @@ GiNaC::lst final_transversality(Derivation& d, EndpointConditions& c, const GiNa
   for (std::size_t i = 0; i < p.states.size(); ++i) {
     const std::string& n = p.states[i].name;
     const symbol x = S.get(n);
-    ex row = S.get(at_event(costate_name(n), "tf")) - lambda0 * p.endpoint_cost.diff(x);
+    ex row = S.get(names::at_tf(names::costate(n))) - lambda0 * p.endpoint_cost.diff(x);
     free_end[n] = row.subs(at_tf);
     bool touched = false, bounded = false;
     for (std::size_t j = 0; j < k.psi.size(); ++j) {
@@ -89,7 +89,7 @@ GiNaC::lst final_transversality(Derivation& d, EndpointConditions& c, const GiNa
       touched_rows.append(row.subs(at_tf) == 0);
     } else {
       d.shooting.equations.push_back(
-          {"transversality_" + n, row.subs(at_tf),
+          {names::transversality_row(n), row.subs(at_tf),
            bounded ? "lambda_" + n + "(tf) = nu^T dpsi/d" + n + ": " + n + "(tf) is free but for a bound"
                    : "lambda_" + n + "(tf) = 0: " + n + "(tf) is free",
            k.id});
@@ -117,7 +117,7 @@ void final_constraint(Derivation& d, EndpointConditions& c, TimeConditions& time
   std::map<std::string, ex> free_end;  // lambda_s(tf) - lambda0 dphi/dx_s: the row without psi
   const GiNaC::lst touched_rows = final_transversality(d, c, at_tf, free_end);
   for (std::size_t j = 0; j < k.psi.size(); ++j) {
-    ShootingEquation eq = constraint_equation("psi_" + k.id + "_" + std::to_string(j + 1), k.psi[j].subs(at_tf),
+    ShootingEquation eq = constraint_equation(names::constraint_row(k.id, j + 1), k.psi[j].subs(at_tf),
                                               k.kind + " at tf with " + k.id + ": " + k.psi_names[j], k.id,
                                               c.multipliers[j], k.psi_inequality[j]);
     // A state free at t0 is held at its guess while the last leg is solved alone, so the row
@@ -139,19 +139,19 @@ void free_times(Derivation& d, const TimeConditions& time, bool has_final_constr
   if (p.free_departure) {
     if (!has_final_constraint) throw std::invalid_argument("a sliding departure needs a constraint at tf");
     d.shooting.variables.push_back(
-        {"t0_frac", "departure epoch as a fraction of its window: t0 = t0_min + (t0_max - t0_min)*t0_frac",
+        {names::fraction("t0"), "departure epoch as a fraction of its window: t0 = t0_min + (t0_max - t0_min)*t0_frac",
          "time_fraction", "uniform in (0, 1)"});
     d.shooting.equations.push_back(
-        {"transversality_t0", (time.departure + time.final_time).expand(),
+        {names::transversality_row("t0"), (time.departure + time.final_time).expand(),
          "-H(t0) + dPhi/dt0 + H(tf) + dPhi/dtf = 0: t0 slides and tf = t0 + tof moves with it", "departure"});
   }
   if (p.free_final_time) {
     if (!has_final_constraint) throw std::invalid_argument("a free final time needs a constraint at tf");
-    d.shooting.variables.push_back({"tf_frac",
+    d.shooting.variables.push_back({names::fraction("tf"),
                                     "final time as a fraction of its window: tf = tf_min + (tf_max - tf_min)*tf_frac",
                                     "time_fraction", "uniform in (0, 1)"});
-    d.shooting.equations.push_back(
-        {"transversality_tf", time.final_time.expand(), "H(tf) + dPhi/dtf = 0: the final time is free", "final_time"});
+    d.shooting.equations.push_back({names::transversality_row("tf"), time.final_time.expand(),
+                                    "H(tf) + dPhi/dtf = 0: the final time is free", "final_time"});
   }
 }
 
@@ -167,13 +167,13 @@ void endpoint_conditions(Derivation& d) {
   Problem& p = d.problem;
   auto& S = p.symbols;
   GiNaC::exmap at_tf;
-  for (const auto& s : p.states) at_tf[S.get(s.name)] = S.get(at_event(s.name, "tf"));
+  for (const auto& s : p.states) at_tf[S.get(s.name)] = S.get(names::at_tf(s.name));
   TimeConditions time;
-  time.final_time = S.get("H_tf") + S.get("lambda0") * p.endpoint_cost.diff(S.get("t"));
+  time.final_time = S.get(names::hamiltonian("tf")) + S.get("lambda0") * p.endpoint_cost.diff(S.get("t"));
   bool has_final_constraint = false;
   for (const auto& k : p.constraints) {
     EndpointConditions c{k, {}, {}, {}, ""};
-    for (std::size_t i = 0; i < k.psi.size(); ++i) c.multipliers.push_back("nu_" + k.id + "_" + std::to_string(i + 1));
+    for (std::size_t i = 0; i < k.psi.size(); ++i) c.multipliers.push_back(names::multiplier(k.id, i + 1));
     if (k.at == "t0") {
       initial_constraint(d, c, time);
     } else {
@@ -196,7 +196,7 @@ void initial_costates(Derivation& d) {
   ex norm2 = GiNaC::pow(lambda0, 2);
   std::set<std::string> sphere = {"lambda0"};
   for (const auto& s : p.states) {
-    const std::string lam0 = at_event(costate_name(s.name), "t0");
+    const std::string lam0 = names::at_t0(names::costate(s.name));
     const symbol lambda_t0 = S.get(lam0);
     const ShootingVariable costate{lam0, "costate of " + s.meaning + " at t0", "",
                                    "uniform in (-1, 1), then normalized"};
@@ -205,14 +205,14 @@ void initial_costates(Derivation& d) {
     } else if (s.name == "m" && p.free_initial_mass) {
       // Minimum initial mass: m(t0) is a shooting variable, and with no cost on it (the running
       // cost is the fuel) its transversality is lambda_m(t0) = -dPhi/dm(t0) = 0.
-      const std::string m0 = at_event(s.name, "t0");
+      const std::string m0 = names::at_t0(s.name);
       const double most = p.final_mass + value_of(p, "Tmax") / value_of(p, "c") * (p.tf - p.t0);
       d.shooting.variables.push_back({m0, "initial mass (free: minimized)", "initial_state",
                                       "uniform in (final mass, final mass + Tmax (tf - t0)/c)",
                                       std::make_pair(p.final_mass, most)});
       d.initial_values.push_back({s.name, S.get(m0)});
       d.shooting.variables.push_back(costate);
-      d.shooting.equations.push_back({"transversality_" + s.name + "_t0", lambda_t0,
+      d.shooting.equations.push_back({names::transversality_row(names::at_t0(s.name)), lambda_t0,
                                       "lambda_m(t0) = -dPhi/dm(t0) = 0: the initial mass is free", "initial_mass"});
     } else {
       throw std::invalid_argument("state " + s.name + " is free at t0: not supported by the builtin engine yet");

@@ -60,7 +60,7 @@ std::vector<ex> target_state(Problem& p, const std::string& prefix, const json& 
     const bool is_pos = j < 3;
     const int i = static_cast<int>(j % 3);
     const std::string unit = is_pos ? L : L + "/" + T;
-    const std::string name = prefix + "_" + n;
+    const std::string name = names::target_component(prefix, n);
     const std::string what = std::string(is_pos ? "position " : "velocity ") + n[1];
     state.push_back(S.get(name));
     ex rate = 0;
@@ -74,13 +74,13 @@ std::vector<ex> target_state(Problem& p, const std::string& prefix, const json& 
       p.parameters.push_back(
           {name, what + " of " + body + " (" + model + ") at " + event, unit, 0.0, "ephemeris:" + body + ":" + event});
       if (moving) {
-        const std::string rname = name + "_rate";
+        const std::string rname = names::rate(name);
         p.parameters.push_back({rname, "time derivative of " + name + " (of the ephemeris model)", unit + "/" + T, 0.0,
                                 "ephemeris_rate:" + body + ":" + event});
         rate = S.get(rname);
       }
     } else {
-      const std::string start = name + "_0";
+      const std::string start = names::initial_value(name);
       const double value = is_pos ? target.at("position_km")[i].get<double>() / U.length_km
                                   : target.at("velocity_km_s")[i].get<double>() / U.speed_km_s();
       p.parameters.push_back({start, what + " of coasting target " + prefix + " at t0", unit, value});
@@ -151,12 +151,12 @@ void arrival_conditions(Problem& p, const json& c, InteriorEvent& e, const std::
     e.c_names.push_back("|v - v_" + e.id + "|^2 - vmax_" + e.id + "^2 (<= 0)");
     e.c_inequality.push_back(true);
   }
-  const ex t = p.symbols.get(event_time_name(e.id));
+  const ex t = p.symbols.get(names::event_time(e.id));
   e.c.push_back(e.window_lo - t);
-  e.c_names.push_back("window start - " + event_time_name(e.id) + " (<= 0: not before the window)");
+  e.c_names.push_back("window start - " + names::event_time(e.id) + " (<= 0: not before the window)");
   e.c_inequality.push_back(true);
   e.c.push_back(t - e.window_hi);
-  e.c_names.push_back(event_time_name(e.id) + " - window end (<= 0: not after the window)");
+  e.c_names.push_back(names::event_time(e.id) + " - window end (<= 0: not after the window)");
   e.c_inequality.push_back(true);
 }
 
@@ -215,14 +215,15 @@ InteriorEvent interior_event(Problem& p, const json& c) {
   std::vector<ex> rates;
   const std::vector<ex> arrival = target_state(p, e.id, e.target, e.id, true, rates);
   std::vector<ex> xm;
-  for (const auto& s : p.states) xm.push_back(S.get(before_event(s.name, e.id)));
-  for (const auto& s : p.states) S.get(after_event(s.name, e.id));
-  S.get(event_time_name(e.id));
+  for (const auto& s : p.states) xm.push_back(S.get(names::before(s.name, e.id)));
+  for (const auto& s : p.states) S.get(names::after(s.name, e.id));
+  S.get(names::event_time(e.id));
   arrival_conditions(p, c, e, xm, arrival);
   e.map = xm;  // continuous unless changed below
   if (e.kind == "rendezvous" && e.duration > 0) {
     // After the stay the spacecraft leaves from the target's state at t_<id> + stay.
-    const std::vector<ex> departure = target_state(p, e.id + "_dep", e.target, e.id + "_dep", true, rates);
+    const std::string departure_label = names::departure_label(e.id);
+    const std::vector<ex> departure = target_state(p, departure_label, e.target, departure_label, true, rates);
     for (std::size_t j = 0; j < 6; ++j) e.map[j] = departure[j];
   }
   if (drop > 0) {

@@ -45,7 +45,7 @@ DirectionLaw direction_law(Problem& p, const ex& H) {
   for (const auto& g : d.gradient) {
     int hits = 0;
     for (const auto& s : p.states) {
-      const ex lam = p.symbols.get(costate_name(s.name));
+      const ex lam = p.symbols.get(names::costate(s.name));
       const ex k = g.coeff(lam, 1);
       if (k.is_zero()) continue;
       ++hits;
@@ -96,7 +96,7 @@ SailLaw sail_law(Problem& p, const ex& H) {
     throw std::invalid_argument("a sail needs three normal components, got " + std::to_string(n.size()));
   const auto& rhat = p.sail.rhat;
   std::vector<ex> lv;
-  for (const auto& v : p.sail.velocity) lv.push_back(p.symbols.get(costate_name(v)));
+  for (const auto& v : p.sail.velocity) lv.push_back(p.symbols.get(names::costate(v)));
   const ex A = (lv[0] * rhat[0] + lv[1] * rhat[1] + lv[2] * rhat[2]);
   std::vector<ex> perp;
   for (int i = 0; i < 3; ++i) perp.push_back(lv[i] - A * rhat[i]);

@@ -99,8 +99,8 @@ json event_json(const Problem& p, const EventConditions& c) {
   json conditions = json::array(), state_map = json::array(), costate_map = json::array();
   for (std::size_t s = 0; s < p.states.size(); ++s) {
     const std::string& x = p.states[s].name;
-    const std::string xm = before_event(x, e.id);
-    conditions.push_back(before_event(costate_name(x), e.id) + " = nu^T dc/d" + xm + " + lambda(t+)^T dg/d" + xm);
+    const std::string xm = names::before(x, e.id);
+    conditions.push_back(names::before(names::costate(x), e.id) + " = nu^T dc/d" + xm + " + lambda(t+)^T dg/d" + xm);
     state_map.push_back({{"state", x}, {"expression", to_text(e.map[s])}});
     const CostateAfterEvent& l = c.costate_map[s];
     costate_map.push_back(
@@ -194,7 +194,7 @@ void problem_sections(const Derivation& d, json& doc) {
   doc["units"] = units_of(p);
   doc["times"] = times_of(p);
   json states = named_list(p.states, false);
-  for (auto& s : states) s["costate"] = costate_name(s["name"].get<std::string>());
+  for (auto& s : states) s["costate"] = names::costate(s["name"].get<std::string>());
   doc["states"] = states;
   json controls = json::array();
   for (const auto& c : p.controls) controls.push_back({{"name", c.name}, {"meaning", c.meaning}, {"kind", c.kind}});
@@ -211,7 +211,8 @@ void problem_sections(const Derivation& d, json& doc) {
   if (!d.hamiltonian_values.empty()) {
     json values = json::array();
     for (const auto& h : d.hamiltonian_values)
-      values.push_back({{"name", "H_" + h.at}, {"kind", "hamiltonian"}, {"at", h.at}, {"meaning", h.meaning}});
+      values.push_back(
+          {{"name", names::hamiltonian(h.at)}, {"kind", "hamiltonian"}, {"at", h.at}, {"meaning", h.meaning}});
     doc["event_values"] = values;
   }
   if (!p.orbit_bodies.empty()) doc["bodies"] = bodies_json(p.orbit_bodies);
@@ -244,7 +245,7 @@ json derivation_json(const Derivation& d) {
   json state_odes = json::array(), costate_odes = json::array();
   for (std::size_t i = 0; i < p.states.size(); ++i) {
     state_odes.push_back({{"state", p.states[i].name}, {"rhs", to_text(d.state_odes[i])}});
-    costate_odes.push_back({{"costate", costate_name(p.states[i].name)}, {"rhs", to_text(d.costate_odes[i])}});
+    costate_odes.push_back({{"costate", names::costate(p.states[i].name)}, {"rhs", to_text(d.costate_odes[i])}});
   }
   doc["state_odes"] = state_odes;
   doc["costate_odes"] = costate_odes;
@@ -274,7 +275,7 @@ json units_of(const Problem& p) {
 json times_of(const Problem& p) {
   json times;
   if (p.free_final_time) {
-    const GiNaC::symbol tf_frac("tf_frac");
+    const GiNaC::symbol tf_frac(names::fraction("tf"));
     times = {{"t0", p.t0},
              {"final_time", "free"},
              {"tf_window", {p.tf_min, p.tf}},
@@ -284,7 +285,7 @@ json times_of(const Problem& p) {
   }
   if (p.free_departure) {
     // The departure slides in its window; the total time of flight stays fixed.
-    const GiNaC::symbol t0_frac("t0_frac");
+    const GiNaC::symbol t0_frac(names::fraction("t0"));
     const GiNaC::ex t0 = p.t0_min + (p.t0_max - p.t0_min) * t0_frac;
     times["departure"] = "free";
     times["t0_window"] = {p.t0_min, p.t0_max};

@@ -43,10 +43,10 @@ void canonical_system(Derivation& d) {
   Problem& p = d.problem;
   auto& S = p.symbols;
   d.hamiltonian = S.get("lambda0") * p.running_cost;
-  for (std::size_t i = 0; i < p.states.size(); ++i) d.hamiltonian += S.get(costate_name(p.states[i].name)) * p.f[i];
+  for (std::size_t i = 0; i < p.states.size(); ++i) d.hamiltonian += S.get(names::costate(p.states[i].name)) * p.f[i];
   d.smoothed = d.hamiltonian.has(S.get("eps"));
   for (const auto& s : p.states) {
-    d.state_odes.push_back(d.hamiltonian.diff(S.get(costate_name(s.name))));
+    d.state_odes.push_back(d.hamiltonian.diff(S.get(names::costate(s.name))));
     d.costate_odes.push_back((-d.hamiltonian.diff(S.get(s.name))).expand());
   }
 }
@@ -59,8 +59,8 @@ std::vector<HamiltonianValue> hamiltonian_values(const Problem& p) {
   };
   if (p.free_departure) at("t0", "at t0");
   for (const auto& e : p.events) {
-    at(e.id + "_m", "just before " + e.id);
-    at(e.id + "_p", "just after " + e.id + (e.duration > 0 ? " (at the end of the stay)" : ""));
+    at(names::before_label(e.id), "just before " + e.id);
+    at(names::after_label(e.id), "just after " + e.id + (e.duration > 0 ? " (at the end of the stay)" : ""));
   }
   if (p.free_final_time || p.free_departure) at("tf", "at tf");
   return values;
@@ -78,7 +78,7 @@ Derivation derive_conditions(const Problem& problem) {
   endpoint_conditions(d);
   for (const auto& e : d.problem.events) d.events.push_back(event_conditions(d.problem, e, d.shooting));
   // Order: endpoint constraints first, then transversality, then the normalization.
-  const auto is_psi = [](const ShootingEquation& q) { return q.name.rfind("psi_", 0) == 0; };
+  const auto is_psi = [](const ShootingEquation& q) { return names::is_constraint_row(q.name); };
   std::stable_sort(d.shooting.equations.begin(), d.shooting.equations.end(),
                    [&](const ShootingEquation& a, const ShootingEquation& b) { return is_psi(a) && !is_psi(b); });
   initial_costates(d);

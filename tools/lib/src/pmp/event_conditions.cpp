@@ -24,15 +24,15 @@ EventSymbols event_symbols(Problem& p, const InteriorEvent& e) {
   auto& S = p.symbols;
   EventSymbols y;
   for (const auto& s : p.states) {
-    y.xm.push_back(S.get(before_event(s.name, e.id)));
-    y.xp.push_back(S.get(after_event(s.name, e.id)));
-    y.lm.push_back(S.get(before_event(costate_name(s.name), e.id)));
-    y.lp.push_back(S.get(after_event(costate_name(s.name), e.id)));
+    y.xm.push_back(S.get(names::before(s.name, e.id)));
+    y.xp.push_back(S.get(names::after(s.name, e.id)));
+    y.lm.push_back(S.get(names::before(names::costate(s.name), e.id)));
+    y.lp.push_back(S.get(names::after(names::costate(s.name), e.id)));
   }
-  for (std::size_t j = 0; j < e.c.size(); ++j) y.nu.push_back(S.get("nu_" + e.id + "_" + std::to_string(j + 1)));
-  y.frac = event_time_name(e.id) + "_frac";
+  for (std::size_t j = 0; j < e.c.size(); ++j) y.nu.push_back(S.get(names::multiplier(e.id, j + 1)));
+  y.frac = names::event_fraction(e.id);
   y.t_frac = S.get(y.frac);
-  y.epoch = S.get(event_time_name(e.id));
+  y.epoch = S.get(names::event_time(e.id));
   const std::size_t n = p.states.size();
   for (std::size_t s = 0; s < n; ++s) {
     bool carried = true;
@@ -68,8 +68,8 @@ void event_rows(const InteriorEvent& e, const EventSymbols& y, EventConditions& 
     c.psi.push_back(e.c[j]);
     c.multipliers.push_back(y.nu[j].get_name());
     ShootingEquation eq =
-        constraint_equation("psi_" + e.id + "_" + std::to_string(j + 1), e.c[j],
-                            e.kind + " at " + e.id + ": " + e.c_names[j], e.id, y.nu[j].get_name(), e.c_inequality[j]);
+        constraint_equation(names::constraint_row(e.id, j + 1), e.c[j], e.kind + " at " + e.id + ": " + e.c_names[j],
+                            e.id, y.nu[j].get_name(), e.c_inequality[j]);
     // A leg alone holds its epoch: at a guess inside the window while the window's bound is
     // inactive, at the bound's edge while it is active (the bound's row is then its multiplier).
     if (e.c[j].has(y.epoch)) {
@@ -95,12 +95,12 @@ void jump_conditions(const Problem& p, const InteriorEvent& e, const EventSymbol
     for (std::size_t k = 0; k < n; ++k)
       if (!y.carried[k] || k != s) rest -= y.lp[k] * e.map[k].diff(y.xm[s]);
     rest = tidy(rest);
-    const std::string costate = costate_name(p.states[s].name);
+    const std::string costate = names::costate(p.states[s].name);
     if (y.carried[s]) {
       c.costate_map.push_back({costate, rest, false});
     } else {
       c.costate_map.push_back({costate, y.lp[s], true});
-      shooting.equations.push_back({"jump_" + e.id + "_" + p.states[s].name, rest,
+      shooting.equations.push_back({names::jump_row(e.id, p.states[s].name), rest,
                                     "costate jump at " + e.id + ": " + y.lm[s].get_name() +
                                         " = nu^T dc/dx- + lambda(t+)^T dg/dx- (row " + p.states[s].name + ")",
                                     e.id});
@@ -114,18 +114,18 @@ void jump_conditions(const Problem& p, const InteriorEvent& e, const EventSymbol
 void epoch_conditions(Problem& p, const InteriorEvent& e, const EventSymbols& y, Shooting& shooting) {
   auto& S = p.symbols;
   const std::size_t n = p.states.size();
-  ex time_condition = S.get("H_" + e.id + "_m") - S.get("H_" + e.id + "_p");
+  ex time_condition = S.get(names::hamiltonian_before(e.id)) - S.get(names::hamiltonian_after(e.id));
   for (std::size_t j = 0; j < e.c.size(); ++j)
     time_condition += y.nu[j] * (e.c[j].diff(y.epoch) + time_derivative(p, e.c[j]));
   for (std::size_t k = 0; k < n; ++k) time_condition += y.lp[k] * time_derivative(p, e.map[k]);
-  shooting.equations.push_back(
-      {"time_" + e.id, tidy(time_condition), "H(t-) - H(t+) + dPhi/dt = 0 at " + e.id + ": its epoch is free", e.id});
+  shooting.equations.push_back({names::time_row(e.id), tidy(time_condition),
+                                "H(t-) - H(t+) + dPhi/dt = 0 at " + e.id + ": its epoch is free", e.id});
   for (const auto& q : e.free_parameters) {
     const symbol par = S.get(q);
     ex st = 0;
     for (std::size_t j = 0; j < e.c.size(); ++j) st += y.nu[j] * e.c[j].diff(par);
     for (std::size_t k = 0; k < n; ++k) st += y.lp[k] * e.map[k].diff(par);
-    shooting.equations.push_back({"stationarity_" + e.id + "_" + q, tidy(st),
+    shooting.equations.push_back({names::stationarity_row(e.id, q), tidy(st),
                                   "dPhi/d" + q + " = 0: " + q + " is a free parameter of psi at " + e.id, e.id});
   }
 }
@@ -137,7 +137,7 @@ EventConditions event_conditions(Problem& p, const InteriorEvent& e, Shooting& s
   event_variables(p, e, y, shooting);
   EventConditions c;
   c.event = e;
-  c.time_symbol = event_time_name(e.id);
+  c.time_symbol = names::event_time(e.id);
   c.time = e.window_lo + (e.window_hi - e.window_lo) * y.t_frac;
   event_rows(e, y, c, shooting);
   jump_conditions(p, e, y, c, shooting);

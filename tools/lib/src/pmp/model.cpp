@@ -45,22 +45,6 @@ Units units_for(const json& central_body) {
 
 }  // namespace
 
-std::string costate_name(const std::string& state) {
-  return "l_" + state;
-}
-std::string at_event(const std::string& name, const std::string& event) {
-  return name + "_" + event;
-}
-std::string before_event(const std::string& name, const std::string& event) {
-  return name + "_" + event + "_m";
-}
-std::string after_event(const std::string& name, const std::string& event) {
-  return name + "_" + event + "_p";
-}
-std::string event_time_name(const std::string& event) {
-  return "t_" + event;
-}
-
 bool Problem::has_state(const std::string& name) const {
   for (const auto& s : states)
     if (s.name == name) return true;
@@ -200,7 +184,7 @@ void register_symbols(Problem& p) {
   auto& S = p.symbols;
   for (const auto& s : p.states) {
     S.get(s.name);
-    S.get(costate_name(s.name));
+    S.get(names::costate(s.name));
   }
   for (const auto& c : p.controls) S.get(c.name);
   for (const auto& q : p.parameters) S.get(q.name);

@@ -6,6 +6,8 @@
 #include <cctype>
 #include <set>
 
+#include "helios/derivation/names.hpp"
+
 namespace helios::spec::grammar {
 
 // "position [..] km with velocity [..] km/s", "a coasting target starting from position .. with
@@ -330,7 +332,8 @@ void Builder::check_event_ids(const std::vector<std::string>& ids) const {
                                                  "vx",   "vy",   "vz",   "m",     "tf",    "t0",           "lambda0"};
   for (std::size_t k = 0; k < ids.size(); ++k) {
     const std::string& id = ids[k];
-    if (reserved.count(id) || id.rfind("l_", 0) == 0 || id.rfind("departure_", 0) == 0 || id.rfind("arrival_", 0) == 0)
+    if (reserved.count(id) || derivation::names::is_costate(id) || id.rfind("departure_", 0) == 0 ||
+        id.rfind("arrival_", 0) == 0)
       fail(events[k].where, "the body name '" + events[k].body + "' would name a symbol of the derivation ('" + id +
                                 "_rx', 'l_...' or 'arrival_...'): choose another name, e.g. '" + events[k].body +
                                 "_body'");
@@ -340,8 +343,9 @@ void Builder::check_event_ids(const std::vector<std::string>& ids) const {
       const std::string suffix = id.substr(other.size() + 1);
       if (suffix.find_first_not_of("0123456789") != std::string::npos)
         fail(events[k].where, "the body names '" + events[j].body + "' and '" + events[k].body +
-                                  "' would give two symbols one name ('t_" + id + "' would be both the time of " +
-                                  events[k].body + " and 't_" + other + "' of " + events[j].body + " followed by '_" +
+                                  "' would give two symbols one name ('" + derivation::names::event_time(id) +
+                                  "' would be both the time of " + events[k].body + " and '" +
+                                  derivation::names::event_time(other) + "' of " + events[j].body + " followed by '_" +
                                   suffix + "'): rename one so that neither is the other followed by '_'");
     }
   }

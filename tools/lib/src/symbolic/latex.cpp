@@ -1,5 +1,6 @@
 #include "helios/symbolic/latex.hpp"
 
+#include "helios/derivation/names.hpp"
 #include "helios/symbolic/expr.hpp"
 
 #include <algorithm>
@@ -8,6 +9,8 @@
 #include <sstream>
 
 namespace helios::symbolic {
+
+namespace names = derivation::names;  // the grammar of a derivation's names
 
 namespace {
 
@@ -158,13 +161,13 @@ std::string latex_symbol(const std::string& name) {
   if (parts.empty() || std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
     return upright(name);
   std::string time;
-  if (parts.size() > 1 && (parts.back() == "t0" || parts.back() == "tf")) {
-    time = parts.back() == "t0" ? "(t_0)" : "(t_f)";
+  if (parts.size() > 1 && (parts.back() == names::kT0 || parts.back() == names::kTf)) {
+    time = parts.back() == names::kT0 ? "(t_0)" : "(t_f)";
     parts.pop_back();
   }
   Atom core;
   std::vector<std::string> rest;
-  if (parts[0] == "l" && parts.size() > 1) {  // a costate: lambda with the state as its subscript
+  if (parts[0] == names::kCostate && parts.size() > 1) {  // a costate: lambda with the state as its subscript
     core = {"\\lambda", {render(atom(parts[1]), {}, "")}};
     rest.assign(parts.begin() + 2, parts.end());
   } else {
@@ -177,8 +180,8 @@ std::string latex_symbol(const std::string& name) {
       if (i != at) rest.push_back(parts[i]);
   }
   std::string sign;
-  if (rest.size() >= 2 && (rest.back() == "m" || rest.back() == "p")) {  // just before / after an event
-    sign = rest.back() == "m" ? "-" : "+";
+  if (rest.size() >= 2 && (rest.back() == names::kBefore || rest.back() == names::kAfter)) {  // before / after an event
+    sign = rest.back() == names::kBefore ? "-" : "+";
     rest.pop_back();
   }
   std::vector<std::string> sup;
@@ -473,8 +476,7 @@ const Typesetter::Norm* Typesetter::norm_of(const ex& base) {
     paired.push_back(b);
     // The state at an event minus the body's: the name with the event's sign comes first.
     const auto at_event = [](const ex& s) {
-      const std::string n = GiNaC::ex_to<GiNaC::symbol>(s).get_name();
-      return n.size() > 2 && (n.compare(n.size() - 2, 2, "_m") == 0 || n.compare(n.size() - 2, 2, "_p") == 0);
+      return names::is_before_or_after(GiNaC::ex_to<GiNaC::symbol>(s).get_name());
     };
     if (at_event(b) && !at_event(a)) std::swap(a, b);
     auto it = std::find_if(differences_.begin(), differences_.end(),

@@ -91,12 +91,12 @@ class BoundaryFamily : public Family {
   void check_endpoints() {
     const ex lambda0 = ctx.sym(ctx.multiplier);
     GiNaC::exmap to_tf;
-    for (const auto& s : ctx.states) to_tf[ctx.sym(s)] = ctx.sym(s + "_tf");
+    for (const auto& s : ctx.states) to_tf[ctx.sym(s)] = ctx.sym(names::at_tf(s));
     // Final state: a state no psi fixes has lambda(tf) = lambda0 dphi/dx(tf).
     for (std::size_t i = 0; i < ctx.states.size(); ++i) {
       const std::string& s = ctx.states[i];
       if (ctx.fixed_at_tf.count(s)) continue;
-      const ex expected = (ctx.sym(ctx.costates[i] + "_tf") -
+      const ex expected = (ctx.sym(names::at_tf(ctx.costates[i])) -
                            lambda0 * ctx.endpoint_cost.diff(GiNaC::ex_to<symbol>(ctx.sym(s))).subs(to_tf))
                               .expand();
       Check c = start("transversality:" + s, "transversality", "random_points+exact");
@@ -115,7 +115,7 @@ class BoundaryFamily : public Family {
                       "missing endpoint condition " + print(expected) + " = 0 (constraints[" + k.id + "].psi[" +
                           std::to_string(j) + "] at tf); add it to shooting.equations.");
         checks.push_back(c);
-        const std::string name = "psi_" + k.id + "_" + std::to_string(j + 1);
+        const std::string name = names::constraint_row(k.id, j + 1);
         if (const json* bound = equation_field(name, "inequality")) {
           const std::string nu = j < k.multipliers.size() ? k.multipliers[j] : "";
           if (is_identifier(nu)) check_bound(name, *bound, ctx.sym(nu));
@@ -127,8 +127,9 @@ class BoundaryFamily : public Family {
       const std::string& s = ctx.states[i];
       if (ctx.fixed_at_t0.count(s)) continue;
       Check c = start("transversality_t0:" + s, "transversality", "random_points+exact");
-      find_equation(c, ctx.sym(ctx.costates[i] + "_t0"),
-                    "missing transversality condition " + ctx.costates[i] + "_t0 = 0: " + s +
+      const std::string lambda_t0 = names::at_t0(ctx.costates[i]);
+      find_equation(c, ctx.sym(lambda_t0),
+                    "missing transversality condition " + lambda_t0 + " = 0: " + s +
                         "(t0) is free (no initial constraint involves it); add it to shooting.equations.");
       checks.push_back(c);
     }
@@ -139,16 +140,16 @@ class BoundaryFamily : public Family {
   // through lambda(tf) = dPhi/dx(tf) and dpsi/dtf comes from the parameters that move with tf.
   void check_free_tf(GiNaC::exmap to_tf) {
     Check c = start("transversality_tf", "transversality", "random_points+exact");
-    for (const auto& l : ctx.costates) to_tf[ctx.sym(l)] = ctx.sym(l + "_tf");
+    for (const auto& l : ctx.costates) to_tf[ctx.sym(l)] = ctx.sym(names::at_tf(l));
     std::vector<std::string> problems;
     const std::map<std::string, ex> rates = rates_at("tf", problems);
     const EventValue* H_tf = nullptr;
     for (const auto& v : ctx.event_values)
       if (v.hamiltonian && !H_tf) H_tf = &v;
     if (!H_tf)
-      problems.push_back(
-          "event_values must declare the Hamiltonian at tf (e.g. {\"name\": \"H_tf\", \"meaning\": \"H at tf under "
-          "the optimal control\"}) for the free-final-time condition");
+      problems.push_back("event_values must declare the Hamiltonian at tf (e.g. {\"name\": \"" +
+                         names::hamiltonian("tf") +
+                         "\", \"meaning\": \"H at tf under the optimal control\"}) for the free-final-time condition");
     std::vector<ex> psi, dpsi;
     for (const auto& k : ctx.constraints)
       if (k.at == "tf")
@@ -182,8 +183,9 @@ class BoundaryFamily : public Family {
     if (!c.pass) {
       // Name the equation that was meant to be it: the one called transversality_tf, else the one using H_tf.
       const Equation* meant = nullptr;
+      const std::string row = names::transversality_row("tf");
       for (const auto& eq : ctx.equations)
-        if (eq.ok && (eq.name == "transversality_tf" || (!meant && H_tf && eq.e.has(ctx.sym(H_tf->name))))) meant = &eq;
+        if (eq.ok && (eq.name == row || (!meant && H_tf && eq.e.has(ctx.sym(H_tf->name))))) meant = &eq;
       if (meant) {
         const std::string t = term_diagnosis(expected, meant->e);
         c.feedback = "shooting equation '" + meant->name + "' (" + meant->text + " = 0) is not the free-final-time " +

@@ -168,10 +168,10 @@ void Context::read_names() {
   costates = names.costates;
   for (std::size_t i = 0; i < states.size(); ++i) {
     const Kind k = state_kind(states[i], names.state_quantities[i].meaning);
-    for (const char* suffix : {"", "_t0", "_tf"}) declare(states[i] + suffix, k);
+    for (const auto& name : {states[i], names::at_t0(states[i]), names::at_tf(states[i])}) declare(name, k);
   }
   for (const auto& c : costates)
-    for (const char* suffix : {"", "_t0", "_tf"}) declare(c + suffix, Kind::Costate);
+    for (const auto& name : {c, names::at_t0(c), names::at_tf(c)}) declare(name, Kind::Costate);
   for (std::size_t i = 0; i < names.controls.size(); ++i) {
     const std::string& name = names.controls[i];
     const std::string& kind = names.control_kinds[i];
@@ -218,7 +218,7 @@ void Context::read_statement() {
   running_cost = statement(io::require(dyn, "running_cost", "derivation dynamics"), "dynamics.running_cost");
   endpoint_cost = statement(io::require(dyn, "endpoint_cost", "derivation dynamics"), "dynamics.endpoint_cost");
   GiNaC::exmap tf_to_state;  // an endpoint cost written in x_tf is read in x
-  for (const auto& s : states) tf_to_state[sym(s + "_tf")] = sym(s);
+  for (const auto& s : states) tf_to_state[sym(names::at_tf(s))] = sym(s);
   endpoint_cost = endpoint_cost.subs(tf_to_state);
   if (d.contains("constraints")) {
     for (const auto& c : d["constraints"]) {
@@ -228,7 +228,7 @@ void Context::read_statement() {
       if (k.at != "t0" && k.at != "tf")
         throw input_error("derivation: constraint " + k.id + " is at '" + k.at + "', expected t0 or tf");
       GiNaC::exmap to_state;
-      for (const auto& s : states) to_state[sym(s + "_" + k.at)] = sym(s);
+      for (const auto& s : states) to_state[sym(names::at(s, k.at))] = sym(s);
       const json& psi = io::require(c, "psi", "derivation constraint " + k.id);
       for (std::size_t j = 0; j < psi.size(); ++j)
         k.psi.push_back(statement(psi[j], "constraints[" + k.id + "].psi[" + std::to_string(j) + "]").subs(to_state));
@@ -337,16 +337,16 @@ void Context::read_interior_events() {
       e.kind = je.value("kind", "");
       for (std::size_t i = 0; i < states.size(); ++i) {
         const Kind k = kinds[static_cast<std::size_t>(slot(states[i]))];
-        declare_new(before(states[i], e.id), k);
-        declare_new(after(states[i], e.id), k);
-        declare_new(before(costates[i], e.id), Kind::Costate);
-        declare_new(after(costates[i], e.id), Kind::Costate);
+        declare_new(names::before(states[i], e.id), k);
+        declare_new(names::after(states[i], e.id), k);
+        declare_new(names::before(costates[i], e.id), Kind::Costate);
+        declare_new(names::after(costates[i], e.id), Kind::Costate);
       }
-      declare_new("t_" + e.id, Kind::Free);
+      declare_new(names::event_time(e.id), Kind::Free);
       for (const auto& v : event_values)
-        if (v.hamiltonian && v.at == e.id + "_m")
+        if (v.hamiltonian && v.at == names::before_label(e.id))
           e.Hm = v.name;
-        else if (v.hamiltonian && v.at == e.id + "_p")
+        else if (v.hamiltonian && v.at == names::after_label(e.id))
           e.Hp = v.name;
       const json& time = io::require(je, "time", where);
       e.time_text = io::require_string(time, "expression", where + ".time");
@@ -584,8 +584,8 @@ Point Context::optimal_controls(const Point& p, bool with_throttle) const {
 Point Context::at_tf(const Point& p) const {
   Point q = p;
   for (std::size_t i = 0; i < states.size(); ++i) {
-    q[static_cast<std::size_t>(slot(states[i]))] = p[static_cast<std::size_t>(slot(states[i] + "_tf"))];
-    q[static_cast<std::size_t>(slot(costates[i]))] = p[static_cast<std::size_t>(slot(costates[i] + "_tf"))];
+    q[static_cast<std::size_t>(slot(states[i]))] = p[static_cast<std::size_t>(slot(names::at_tf(states[i])))];
+    q[static_cast<std::size_t>(slot(costates[i]))] = p[static_cast<std::size_t>(slot(names::at_tf(costates[i])))];
   }
   return optimal_controls(q, true);
 }
@@ -597,7 +597,7 @@ Point Context::at_label(const Point& p, const std::string& label) const {
   Point q = p;
   for (std::size_t i = 0; i < states.size(); ++i)
     for (const auto* name : {&states[i], &costates[i]}) {
-      const auto it = slots.find(*name + "_" + label);
+      const auto it = slots.find(names::at(*name, label));
       if (it != slots.end()) q[static_cast<std::size_t>(slot(*name))] = p[static_cast<std::size_t>(it->second)];
     }
   return optimal_controls(q, true);

@@ -13,12 +13,15 @@
 #include <string>
 #include <vector>
 
+#include "helios/derivation/names.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/symbolic/evaluate.hpp"
 #include "helios/symbolic/expr.hpp"
 #include "helios/verify/verify.hpp"
 
 namespace helios::verify::detail {
+
+namespace names = derivation::names;
 
 using GiNaC::ex;
 using GiNaC::numeric;
@@ -166,9 +169,6 @@ class Context {
   Compiled compile(const ex& e) const { return Compiled(e, slots); }
   // The expression text of the field `where`.
   ex statement(const json& text, const std::string& where) const;
-  // The names of a state or costate just before / just after the interior event `id`.
-  std::string before(const std::string& name, const std::string& id) const { return name + "_" + id + "_m"; }
-  std::string after(const std::string& name, const std::string& id) const { return name + "_" + id + "_p"; }
 
   Point set_direction(Point p, const std::vector<double>& a) const;
   std::vector<double> direction_of(const Point& p) const;

@@ -57,10 +57,10 @@ class EventFamily : public Family {
     }
     EventParts parts(e, ctx.states.size());
     for (std::size_t i = 0; i < parts.n; ++i) {
-      parts.xm.push_back(ctx.sym(ctx.before(ctx.states[i], e.id)));
-      parts.xp.push_back(ctx.sym(ctx.after(ctx.states[i], e.id)));
-      parts.lm.push_back(ctx.sym(ctx.before(ctx.costates[i], e.id)));
-      parts.lp.push_back(ctx.sym(ctx.after(ctx.costates[i], e.id)));
+      parts.xm.push_back(ctx.sym(names::before(ctx.states[i], e.id)));
+      parts.xp.push_back(ctx.sym(names::after(ctx.states[i], e.id)));
+      parts.lm.push_back(ctx.sym(names::before(ctx.costates[i], e.id)));
+      parts.lp.push_back(ctx.sym(names::after(ctx.costates[i], e.id)));
     }
     if (!check_event_psi(parts) || !check_event_multipliers(parts)) return;
     check_event_constraints(parts);
@@ -152,9 +152,8 @@ class EventFamily : public Family {
                            std::find(e.free_params.begin(), e.free_params.end(), m) == e.free_params.end() &&
                            std::find(e.time_vars.begin(), e.time_vars.end(), m) == e.time_vars.end();
         if (!fresh || !seen.insert(m).second)
-          pm.fail(where + ".multipliers[" + std::to_string(c_rows[j]) + "] = '" + m +
-                  "' must be a new symbol (e.g. nu_" + id + "_" + std::to_string(j + 1) +
-                  "), the multiplier of psi row " + e.psi_text[c_rows[j]] + ".");
+          pm.fail(where + ".multipliers[" + std::to_string(c_rows[j]) + "] = '" + m + "' must be a new symbol (e.g. " +
+                  names::multiplier(id, j + 1) + "), the multiplier of psi row " + e.psi_text[c_rows[j]] + ".");
         else
           nu.push_back(ctx.sym(m));
       }
@@ -180,7 +179,7 @@ class EventFamily : public Family {
     auto& [e, id, where, n, xm, xp, lm, lp, c_rows, map_row, g, c, nu, carried, rows, explicit_lp, resolve, basis_rows,
            params] = parts;
     for (std::size_t j = 0; j < c.size(); ++j) {
-      const std::string name = "psi_" + id + "_" + std::to_string(j + 1);
+      const std::string name = names::constraint_row(id, j + 1);
       Check k = start("event_constraint:" + id + "_" + std::to_string(j + 1), "events", "random_points+exact");
       if (!matching_equation(name, c[j], k, {}))
         k.fail("missing interior constraint " + e.psi_text[c_rows[j]] + " = 0 (" + where + ".psi[" +
@@ -280,8 +279,8 @@ class EventFamily : public Family {
       k.fail(label + " = " + entry.text + " treats lambda_" + ctx.states[s] + " as given across " + id +
              ", but the map " + print(xp[s]) + " = " + short_print(g[s]) + " does not carry " + ctx.states[s] +
              " over (dg/dx- is not the unit row): lambda_" + ctx.states[s] + "(t+) is unknown; make it the shooting " +
-             "variable " + print(lp[s]) + " (\"variable\") and add the jump row " + row_text +
-             " = 0 as equation jump_" + id + "_" + ctx.states[s] + ".");
+             "variable " + print(lp[s]) + " (\"variable\") and add the jump row " + row_text + " = 0 as equation " +
+             names::jump_row(id, ctx.states[s]) + ".");
       checks.push_back(k);
       return;
     }
@@ -291,7 +290,7 @@ class EventFamily : public Family {
       checks.push_back(k);
       return;
     }
-    const std::string ename = "jump_" + id + "_" + ctx.states[s];
+    const std::string ename = names::jump_row(id, ctx.states[s]);
     if (!matching_equation(ename, rows[s], k, resolve)) {
       const Equation* meant = named_equation(ename);
       if (meant) {
@@ -333,14 +332,14 @@ class EventFamily : public Family {
         k.max_rel = 2;
         k.fail("cannot form the free-epoch condition of " + id + ": " + join(problems, "; ") + ".");
       } else {
-        const std::string epoch = "t_" + id;
+        const std::string epoch = names::event_time(id);
         ex dphi = 0;
         for (std::size_t j = 0; j < c.size(); ++j) dphi += nu[j] * time_derivative(c[j], epoch, rates);
         for (std::size_t s = 0; s < n; ++s)
           dphi += (carried[s] ? explicit_lp[s] : lp[s]) * time_derivative(g[s], epoch, rates);
         const ex Hm = ctx.sym(e.Hm), Hp = ctx.sym(e.Hp);
         const ex expected = Hm - Hp + dphi;
-        const std::string ename = "time_" + id;
+        const std::string ename = names::time_row(id);
         const std::string want =
             "H(t-) - H(t+) + nu^T dc/dt + lambda(t+)^T dg/dt = 0, i.e. " + short_print(expected) + " = 0";
         if (!matching_equation(ename, expected, k, resolve)) {
@@ -401,7 +400,7 @@ class EventFamily : public Family {
       for (std::size_t j = 0; j < c.size(); ++j) expected += nu[j] * derivative(c[j], ctx.sym(q));
       for (std::size_t s = 0; s < n; ++s)
         expected += (carried[s] ? explicit_lp[s] : lp[s]) * derivative(g[s], ctx.sym(q));
-      const std::string ename = "stationarity_" + id + "_" + q;
+      const std::string ename = names::stationarity_row(id, q);
       const std::string want = "dPhi/d" + q + " = nu^T dc/d" + q + " + lambda(t+)^T dg/d" + q + " = 0";
       if (!matching_equation(ename, expected, k, resolve)) {
         const Equation* meant = named_equation(ename);
@@ -516,10 +515,10 @@ class EventFamily : public Family {
       problems.push_back("event_values must declare the Hamiltonian at t0 and at tf (kind hamiltonian, at t0 / tf)");
     GiNaC::exmap to_t0, to_tf;
     for (std::size_t i = 0; i < ctx.states.size(); ++i) {
-      to_t0[ctx.sym(ctx.states[i])] = ctx.sym(ctx.states[i] + "_t0");
-      to_t0[ctx.sym(ctx.costates[i])] = ctx.sym(ctx.costates[i] + "_t0");
-      to_tf[ctx.sym(ctx.states[i])] = ctx.sym(ctx.states[i] + "_tf");
-      to_tf[ctx.sym(ctx.costates[i])] = ctx.sym(ctx.costates[i] + "_tf");
+      to_t0[ctx.sym(ctx.states[i])] = ctx.sym(names::at_t0(ctx.states[i]));
+      to_t0[ctx.sym(ctx.costates[i])] = ctx.sym(names::at_t0(ctx.costates[i]));
+      to_tf[ctx.sym(ctx.states[i])] = ctx.sym(names::at_tf(ctx.states[i]));
+      to_tf[ctx.sym(ctx.costates[i])] = ctx.sym(names::at_tf(ctx.costates[i]));
     }
     ex depart, coupling, expected;
     try {
@@ -552,19 +551,20 @@ class EventFamily : public Family {
     }
     const std::string want = "-H(t0) + nu0^T dpsi0/dt0 + H(tf) + nu_f^T dpsi_f/dtf = 0, i.e. " + print(expected) +
                              " = 0 (t0 slides and tf = t0 + tof moves with it)";
-    if (!matching_equation("transversality_t0", expected, c, {})) {
-      const Equation* meant = named_equation("transversality_t0");
+    const std::string row = names::transversality_row("t0");
+    if (!matching_equation(row, expected, c, {})) {
+      const Equation* meant = named_equation(row);
       if (!meant)
         for (const auto& eq : ctx.equations)
           if (eq.ok && !meant && eq.e.has(ctx.sym(H0))) meant = &eq;
       if (!meant) {
-        c.fail("missing sliding-departure condition " + want + "; add it to shooting.equations as transversality_t0.");
+        c.fail("missing sliding-departure condition " + want + "; add it to shooting.equations as " + row + ".");
       } else {
         std::vector<std::string> why;
         bool motion = false, tf_side = meant->e.has(ctx.sym(Hf));
         for (const auto& [name, rate] : r0)
           for (const auto& s : symbolic::free_symbols(rate)) motion = motion || meant->e.has(ctx.sym(s));
-        for (const auto& l : ctx.costates) tf_side = tf_side || meant->e.has(ctx.sym(l + "_tf"));
+        for (const auto& l : ctx.costates) tf_side = tf_side || meant->e.has(ctx.sym(names::at_tf(l)));
         const ex motion_part = (depart + ctx.sym(H0)).expand();
         if (!motion && !motion_part.is_zero())
           why.push_back("the departure body's motion is missing (nu0^T dpsi0/dt0 = " + print(motion_part) +
@@ -575,8 +575,8 @@ class EventFamily : public Family {
         if (why.empty()) {
           std::vector<ex> basis{ctx.sym(H0), ctx.sym(Hf)};
           for (const auto& l : ctx.costates) {
-            basis.push_back(ctx.sym(l + "_t0"));
-            basis.push_back(ctx.sym(l + "_tf"));
+            basis.push_back(ctx.sym(names::at_t0(l)));
+            basis.push_back(ctx.sym(names::at_tf(l)));
           }
           const Linear lc = linear_compare(expected, meant->e, basis);
           if (!lc.ok()) why.push_back(lc.text());

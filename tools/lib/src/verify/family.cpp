@@ -151,16 +151,16 @@ std::map<std::string, ex> Family::rates_at(const std::string& label, std::vector
     const std::string kind = src.substr(0, a), owner = src.substr(a + 1, b - a - 1);
     (kind == "ephemeris" ? ephem : kind == "ephemeris_rate" ? rate : coast)[owner].push_back(name);
   }
-  for (const auto& [body, names] : ephem) {
+  for (const auto& [body, components] : ephem) {
     const auto& r = rate[body];
-    for (std::size_t k = 0; k < names.size(); ++k) {
-      const auto named = std::find(r.begin(), r.end(), names[k] + "_rate");
+    for (std::size_t k = 0; k < components.size(); ++k) {
+      const auto named = std::find(r.begin(), r.end(), names::rate(components[k]));
       if (named != r.end())
-        rates[names[k]] = ctx.sym(*named);
-      else if (r.size() == names.size())
-        rates[names[k]] = ctx.sym(r[k]);
+        rates[components[k]] = ctx.sym(*named);
+      else if (r.size() == components.size())
+        rates[components[k]] = ctx.sym(r[k]);
       else
-        problems.push_back("parameter " + names[k] + " (source ephemeris:" + body + ":" + label + ") moves with " +
+        problems.push_back("parameter " + components[k] + " (source ephemeris:" + body + ":" + label + ") moves with " +
                            (label == "tf" || label == "t0" ? label : "the epoch of " + label) +
                            " but has no parameter with source ephemeris_rate:" + body + ":" + label);
     }

@@ -41,8 +41,8 @@ class ShapeFamily : public Family {
       std::vector<std::string> missing;
       if (!vars.count(ctx.multiplier)) missing.push_back(ctx.multiplier + " (the cost multiplier, G1)");
       for (std::size_t i = 0; i < ctx.states.size(); ++i)
-        if (ctx.fixed_at_t0.count(ctx.states[i]) && !vars.count(ctx.costates[i] + "_t0"))
-          missing.push_back(ctx.costates[i] + "_t0 (" + ctx.states[i] +
+        if (ctx.fixed_at_t0.count(ctx.states[i]) && !vars.count(names::at_t0(ctx.costates[i])))
+          missing.push_back(names::at_t0(ctx.costates[i]) + " (" + ctx.states[i] +
                             "(t0) is fixed, so its costate at t0 is unknown)");
       std::vector<std::string> unknown;
       for (const auto& v : ctx.variables)
@@ -64,18 +64,17 @@ class ShapeFamily : public Family {
       // it (it propagates arc by arc) and its epoch.
       for (const auto& e : ctx.interior_events) {
         if (!e.error.empty()) continue;
-        allowed.insert("t_" + e.id);
+        allowed.insert(names::event_time(e.id));
         for (std::size_t i = 0; i < ctx.states.size(); ++i)
           for (const auto& name : {ctx.states[i], ctx.costates[i]}) {
-            allowed.insert(ctx.before(name, e.id));
-            allowed.insert(ctx.after(name, e.id));
+            allowed.insert(names::before(name, e.id));
+            allowed.insert(names::after(name, e.id));
           }
       }
       for (std::size_t i = 0; i < ctx.states.size(); ++i)
-        for (const char* event : {"_t0", "_tf"}) {
-          allowed.insert(ctx.states[i] + event);
-          if (std::string(event) == "_tf") allowed.insert(ctx.costates[i] + event);
-        }
+        for (const auto& name :
+             {names::at_t0(ctx.states[i]), names::at_tf(ctx.states[i]), names::at_tf(ctx.costates[i])})
+          allowed.insert(name);
       std::vector<std::string> problems;
       for (const auto& eq : ctx.equations) {
         if (!eq.ok) {
@@ -101,7 +100,7 @@ class ShapeFamily : public Family {
     std::vector<std::string> sphere{ctx.multiplier};
     for (const auto& v : ctx.variables)
       for (const auto& l : ctx.costates)
-        if (v == l + "_t0") sphere.push_back(v);
+        if (v == names::at_t0(l)) sphere.push_back(v);
     ex norm2 = 0;
     for (const auto& v : sphere) norm2 += GiNaC::pow(ctx.sym(v), 2);
     const ex expected = GiNaC::sqrt(norm2) - 1;

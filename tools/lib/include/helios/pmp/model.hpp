@@ -9,10 +9,14 @@
 #include <vector>
 
 #include "helios/astro/kepler.hpp"
+#include "helios/derivation/names.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/symbolic/expr.hpp"
 
 namespace helios::pmp {
+
+// The names of the derivation artifact (l_x, x_tf, x_<id>_m, t_<id>, psi_<id>_<j>...).
+namespace names = derivation::names;
 
 // Normalized units of the solver: length, time and mass scales.
 struct Units {
@@ -113,14 +117,6 @@ struct Problem {
   double final_mass = 1;
   bool has_state(const std::string& name) const;
 };
-
-// Name of the costate of state `x` (l_x) and of a symbol at an event time (x_tf); the state
-// arriving at / leaving an interior event (x_<id>_m / x_<id>_p) and the event's time (t_<id>).
-std::string costate_name(const std::string& state);
-std::string at_event(const std::string& name, const std::string& event);
-std::string before_event(const std::string& name, const std::string& event);
-std::string after_event(const std::string& name, const std::string& event);
-std::string event_time_name(const std::string& event);
 
 // Builds the problem of a validated spec. Throws std::invalid_argument / std::domain_error
 // naming the spec field for what this engine cannot formulate.
