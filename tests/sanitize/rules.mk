@@ -26,6 +26,6 @@ test-sanitized: $(ASAN_BUILD)/build.ninja
 	$(SANITIZE_ENV) cmake --build $(ASAN_BUILD)
 	status=0; \
 	$(SANITIZE_ENV) ctest --test-dir $(ASAN_BUILD) --output-on-failure -j2 || status=1; \
-	$(SANITIZE_ENV) HELIOS_BUILD_DIR=$(ASAN_BUILD) tests/run-bats.sh $(SANITIZED_BATS) || status=1; \
+	$(SANITIZE_ENV) HELIOS_BUILD_DIR=$(ASAN_BUILD) BATS_JOBS=1 tests/run-bats.sh $(SANITIZED_BATS) || status=1; \
 	tests/sanitize/check-logs.sh $(SANITIZE_LOGS) || status=1; \
 	exit $$status
