@@ -1,8 +1,8 @@
 # Included by the Makefile (make runs in the repository's root; the paths are from there).
-.PHONY: bench bench-search bench-sweep
+.PHONY: bench bench-search bench-sweep bench-house
 
 # ---- benchmarks: each stage's wall time (bench.sh), the search audit, the P01 bench grid -------
-bench: $(TOOLS_STAMP) bench-sweep bench-search
+bench: $(TOOLS_STAMP) bench-sweep bench-search bench-house
 	tests/bench/bench.sh
 
 # The search audit: the default search against an exhaustive one, seeds 1-5 (tests/bench/search_audit.sh).
@@ -18,3 +18,8 @@ bench-sweep: $(TOOLS_STAMP)
 	  echo "bench-sweep: P01 bench grid, $$start starts, empty compile cache: $$wall s wall"; \
 	  tests/bench/sweep_summary.sh $$runs/$(BACKEND)/P01-bench$$([[ $$start == cold ]] && echo -cold) $$wall; \
 	  rm -rf $$runs; done
+
+# The house's figures: raw JSON reads outside the reading rooms, the files spelling the names
+# grammar, the ten longest functions (tests/bench/house.sh).
+bench-house:
+	tests/bench/house.sh
