@@ -7,8 +7,10 @@
 #include "helios/io/schema.hpp"
 #include "helios/llm/backend.hpp"
 #include "helios/pmp/derive.hpp"
+#include "helios/symbolic/expr.hpp"
 
 int main(int argc, char** argv) {
+  helios::symbolic::fix_expression_order(argv);
   const helios::cli::ToolInfo info{
       "helios-derive",
       "derive the PMP necessary conditions and the shooting system of a problem",

@@ -7,8 +7,10 @@
 #include "helios/io/error.hpp"
 #include "helios/io/schema.hpp"
 #include "helios/llm/backend.hpp"
+#include "helios/symbolic/expr.hpp"
 
 int main(int argc, char** argv) {
+  helios::symbolic::fix_expression_order(argv);
   const helios::cli::ToolInfo info{
       "helios-gen",
       "generate the C++ shooting program of a derivation",

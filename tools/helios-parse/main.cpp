@@ -4,8 +4,10 @@
 #include "helios/io/schema.hpp"
 #include "helios/llm/backend.hpp"
 #include "helios/spec/parse.hpp"
+#include "helios/symbolic/expr.hpp"
 
 int main(int argc, char** argv) {
+  helios::symbolic::fix_expression_order(argv);
   const helios::cli::ToolInfo info{
       "helios-parse",
       "read a trajectory problem stated in controlled English into spec.json",

@@ -18,6 +18,7 @@
 #include "helios/score/score.hpp"
 #include "helios/spec/parse.hpp"
 #include "helios/sweep/sweep.hpp"
+#include "helios/symbolic/expr.hpp"
 
 namespace {
 
@@ -157,6 +158,7 @@ const std::vector<helios::cli::Mode>& jobs() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  helios::symbolic::fix_expression_order(argv);
   const helios::cli::ToolInfo info{
       "helios-score",
       "score a run against its scenario reference, render a scoreboard, or export a trajectory as a CCSDS OEM",

@@ -5,8 +5,10 @@
 #include "helios/io/error.hpp"
 #include "helios/io/schema.hpp"
 #include "helios/verify/verify.hpp"
+#include "helios/symbolic/expr.hpp"
 
 int main(int argc, char** argv) {
+  helios::symbolic::fix_expression_order(argv);
   const helios::cli::ToolInfo info{
       "helios-verify",
       "check a derivation (builtin or LLM-written) by recomputing its necessary conditions",

@@ -7,6 +7,9 @@
 #include <stdexcept>
 #include <typeinfo>
 
+#include <sys/personality.h>
+#include <unistd.h>
+
 namespace helios::symbolic {
 
 const GiNaC::symbol& SymbolTable::get(const std::string& name) {
@@ -207,6 +210,14 @@ Printed print(const GiNaC::ex& e, Dialect d) {
 }
 
 }  // namespace
+
+void fix_expression_order(char** argv) {
+  const int current = personality(0xffffffff);
+  if (current == -1 || (current & ADDR_NO_RANDOMIZE) != 0) return;
+  if (personality(static_cast<unsigned long>(current) | ADDR_NO_RANDOMIZE) == -1) return;
+  execv("/proc/self/exe", argv);
+  personality(static_cast<unsigned long>(current));  // exec failed: carry on as before
+}
 
 bool is_identifier(const std::string& s) {
   return !s.empty() && (std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_') &&

@@ -27,6 +27,17 @@ inline constexpr double kMaxExpandedTerms = 2e4;
 // walk of e's tree, no expansion.
 double expanded_terms(const GiNaC::ex& e);
 
+// GiNaC orders the terms of a sum and the factors of a product by hashes seeded with the address
+// of each class's type name, which address-space randomization moves from run to run: the same
+// derivation then printed, now and then, an expression in another order or with another sign
+// pulled out of a denominator (S11's sail Jacobian, 3 runs in 12), so helios-gen's program and
+// its compile-cache key were not a function of the derivation. Called first in main by the tools
+// that print expressions, this re-executes the process once with randomization off (Linux
+// personality ADDR_NO_RANDOMIZE), which fixes the order. It is a no-op where randomization is
+// already off, and where the kernel or a seccomp policy refuses the flag the tool carries on as
+// before. Not for helios-solve: the programs it runs would inherit the flag.
+void fix_expression_order(char** argv);
+
 // True if `s` is a C identifier (what a symbol's name must be).
 bool is_identifier(const std::string& s);
 
