@@ -39,8 +39,8 @@ Quantity quantity(const json& q, const Units* units, const std::string& file, co
   Quantity out;
   out.name = io::require_string(q, "name", where);
   out.meaning = q.value("meaning", "");
-  out.unit_text = q.value("unit", "1");
-  if (units) out.unit = units->parse(out.unit_text, file + ": field " + where + "/unit");
+  out.unit_text = q.value("unit", "");
+  if (units) out.unit = units->parse(q.contains("unit") ? out.unit_text : "1", file + ": field " + where + "/unit");
   out.value = value_required ? io::require_number(q, "value", where) : q.value("value", 0.0);
   out.source = q.contains("source") && q.at("source").is_string() ? q.at("source").get<std::string>() : "";
   return out;

@@ -42,7 +42,8 @@ struct Units {
   double si_factor(const Unit& u) const { return to_si(1.0, u); }
 };
 
-// A state or parameter: its name, meaning, unit as written and as parsed, and (a parameter) value.
+// A state or parameter: its name, meaning, unit as written ("" when not given: dimensionless) and as
+// parsed, and (a parameter) value.
 struct Quantity {
   std::string name, meaning, unit_text;
   Unit unit;
