@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "helios/derivation/document.hpp"
@@ -162,6 +163,10 @@ TEST(DerivationDocument, ReadsEverySectionOfS01) {
   EXPECT_EQ(doc.shooting.equation("nosuch"), nullptr);
   EXPECT_FALSE(doc.constraints.empty());
   EXPECT_TRUE(doc.interior_events.empty());
+  // Parameters carry their role; units are exponents of length, time and mass.
+  EXPECT_EQ(doc.parameter("c").role, helios::derivation::Role::ExhaustVelocity);
+  EXPECT_EQ(doc.parameter("mu").role, helios::derivation::Role::Constant);
+  EXPECT_EQ(doc.parameter("Tmax").unit, (Unit{1, -2, 1}));
   // An expression parses over the document's symbols, in its field's name when it cannot.
   EXPECT_FALSE(doc.parse(doc.hamiltonian).is_zero());
   try {
@@ -170,6 +175,15 @@ TEST(DerivationDocument, ReadsEverySectionOfS01) {
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()).rfind("S01/derivation.json: field /hamiltonian: cannot parse", 0), 0u) << e.what();
   }
+}
+
+TEST(DerivationDocument, RuntimeEvaluatedParametersHaveTheirRole) {
+  const Document doc(derivation_of("S10"));
+  ASSERT_FALSE(doc.runtime_evaluated.empty());
+  for (const auto& p : doc.parameter_quantities)
+    EXPECT_EQ(p.role == helios::derivation::Role::RuntimeEvaluated,
+              std::find(doc.runtime_evaluated.begin(), doc.runtime_evaluated.end(), p.name) != doc.runtime_evaluated.end())
+        << p.name;
 }
 
 TEST(DerivationDocument, ReadsEventsInequalitiesAndBodies) {
