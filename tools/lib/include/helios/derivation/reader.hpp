@@ -45,7 +45,7 @@ struct Units {
 // What a parameter is to the tools that read it: the runtime evaluates it (it has a source), it is
 // the exhaust velocity (the report's and the runtime's propellant), or a constant of the problem.
 // The artifact does not state the role: the reader tells it here, once, from the source and from
-// the meaning ("exhaust velocity ..."), the words pmp writes and the llm prompts ask for.
+// the meaning ("exhaust velocity ...", the words pmp writes; tools/lib/src/derivation/README.md).
 enum class Role { Constant, ExhaustVelocity, RuntimeEvaluated };
 
 // A state or parameter: its name, meaning, unit as written ("" when not given: dimensionless) and as
