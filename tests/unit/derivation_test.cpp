@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
+#include "helios/derivation/document.hpp"
 #include "helios/derivation/names.hpp"
 #include "helios/io/error.hpp"
 #include "helios/pmp/derive.hpp"
@@ -11,6 +13,7 @@
 
 namespace {
 
+using helios::derivation::Document;
 using helios::derivation::Reader;
 using helios::derivation::Unit;
 using helios::derivation::Units;
@@ -136,6 +139,105 @@ TEST(DerivationReader, ReadsStrictlyWhatAModelMayHaveWrittenWrong) {
 TEST(DerivationReader, ASailHasNoExhaustVelocity) {
   const json d = derivation_of("S11");
   EXPECT_EQ(Reader(d).exhaust_velocity(), nullptr);
+}
+
+TEST(DerivationDocument, ReadsEverySectionOfS01) {
+  const json d = derivation_of("S01");
+  const Document doc(d, "S01/derivation.json");
+  EXPECT_EQ(doc.problem_id, "S01");
+  EXPECT_EQ(doc.hamiltonian.text, d["hamiltonian"].get<std::string>());
+  EXPECT_EQ(doc.hamiltonian.pointer, "/hamiltonian");
+  ASSERT_EQ(doc.dynamics.state_rhs.size(), 7u);
+  EXPECT_EQ(doc.dynamics.state_rhs[3].pointer, "/dynamics/state_rhs/3");
+  ASSERT_EQ(doc.costate_odes.size(), 7u);
+  EXPECT_EQ(doc.costate_odes[6].name, "l_m");
+  EXPECT_EQ(doc.costate_odes[6].rhs.pointer, "/costate_odes/6/rhs");
+  ASSERT_TRUE(doc.control_law.direction && doc.control_law.throttle);
+  EXPECT_FALSE(doc.control_law.sail);
+  EXPECT_EQ(doc.control_law.direction->controls, (std::vector<std::string>{"ax", "ay", "az"}));
+  EXPECT_EQ(doc.control_law.throttle->bounds, (std::vector<double>{0, 1}));
+  EXPECT_EQ(doc.times.final_time, "fixed");
+  EXPECT_TRUE(doc.times.tf);
+  EXPECT_EQ(doc.shooting.variables.size(), doc.shooting.equations.size());
+  ASSERT_NE(doc.shooting.equation("normalization"), nullptr);
+  EXPECT_EQ(doc.shooting.equation("nosuch"), nullptr);
+  EXPECT_FALSE(doc.constraints.empty());
+  EXPECT_TRUE(doc.interior_events.empty());
+  // Parameters carry their role; units are exponents of length, time and mass.
+  EXPECT_EQ(doc.parameter("c").role, helios::derivation::Role::ExhaustVelocity);
+  EXPECT_EQ(doc.parameter("mu").role, helios::derivation::Role::Constant);
+  EXPECT_EQ(doc.parameter("Tmax").unit, (Unit{1, -2, 1}));
+  // An expression parses over the document's symbols, in its field's name when it cannot.
+  EXPECT_FALSE(doc.parse(doc.hamiltonian).is_zero());
+  try {
+    doc.parse({"rx*nosuch", "/hamiltonian"});
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("S01/derivation.json: field /hamiltonian: cannot parse", 0), 0u) << e.what();
+  }
+}
+
+TEST(DerivationDocument, RuntimeEvaluatedParametersHaveTheirRole) {
+  const Document doc(derivation_of("S10"));
+  ASSERT_FALSE(doc.runtime_evaluated.empty());
+  for (const auto& p : doc.parameter_quantities)
+    EXPECT_EQ(p.role == helios::derivation::Role::RuntimeEvaluated,
+              std::find(doc.runtime_evaluated.begin(), doc.runtime_evaluated.end(), p.name) != doc.runtime_evaluated.end())
+        << p.name;
+}
+
+TEST(DerivationDocument, ReadsEventsInequalitiesAndBodies) {
+  for (const char* scenario : {"S04", "S09", "S10", "S11"}) {
+    const json d = derivation_of(scenario);
+    const Document doc(d);
+    EXPECT_EQ(doc.interior_events.size(), d.value("events", json::array()).size()) << scenario;
+    EXPECT_EQ(doc.bodies.size(), d.value("bodies", json::array()).size()) << scenario;
+    std::size_t inequalities = 0;
+    for (const auto& e : d["shooting"]["equations"]) inequalities += e.contains("inequality") ? 1 : 0;
+    std::size_t read = 0;
+    for (const auto& e : doc.shooting.equations) read += e.inequality ? 1 : 0;
+    EXPECT_EQ(read, inequalities) << scenario;
+    for (std::size_t k = 0; k < doc.interior_events.size(); ++k) {
+      EXPECT_EQ(doc.interior_events[k].id, d["events"][k]["id"].get<std::string>());
+      EXPECT_EQ(doc.interior_events[k].state_map.size(), doc.states.size());
+      EXPECT_EQ(doc.interior_events[k].time_expression.pointer, "/events/" + std::to_string(k) + "/time/expression");
+    }
+  }
+}
+
+// The message of the input_error reading `d` as a document throws, "" when it reads.
+std::string document_error(const json& d) {
+  try {
+    const Document doc(d, "x.json");
+  } catch (const helios::input_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(DerivationDocument, AMissingOrMistypedFieldNamesItsPointer) {
+  json d = derivation_of("S01");
+  EXPECT_EQ(document_error(d), "");
+  d.erase("hamiltonian");
+  EXPECT_EQ(document_error(d), "x.json: field /hamiltonian is missing");
+  d = derivation_of("S01");
+  d["costate_odes"][2]["rhs"] = 3;
+  EXPECT_EQ(document_error(d), "x.json: field /costate_odes/2/rhs must be a string, got 3");
+  d = derivation_of("S01");
+  d["dynamics"]["state_rhs"] = "rx";
+  EXPECT_EQ(document_error(d), "x.json: field /dynamics/state_rhs must be an array, got \"rx\"");
+  d = derivation_of("S01");
+  d["control_law"]["direction"]["law"][1] = json::array();
+  EXPECT_EQ(document_error(d), "x.json: field /control_law/direction/law/1 must be a string, got []");
+  d = derivation_of("S01");
+  d["times"]["tf_window"] = {0.5, "1"};
+  EXPECT_EQ(document_error(d), "x.json: field /times/tf_window/1 must be a number, got \"1\"");
+  d = derivation_of("S01");
+  d["shooting"]["equations"][0].erase("scale");
+  EXPECT_EQ(document_error(d), "x.json: field /shooting/equations/0/scale is missing");
+  d = derivation_of("S09");
+  d["events"][0]["costate_map"][1]["variable"] = 7;
+  EXPECT_EQ(document_error(d), "x.json: field /events/0/costate_map/1/variable must be a string, got 7");
 }
 
 // The grammar of names.hpp, spelled out once here as the artifacts have it.

@@ -8,10 +8,6 @@
 
 namespace helios::codegen::detail {
 
-std::string Body::cpp(const std::string& text, const std::string& where) {
-  return print(c_.symbols.parse(text, "field " + where));
-}
-
 std::string Body::cpp(const GiNaC::ex& e) { return print(e); }
 
 std::string Body::print(const GiNaC::ex& e) {
@@ -57,8 +53,8 @@ void Body::unpack_variables(bool with_control) {
   unpack_y();
   if (with_control)
     for (std::size_t i = 0; i < c_.controls.size(); ++i) unpack(c_.controls[i], "control[" + std::to_string(i) + "]");
-  unpack(c_.d.at("multiplier").get<std::string>(), "mult.lambda0");
-  unpack(c_.d.at("homotopy").at("symbol").get<std::string>(), "mult.eps");
+  unpack(c_.multiplier, "mult.lambda0");
+  unpack(c_.homotopy, "mult.eps");
 }
 
 std::string Body::unused_parameters(const std::vector<std::string>& parameters) const {
@@ -68,7 +64,7 @@ std::string Body::unused_parameters(const std::vector<std::string>& parameters) 
       {"t", {"t"}},
       {"y", y},
       {"control", c_.controls},
-      {"mult", {c_.d.at("multiplier"), c_.d.at("homotopy").at("symbol")}}};
+      {"mult", {c_.multiplier, c_.homotopy}}};
   std::string out;
   for (const auto& p : parameters) {
     const auto& names = used_through.at(p);

@@ -22,9 +22,8 @@ class Body {
   explicit Body(Context& c, std::string scalar = "double") : c_(c), scalar_(std::move(scalar)) {}
   // The stream of plain code lines, written in order with the unpacks.
   std::ostringstream& code() { return code_; }
-  // C++ for a stored expression (Context::cpp); its symbols count as used.
-  std::string cpp(const std::string& text, const std::string& where);
-  // C++ for an expression built by the generator (a derivative); its symbols count as used.
+  // C++ for an expression (a stored one parsed, or one the generator built, such as a
+  // derivative); its symbols count as used.
   std::string cpp(const GiNaC::ex& e);
   // `name`, counted as used: a name the generator writes into code itself.
   std::string use(const std::string& name);

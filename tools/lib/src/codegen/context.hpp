@@ -1,6 +1,6 @@
 #pragma once
 // What the generator's modules share (internal to tools/lib/src/codegen): the derivation read once
-// into a Context (symbols, names, units, the shooting variables: a derivation::Reader), and small
+// into a Context (the typed derivation::Document: symbols, names, units, every section), and small
 // text helpers.
 #include <map>
 #include <string>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "helios/derivation/names.hpp"
-#include "helios/derivation/reader.hpp"
+#include "helios/derivation/document.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/symbolic/expr.hpp"
 
@@ -23,16 +23,19 @@ using symbolic::SymbolTable;
 int index_of(const std::vector<std::string>& v, const std::string& name);
 
 // The derivation as read (names, symbols, units) and the generator's helpers over it.
-struct Context : derivation::Reader {
-  explicit Context(const json& derivation) : Reader(derivation) {}
+struct Context : derivation::Document {
+  explicit Context(const json& derivation) : Document(derivation) {}
 
   // The variables of the normalization equation (the sphere: lambda0 and lambda(t0)).
   std::vector<std::string> sphere_variables() {
-    for (const auto& e : d.at("shooting").at("equations"))
-      if (e.at("name") == "normalization")
-        return symbolic::free_symbols(symbols.parse(e.at("expression"), "field /shooting/equations/normalization"));
+    for (const auto& e : shooting.equations)
+      if (e.name == "normalization")
+        return symbolic::free_symbols(symbols.parse(e.expression.text, "field /shooting/equations/normalization"));
     return {};
   }
+
+  // An expression of the derivation over the symbols; errors name its field ("field <pointer>: ...").
+  GiNaC::ex parsed(const derivation::Expression& e) const { return symbols.parse(e.text, "field " + e.pointer); }
 
   // C++ for an expression; parameters are read from namespace problem. `scalar`: std::pow and the
   // like for double code, unqualified in code templated on its scalar (the RESIDUAL module: double,

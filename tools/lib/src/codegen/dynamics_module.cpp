@@ -22,18 +22,16 @@ std::string function(const std::string& signature, const std::vector<std::string
 
 // dynamics: dy = the state and costate equations.
 std::string dynamics_function(Context& c) {
-  const auto& so = c.d.at("state_odes");
-  const auto& co = c.d.at("costate_odes");
+  const auto& so = c.state_odes;
+  const auto& co = c.costate_odes;
   if (so.size() != c.states.size() || co.size() != c.states.size())
     throw std::invalid_argument("field /state_odes or /costate_odes: one equation per state is required");
   Body body(c);
   body.unpack_variables(true);
   for (std::size_t i = 0; i < so.size(); ++i)
-    body.code() << "  dy[" << i << "] = " << body.cpp(so[i].at("rhs"), "/state_odes/" + std::to_string(i) + "/rhs")
-                << ";\n";
+    body.code() << "  dy[" << i << "] = " << body.cpp(c.parsed(so[i].rhs)) << ";\n";
   for (std::size_t i = 0; i < co.size(); ++i)
-    body.code() << "  dy[" << so.size() + i
-                << "] = " << body.cpp(co[i].at("rhs"), "/costate_odes/" + std::to_string(i) + "/rhs") << ";\n";
+    body.code() << "  dy[" << so.size() + i << "] = " << body.cpp(c.parsed(co[i].rhs)) << ";\n";
   return function(
       "void dynamics(double t, const double* y, const double* control, const Multipliers& mult, double* dy)",
       {"t", "y", "control", "mult"}, body);
@@ -42,42 +40,39 @@ std::string dynamics_function(Context& c) {
 std::string hamiltonian_function(Context& c) {
   Body body(c);
   body.unpack_variables(true);
-  body.code() << "  return " << body.cpp(c.d.at("hamiltonian"), "/hamiltonian") << ";\n";
+  body.code() << "  return " << body.cpp(c.parsed(c.hamiltonian)) << ";\n";
   return function("double hamiltonian(double t, const double* y, const double* control, const Multipliers& mult)",
                   {"t", "y", "control", "mult"}, body);
 }
 
 // direction_control: the direction (or sail) controls from their laws, after the laws' definitions.
 std::string direction_function(Context& c) {
-  const json& cl = c.d.at("control_law");
+  const derivation::ControlLaw& cl = c.control_law;
   Body body(c);
   body.unpack_y();
   for (const char* kind : {"direction", "sail"}) {
-    if (!cl.contains(kind)) continue;
-    const std::string where = "/control_law/" + std::string(kind);
-    const auto& names = cl.at(kind).at("controls");
-    const auto& law = cl.at(kind).at("law");
-    const json definitions = cl.at(kind).value("definitions", json::array());
-    for (std::size_t j = 0; j < definitions.size(); ++j)
-      body.code() << "  const double " << definitions[j].at("name").get<std::string>() << " = "
-                  << body.cpp(definitions[j].at("expression"),
-                              where + "/definitions/" + std::to_string(j) + "/expression")
+    const bool direction = std::string(kind) == "direction";
+    if (direction ? !cl.direction : !cl.sail) continue;
+    const std::string where = "field /control_law/" + std::string(kind);
+    const auto& names = direction ? cl.direction->controls : cl.sail->controls;
+    const auto& law = direction ? cl.direction->law : cl.sail->law;
+    for (const auto& def : direction ? cl.direction->definitions : cl.sail->definitions)
+      body.code() << "  const double " << def.name << " = " << body.cpp(c.parsed(def.expression)) << ";\n";
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      if (j >= law.size()) throw std::invalid_argument(where + "/law/" + std::to_string(j) + " is missing");
+      body.code() << "  control[" << index_of(c.controls, body.use(names[j])) << "] = " << body.cpp(c.parsed(law[j]))
                   << ";\n";
-    for (std::size_t j = 0; j < names.size(); ++j)
-      body.code() << "  control[" << index_of(c.controls, body.use(names[j]))
-                  << "] = " << body.cpp(law[j], where + "/law/" + std::to_string(j)) << ";\n";
+    }
   }
   return function("void direction_control(const double* y, double* control)", {"y", "control"}, body);
 }
 
 std::string throttle_function(Context& c) {
-  const json& throttle = c.d.at("control_law").at("throttle");
+  const derivation::ThrottleLaw& throttle = *c.control_law.throttle;
   Body body(c);
   body.unpack_variables(false);
-  body.code() << "  at_lower = " << body.cpp(throttle.at("dH_du_at_lower"), "/control_law/throttle/dH_du_at_lower")
-              << ";\n"
-              << "  at_upper = " << body.cpp(throttle.at("dH_du_at_upper"), "/control_law/throttle/dH_du_at_upper")
-              << ";\n";
+  body.code() << "  at_lower = " << body.cpp(c.parsed(throttle.dH_du_at_lower)) << ";\n"
+              << "  at_upper = " << body.cpp(c.parsed(throttle.dH_du_at_upper)) << ";\n";
   return function("void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper)",
                   {"y", "mult"}, body);
 }
@@ -89,7 +84,7 @@ std::string generated_dynamics(Context& c) {
       "// ----- modules DYNAMICS + SWITCH (generated from the derivation) ---------------------------\n"
       "namespace helios_rt {\n\n";
   o += dynamics_function(c) + hamiltonian_function(c) + direction_function(c);
-  if (c.d.at("control_law").contains("throttle")) o += throttle_function(c);
+  if (c.control_law.throttle) o += throttle_function(c);
   return o + "}  // namespace helios_rt\n";
 }
 
@@ -101,10 +96,12 @@ bool template_matches(Context& c, const json& model) {
   if (model.at("controls").get<std::vector<std::string>>() != c.controls) return false;
   for (const auto& p : model.at("parameters"))
     if (index_of(c.parameters, p) < 0) return false;
+  if (!c.control_law.throttle) return false;
+  const derivation::ThrottleLaw& throttle = *c.control_law.throttle;
   const std::vector<std::pair<std::string, std::string>> pairs = {
-      {model.at("hamiltonian"), c.d.at("hamiltonian")},
-      {model.at("dH_du_at_lower"), c.d.at("control_law").at("throttle").at("dH_du_at_lower")},
-      {model.at("dH_du_at_upper"), c.d.at("control_law").at("throttle").at("dH_du_at_upper")}};
+      {model.at("hamiltonian"), c.hamiltonian.text},
+      {model.at("dH_du_at_lower"), throttle.dH_du_at_lower.text},
+      {model.at("dH_du_at_upper"), throttle.dH_du_at_upper.text}};
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> dist(0.3, 1.7);
   for (int trial = 0; trial < 8; ++trial) {

@@ -28,21 +28,19 @@ std::vector<GiNaC::symbol> y_symbols(Context& c) {
 // running cost's part of the dynamics) depend on, so the variational equations carry it.
 std::vector<GiNaC::symbol> z_symbols(Context& c) {
   std::vector<GiNaC::symbol> z = y_symbols(c);
-  z.push_back(c.symbols.get(c.d.at("multiplier").get<std::string>()));
+  z.push_back(c.symbols.get(c.multiplier));
   return z;
 }
 
 // The state and costate equations' right-hand sides.
 std::vector<GiNaC::ex> right_hand_sides(Context& c) {
-  const auto& so = c.d.at("state_odes");
-  const auto& co = c.d.at("costate_odes");
+  const auto& so = c.state_odes;
+  const auto& co = c.costate_odes;
   if (so.size() != c.states.size() || co.size() != c.states.size())
     throw std::invalid_argument("field /state_odes or /costate_odes: one equation per state is required");
   std::vector<GiNaC::ex> rhs;
-  for (std::size_t i = 0; i < so.size(); ++i)
-    rhs.push_back(c.symbols.parse(so[i].at("rhs"), "field /state_odes/" + std::to_string(i) + "/rhs"));
-  for (std::size_t i = 0; i < co.size(); ++i)
-    rhs.push_back(c.symbols.parse(co[i].at("rhs"), "field /costate_odes/" + std::to_string(i) + "/rhs"));
+  for (const auto* odes : {&so, &co})
+    for (const auto& ode : *odes) rhs.push_back(c.parsed(ode.rhs));
   return rhs;
 }
 
@@ -76,7 +74,7 @@ std::string dynamics_jacobian_function(Context& c) {
 // direction_jacobian: dcontrol_dy[k * ny + j] = d control_k / d y_j of the direction (or sail)
 // law, its definitions substituted; the throttle's row (and any control without a law) is zero.
 std::string direction_jacobian_function(Context& c) {
-  const json& cl = c.d.at("control_law");
+  const derivation::ControlLaw& cl = c.control_law;
   const std::vector<GiNaC::symbol> y = y_symbols(c);
   const std::size_t ny = y.size(), nc = c.controls.size();
   Body body(c);
@@ -85,11 +83,12 @@ std::string direction_jacobian_function(Context& c) {
   std::vector<std::pair<std::string, GiNaC::ex>> locals;   // the definitions and their gradients, in order
   std::vector<std::pair<std::size_t, GiNaC::ex>> entries;  // the nonzero entries of dcontrol_dy
   for (const char* kind : {"direction", "sail"}) {
-    if (!cl.contains(kind)) continue;
+    const bool direction = std::string(kind) == "direction";
+    if (direction ? !cl.direction : !cl.sail) continue;
     const std::string where = "field /control_law/" + std::string(kind);
-    const auto& names = cl.at(kind).at("controls");
-    const auto& law = cl.at(kind).at("law");
-    const json definitions = cl.at(kind).value("definitions", json::array());
+    const auto& names = direction ? cl.direction->controls : cl.sail->controls;
+    const auto& law = direction ? cl.direction->law : cl.sail->law;
+    const auto& definitions = direction ? cl.direction->definitions : cl.sail->definitions;
     // The definitions as locals, each with its gradient d_<name>_<j> by the chain rule through
     // the earlier ones (substituting them instead would grow the expressions without bound).
     std::vector<GiNaC::symbol> defs;
@@ -102,9 +101,8 @@ std::string direction_jacobian_function(Context& c) {
       return d;
     };
     for (std::size_t i = 0; i < definitions.size(); ++i) {
-      const std::string name = definitions[i].at("name");
-      const GiNaC::ex e =
-          c.symbols.parse(definitions[i].at("expression"), where + "/definitions/" + std::to_string(i) + "/expression");
+      const std::string& name = definitions[i].name;
+      const GiNaC::ex e = c.parsed(definitions[i].expression);
       locals.emplace_back(name, e);
       std::vector<GiNaC::ex> g(ny, GiNaC::ex(0));
       for (std::size_t j = 0; j < ny; ++j) {
@@ -118,9 +116,10 @@ std::string direction_jacobian_function(Context& c) {
       grads.push_back(g);
     }
     for (std::size_t k = 0; k < names.size(); ++k) {
-      const int row = index_of(c.controls, names[k].get<std::string>());
+      const int row = index_of(c.controls, names[k]);
       if (row < 0) throw std::invalid_argument(where + "/controls/" + std::to_string(k) + ": not a control");
-      const GiNaC::ex e = c.symbols.parse(law[k], where + "/law/" + std::to_string(k));
+      if (k >= law.size()) throw std::invalid_argument(where + "/law/" + std::to_string(k) + " is missing");
+      const GiNaC::ex e = c.parsed(law[k]);
       for (std::size_t j = 0; j < ny; ++j) {
         const GiNaC::ex d = total(e, j);
         if (!d.is_zero()) entries.emplace_back(row * ny + j, d);
@@ -146,15 +145,14 @@ std::string direction_jacobian_function(Context& c) {
 // throttle_slopes_jacobian: d_lower[j], d_upper[j] = d/dz_j of the throttle's dH/du at u = 0 and
 // u = 1 (the SWITCH module's throttle_slopes): the interior throttle's and the switches' gradients.
 std::string throttle_jacobian_function(Context& c) {
-  const json& throttle = c.d.at("control_law").at("throttle");
+  const derivation::ThrottleLaw& throttle = *c.control_law.throttle;
   const std::vector<GiNaC::symbol> z = z_symbols(c);
   Body body(c);
   body.unpack_variables(false);
   body.code() << "  std::fill(d_lower, d_lower + " << z.size() << ", 0.0);\n"
               << "  std::fill(d_upper, d_upper + " << z.size() << ", 0.0);\n";
   for (const char* side : {"lower", "upper"}) {
-    const std::string key = std::string("dH_du_at_") + side;
-    const GiNaC::ex e = c.symbols.parse(throttle.at(key), "field /control_law/throttle/" + key);
+    const GiNaC::ex e = c.parsed(std::string(side) == "lower" ? throttle.dH_du_at_lower : throttle.dH_du_at_upper);
     for (std::size_t j = 0; j < z.size(); ++j) {
       const GiNaC::ex d = e.diff(z[j]);
       if (!d.is_zero()) body.code() << "  d_" << side << "[" << j << "] = " << body.cpp(d) << ";\n";
@@ -173,20 +171,18 @@ std::string throttle_jacobian_function(Context& c) {
 // control has a law the module differentiates (throttle, direction, sail).
 bool jacobian_supported(Context& c) {
   std::vector<GiNaC::ex> checked = right_hand_sides(c);
-  checked.push_back(c.symbols.parse(c.d.at("hamiltonian"), "field /hamiltonian"));
+  checked.push_back(c.parsed(c.hamiltonian));
   for (const auto& e : checked)
     for (const auto& name : symbolic::free_symbols(e))
       if (name == "t") return false;
-  for (const auto& [kind, law] : c.d.at("control_law").items())
-    if (kind != "throttle" && kind != "direction" && kind != "sail") return false;
-  return true;
+  return c.control_law.other.empty();
 }
 
 std::string generated_jacobians(Context& c) {
   return "// ----- module JACOBIAN (generated from the derivation: GiNaC derivatives) -----------------\n"
          "namespace helios_rt {\n\n" +
          dynamics_jacobian_function(c) + direction_jacobian_function(c) +
-         (c.d.at("control_law").contains("throttle") ? throttle_jacobian_function(c) : std::string()) +
+         (c.control_law.throttle ? throttle_jacobian_function(c) : std::string()) +
          "}  // namespace helios_rt\n";
 }
 

@@ -19,9 +19,9 @@ void append_pair(std::string& list, int a, int b) {
 
 // True if event `e` is instantaneous and its state map is the identity with its parameters
 // `own_parameters` at 0 (checked at random points).
-bool is_passable_map(Context& c, const json& e, const std::vector<std::string>& own_parameters) {
-  if (e.at("time").value("duration", 0.0) != 0.0) return false;
-  const std::string id = e.at("id");
+bool is_passable_map(Context& c, const derivation::Event& e, const std::vector<std::string>& own_parameters) {
+  if (e.duration != 0.0) return false;
+  const std::string& id = e.id;
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> dist(0.3, 1.7);
   for (int trial = 0; trial < 3; ++trial) {
@@ -29,9 +29,10 @@ bool is_passable_map(Context& c, const json& e, const std::vector<std::string>& 
     for (const auto& [name, sym] : c.symbols.symtab()) values[name] = dist(rng) * (rng() % 2 ? 1 : -1);
     for (const auto& q : own_parameters) values[q] = 0;
     for (std::size_t i = 0; i < c.states.size(); ++i) {
+      if (i >= e.state_map.size()) return false;
       try {
         const double after = symbolic::evaluate(
-            c.symbols.parse(e.at("state_map")[i].at("expression"), "field /events/state_map"), c.symbols, values);
+            c.symbols.parse(e.state_map[i].expression.text, "field /events/state_map"), c.symbols, values);
         const double before = values.at(names::before(c.states[i], id));
         if (std::fabs(after - before) > 1e-10 * (1 + std::fabs(after) + std::fabs(before))) return false;
       } catch (const std::exception&) {
@@ -45,25 +46,26 @@ bool is_passable_map(Context& c, const json& e, const std::vector<std::string>& 
 // One event's entry of the EventPlan: {{nu_j, row of c_j}...}, {epoch fraction, its row},
 // {{parameter, its row}...}, {{costate after the event, its jump row}...}. `passable` is cleared
 // when a variable or row is not found, or the event is not passable.
-std::string event_plan_entry(Context& c, const json& e, const std::vector<std::string>& eq_names, bool& passable) {
-  const auto& vars = c.d.at("shooting").at("variables");
+std::string event_plan_entry(Context& c, const derivation::Event& e, const std::vector<std::string>& eq_names,
+                             bool& passable) {
+  const auto& vars = c.shooting.variables;
   const std::vector<std::string>& var_names = c.variables;
-  const std::string id = e.at("id");
-  const auto& psi = e.at("psi");
-  const auto& multipliers = e.at("multipliers");
+  const std::string& id = e.id;
+  const auto& psi = e.psi;
+  const auto& multipliers = e.multipliers;
   const std::size_t nc = psi.size() >= c.states.size() ? psi.size() - c.states.size() : 0;
   std::string constraints, parameters, costates;
   // The costates after the event that are shooting variables, with their jump rows.
-  for (std::size_t i = 0; i < c.states.size() && i < e.at("costate_map").size(); ++i) {
-    const json& m = e.at("costate_map")[i];
-    if (!m.contains("variable")) continue;
-    const int v = index_of(var_names, m.at("variable").get<std::string>());
+  for (std::size_t i = 0; i < c.states.size() && i < e.costate_map.size(); ++i) {
+    const derivation::CostateMapEntry& m = e.costate_map[i];
+    if (!m.variable) continue;
+    const int v = index_of(var_names, *m.variable);
     const int row = index_of(eq_names, names::jump_row(id, c.states[i]));
     if (v < 0 || row < 0) passable = false;
     append_pair(costates, v, row);
   }
   for (std::size_t j = 0; j < nc && j < multipliers.size(); ++j) {
-    const int v = index_of(var_names, multipliers[j].get<std::string>());
+    const int v = index_of(var_names, multipliers[j]);
     const int row = index_of(eq_names, names::constraint_row(id, j + 1));
     if (v < 0 || row < 0) passable = false;
     append_pair(constraints, v, row);
@@ -72,21 +74,21 @@ std::string event_plan_entry(Context& c, const json& e, const std::vector<std::s
   // The epoch fraction: the time_fraction variable of the event's time expression.
   int epoch_var = -1;
   for (const auto& name :
-       symbolic::free_symbols(c.symbols.parse(e.at("time").at("expression"), "field /events/time/expression"))) {
+       symbolic::free_symbols(c.symbols.parse(e.time_expression.text, "field /events/time/expression"))) {
     const int v = index_of(var_names, name);
-    if (v >= 0 && vars[v].value("role", "") == "time_fraction") epoch_var = v;
+    if (v >= 0 && vars[static_cast<std::size_t>(v)].role == "time_fraction") epoch_var = v;
   }
   const int epoch_row = index_of(eq_names, names::time_row(id));
   if ((epoch_var < 0) != (epoch_row < 0)) passable = false;
   // The event's parameters: role "parameter" variables its psi or state map depends on.
   std::vector<std::string> used;
   for (const auto& text : psi) {
-    const auto names = symbolic::free_symbols(c.symbols.parse(text, "field /events/psi"));
+    const auto names = symbolic::free_symbols(c.symbols.parse(text.text, "field /events/psi"));
     used.insert(used.end(), names.begin(), names.end());
   }
   std::vector<std::string> own_parameters;
   for (std::size_t i = 0; i < vars.size(); ++i)
-    if (vars[i].value("role", "") == "parameter" && index_of(used, var_names[i]) >= 0) {
+    if (vars[i].role == "parameter" && index_of(used, var_names[i]) >= 0) {
       const int row = index_of(eq_names, names::stationarity_row(id, var_names[i]));
       if (row < 0) passable = false;
       own_parameters.push_back(var_names[i]);
@@ -103,13 +105,12 @@ std::string event_plan_entry(Context& c, const json& e, const std::vector<std::s
 // and its state map is the identity with its parameters at 0; anything not found makes the plan
 // not passable (the runtime then solves by legs only).
 std::string event_plan_block(Context& c) {
-  const json& d = c.d;
   std::vector<std::string> eq_names;
-  for (const auto& e : d.at("shooting").at("equations")) eq_names.push_back(e.at("name"));
+  for (const auto& e : c.shooting.equations) eq_names.push_back(e.name);
   const std::vector<std::string> sphere = c.sphere_variables();
   bool passable = true;
   std::string entries;
-  for (const auto& e : d.at("events"))
+  for (const auto& e : c.interior_events)
     entries += (entries.empty() ? "" : ", ") + event_plan_entry(c, e, eq_names, passable);
   std::string sphere_list;
   for (const auto& name : sphere) {
@@ -117,8 +118,8 @@ std::string event_plan_block(Context& c) {
     if (v < 0) passable = false;
     sphere_list += (sphere_list.empty() ? "" : ", ") + std::to_string(v);
   }
-  const int multiplier = index_of(c.variables, d.at("multiplier").get<std::string>());
-  if (multiplier < 0 || index_of(sphere, d.at("multiplier").get<std::string>()) < 0) passable = false;
+  const int multiplier = index_of(c.variables, c.multiplier);
+  if (multiplier < 0 || index_of(sphere, c.multiplier) < 0) passable = false;
   std::ostringstream o;
   o << "// The events' variables and rows for the continuation onto the events: {passable, lambda0,\n"
     << "// sphere, per event {{nu_j, row of c_j}...}, {epoch fraction, its row}, {{parameter, its row}...},\n"
@@ -135,19 +136,18 @@ std::string event_plan_block(Context& c) {
 // constraint's) multipliers, besides its start costates), and the single-shooting function as the plain case of
 // shooting_legs.
 std::string legs_block(Context& c, const std::vector<int>& leg_sizes) {
-  const json& d = c.d;
-  const auto& vars = d.at("shooting").at("variables");
-  const json& events = d.at("events");
+  const auto& vars = c.shooting.variables;
+  const auto& events = c.interior_events;
   const std::vector<std::string> sphere = c.sphere_variables();
   std::string final_id;
-  for (const auto& k : d.at("constraints"))
-    if (k.at("at") == "tf") final_id = k.at("id");
+  for (const auto& k : c.constraints)
+    if (k.at == "tf") final_id = k.id;
   std::vector<std::vector<int>> own(events.size() + 1);
   for (std::size_t i = 0; i < vars.size(); ++i) {
-    const std::string name = vars[i].at("name");
+    const std::string& name = vars[i].name;
     if (index_of(sphere, name) >= 0) own[0].push_back(static_cast<int>(i));
     for (std::size_t k = 0; k < events.size(); ++k)
-      if (names::is_multiplier_of(name, events[k].at("id").get<std::string>())) own[k].push_back(static_cast<int>(i));
+      if (names::is_multiplier_of(name, events[k].id)) own[k].push_back(static_cast<int>(i));
     // The final constraint's multipliers left as variables (a bound's) belong to the last leg.
     if (names::is_multiplier_of(name, final_id)) own[events.size()].push_back(static_cast<int>(i));
   }
@@ -157,7 +157,7 @@ std::string legs_block(Context& c, const std::vector<int>& leg_sizes) {
   for (std::size_t i = 0; i < vars.size(); ++i) {
     bool owned = false;
     for (const auto& leg : own) owned = owned || std::find(leg.begin(), leg.end(), static_cast<int>(i)) != leg.end();
-    const std::string role = vars[i].value("role", "");
+    const std::string& role = vars[i].role;
     if (role == "time_fraction")
       fractions.push_back(static_cast<int>(i));
     else if (!owned && role != "initial_state")  // an initial state stays at its guess
@@ -180,14 +180,13 @@ std::string legs_block(Context& c, const std::vector<int>& leg_sizes) {
   // Window bounds: bound index (the order of the bound rows), fraction variable, edge.
   std::string edges;
   int bound = 0;
-  for (const auto& eq : d.at("shooting").at("equations")) {
-    if (!eq.contains("inequality")) continue;
-    if (eq.at("inequality").contains("held_when_active")) {
-      const json& held = eq.at("inequality").at("held_when_active");
-      const int k = index_of(c.variables, held.at("variable"));
-      if (k < 0) throw std::invalid_argument("field /shooting/equations: no variable " + held.at("variable").dump());
+  for (const auto& eq : c.shooting.equations) {
+    if (!eq.inequality) continue;
+    if (const auto& held = eq.inequality->held_when_active) {
+      const int k = index_of(c.variables, held->variable);
+      if (k < 0) throw std::invalid_argument("field /shooting/equations: no variable " + json(held->variable).dump());
       edges += std::string(edges.empty() ? "" : ", ") + "{" + std::to_string(bound) + ", " + std::to_string(k) + ", " +
-               number(held.at("value")) + "}";
+               number(held->value) + "}";
     }
     ++bound;
   }

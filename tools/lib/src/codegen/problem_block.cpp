@@ -21,37 +21,38 @@ std::pair<std::string, double> physical(const derivation::Units& units, const de
 }  // namespace
 
 std::string problem_block(Context& c) {
-  const json& d = c.d;
-  const json& times = d.at("times");
-  const json& tf = times.contains("tf") ? times.at("tf") : times.at("tf_window")[1];
-  const json& tf_min = times.contains("tf") ? times.at("tf") : times.at("tf_window")[0];
-  if (!(tf.get<double>() > times.at("t0").get<double>()))
-    throw std::invalid_argument("field /times: the final time " + tf.dump() + " is not after t0 " +
-                                times.at("t0").dump());
+  const derivation::Times& times = c.times;
+  if (!times.tf && times.tf_window.size() != 2)
+    throw std::invalid_argument("field /times: a free final time needs tf_window [lo, hi]");
+  const double tf = times.tf ? *times.tf : times.tf_window[1];
+  const double tf_min = times.tf ? *times.tf : times.tf_window[0];
+  if (!(tf > times.t0))
+    throw std::invalid_argument("field /times: the final time " + json(tf).dump() + " is not after t0 " +
+                                json(times.t0).dump());
   std::ostringstream o;
   o << "// ----- PROBLEM (generated) -----------------------------------------------------------------\n"
     << "namespace problem {\n"
-    << "const char* const kProblemId = " << cpp_string(d.at("problem").at("id")) << ";\n"
+    << "const char* const kProblemId = " << cpp_string(c.problem_id) << ";\n"
     << "constexpr int kNumStates = " << c.states.size() << ";\n"
     << "constexpr int kNumControls = " << c.controls.size() << ";\n"
     << "constexpr int kThrottleIndex = " << c.throttle_index << ";\n"
-    << "constexpr int kNumVars = " << d.at("shooting").at("variables").size() << ";\n"
+    << "constexpr int kNumVars = " << c.shooting.variables.size() << ";\n"
     << "constexpr int kMassIndex = " << index_of(c.states, "m") << ";\n"
     << "// The objective: the propellant (minimum fuel or minimum initial mass), else minimum time.\n"
-    << "constexpr bool kMinimumFuel = " << (d.at("problem").value("objective", "") != "minimum_time" ? "true" : "false")
+    << "constexpr bool kMinimumFuel = " << (c.objective != "minimum_time" ? "true" : "false")
     << ";\n"
     << "// The problem's numbers: globals set from these literals, which a parameters file may replace\n"
     << "// at run time (shoot --parameters; helios_runtime.hpp's HELIOS_PARAMETER).\n"
-    << "HELIOS_PARAMETER(kT0, " << number(times.at("t0")) << ");\n"
+    << "HELIOS_PARAMETER(kT0, " << number(times.t0) << ");\n"
     << "// The final time, or the upper end of its window when it is free.\n"
     << "HELIOS_PARAMETER(kTf, " << number(tf) << ");\n"
     << "// The lower end of the final time's window (kTf when the final time is fixed).\n"
     << "HELIOS_PARAMETER(kTfMin, " << number(tf_min) << ");\n"
-    << "HELIOS_PARAMETER(kHomotopyStart, " << number(d.at("homotopy").at("start")) << ");\n"
+    << "HELIOS_PARAMETER(kHomotopyStart, " << number(c.homotopy_start) << ");\n"
     << "HELIOS_PARAMETER(kTimeUnitDays, " << number(c.units.time_s / 86400.0) << ");\n"
     << "HELIOS_PARAMETER(kLengthUnitKm, " << number(c.units.length_km) << ");\n"
     << "HELIOS_PARAMETER(kSpeedUnitKmS, " << number(c.units.length_km / c.units.time_s) << ");\n"
-    << "HELIOS_PARAMETER(kEpochMjd2000, " << number(times.value("epoch_mjd2000", 0.0)) << ");\n"
+    << "HELIOS_PARAMETER(kEpochMjd2000, " << number(times.epoch_mjd2000.value_or(0.0)) << ");\n"
     << "HELIOS_PARAMETER(kMassUnitKg, " << number(c.units.mass_kg) << ");\n";
   const derivation::Quantity* exhaust = c.exhaust_velocity();
   o << "HELIOS_PARAMETER(kExhaustVelocityMS, "
@@ -64,35 +65,33 @@ std::string problem_block(Context& c) {
     factors += ", " + number(f);
   }
   std::vector<std::string> vars, eqs;
-  for (const auto& v : d.at("shooting").at("variables")) vars.push_back(v.at("name"));
-  for (const auto& e : d.at("shooting").at("equations")) eqs.push_back(e.at("name"));
+  for (const auto& v : c.shooting.variables) vars.push_back(v.name);
+  for (const auto& e : c.shooting.equations) eqs.push_back(e.name);
   o << "HELIOS_PARAMETER_ARRAY(kStateToPhysical" << factors << ");\n"
     << "const char* const kStateNames[] = {" << quoted_list(c.states) << "};\n"
     << "const char* const kStateColumns[] = {" << quoted_list(columns) << "};\n"
     << "const char* const kControlNames[] = {" << quoted_list(c.controls) << "};\n"
     << "const char* const kVariableNames[] = {" << quoted_list(vars) << "};\n"
     << "const char* const kEquationNames[] = {" << quoted_list(eqs) << "};\n";
-  const json bodies = d.value("bodies", json::array());
+  const std::vector<derivation::Body>& bodies = c.bodies;
   if (!bodies.empty()) {
     o << "// Bodies on their Keplerian orbits: a (normalized), e, i, raan, argp, mean anomaly (rad) and the\n"
       << "// normalized time of the elements.\n";
     std::string list;
     for (std::size_t k = 0; k < bodies.size(); ++k) {
-      const json& b = bodies[k];
-      const json& el = b.at("elements");
+      const derivation::Body& b = bodies[k];
       const std::string name = "kOrbitBody" + std::to_string(k);
-      o << "HELIOS_PARAMETER_ARRAY(" << name << ", " << number(el.at("a")) << ", " << number(el.at("e")) << ", "
-        << number(el.at("i_rad")) << ", " << number(el.at("raan_rad")) << ", " << number(el.at("argp_rad")) << ", "
-        << number(el.at("mean_anomaly_rad")) << ", " << number(b.at("epoch")) << ");  // "
-        << comment_text(b.at("name").get<std::string>()) << "\n";
-      list += (list.empty() ? "" : ", ") + std::string("{") + cpp_string(b.at("name")) + ", " + name + "}";
+      o << "HELIOS_PARAMETER_ARRAY(" << name << ", " << number(b.a) << ", " << number(b.e) << ", " << number(b.i_rad)
+        << ", " << number(b.raan_rad) << ", " << number(b.argp_rad) << ", " << number(b.mean_anomaly_rad) << ", "
+        << number(b.epoch) << ");  // " << comment_text(b.name) << "\n";
+      list += (list.empty() ? "" : ", ") + std::string("{") + cpp_string(b.name) + ", " + name + "}";
     }
     o << "const helios_rt::OrbitBody kOrbitBodies[] = {" << list << "};\n";
   }
-  for (const auto& p : d.at("parameters"))
-    if (!p.contains("source"))
-      o << "HELIOS_PARAMETER(" << p.at("name").get<std::string>() << ", " << number(p.at("value")) << ");  // "
-        << comment_text(p.at("meaning").get<std::string>() + " [" + p.value("unit", "") + "]") << "\n";
+  for (const auto& p : c.parameter_quantities)
+    if (!p.runtime_evaluated())
+      o << "HELIOS_PARAMETER(" << p.name << ", " << number(p.value) << ");  // "
+        << comment_text(p.meaning + " [" + p.unit_text + "]") << "\n";
   o << "}  // namespace problem\n\n"
     << "// The problem's shape as the runtime library reads it (helios_runtime.hpp's ProblemShape).\n"
     << "namespace helios_rt {\n"

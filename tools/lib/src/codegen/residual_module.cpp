@@ -13,12 +13,10 @@ namespace helios::codegen::detail {
 namespace {
 
 // Runtime-evaluated parameters grouped by source "<kind>:<what>:<event>", names in order.
-std::map<std::string, std::vector<std::string>> runtime_parameters(const json& d, const std::string& kind) {
+std::map<std::string, std::vector<std::string>> runtime_parameters(const Context& c, const std::string& kind) {
   std::map<std::string, std::vector<std::string>> groups;
-  for (const auto& p : d.at("parameters")) {
-    const std::string source = p.value("source", "");
-    if (source.rfind(kind + ":", 0) == 0) groups[source.substr(kind.size() + 1)].push_back(p.at("name"));
-  }
+  for (const auto& p : c.parameter_quantities)
+    if (p.source.rfind(kind + ":", 0) == 0) groups[p.source.substr(kind.size() + 1)].push_back(p.name);
   for (const auto& [key, names] : groups)
     if (names.size() != 6)
       throw std::invalid_argument("field /parameters: " + kind + " target " + key + " needs 6 components, got " +
@@ -37,16 +35,23 @@ std::string event_time(const Context& c, const std::string& event) {
 
 // coast_dynamics: the right-hand side of a coasting target's two-body motion.
 std::string coast_dynamics_function(Context& c) {
-  const auto& coast = c.d.at("coast_dynamics");
-  const auto names = coast.at("states").get<std::vector<std::string>>();
-  if (names.size() != 6 || coast.at("rhs").size() != 6)
+  const derivation::CoastDynamics& coast = *c.coast_dynamics;
+  const auto& names = coast.states;
+  if (names.size() != 6 || coast.rhs.size() != 6)
     throw std::invalid_argument("field /coast_dynamics: a coasting target has 6 states and 6 right-hand sides");
   Body body(c);
   for (std::size_t i = 0; i < names.size(); ++i) body.unpack(names[i], "y[" + std::to_string(i) + "]");
   for (std::size_t i = 0; i < names.size(); ++i)
-    body.code() << "  dy[" << i << "] = " << body.cpp(coast.at("rhs")[i], "/coast_dynamics/rhs/" + std::to_string(i))
-                << ";\n";
+    body.code() << "  dy[" << i << "] = " << body.cpp(c.parsed(coast.rhs[i])) << ";\n";
   return "void coast_dynamics(const double* y, double* dy) {\n" + body.str() + "}\n\n";
+}
+
+// The expression of event k's costate map entry i that is not a shooting variable.
+const derivation::Expression& costate_expression(const derivation::CostateMapEntry& m, std::size_t k, std::size_t i) {
+  if (!m.expression)
+    throw std::invalid_argument("field /events/" + std::to_string(k) + "/costate_map/" + std::to_string(i) +
+                                ": neither a variable nor an expression");
+  return *m.expression;
 }
 
 // The shooting function's body, written step by step (variables, epochs, targets, the start,
@@ -55,9 +60,9 @@ class ShootingFunction {
  public:
   explicit ShootingFunction(Context& c)
       : c_(c),
-        eqs_(c.d.at("shooting").at("equations")),
-        vars_(c.d.at("shooting").at("variables")),
-        events_(c.d.value("events", json::array())),
+        eqs_(c.shooting.equations),
+        vars_(c.shooting.variables),
+        events_(c.interior_events),
         body_(c, "T") {}
 
   // The function template shooting_residual on the scalar T (with `legs` when the problem has
@@ -78,19 +83,21 @@ class ShootingFunction {
   void jump(std::size_t k);
   void end();
 
-  // Equation i's code from `field`; a bound's row goes through bound_row (its multiplier while inactive).
-  std::string equation_code(std::size_t i, const std::string& field);
-  // The row F[row++] of a leg alone: the equation called `name` from `field` when it has one.
-  void alone_row(int& row, const std::string& name, const std::string& field = "expression");
+  // Equation i's code from its expression (`alone`: its alone_expression); a bound's row goes
+  // through bound_row (its multiplier while inactive).
+  std::string equation_code(std::size_t i, bool alone);
+  // The row F[row++] of a leg alone: the equation called `name`, from its alone_expression when
+  // `alone` and it has one.
+  void alone_row(int& row, const std::string& name, bool alone = false);
   // H just before or after an event (`at`), at `time`, if the derivation asks for it.
   void evaluate_h(const std::string& at, const std::string& time);
   // Locals for y[] named <state>_<label>, <costate>_<label> (names::at).
   void unpack_y(const std::string& label);
 
   Context& c_;
-  const json& eqs_;
-  const json& vars_;
-  const json events_;
+  const std::vector<derivation::ShootingEquation>& eqs_;
+  const std::vector<derivation::ShootingVariable>& vars_;
+  const std::vector<derivation::Event>& events_;
   Body body_;
   std::map<std::string, std::string> hamiltonian_at_;  // event value names by where H is evaluated
   std::vector<int> leg_sizes_;
@@ -147,23 +154,21 @@ std::string ShootingFunction::text(bool jacobian) {
   return o;
 }
 
-std::string ShootingFunction::equation_code(std::size_t i, const std::string& field) {
-  const std::string where = "/shooting/equations/" + std::to_string(i);
-  const std::string code = body_.cpp(eqs_[i].at(field), where + "/" + field);
-  if (!eqs_[i].contains("inequality")) return code;
+std::string ShootingFunction::equation_code(std::size_t i, bool alone) {
+  const std::string code = body_.cpp(c_.parsed(alone ? *eqs_[i].alone_expression : eqs_[i].expression));
+  if (!eqs_[i].inequality) return code;
   int bound = 0;
-  for (std::size_t j = 0; j < i; ++j) bound += eqs_[j].contains("inequality") ? 1 : 0;
+  for (std::size_t j = 0; j < i; ++j) bound += eqs_[j].inequality ? 1 : 0;
   return "bound_row(" + std::to_string(bound) + ", " + code + ", " +
-         body_.cpp(eqs_[i].at("inequality").at("inactive_expression"), where + "/inequality/inactive_expression") + ")";
+         body_.cpp(c_.parsed(eqs_[i].inequality->inactive_expression)) + ")";
 }
 
-void ShootingFunction::alone_row(int& row, const std::string& name, const std::string& field) {
+void ShootingFunction::alone_row(int& row, const std::string& name, bool alone_wanted) {
   for (std::size_t i = 0; i < eqs_.size(); ++i) {
-    if (eqs_[i].at("name") != name) continue;
-    const bool alone = eqs_[i].contains(field) && field != "expression";
-    body_.code() << "    F[" << row++ << "] = " << equation_code(i, alone ? field : "expression") << ";  // "
-                 << comment_text(eqs_[i].at("meaning").get<std::string>() +
-                                 (alone ? " (alone: " + eqs_[i].at(field).get<std::string>() + " = 0)" : ""))
+    if (eqs_[i].name != name) continue;
+    const bool alone = alone_wanted && eqs_[i].alone_expression;
+    body_.code() << "    F[" << row++ << "] = " << equation_code(i, alone) << ";  // "
+                 << comment_text(eqs_[i].meaning + (alone ? " (alone: " + eqs_[i].alone_expression->text + " = 0)" : ""))
                  << "\n";
     return;
   }
@@ -187,28 +192,25 @@ void ShootingFunction::unpack_y(const std::string& label) {
 // The shooting variables x[] as locals, each with its meaning.
 void ShootingFunction::unpack_variables() {
   for (std::size_t i = 0; i < vars_.size(); ++i)
-    body_.unpack(vars_[i].at("name"), "x[" + std::to_string(i) + "]", vars_[i].at("meaning"));
+    body_.unpack(vars_[i].name, "x[" + std::to_string(i) + "]", vars_[i].meaning);
 }
 
 // t0, tf and the epochs of the interior events (a stay ends at t_<id>_dep), checked to be in order.
 void ShootingFunction::epochs() {
-  const json& times = c_.d.at("times");
+  const derivation::Times& times = c_.times;
   auto& o = body_.code();
-  o << "  const T t0 = "
-    << (times.contains("t0_expression") ? body_.cpp(times.at("t0_expression"), "/times/t0_expression")
-                                        : std::string("problem::kT0"))
+  o << "  const T t0 = " << (times.t0_expression ? body_.cpp(c_.parsed(*times.t0_expression)) : std::string("problem::kT0"))
     << ";\n";
-  if (times.contains("tf_expression"))
-    o << "  const T tf = " << body_.cpp(times.at("tf_expression"), "/times/tf_expression") << ";\n";
+  if (times.tf_expression)
+    o << "  const T tf = " << body_.cpp(c_.parsed(*times.tf_expression)) << ";\n";
   else
     o << "  const T tf = problem::kTf;\n";
   std::string order = "t0";
   for (std::size_t k = 0; k < events_.size(); ++k) {
-    const json& e = events_[k];
-    const std::string id = e.at("id"), where = "/events/" + std::to_string(k);
-    const std::string t = names::event_time(id), departure = names::event_departure_time(id);
-    o << "  const T " << t << " = " << body_.cpp(e.at("time").at("expression"), where + "/time/expression") << ";\n"
-      << "  const T " << departure << " = " << t << " + " << number(e.at("time").at("duration")) << ";\n";
+    const derivation::Event& e = events_[k];
+    const std::string t = names::event_time(e.id), departure = names::event_departure_time(e.id);
+    o << "  const T " << t << " = " << body_.cpp(c_.parsed(e.time_expression)) << ";\n"
+      << "  const T " << departure << " = " << t << " + " << number(e.duration) << ";\n";
     order += ", " + t + ", " + departure;
   }
   order += ", tf";
@@ -224,7 +226,7 @@ void ShootingFunction::epochs() {
 void ShootingFunction::targets() {
   int block = 0;
   for (const char* kind : {"ephemeris", "ephemeris_rate", "coast"})
-    for (const auto& [key, components] : runtime_parameters(c_.d, kind)) {
+    for (const auto& [key, components] : runtime_parameters(c_, kind)) {
       const std::string what = key.substr(0, key.find(':')), event = key.substr(key.find(':') + 1);
       const std::string var = std::string(kind) + "_" + std::to_string(block++);
       std::string call;
@@ -250,25 +252,26 @@ void ShootingFunction::targets() {
 // Initial states from psi(t0) = 0, initial costates from the shooting variables; the multipliers.
 void ShootingFunction::start() {
   auto& o = body_.code();
-  for (const auto& iv : c_.d.at("initial_values")) {
-    const int k = index_of(c_.states, iv.at("state"));
-    if (k < 0) throw std::invalid_argument("field /initial_values: unknown state " + iv.at("state").dump());
-    o << "  y[" << k << "] = " << body_.cpp(iv.at("value"), "/initial_values/" + iv.at("state").get<std::string>())
+  for (const auto& iv : c_.initial_values) {
+    const int k = index_of(c_.states, iv.state);
+    if (k < 0) throw std::invalid_argument("field /initial_values: unknown state " + json(iv.state).dump());
+    o << "  y[" << k << "] = " << body_.cpp(c_.symbols.parse(iv.expression.text, "field /initial_values/" + iv.state))
       << ";\n";
   }
   for (std::size_t i = 0; i < c_.costates.size(); ++i) {
     const std::string v = names::at_t0(c_.costates[i]);
     bool found = false;
-    for (const auto& var : vars_) found = found || var.at("name") == v;
+    for (const auto& var : vars_) found = found || var.name == v;
     if (!found) throw std::invalid_argument("field /shooting/variables: no variable " + v + " for the initial costate");
     o << "  y[" << c_.states.size() + i << "] = " << body_.use(v) << ";\n";
   }
-  o << "  const auto mult = multipliers(T(" << body_.use(c_.d.at("multiplier")) << "), eps);\n";
+  o << "  const auto mult = multipliers(T(" << body_.use(c_.multiplier) << "), eps);\n";
   // Event values: H just before / after an event, under the optimal control.
-  for (const auto& e : c_.d.value("event_values", json::array())) {
-    if (e.value("kind", "") != "hamiltonian")
-      throw std::invalid_argument("field /event_values: the runtime evaluates H only, not " + e.dump());
-    hamiltonian_at_[e.value("at", "tf")] = e.at("name");
+  for (const auto& e : c_.event_value_list) {
+    if (e.kind.value_or("") != "hamiltonian")
+      throw std::invalid_argument("field /event_values: the runtime evaluates H only, not " + e.name + " (kind '" +
+                                  e.kind.value_or("") + "')");
+    hamiltonian_at_[e.at.value_or("tf")] = e.name;
   }
   evaluate_h("t0", "t0");
 }
@@ -276,20 +279,20 @@ void ShootingFunction::start() {
 // Event k: the leg up to it, its values just before (<name>_<id>_m), the leg alone's end, the
 // jump, its values just after (<name>_<id>_p).
 void ShootingFunction::event(std::size_t k) {
-  const json& e = events_[k];
-  const std::string id = e.at("id");
-  const std::string from = k == 0 ? "t0" : names::event_departure_time(events_[k - 1].at("id").get<std::string>());
+  const derivation::Event& e = events_[k];
+  const std::string& id = e.id;
+  const std::string from = k == 0 ? "t0" : names::event_departure_time(events_[k - 1].id);
   body_.code() << "  propagate(prop, " << from << ", " << names::event_time(id) << ", y, mult);\n";
   unpack_y(names::before_label(id));
   relative_to_target(id);
   evaluate_h(names::before_label(id), names::event_time(id));
   leg_alone_at_event(k);
   jump(k);
-  const json& costate_map = e.at("costate_map");
+  const auto& costate_map = e.costate_map;
   for (std::size_t i = 0; i < c_.states.size(); ++i)
     body_.unpack(names::after(c_.states[i], id), "y[" + std::to_string(i) + "]");
   for (std::size_t i = 0; i < c_.costates.size(); ++i)
-    if (!costate_map[i].contains("variable") || costate_map[i].at("variable") != names::after(c_.costates[i], id))
+    if (!costate_map[i].variable || *costate_map[i].variable != names::after(c_.costates[i], id))
       body_.unpack(names::after(c_.costates[i], id), "y[" + std::to_string(c_.states.size() + i) + "]");
   evaluate_h(names::after_label(id), names::event_departure_time(id));
 }
@@ -302,7 +305,7 @@ void ShootingFunction::relative_to_target(const std::string& id) {
   if (c_.states.size() < cartesian.size() || !std::equal(cartesian.begin(), cartesian.end(), c_.states.begin()))
     return;
   for (const char* kind : {"ephemeris", "coast"})
-    for (const auto& [key, components] : runtime_parameters(c_.d, kind)) {
+    for (const auto& [key, components] : runtime_parameters(c_, kind)) {
       if (key.substr(key.find(':') + 1) != id) continue;
       const auto name = [&](std::size_t i) { return names::relative(cartesian[i], id); };
       for (std::size_t i = 0; i < cartesian.size(); ++i)
@@ -316,20 +319,19 @@ void ShootingFunction::relative_to_target(const std::string& id) {
 // Leg k alone ends at event k as if the trajectory ended: its conditions c = 0 and lambda(t+) = 0
 // (the shooting variables of lambda(t+) are 0 in leg mode); leg 0 carries the normalization.
 void ShootingFunction::leg_alone_at_event(std::size_t k) {
-  const json& e = events_[k];
-  const std::string id = e.at("id"), where = "/events/" + std::to_string(k);
+  const derivation::Event& e = events_[k];
+  const std::string& id = e.id;
   body_.code() << "  if (legs && legs->stop_at == " << k << ") {\n";
   int row = 0;
   if (k == 0) alone_row(row, "normalization");
-  for (std::size_t j = 0; j < e.at("psi").size() - c_.states.size(); ++j)
-    alone_row(row, names::constraint_row(id, j + 1), "alone_expression");
+  for (std::size_t j = 0; j < e.psi.size() - c_.states.size(); ++j)
+    alone_row(row, names::constraint_row(id, j + 1), true);
   for (std::size_t i = 0; i < c_.costates.size(); ++i) {
-    const json& m = e.at("costate_map")[i];
-    if (m.contains("variable"))
+    const derivation::CostateMapEntry& m = e.costate_map.at(i);
+    if (m.variable)
       alone_row(row, names::jump_row(id, c_.states[i]));
     else
-      body_.code() << "    F[" << row++
-                   << "] = " << body_.cpp(m.at("expression"), where + "/costate_map/" + std::to_string(i)) << ";  // "
+      body_.code() << "    F[" << row++ << "] = " << body_.cpp(c_.parsed(costate_expression(m, k, i))) << ";  // "
                    << "costate " << c_.costates[i] << " just after " << id << " = 0 (the leg alone ends there)\n";
   }
   body_.code() << "    return;\n  }\n";
@@ -339,24 +341,21 @@ void ShootingFunction::leg_alone_at_event(std::size_t k) {
 // x+ = g(x-), lambda+ from the jump rows (or a shooting variable); with `legs`, the costates
 // after the event are the leg's starts instead, their mismatch the continuity.
 void ShootingFunction::jump(std::size_t k) {
-  const json& e = events_[k];
+  const derivation::Event& e = events_[k];
   const std::string where = "/events/" + std::to_string(k);
-  const auto& state_map = e.at("state_map");
-  const auto& costate_map = e.at("costate_map");
+  const auto& state_map = e.state_map;
+  const auto& costate_map = e.costate_map;
   if (state_map.size() != c_.states.size() || costate_map.size() != c_.costates.size())
     throw std::invalid_argument("field " + where + ": state_map and costate_map need one entry per state");
   auto& o = body_.code();
   for (std::size_t i = 0; i < c_.states.size(); ++i) {
-    if (state_map[i].at("state") != c_.states[i] || costate_map[i].at("costate") != c_.costates[i])
+    if (state_map[i].state != c_.states[i] || costate_map[i].costate != c_.costates[i])
       throw std::invalid_argument("field " + where + ": the maps must follow the state order");
-    o << "  y[" << i << "] = " << body_.cpp(state_map[i].at("expression"), where + "/state_map/" + std::to_string(i))
-      << ";\n";
+    o << "  y[" << i << "] = " << body_.cpp(c_.parsed(state_map[i].expression)) << ";\n";
   }
   for (std::size_t i = 0; i < c_.costates.size(); ++i) {
-    const json& m = costate_map[i];
-    const std::string value = m.contains("variable")
-                                  ? body_.use(m.at("variable"))
-                                  : body_.cpp(m.at("expression"), where + "/costate_map/" + std::to_string(i));
+    const derivation::CostateMapEntry& m = costate_map[i];
+    const std::string value = m.variable ? body_.use(*m.variable) : body_.cpp(c_.parsed(costate_expression(m, k, i)));
     o << "  y[" << c_.states.size() + i << "] = " << value << ";\n";
   }
   o << "  if (legs) {\n"
@@ -371,7 +370,7 @@ void ShootingFunction::jump(std::size_t k) {
 // constraint's own equations, its epoch held at its guess) and the rows of the whole problem.
 void ShootingFunction::end() {
   const std::string from =
-      events_.empty() ? "t0" : names::event_departure_time(events_.back().at("id").get<std::string>());
+      events_.empty() ? "t0" : names::event_departure_time(events_.back().id);
   body_.code() << "  propagate(prop, " << from << ", tf, y, mult);\n";
   unpack_y("tf");
   evaluate_h("tf", "tf");
@@ -379,38 +378,38 @@ void ShootingFunction::end() {
     throw std::invalid_argument("field /event_values: no event '" + hamiltonian_at_.begin()->first + "'");
   if (!events_.empty()) {
     std::string final_id;
-    for (const auto& k : c_.d.at("constraints"))
-      if (k.at("at") == "tf") final_id = k.at("id");
+    for (const auto& k : c_.constraints)
+      if (k.at == "tf") final_id = k.id;
     body_.code() << "  if (legs && legs->stop_at == " << events_.size() << ") {\n";
     int row = 0;
     for (std::size_t i = 0; i < eqs_.size(); ++i)
-      if (eqs_[i].value("source", "") == final_id) alone_row(row, eqs_[i].at("name"), "alone_expression");
+      if (eqs_[i].source == final_id) alone_row(row, eqs_[i].name, true);
     body_.code() << "    return;\n  }\n";
     leg_sizes_.push_back(row);
   }
   for (std::size_t i = 0; i < eqs_.size(); ++i) {
-    const double scale = eqs_[i].at("scale");
-    body_.code() << "  F[" << i << "] = (" << equation_code(i, "expression") << ")";
+    const double scale = eqs_[i].scale;
+    body_.code() << "  F[" << i << "] = (" << equation_code(i, false) << ")";
     if (scale != 1.0) body_.code() << " / " << number(scale);
-    body_.code() << ";  // " << comment_text(eqs_[i].at("meaning")) << "\n";
+    body_.code() << ";  // " << comment_text(eqs_[i].meaning) << "\n";
   }
 }
 
 }  // namespace
 
 std::string residual_module(Context& c, bool jacobian) {
-  const auto& vars = c.d.at("shooting").at("variables");
-  const auto& eqs = c.d.at("shooting").at("equations");
+  const auto& vars = c.shooting.variables;
+  const auto& eqs = c.shooting.equations;
   if (vars.size() != eqs.size())
     throw std::invalid_argument("field /shooting: " + std::to_string(vars.size()) + " variables but " +
                                 std::to_string(eqs.size()) + " equations");
   std::string o =
       "// ----- module RESIDUAL (generated) -------------------------------------------------------\n"
       "namespace helios_rt {\n\n";
-  if (c.d.contains("coast_dynamics")) o += coast_dynamics_function(c);
+  if (c.coast_dynamics) o += coast_dynamics_function(c);
   ShootingFunction shooting(c);
   o += shooting.text(jacobian);
-  if (!c.d.value("events", json::array()).empty()) o += legs_block(c, shooting.leg_sizes());
+  if (!c.interior_events.empty()) o += legs_block(c, shooting.leg_sizes());
   return o + "}  // namespace helios_rt\n";
 }
 

@@ -9,9 +9,8 @@
 namespace helios::codegen::detail {
 
 std::string solve_module(Context& c) {
-  const json& d = c.d;
-  const auto& vars = d.at("shooting").at("variables");
-  const std::string mult = d.at("multiplier");
+  const auto& vars = c.shooting.variables;
+  const std::string& mult = c.multiplier;
   std::ostringstream o;
   o << "// ----- module SOLVE (generated) ----------------------------------------------------------\n"
     << "namespace helios_rt {\n\n"
@@ -25,20 +24,23 @@ std::string solve_module(Context& c) {
   const std::vector<std::string> in_sphere = c.sphere_variables();
   std::vector<std::size_t> sphere;
   for (std::size_t i = 0; i < vars.size(); ++i) {
-    const std::string name = vars[i].at("name");
+    const std::string& name = vars[i].name;
     const bool normalized = index_of(in_sphere, name) >= 0;
     if (normalized) sphere.push_back(i);
     // In (0, 1): the cost multiplier and time fractions; in (-1, 1): costates, multipliers,
     // parameters; an initial state in its range.
-    const std::string role = vars[i].value("role", normalized ? "costate" : "time_fraction");
+    const std::string role = !vars[i].role.empty() ? vars[i].role : normalized ? "costate" : "time_fraction";
     const bool positive = name == mult || role == "time_fraction";
     if (role == "initial_state") {
-      const double lo = vars[i].at("range").at(0), hi = vars[i].at("range").at(1);
+      if (vars[i].range.size() != 2)
+        throw std::invalid_argument("field /shooting/variables/" + std::to_string(i) + "/range: an initial state " +
+                                    "needs its range [lo, hi]");
+      const double lo = vars[i].range[0], hi = vars[i].range[1];
       o << "  x[" << i << "] = " << number(lo) << " + positive(rng) * " << number(hi - lo) << ";\n";
       continue;
     }
     o << "  x[" << i << "] = " << (positive ? "positive(rng)" : "symmetric(rng)") << " * "
-      << number(vars[i].at("scale")) << ";\n";
+      << number(vars[i].scale) << ";\n";
   }
   if (sphere.empty()) throw std::invalid_argument("field /shooting/equations: no normalization equation");
   std::string indices;
@@ -50,18 +52,18 @@ std::string solve_module(Context& c) {
     << "  // A minimum needs lambda0 > 0 (lambda0 = 0 would be an abnormal extremal).\n"
     << "  const auto admissible = [](const double* x) { return x[" << index_of(c.variables, mult) << "] > 0; };\n"
     << "  const auto solve = [&](const Settings& s) { return "
-    << (d.contains("events") ? "events_homotopy_solve(s, kLegPlan, kEventPlan, initial_guess, admissible)"
+    << (!c.interior_events.empty() ? "events_homotopy_solve(s, kLegPlan, kEventPlan, initial_guess, admissible)"
                              : "homotopy_solve(s, initial_guess, admissible)")
     << "; };\n";
   // Bounds psi <= 0, in the order of their rows (bound_row's index).
   std::string bounds;
-  for (const auto& e : d.at("shooting").at("equations")) {
-    if (!e.contains("inequality")) continue;
-    const std::string nu = e.at("inequality").at("multiplier");
+  for (const auto& e : c.shooting.equations) {
+    if (!e.inequality) continue;
+    const std::string& nu = e.inequality->multiplier;
     const int k = index_of(c.variables, nu);
     if (k < 0) throw std::invalid_argument("field /shooting/equations: bound multiplier " + nu + " is not a variable");
     bounds +=
-        "      {" + cpp_string(e.at("name")) + ", " + cpp_string(e.at("meaning")) + ", " + std::to_string(k) + "},\n";
+        "      {" + cpp_string(e.name) + ", " + cpp_string(e.meaning) + ", " + std::to_string(k) + "},\n";
   }
   if (bounds.empty())
     o << "  return solve(settings);\n";

@@ -39,10 +39,14 @@ Quantity quantity(const json& q, const Units* units, const std::string& file, co
   Quantity out;
   out.name = io::require_string(q, "name", where);
   out.meaning = q.value("meaning", "");
-  out.unit_text = q.value("unit", "1");
-  if (units) out.unit = units->parse(out.unit_text, file + ": field " + where + "/unit");
+  out.unit_text = q.value("unit", "");
+  if (units) out.unit = units->parse(q.contains("unit") ? out.unit_text : "1", file + ": field " + where + "/unit");
   out.value = value_required ? io::require_number(q, "value", where) : q.value("value", 0.0);
   out.source = q.contains("source") && q.at("source").is_string() ? q.at("source").get<std::string>() : "";
+  if (!out.source.empty())
+    out.role = Role::RuntimeEvaluated;
+  else if (value_required && out.meaning.rfind("exhaust velocity", 0) == 0)
+    out.role = Role::ExhaustVelocity;
   return out;
 }
 
@@ -191,7 +195,7 @@ const Quantity& Reader::parameter(const std::string& name) const {
 const Quantity* Reader::exhaust_velocity() const {
   const Quantity* found = nullptr;
   for (const auto& q : parameter_quantities)
-    if (q.meaning.rfind("exhaust velocity", 0) == 0) {
+    if (q.role == Role::ExhaustVelocity) {
       if (found)
         throw input_error("derivation: two parameters are the exhaust velocity (" + found->name + ", " + q.name + ")");
       if (q.unit != Unit{1, -1, 0})

@@ -65,7 +65,7 @@ class BoundaryFamily : public Family {
               std::find(ctx.coast_states.begin(), ctx.coast_states.end(), name) == ctx.coast_states.end())
             left.push_back(name);
         }
-        const std::string text = ctx.derivation["coast_dynamics"]["rhs"][k].get<std::string>();
+        const std::string& text = ctx.doc.coast_dynamics->rhs[k].text;
         if (!left.empty()) {
           c.fail("cannot form the uncontrolled dynamics of " + ctx.states[rv[k]] +
                  ": state_rhs with the throttle at 0 " + "still depends on " + join(left, ", ") + ".");
@@ -116,7 +116,7 @@ class BoundaryFamily : public Family {
                           std::to_string(j) + "] at tf); add it to shooting.equations.");
         checks.push_back(c);
         const std::string name = names::constraint_row(k.id, j + 1);
-        if (const json* bound = equation_field(name, "inequality")) {
+        if (const auto* bound = inequality_of(name)) {
           const std::string nu = j < k.multipliers.size() ? k.multipliers[j] : "";
           if (is_identifier(nu)) check_bound(name, *bound, ctx.sym(nu));
         }
@@ -213,12 +213,10 @@ class BoundaryFamily : public Family {
     if (!ctx.free_tf) return;
     Check c = start("tf_expression", "counts", "structural");
     c.exact = true;
-    const json& times = ctx.derivation["times"];
-    const json w = times.value("tf_window", json::array());
+    const std::vector<double>& w = ctx.doc.times.tf_window;
     if (!ctx.tf_error.empty()) {
       c.fail(ctx.tf_error + ".");
-    } else if (!w.is_array() || w.size() != 2 || !w[0].is_number() || !w[1].is_number() ||
-               !(w[0].get<double>() < w[1].get<double>())) {
+    } else if (w.size() != 2 || !(w[0] < w[1])) {
       c.fail("times.tf_window must be [lo, hi] with lo < hi (normalized time).");
     } else {
       const std::set<std::string> vars(ctx.variables.begin(), ctx.variables.end());

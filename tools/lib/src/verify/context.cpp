@@ -90,6 +90,12 @@ double random_value(Kind kind, double value, std::mt19937_64& rng) {
 
 }  // namespace
 
+// `derivation` once the options are known to be usable: the document's read comes after that check.
+const json& checked(const json& derivation, const VerifyOptions& options) {
+  if (options.points < 1) throw std::invalid_argument("the number of sample points must be at least 1");
+  return derivation;
+}
+
 double uniform(std::mt19937_64& rng, double a, double b) {
   return a + (b - a) * (static_cast<double>(rng() >> 11) * 0x1.0p-53);
 }
@@ -108,9 +114,8 @@ std::vector<double> random_unit(std::mt19937_64& rng, std::size_t n) {
   return v;
 }
 
-Context::Context(const json& derivation, const VerifyOptions& options) : derivation(derivation), options(options) {
-  if (options.points < 1) throw std::invalid_argument("the number of sample points must be at least 1");
-  if (!derivation.is_object()) throw input_error("derivation: not a JSON object");
+Context::Context(const json& derivation, const VerifyOptions& options)
+    : doc(checked(derivation, options), "derivation", /*parse_units=*/false), options(options) {
   // The symbols first (their order is the order of a Point's slots, and so of the random draws).
   read_names();
   read_times_and_events();
@@ -135,9 +140,8 @@ int Context::declare(const std::string& name, Kind kind, double value) {
   return slots[name];
 }
 
-ex Context::statement(const json& text, const std::string& where) const {
-  if (!text.is_string()) throw input_error("derivation: field " + where + " must be an expression string");
-  return symbols.parse(text.get<std::string>(), "derivation: " + where);
+ex Context::statement(const std::string& text, const std::string& where) const {
+  return symbols.parse(text, "derivation: " + where);
 }
 
 // A symbol the derivation introduces (event states, multipliers, fractions): declared once.
@@ -161,7 +165,7 @@ std::vector<std::string> Context::declare_unknown(const std::string& text) {
 // The names through the one reader of a derivation (helios/derivation/reader.hpp), declared here in
 // the verifier's own order: states with their t0/tf values, costates, controls, parameters.
 void Context::read_names() {
-  const derivation::Reader names(derivation, "derivation", /*parse_units=*/false);
+  const derivation::Document& names = doc;
   multiplier = names.multiplier;
   eps = names.homotopy;
   states = names.states;
@@ -197,45 +201,36 @@ void Context::read_names() {
 
 // The multipliers the constraints name (kind Free).
 void Context::declare_constraint_multipliers() {
-  const json& d = derivation;
-  if (d.contains("constraints") && d["constraints"].is_array())
-    for (const auto& c : d["constraints"])
-      if (c.contains("multipliers") && c["multipliers"].is_array())
-        for (const auto& m : c["multipliers"])
-          if (m.is_string() && !slots.count(m.get<std::string>())) declare(m.get<std::string>(), Kind::Free);
+  for (const auto& c : doc.constraints)
+    for (const auto& m : c.multipliers)
+      if (!slots.count(m)) declare(m, Kind::Free);
 }
 
 // The problem statement: dynamics, costs, endpoint constraints (psi read in the state symbols).
 void Context::read_statement() {
-  const json& d = derivation;
-  const json& dyn = io::require(d, "dynamics", "derivation");
-  const json& rhs = io::require(dyn, "state_rhs", "derivation dynamics");
-  if (!rhs.is_array() || rhs.size() != states.size())
+  const auto& rhs = doc.dynamics.state_rhs;
+  if (rhs.size() != states.size())
     throw input_error("derivation: dynamics.state_rhs must have one expression per state (" +
                       std::to_string(states.size()) + ")");
   for (std::size_t i = 0; i < rhs.size(); ++i)
-    state_rhs.push_back(statement(rhs[i], "dynamics.state_rhs[" + states[i] + "]"));
-  running_cost = statement(io::require(dyn, "running_cost", "derivation dynamics"), "dynamics.running_cost");
-  endpoint_cost = statement(io::require(dyn, "endpoint_cost", "derivation dynamics"), "dynamics.endpoint_cost");
+    state_rhs.push_back(statement(rhs[i].text, "dynamics.state_rhs[" + states[i] + "]"));
+  running_cost = statement(doc.dynamics.running_cost.text, "dynamics.running_cost");
+  endpoint_cost = statement(doc.dynamics.endpoint_cost.text, "dynamics.endpoint_cost");
   GiNaC::exmap tf_to_state;  // an endpoint cost written in x_tf is read in x
   for (const auto& s : states) tf_to_state[sym(names::at_tf(s))] = sym(s);
   endpoint_cost = endpoint_cost.subs(tf_to_state);
-  if (d.contains("constraints")) {
-    for (const auto& c : d["constraints"]) {
-      Constraint k;
-      k.id = io::require_string(c, "id", "derivation constraints");
-      k.at = io::require_string(c, "at", "derivation constraint " + k.id);
-      if (k.at != "t0" && k.at != "tf")
-        throw input_error("derivation: constraint " + k.id + " is at '" + k.at + "', expected t0 or tf");
-      GiNaC::exmap to_state;
-      for (const auto& s : states) to_state[sym(names::at(s, k.at))] = sym(s);
-      const json& psi = io::require(c, "psi", "derivation constraint " + k.id);
-      for (std::size_t j = 0; j < psi.size(); ++j)
-        k.psi.push_back(statement(psi[j], "constraints[" + k.id + "].psi[" + std::to_string(j) + "]").subs(to_state));
-      for (const auto& m : c.value("multipliers", json::array()))
-        k.multipliers.push_back(m.is_string() ? m.get<std::string>() : "");
-      constraints.push_back(k);
-    }
+  for (const auto& c : doc.constraints) {
+    Constraint k;
+    k.id = c.id;
+    k.at = c.at;
+    if (k.at != "t0" && k.at != "tf")
+      throw input_error("derivation: constraint " + k.id + " is at '" + k.at + "', expected t0 or tf");
+    GiNaC::exmap to_state;
+    for (const auto& s : states) to_state[sym(names::at(s, k.at))] = sym(s);
+    for (std::size_t j = 0; j < c.psi.size(); ++j)
+      k.psi.push_back(statement(c.psi[j].text, "constraints[" + k.id + "].psi[" + std::to_string(j) + "]").subs(to_state));
+    k.multipliers = c.multipliers;
+    constraints.push_back(k);
   }
   for (const auto& k : constraints)
     for (const auto& psi : k.psi)
@@ -268,29 +263,27 @@ void Context::recompute_hamiltonian() {
 
 // times (free final time: tf_expression in shooting variables it introduces) and event_values.
 void Context::read_times_and_events() {
-  const json& times =
-      derivation.contains("times") && derivation["times"].is_object() ? derivation["times"] : json::object();
-  free_tf = times.value("final_time", "fixed") == "free";
-  if (derivation.contains("event_values") && derivation["event_values"].is_array())
-    for (const auto& e : derivation["event_values"]) {
-      EventValue v;
-      v.name = io::require_string(e, "name", "derivation event_values");
-      v.meaning = e.value("meaning", "");
-      v.hamiltonian = e.value("kind", "") == "hamiltonian";
-      if (e.contains("at") && e["at"].is_string())
-        v.at = e["at"].get<std::string>();
-      else if (v.name.rfind("hamiltonian", 0) == 0 && v.name.size() > 2)
-        v.at = v.name.substr(2);
-      declare(v.name, Kind::EventValue);
-      event_values.push_back(v);
-    }
+  const derivation::Times& times = doc.times;
+  free_tf = times.final_time == "free";
+  for (const auto& e : doc.event_value_list) {
+    EventValue v;
+    v.name = e.name;
+    v.meaning = e.meaning;
+    v.hamiltonian = e.kind.value_or("") == "hamiltonian";
+    if (e.at)
+      v.at = *e.at;
+    else if (v.name.rfind("hamiltonian", 0) == 0 && v.name.size() > 2)
+      v.at = v.name.substr(2);
+    declare(v.name, Kind::EventValue);
+    event_values.push_back(v);
+  }
   read_departure(times);
   if (!free_tf) return;
-  if (!times.contains("tf_expression") || !times["tf_expression"].is_string()) {
+  if (!times.tf_expression) {
     tf_error = "times.tf_expression is missing: a free final time needs tf as an expression of a shooting variable";
     return;
   }
-  tf_text = times["tf_expression"].get<std::string>();
+  tf_text = times.tf_expression->text;
   for (const auto& name : identifiers(tf_text))
     if (!slots.count(name) && name != "Pi" && name != "Euler" && name != "Catalan") {
       tf_vars.push_back(name);
@@ -306,15 +299,16 @@ void Context::read_times_and_events() {
 }
 
 // times.departure == "free": t0 = t0_expression(t0_frac), tf = tf_expression = t0 + the fixed total time.
-void Context::read_departure(const json& times) {
-  free_t0 = times.value("departure", "fixed") == "free";
+void Context::read_departure(const derivation::Times& times) {
+  free_t0 = times.departure == "free";
   if (!free_t0) return;
   try {
     for (const char* key : {"t0_expression", "tf_expression"}) {
-      if (!times.contains(key) || !times[key].is_string())
+      const auto& given = std::string(key) == "t0_expression" ? times.t0_expression : times.tf_expression;
+      if (!given)
         throw std::invalid_argument(std::string("times.") + key + " is missing: a sliding departure needs t0 and tf " +
                                     "as expressions of a shooting variable (t0_frac)");
-      const std::string text = times[key].get<std::string>();
+      const std::string text = given->text;
       for (const auto& name : declare_unknown(text)) t0_vars.push_back(name);
       (std::string(key) == "t0_expression" ? t0_expr : t0_tf_expr) = symbols.parse(text, std::string("times.") + key);
     }
@@ -324,79 +318,31 @@ void Context::read_departure(const json& times) {
 }
 
 void Context::read_interior_events() {
-  if (!derivation.contains("events") || !derivation["events"].is_array()) return;
   std::size_t index = 0;
-  for (const auto& je : derivation["events"]) {
+  for (const auto& je : doc.interior_events) {
     Event e;
-    e.id = je.is_object() ? je.value("id", "") : "";
+    e.id = je.id;
     if (!is_identifier(e.id)) e.id = "#" + std::to_string(index);
     ++index;
     const std::string where = "events[" + e.id + "]";
     try {
       if (!is_identifier(e.id)) throw std::invalid_argument(where + " has no valid id");
-      e.kind = je.value("kind", "");
-      for (std::size_t i = 0; i < states.size(); ++i) {
-        const Kind k = kinds[static_cast<std::size_t>(slot(states[i]))];
-        declare_new(names::before(states[i], e.id), k);
-        declare_new(names::after(states[i], e.id), k);
-        declare_new(names::before(costates[i], e.id), Kind::Costate);
-        declare_new(names::after(costates[i], e.id), Kind::Costate);
-      }
-      declare_new(names::event_time(e.id), Kind::Free);
-      for (const auto& v : event_values)
-        if (v.hamiltonian && v.at == names::before_label(e.id))
-          e.Hm = v.name;
-        else if (v.hamiltonian && v.at == names::after_label(e.id))
-          e.Hp = v.name;
-      const json& time = io::require(je, "time", where);
-      e.time_text = io::require_string(time, "expression", where + ".time");
+      e.kind = je.kind;
+      declare_event_symbols(e);
+      e.time_text = je.time_expression.text;
       e.time_vars = declare_unknown(e.time_text);
       e.time_expr = symbols.parse(e.time_text, where + ".time.expression");
-      if (time.contains("window") && time["window"].is_array() && time["window"].size() == 2)
-        for (const auto& w : time["window"]) e.window.push_back(w.is_number() ? w.get<double>() : std::nan(""));
-      const json& mult = io::require(je, "multipliers", where);
-      for (const auto& m : mult) {
-        e.multiplier_text.push_back(m.is_string() ? m.get<std::string>() : "");
-        if (is_identifier(e.multiplier_text.back())) declare_new(e.multiplier_text.back(), Kind::Free);
+      if (je.window.size() == 2) e.window = je.window;
+      for (const auto& m : je.multipliers) {
+        e.multiplier_text.push_back(m);
+        if (is_identifier(m)) declare_new(m, Kind::Free);
       }
-      const json& psi = io::require(je, "psi", where);
-      for (std::size_t j = 0; j < psi.size(); ++j) {
-        if (!psi[j].is_string()) throw std::invalid_argument(where + ".psi[" + std::to_string(j) + "] is not a string");
-        e.psi_text.push_back(psi[j].get<std::string>());
+      for (std::size_t j = 0; j < je.psi.size(); ++j) {
+        e.psi_text.push_back(je.psi[j].text);
         for (const auto& q : declare_unknown(e.psi_text.back())) e.free_params.push_back(q);
         e.psi.push_back(symbols.parse(e.psi_text.back(), where + ".psi[" + std::to_string(j) + "]"));
       }
-      e.map.assign(states.size(), ex(0));
-      e.map_text.assign(states.size(), "");
-      for (const auto& m : io::require(je, "state_map", where)) {
-        const std::string s = io::require_string(m, "state", where + ".state_map");
-        const auto it = std::find(states.begin(), states.end(), s);
-        if (it == states.end()) throw std::invalid_argument(where + ".state_map names '" + s + "', not a state");
-        const auto i = static_cast<std::size_t>(it - states.begin());
-        e.map_text[i] = io::require_string(m, "expression", where + ".state_map[" + s + "]");
-        for (const auto& q : declare_unknown(e.map_text[i])) e.free_params.push_back(q);
-        e.map[i] = symbols.parse(e.map_text[i], where + ".state_map[" + s + "]");
-      }
-      for (std::size_t i = 0; i < states.size(); ++i)
-        if (e.map_text[i].empty())
-          throw std::invalid_argument(where + ".state_map has no entry for state " + states[i]);
-      e.costate_map.assign(states.size(), CostateEntry{});
-      for (const auto& m : io::require(je, "costate_map", where)) {
-        const std::string l = io::require_string(m, "costate", where + ".costate_map");
-        const auto it = std::find(costates.begin(), costates.end(), l);
-        if (it == costates.end()) throw std::invalid_argument(where + ".costate_map names '" + l + "', not a costate");
-        CostateEntry& c = e.costate_map[static_cast<std::size_t>(it - costates.begin())];
-        c.given = true;
-        if (m.contains("variable")) {
-          c.is_variable = true;
-          c.variable = io::require_string(m, "variable", where + ".costate_map[" + l + "]");
-          if (is_identifier(c.variable)) declare_new(c.variable, Kind::Costate);
-        } else {
-          c.text = io::require_string(m, "expression", where + ".costate_map[" + l + "]");
-          declare_unknown(c.text);
-          c.expr = symbols.parse(c.text, where + ".costate_map[" + l + "]");
-        }
-      }
+      read_event_maps(je, e, where);
     } catch (const std::exception& x) {
       e.error = x.what();
     }
@@ -404,22 +350,72 @@ void Context::read_interior_events() {
   }
 }
 
+// The symbols of an event: the states and costates just before and after it, its time; and the
+// names of the event values that are H just before and after it.
+void Context::declare_event_symbols(Event& e) {
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const Kind k = kinds[static_cast<std::size_t>(slot(states[i]))];
+    declare_new(names::before(states[i], e.id), k);
+    declare_new(names::after(states[i], e.id), k);
+    declare_new(names::before(costates[i], e.id), Kind::Costate);
+    declare_new(names::after(costates[i], e.id), Kind::Costate);
+  }
+  declare_new(names::event_time(e.id), Kind::Free);
+  for (const auto& v : event_values)
+    if (v.hamiltonian && v.at == names::before_label(e.id))
+      e.Hm = v.name;
+    else if (v.hamiltonian && v.at == names::after_label(e.id))
+      e.Hp = v.name;
+}
+
+// The event's state_map and costate_map, in state order; every state must have its entry.
+void Context::read_event_maps(const derivation::Event& je, Event& e, const std::string& where) {
+  e.map.assign(states.size(), ex(0));
+  e.map_text.assign(states.size(), "");
+  for (const auto& m : je.state_map) {
+    const auto it = std::find(states.begin(), states.end(), m.state);
+    if (it == states.end()) throw std::invalid_argument(where + ".state_map names '" + m.state + "', not a state");
+    const auto i = static_cast<std::size_t>(it - states.begin());
+    e.map_text[i] = m.expression.text;
+    for (const auto& q : declare_unknown(e.map_text[i])) e.free_params.push_back(q);
+    e.map[i] = symbols.parse(e.map_text[i], where + ".state_map[" + m.state + "]");
+  }
+  for (std::size_t i = 0; i < states.size(); ++i)
+    if (e.map_text[i].empty()) throw std::invalid_argument(where + ".state_map has no entry for state " + states[i]);
+  e.costate_map.assign(states.size(), CostateEntry{});
+  for (const auto& m : je.costate_map) {
+    const std::string& l = m.costate;
+    const auto it = std::find(costates.begin(), costates.end(), l);
+    if (it == costates.end()) throw std::invalid_argument(where + ".costate_map names '" + l + "', not a costate");
+    CostateEntry& c = e.costate_map[static_cast<std::size_t>(it - costates.begin())];
+    c.given = true;
+    if (m.variable) {
+      c.is_variable = true;
+      c.variable = *m.variable;
+      if (is_identifier(c.variable)) declare_new(c.variable, Kind::Costate);
+    } else {
+      if (!m.expression)
+        throw std::invalid_argument("field " + where + ".costate_map[" + l + "]/expression is missing");
+      c.text = m.expression->text;
+      declare_unknown(c.text);
+      c.expr = symbols.parse(c.text, where + ".costate_map[" + l + "]");
+    }
+  }
+}
+
 // coast_dynamics: the state symbols of the coasting target and their uncontrolled dynamics.
 void Context::read_coast() {
-  if (!derivation.contains("coast_dynamics")) return;
+  if (!doc.coast_dynamics) return;
   has_coast = true;
-  const json& c = derivation["coast_dynamics"];
+  const derivation::CoastDynamics& c = *doc.coast_dynamics;
   try {
-    if (!c.is_object() || !c.contains("states") || !c["states"].is_array() || !c.contains("rhs") ||
-        !c["rhs"].is_array())
-      throw std::invalid_argument("coast_dynamics must have arrays states and rhs");
     std::vector<std::size_t> rv;
     for (std::size_t i = 0; i < states.size(); ++i) {
       const Kind k = kinds[static_cast<std::size_t>(slot(states[i]))];
       if (k == Kind::Position || k == Kind::Velocity) rv.push_back(i);
     }
-    for (std::size_t i = 0; i < c["states"].size(); ++i) {
-      const std::string name = c["states"][i].is_string() ? c["states"][i].get<std::string>() : "";
+    for (std::size_t i = 0; i < c.states.size(); ++i) {
+      const std::string& name = c.states[i];
       const Kind k = i < rv.size() ? kinds[static_cast<std::size_t>(slot(states[rv[i]]))] : Kind::Free;
       // The coast states may reuse the problem's own r, v names (same order), or be new symbols.
       if (!(i < rv.size() && name == states[rv[i]])) {
@@ -429,8 +425,8 @@ void Context::read_coast() {
       }
       coast_states.push_back(name);
     }
-    for (std::size_t i = 0; i < c["rhs"].size(); ++i)
-      coast_rhs.push_back(statement(c["rhs"][i], "coast_dynamics.rhs[" + std::to_string(i) + "]"));
+    for (std::size_t i = 0; i < c.rhs.size(); ++i)
+      coast_rhs.push_back(statement(c.rhs[i].text, "coast_dynamics.rhs[" + std::to_string(i) + "]"));
   } catch (const std::exception& e) {
     coast_error = e.what();
   }
@@ -439,18 +435,13 @@ void Context::read_coast() {
 // control_law.sail.definitions: named intermediate expressions (e.g. sail_A, sail_B, sail_alpha),
 // each in the problem's symbols and the earlier definitions; the sail law is read with them inlined.
 void Context::read_sail_definitions() {
-  if (!derivation.contains("control_law") || !derivation["control_law"].is_object() ||
-      !derivation["control_law"].contains("sail") || !derivation["control_law"]["sail"].is_object() ||
-      !derivation["control_law"]["sail"].contains("definitions"))
-    return;
+  if (!doc.control_law.sail) return;
   try {
-    const json& defs = derivation["control_law"]["sail"]["definitions"];
-    if (!defs.is_array()) throw std::invalid_argument("control_law.sail.definitions must be an array");
-    for (const auto& def : defs) {
-      const std::string name = def.is_object() ? def.value("name", "") : "";
+    for (const auto& def : doc.control_law.sail->definitions) {
+      const std::string& name = def.name;
       const std::string where = "control_law.sail.definitions[" + name + "]";
       if (slots.count(name)) throw std::invalid_argument(where + ": the name is already a symbol of the problem");
-      const ex e = statement(def.is_object() && def.contains("expression") ? def["expression"] : json(), where);
+      const ex e = statement(def.expression.text, where);
       declare(name, Kind::Free);
       sail_definitions[sym(name)] = e.subs(sail_definitions);
     }
@@ -491,21 +482,15 @@ void Context::sample_points(std::mt19937_64& rng) {
 }
 
 void Context::read_shooting() {
-  const json empty = json::array();
-  const json& sh =
-      derivation.contains("shooting") && derivation["shooting"].is_object() ? derivation["shooting"] : json::object();
-  const json& vars = sh.contains("variables") && sh["variables"].is_array() ? sh["variables"] : empty;
-  const json& eqs = sh.contains("equations") && sh["equations"].is_array() ? sh["equations"] : empty;
-  for (const auto& v : vars) variables.push_back(v.is_object() ? v.value("name", "") : "");
-  for (std::size_t k = 0; k < eqs.size(); ++k) {
+  for (const auto& v : doc.shooting.variables) variables.push_back(v.name);
+  for (std::size_t k = 0; k < doc.shooting.equations.size(); ++k) {
+    const derivation::ShootingEquation& written = doc.shooting.equations[k];
     Equation e;
-    e.name = eqs[k].is_object() ? eqs[k].value("name", "") : "";
+    e.name = written.name;
     if (e.name.empty()) e.name = "#" + std::to_string(k);
     const std::string where = "shooting.equations[" + e.name + "]";
     try {
-      if (!eqs[k].is_object() || !eqs[k].contains("expression") || !eqs[k]["expression"].is_string())
-        throw std::invalid_argument(where + ": no expression string");
-      e.text = eqs[k]["expression"].get<std::string>();
+      e.text = written.expression.text;
       e.e = symbols.parse(e.text, where);
       e.c = compile(e.e);
       for (const auto& p : points) e.values.push_back(e.c(p));

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "helios/derivation/document.hpp"
 #include "helios/derivation/names.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/symbolic/evaluate.hpp"
@@ -109,7 +110,7 @@ class Context {
   // std::invalid_argument / input_error naming the field when the statement is unusable.
   Context(const json& derivation, const VerifyOptions& options);
 
-  const json& derivation;
+  const derivation::Document doc;  // the derivation as read (units left as text)
   const VerifyOptions options;
 
   // ----- symbols
@@ -167,8 +168,8 @@ class Context {
   int slot(const std::string& name) const { return slots.at(name); }
   ex sym(const std::string& name) const { return symbols.symtab().at(name); }
   Compiled compile(const ex& e) const { return Compiled(e, slots); }
-  // The expression text of the field `where`.
-  ex statement(const json& text, const std::string& where) const;
+  // The expression `text` of the field `where`, over the verifier's symbols.
+  ex statement(const std::string& text, const std::string& where) const;
 
   Point set_direction(Point p, const std::vector<double>& a) const;
   std::vector<double> direction_of(const Point& p) const;
@@ -183,9 +184,11 @@ class Context {
   std::vector<std::string> declare_unknown(const std::string& text);
   void read_names();
   void read_times_and_events();
-  void read_departure(const json& times);
+  void read_departure(const derivation::Times& times);
   void declare_constraint_multipliers();
   void read_interior_events();
+  void declare_event_symbols(Event& e);
+  void read_event_maps(const derivation::Event& written, Event& e, const std::string& where);
   void read_statement();
   void read_coast();
   void read_sail_definitions();

@@ -37,17 +37,14 @@ class ControlFamily : public Family {
   void check_hamiltonian() {
     const std::string sum =
         join(std::vector<std::string>{ctx.multiplier + "*running_cost", "sum of costate*state_rhs"}, " + ");
-    const json text = ctx.derivation.contains("hamiltonian") ? ctx.derivation["hamiltonian"] : json();
     checks.push_back(equality("hamiltonian", "hamiltonian", "hamiltonian", sum,
-                              {ctx.hamiltonian, ctx.hamiltonian_compiled, {}}, text, true));
+                              {ctx.hamiltonian, ctx.hamiltonian_compiled, {}}, ctx.doc.hamiltonian.text, true));
   }
 
   // State ODEs (dH/dl_i) or costate ODEs (-dH/dx_i), one per state, in state order.
   void check_odes(bool state) {
     const std::string field = state ? "state_odes" : "costate_odes", key = state ? "state" : "costate";
-    const json empty = json::array();
-    const json& list =
-        ctx.derivation.contains(field) && ctx.derivation[field].is_array() ? ctx.derivation[field] : empty;
+    const std::vector<derivation::Ode>& list = state ? ctx.doc.state_odes : ctx.doc.costate_odes;
     std::set<std::string> known;
     for (std::size_t i = 0; i < ctx.states.size(); ++i) {
       const std::string name = state ? ctx.states[i] : ctx.costates[i];
@@ -58,13 +55,13 @@ class ControlFamily : public Family {
       const std::string expected_name = std::string(state ? "dH/d" : "-dH/d") + by;
       const std::string id = std::string(state ? "state_ode:" : "costate_ode:") + name;
       const std::string category = state ? "state_odes" : "costate_odes";
-      const json* entry = nullptr;
+      const derivation::Ode* entry = nullptr;
       std::string order;
-      if (i < list.size() && list[i].is_object() && list[i].value(key, "") == name) {
+      if (i < list.size() && list[i].name == name) {
         entry = &list[i];
       } else {
         for (std::size_t k = 0; k < list.size() && !entry; ++k)
-          if (list[k].is_object() && list[k].value(key, "") == name) {
+          if (list[k].name == name) {
             entry = &list[k];
             order = field + "[" + std::to_string(k) + "] is the equation of " + name + " but must be entry " +
                     std::to_string(i) + " (the order of states)";
@@ -77,7 +74,7 @@ class ControlFamily : public Family {
         checks.push_back(c);
         continue;
       }
-      const json given_text = entry->contains("rhs") ? (*entry)["rhs"] : json();
+      const std::string& given_text = entry->rhs.text;
       // A right-hand side with the optimal control substituted (no control symbols left) is
       // compared with the expected one at the verifier's own optimal controls: at the optimum
       // both are the same function (envelope theorem).
@@ -108,7 +105,7 @@ class ControlFamily : public Family {
       checks.push_back(c);
     }
     for (std::size_t k = 0; k < list.size(); ++k) {
-      const std::string name = list[k].is_object() ? list[k].value(key, "") : "";
+      const std::string& name = list[k].name;
       if (known.count(name)) continue;
       Check c =
           start(std::string(state ? "state_ode:" : "costate_ode:") + (name.empty() ? "#" + std::to_string(k) : name),
@@ -227,32 +224,26 @@ class ControlFamily : public Family {
   // controls or cannot be read.
   bool read_direction_law(Check& c, const std::string& advice, std::vector<ex>& law, std::vector<Compiled>& lc) const {
     const std::string names = "(" + join(ctx.directions, ", ") + ")";
-    const json* dir = nullptr;
-    if (ctx.derivation.contains("control_law") && ctx.derivation["control_law"].is_object() &&
-        ctx.derivation["control_law"].contains("direction"))
-      dir = &ctx.derivation["control_law"]["direction"];
-    if (!dir || !dir->is_object()) {
+    const auto& dir = ctx.doc.control_law.direction;
+    if (!dir) {
       c.fail("control_law.direction is missing: give the law of the thrust direction " + names + "; " + advice + ".");
       return false;
     }
-    const json controls = dir->value("controls", json::array());
-    std::vector<std::string> listed;
-    for (const auto& x : controls) listed.push_back(x.is_string() ? x.get<std::string>() : x.dump());
+    const std::vector<std::string>& listed = dir->controls;
     if (listed != ctx.directions) {
       c.fail("control_law.direction.controls is (" + join(listed, ", ") + "), expected " + names +
              " (the controls of kind direction, in order).");
       return false;
     }
-    const json law_text = dir->value("law", json::array());
-    if (!law_text.is_array() || law_text.size() != ctx.directions.size()) {
+    const std::vector<derivation::Expression>& law_text = dir->law;
+    if (law_text.size() != ctx.directions.size()) {
       c.fail("control_law.direction.law must give one expression per direction control " + names + "; " + advice + ".");
       return false;
     }
     try {
       for (std::size_t j = 0; j < ctx.directions.size(); ++j) {
         const std::string where = "control_law.direction.law[" + ctx.directions[j] + "]";
-        if (!law_text[j].is_string()) throw std::invalid_argument(where + ": not an expression string");
-        law.push_back(ctx.symbols.parse(law_text[j].get<std::string>(), where));
+        law.push_back(ctx.symbols.parse(law_text[j].text, where));
         for (const auto& a : ctx.directions)
           if (law.back().has(ctx.sym(a))) throw std::invalid_argument(where + " depends on the direction control " + a);
         lc.push_back(ctx.compile(law.back()));
@@ -293,35 +284,28 @@ class ControlFamily : public Family {
   std::string read_sail_law(std::vector<Compiled>& lc, Compiled& cone) const {
     const std::string names = "(" + join(ctx.sails, ", ") + ")";
     const std::string set = kAdmissibleSet;
-    const json* sail = nullptr;
-    if (ctx.derivation.contains("control_law") && ctx.derivation["control_law"].is_object() &&
-        ctx.derivation["control_law"].contains("sail"))
-      sail = &ctx.derivation["control_law"]["sail"];
+    const auto& sail = ctx.doc.control_law.sail;
     std::string error;
     try {
-      if (!sail || !sail->is_object())
+      if (!sail)
         throw std::invalid_argument("control_law.sail is missing: give the law of the sail normal " + names +
                                     " minimizing H over " + set + ", and its cone angle");
-      std::vector<std::string> listed;
-      for (const auto& x : sail->value("controls", json::array()))
-        listed.push_back(x.is_string() ? x.get<std::string>() : x.dump());
+      const std::vector<std::string>& listed = sail->controls;
       if (listed != ctx.sails)
         throw std::invalid_argument("control_law.sail.controls is (" + join(listed, ", ") + "), expected " + names +
                                     " (the controls of kind sail_normal, in order)");
-      const json law = sail->value("law", json::array());
-      if (!law.is_array() || law.size() != 3)
+      const std::vector<derivation::Expression>& law = sail->law;
+      if (law.size() != 3)
         throw std::invalid_argument("control_law.sail.law must give one expression per sail control " + names);
       if (!ctx.sail_definitions_error.empty()) throw std::invalid_argument(ctx.sail_definitions_error);
       for (std::size_t k = 0; k < 3; ++k) {
         const std::string where = "control_law.sail.law[" + ctx.sails[k] + "]";
-        const ex e = ctx.statement(law[k], where).subs(ctx.sail_definitions);
+        const ex e = ctx.statement(law[k].text, where).subs(ctx.sail_definitions);
         for (const auto& n : ctx.sails)
           if (e.has(ctx.sym(n))) throw std::invalid_argument(where + " depends on the sail control " + n);
         lc.push_back(ctx.compile(e));
       }
-      const ex a =
-          ctx.statement(sail->contains("cone_angle") ? (*sail)["cone_angle"] : json(), "control_law.sail.cone_angle")
-              .subs(ctx.sail_definitions);
+      const ex a = ctx.statement(sail->cone_angle.text, "control_law.sail.cone_angle").subs(ctx.sail_definitions);
       cone = ctx.compile(a);
     } catch (const std::exception& e) {
       error = e.what();
@@ -424,7 +408,7 @@ class ControlFamily : public Family {
   // What the throttle's checks share: the law as written, dH/du and d2H/du2 (Hu_star: dH/du with
   // a* substituted), and the interior law as written (or why it cannot be read).
   struct ThrottleParts {
-    const json* t = nullptr;
+    const derivation::ThrottleLaw* t = nullptr;
     symbol u, eps;
     GiNaC::exmap astar;
     ex Hu, Huu, Hu_star;
@@ -445,18 +429,10 @@ class ControlFamily : public Family {
       return q;
     };
   }
-  // The field `name` of control_law.throttle, or null.
-  static const json& law_field(const json& t, const char* name) {
-    static const json none;
-    return t.contains(name) ? t[name] : none;
-  }
 
   void check_throttle() {
     if (ctx.throttle.empty()) return;
-    const json* t = nullptr;
-    if (ctx.derivation.contains("control_law") && ctx.derivation["control_law"].is_object() &&
-        ctx.derivation["control_law"].contains("throttle") && ctx.derivation["control_law"]["throttle"].is_object())
-      t = &ctx.derivation["control_law"]["throttle"];
+    const derivation::ThrottleLaw* t = ctx.doc.control_law.throttle ? &*ctx.doc.control_law.throttle : nullptr;
     if (!t) {
       Check c = start("throttle_switching", "control", "structural");
       c.fail(
@@ -477,9 +453,7 @@ class ControlFamily : public Family {
     parts.Hu_c = ctx.compile(parts.Hu);
     parts.Huu_c = ctx.compile(parts.Huu);
     try {
-      const json& it = law_field(*t, "interior");
-      if (!it.is_string()) throw std::invalid_argument("control_law.throttle.interior: not an expression string");
-      parts.interior = ctx.symbols.parse(it.get<std::string>(), "control_law.throttle.interior");
+      parts.interior = ctx.symbols.parse(t->interior.text, "control_law.throttle.interior");
       parts.interior_c = ctx.compile(parts.interior);
     } catch (const std::exception& e) {
       parts.interior_error = e.what();
@@ -501,19 +475,19 @@ class ControlFamily : public Family {
     checks.push_back(equality("throttle_switching", "control", "control_law.throttle.switching_function",
                               "dH/d" + ctx.throttle + " at " + ctx.eps + " = 0" + a_note,
                               {Hu_star.subs(GiNaC::lst{u == 0, eps == 0}), Hu_c, throttle_point(0, true)},
-                              law_field(*t, "switching_function"), true, no_u_a_eps));
+                              t->switching_function.text, true, no_u_a_eps));
     checks.push_back(equality("throttle_dH_du_at_lower", "control", "control_law.throttle.dH_du_at_lower",
                               "dH/d" + ctx.throttle + " at " + ctx.throttle + " = 0" + a_note,
-                              {Hu_star.subs(u == 0), Hu_c, throttle_point(0, false)}, law_field(*t, "dH_du_at_lower"),
+                              {Hu_star.subs(u == 0), Hu_c, throttle_point(0, false)}, t->dH_du_at_lower.text,
                               true, no_u_a));
     checks.push_back(equality("throttle_dH_du_at_upper", "control", "control_law.throttle.dH_du_at_upper",
                               "dH/d" + ctx.throttle + " at " + ctx.throttle + " = 1" + a_note,
-                              {Hu_star.subs(u == 1), Hu_c, throttle_point(1, false)}, law_field(*t, "dH_du_at_upper"),
+                              {Hu_star.subs(u == 1), Hu_c, throttle_point(1, false)}, t->dH_du_at_upper.text,
                               true, no_u_a));
-    if (t->contains("d2H_du2"))
+    if (t->d2H_du2)
       checks.push_back(equality("throttle_d2H_du2", "control", "control_law.throttle.d2H_du2",
                                 "d2H/d" + ctx.throttle + "2" + a_note,
-                                {Huu.subs(astar), Huu_c, throttle_point(std::nan(""), false)}, law_field(*t, "d2H_du2"),
+                                {Huu.subs(astar), Huu_c, throttle_point(std::nan(""), false)}, t->d2H_du2->text,
                                 true, ctx.directions));
   }
 
@@ -559,7 +533,7 @@ class ControlFamily : public Family {
       c.exact = exact_equal(Hu_star.subs(u == interior), 0);
       c.pass = worst <= kTol || c.exact;
       if (!c.pass)
-        c.fail("control_law.throttle.interior = " + law_field(*t, "interior").get<std::string>() +
+        c.fail("control_law.throttle.interior = " + t->interior.text +
                " does not solve dH/d" + ctx.throttle + " = " + print(tidy(Hu_star)) +
                " = 0: at a sample point it gives " + ctx.throttle + " = " + num(wu) + " where dH/d" + ctx.throttle +
                " = " + num(wv) + ".");
@@ -572,23 +546,21 @@ class ControlFamily : public Family {
     auto& [t, u, eps, astar, Hu, Huu, Hu_star, Hu_c, Huu_c, interior, interior_c, interior_error] = parts;
     const int us = ctx.slot(ctx.throttle);
     Check c = start("throttle_law", "control", "random_points");
-    const json bounds = law_field(*t, "bounds");
-    const bool bounds_ok = bounds.is_array() && bounds.size() == 2 && bounds[0].is_number() && bounds[1].is_number() &&
-                           bounds[0].get<double>() == 0 && bounds[1].get<double>() == 1;
+    const std::vector<double>& bounds = t->bounds;
+    const bool bounds_ok = bounds.size() == 2 && bounds[0] == 0 && bounds[1] == 1;
     Compiled lo, hi;
     std::string error = interior_error;
     try {
       for (const bool lower_end : {true, false}) {
         const char* name = lower_end ? "dH_du_at_lower" : "dH_du_at_upper";
-        const json& f = law_field(*t, name);
+        const derivation::Expression& f = lower_end ? t->dH_du_at_lower : t->dH_du_at_upper;
         const std::string where = std::string("control_law.throttle.") + name;
-        if (!f.is_string()) throw std::invalid_argument(where + ": not an expression string");
-        (lower_end ? lo : hi) = ctx.compile(ctx.symbols.parse(f.get<std::string>(), where));
+        (lower_end ? lo : hi) = ctx.compile(ctx.symbols.parse(f.text, where));
       }
     } catch (const std::exception& e) {
       if (error.empty()) error = e.what();
     }
-    const std::string control = t->value("control", "");
+    const std::string& control = t->control;
     if (control != ctx.throttle) {
       c.fail("control_law.throttle.control is '" + control + "', expected '" + ctx.throttle +
              "' (the control of kind throttle).");

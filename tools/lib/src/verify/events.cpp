@@ -185,7 +185,7 @@ class EventFamily : public Family {
         k.fail("missing interior constraint " + e.psi_text[c_rows[j]] + " = 0 (" + where + ".psi[" +
                std::to_string(c_rows[j]) + "] at " + id + "); add it to shooting.equations.");
       checks.push_back(k);
-      if (const json* bound = equation_field(name, "inequality")) check_bound(name, *bound, nu[j]);
+      if (const auto* bound = inequality_of(name)) check_bound(name, *bound, nu[j]);
     }
   }
 
@@ -245,7 +245,7 @@ class EventFamily : public Family {
         return;
       }
       Check k = equality(cid, "events", label, "lambda_" + ctx.states[s] + "(t+) from " + jump_rule,
-                         {explicit_lp[s], ctx.compile(explicit_lp[s]), {}}, json(entry.text), false);
+                         {explicit_lp[s], ctx.compile(explicit_lp[s]), {}}, entry.text, false);
       if (!k.pass) {
         const Linear lc = linear_compare(explicit_lp[s], entry.expr, basis_rows, lm[s], true);
         std::string why = lc.text();
@@ -480,13 +480,12 @@ class EventFamily : public Family {
         if (std::find(ctx.t0_vars.begin(), ctx.t0_vars.end(), name) != ctx.t0_vars.end() && !vars.count(name))
           missing.push_back(name);
       }
-      const json& times = ctx.derivation["times"];
       if (!missing.empty() || !used) {
         c.fail("times.t0_expression depends on no shooting variable" +
                (missing.empty() ? std::string() : " (" + join(missing, ", ") + " is not one)") +
                ": a sliding departure adds one shooting variable, t0_frac (Rule 0).");
-      } else if (times.contains("tf") && times["tf"].is_number()) {
-        const double tof = times["tf"].get<double>() - times.value("t0", 0.0);
+      } else if (ctx.doc.times.tf) {
+        const double tof = *ctx.doc.times.tf - ctx.doc.times.t0;
         const Compiled gap = ctx.compile(ctx.t0_tf_expr - ctx.t0_expr);
         for (const auto& p : ctx.points)
           if (rel_diff(gap(p), tof) > 1e-9) {

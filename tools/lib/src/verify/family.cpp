@@ -20,14 +20,13 @@ Check Family::start(const std::string& id, const std::string& category, const st
 }
 
 Check Family::equality(const std::string& id, const std::string& category, const std::string& label,
-                       const std::string& expected_name, const Expected& expected, const json& given_text,
+                       const std::string& expected_name, const Expected& expected, const std::string& given_text,
                        bool diagnose, const std::vector<std::string>& forbidden) const {
   Check c = start(id, category, "random_points+exact");
   ex given;
   Compiled gc;
   try {
-    if (!given_text.is_string()) throw std::invalid_argument(label + ": not an expression string");
-    given = ctx.symbols.parse(given_text.get<std::string>(), label);
+    given = ctx.symbols.parse(given_text, label);
     gc = ctx.compile(given);
   } catch (const std::exception& e) {
     c.max_rel = 2;
@@ -62,25 +61,22 @@ Check Family::equality(const std::string& id, const std::string& category, const
     if (!t.empty()) diag.push_back(t);
   }
   c.fail(label + ": expected " + expected_name + " = " + print(tidy(expected.symbolic)) + ", got " +
-         given_text.get<std::string>() + (diag.empty() ? "" : "; " + join(diag, "; ")) + " (relative difference " +
+         given_text + (diag.empty() ? "" : "; " + join(diag, "; ")) + " (relative difference " +
          num(worst) + " at a sample point: " + num(we) + " expected, " + num(wg) + " given).");
   return c;
 }
 
-const json* Family::equation_field(const std::string& name, const std::string& key) const {
-  if (!ctx.derivation.contains("shooting") || !ctx.derivation["shooting"].is_object() ||
-      !ctx.derivation["shooting"].contains("equations"))
-    return nullptr;
-  for (const auto& eq : ctx.derivation["shooting"]["equations"])
-    if (eq.is_object() && eq.value("name", "") == name && eq.contains(key)) return &eq[key];
+const derivation::Inequality* Family::inequality_of(const std::string& name) const {
+  for (const auto& eq : ctx.doc.shooting.equations)
+    if (eq.name == name && eq.inequality) return &*eq.inequality;
   return nullptr;
 }
 
-void Family::check_bound(const std::string& name, const json& bound, const ex& nu) {
+void Family::check_bound(const std::string& name, const derivation::Inequality& bound, const ex& nu) {
   Check k = start("bound:" + name, "events", "structural");
   const std::string where = "shooting.equations[" + name + "].inequality";
-  const std::string multiplier = bound.is_object() ? bound.value("multiplier", "") : "";
-  if (!bound.is_object() || bound.value("sense", "") != "expression <= 0") {
+  const std::string& multiplier = bound.multiplier;
+  if (bound.sense != "expression <= 0") {
     k.fail(where + ".sense must be 'expression <= 0' (the bound psi <= 0, its multiplier >= 0 when active).");
   } else if (multiplier != print(nu)) {
     k.fail(where + ".multiplier = '" + multiplier + "' is not " + print(nu) + ", the multiplier of the row " + name +
@@ -89,7 +85,7 @@ void Family::check_bound(const std::string& name, const json& bound, const ex& n
     bool inactive_ok = false;
     std::string got = "(none)";
     try {
-      got = bound.at("inactive_expression").get<std::string>();
+      got = bound.inactive_expression.text;
       inactive_ok = (ctx.symbols.parse(got, where + ".inactive_expression") - nu).expand().is_zero();
     } catch (const std::exception&) {
     }

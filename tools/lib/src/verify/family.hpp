@@ -42,17 +42,17 @@ class Family {
   // recomputed `expected` at every sample point, or exactly; `diagnose` adds a term by term
   // comparison to the feedback, `forbidden` names symbols the given one must not depend on.
   Check equality(const std::string& id, const std::string& category, const std::string& label,
-                 const std::string& expected_name, const Expected& expected, const json& given_text, bool diagnose,
+                 const std::string& expected_name, const Expected& expected, const std::string& given_text, bool diagnose,
                  const std::vector<std::string>& forbidden = {}) const;
 
   // ----- the shooting equations as written
 
-  // The field `key` of the shooting equation `name` as written, or null.
-  const json* equation_field(const std::string& name, const std::string& key) const;
+  // The inequality of the shooting equation `name` as written, or null.
+  const derivation::Inequality* inequality_of(const std::string& name) const;
   // A bound psi_j <= 0 (the row `name`, multiplier nu): the solver makes it inactive (its equation
   // nu = 0) or active (psi_j = 0), so the inequality must name the row's own multiplier, and the
   // inactive equation must be that multiplier; the sense is psi_j <= 0 (nu >= 0 when active).
-  void check_bound(const std::string& name, const json& bound, const ex& nu);
+  void check_bound(const std::string& name, const derivation::Inequality& bound, const ex& nu);
   // The mismatch of `g` (compiled, or its values at the sample points) with k * `e` for the best
   // constant k != 0 (k from the point of largest |e|).
   double proportional_mismatch(const Compiled& e, const Compiled& g) const;

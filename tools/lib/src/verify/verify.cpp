@@ -14,12 +14,10 @@ using detail::Check;
 using io::json;
 
 // The verify artifact of the checks, in order: verdict, summary and the failures' feedback.
-json report(const json& derivation, const VerifyOptions& options, const std::vector<Check>& checks) {
+json report(const derivation::Document& derivation, const VerifyOptions& options, const std::vector<Check>& checks) {
   json doc = io::artifact_header("verify", "helios-verify", "builtin");
-  const json problem =
-      derivation.contains("problem") && derivation["problem"].is_object() ? derivation["problem"] : json::object();
-  doc["problem"] = {{"id", problem.value("id", "")}};
-  doc["derivation_producer"] = derivation.contains("producer") ? derivation["producer"] : json::object();
+  doc["problem"] = {{"id", derivation.problem_id}};
+  doc["derivation_producer"] = derivation.producer.is_null() ? json::object() : derivation.producer;
   doc["settings"] = {{"points", options.points}, {"seed", options.seed}, {"rel_tolerance", detail::kTol}};
   int passed = 0, failed = 0;
   json list = json::array();
@@ -47,7 +45,7 @@ json verify_derivation(const json& derivation, const VerifyOptions& options) {
   std::vector<Check> checks;
   for (auto* make : {&detail::control_family, &detail::boundary_family, &detail::event_family, &detail::shape_family})
     for (auto& c : make(ctx)->run()) checks.push_back(std::move(c));
-  return report(derivation, options, checks);
+  return report(ctx.doc, options, checks);
 }
 
 }  // namespace helios::verify

@@ -42,13 +42,21 @@ struct Units {
   double si_factor(const Unit& u) const { return to_si(1.0, u); }
 };
 
-// A state or parameter: its name, meaning, unit as written and as parsed, and (a parameter) value.
+// What a parameter is to the tools that read it: the runtime evaluates it (it has a source), it is
+// the exhaust velocity (the report's and the runtime's propellant), or a constant of the problem.
+// The artifact does not state the role: the reader tells it here, once, from the source and from
+// the meaning ("exhaust velocity ...", the words pmp writes; tools/lib/src/derivation/README.md).
+enum class Role { Constant, ExhaustVelocity, RuntimeEvaluated };
+
+// A state or parameter: its name, meaning, unit as written ("" when not given: dimensionless) and as
+// parsed, and (a parameter) value.
 struct Quantity {
   std::string name, meaning, unit_text;
   Unit unit;
   double value = 0;    // a parameter's normalized value (0 for a state)
   std::string source;  // a parameter the runtime evaluates: its source ("ephemeris:Mars:tf"), else ""
-  bool runtime_evaluated() const { return !source.empty(); }
+  Role role = Role::Constant;  // a parameter's (a state's is Constant)
+  bool runtime_evaluated() const { return role == Role::RuntimeEvaluated; }
 };
 
 class Reader {
@@ -60,7 +68,6 @@ class Reader {
   // checks the mathematics of a derivation, not how it names its units.
   explicit Reader(const io::json& derivation, const std::string& file = "derivation", bool parse_units = true);
 
-  const io::json& d;
   Units units;
   std::vector<Quantity> state_quantities, parameter_quantities;
   std::vector<std::string> states, costates, controls, parameters;
@@ -77,9 +84,12 @@ class Reader {
   symbolic::SymbolTable symbols;
 
   const Quantity& parameter(const std::string& name) const;
-  // The parameter whose meaning names it the exhaust velocity, checked to be a speed; null when
-  // the problem has none (a sail).
+  // The parameter of role ExhaustVelocity, checked to be a speed; null when the problem has none
+  // (a sail).
   const Quantity* exhaust_velocity() const;
+
+ protected:
+  const io::json& d;  // the artifact as read: only the reading (Reader, Document) walks it
 
  private:
   void read_names(const std::string& file);

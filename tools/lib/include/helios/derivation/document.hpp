@@ -1,0 +1,206 @@
+#pragma once
+// The derivation artifact as one typed document: what derivation::Reader reads (names, units,
+// symbols) and every section after them (times, dynamics, Hamiltonian, state and costate
+// equations, control law, constraints, interior events, event values, coasting target, shooting
+// system), read once and strictly from the JSON of schemas/derivation.schema.json. The verifier and
+// the code generator read this document, not the JSON: a field missing or of the wrong type is an
+// error "<file>: field <pointer> ..." here, which the llm backend returns to the model as feedback.
+//
+// Expressions stay text with the JSON pointer where they stand; parse() turns one into GiNaC over
+// the document's symbols. The verifier parses a claim itself, over its own larger table, because
+// a claim it cannot parse is a failed check there, not an unreadable document.
+#include <ginac/ginac.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "helios/derivation/reader.hpp"
+#include "helios/io/json_io.hpp"
+
+namespace helios::derivation {
+
+// An expression of the artifact: its text and its JSON pointer (e.g. /costate_odes/3/rhs).
+struct Expression {
+  std::string text, pointer;
+};
+
+// times: the initial time, the final one (fixed or an expression of a shooting variable), and a
+// sliding departure's t0 as an expression of one.
+struct Times {
+  double t0 = 0;
+  std::optional<double> tf, epoch_mjd2000;
+  std::string final_time, departure = "fixed";  // "fixed" or "free"
+  std::optional<Expression> tf_expression, t0_expression;
+  std::vector<double> tf_window, t0_window;  // empty when absent
+};
+
+// dynamics: f by state (in state order), the running cost L and the endpoint cost.
+struct Dynamics {
+  std::vector<Expression> state_rhs;
+  Expression running_cost, endpoint_cost;
+};
+
+// One entry of state_odes / costate_odes: the state or costate it is for, and its right-hand side.
+struct Ode {
+  std::string name;
+  Expression rhs;
+};
+
+
+// control_law.throttle: the switching function, dH/du at the bounds, the interior law.
+struct ThrottleLaw {
+  std::string control;
+  std::vector<double> bounds;
+  Expression switching_function, dH_du_at_lower, dH_du_at_upper, interior;
+  std::optional<Expression> d2H_du2;
+};
+
+// A named intermediate expression of the sail law.
+struct Definition {
+  std::string name;
+  Expression expression;
+};
+
+// control_law.direction: the controls it is for, named intermediate expressions and a* by control.
+struct DirectionLaw {
+  std::vector<std::string> controls;
+  std::vector<Definition> definitions;
+  std::vector<Expression> law;
+};
+
+// control_law.sail: n* by control, its definitions and its cone angle.
+struct SailLaw {
+  std::vector<std::string> controls;
+  std::vector<Definition> definitions;
+  Expression cone_angle;
+  std::vector<Expression> law;
+};
+
+struct ControlLaw {
+  std::optional<DirectionLaw> direction;
+  std::optional<ThrottleLaw> throttle;
+  std::optional<SailLaw> sail;
+  std::vector<std::string> other;  // members of another name: laws of controls no reader knows
+};
+
+// An endpoint constraint psi = 0 at t0 or tf with the multipliers nu of its rows.
+struct Constraint {
+  std::string id, kind, at;
+  std::vector<Expression> psi;
+  std::vector<std::string> multipliers;
+  io::json target;  // where the constraint takes its target from, as written (null when absent)
+};
+
+// One state's value after an interior event.
+struct StateMapEntry {
+  std::string state;
+  Expression expression;
+};
+
+// One costate just after an interior event: a new shooting variable or an expression.
+struct CostateMapEntry {
+  std::string costate;
+  std::optional<std::string> variable;
+  std::optional<Expression> expression;
+};
+
+// An interior event (events[]): its time, interior constraint psi with multipliers, and maps.
+struct Event {
+  std::string id, kind;
+  std::string time_symbol;
+  std::vector<double> window;
+  Expression time_expression;
+  double duration = 0;
+  std::vector<Expression> psi;
+  std::vector<std::string> multipliers;
+  std::vector<StateMapEntry> state_map;
+  std::vector<CostateMapEntry> costate_map;
+  io::json target;  // null when absent
+};
+
+// A value the runtime evaluates at an event (H just before or after, H at tf, ...).
+struct EventValue {
+  std::string name, meaning;
+  std::optional<std::string> kind, at;
+};
+
+// coast_dynamics: a coasting target's states and their uncontrolled dynamics.
+struct CoastDynamics {
+  std::vector<std::string> states;
+  std::vector<Expression> rhs;
+};
+
+// An inequality row of the shooting system: psi <= 0 with its multiplier; inactive, the row is
+// the multiplier = 0.
+struct Inequality {
+  std::string sense, multiplier;
+  Expression inactive_expression;
+  io::json rule;  // as written, null when absent
+  // Active, the bound holds a variable (an event's time fraction) at a value (the window's edge).
+  struct Held {
+    std::string variable;
+    double value = 0;
+  };
+  std::optional<Held> held_when_active;
+};
+
+struct ShootingVariable {
+  std::string name, meaning, role;  // role: "" when not given
+  double scale = 1;
+  std::vector<double> range;  // empty when not given
+};
+
+struct ShootingEquation {
+  std::string name, meaning, source;
+  Expression expression;
+  double scale = 1;
+  std::optional<Expression> alone_expression;
+  std::optional<Inequality> inequality;
+};
+
+struct Shooting {
+  std::vector<ShootingVariable> variables;
+  std::vector<ShootingEquation> equations;
+  const ShootingEquation* equation(const std::string& name) const;  // null when none is so named
+};
+
+// A body on a Keplerian orbit about the central body (bodies[]): normalized a and epoch, angles in rad.
+struct Body {
+  std::string name;
+  double epoch = 0, a = 0, e = 0, i_rad = 0, raan_rad = 0, argp_rad = 0, mean_anomaly_rad = 0;
+};
+
+class Document : public Reader {
+ public:
+  // Reads `derivation` strictly; `file` names it in the errors. parse_units as for Reader.
+  explicit Document(const io::json& derivation, const std::string& file = "derivation", bool parse_units = true);
+
+  std::string file;
+  std::string problem_id, objective;
+  io::json producer;  // as written: the verifier echoes it
+  double homotopy_start = 1;
+  std::vector<Body> bodies;
+  Times times;
+  Dynamics dynamics;
+  Expression hamiltonian;
+  std::vector<Ode> state_odes, costate_odes;
+  std::vector<StateMapEntry> initial_values;  // a state's value at t0, where a constraint fixes it
+  ControlLaw control_law;
+  std::vector<Constraint> constraints;
+  std::vector<Event> interior_events;
+  std::vector<EventValue> event_value_list;
+  std::optional<CoastDynamics> coast_dynamics;
+  Shooting shooting;
+
+  // `e` over the document's symbols; throws input_error "<file>: field <pointer>: cannot parse ...".
+  GiNaC::ex parse(const Expression& e) const;
+
+ private:
+  void read_sections();
+  void read_laws();
+  void read_events();
+  void read_shooting();
+};
+
+}  // namespace helios::derivation
