@@ -147,6 +147,10 @@ def s05h(s01):
             params.append({"name": f"{prefix}_{k}", "meaning": f"{k} of the {prefix} state", "unit": "normalized",
                            "value": v})
     d["parameters"] = params
+    d["terms"] = [{"name": "two_body", "kind": "force", "parameters": ["mu"]},
+                  {"name": "j2", "kind": "force", "parameters": ["J2", "R_E"]},
+                  {"name": "thrust", "kind": "force", "parameters": ["Tmax", "c"]},
+                  {"name": "fuel", "kind": "cost", "parameters": ["Tmax", "c"]}]
     grav = j2_gravity(RX, RY, RZ)
     thrust = [TMAX * U * a / M for a in (AX, AY, AZ)]
     f = VEL + [grav[k] + thrust[k] for k in range(3)] + [-TMAX * U / C]
@@ -257,6 +261,9 @@ def s11h():
         "controls": [{"name": f"n{k}", "meaning": f"sail normal {k} (unit, n.r_hat >= 0)", "kind": "sail_normal"}
                      for k in AXES],
         "parameters": params,
+        "terms": [{"name": "two_body", "kind": "force", "parameters": ["mu"]},
+                  {"name": "solar_sail", "kind": "force", "parameters": ["a_c", "r_ref"]},
+                  {"name": "time", "kind": "cost", "parameters": []}],
         "homotopy": {"symbol": "eps", "start": 0.0, "end": 0.0, "meaning": "unused: the sail law is continuous"},
         "multiplier": "lambda0",
         "dynamics": {"state_rhs": [g(e) for e in f], "running_cost": "1", "endpoint_cost": "0"},

@@ -1,23 +1,43 @@
 #include "helios/codegen/generate.hpp"
 
+#include <algorithm>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "context.hpp"
+#include "helios/derivation/terms.hpp"
 #include "helios/io/embedded.hpp"
 #include "helios/solve/runtime_files.hpp"
 
 namespace helios::codegen {
 using namespace detail;
 
+namespace {
+
+// Whether the derivation's listed terms are the template's: its force terms exactly, and a cost
+// term the template's running cost stands for. A derivation that lists no terms (an llm's
+// may not) is matched by its expressions alone, as template_matches compares them anyway.
+bool template_terms_match(const json& derivation, const json& model) {
+  const auto terms = derivation::read_terms(derivation, "derivation");
+  if (!terms) return true;
+  std::vector<std::string> forces, costs;
+  for (const auto& t : *terms) (t.kind == "force" ? forces : costs).push_back(t.name);
+  const auto allowed = model.at("cost_terms").get<std::vector<std::string>>();
+  return forces == model.at("terms").get<std::vector<std::string>>() && costs.size() == 1 &&
+         std::find(allowed.begin(), allowed.end(), costs[0]) != allowed.end();
+}
+
+}  // namespace
+
 GeneratedProgram generate(const json& derivation, const GenOptions& options) {
   Context c(derivation);
   GeneratedProgram g;
   std::string dynamics;
   const json model = json::parse(embedded::file("templates/modules/dynamics_cartesian_low_thrust.json"));
-  if (options.modules == ModulePolicy::Auto && template_matches(c, model)) {
+  if (options.modules == ModulePolicy::Auto && template_terms_match(derivation, model) &&
+      template_matches(c, model)) {
     dynamics = embedded::file("templates/modules/dynamics_cartesian_low_thrust.cpp");
     g.template_modules = {"DYNAMICS", "SWITCH"};
   } else {

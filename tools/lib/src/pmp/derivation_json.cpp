@@ -183,6 +183,17 @@ json bodies_json(const std::vector<OrbitBody>& orbit_bodies) {
   return bodies;
 }
 
+// The terms whose sums are f and L: name, kind, the parameters each uses and its details.
+json terms_json(const std::vector<TermListing>& terms) {
+  json list = json::array();
+  for (const auto& t : terms) {
+    json entry = {{"name", t.name}, {"kind", t.kind}, {"parameters", t.parameters}};
+    for (const auto& [key, value] : t.details.items()) entry[key] = value;
+    list.push_back(entry);
+  }
+  return list;
+}
+
 // The problem as the derivation sees it: states with their costates, controls, parameters,
 // the dynamics and the bodies the runtime propagates.
 void problem_sections(const Derivation& d, json& doc) {
@@ -200,6 +211,7 @@ void problem_sections(const Derivation& d, json& doc) {
   for (const auto& c : p.controls) controls.push_back({{"name", c.name}, {"meaning", c.meaning}, {"kind", c.kind}});
   doc["controls"] = controls;
   doc["parameters"] = named_list(p.parameters, true);
+  doc["terms"] = terms_json(p.terms);
   doc["homotopy"] = homotopy_json(d.smoothed);
   doc["multiplier"] = "lambda0";
   doc["dynamics"] = {{"state_rhs", texts(p.f)},

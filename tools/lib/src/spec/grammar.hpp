@@ -181,6 +181,8 @@ struct Builder {
   void on_j2(const std::smatch&);
   void on_accel(const std::smatch& m);
   static json user_acceleration(const std::string& name, const std::string& list, const std::string& unit);
+  // ---- a third body perturbing the spacecraft (third_body.cpp) ----
+  void on_third_body(const std::smatch& m);
   void on_initial_mass(const std::smatch&);
   void on_fuel(const std::smatch&);
   void on_time(const std::smatch&);

@@ -15,6 +15,7 @@ void Builder::handle(const std::string& s) {
       {re(R"(The dynamics include (?:a|an) (?:perturbing|additional) acceleration ([A-Za-z][A-Za-z0-9_]*) of \[(.+)\]\s*()" +
           kUnit + ")"),
        &Builder::on_accel},
+      {re(R"((?:The )?([A-Z][A-Za-z0-9]*) perturbs the spacecraft\b(.*))"), &Builder::on_third_body},
       {re(R"(The (?:total )?time of flight is free,? (?:at most )" + kQuantity + "|between " + kQuantity + " and " +
           kQuantity + ")"),
        &Builder::on_free_tof},

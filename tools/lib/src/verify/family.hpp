@@ -111,5 +111,7 @@ std::unique_ptr<Family> control_family(const Context& ctx);
 std::unique_ptr<Family> boundary_family(const Context& ctx);
 std::unique_ptr<Family> event_family(const Context& ctx);
 std::unique_ptr<Family> shape_family(const Context& ctx);
+// The dynamics and running cost as the sums of their listed terms (terms.cpp).
+std::unique_ptr<Family> terms_family(const Context& ctx);
 
 }  // namespace helios::verify::detail

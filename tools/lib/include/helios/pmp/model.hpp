@@ -86,6 +86,14 @@ struct SailModel {
   std::vector<std::string> velocity;  // the states the acceleration enters
 };
 
+// One term of the dynamics (kind "force") or of the running cost ("cost") as the derivation
+// lists it: its name, the parameters it uses, and what else a reader needs to recompute it.
+struct TermListing {
+  std::string name, kind;
+  std::vector<std::string> parameters;
+  io::json details;
+};
+
 struct Problem {
   std::string id, dynamics_model, objective;
   Units units;
@@ -94,6 +102,7 @@ struct Problem {
   std::vector<Control> controls;
   std::string propulsion;                  // low_thrust | solar_sail
   std::vector<std::string> perturbations;  // names of the accelerations added to two-body gravity
+  std::vector<TermListing> terms;          // the forces, then the costs, whose sums are f and L
   std::vector<GiNaC::ex> f;                // state rhs, one per state (may contain the time symbol t)
   SailModel sail;                          // when propulsion is solar_sail
   std::vector<GiNaC::ex> coast_f;          // unpowered r, v dynamics in the gravity field (coasting targets)

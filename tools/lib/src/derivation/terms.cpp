@@ -1,0 +1,84 @@
+// Reads the derivation's "terms" listing into typed entries, refusing what a reader cannot use.
+#include "helios/derivation/terms.hpp"
+
+#include <algorithm>
+
+#include "helios/io/error.hpp"
+
+namespace helios::derivation {
+namespace {
+
+using io::json;
+
+bool known(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// The strings of the array field `key` of `entry` (empty when it is absent).
+std::vector<std::string> strings(const json& entry, const std::string& key, const std::string& at) {
+  std::vector<std::string> out;
+  if (!entry.contains(key)) return out;
+  if (!entry[key].is_array()) throw helios::input_error(at + "." + key + ": not an array");
+  for (const auto& s : entry[key]) {
+    if (!s.is_string()) throw helios::input_error(at + "." + key + ": " + s.dump() + " is not a string");
+    out.push_back(s.get<std::string>());
+  }
+  return out;
+}
+
+Term read_term(const json& entry, const std::string& at) {
+  if (!entry.is_object()) throw helios::input_error(at + ": not an object");
+  const auto text = [&](const std::string& key) {
+    if (!entry.contains(key)) return std::string();
+    if (!entry[key].is_string()) throw helios::input_error(at + "." + key + ": " + entry[key].dump() + " is not a string");
+    return entry[key].get<std::string>();
+  };
+  Term t;
+  t.name = text("name");
+  t.kind = text("kind");
+  const bool force = known(force_term_names(), t.name), cost = known(cost_term_names(), t.name);
+  if (!force && !cost)
+    throw helios::input_error(at + ".name: unknown term '" + t.name + "' (known: two_body, j2, solar_sail, thrust, " +
+                          "user_acceleration, third_body, fuel, time, initial_mass)");
+  if (t.kind != (force ? "force" : "cost"))
+    throw helios::input_error(at + ".kind: '" + t.kind + "', but " + t.name + " is a " + (force ? "force" : "cost"));
+  t.parameters = strings(entry, "parameters", at);
+  t.label = text("label");
+  t.acceleration = strings(entry, "acceleration", at);
+  t.body = text("body");
+  if (t.name == "user_acceleration" && t.acceleration.size() != 3)
+    throw helios::input_error(at + ".acceleration: a user acceleration needs its three normalized components");
+  if (t.name == "third_body" && t.body.empty()) throw helios::input_error(at + ".body: a third body needs its name");
+  return t;
+}
+
+}  // namespace
+
+const std::vector<std::string>& force_term_names() {
+  static const std::vector<std::string> names = {"two_body", "j2",      "solar_sail",
+                                                 "thrust",   "user_acceleration", "third_body"};
+  return names;
+}
+
+const std::vector<std::string>& cost_term_names() {
+  static const std::vector<std::string> names = {"fuel", "time", "initial_mass"};
+  return names;
+}
+
+std::optional<std::vector<Term>> read_terms(const json& derivation, const std::string& where) {
+  if (!derivation.is_object() || !derivation.contains("terms")) return std::nullopt;
+  const json& list = derivation["terms"];
+  if (!list.is_array()) throw helios::input_error(where + ": field terms: not an array");
+  std::vector<Term> out;
+  for (std::size_t i = 0; i < list.size(); ++i)
+    out.push_back(read_term(list[i], where + ": field terms[" + std::to_string(i) + "]"));
+  return out;
+}
+
+std::string term_names(const std::vector<Term>& terms) {
+  std::string out;
+  for (const auto& t : terms) out += (out.empty() ? "" : ", ") + t.name;
+  return out;
+}
+
+}  // namespace helios::derivation

@@ -1,0 +1,88 @@
+#pragma once
+// The dynamics and the running cost as lists of terms (internal to tools/lib/src/pmp), in the
+// manner of Orekit's control/indirect adjoint terms: each force term declares the states,
+// controls and parameters it needs (names, meanings, units, normalized values) and its
+// contribution to f; each cost term its parameters and its contribution to the running cost L.
+// model.cpp builds the list from the spec and sums the contributions. A new force is one new
+// file here, plus its recomputation in verify/terms.cpp.
+#include <ginac/ginac.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "helios/io/json_io.hpp"
+#include "helios/pmp/model.hpp"
+
+namespace helios::pmp::terms {
+
+using GiNaC::ex;
+using io::json;
+
+// What a term sees of the spacecraft: position, velocity and the mass the accelerations divide
+// by (1 for a sail, which has no mass state), as symbols of the problem.
+struct Frame {
+  std::vector<ex> r, v;
+  ex mass;
+};
+
+class ForceTerm {
+ public:
+  virtual ~ForceTerm() = default;
+  // Its name in the derivation's "terms" listing (two_body, j2, thrust, ...).
+  virtual std::string name() const = 0;
+  // The states, controls and parameters it adds, in the order they are registered (that order
+  // fixes the text of every derived expression).
+  virtual std::vector<Named> states() const { return {}; }
+  virtual std::vector<Control> controls() const { return {}; }
+  virtual std::vector<Named> parameters() const = 0;
+  // Its acceleration, added to the velocity states' rates; may record what the control law
+  // needs of it in p (the sail).
+  virtual std::vector<ex> acceleration(Problem& p, const Frame& x) const = 0;
+  // Its contribution to the mass rate (0 unless it burns propellant).
+  virtual ex mass_rate(Problem&) const { return 0; }
+  // Whether it belongs to the natural field a coasting target also moves in.
+  virtual bool field() const { return false; }
+  // What the derivation lists beyond its name and parameters (a user acceleration's expression,
+  // a third body's name).
+  virtual json details(const Problem&) const { return json::object(); }
+};
+
+class CostTerm {
+ public:
+  virtual ~CostTerm() = default;
+  virtual std::string name() const = 0;
+  // The names of the (already declared) parameters it uses.
+  virtual std::vector<std::string> parameters() const = 0;
+  // Its contribution to the running cost L (with the homotopy parameter eps).
+  virtual ex running_cost(Problem& p) const = 0;
+};
+
+using ForceList = std::vector<std::unique_ptr<ForceTerm>>;
+
+// The force terms, one constructor each (its file): the spec's values in the units U.
+std::unique_ptr<ForceTerm> two_body(const json& central, const Units& U);
+std::unique_ptr<ForceTerm> j2(const json& central, const Units& U);
+std::unique_ptr<ForceTerm> solar_sail(const json& spacecraft, const Units& U);
+std::unique_ptr<ForceTerm> thrust(const json& spacecraft, const Units& U, const std::string& mass_unit);
+std::unique_ptr<ForceTerm> user_acceleration(const json& perturbation);
+std::unique_ptr<ForceTerm> third_body(const json& perturbation, const json& central, const Units& U);
+
+// The cost terms.
+std::unique_ptr<CostTerm> fuel_cost();
+std::unique_ptr<CostTerm> time_cost();
+std::unique_ptr<CostTerm> initial_mass_cost();
+
+// The listing of one term in the derivation: name, kind (force | cost), the parameters it uses.
+TermListing listing(const std::string& name, const std::string& kind, const std::vector<std::string>& parameters,
+                    const json& details = json::object());
+
+// The unit of an acceleration and of a gravitational parameter in the units U.
+inline std::string acceleration_unit(const Units& U) { return U.length_name + "/" + U.time_name + "^2"; }
+inline std::string mu_unit(const Units& U) { return U.length_name + "^3/" + U.time_name + "^2"; }
+// A gravitational parameter [km^3/s^2] in the units U.
+inline double normalized_mu(double mu_km3_s2, const Units& U) {
+  return mu_km3_s2 * U.time_s * U.time_s / (U.length_km * U.length_km * U.length_km);
+}
+
+}  // namespace helios::pmp::terms
