@@ -30,7 +30,7 @@ GeneratedProgram generate(const json& derivation, const GenOptions& options) {
   g.generated_modules.push_back("SOLVE");
   g.source = assemble(derivation,
                       dynamics + "\n" + (jacobian ? generated_jacobians(c) + "\n" : std::string()) +
-                          residual_module(c, jacobian) + "\n" + solve_module(c) + "\n",
+                          residual_module(c, jacobian) + "\n" + solve_module(c) + "\n" + module_table(c, jacobian) + "\n",
                       "builtin");
   return g;
 }
@@ -41,7 +41,9 @@ std::string problem_block(const json& derivation) {
 }
 
 std::string runtime_header() {
-  return embedded::file("templates/runtime/helios_runtime.hpp");
+  // The public header's three parts, in the order it includes them (what a program sees).
+  return embedded::file("templates/runtime/runtime_records.hpp") + embedded::file("templates/runtime/runtime_calls.hpp") +
+         embedded::file("templates/runtime/module_interface.hpp");
 }
 
 namespace {

@@ -153,7 +153,7 @@ std::string ShootingFunction::equation_code(std::size_t i, const std::string& fi
   if (!eqs_[i].contains("inequality")) return code;
   int bound = 0;
   for (std::size_t j = 0; j < i; ++j) bound += eqs_[j].contains("inequality") ? 1 : 0;
-  return "bound_row(" + std::to_string(bound) + ", " + code + ", " +
+  return "bound_row(prop, " + std::to_string(bound) + ", " + code + ", " +
          body_.cpp(eqs_[i].at("inequality").at("inactive_expression"), where + "/inequality/inactive_expression") + ")";
 }
 
