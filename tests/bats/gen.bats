@@ -168,6 +168,20 @@ syntax_check() {
   [[ $output == *"the problem has a throttle but the table names no throttle_slopes"* ]]
 }
 
+@test "gen: a module table without shooting_legs (events) or coast_dynamics (coasting target) fails to compile naming it" {
+  local id entry need
+  for id in S04:shooting_legs:events S06:coast_dynamics:"a coasting target"; do
+    IFS=: read -r id entry need <<<"$id"
+    "$BIN/helios-parse" "$ROOT/scenarios/$id/problem.txt" -o "$id.spec.json"
+    "$BIN/helios-derive" "$id.spec.json" -o "$id.derivation.json"
+    "$BIN/helios-gen" "$id.derivation.json" -o "$id.cpp"
+    grep -q "^  t.$entry = &$entry;$" "$id.cpp"
+    grep -v "^  t.$entry = &$entry;$" "$id.cpp" >"$id.lacking.cpp"
+    run -1 syntax_check "$id.lacking.cpp"
+    [[ $output == *"the problem has $need but the table names no $entry"* ]]
+  done
+}
+
 @test "gen: a module table naming a module the program does not define fails to link naming it" {
   s01_derivation
   run -0 "$BIN/helios-gen" derivation.json -o shoot.cpp
