@@ -23,7 +23,7 @@ std::string module_table(Context& c, bool jacobian) {
   entry(jacobian, "dynamics_jacobian");
   entry(jacobian, "direction_jacobian");
   entry(jacobian && throttle, "throttle_slopes_jacobian");
-  return "namespace helios_rt {\n\n"
+  return "namespace helios_rt {\n"
          "// The optional modules this program defines (helios_runtime.hpp's ModuleTable): the runtime calls\n"
          "// them only through kModules, and HELIOS_MODULE_TABLE refuses a table without what the problem needs.\n"
          "constexpr ModuleTable kModuleTable = [] {\n"
@@ -31,7 +31,7 @@ std::string module_table(Context& c, bool jacobian) {
          entries +
          "  return t;\n"
          "}();\n"
-         "HELIOS_MODULE_TABLE(kModuleTable);\n\n"
+         "HELIOS_MODULE_TABLE(kModuleTable);\n"
          "}  // namespace helios_rt\n";
 }
 

@@ -37,10 +37,10 @@ std::string problem_block(Context& c) {
     << "constexpr int kThrottleIndex = " << c.throttle_index << ";\n"
     << "constexpr int kNumVars = " << d.at("shooting").at("variables").size() << ";\n"
     << "constexpr int kMassIndex = " << index_of(c.states, "m") << ";\n"
-    << "// What the module table must name (helios_runtime.hpp's HELIOS_MODULE_TABLE): shooting_legs,\n"
-    << "// coast_dynamics.\n"
-    << "constexpr bool kHasEvents = " << (d.value("events", json::array()).empty() ? "false" : "true") << ";\n"
-    << "constexpr bool kCoastingTarget = " << (d.contains("coast_dynamics") ? "true" : "false") << ";\n"
+    << "constexpr bool kHasEvents = " << (d.value("events", json::array()).empty() ? "false" : "true")
+    << ";  // the module table names shooting_legs\n"
+    << "constexpr bool kCoastingTarget = " << (d.contains("coast_dynamics") ? "true" : "false")
+    << ";  // the module table names coast_dynamics\n"
     << "// The objective: the propellant (minimum fuel or minimum initial mass), else minimum time.\n"
     << "constexpr bool kMinimumFuel = " << (d.at("problem").value("objective", "") != "minimum_time" ? "true" : "false")
     << ";\n"
