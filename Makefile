@@ -96,7 +96,8 @@ $(TOOLS_STAMP): $(BUILD)/build.ninja $(TOOL_SOURCES)
 # changes only when the tool's bytes do: a rebuild that leaves a tool the same (a touched source,
 # an edit of another tool) re-runs nothing it made. helios-gen (which names the runtime in
 # shoot.cpp) and helios-solve (which links it) stamp the prebuilt runtime's bytes too.
-RUNTIME_FILES := $(BUILD)/include/helios-runtime/helios_runtime.hpp $(BUILD)/lib/libhelios-runtime.a
+RUNTIME_FILES := $(addprefix $(BUILD)/include/helios-runtime/,helios_runtime.hpp runtime_records.hpp runtime_calls.hpp \
+  module_interface.hpp) $(BUILD)/lib/libhelios-runtime.a
 $(BUILD)/stamps/helios-%: $(TOOLS_STAMP)
 	@mkdir -p $(@D)
 	@cat $(BIN)/helios-$* $(if $(filter gen solve,$*),$(RUNTIME_FILES)) | sha256sum >$@.new && \

@@ -120,58 +120,61 @@ struct PassLog {
   }
 };
 
-// The bounds' values psi at x (eps = 0).
-inline std::vector<double> bound_values(const Settings& s, const std::vector<double>& x) {
+// The values psi at x (eps = 0) of the `count` bounds.
+inline std::vector<double> bound_values(const Settings& s, const std::vector<double>& x, std::size_t count) {
   Propagator prop(s);
   std::vector<double> F(kProblem.num_vars);
   shooting_function(x.data(), 0.0, prop, F.data());
-  return bound_state().value;
+  std::vector<double> values = prop.bound_values;
+  values.resize(count, 0.0);
+  return values;
 }
 
 // The passes after pass 1, from its converged solution r (every bound inactive): while r violates
 // an inactive bound (psi > 0) or has a negative multiplier on an active one, the next pass makes
 // the violated bounds active, or else drops the active bound with the most negative multiplier,
 // and solves again: warm from the last solution (bound_homotopy), else (when `cold` allows) from
-// cold. Never the same set twice. True when a consistent set was reached (r then holds its
-// solution, bound_state().active the set); `steps` lists the changes ("+name", "-name").
+// cold. Never the same set twice. Every pass solves with its active set in s.active_bounds. True
+// when a consistent set was reached (r then holds its solution, s.active_bounds the set); `steps`
+// lists the changes ("+name", "-name").
 template <class Solve, class Admissible>
-bool active_set_passes(const Settings& s, const std::vector<Bound>& bounds, Result& r, bool cold, Solve&& solve,
+bool active_set_passes(Settings& s, const std::vector<Bound>& bounds, Result& r, bool cold, Solve&& solve,
                        Admissible&& admissible, PassLog& log, std::vector<std::string>& steps) {
-  BoundState& state = bound_state();
-  state.active.assign(bounds.size(), 0);
-  std::vector<std::vector<char>> tried{state.active};
+  std::vector<char>& active = s.active_bounds;
+  active.assign(bounds.size(), 0);
+  std::vector<std::vector<char>> tried{active};
   for (int pass = 2;; ++pass) {
-    const std::vector<double> values = bound_values(s, r.x);
-    std::vector<char> next = state.active;
+    const std::vector<double> values = bound_values(s, r.x, bounds.size());
+    std::vector<char> next = active;
     int drop = -1;
     for (std::size_t k = 0; k < bounds.size(); ++k) {
-      if (!state.active[k] && values[k] > 0) next[k] = 1;
-      if (state.active[k] && r.x[bounds[k].multiplier] < 0 &&
+      if (!active[k] && values[k] > 0) next[k] = 1;
+      if (active[k] && r.x[bounds[k].multiplier] < 0 &&
           (drop < 0 || r.x[bounds[k].multiplier] < r.x[bounds[drop].multiplier]))
         drop = static_cast<int>(k);
     }
-    if (next == state.active && drop >= 0) next[drop] = 0;
-    if (next == state.active) return true;  // consistent: the inactive bounds hold, the active ones push
+    if (next == active && drop >= 0) next[drop] = 0;
+    if (next == active) return true;  // consistent: the inactive bounds hold, the active ones push
     if (std::find(tried.begin(), tried.end(), next) != tried.end()) {
-      r.status = "not_converged";
+      r.status = Status::kNotConverged;
       r.detail = "the active set of the bounds cycles";
       return false;
     }
     tried.push_back(next);
     for (std::size_t k = 0; k < bounds.size(); ++k)
-      if (next[k] != state.active[k]) steps.push_back((next[k] ? "+" : "-") + bounds[k].name);
-    state.active = next;
+      if (next[k] != active[k]) steps.push_back((next[k] ? "+" : "-") + bounds[k].name);
+    active = next;
     Result warm;
     warm.x = r.x;
     warm.x_start = r.x_start;
     warm.method = "warm from pass " + std::to_string(pass - 1) + " by a homotopy on the bounds' rows";
     const auto pushes = [&](const double* x) {
       for (std::size_t k = 0; k < bounds.size(); ++k)
-        if (state.active[k] && x[bounds[k].multiplier] < 0) return false;
+        if (active[k] && x[bounds[k].multiplier] < 0) return false;
       return true;
     };
     if (bound_homotopy(s, warm, admissible, pushes)) {
-      warm.status = "converged";
+      warm.status = Status::kConverged;
       warm.eps = 0;
       warm.attempts = 1;
       r = warm;
@@ -181,13 +184,13 @@ bool active_set_passes(const Settings& s, const std::vector<Bound>& bounds, Resu
     } else {
       warm.method += " (did not converge)";
       log.add(warm, pass);
-      r.status = "not_converged";
+      r.status = Status::kNotConverged;
       r.detail = "the warm homotopy on the bounds' rows did not converge";
       return false;
     }
     log.add(r, pass);
     r.passes = pass;
-    if (r.status != "converged") return false;
+    if (r.status != Status::kConverged) return false;
   }
 }
 
@@ -218,7 +221,7 @@ inline std::vector<std::size_t> pass_one_starts(const Settings& s, Result& r) {
 
 // What every pass tried did, into the result r of the last: the counts and steps summed, the
 // passes' methods with the active-set changes that led to r (`steps`), and each bound's report
-// (`first`: its values after pass 1; the active set is bound_state()'s).
+// (`first`: its values after pass 1; the active set is s.active_bounds).
 inline void record_passes(const Settings& s, const std::vector<Bound>& bounds, const std::vector<double>& first,
                           const PassLog& log, const std::vector<std::string>& steps, Result& r) {
   r.attempts = log.attempts;
@@ -234,10 +237,10 @@ inline void record_passes(const Settings& s, const std::vector<Bound>& bounds, c
     for (const auto& m : log.methods) each += (each.empty() ? "" : "; ") + m;
     r.method = std::to_string(r.passes) + " passes over the bounds' active set (" + changes + "): " + each;
   }
-  const bool converged = r.status == "converged";
-  const std::vector<double> last = converged ? bound_values(s, r.x) : first;
+  const bool converged = r.status == Status::kConverged;
+  const std::vector<double> last = converged ? bound_values(s, r.x, bounds.size()) : first;
   for (std::size_t k = 0; k < bounds.size(); ++k) {
-    const bool active = bound_state().active[k] != 0;
+    const bool active = s.active_bounds[k] != 0;
     const double nu = converged ? r.x[bounds[k].multiplier] : 0.0;
     r.bounds.push_back({bounds[k].name, bounds[k].meaning, first[k], active, last[k], nu});
   }
@@ -252,20 +255,19 @@ inline void record_passes(const Settings& s, const std::vector<Bound>& bounds, c
 // best one with them. The best consistent result is the solution. Only when no warm start
 // gets there do the passes run again from pass 1's solution, now with a cold solve where the warm
 // one fails.
-Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, const Solve& solve,
+Result two_pass_solve(const Settings& given, const std::vector<Bound>& bounds, const Solve& solve,
                       const Admissible& admissible) {
-  BoundState& state = bound_state();
-  state.active.assign(bounds.size(), 0);
-  state.value.assign(bounds.size(), 0.0);
+  Settings s = given;  // its active_bounds: the active set each pass solves with
+  s.active_bounds.assign(bounds.size(), 0);
   PassLog log;
   std::vector<std::string> steps;  // the active-set changes that led to the solution
   Result r = solve(s);
   log.add(r, 1);
   std::vector<double> first(bounds.size(), 0.0);
   bool consistent = false;
-  std::vector<char> final_set = state.active;
-  if (r.status == "converged") {
-    first = bound_values(s, r.x);
+  std::vector<char> final_set = s.active_bounds;
+  if (r.status == Status::kConverged) {
+    first = bound_values(s, r.x, bounds.size());
     std::vector<Extremal>& extremals = r.search.extremals;
     const std::vector<std::size_t> order = pass_one_starts(s, r);
     Result best = r;
@@ -287,7 +289,7 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, const
         best_objective = o.bounded_objective;
         best = from;
         best_from = static_cast<int>(i);
-        final_set = state.active;
+        final_set = s.active_bounds;
         steps = changes;
         consistent = true;
       }
@@ -297,7 +299,7 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, const
       best = r;
       steps.clear();
       consistent = active_set_passes(s, bounds, best, true, solve, admissible, log, steps);
-      final_set = state.active;
+      final_set = s.active_bounds;
     }
     SearchRecord record = std::move(r.search);
     r = best;
@@ -308,11 +310,11 @@ Result two_pass_solve(const Settings& s, const std::vector<Bound>& bounds, const
                         std::to_string(r.search.extremals.size()) + " distinct extremals of pass 1";
     }
     if (!consistent) {
-      r.status = "not_converged";
+      r.status = Status::kNotConverged;
       if (r.detail.empty()) r.detail = "no pass over the bounds' active set converged";
     }
   }
-  state.active = final_set;
+  s.active_bounds = final_set;
   record_passes(s, bounds, first, log, steps, r);
   return r;
 }

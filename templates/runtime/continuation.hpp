@@ -163,7 +163,7 @@ class EventContinuation {
       std::vector<T> xx, FF(N);
       expand(z, xx);
       for (int pass = 0; pass <= nev_; ++pass) {
-        shooting_legs(xx.data(), e, p, FF.data(), static_cast<const LegsOf<T>*>(nullptr));
+        legs_function(xx.data(), e, p, FF.data(), static_cast<const LegsOf<T>*>(nullptr));
         bool carried = false;
         for (const auto& ev : plan_.events)
           for (const auto& [v, row] : ev.costates) {
@@ -414,7 +414,7 @@ class EventContinuation {
       }
       if (converged && has_parameters_ && at_pole(y)) converged = false;
       if (converged) {
-        r_.status = "converged";
+        r_.status = Status::kConverged;
         r_.method = std::string("events off, then continuation onto the events' targets") +
                     (has_parameters_ ? ", then their parameters" : "") +
                     ", then eps continuation, then single shooting";

@@ -41,7 +41,7 @@ inline double full_mass_flow() {
 // the throttle: w lambda0 (Tmax/c)(1 - eps + 2 eps u) more (w = mult.fuel_weight, 0 in the
 // problem itself).
 inline void slopes(const double* y, const Multipliers& mult, double& s0, double& s1) {
-  throttle_slopes(y, mult, s0, s1);
+  kModules.throttle_slopes(y, mult, s0, s1);
   if (mult.fuel_weight != 0) {
     const double price = mult.fuel_weight * mult.lambda0 * full_mass_flow();
     s0 += price * (1 - mult.eps);
@@ -52,7 +52,7 @@ inline void slopes(const double* y, const Multipliers& mult, double& s0, double&
 // Their derivatives in z = (y, lambda0) (the JACOBIAN module's throttle_slopes_jacobian), the
 // companion's price in the lambda0 column.
 inline void slopes_jacobian(const double* y, const Multipliers& mult, double* d0, double* d1) {
-  throttle_slopes_jacobian(y, mult, d0, d1);
+  kModules.throttle_slopes_jacobian(y, mult, d0, d1);
   if (mult.fuel_weight != 0) {
     const double price = mult.fuel_weight * full_mass_flow();
     d0[ny()] += price * (1 - mult.eps);

@@ -41,17 +41,14 @@ inline std::mt19937_64 start_generator(unsigned seed, int k, std::uint64_t strea
   return std::mt19937_64(z ^ (z >> 31));
 }
 
-// Runs work(k) for k = 0 .. n-1 on up to `threads` threads, each index once. The active set of
-// the bounds is thread-local: each worker starts with the caller's. The first exception a work
-// item throws stops the others' next items and is rethrown here.
+// Runs work(k) for k = 0 .. n-1 on up to `threads` threads, each index once. The first exception
+// a work item throws stops the others' next items and is rethrown here.
 template <class Work>
 void parallel_for(int n, int threads, Work&& work) {
   std::atomic<int> next{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
-  const BoundState bounds = bound_state();
-  const auto loop = [&](bool worker) {
-    if (worker) bound_state() = bounds;
+  const auto loop = [&] {
     for (int k; (k = next++) < n;) {
       try {
         work(k);
@@ -65,12 +62,12 @@ void parallel_for(int n, int threads, Work&& work) {
   std::vector<std::thread> pool;
   for (int t = 1; t < std::min(threads, n); ++t) {
     try {
-      pool.emplace_back(loop, true);
+      pool.emplace_back(loop);
     } catch (const std::system_error&) {
       break;  // no more threads to be had (a process limit): the others share the work
     }
   }
-  loop(false);
+  loop();
   for (auto& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
 }

@@ -20,7 +20,7 @@ bool join_legs(const Settings& s, std::vector<double> x, const std::vector<doubl
   const auto multiple = [N](const auto* z, double eps, Propagator& prop, auto* F) {
     using T = std::remove_cv_t<std::remove_pointer_t<decltype(z)>>;
     const LegsOf<T> legs{-1, z + N, F + N};
-    shooting_legs(z, eps, prop, F, &legs);
+    legs_function(z, eps, prop, F, &legs);
   };
   Shooter shooter(s, function_on_either_scalar(size, multiple));
   std::vector<double> z(x);
@@ -31,7 +31,7 @@ bool join_legs(const Settings& s, std::vector<double> x, const std::vector<doubl
     x.assign(z.begin(), z.begin() + N);
     int info = 0;
     if (homotopy_step(single, x, 0.0, s.final_residual, r, admissible, info, res)) {
-      r.status = "converged";
+      r.status = Status::kConverged;
       r.method = "legs, then multiple shooting, then single shooting";
       r.x = x;
       r.F = single.last_F;
@@ -62,9 +62,9 @@ bool legs_attempt(const Settings& s, const LegPlan& plan, Guess&& initial_guess,
     for (const int i : plan.held_at_zero) x[i] = 0;
     if (r.attempts == 1)
       for (const int i : plan.time_fractions) x[i] = 0.5;  // first attempt: the middle of every window
-    const BoundState& bounds = bound_state();
+    const std::vector<char>& active = s.active_bounds;
     for (const auto& w : plan.window_edges)
-      if (static_cast<std::size_t>(w.bound) < bounds.active.size() && bounds.active[w.bound]) x[w.fraction] = w.edge;
+      if (static_cast<std::size_t>(w.bound) < active.size() && active[w.bound]) x[w.fraction] = w.edge;
   };
   guess();
   bool legs_solved = true;
@@ -79,7 +79,7 @@ bool legs_attempt(const Settings& s, const LegPlan& plan, Guess&& initial_guess,
       if (k > 0)
         for (int i = 0; i < n; ++i) st[(k - 1) * n + i] = z[own.size() + i];
       const LegsOf<T> legs{k, st.data(), nullptr};
-      shooting_legs(xx.data(), eps, prop, F, &legs);
+      legs_function(xx.data(), eps, prop, F, &legs);
     };
     Shooter shooter(s, function_on_either_scalar(m, leg_call));
     bool solved = false;

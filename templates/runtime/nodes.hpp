@@ -56,7 +56,7 @@ inline constexpr int kMaxNodeParts = 100;
 // then max|F| of the new x alone by single shooting. Its exact Jacobian needs the shooting function
 // on dual numbers of any width; a program with an exact Jacobian but without that is left as it is.
 inline void polish_by_nodes(const Settings& s, Result& r) {
-  if (r.status != "converged" || s.node_spacing_days <= 0 || (exact_jacobian(s) && !dual_shooting_function())) return;
+  if (r.status != Status::kConverged || s.node_spacing_days <= 0 || (exact_jacobian(s) && !dual_shooting_function())) return;
   std::vector<double> times;
   int arcs = 0;
   node_values(s, r.x, r.eps, 1, times, arcs);

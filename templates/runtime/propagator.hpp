@@ -9,6 +9,11 @@ namespace helios_rt {
 Propagator::Propagator(const Settings& s) : settings_(s), stepper_(std::make_unique<Dop853>(ny())) {}
 Propagator::~Propagator() = default;
 
+bool Propagator::bound_active(int k) const {
+  const std::vector<char>& active = settings_.active_bounds;
+  return static_cast<std::size_t>(k) < active.size() && active[k] != 0;
+}
+
 void Propagator::propagate(double t0, double t1, double* y, const Multipliers& module_mult, Tangents* tangents) {
   const IntegrationTimer timer;
   const Multipliers mult{module_mult.lambda0, module_mult.eps, fuel_weight};
@@ -96,10 +101,10 @@ void variational_matrix(double t, const double* y, Mode mode, const Multipliers&
   std::array<double, kMaxControls*(kMaxNY + 1)> dudz;
   control_in_mode(y, mode, mult, control.data());
   dynamics(t, y, control.data(), mult, f);
-  dynamics_jacobian(t, y, control.data(), mult, dfdz.data(), dfdu.data());
+  kModules.dynamics_jacobian(t, y, control.data(), mult, dfdz.data(), dfdu.data());
   {
     std::array<double, kMaxControls * kMaxNY> dcontrol_dy;
-    direction_jacobian(y, dcontrol_dy.data());
+    kModules.direction_jacobian(y, dcontrol_dy.data());
     for (int k = 0; k < nc; ++k) {
       for (int j = 0; j < n; ++j) dudz[k * nz + j] = dcontrol_dy[k * n + j];
       dudz[k * nz + n] = 0;  // the direction law does not depend on lambda0

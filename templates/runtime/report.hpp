@@ -390,7 +390,7 @@ inline nlohmann::ordered_json integration_record(const Settings& s) {
 inline nlohmann::ordered_json outcome_record(const Settings& s, const Result& r, const std::string& trajectory_path) {
   nlohmann::ordered_json out;
   out["problem"] = {{"id", kProblem.id}};
-  out["status"] = r.status;
+  out["status"] = status_text(r.status);
   if (!r.detail.empty()) out["status_detail"] = r.detail;
   out["solver_info"] = {{"code", r.info}, {"meaning", hybrd_meaning(r.info)}};
   out["seed"] = s.seed;
@@ -401,7 +401,7 @@ inline nlohmann::ordered_json outcome_record(const Settings& s, const Result& r,
   if (!r.start_detail.empty()) out["start_detail"] = r.start_detail;
   out["integration"] = integration_record(s);
   steps_record(r, out);
-  if (r.status == "converged") solution_record(s, r, trajectory_path, out);
+  if (r.status == Status::kConverged) solution_record(s, r, trajectory_path, out);
   return out;
 }
 
@@ -413,11 +413,26 @@ inline void check_problem_shape() {
                              std::to_string(kProblem.num_controls) + " controls; this runtime holds at most " +
                              std::to_string(kMaxStates) + " states and " + std::to_string(kMaxControls) +
                              " controls (helios_runtime.hpp's kMaxStates, kMaxControls)");
-  if (kProblem.throttle_index >= 0 && !throttle_slopes)
-    throw std::runtime_error("the problem has a throttle but the program defines no throttle_slopes");
+  if (kProblem.throttle_index >= 0 && !kModules.throttle_slopes)
+    throw std::runtime_error(
+        "the problem has a throttle but the program's module table (kModules) names no throttle_slopes");
 }
 
 }  // namespace
+
+const char* status_text(Status status) {
+  switch (status) {
+    case Status::kConverged:
+      return "converged";
+    case Status::kNotConverged:
+      return "not_converged";
+    case Status::kTimeout:
+      return "timeout";
+    case Status::kNotSolved:
+      break;
+  }
+  return "not_solved";
+}
 
 int run(int argc, char** argv) {
   std::string settings_path, parameters_path, outcome_path = "outcome.json", trajectory_path = "trajectory.csv";
@@ -439,9 +454,13 @@ int run(int argc, char** argv) {
   check_problem_shape();
   const Settings s = read_settings(settings_path);
   wall_seconds();
-  Result r = solve_problem(s);
-  polish_by_nodes(s, r);
-  write_atomic(outcome_path, outcome_record(s, r, trajectory_path).dump(2) + "\n");
+  const Result solved = solve_problem(s);
+  // What follows evaluates the shooting function at the solution: with the active set it ended on.
+  Settings at_solution = s;
+  for (const BoundReport& b : solved.bounds) at_solution.active_bounds.push_back(b.active ? 1 : 0);
+  Result r = solved;
+  polish_by_nodes(at_solution, r);
+  write_atomic(outcome_path, outcome_record(at_solution, r, trajectory_path).dump(2) + "\n");
   return 0;
 }
 

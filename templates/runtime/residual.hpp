@@ -9,14 +9,13 @@ namespace helios_rt {
 
 namespace {
 
-// The active set of the bounds and their last values (bound_row).
-struct BoundState {
-  std::vector<char> active;
-  std::vector<double> value;
-};
-inline BoundState& bound_state() {
-  thread_local BoundState state;  // each search thread its own (search.hpp's parallel_for)
-  return state;
+// The shooting function by legs (the RESIDUAL module's, of a problem with events) on double or on
+// Dual, through the program's module table.
+inline void legs_function(const double* x, double eps, Propagator& prop, double* F, const Legs* legs) {
+  kModules.shooting_legs(x, eps, prop, F, legs);
+}
+inline void legs_function(const Dual* x, double eps, Propagator& prop, Dual* F, const LegsOf<Dual>* legs) {
+  kModules.shooting_legs_dual(x, eps, prop, F, legs);
 }
 
 // Installs `nodes` on a propagator for one scope.
@@ -35,9 +34,11 @@ class NodesInstalled {
 // with interior events) or the plain one; null when the program has neither.
 using DualShootingFunction = void (*)(const Dual*, double, Propagator&, Dual*);
 inline DualShootingFunction dual_shooting_function() {
-  if (shooting_function_dual) return &shooting_function_dual;
-  if (!shooting_legs_dual) return nullptr;
-  return [](const Dual* x, double eps, Propagator& prop, Dual* F) { shooting_legs_dual(x, eps, prop, F, nullptr); };
+  if (kModules.shooting_function_dual) return kModules.shooting_function_dual;
+  if (!kModules.shooting_legs_dual) return nullptr;
+  return [](const Dual* x, double eps, Propagator& prop, Dual* F) {
+    kModules.shooting_legs_dual(x, eps, prop, F, nullptr);
+  };
 }
 
 // The shooting function with nodes on z = (x, nodes), on double or on Dual: F(x) with the
@@ -74,21 +75,18 @@ inline void solution_function(const double* z, std::size_t nodes, double eps, in
 
 }  // namespace
 
-// Row k of the shooting function for bound k: records psi and returns it when the bound is
-// active, else the inactive expression (its multiplier).
-double bound_row(int k, double psi, double inactive) {
-  BoundState& b = bound_state();
-  if (static_cast<std::size_t>(k) >= b.value.size()) {
-    b.value.resize(k + 1, 0.0);
-    b.active.resize(k + 1, 0);
-  }
-  b.value[k] = psi;
-  return b.active[k] ? psi : inactive;
+// Row k of the shooting function for bound k: records psi on the propagator and returns it when
+// the bound is in the propagator's active set, else the inactive expression (its multiplier).
+double bound_row(Propagator& prop, int k, double psi, double inactive) {
+  std::vector<double>& values = prop.bound_values;
+  if (static_cast<std::size_t>(k) >= values.size()) values.resize(k + 1, 0.0);
+  values[k] = psi;
+  return prop.bound_active(k) ? psi : inactive;
 }
 
-Dual bound_row(int k, const Dual& psi, const Dual& inactive) {
-  bound_row(k, psi.v, inactive.v);
-  return bound_state().active[k] ? psi : inactive;
+Dual bound_row(Propagator& prop, int k, const Dual& psi, const Dual& inactive) {
+  bound_row(prop, k, psi.v, inactive.v);
+  return prop.bound_active(k) ? psi : inactive;
 }
 
 void dual_jacobian(int n, const double* x, double* F, double* J,

@@ -31,24 +31,6 @@
 #include "helios_runtime.hpp"
 
 namespace helios_rt {
-// The modules only some problems have: a throttle's slopes, a coasting target's dynamics, the
-// shooting function by legs of a problem with events, the exact Jacobian and the JACOBIAN module
-// it is built on. Weak, so a program without them links; the
-// runtime calls them only for a problem that has them.
-void throttle_slopes(const double* y, const Multipliers& mult, double& at_lower, double& at_upper)
-    __attribute__((weak));
-void coast_dynamics(const double* y, double* dy) __attribute__((weak));
-void shooting_legs(const double* x, double eps, Propagator& prop, double* F, const Legs* legs) __attribute__((weak));
-void shooting_jacobian(const double* x, double eps, Propagator& prop, double* F, double* J) __attribute__((weak));
-void shooting_function_dual(const Dual* x, double eps, Propagator& prop, Dual* F) __attribute__((weak));
-void shooting_legs_dual(const Dual* x, double eps, Propagator& prop, Dual* F, const LegsOf<Dual>* legs)
-    __attribute__((weak));
-void dynamics_jacobian(double t, const double* y, const double* control, const Multipliers& mult, double* dfdz,
-                       double* dfdu) __attribute__((weak));
-void direction_jacobian(const double* y, double* dcontrol_dy) __attribute__((weak));
-void throttle_slopes_jacobian(const double* y, const Multipliers& mult, double* d_lower, double* d_upper)
-    __attribute__((weak));
-
 double wall_seconds() {
   using clock = std::chrono::steady_clock;
   static const auto start = clock::now();

@@ -101,7 +101,7 @@ inline void choose_best(SearchRecord& rec, const std::string& what) {
 // Copies the returned extremal into r.
 inline void take_extremal(Result& r) {
   const Extremal& e = r.search.extremals[r.search.returned];
-  r.status = "converged";
+  r.status = Status::kConverged;
   r.detail.clear();
   r.method = e.method;
   r.info = e.info;
@@ -157,11 +157,12 @@ inline void finish_search(const Settings& fine, const Settings& coarse, Result& 
   polish_extremals(fine, coarse, rec);
   rec.seconds = wall_seconds() - started;
   choose_best(rec, how);
+  r.status = Status::kNotConverged;  // the search ran: converged below, or timed out, or not
   if (rec.returned >= 0) {
     take_extremal(r);
     progress.stage("returned extremal " + std::to_string(rec.returned) + ": " + rec.reason);
   } else if (wall_seconds() > fine.time_limit_s) {
-    r.status = "timeout";
+    r.status = Status::kTimeout;
     r.detail = "time limit reached before convergence";
   } else if (!rec.extremals.empty() && std::none_of(rec.extremals.begin(), rec.extremals.end(),
                                                     [](const Extremal& e) { return within_window(e.x); })) {
@@ -586,6 +587,7 @@ class MultiStart {
 template <class Admissible>
 Result warm_solve(const Settings& s, Admissible& admissible) {
   Result r;
+  r.status = Status::kNotConverged;  // until a warm solve reaches eps = 0
   r.start = "warm";
   r.search.method = "warm start from a neighbour's solution (no search)";
   r.search.threads = 1;
@@ -617,7 +619,7 @@ Result warm_solve(const Settings& s, Admissible& admissible) {
     r.iterations += path.iterations;
     r.homotopy.insert(r.homotopy.end(), path.homotopy.begin(), path.homotopy.end());
     if (!ok) continue;
-    r.status = "converged";
+    r.status = Status::kConverged;
     r.x = x;
     r.x_start = path.x_start;
     r.F = shooter.last_F;
@@ -647,7 +649,7 @@ Result homotopy_solve(const Settings& s, const Guess& initial_guess, const Admis
   if (s.warm_start.empty())
     return MultiStart<const Guess, const Admissible>(s, coarse, initial_guess, admissible).solve();
   Result warm = warm_solve(s, admissible);
-  if (warm.status == "converged" || s.warm_only) return warm;
+  if (warm.status == Status::kConverged || s.warm_only) return warm;
   Result r = MultiStart<const Guess, const Admissible>(s, coarse, initial_guess, admissible).solve();
   r.start = "cold-after-warm-failed";
   r.start_detail = warm.detail;
@@ -755,14 +757,14 @@ Result events_homotopy_solve(const Settings& fine, const LegPlan& legs, const Ev
       continuation_attempt(s, events, initial_guess, admissible, rng, rec.start_extremals[k % eventless].x,
                            k / eventless, a, attempt_evaluations);
     }
-    if (a.status != "converged" && search_time_left(s, started))
+    if (a.status != Status::kConverged && search_time_left(s, started))
       legs_attempt(s, legs, initial_guess, admissible, rng, single, a, attempt_evaluations);
     const std::lock_guard<std::mutex> lock(count);
     evaluations += attempt_evaluations + single.evaluations;
   };
   const auto merge = [&](int k, Result& a) {
     ++rec.starts;
-    if (a.status != "converged") return;
+    if (a.status != Status::kConverged) return;
     ++rec.converged_final;
     Extremal entry;
     entry.F = a.F;

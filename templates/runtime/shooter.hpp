@@ -38,7 +38,7 @@ constexpr HybrdStart kContinuationStart{1.0, true};
 // Whether the solves of the shooting function use its exact Jacobian: the program has one (the
 // JACOBIAN module) and the settings ask for it.
 inline bool exact_jacobian(const Settings& s) {
-  return shooting_jacobian != nullptr && s.jacobian == "exact";
+  return kModules.shooting_jacobian != nullptr && s.jacobian == "exact";
 }
 
 // A function of the shooting variables for the shooter: F at x and, where J is not null, its
@@ -49,7 +49,7 @@ using Function = std::function<void(const double* x, double eps, Propagator& pro
 // The shooting function as a Function: shooting_jacobian where J is asked for.
 inline void shooting_function_and_jacobian(const double* x, double eps, Propagator& prop, double* F, double* J) {
   if (J)
-    shooting_jacobian(x, eps, prop, F, J);
+    kModules.shooting_jacobian(x, eps, prop, F, J);
   else
     shooting_function(x, eps, prop, F);
 }

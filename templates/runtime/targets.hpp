@@ -51,8 +51,10 @@ std::array<double, 6> ephemeris_rate(const std::string& body, double t) {
 std::array<double, 6> coast_state(const std::array<double, 6>& y0, double t0, double t1) {
   Dop853 stepper(6);
   std::array<double, 6> y = y0, f0{}, ynew{}, fnew{};
-  if (!coast_dynamics) throw std::runtime_error("the program has a coasting target but no coast_dynamics");
-  auto rhs = [](double, const double* yy, double* dy) { coast_dynamics(yy, dy); };
+  if (!kModules.coast_dynamics)
+    throw std::runtime_error(
+        "the program has a coasting target but its module table (kModules) names no coast_dynamics");
+  auto rhs = [](double, const double* yy, double* dy) { kModules.coast_dynamics(yy, dy); };
   double t = t0, h = 1e-3 * (1 + std::fabs(t1 - t0));
   const double direction = t1 >= t0 ? 1.0 : -1.0;
   for (int steps = 0; direction * (t1 - t) > 0; ++steps) {
@@ -114,7 +116,7 @@ std::array<Dual, 6> ephemeris_rate(const std::string& body, const Dual& t) {
 std::array<Dual, 6> coast_state(const std::array<double, 6>& y0, double t0, const Dual& t1) {
   const auto y1 = coast_state(y0, t0, t1.v);
   std::array<double, 6> rate{};
-  coast_dynamics(y1.data(), rate.data());
+  kModules.coast_dynamics(y1.data(), rate.data());
   return through_time(y1, rate, t1);
 }
 

@@ -157,6 +157,45 @@ syntax_check() {
   syntax_check shoot.cpp
 }
 
+@test "gen: a module table without throttle_slopes, for a problem with a throttle, fails to compile naming it" {
+  s01_derivation
+  run -0 "$BIN/helios-gen" derivation.json -o shoot.cpp
+  grep -q '^  t.throttle_slopes = &throttle_slopes;$' shoot.cpp
+  syntax_check shoot.cpp
+  # The SWITCH module still defines the function: only the declaration is missing.
+  grep -v '^  t.throttle_slopes = &throttle_slopes;$' shoot.cpp >lacking.cpp
+  run -1 syntax_check lacking.cpp
+  [[ $output == *"the problem has a throttle but the table names no throttle_slopes"* ]]
+}
+
+@test "gen: a module table without shooting_legs (events) or coast_dynamics (coasting target) fails to compile naming it" {
+  local id entry need
+  for id in S04:shooting_legs:events S06:coast_dynamics:"a coasting target"; do
+    IFS=: read -r id entry need <<<"$id"
+    "$BIN/helios-parse" "$ROOT/scenarios/$id/problem.txt" -o "$id.spec.json"
+    "$BIN/helios-derive" "$id.spec.json" -o "$id.derivation.json"
+    "$BIN/helios-gen" "$id.derivation.json" -o "$id.cpp"
+    grep -q "^  t.$entry = &$entry;$" "$id.cpp"
+    grep -v "^  t.$entry = &$entry;$" "$id.cpp" >"$id.lacking.cpp"
+    run -1 syntax_check "$id.lacking.cpp"
+    [[ $output == *"the problem has $need but the table names no $entry"* ]]
+  done
+}
+
+@test "gen: a module table naming a module the program does not define fails to link naming it" {
+  s01_derivation
+  run -0 "$BIN/helios-gen" derivation.json -o shoot.cpp
+  # S01 has no coasting target, so no coast_dynamics: the table claims one (as a misspelt
+  # definition would leave it).
+  sed 's/^  t.throttle_slopes = &throttle_slopes;$/&\n  t.coast_dynamics = \&coast_dynamics;/' shoot.cpp >claims.cpp
+  grep -q '^  t.coast_dynamics = &coast_dynamics;$' claims.cpp
+  syntax_check claims.cpp
+  run -1 g++ -std=c++17 -O0 -pthread -I"$HELIOS_BUILD_DIR/include/helios-runtime" claims.cpp \
+    "$HELIOS_BUILD_DIR/lib/libhelios-runtime.a" -lcminpack -o claims
+  [[ $output == *"undefined reference to"*"coast_dynamics"* ]]
+  [[ ! -e claims ]]
+}
+
 @test "gen: stdin input and stdout output give the same program as files" {
   s01_derivation
   "$BIN/helios-gen" derivation.json -o from-file.cpp

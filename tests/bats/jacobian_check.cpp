@@ -83,14 +83,14 @@ int main(int argc, char** argv) {
     }
     if (kProblem.throttle_index >= 0) {  // the throttle slopes' gradients in z
       std::vector<double> dl(nz), du(nz), fd_l(nz), fd_h(nz);
-      throttle_slopes_jacobian(y.data(), mult, dl.data(), du.data());
+      kModules.throttle_slopes_jacobian(y.data(), mult, dl.data(), du.data());
       for (int j = 0; j < nz; ++j) {
         const double h = step(j);
         moved(j, h, yp, mp);
         moved(j, -h, ym, mm);
         double lp = 0, hp = 0, lm = 0, hm = 0;
-        throttle_slopes(yp.data(), mp, lp, hp);
-        throttle_slopes(ym.data(), mm, lm, hm);
+        kModules.throttle_slopes(yp.data(), mp, lp, hp);
+        kModules.throttle_slopes(ym.data(), mm, lm, hm);
         fd_l[j] = (lp - lm) / (2 * h);
         fd_h[j] = (hp - hm) / (2 * h);
       }

@@ -54,6 +54,12 @@ Result solve_problem(const Settings& settings) {
   volatile unsigned long spin = 0;
   while (true) ++spin;
 }
+constexpr ModuleTable kModuleTable = [] {
+  ModuleTable t;
+  t.throttle_slopes = &throttle_slopes;
+  return t;
+}();
+HELIOS_MODULE_TABLE(kModuleTable);
 CPP
   modules_json() {
     jq -n --rawfile d "$work/$1.cpp" --rawfile s "$work/SWITCH.cpp" --rawfile r "$work/RESIDUAL.cpp" \

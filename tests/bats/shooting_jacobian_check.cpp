@@ -21,14 +21,6 @@
 // steps move with tf) multiplies by 1e2-1e3.
 #include "helios_runtime.hpp"
 
-namespace helios_rt {
-// Weak as in the runtime library: a program has the legs (interior events) or the plain function
-// on dual numbers.
-void shooting_legs_dual(const Dual* x, double eps, Propagator& prop, Dual* F, const LegsOf<Dual>* legs)
-    __attribute__((weak));
-void shooting_function_dual(const Dual* x, double eps, Propagator& prop, Dual* F) __attribute__((weak));
-}  // namespace helios_rt
-
 #define main shoot_main
 #include SHOOT_CPP
 #undef main
@@ -64,11 +56,11 @@ void exact_jacobian(const std::vector<double>& z, double eps, Propagator& prop, 
     nodes.dual_values = zd + N;
     nodes.dual_defects = Fd + N;
     prop.nodes = &nodes;
-    void (*const plain)(const Dual*, double, Propagator&, Dual*) = &shooting_function_dual;  // weak: null when absent
-    if (plain != nullptr)
-      plain(zd, eps, prop, Fd);
+    // The program's module table: the plain function on dual numbers, or the legs (interior events).
+    if (kModules.shooting_function_dual != nullptr)
+      kModules.shooting_function_dual(zd, eps, prop, Fd);
     else
-      shooting_legs_dual(zd, eps, prop, Fd, nullptr);
+      kModules.shooting_legs_dual(zd, eps, prop, Fd, nullptr);
     prop.nodes = nullptr;
   });
 }

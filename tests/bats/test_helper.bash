@@ -155,7 +155,8 @@ assert_file_map() {
   sed -n "$((line + 1))p" "$src" | grep -q "^// HELIOS shooting runtime, entry point" ||
     { echo "the map's entry point line $line is wrong" >&2; return 1; }
   local runtime_sha
-  runtime_sha=$(cat "$HELIOS_BUILD_DIR/include/helios-runtime/helios_runtime.hpp" \
+  local include=$HELIOS_BUILD_DIR/include/helios-runtime
+  runtime_sha=$(cat "$include"/{helios_runtime,runtime_records,runtime_calls,module_interface}.hpp \
     "$HELIOS_BUILD_DIR/lib/libhelios-runtime.a" | sha256sum | cut -d' ' -f1)
   grep -qx "//   runtime SHA-256 $runtime_sha" "$src" ||
     { echo "the map names another runtime than the build tree's ($runtime_sha):" >&2; grep 'runtime SHA' "$src" >&2; return 1; }

@@ -30,9 +30,12 @@ int index_of(const char* const* names, int n, const std::string& name) {
   throw std::runtime_error("no variable or equation " + name);
 }
 
-// Final mass (normalized) after solving the problem with equation `row` replaced by `replaced`.
-double final_mass(std::vector<double> x, int row, const std::function<double(const double*, double)>& replaced) {
+// Final mass (normalized) after solving the problem with equation `row` replaced by `replaced`,
+// the bounds' rows under the active set `active`.
+double final_mass(std::vector<double> x, const std::vector<char>& active, int row,
+                  const std::function<double(const double*, double)>& replaced) {
   Settings s;
+  s.active_bounds = active;
   s.jacobian = "finite-difference";  // the replaced row has no exact derivative here
   const Function residual = [&](const double* z, double eps, Propagator& prop, double* F, double*) {
     shooting_function(z, eps, prop, F);
@@ -60,11 +63,9 @@ int main(int argc, char** argv) {
     std::vector<double> x;
     for (const auto& v : result.at("x")) x.push_back(v.at("value").get<double>());
     // The bounds as the solution left them: an active bound's row is its psi, an inactive one's its multiplier.
-    BoundState& bounds = bound_state();
-    for (const auto& b : result.value("bounds", nlohmann::json::array())) {
-      bounds.active.push_back(b.at("active").get<bool>() ? 1 : 0);
-      bounds.value.push_back(0.0);
-    }
+    std::vector<char> active;
+    for (const auto& b : result.value("bounds", nlohmann::json::array()))
+      active.push_back(b.at("active").get<bool>() ? 1 : 0);
     const std::string what = argv[2], event = argv[3];
     const int nv = problem::kNumVars;
     if (what == "epoch") {
@@ -72,7 +73,7 @@ int main(int argc, char** argv) {
       const int row = index_of(problem::kEquationNames, nv, helios::derivation::names::time_row(event));
       const double h = 5e-4, star = x[frac];
       const auto at = [&](double value) {
-        return final_mass(x, row, [&](const double* z, double) { return z[frac] - value; });
+        return final_mass(x, active, row, [&](const double* z, double) { return z[frac] - value; });
       };
       const double m0 = at(star), mp = at(star + h), mm = at(star - h);
       std::printf("%.6e %.6e\n", std::fabs(mp - mm), std::fabs(mp + mm - 2 * m0));
@@ -83,7 +84,7 @@ int main(int argc, char** argv) {
       const double lambda0 = x[index_of(problem::kVariableNames, nv, "lambda0")];
       const double d = argc == 6 ? std::atof(argv[5]) : 1e-6;
       const auto shifted = [&](double delta) {
-        return final_mass(x, row, [delta](const double*, double f) { return f - delta; });
+        return final_mass(x, active, row, [delta](const double*, double f) { return f - delta; });
       };
       std::printf("%.9e %.9e\n", (shifted(d) - shifted(-d)) / (2 * d), nu / lambda0);
     } else {

@@ -27,6 +27,8 @@ constexpr int kNumControls = 4;
 constexpr int kThrottleIndex = 0;
 constexpr int kNumVars = 8;
 constexpr int kMassIndex = 6;
+constexpr bool kHasEvents = false;
+constexpr bool kCoastingTarget = true;  // coast_dynamics below, for coast_state
 HELIOS_PARAMETER(kT0, 0.0);
 HELIOS_PARAMETER(kTf, 348.795 / 365.25);
 HELIOS_PARAMETER(kHomotopyStart, 1.0);
@@ -87,6 +89,18 @@ Result solve_problem(const Settings&) {
 
 // NOTE: the template's modules, as a generated program pastes them.
 #include "../modules/dynamics_cartesian_low_thrust.cpp"
+
+// The optional modules this program defines: the throttle's slopes (the problem has a throttle) and
+// a coasting target's dynamics (defined below).
+namespace helios_rt {
+constexpr ModuleTable kModuleTable = [] {
+  ModuleTable t;
+  t.throttle_slopes = &throttle_slopes;
+  t.coast_dynamics = &coast_dynamics;
+  return t;
+}();
+HELIOS_MODULE_TABLE(kModuleTable);
+}  // namespace helios_rt
 
 namespace {
 
@@ -282,7 +296,8 @@ TEST(Runtime, EndRotationTurnsThePositionVelocityAndTheirCostates) {
   helios_rt::propagate(without, 0.0, 0.5, plain.data(), Multipliers{0.8, 0.1});
   for (const int first : {0, 3, 7, 10}) {  // r, v, lambda_r, lambda_v
     for (int i = 0; i < 3; ++i) {
-      const double expected = R[3 * i] * plain[first] + R[3 * i + 1] * plain[first + 1] + R[3 * i + 2] * plain[first + 2];
+      const double expected =
+          R[3 * i] * plain[first] + R[3 * i + 1] * plain[first + 1] + R[3 * i + 2] * plain[first + 2];
       EXPECT_TRUE(IsClose(turned[first + i], expected, 1e-15, 1e-15)) << first + i;
     }
   }
@@ -525,3 +540,47 @@ TEST(Runtime, ParametersFileRefusesWhatIsNotThisProgramsNumbers) {
 }
 
 }  // namespace
+
+// NOTE: the runtime calls the throttle's slopes through the module table, which names the
+// template's function; the modules this program lacks are null there.
+TEST(Runtime, ModuleTableNamesTheProgramsOptionalModules) {
+  EXPECT_EQ(helios_rt::kModules.throttle_slopes, &helios_rt::throttle_slopes);
+  EXPECT_EQ(helios_rt::kModules.coast_dynamics, &helios_rt::coast_dynamics);
+  EXPECT_EQ(helios_rt::kModules.shooting_legs, nullptr);
+  EXPECT_EQ(helios_rt::kModules.shooting_jacobian, nullptr);
+  auto y = random_extremal_start(5);
+  const Multipliers m{0.7, 0.3};
+  double direct_lower = 0, direct_upper = 0, lower = 0, upper = 0;
+  helios_rt::throttle_slopes(y.data(), m, direct_lower, direct_upper);
+  helios_rt::kModules.throttle_slopes(y.data(), m, lower, upper);
+  EXPECT_EQ(lower, direct_lower);
+  EXPECT_EQ(upper, direct_upper);
+}
+
+// NOTE: a Result no solve has touched says so; the others' texts are solution.json's statuses.
+TEST(Runtime, StatusDefaultSaysNotSolvedAndEachHasItsArtifactText) {
+  const helios_rt::Result never_run;
+  EXPECT_EQ(never_run.status, helios_rt::Status::kNotSolved);
+  EXPECT_STREQ(helios_rt::status_text(never_run.status), "not_solved");
+  EXPECT_STREQ(helios_rt::status_text(helios_rt::Status::kConverged), "converged");
+  EXPECT_STREQ(helios_rt::status_text(helios_rt::Status::kNotConverged), "not_converged");
+  EXPECT_STREQ(helios_rt::status_text(helios_rt::Status::kTimeout), "timeout");
+}
+
+// NOTE: a bound's row follows the active set of the settings its propagator was made with, and
+// psi is recorded on that propagator alone: two propagators (two threads of a search, or a pass
+// and the report) do not see each other's set or values.
+TEST(Runtime, BoundRowReadsTheActiveSetOfItsPropagator) {
+  helios_rt::Settings inactive, active;
+  active.active_bounds = {0, 1};
+  helios_rt::Propagator a(inactive), b(active);
+  EXPECT_EQ(helios_rt::bound_row(a, 1, 0.25, -3.0), -3.0);  // inactive: the multiplier's row
+  EXPECT_EQ(helios_rt::bound_row(b, 1, 0.5, -3.0), 0.5);    // active: psi
+  EXPECT_EQ(helios_rt::bound_row(b, 0, 0.75, -2.0), -2.0);  // bound 0 is not in b's set
+  EXPECT_EQ(a.bound_values, (std::vector<double>{0.0, 0.25}));
+  EXPECT_EQ(b.bound_values, (std::vector<double>{0.75, 0.5}));
+  EXPECT_EQ(helios_rt::bound_row(b, 7, 1.5, -1.0), -1.0);  // beyond the set: inactive
+  const helios_rt::Dual psi(0.5), nu(-3.0);
+  EXPECT_EQ(helios_rt::bound_row(b, 1, psi, nu).v, 0.5);
+  EXPECT_EQ(helios_rt::bound_row(a, 1, psi, nu).v, -3.0);
+}

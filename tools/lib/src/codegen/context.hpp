@@ -70,5 +70,6 @@ bool jacobian_supported(Context& c);                     // jacobian_module.cpp
 bool template_matches(Context& c, const json& model);    // dynamics_module.cpp
 std::string residual_module(Context& c, bool jacobian);  // residual_module.cpp (jacobian: shooting_jacobian too)
 std::string solve_module(Context& c);                    // solve_module.cpp
+std::string module_table(Context& c, bool jacobian);     // module_table.cpp (after SOLVE)
 
 }  // namespace helios::codegen::detail

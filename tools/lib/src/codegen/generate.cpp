@@ -19,8 +19,7 @@ namespace {
 // Whether the derivation's listed terms are the template's: its force terms exactly, and a cost
 // term the template's running cost stands for. A derivation that lists no terms (an llm's
 // may not) is matched by its expressions alone, as template_matches compares them anyway.
-bool template_terms_match(const json& derivation, const json& model) {
-  const auto terms = derivation::read_terms(derivation, "derivation");
+bool template_terms_match(const std::optional<std::vector<derivation::Term>>& terms, const json& model) {
   if (!terms) return true;
   std::vector<std::string> forces, costs;
   for (const auto& t : *terms) (t.kind == "force" ? forces : costs).push_back(t.name);
@@ -36,7 +35,7 @@ GeneratedProgram generate(const json& derivation, const GenOptions& options) {
   GeneratedProgram g;
   std::string dynamics;
   const json model = json::parse(embedded::file("templates/modules/dynamics_cartesian_low_thrust.json"));
-  if (options.modules == ModulePolicy::Auto && template_terms_match(derivation, model) &&
+  if (options.modules == ModulePolicy::Auto && template_terms_match(c.terms, model) &&
       template_matches(c, model)) {
     dynamics = embedded::file("templates/modules/dynamics_cartesian_low_thrust.cpp");
     g.template_modules = {"DYNAMICS", "SWITCH"};
@@ -50,7 +49,7 @@ GeneratedProgram generate(const json& derivation, const GenOptions& options) {
   g.generated_modules.push_back("SOLVE");
   g.source = assemble(derivation,
                       dynamics + "\n" + (jacobian ? generated_jacobians(c) + "\n" : std::string()) +
-                          residual_module(c, jacobian) + "\n" + solve_module(c) + "\n",
+                          residual_module(c, jacobian) + "\n" + solve_module(c) + "\n" + module_table(c, jacobian) + "\n",
                       "builtin");
   return g;
 }
@@ -61,7 +60,9 @@ std::string problem_block(const json& derivation) {
 }
 
 std::string runtime_header() {
-  return embedded::file("templates/runtime/helios_runtime.hpp");
+  // The public header's three parts, in the order it includes them (what a program sees).
+  return embedded::file("templates/runtime/runtime_records.hpp") + embedded::file("templates/runtime/runtime_calls.hpp") +
+         embedded::file("templates/runtime/module_interface.hpp");
 }
 
 namespace {

@@ -38,6 +38,10 @@ std::string problem_block(Context& c) {
     << "constexpr int kThrottleIndex = " << c.throttle_index << ";\n"
     << "constexpr int kNumVars = " << c.shooting.variables.size() << ";\n"
     << "constexpr int kMassIndex = " << index_of(c.states, "m") << ";\n"
+    << "constexpr bool kHasEvents = " << (c.interior_events.empty() ? "false" : "true")
+    << ";  // the module table names shooting_legs\n"
+    << "constexpr bool kCoastingTarget = " << (c.coast_dynamics ? "true" : "false")
+    << ";  // the module table names coast_dynamics\n"
     << "// The objective: the propellant (minimum fuel or minimum initial mass), else minimum time.\n"
     << "constexpr bool kMinimumFuel = " << (c.objective != "minimum_time" ? "true" : "false")
     << ";\n"

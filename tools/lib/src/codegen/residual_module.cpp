@@ -159,7 +159,7 @@ std::string ShootingFunction::equation_code(std::size_t i, bool alone) {
   if (!eqs_[i].inequality) return code;
   int bound = 0;
   for (std::size_t j = 0; j < i; ++j) bound += eqs_[j].inequality ? 1 : 0;
-  return "bound_row(" + std::to_string(bound) + ", " + code + ", " +
+  return "bound_row(prop, " + std::to_string(bound) + ", " + code + ", " +
          body_.cpp(c_.parsed(eqs_[i].inequality->inactive_expression)) + ")";
 }
 

@@ -199,6 +199,7 @@ Document::Document(const json& derivation, const std::string& file, bool parse_u
     read_laws();
     read_events();
     read_shooting();
+    terms = read_terms(d, file);
   } catch (const std::invalid_argument& e) {  // "field <pointer> ..."
     throw input_error(file + ": " + e.what());
   }

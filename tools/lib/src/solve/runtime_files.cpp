@@ -26,7 +26,11 @@ RuntimeFiles locate() {
       RuntimeFiles f;
       f.library = fs::canonical(library).string();
       f.include_dir = fs::canonical(include).string();
-      f.sha256 = io::sha256_hex(io::read_text((include / "helios_runtime.hpp").string()) + io::read_text(f.library));
+      // The public header and the three it includes, then the library: what a program is built from.
+      std::string bytes;
+      for (const char* h : {"helios_runtime.hpp", "runtime_records.hpp", "runtime_calls.hpp", "module_interface.hpp"})
+        bytes += io::read_text((include / h).string());
+      f.sha256 = io::sha256_hex(bytes + io::read_text(f.library));
       return f;
     }
     tried += (tried.empty() ? "" : ", ") + library.string();

@@ -213,10 +213,9 @@ void Context::read_statement() {
     throw input_error("derivation: dynamics.state_rhs must have one expression per state (" +
                       std::to_string(states.size()) + ")");
   // Dynamics that depend on the time (a third body's motion, a user's acceleration) name t.
-  for (const auto& text : rhs)
-    if (text.is_string())
-      for (const auto& name : identifiers(text.get<std::string>()))
-        if (name == "t") declare_new("t", Kind::Free);
+  for (const auto& e : rhs)
+    for (const auto& name : identifiers(e.text))
+      if (name == "t") declare_new("t", Kind::Free);
   for (std::size_t i = 0; i < rhs.size(); ++i)
     state_rhs.push_back(statement(rhs[i].text, "dynamics.state_rhs[" + states[i] + "]"));
   running_cost = statement(doc.dynamics.running_cost.text, "dynamics.running_cost");

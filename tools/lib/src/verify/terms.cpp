@@ -322,24 +322,9 @@ Check TermFamily::cost(const std::optional<std::vector<Term>>& terms) {
 }
 
 std::vector<Check> TermFamily::run() {
-  std::optional<std::vector<Term>> terms;
-  std::string unreadable;
-  try {
-    terms = derivation::read_terms(ctx.derivation, "derivation");
-  } catch (const std::exception& e) {
-    unreadable = e.what();
-  }
   sample();
-  if (!unreadable.empty()) {
-    for (const char* id : {"dynamics_terms", "cost_terms"}) {
-      Check c = start(id, id[0] == 'd' ? "state_odes" : "hamiltonian", "random_points");
-      c.fail(unreadable + ".");
-      checks.push_back(c);
-    }
-    return checks;
-  }
-  checks.push_back(dynamics(terms));
-  checks.push_back(cost(terms));
+  checks.push_back(dynamics(ctx.doc.terms));
+  checks.push_back(cost(ctx.doc.terms));
   return checks;
 }
 

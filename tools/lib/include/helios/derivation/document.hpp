@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "helios/derivation/reader.hpp"
+#include "helios/derivation/terms.hpp"
 #include "helios/io/json_io.hpp"
 
 namespace helios::derivation {
@@ -192,6 +193,7 @@ class Document : public Reader {
   std::vector<EventValue> event_value_list;
   std::optional<CoastDynamics> coast_dynamics;
   Shooting shooting;
+  std::optional<std::vector<Term>> terms;  // the listed terms of f and L; none when not listed
 
   // `e` over the document's symbols; throws input_error "<file>: field <pointer>: cannot parse ...".
   GiNaC::ex parse(const Expression& e) const;

@@ -1,0 +1,348 @@
+// ---------------------------------------------------------------------------------------------
+// HELIOS shooting runtime, records (templates/runtime/runtime_records.hpp): the records the
+// runtime and a program share: the problem's shape, the settings, the legs' and events' plans,
+// the bounds, and what a solve records (its steps, the search, the result and its status).
+// helios_runtime.hpp includes it; a program includes only that header.
+// ---------------------------------------------------------------------------------------------
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace helios_rt {
+
+// The largest problem the library's fixed-size arrays hold (run refuses a larger one).
+constexpr int kMaxStates = 16;
+constexpr int kMaxControls = 8;
+constexpr int kMaxNY = 2 * kMaxStates;  // states then costates
+
+// A body propagated on its Keplerian orbit instead of the ephemeris model: its elements a
+// (normalized), e, i, raan, argp, mean anomaly (rad) and their epoch (normalized time), a
+// HELIOS_PARAMETER_ARRAY of the program.
+struct OrbitBody {
+  const char* name;
+  const double* elements;  // a, e, i_rad, raan_rad, argp_rad, mean_anomaly_rad, epoch
+};
+
+// The problem as the runtime reads it (the PROBLEM block's constants, defined by the program).
+// Its numbers are references to the program's parameters, so they read the loaded values.
+struct ProblemShape {
+  const char* id;
+  int num_states, num_controls;
+  int throttle_index;  // -1: no throttle (one mode)
+  int num_vars;
+  int mass_index;     // -1: no mass state (a sail)
+  bool minimum_fuel;  // the objective is the propellant (minimum fuel or initial mass), else the time
+  const double& t0;
+  const double& tf;      // the final time, or the upper end of its window when it is free
+  const double& tf_min;  // the lower end of the final time's window (tf when it is fixed)
+  const double& homotopy_start;
+  const double &time_unit_days, &length_unit_km, &speed_unit_km_s, &epoch_mjd2000, &mass_unit_kg;
+  const double& exhaust_velocity_m_s;
+  const double& mu;
+  const char* const* state_names;
+  const char* const* state_columns;
+  const double* state_to_physical;
+  const char* const* control_names;
+  const char* const* variable_names;
+  const char* const* equation_names;
+  const OrbitBody* orbit_bodies;
+  int num_orbit_bodies;
+};
+extern const ProblemShape kProblem;  // the program defines it (module_interface.hpp)
+
+struct Multipliers {
+  double lambda0 = 1;
+  double eps = 1;
+  // The companion problem's price of the throttle (search.hpp, minimum time from minimum fuel):
+  // 0 in the problem itself. Set by the runtime's propagate from Propagator::fuel_weight.
+  double fuel_weight = 0;
+};
+
+struct numerical_error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The solver settings (schemas/settings.schema.json lists them).
+struct Settings {
+  unsigned seed = 1;
+  int max_attempts = 100000;
+  double time_limit_s = 600;
+  double rtol = 1e-13, atol = 1e-13;
+  double hybrd_tol = 1e-12;
+  double accept_residual = 1e-8;  // intermediate homotopy steps
+  double final_residual = 1e-10;  // the gate at eps = 0
+  double eps_start = kProblem.homotopy_start;
+  double eps_min = 1e-6;  // below this the next step is eps = 0
+  double eps_first_ratio = 0.5;
+  int leg_attempts = 20;  // random guesses per leg before the attempt is abandoned
+  // The global search (search.hpp): starts at eps_start are drawn until the Good-Turing chance
+  // that the next one finds a new extremal is at most search_saturation (draws.hpp), at most
+  // search_starts of them (0: no cap); the lowest-cost distinct extremals are continued to eps = 0
+  // search_continued at a time (problems without interior events); complete attempts (problems
+  // with them); its own time budget (0: only time_limit_s) and threads (0: the cores).
+  int search_starts = 0;
+  double search_saturation = 0.01;
+  int search_continued = 4;
+  int search_attempts = 4;
+  double search_time_s = 60;
+  int threads = 0;
+  // Problems without interior events: every distinct extremal at eps_start continued (false: only
+  // those whose cost there, a lower bound of their objective, can still beat the best); the
+  // families of extremals explored by the transfer angle (families.hpp); a minimum-time problem
+  // with a throttle also solved from its minimum-fuel companion (minimum_time.hpp).
+  bool search_continue_all = false;
+  bool search_families = true;
+  bool search_fuel_companion = true;
+  // The integrator's rtol and atol during the search (never tighter than rtol and atol; 0: those):
+  // every distinct extremal it reaches at eps = 0 is then polished at rtol and atol.
+  double search_tol = 1e-10;
+  // The solution polished by multiple shooting (nodes.hpp): nodes at interior events and between
+  // equal parts of each arc, at most this many days apart on average (0: not polished).
+  double node_spacing_days = 200;
+  int max_steps = 200000;  // integrator steps per arc
+  // The shooting Jacobian: "exact" (the program's shooting_jacobian, hybrj) where the program has
+  // one, else "finite-difference" (hybrd's forward differences).
+  std::string jacobian = "exact";
+  // A neighbour's converged shooting variables at eps = 0 (a sweep's cell, helios-solve
+  // --warm-start), in kProblem.variable_names' order; empty: a cold start (the global search).
+  std::vector<double> warm_start;
+  // With a warm start: return the warm solve's result even when it fails, with no search (a
+  // sweep's cross-check of a cell from a neighbour asks only what that neighbour's extremal reaches).
+  bool warm_only = false;
+  // Not a settings file's: the active set of the bounds psi <= 0 (bounds.hpp's passes set it on
+  // their copy of the settings), bound k active where active_bounds[k] != 0 (none: every bound
+  // inactive). Each propagator reads it from its settings (Propagator::bound_active), so every
+  // thread of a search sees the set of the solve it belongs to.
+  std::vector<char> active_bounds;
+};
+
+struct Sample {
+  int arc;  // samples of one propagate() call share an arc; H may jump only between arcs
+  double t;
+  std::array<double, kMaxNY> y;  // the first 2 num_states entries
+  std::array<double, kMaxControls> control;
+  double H, S;
+};
+
+struct Switch {
+  double t;
+  double throttle_after;
+};
+
+// Problems with interior events also have the shooting function by legs (RESIDUAL module):
+// stop_at = k solves leg k alone (it ends at event k as if the trajectory ended there);
+// stop_at = -1 is multiple shooting: after event k the costates restart from starts[k*n...] and
+// their mismatch with the jump conditions is written to continuity[k*n...].
+template <class T>
+struct LegsOf {
+  int stop_at = -1;
+  const T* starts = nullptr;
+  T* continuity = nullptr;
+};
+using Legs = LegsOf<double>;
+
+// Which shooting variables each leg solves for alone (indices into x; leg k > 0 also solves for
+// its start costates), and the variables a leg alone holds fixed: the time fractions at their
+// guesses, the event's other variables (costates after a state map, parameters) at 0.
+struct LegPlan {
+  std::vector<std::vector<int>> variables;
+  std::vector<int> time_fractions, held_at_zero;
+  // An epoch's window bound: while it is active (pass 2), legs alone hold the epoch's fraction
+  // at the window's edge (0 or 1) instead of a guess inside.
+  struct WindowEdge {
+    int bound, fraction;
+    double edge;
+  };
+  std::vector<WindowEdge> window_edges;
+};
+
+// The events' own shooting variables and rows (RESIDUAL module), for the continuation onto the
+// events (continuation.hpp). An event is passable when it is instantaneous and its state map is
+// the identity with its parameters at 0: the trajectory of the problem without it (its
+// multipliers and parameters 0, its epoch held) then solves every row of the event but its
+// constraint c = 0.
+struct EventRows {
+  std::vector<std::array<int, 2>> constraints;  // {multiplier nu_j, row of c_j = 0}
+  std::array<int, 2> epoch{-1, -1};             // {epoch as a window fraction, row of its free-epoch condition}
+  std::vector<std::array<int, 2>> parameters;   // {Category-C parameter, row of its stationarity}
+  std::vector<std::array<int, 2>> costates;     // {costate just after the event, row of its jump}
+};
+
+struct EventPlan {
+  bool passable = false;    // every event passable
+  int multiplier = 0;       // lambda0
+  std::vector<int> sphere;  // the normalization's variables, lambda0 among them
+  std::vector<EventRows> events;
+};
+
+// A bound psi <= 0 of the derivation, solved in two passes: its row of the shooting function is
+// its multiplier (= 0) while inactive and psi itself (= 0) when active.
+struct Bound {
+  std::string name, meaning;
+  int multiplier;  // index of the bound's multiplier in x
+};
+
+struct BoundReport {
+  std::string name, meaning;
+  double first_pass_value;   // psi at the solution of pass 1 (bound inactive); > 0 is a violation
+  bool active;               // made active in pass 2
+  double value, multiplier;  // at the final solution
+};
+
+// What a solve records: homotopy, leg and continuation steps, the search's extremals, the result.
+struct HomotopyStep {
+  double eps;
+  bool converged;
+  double max_residual;
+  int evaluations;
+};
+
+struct LegStep {
+  int leg;
+  bool converged;
+  double max_residual;
+  int evaluations;
+};
+
+// One solve of the continuation onto the events (continuation_attempt): its stage ("events off",
+// "epochs", "targets", "parameters"), the stage's homotopy value (the guess number, 0, tau or
+// kappa) and the outcome.
+struct ContinuationStep {
+  std::string stage;
+  double value;
+  bool converged;
+  double max_residual;
+  int evaluations;
+};
+
+// What tells one extremal from another (search.hpp's shape_of): the revolutions about the
+// central body (the angle the position sweeps about the initial angular momentum, over 2 pi), the
+// throttle's mode changes (at eps = 0 its bang-bang switches), and the cost at its eps: the
+// propellant of the smoothed problem (the integral of u - eps u (1 - u), in propellant units) for
+// a throttle, else the flight time. At eps = 0 the cost is the objective.
+struct Shape {
+  double revolutions = 0;
+  int switches = 0;
+  double cost = INFINITY;
+};
+
+// A distinct solution at eps_start, and how many starts reached it.
+struct StartExtremal {
+  std::vector<double> x;
+  Shape shape;
+  double max_residual = 0;
+  int first_start = 0, reached = 0;
+  bool continued = false;
+  bool pruned =
+      false;  // not continued: its cost at eps_start, a lower bound of its branch's objective, could not beat the best
+  int arrived = -1;    // the extremal at eps = 0 it was continued to (-1: none)
+  std::string origin;  // how it was found where not by a start (the transfer angle from another)
+};
+
+// A distinct extremal at eps = 0 (it satisfies the problem's own necessary conditions), with the
+// solve that reached it first. With bounds: whether the passes over the active set started from
+// it, the objective they reached (NaN when they did not converge) and their number.
+struct Extremal {
+  std::vector<double> x, x_start, F;
+  Shape shape;
+  double max_residual = 0;
+  int info = 0;
+  int first_start = 0, reached = 0;  // the first start (or attempt) that reached it, and how many did
+  std::vector<int> from;             // the eps_start extremals (or attempts) that led to it
+  std::string method;
+  std::vector<HomotopyStep> homotopy;
+  std::vector<LegStep> legs;
+  std::vector<ContinuationStep> continuation;
+  bool polished = true;  // it converged again at the integrator's own tolerance (search_tol)
+  bool bounded_tried = false;
+  double bounded_objective = NAN;
+  int bounded_passes = 0;
+};
+
+// A neighbour of an extremal looked for along its family (families.hpp): from the extremal at
+// eps = 0 `from`, one revolution more (+1) or fewer (-1); how (already reached by the search, an
+// extremal at eps_start of that count continued, or the transfer angle) and what it found (an
+// extremal at eps = 0, -1: none).
+struct FamilyProbe {
+  int from = -1, direction = 0;
+  double revolutions = 0;
+  std::string how;
+  int found = -1;
+};
+
+// What the global search did (search.hpp), for solution.json.
+struct SearchRecord {
+  std::string method;
+  int threads = 1;
+  int starts = 0;           // starts (or complete attempts) drawn
+  int converged_start = 0;  // starts converged at eps_start (problems with events: events-off draws)
+  int eventless_draws = 0;  // draws of the problem with its events off (passable events)
+  int continued = 0;        // eps_start extremals continued to eps = 0
+  int converged_final = 0;  // solves that reached eps = 0
+  double seconds = 0;
+  bool cut_by_time = false;
+  // Whether the draws stopped saturated (draws.hpp), the Good-Turing chance of a new extremal per
+  // draw where they stopped, and why they stopped.
+  bool saturated = false;
+  double unseen = 1;
+  std::string stopped;
+  std::vector<FamilyProbe> family;
+  // A minimum-time problem's minimum-fuel companion (minimum_time.hpp): its draws at the held
+  // final time and its distinct solutions (arrived: the extremal at eps = 0 reached from each).
+  double companion_tf_days = 0;
+  int companion_draws = 0, companion_converged = 0;
+  std::vector<StartExtremal> companion_solutions;
+  std::vector<StartExtremal> start_extremals;
+  std::vector<Extremal> extremals;
+  int returned = -1;  // index into extremals
+  std::string reason;
+};
+
+// How a solve ended. The default says the solver did not run (a Result nobody solved); the
+// runtime's solves end converged, not converged or timed out. Its text (status_text) is written
+// only where solution.json and stdout are.
+enum class Status { kNotSolved, kConverged, kNotConverged, kTimeout };
+// "not_solved", "converged", "not_converged", "timeout": solution.json's status.
+const char* status_text(Status status);
+
+struct Result {
+  Status status = Status::kNotSolved;
+  std::string method = "single shooting";
+  int passes = 1;
+  std::vector<BoundReport> bounds;
+  std::vector<LegStep> legs;
+  std::string detail;
+  int info = 0;
+  std::vector<double> x;
+  std::vector<double> x_start;  // the solution at settings.eps_start that eps was continued from to x
+  std::vector<double> F;
+  // Multiple shooting (nodes.hpp): the state and costates at each node (ny each; empty: single
+  // shooting), their continuity defects, the nodes' times, and max|F| of x alone by single
+  // shooting.
+  std::vector<double> nodes, continuity, node_times;
+  int node_segments = 1;  // each arc's parts
+  double single_shooting_residual = NAN;
+  double eps = 1;
+  double max_residual = 0;
+  int evaluations = 0;
+  int attempts = 0;
+  int iterations = 0;
+  std::vector<HomotopyStep> homotopy;
+  std::vector<ContinuationStep> continuation;
+  SearchRecord search;
+  // How the solve started: "cold" (the global search), "warm" (from Settings::warm_start) or
+  // "cold-after-warm-failed"; start_detail says why when it is not plain.
+  std::string start = "cold";
+  std::string start_detail;
+};
+
+}  // namespace helios_rt
