@@ -90,9 +90,22 @@ Result solve_problem(const Settings&) {
 // NOTE: the template's modules, as a generated program pastes them.
 #include "../modules/dynamics_cartesian_low_thrust.cpp"
 
-// The optional modules this program defines: the throttle's slopes (the problem has a throttle) and
-// a coasting target's dynamics (defined below).
 namespace helios_rt {
+// Unpowered two-body motion for the coasting-target propagator (the generated program's
+// coast_dynamics comes from the derivation; this is the same field without J2). Defined before the
+// table: GCC folds a function's address to a constant only once the function is defined, and a
+// sanitized build refuses the table's static_assert otherwise.
+void coast_dynamics(const double* y, double* dy) {
+  const double r2 = y[0] * y[0] + y[1] * y[1] + y[2] * y[2];
+  const double k = -problem::mu / (r2 * std::sqrt(r2));
+  for (int i = 0; i < 3; ++i) {
+    dy[i] = y[3 + i];
+    dy[3 + i] = k * y[i];
+  }
+}
+
+// The optional modules this program defines: the throttle's slopes (the problem has a throttle) and
+// a coasting target's dynamics.
 constexpr ModuleTable kModuleTable = [] {
   ModuleTable t;
   t.throttle_slopes = &throttle_slopes;
@@ -371,21 +384,6 @@ TEST(Runtime, EphemerisModeIsJplLpInNormalizedUnits) {
     EXPECT_TRUE(IsClose(n[3 + i] * problem::kSpeedUnitKmS, s[3 + i], 0, 1e-15));
   }
 }
-
-}  // namespace
-
-// Unpowered two-body motion for the coasting-target propagator (the generated program's
-// coast_dynamics comes from the derivation; this is the same field without J2).
-void helios_rt::coast_dynamics(const double* y, double* dy) {
-  const double r2 = y[0] * y[0] + y[1] * y[1] + y[2] * y[2];
-  const double k = -problem::mu / (r2 * std::sqrt(r2));
-  for (int i = 0; i < 3; ++i) {
-    dy[i] = y[3 + i];
-    dy[3 + i] = k * y[i];
-  }
-}
-
-namespace {
 
 // A circular orbit at 1 AU turns by 2 pi t / T: the coasting propagator reaches 1e-12.
 TEST(Runtime, CoastingTargetFollowsTheKeplerOrbit) {
