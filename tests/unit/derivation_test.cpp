@@ -283,6 +283,10 @@ TEST(DerivationNames, ReadsTheNamesBack) {
   EXPECT_FALSE(names::is_multiplier_of("nu_mars_", "mars"));
   EXPECT_TRUE(names::is_constraint_row("psi_arrival_1"));
   EXPECT_FALSE(names::is_constraint_row("jump_mars_m"));
+  EXPECT_EQ(names::hamiltonian_label("H_mars_m"), "mars_m");
+  EXPECT_EQ(names::hamiltonian_label("H_tf"), "tf");
+  EXPECT_EQ(names::hamiltonian_label("H_"), "");
+  EXPECT_EQ(names::hamiltonian_label("hamiltonian_tf"), "");
 }
 
 }  // namespace

@@ -501,6 +501,17 @@ TEST(VerifyEvents, TimeConditionNeedsTheHJumpAndTheTargetsMotion) {
   EXPECT_TRUE(contains(check(r, "event_time:rock")["feedback"], "nu^T dpsi/dt is missing")) << r["feedback"];
 }
 
+// A model may omit an event value's optional "at": the label is read from the name's grammar
+// (H_rock_m is H at rock_m), so the time condition is still checked, and still passes.
+TEST(VerifyEvents, AHamiltonianValueWithoutAtIsPlacedByItsName) {
+  json d = flyby();
+  for (auto& v : d["event_values"])
+    if (v.value("kind", "") == "hamiltonian") v.erase("at");
+  EXPECT_EQ(verify(d)["verdict"], "pass") << verify(d)["feedback"];
+  equation(d, "time_rock")["expression"] = "H_rock_p-H_rock_m";  // the H jump's sign, caught as with "at"
+  EXPECT_EQ(failed_ids(verify(d)), std::set<std::string>{"event_time:rock"});
+}
+
 TEST(VerifyEvents, MappedCostateTreatedAsContinuousFails) {
   json d = stay();
   auto& c = event_costate(d, "l_vy");

@@ -274,10 +274,7 @@ void Context::read_times_and_events() {
     v.name = e.name;
     v.meaning = e.meaning;
     v.hamiltonian = e.kind.value_or("") == "hamiltonian";
-    if (e.at)
-      v.at = *e.at;
-    else if (v.name.rfind("hamiltonian", 0) == 0 && v.name.size() > 2)
-      v.at = v.name.substr(2);
+    v.at = e.at ? *e.at : names::hamiltonian_label(v.name);
     declare(v.name, Kind::EventValue);
     event_values.push_back(v);
   }

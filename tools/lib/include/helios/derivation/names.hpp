@@ -15,7 +15,7 @@
 //   t_<id>_dep                its departure after a stay                     event_departure_time(id)
 //   <t>_frac                  the free fraction variable of a time t         fraction(t), event_fraction(id)
 //   nu_<id>_<j>               the multiplier of constraint id's row j        multiplier(id, j), is_multiplier_of
-//   H_<label>                 H at label (t0, tf, <id>_m, <id>_p)            hamiltonian(label), _before/_after
+//   H_<label>                 H at label (t0, tf, <id>_m, <id>_p)            hamiltonian(label), _label, _before/_after
 //   psi_<id>_<j>              row j of constraint id                         constraint_row(id, j)
 //   jump_<id>_<x>             the costate jump row of state x at event id    jump_row(id, x)
 //   time_<id>                 the row of event id's free time                time_row(id)
@@ -108,6 +108,11 @@ inline bool is_multiplier_of(const std::string& name, const std::string& id) {
 
 inline std::string hamiltonian(const std::string& label) {
   return at("H", label);
+}
+// The label of H_<label> ("" for a name that is not a Hamiltonian's value).
+inline std::string hamiltonian_label(const std::string& name) {
+  const std::string prefix = hamiltonian("");
+  return name.size() > prefix.size() && name.rfind(prefix, 0) == 0 ? name.substr(prefix.size()) : "";
 }
 inline std::string hamiltonian_before(const std::string& id) {
   return hamiltonian(before_label(id));
