@@ -717,6 +717,36 @@ std::vector<ContinuationStep> eventless_search(const Settings& s, const EventPla
   return sorted_by;
 }
 
+// Attempt k's outcome into the record: a converged one's extremal told apart from those already
+// reached (or counted with its twin), and the events-off solution it continued marked as arrived.
+inline void record_attempt(const Settings& s, int k, int eventless, Result& a, SearchRecord& rec) {
+  ++rec.starts;
+  if (a.status != Status::kConverged) return;
+  ++rec.converged_final;
+  Extremal entry;
+  entry.F = a.F;
+  entry.x_start = a.x_start;
+  entry.max_residual = a.max_residual;
+  entry.info = a.info;
+  entry.method = a.method;
+  entry.homotopy = std::move(a.homotopy);
+  entry.legs = std::move(a.legs);
+  entry.continuation = std::move(a.continuation);
+  const int i = merge_extremal(rec.extremals, a.x, shape_of(s, a.x, 0.0), k, std::move(entry));
+  rec.extremals[i].from.push_back(k);
+  if (eventless > 0 && rec.start_extremals[k % eventless].arrived < 0) rec.start_extremals[k % eventless].arrived = i;
+}
+
+// Why the attempts stopped after `attempts_made`, and the chance that an extremal went unseen.
+inline void record_stop(const Settings& s, int attempts_made, bool saturated, SearchRecord& rec) {
+  rec.saturated = saturated;
+  rec.unseen = unseen_chance(rec.extremals, rec.starts);
+  rec.stopped = rec.saturated ? "saturated: every extremal reached by more than one attempt"
+                : attempts_made >= s.max_attempts
+                    ? "the cap of " + std::to_string(s.max_attempts) + " attempts (max_attempts)"
+                    : "the time budget (search_time_s, time_limit_s)";
+}
+
 // Problems with interior events: search_attempts complete attempts, independent of one another.
 // When every event is passable, the problem without them is searched first (eventless_search) and
 // attempt k continues onto the events from its distinct solutions in turn (k mod their number;
@@ -762,23 +792,6 @@ Result events_homotopy_solve(const Settings& fine, const LegPlan& legs, const Ev
     const std::lock_guard<std::mutex> lock(count);
     evaluations += attempt_evaluations + single.evaluations;
   };
-  const auto merge = [&](int k, Result& a) {
-    ++rec.starts;
-    if (a.status != Status::kConverged) return;
-    ++rec.converged_final;
-    Extremal entry;
-    entry.F = a.F;
-    entry.x_start = a.x_start;
-    entry.max_residual = a.max_residual;
-    entry.info = a.info;
-    entry.method = a.method;
-    entry.homotopy = std::move(a.homotopy);
-    entry.legs = std::move(a.legs);
-    entry.continuation = std::move(a.continuation);
-    const int i = merge_extremal(rec.extremals, a.x, shape_of(s, a.x, 0.0), k, std::move(entry));
-    rec.extremals[i].from.push_back(k);
-    if (eventless > 0 && rec.start_extremals[k % eventless].arrived < 0) rec.start_extremals[k % eventless].arrived = i;
-  };
   int next = 0;
   // Attempts go on past search_attempts while none has converged, or while the extremals reached
   // do not look saturated (draws.hpp's estimate over the attempts: some extremal reached by one
@@ -806,7 +819,7 @@ Result events_homotopy_solve(const Settings& fine, const LegPlan& legs, const Ev
         rec.start_extremals[(next + i) % eventless].continued = true;
         ++rec.continued;
       }
-      merge(next + i, results[i]);
+      record_attempt(s, next + i, eventless, results[i], rec);
     }
     done = 0;
     next = to;
@@ -815,11 +828,7 @@ Result events_homotopy_solve(const Settings& fine, const LegPlan& legs, const Ev
                    std::to_string(rec.extremals.size()) + " distinct extremals" +
                    (std::isfinite(best) ? ", best " + objective_text(best) : ""));
   }
-  rec.saturated = saturated();
-  rec.unseen = unseen_chance(rec.extremals, rec.starts);
-  rec.stopped = rec.saturated ? "saturated: every extremal reached by more than one attempt"
-                : next >= s.max_attempts ? "the cap of " + std::to_string(s.max_attempts) + " attempts (max_attempts)"
-                                         : "the time budget (search_time_s, time_limit_s)";
+  record_stop(s, next, saturated(), rec);
   say_if_not_saturated(rec, s, progress);
   r.attempts = rec.starts;
   r.evaluations = evaluations;
