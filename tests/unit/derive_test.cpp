@@ -4,6 +4,9 @@
 
 #include <map>
 #include <random>
+#include <set>
+#include <array>
+#include <cmath>
 #include <string>
 
 #include "helios/io/error.hpp"
@@ -91,7 +94,7 @@ struct Point {
 };
 
 class EveryScenario : public ::testing::TestWithParam<std::string> {};
-INSTANTIATE_TEST_SUITE_P(Derive, EveryScenario, ::testing::Values("S01", "S05", "S06", "S11"));
+INSTANTIATE_TEST_SUITE_P(Derive, EveryScenario, ::testing::Values("S01", "S05", "S06", "S11", "S14"));
 
 TEST_P(EveryScenario, IsValidDeterministicAndSquare) {
   const json& d = derivation_of(GetParam());
@@ -267,6 +270,124 @@ TEST(Derive, BoundsAreRowsOfPsiWithTheirOwnMultipliers) {
   const std::string time = eqs.at("time_nikko")["expression"];
   EXPECT_NE(time.find("-nu_nikko_7"), std::string::npos) << time;
   EXPECT_NE(time.find("+nu_nikko_8"), std::string::npos) << time;
+}
+
+// The rows of an orbit target, evaluated in km and km/s by the derivation's own parameters.
+struct OrbitRowsOf {
+  SymbolTable table;
+  Values values;
+  std::vector<GiNaC::ex> psi;
+  double length_km = 1, speed_km_s = 1;
+  explicit OrbitRowsOf(const std::string& final_sentence) {
+    const std::string text = helios::io::read_text(kSource + "/scenarios/S14/problem.txt");
+    const std::string from = "At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km.";
+    const json d = helios::pmp::derive_from_spec(
+        helios::spec::parse_problem_text(text.substr(0, text.find(from)) + final_sentence + text.substr(text.find(from) + from.size()), "t"));
+    for (const auto& q : d["parameters"]) values[q["name"]] = q["value"].get<double>();
+    for (const auto& q : d["parameters"]) table.get(q["name"]);
+    for (const char* x : {"rx", "ry", "rz", "vx", "vy", "vz", "m"}) table.get(x);
+    length_km = d["units"]["length_km"];
+    speed_km_s = length_km / d["units"]["time_s"].get<double>();
+    for (const auto& c : d["constraints"])
+      if (c["kind"] == "orbit_insertion")
+        for (const auto& row : c["psi"]) psi.push_back(table.parse(row, "psi"));
+  }
+  std::vector<double> at(const std::array<double, 6>& state_km) {
+    const char* names[] = {"rx", "ry", "rz", "vx", "vy", "vz"};
+    for (int i = 0; i < 6; ++i) values[names[i]] = state_km[i] / (i < 3 ? length_km : speed_km_s);
+    values["m"] = 1;
+    std::vector<double> out;
+    for (const auto& row : psi) out.push_back(helios::symbolic::evaluate(row, table, values));
+    return out;
+  }
+  // The rank of dpsi/dx at a state, by central differences and Gram-Schmidt.
+  std::size_t rank(const std::array<double, 6>& state_km) {
+    std::vector<std::vector<double>> grad(psi.size(), std::vector<double>(6));
+    for (int k = 0; k < 6; ++k) {
+      auto plus = state_km, minus = state_km;
+      const double h = 1e-6 * (k < 3 ? 42165.0 : 3.0);
+      plus[k] += h;
+      minus[k] -= h;
+      const auto a = at(plus), b = at(minus);
+      for (std::size_t j = 0; j < psi.size(); ++j) grad[j][k] = (a[j] - b[j]) / (2 * h);
+    }
+    std::size_t r = 0;
+    std::vector<std::vector<double>> basis;
+    for (auto g : grad) {
+      double n0 = 0;
+      for (double x : g) n0 += x * x;
+      for (const auto& b : basis) {
+        double d = 0;
+        for (int k = 0; k < 6; ++k) d += g[k] * b[k];
+        for (int k = 0; k < 6; ++k) g[k] -= d * b[k];
+      }
+      double n = 0;
+      for (double x : g) n += x * x;
+      if (n0 > 0 && n > 1e-12 * n0) {
+        for (double& x : g) x /= std::sqrt(n);
+        basis.push_back(g);
+        ++r;
+      }
+    }
+    return r;
+  }
+};
+
+// A circular orbit of radius a in the plane of inclination i and node W, at argument of latitude u.
+std::array<double, 6> circular_state(double a, double i_deg, double node_deg, double u) {
+  const double mu = 398600.47, v = std::sqrt(mu / a), i = i_deg * M_PI / 180, W = node_deg * M_PI / 180;
+  const double P[3] = {std::cos(W), std::sin(W), 0};
+  const double Q[3] = {-std::cos(i) * std::sin(W), std::cos(i) * std::cos(W), std::sin(i)};
+  std::array<double, 6> x{};
+  for (int k = 0; k < 3; ++k) {
+    x[k] = a * (std::cos(u) * P[k] + std::sin(u) * Q[k]);
+    x[3 + k] = v * (-std::sin(u) * P[k] + std::cos(u) * Q[k]);
+  }
+  return x;
+}
+
+// An orbit target's psi vanishes along the whole orbit (the anomaly is free) and its rows are
+// independent there, also on the circular equatorial orbit where the elements' angles are undefined.
+TEST(Derive, AnOrbitTargetsRowsVanishAlongItAndAreIndependent) {
+  struct Case {
+    std::string sentence;
+    double a, i, node;
+    std::size_t rows;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km.", 42165, 0, 0, 5},
+           {"At the final time the spacecraft is on a circular orbit of 7500 km radius inclined 28.5 deg.", 7500, 28.5, 40, 4},
+           {"At the final time the spacecraft is on a circular orbit of radius 26600 km with inclination 55 deg and node 120 deg.",
+            26600, 55, 120, 5}}) {
+    OrbitRowsOf o(c.sentence);
+    ASSERT_EQ(o.psi.size(), c.rows) << c.sentence;
+    for (double u : {0.0, 1.0, 2.5, 4.0}) {
+      const auto x = circular_state(c.a, c.i, c.node, u);
+      for (double r : o.at(x)) EXPECT_NEAR(r, 0, 1e-12) << c.sentence << " u=" << u;
+      EXPECT_EQ(o.rank(x), c.rows) << c.sentence << " u=" << u;
+    }
+    // Off the orbit (a larger radius) some row is not 0.
+    double off = 0;
+    for (double r : o.at(circular_state(1.01 * c.a, c.i, c.node, 1.0))) off = std::max(off, std::abs(r));
+    EXPECT_GT(off, 1e-3) << c.sentence;
+  }
+}
+
+// With psi fixing no state, the multipliers are shooting variables and every state's
+// transversality row an equation: 5 rows, 6 + 1 transversality rows, square with tf free.
+TEST(Derive, AnOrbitTargetKeepsItsMultipliersAndEveryTransversalityRow) {
+  const json& d = derivation_of("S14");
+  std::set<std::string> variables, equations;
+  for (const auto& v : d["shooting"]["variables"]) variables.insert(v["name"]);
+  for (const auto& e : d["shooting"]["equations"]) equations.insert(e["name"]);
+  for (int j = 1; j <= 5; ++j) {
+    EXPECT_TRUE(variables.count("nu_arrival_" + std::to_string(j))) << j;
+    EXPECT_TRUE(equations.count("psi_arrival_" + std::to_string(j))) << j;
+  }
+  for (const char* x : {"rx", "ry", "rz", "vx", "vy", "vz", "m"})
+    EXPECT_TRUE(equations.count(std::string("transversality_") + x)) << x;
+  EXPECT_EQ(variables.size(), 14u);
+  EXPECT_EQ(equations.size(), 14u);
 }
 
 TEST(Derive, SailWithFuelObjectiveIsRefused) {

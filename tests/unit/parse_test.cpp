@@ -1102,3 +1102,58 @@ TEST(ParseNeverMisreads, BodyNamesWhoseSymbolsCollideAreRefused) {
 }
 
 }  // namespace
+
+namespace {
+
+// S14 with its final sentence replaced.
+std::string with_final_orbit(const std::string& sentence) {
+  return replaced(scenario("S14"), "At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km.",
+                  sentence);
+}
+
+json final_target(const std::string& sentence) {
+  const json spec = parse(with_final_orbit(sentence));
+  for (const auto& c : spec["constraints"])
+    if (c["at"] == "tf") {
+      EXPECT_EQ(c["kind"], "orbit_insertion");
+      return c["target"];
+    }
+  return {};
+}
+
+TEST(ParseOrbitTarget, ReadsAnOrbitInEverydayWords) {
+  EXPECT_EQ(final_target("At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km."),
+            json::parse(R"({"kind": "orbital_elements", "semi_major_axis_km": 42165.0, "eccentricity": 0.0,
+                            "inclination_deg": 0.0})"));
+  EXPECT_EQ(final_target("At the final time the spacecraft is on a circular orbit of 7500 km radius inclined 28.5 deg "
+                         "with any true anomaly."),
+            json::parse(R"({"kind": "orbital_elements", "semi_major_axis_km": 7500.0, "eccentricity": 0.0,
+                            "inclination_deg": 28.5})"));
+  EXPECT_EQ(final_target("The spacecraft transfers to an orbit with semi-major axis 24500 km, eccentricity 0.72, "
+                         "inclination 7 deg and node 30 deg."),
+            json::parse(R"({"kind": "orbital_elements", "semi_major_axis_km": 24500.0, "eccentricity": 0.72,
+                            "inclination_deg": 7.0, "raan_deg": 30.0})"));
+  // Geostationary: the radius of the sidereal day's period for the stated mu, (mu T^2/4 pi^2)^(1/3).
+  const json geo = final_target("The spacecraft transfers into geostationary orbit.");
+  EXPECT_NEAR(geo["semi_major_axis_km"].get<double>(), 42164.17, 0.01);
+  EXPECT_EQ(geo["eccentricity"], 0.0);
+  EXPECT_EQ(geo["inclination_deg"], 0.0);
+  helios::io::validate("spec", parse(with_final_orbit("The spacecraft transfers into geostationary orbit.")), "test");
+}
+
+TEST(ParseOrbitTarget, RefusesWhatItCannotPlaceWithTheForms) {
+  std::string e = error_of(with_final_orbit(
+      "At the final time the spacecraft is on the circular orbit of radius 42165 km with argument of perigee 30 deg."));
+  has(e, "cannot place 'argument perigee 30 deg' in the target orbit");
+  has(e, "the circular equatorial orbit of radius 42165 km");
+  has(error_of(with_final_orbit("At the final time the spacecraft is on the orbit.")), "names none of its elements");
+  has(error_of(with_final_orbit("At the final time the spacecraft is on an orbit with node 30 deg.")),
+      "gives its node but not its inclination");
+  has(error_of(with_final_orbit("At the final time the spacecraft is on an orbit with eccentricity 1.2.")),
+      "eccentricity must be below 1");
+  has(error_of(replaced(with_final_orbit("The spacecraft transfers into geostationary orbit."),
+                        "the Earth with gravitational parameter 398600.47 km^3/s^2", "Mars")),
+      "a geostationary orbit is about the Earth");
+}
+
+}  // namespace

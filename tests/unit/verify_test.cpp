@@ -383,6 +383,30 @@ TEST(Verify, CoastingTargetMustObeyTheSameField) {
   EXPECT_TRUE(contains(check(r, "coast_dynamics")["feedback"], "coast_dynamics.rhs[5]"));
 }
 
+// An orbit target (S14): psi fixes no state, so each state's row lambda(tf) = nu^T dpsi/dx is an
+// equation of its own, recomputed from psi: dropped or with a term's sign flipped, it fails.
+TEST(Verify, AnOrbitTargetsTransversalityIsRecomputedFromPsi) {
+  json d = derive("S14");
+  json r = verify(d);
+  EXPECT_EQ(r["verdict"], "pass") << r["feedback"];
+  for (const char* x : {"rx", "vz", "m"}) EXPECT_EQ(check(r, std::string("transversality:") + x)["verdict"], "pass");
+  json dropped = d;
+  auto& eqs = dropped["shooting"]["equations"];
+  for (std::size_t i = 0; i < eqs.size(); ++i)
+    if (eqs[i]["name"] == "transversality_vx") eqs.erase(i);
+  EXPECT_TRUE(failed_ids(verify(dropped)).count("transversality:vx"));
+  // lambda_vx(tf) - 2 nu_3 vx - ...: the sign of the nu_arrival_3 term flipped.
+  auto& e = equation(d, "transversality_vx")["expression"];
+  std::string text = e;
+  const auto at = text.find("-2*nu_arrival_3*vx_tf");
+  ASSERT_NE(at, std::string::npos) << text;
+  text.replace(at, 1, "+");
+  e = text;
+  r = verify(d);
+  EXPECT_EQ(failed_ids(r), std::set<std::string>{"transversality:vx"});
+  EXPECT_TRUE(contains(check(r, "transversality:vx")["feedback"], "nu_arrival_3")) << r["feedback"];
+}
+
 TEST(Verify, RightHandSideWithTheOptimalControlSubstitutedPasses) {
   json d = s01();
   costate_ode(d, "l_m")["rhs"] = "-Tmax*u*sqrt(l_vx^2+l_vy^2+l_vz^2)/m^2";  // a* = -l_v/|l_v| substituted

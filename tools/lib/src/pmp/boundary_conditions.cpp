@@ -62,7 +62,8 @@ void initial_constraint(Derivation& d, EndpointConditions& c, TimeConditions& ti
 
 // lambda(tf) - lambda0 dphi/dx - nu^T dpsi/dx = 0; the multipliers of the equality rows are
 // solved from the rows of the states they fix (dpsi/dx_J invertible), the other rows remain as
-// transversality equations. A bound's multiplier is a shooting variable (0 while the bound is
+// transversality equations. Where psi fixes no state (multipliers_unknown: an orbit) every row is
+// an equation and the multipliers are shooting variables. A bound's multiplier is a shooting variable (0 while the bound is
 // inactive). Returns the rows that determine the equality multipliers, at tf.
 GiNaC::lst final_transversality(Derivation& d, EndpointConditions& c, const GiNaC::exmap& at_tf,
                                 std::map<std::string, ex>& free_end) {
@@ -84,7 +85,12 @@ GiNaC::lst final_transversality(Derivation& d, EndpointConditions& c, const GiNa
       row -= S.get(c.multipliers[j]) * dpsi;
     }
     c.transversality.push_back(row);
-    if (touched) {
+    if (touched && k.multipliers_unknown) {
+      d.shooting.equations.push_back({names::transversality_row(n), row.subs(at_tf),
+                                      "lambda_" + n + "(tf) = lambda0 dphi/d" + n + " + nu^T dpsi/d" + n + ": " + n +
+                                          "(tf) is free on the target orbit",
+                                      k.id});
+    } else if (touched) {
       c.eliminated.push_back(row);
       touched_rows.append(row.subs(at_tf) == 0);
     } else {
@@ -107,12 +113,12 @@ void final_constraint(Derivation& d, EndpointConditions& c, TimeConditions& time
   const EndpointConstraint& k = c.constraint;
   GiNaC::lst nus;
   for (std::size_t j = 0; j < k.psi.size(); ++j) {
-    if (!k.psi_inequality[j]) {
+    if (!k.psi_inequality[j] && !k.multipliers_unknown) {
       nus.append(S.get(c.multipliers[j]));
       continue;
     }
-    d.shooting.variables.push_back(
-        multiplier_variable(c.multipliers[j], "multiplier of " + k.id + ": " + k.psi_names[j], true));
+    d.shooting.variables.push_back(multiplier_variable(
+        c.multipliers[j], "multiplier of " + k.id + ": " + k.psi_names[j], k.psi_inequality[j]));
   }
   std::map<std::string, ex> free_end;  // lambda_s(tf) - lambda0 dphi/dx_s: the row without psi
   const GiNaC::lst touched_rows = final_transversality(d, c, at_tf, free_end);
@@ -126,11 +132,15 @@ void final_constraint(Derivation& d, EndpointConditions& c, TimeConditions& time
     d.shooting.equations.push_back(eq);
   }
   if (!p.free_final_time && !p.free_departure) return;
+  c.time_condition = "H(tf) + lambda0*dphi/dtf + nu^T dpsi/dtf = 0 (tf free)";
+  if (k.multipliers_unknown) {  // nu are shooting variables
+    for (std::size_t j = 0; j < k.psi.size(); ++j) time.final_time += S.get(c.multipliers[j]) * k.psi_t[j].subs(at_tf);
+    return;
+  }
   const GiNaC::exmap nu_value = multiplier_values(
       touched_rows, nus, "constraint '" + k.id + "': its multipliers are not determined by lambda(tf)");
   for (std::size_t j = 0; j < k.psi.size(); ++j)
     time.final_time += S.get(c.multipliers[j]).subs(nu_value) * k.psi_t[j].subs(at_tf);
-  c.time_condition = "H(tf) + lambda0*dphi/dtf + nu^T dpsi/dtf = 0 (tf free)";
 }
 
 // The shooting variable and equation of a free departure epoch and of a free final time.

@@ -200,6 +200,25 @@ void gravity_assist(Problem& p, const json& c, InteriorEvent& e, const std::vect
   }
 }
 
+// The state on a target orbit at tf, the position on it free: the orbit's rows (orbit_rows), none
+// of which fixes a state, so their multipliers are unknowns of the shooting. The orbit does not
+// move: dpsi/dtf = 0.
+EndpointConstraint orbit_insertion(Problem& p, EndpointConstraint k) {
+  const std::string where = "constraint '" + k.id + "'";
+  if (k.at != "tf") throw std::invalid_argument(where + ": an orbit insertion is at tf");
+  if (k.target.at("kind") != "orbital_elements")
+    throw std::invalid_argument(where + ": an orbit insertion needs a target of kind orbital_elements");
+  if (p.free_departure) throw std::invalid_argument(where + ": an orbit target needs a fixed departure epoch");
+  if (p.free_initial_mass) throw std::invalid_argument(where + ": an orbit target needs a known initial mass");
+  const OrbitRows rows = orbit_rows(p, k.id, k.target);
+  k.psi = rows.psi;
+  k.psi_names = rows.names;
+  k.psi_inequality.assign(rows.psi.size(), false);
+  k.psi_t.assign(rows.psi.size(), 0);
+  k.multipliers_unknown = true;
+  return k;
+}
+
 }  // namespace
 
 // An interior event: conditions c on the arriving state and the map g to the leaving state.
@@ -246,6 +265,7 @@ EndpointConstraint endpoint_constraint(Problem& p, const json& c) {
   k.at = c.at("at").get<std::string>();
   k.target = c.at("target");
   const std::string where = "constraint '" + k.id + "'";
+  if (k.kind == "orbit_insertion") return orbit_insertion(p, std::move(k));
   if (k.kind != "initial_state" && k.kind != "rendezvous" && !(k.kind == "flyby" && k.at == "tf"))
     throw std::invalid_argument(where + ": a " + k.kind + " is an interior event, not at " + k.at);
   if (k.target.at("kind") == "coasting" && p.free_departure)

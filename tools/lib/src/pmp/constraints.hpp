@@ -7,6 +7,14 @@
 
 namespace helios::pmp {
 
+// The rows psi(x) = 0 of an orbit given by some of its classical elements (the spec's target of
+// kind "orbital_elements"), with their meanings; adds the elements as parameters <element>_<id>.
+struct OrbitRows {
+  std::vector<GiNaC::ex> psi;
+  std::vector<std::string> names;
+};
+OrbitRows orbit_rows(Problem& p, const std::string& id, const io::json& target);
+
 // psi(t_k, x(t_k), p) of an endpoint constraint (at t0 or tf).
 EndpointConstraint endpoint_constraint(Problem& p, const io::json& constraint);
 

@@ -266,7 +266,7 @@ void Builder::finish_events() {
     e.target = resolve(json{{"ref", e.body}}, e.where);
     needs_epoch(e.target, e.where);
   }
-  arrival->target = resolve(arrival->target, arrival->where);
+  arrival->target = geostationary(resolve(arrival->target, arrival->where), arrival->where);
   needs_epoch(arrival->target, arrival->where);
   for (const auto& o : orbits)
     if (!o.used)

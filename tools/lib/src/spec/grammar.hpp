@@ -7,6 +7,7 @@
 //   time.cpp         the time of flight, the departure, its epoch and window
 //   events.cpp       the final condition, events on the way (rendezvous, flyby, gravity assist,
 //                    stays, landers) and the constraints they become
+//   orbit_target.cpp a final condition that is an orbit (its elements, the position on it free)
 //   tables.cpp       bodies given by their orbital elements: orbit sentences and elements tables
 //   apply_facts.cpp  facts stated in other words (facts.cpp), applied to the spec
 //   grammar.cpp      numbers with units, vectors, names and clause lists
@@ -66,6 +67,9 @@ std::string body_name(const std::string& phrase);
 double mjd2000_of(const std::string& scale, const std::string& value);
 // A state, a coasting target or a body's name as {"ref": NAME} (events.cpp).
 json parse_target(const std::string& phrase);
+// An orbit given by some of its elements, as a target of kind orbital_elements (orbit_target.cpp);
+// "geostationary" is kept as a flag until the central body is known (Builder::geostationary).
+json parse_orbit_target(const std::string& phrase);
 // Orbital elements {a [AU], e, i, raan, argp [deg], mean or true [deg]} as the spec's (tables.cpp).
 json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v);
 
@@ -202,6 +206,9 @@ struct Builder {
   // ---- the final condition, events on the way, constraints (events.cpp) ----
   void on_arrive(const std::smatch& m);
   void on_arrive_flyby(const std::smatch& m);
+  // ---- a final condition that is an orbit (orbit_target.cpp) ----
+  void on_arrive_orbit(const std::smatch& m);
+  json geostationary(json target, const Where& w) const;
   void on_event(const std::smatch& m);
   static EpochRef epoch_ref(const std::string& scale, const std::string& value);
   void event(const std::string& kind, const std::string& rest);

@@ -25,6 +25,8 @@ void Builder::handle(const std::string& s) {
       {re(R"(The (?:total )?time of flight is (?:fixed at )?)" + kQuantity), &Builder::on_tof},
       {re(R"(At the final time the spacecraft (?:rendezvouses|must rendezvous) with (.+)|The spacecraft (?:rendezvouses|must rendezvous) with (.+) at the final time)"),
        &Builder::on_arrive},
+      {re(R"(At the final time the spacecraft is (?:on|in) (.+\borbit\b.*)|The spacecraft (?:transfers|is transferred|is inserted|must transfer|arrives) (?:in)?to (.+\borbit\b.*?)(?: at the final time)?)"),
+       &Builder::on_arrive_orbit},
       {re(R"(At the final time the spacecraft (?:flies|must fly) by (.+?)(?:,? with a relative speed of at most )" +
           kQuantity + ")?"),
        &Builder::on_arrive_flyby},

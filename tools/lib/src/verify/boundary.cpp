@@ -92,17 +92,29 @@ class BoundaryFamily : public Family {
     const ex lambda0 = ctx.sym(ctx.multiplier);
     GiNaC::exmap to_tf;
     for (const auto& s : ctx.states) to_tf[ctx.sym(s)] = ctx.sym(names::at_tf(s));
-    // Final state: a state no psi fixes has lambda(tf) = lambda0 dphi/dx(tf).
+    // Final state: a state no psi fixes has lambda(tf) = lambda0 dphi/dx(tf) + nu^T dpsi/dx(tf), the
+    // nu those of the constraints whose multipliers are unknowns (0 for a state no psi involves).
     for (std::size_t i = 0; i < ctx.states.size(); ++i) {
       const std::string& s = ctx.states[i];
       if (ctx.fixed_at_tf.count(s)) continue;
-      const ex expected = (ctx.sym(names::at_tf(ctx.costates[i])) -
-                           lambda0 * ctx.endpoint_cost.diff(GiNaC::ex_to<symbol>(ctx.sym(s))).subs(to_tf))
-                              .expand();
+      const symbol x = GiNaC::ex_to<symbol>(ctx.sym(s));
+      ex expected = ctx.sym(names::at_tf(ctx.costates[i])) - lambda0 * ctx.endpoint_cost.diff(x);
+      bool on_constraint = false;
+      for (const auto& k : ctx.constraints)
+        if (k.at == "tf" && k.multipliers_unknown)
+          for (std::size_t j = 0; j < k.psi.size() && j < k.multipliers.size(); ++j) {
+            const ex dpsi = k.psi[j].diff(x);
+            if (dpsi.is_zero()) continue;
+            expected -= ctx.sym(k.multipliers[j]) * dpsi;
+            on_constraint = true;
+          }
+      expected = expected.subs(to_tf).expand();
       Check c = start("transversality:" + s, "transversality", "random_points+exact");
       find_equation(c, expected,
                     "missing transversality condition " + print(expected) + " = 0: " + s +
-                        "(tf) is free (no final constraint involves it); add it to shooting.equations.");
+                        (on_constraint ? "(tf) moves along the final constraint's set, its multipliers unknowns"
+                                       : "(tf) is free (no final constraint involves it)") +
+                        "; add it to shooting.equations.");
       checks.push_back(c);
     }
     // Each final constraint component psi(x(tf)) = 0.

@@ -234,12 +234,17 @@ void Context::read_statement() {
     for (std::size_t j = 0; j < c.psi.size(); ++j)
       k.psi.push_back(statement(c.psi[j].text, "constraints[" + k.id + "].psi[" + std::to_string(j) + "]").subs(to_state));
     k.multipliers = c.multipliers;
+    std::set<std::string> unknowns;
+    for (const auto& v : doc.shooting.variables) unknowns.insert(v.name);
+    k.multipliers_unknown = k.at == "tf" && !k.multipliers.empty() &&
+                            std::all_of(k.multipliers.begin(), k.multipliers.end(),
+                                        [&](const std::string& nu) { return unknowns.count(nu) > 0; });
     constraints.push_back(k);
   }
   for (const auto& k : constraints)
     for (const auto& psi : k.psi)
       for (const auto& s : states)
-        if (psi.has(sym(s))) (k.at == "tf" ? fixed_at_tf : fixed_at_t0).insert(s);
+        if (psi.has(sym(s)) && !k.multipliers_unknown) (k.at == "tf" ? fixed_at_tf : fixed_at_t0).insert(s);
 }
 
 // H = lambda0 L + lambda.f, its gradients in the direction and sail controls, and a* = -g/|g|

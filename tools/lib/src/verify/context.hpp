@@ -56,6 +56,10 @@ struct Constraint {
   std::string id, at;
   std::vector<ex> psi;                   // in the state symbols
   std::vector<std::string> multipliers;  // nu of each row, as written (may be empty)
+  // Every multiplier a shooting variable: psi is not solved for the states it involves (an
+  // orbit), so each of their transversality rows lambda(tf) = lambda0 dphi/dx + nu^T dpsi/dx is
+  // an equation of its own.
+  bool multipliers_unknown = false;
 };
 
 // A shooting equation as written, with its values at the sample points.
@@ -141,7 +145,8 @@ class Context {
   std::vector<ex> state_rhs;
   ex running_cost, endpoint_cost;  // the endpoint cost in the state symbols
   std::vector<Constraint> constraints;
-  std::set<std::string> fixed_at_t0, fixed_at_tf;  // states some constraint at t0 / tf involves
+  // States some constraint at t0 / tf involves (at tf: one whose multipliers are eliminated).
+  std::set<std::string> fixed_at_t0, fixed_at_tf;
   std::vector<Event> interior_events;
   // Uncontrolled dynamics of coasting targets.
   bool has_coast = false;

@@ -47,13 +47,16 @@ struct Control {
 
 // psi(t_k, x(t_k), p) = 0 at t0 or tf, comparing states with target parameters.
 struct EndpointConstraint {
-  std::string id, kind, at;      // kind: initial_state | rendezvous | flyby (position only); at: t0 | tf
+  std::string id, kind, at;      // kind: initial_state | rendezvous | flyby (position only) | orbit_insertion
   std::vector<GiNaC::ex> psi;    // in the state symbols (evaluated at `at`)
   std::vector<GiNaC::ex> psi_t;  // d psi / d t_k through the target's motion (0 for a fixed state)
   std::vector<std::string> psi_names;
   std::vector<bool> psi_inequality;       // true: the row is a bound psi_j <= 0 (active only in pass 2)
   std::vector<std::string> fixed_states;  // states psi fixes (for meaning and counting)
   io::json target;                        // the spec's target, for the generator's ephemeris mode
+  // psi is not solved for the states it involves (an orbit: five rows in six states), so its
+  // multipliers are shooting variables and every state's transversality row an equation.
+  bool multipliers_unknown = false;
 };
 
 // A body on a Keplerian orbit about the central body, propagated by the runtime.
