@@ -154,7 +154,7 @@ TEST_P(CompactIsExact, AtRandomPoints) {
 
 INSTANTIATE_TEST_SUITE_P(Scenarios, CompactIsExact,
                          ::testing::Values("S01", "S02", "S03", "S04", "S05", "S06", "S07", "S08", "S09", "S10", "S11",
-                                           "S12", "S13"));
+                                           "S12", "S13", "S14"));
 
 TEST(Typesetter, S10PeriapsisRowIsAFifthOfItsStoredLength) {
   const json d = helios::pmp::derive_from_spec(spec_of("S10"));
