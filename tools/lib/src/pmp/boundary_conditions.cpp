@@ -63,8 +63,9 @@ void initial_constraint(Derivation& d, EndpointConditions& c, TimeConditions& ti
 // lambda(tf) - lambda0 dphi/dx - nu^T dpsi/dx = 0; the multipliers of the equality rows are
 // solved from the rows of the states they fix (dpsi/dx_J invertible), the other rows remain as
 // transversality equations. Where psi fixes no state (multipliers_unknown: an orbit) every row is
-// an equation and the multipliers are shooting variables. A bound's multiplier is a shooting variable (0 while the bound is
-// inactive). Returns the rows that determine the equality multipliers, at tf.
+// an equation and the multipliers are shooting variables. A bound's multiplier is a shooting
+// variable (0 while the bound is inactive). Returns the rows that determine the equality
+// multipliers, at tf.
 GiNaC::lst final_transversality(Derivation& d, EndpointConditions& c, const GiNaC::exmap& at_tf,
                                 std::map<std::string, ex>& free_end) {
   Problem& p = d.problem;

@@ -19,7 +19,6 @@
 
 #include "constraints.hpp"
 #include "helios/astro/constants.hpp"
-#include "helios/symbolic/expr.hpp"
 
 namespace helios::pmp {
 namespace {
@@ -88,17 +87,16 @@ OrbitRows orbit_rows(Problem& p, const std::string& id, const io::json& target) 
   if (node_deg && !i_deg) throw std::invalid_argument(where + ": a node needs the inclination");
   if (i_deg) {
     if (!(*i_deg >= 0 && *i_deg <= 180)) throw std::invalid_argument(where + ": inclination_deg must lie in [0, 180]");
-    const double inc = *i_deg * astro::DEG_TO_RAD;
     const bool planar = node_deg || *i_deg == 0 || *i_deg == 180;
+    // The node first: the parameters' order is the derivation's.
+    const ex W = planar ? parameter("raan", "ascending node (rad)", "1", node_deg.value_or(0.0) * astro::DEG_TO_RAD)
+                        : ex(0);
+    const ex I = parameter("inc", "inclination (rad)", "1", *i_deg * astro::DEG_TO_RAD);
     if (planar) {
-      const double node = node_deg.value_or(0.0) * astro::DEG_TO_RAD;
       // The plane's normal n and its node line N; n x N = (-cos i sin W, cos i cos W, sin i).
-      const ex W = parameter("raan", "ascending node (rad)", "1", node);
-      const ex I = parameter("inc", "inclination (rad)", "1", inc);
       add(h[0] * cos(W) + h[1] * sin(W), "h.N_" + id);
       add(-h[0] * cos(I) * sin(W) + h[1] * cos(I) * cos(W) + h[2] * sin(I), "h.(n x N)_" + id);
     } else {
-      const ex I = parameter("inc", "inclination (rad)", "1", inc);
       add(h[2] - GiNaC::sqrt(dot(h, h)) * cos(I), "h_z - |h| cos(inc_" + id + ")");
     }
   }

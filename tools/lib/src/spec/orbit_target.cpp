@@ -19,17 +19,14 @@ const char* const kOrbitForms =
 // The Earth's sidereal day [s]: the period of a geostationary orbit.
 constexpr double kSiderealDayS = 86164.0905;
 
-// Removes every match of `pattern` from `text`, calling `take` with each; false if none.
+// Removes every match of `pattern` from `text`, calling `take` with each.
 template <typename Take>
-bool take_all(std::string& text, const std::regex& pattern, Take take) {
-  bool found = false;
+void take_all(std::string& text, const std::regex& pattern, Take take) {
   std::smatch m;
   while (std::regex_search(text, m, pattern)) {
     take(m);
-    found = true;
     text = m.prefix().str() + " " + m.suffix().str();
   }
-  return found;
 }
 
 // `pattern` as whole words, without case.

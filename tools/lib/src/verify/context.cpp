@@ -223,6 +223,8 @@ void Context::read_statement() {
   GiNaC::exmap tf_to_state;  // an endpoint cost written in x_tf is read in x
   for (const auto& s : states) tf_to_state[sym(names::at_tf(s))] = sym(s);
   endpoint_cost = endpoint_cost.subs(tf_to_state);
+  std::set<std::string> unknowns;  // the shooting variables' names
+  for (const auto& v : doc.shooting.variables) unknowns.insert(v.name);
   for (const auto& c : doc.constraints) {
     Constraint k;
     k.id = c.id;
@@ -234,8 +236,6 @@ void Context::read_statement() {
     for (std::size_t j = 0; j < c.psi.size(); ++j)
       k.psi.push_back(statement(c.psi[j].text, "constraints[" + k.id + "].psi[" + std::to_string(j) + "]").subs(to_state));
     k.multipliers = c.multipliers;
-    std::set<std::string> unknowns;
-    for (const auto& v : doc.shooting.variables) unknowns.insert(v.name);
     k.multipliers_unknown = k.at == "tf" && !k.multipliers.empty() &&
                             std::all_of(k.multipliers.begin(), k.multipliers.end(),
                                         [&](const std::string& nu) { return unknowns.count(nu) > 0; });
