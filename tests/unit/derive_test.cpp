@@ -9,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "helios/astro/kepler.hpp"
 #include "helios/io/error.hpp"
 #include "helios/io/schema.hpp"
 #include "helios/pmp/derivation.hpp"
@@ -388,6 +389,56 @@ TEST(Derive, AnOrbitTargetKeepsItsMultipliersAndEveryTransversalityRow) {
     EXPECT_TRUE(equations.count(std::string("transversality_") + x)) << x;
   EXPECT_EQ(variables.size(), 14u);
   EXPECT_EQ(equations.size(), 14u);
+}
+
+// A departure anywhere on an orbit given by all its elements: the derivation's x(t0) = X(theta)
+// is the state at true anomaly theta (against the library's own elements_to_state, through the
+// mean anomaly), and theta is an unknown with its stationarity row lambda(t0).dX/dtheta = 0.
+TEST(Derive, ADepartureOrbitsInitialStateIsTheOrbitAtItsAnomaly) {
+  const std::string path = kSource + "/tests/fixtures/problems/gto_anywhere_to_geo.txt";
+  const json d = helios::pmp::derive_from_spec(helios::spec::parse_problem_text(helios::io::read_text(path), path));
+  SymbolTable table;
+  Values values;
+  for (const auto& q : d["parameters"]) values[q["name"]] = q["value"].get<double>();
+  for (const auto& q : d["parameters"]) table.get(q["name"]);
+  for (const char* l : {"l_rx_t0", "l_ry_t0", "l_rz_t0", "l_vx_t0", "l_vy_t0", "l_vz_t0", "l_m_t0", "theta_departure"})
+    table.get(l);
+  const double length_km = d["units"]["length_km"], speed_km_s = length_km / d["units"]["time_s"].get<double>();
+  const auto state_at = [&](double theta) {
+    values["theta_departure"] = theta;
+    std::array<double, 6> x{};
+    for (const auto& v : d["initial_values"]) {
+      const std::string s = v["state"];
+      const char* names[] = {"rx", "ry", "rz", "vx", "vy", "vz"};
+      for (int k = 0; k < 6; ++k)
+        if (s == names[k])
+          x[k] = helios::symbolic::evaluate(table.parse(v["value"], "x0"), table, values) *
+                 (k < 3 ? length_km : speed_km_s);
+    }
+    return x;
+  };
+  const double a = 26571.428571428576, e = 0.75, i = 7.004267441546314 * M_PI / 180;
+  for (double theta : {0.0, 1.0, 2.5, M_PI, 4.0, 5.5}) {
+    const double E = 2 * std::atan(std::sqrt((1 - e) / (1 + e)) * std::tan(theta / 2));
+    const auto expected = helios::astro::elements_to_state({a, e, i, 0, 0, E - e * std::sin(E)}, 398600.47);
+    const auto x = state_at(theta);
+    for (int k = 0; k < 6; ++k) EXPECT_NEAR(x[k], expected[k], 1e-9 * (k < 3 ? a : 10)) << theta << " " << k;
+  }
+  // The stationarity row is lambda(t0).dX/dtheta (nu = -lambda(t0)), dX/dtheta by differences.
+  std::string row;
+  for (const auto& q : d["shooting"]["equations"])
+    if (q["name"] == "stationarity_departure_theta_departure") row = q["expression"];
+  ASSERT_FALSE(row.empty());
+  const double lambda[6] = {0.3, -0.2, 0.5, 0.7, -0.1, 0.4};
+  const char* costates[] = {"l_rx_t0", "l_ry_t0", "l_rz_t0", "l_vx_t0", "l_vy_t0", "l_vz_t0"};
+  for (int k = 0; k < 6; ++k) values[costates[k]] = lambda[k];
+  values["l_m_t0"] = 0.9;
+  const double theta = 2.0, step = 1e-6;
+  const auto plus = state_at(theta + step), minus = state_at(theta - step);
+  double expected = 0;
+  for (int k = 0; k < 6; ++k) expected += lambda[k] * (plus[k] - minus[k]) / (2 * step) / (k < 3 ? length_km : speed_km_s);
+  values["theta_departure"] = theta;
+  EXPECT_NEAR(helios::symbolic::evaluate(table.parse(row, "row"), table, values), expected, 1e-7 * std::abs(expected));
 }
 
 TEST(Derive, SailWithFuelObjectiveIsRefused) {

@@ -1144,7 +1144,9 @@ TEST(ParseOrbitTarget, ReadsAnOrbitInEverydayWords) {
 TEST(ParseOrbitTarget, RefusesWhatItCannotPlaceWithTheForms) {
   std::string e = error_of(with_final_orbit(
       "At the final time the spacecraft is on the circular orbit of radius 42165 km with argument of perigee 30 deg."));
-  has(e, "cannot place 'argument perigee 30 deg' in the target orbit");
+  has(e, "an argument of periapsis but no eccentricity above 0");
+  e = error_of(with_final_orbit("At the final time the spacecraft is on the circular orbit of radius 42165 km near Mars."));
+  has(e, "cannot place 'near Mars' in the target orbit");
   has(e, "the circular equatorial orbit of radius 42165 km");
   has(error_of(with_final_orbit("At the final time the spacecraft is on the orbit.")), "names none of its elements");
   has(error_of(with_final_orbit("At the final time the spacecraft is on an orbit with node 30 deg.")),
@@ -1154,6 +1156,43 @@ TEST(ParseOrbitTarget, RefusesWhatItCannotPlaceWithTheForms) {
   has(error_of(replaced(with_final_orbit("The spacecraft transfers into geostationary orbit."),
                         "the Earth with gravitational parameter 398600.47 km^3/s^2", "Mars")),
       "a geostationary orbit is about the Earth");
+}
+
+// S14 with its departure sentence replaced.
+std::string with_departure(const std::string& sentence) {
+  return replaced(scenario("S14"),
+                  "The spacecraft departs at t = 0 days from position [-46500, 0, 0] km with velocity [0, "
+                  "-1.4529784332509441, -0.17851317059960614] km/s.",
+                  sentence);
+}
+
+json departure_target(const std::string& sentence) {
+  const json spec = parse(with_departure(sentence));
+  helios::io::validate("spec", spec, "test");
+  EXPECT_EQ(spec["constraints"][0]["kind"], "initial_state");
+  return spec["constraints"][0]["target"];
+}
+
+// A departure anywhere on an orbit names every element that fixes the orbit.
+TEST(ParseOrbitTarget, ReadsADepartureOrbitWithEveryElement) {
+  EXPECT_EQ(departure_target("The spacecraft departs at t = 0 days from the circular orbit of radius 7000 km inclined "
+                             "28.5 deg with node 40 deg."),
+            json::parse(R"({"kind": "orbital_elements", "semi_major_axis_km": 7000.0, "eccentricity": 0.0,
+                            "inclination_deg": 28.5, "raan_deg": 40.0})"));
+  EXPECT_EQ(departure_target("At the initial time the spacecraft is on an orbit with semi-major axis 24500 km, "
+                             "eccentricity 0.72, inclination 7 deg, node 30 deg and argument of perigee 178 deg, with "
+                             "any true anomaly."),
+            json::parse(R"({"kind": "orbital_elements", "semi_major_axis_km": 24500.0, "eccentricity": 0.72,
+                            "inclination_deg": 7.0, "raan_deg": 30.0, "argp_deg": 178.0})"));
+  EXPECT_GT(departure_target("The spacecraft departs from geostationary orbit.")["semi_major_axis_km"].get<double>(),
+            42164.0);
+  has(error_of(with_departure("The spacecraft departs from the circular orbit of radius 7000 km inclined 28.5 deg.")),
+      "a departure orbit needs its node");
+  has(error_of(with_departure("The spacecraft departs from an orbit with semi-major axis 24500 km, eccentricity 0.72, "
+                              "inclination 7 deg and node 30 deg.")),
+      "a departure orbit needs its argument of periapsis");
+  has(error_of(with_departure("The spacecraft departs from the circular orbit of radius 7000 km.")),
+      "a departure orbit needs its inclination");
 }
 
 }  // namespace

@@ -17,9 +17,14 @@ namespace {
 
 using helios::io::json;
 
-json derive(const std::string& scenario) {
-  const std::string path = HELIOS_SOURCE_DIR "/scenarios/" + scenario + "/problem.txt";
+// The derivation of a problem text, its path from the source tree.
+json derive_text(const std::string& relative) {
+  const std::string path = HELIOS_SOURCE_DIR "/" + relative;
   return helios::pmp::derive_from_spec(helios::spec::parse_problem_text(helios::io::read_text(path), path));
+}
+
+json derive(const std::string& scenario) {
+  return derive_text("scenarios/" + scenario + "/problem.txt");
 }
 
 const json& s01() {
@@ -405,6 +410,30 @@ TEST(Verify, AnOrbitTargetsTransversalityIsRecomputedFromPsi) {
   r = verify(d);
   EXPECT_EQ(failed_ids(r), std::set<std::string>{"transversality:vx"});
   EXPECT_TRUE(contains(check(r, "transversality:vx")["feedback"], "nu_arrival_3")) << r["feedback"];
+}
+
+// A departure anywhere on an orbit: x(t0) = X(theta) with theta free, so dPhi/dtheta = -lambda(t0).
+// dX/dtheta = 0 is recomputed from psi: dropped or with a term's sign flipped, it fails.
+TEST(Verify, ADepartureOrbitsStationarityIsRecomputedFromPsi) {
+  json d = derive_text("tests/fixtures/problems/gto_anywhere_to_geo.txt");
+  const std::string id = "initial_stationarity:departure_theta_departure";
+  json r = verify(d);
+  EXPECT_EQ(r["verdict"], "pass") << r["feedback"];
+  EXPECT_EQ(check(r, id)["verdict"], "pass");
+  json dropped = d;
+  auto& eqs = dropped["shooting"]["equations"];
+  for (std::size_t i = 0; i < eqs.size(); ++i)
+    if (eqs[i]["name"] == "stationarity_departure_theta_departure") eqs.erase(i);
+  EXPECT_TRUE(failed_ids(verify(dropped)).count(id));
+  auto& e = equation(d, "stationarity_departure_theta_departure")["expression"];
+  std::string text = e;
+  const auto at = text.find("*l_rz_t0");
+  ASSERT_NE(at, std::string::npos) << text;
+  const auto sign = text.find_last_of("+-", at);
+  ASSERT_NE(sign, std::string::npos) << text;
+  text[sign] = text[sign] == '+' ? '-' : '+';
+  e = text;
+  EXPECT_TRUE(failed_ids(verify(d)).count(id));
 }
 
 TEST(Verify, RightHandSideWithTheOptimalControlSubstitutedPasses) {

@@ -32,8 +32,10 @@ GiNaC::exmap multiplier_values(const GiNaC::lst& rows, const GiNaC::lst& nus, co
   return values;
 }
 
-// psi(x(t0)) = 0 solved for the states it fixes gives the initial values. With a sliding
-// departure, lambda(t0) = -nu^T dpsi/dx(t0) gives nu, and t0 adds -H(t0) + nu^T dpsi/dt0.
+// psi(x(t0)) = 0 solved for the states it fixes gives the initial values. Where t0 slides or psi
+// holds free parameters (a departure orbit's anomaly), lambda(t0) = -nu^T dpsi/dx(t0) gives nu;
+// then t0 adds -H(t0) + nu^T dpsi/dt0 to the time condition, and each free parameter q is an
+// unknown with the stationarity row nu^T dpsi/dq = 0.
 void initial_constraint(Derivation& d, EndpointConditions& c, TimeConditions& time) {
   Problem& p = d.problem;
   auto& S = p.symbols;
@@ -45,7 +47,7 @@ void initial_constraint(Derivation& d, EndpointConditions& c, TimeConditions& ti
   if (solved.nops() != k.fixed_states.size())
     throw std::invalid_argument("constraint '" + k.id + "' does not determine the initial state it fixes");
   for (const auto& r : solved) d.initial_values.push_back({symbolic::to_text(r.lhs()), r.rhs()});
-  if (!p.free_departure) return;
+  if (!p.free_departure && k.free_parameters.empty()) return;
   GiNaC::lst rows, nus;
   for (const auto& m : c.multipliers) nus.append(S.get(m));
   for (const auto& s : k.fixed_states) {
@@ -55,8 +57,23 @@ void initial_constraint(Derivation& d, EndpointConditions& c, TimeConditions& ti
   }
   const GiNaC::exmap nu_value =
       multiplier_values(rows, nus, "constraint '" + k.id + "': its multipliers are not determined by lambda(t0)");
-  time.departure = -S.get(names::hamiltonian("t0"));
-  for (std::size_t j = 0; j < k.psi.size(); ++j) time.departure += S.get(c.multipliers[j]).subs(nu_value) * k.psi_t[j];
+  const auto nu_dot = [&](const std::vector<ex>& dpsi) {
+    ex sum = 0;
+    for (std::size_t j = 0; j < k.psi.size(); ++j) sum += S.get(c.multipliers[j]).subs(nu_value) * dpsi[j];
+    return sum;
+  };
+  for (const auto& q : k.free_parameters) {
+    std::vector<ex> dpsi;
+    for (const auto& e : k.psi) dpsi.push_back(e.diff(S.get(q.name)));
+    d.shooting.variables.push_back({q.name, q.meaning + ", a free parameter of psi at t0", "initial_state",
+                                    "uniform in its range", std::make_pair(q.lo, q.hi)});
+    d.shooting.equations.push_back({names::stationarity_row(k.id, q.name), nu_dot(dpsi).expand(),
+                                    "dPhi/d" + q.name + " = nu^T dpsi/d" + q.name + " = 0 with nu = -lambda(t0): " +
+                                        q.name + " is free",
+                                    k.id});
+  }
+  if (!p.free_departure) return;
+  time.departure = -S.get(names::hamiltonian("t0")) + nu_dot(k.psi_t);
   c.time_condition = "-H(t0) + nu^T dpsi/dt0, added to the final time's terms (tf = t0 + tof)";
 }
 

@@ -219,6 +219,34 @@ EndpointConstraint orbit_insertion(Problem& p, EndpointConstraint k) {
   return k;
 }
 
+// The departure from an orbit given by all its elements, the position on it free: x(t0) =
+// X(theta) with the anomaly theta a free parameter of psi, found by stationarity (lambda(t0) is
+// orthogonal to the orbit's tangent dX/dtheta); the initial mass is known.
+EndpointConstraint orbit_departure(Problem& p, EndpointConstraint k) {
+  const std::string where = "constraint '" + k.id + "'";
+  if (p.free_departure) throw std::invalid_argument(where + ": a departure orbit needs a fixed departure epoch");
+  if (p.free_initial_mass) throw std::invalid_argument(where + ": a departure orbit needs a known initial mass");
+  const std::string theta = "theta_" + k.id;
+  const std::vector<ex> x = orbit_point(p, k.id, k.target, p.symbols.get(theta));
+  for (std::size_t j = 0; j < kPositionVelocity.size(); ++j) {
+    const std::string& n = kPositionVelocity[j];
+    k.psi.push_back(p.symbols.get(n) - x[j]);
+    k.psi_names.push_back(n + " - X_" + n + "(" + theta + ")");
+    k.fixed_states.push_back(n);
+  }
+  if (p.has_state("m")) {
+    k.psi.push_back(p.symbols.get("m") - 1);
+    k.psi_names.push_back("m - 1");
+    k.fixed_states.push_back("m");
+  }
+  k.psi_inequality.assign(k.psi.size(), false);
+  k.psi_t.assign(k.psi.size(), 0);
+  k.free_parameters.push_back({theta, "true anomaly on the departure orbit " + k.id + " (rad; from the node where the "
+                                      "orbit is circular, from the x axis where it is also equatorial)",
+                               0, 2 * M_PI});
+  return k;
+}
+
 }  // namespace
 
 // An interior event: conditions c on the arriving state and the map g to the leaving state.
@@ -266,6 +294,10 @@ EndpointConstraint endpoint_constraint(Problem& p, const json& c) {
   k.target = c.at("target");
   const std::string where = "constraint '" + k.id + "'";
   if (k.kind == "orbit_insertion") return orbit_insertion(p, std::move(k));
+  if (k.kind == "initial_state" && k.target.at("kind") == "orbital_elements") {
+    if (k.at != "t0") throw std::invalid_argument(where + ": an initial state must be at t0");
+    return orbit_departure(p, std::move(k));
+  }
   if (k.kind != "initial_state" && k.kind != "rendezvous" && !(k.kind == "flyby" && k.at == "tf"))
     throw std::invalid_argument(where + ": a " + k.kind + " is an interior event, not at " + k.at);
   if (k.target.at("kind") == "coasting" && p.free_departure)

@@ -15,6 +15,14 @@ struct OrbitRows {
 };
 OrbitRows orbit_rows(Problem& p, const std::string& id, const io::json& target);
 
+// The position and velocity on an orbit given by all its elements, as functions of its true
+// anomaly `theta` (measured from the node where the orbit is circular, from the x axis where it is
+// also equatorial): r = p/(1 + e cos theta) (cos theta P + sin theta Q), v = sqrt(mu/p) (-sin theta
+// P + (e + cos theta) Q). Adds p = a (1 - e^2), e and the components of P and Q as parameters
+// (p_<id>, e_<id>, Px_<id>...); throws, naming the element, when one that fixes the orbit is
+// missing.
+std::vector<GiNaC::ex> orbit_point(Problem& p, const std::string& id, const io::json& target, const GiNaC::ex& theta);
+
 // psi(t_k, x(t_k), p) of an endpoint constraint (at t0 or tf).
 EndpointConstraint endpoint_constraint(Problem& p, const io::json& constraint);
 

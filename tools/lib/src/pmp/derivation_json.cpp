@@ -83,6 +83,9 @@ json constraint_json(const EndpointConditions& c) {
   if (k.at == "t0") {
     out["conditions"] = json::array({"x(t0) is fixed for " + std::to_string(k.fixed_states.size()) +
                                      " states, so their costates at t0 are free (shooting variables)"});
+    for (const auto& q : k.free_parameters)
+      out["conditions"].push_back("nu^T dpsi/d" + q.name + " = 0 with lambda(t0) = -nu^T dpsi/dx: " + q.name +
+                                  " is a free parameter of psi");
   } else {
     json conditions = json::array(), eliminated = json::array();
     for (const auto& row : c.transversality) conditions.push_back(to_text(row) + " = 0");

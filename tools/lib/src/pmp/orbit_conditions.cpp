@@ -11,6 +11,8 @@
 //                                 n = (sin i sin W, -sin i cos W, cos i), N = (cos W, sin W, 0)
 //   (equatorial: i = 0, W = 0: h_x = 0, h_y = 0)
 //   inclination i, node free      h_z - |h| cos i = 0 (0 < i < 180 deg; the rows above at 0)  1 row
+//   argument of periapsis w       e_vec.Q = 0: the periapsis along P in the plane            1 row
+//                                 (e > 0 and the plane given; P, Q below)
 // The gradient of |e_vec|^2 vanishes at e = 0, and that of h_z - |h| cos i at i = 0: those two are
 // refused there and the circular and equatorial rows used instead.
 #include <cmath>
@@ -33,11 +35,66 @@ std::vector<ex> cross(const std::vector<ex>& a, const std::vector<ex>& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
+// The elements an orbit states, and its parameters <element>_<id>.
+struct OrbitElements {
+  OrbitElements(Problem& problem, std::string orbit_id, const io::json& target)
+      : p(problem), id(std::move(orbit_id)), where("constraint '" + id + "'") {
+    const auto field = [&](const char* key) -> std::optional<double> {
+      if (!target.contains(key)) return std::nullopt;
+      return target.at(key).get<double>();
+    };
+    a_km = field("semi_major_axis_km"), e = field("eccentricity"), i_deg = field("inclination_deg"),
+    node_deg = field("raan_deg"), argp_deg = field("argp_deg");
+    if (e && !(*e >= 0 && *e < 1)) throw std::invalid_argument(where + ": eccentricity must lie in [0, 1)");
+    if (a_km && !(*a_km > 0)) throw std::invalid_argument(where + ": semi_major_axis_km must be positive");
+    if (i_deg && !(*i_deg >= 0 && *i_deg <= 180))
+      throw std::invalid_argument(where + ": inclination_deg must lie in [0, 180]");
+    if (node_deg && !i_deg) throw std::invalid_argument(where + ": a node needs the inclination");
+    if (argp_deg && !(e && *e > 0))
+      throw std::invalid_argument(where + ": an argument of periapsis needs an eccentricity above 0");
+    if (argp_deg && !planar())
+      throw std::invalid_argument(where + ": an argument of periapsis needs the orbit's plane (inclination and node)");
+  }
+  // The plane is given: by its inclination and node, or as equatorial (the node undefined, 0).
+  bool planar() const { return i_deg && (node_deg || *i_deg == 0 || *i_deg == 180); }
+  ex parameter(const std::string& stem, const std::string& meaning, const std::string& unit, double value) const {
+    const std::string name = stem + "_" + id;
+    p.parameters.push_back({name, meaning + " of orbit " + id, unit, value});
+    return p.symbols.get(name);
+  }
+  ex semi_major_axis(const std::string& meaning) const {
+    return parameter("a", meaning, p.units.length_name, *a_km / p.units.length_km);
+  }
+  ex eccentricity() const { return parameter("e", "eccentricity", "1", *e); }
+  ex angle(const std::string& stem, const std::string& meaning, double deg) const {
+    return parameter(stem, meaning + " (rad)", "1", deg * astro::DEG_TO_RAD);
+  }
+  // The node and the inclination of a given plane (0 where undefined), the node first: the
+  // parameters' order is the derivation's.
+  std::pair<ex, ex> plane() const {
+    const ex node = node_deg || (*i_deg != 0 && *i_deg != 180) ? angle("raan", "ascending node", node_deg.value_or(0))
+                                                                : ex(0);
+    return {node, *i_deg == 0 ? ex(0) : angle("inc", "inclination", *i_deg)};
+  }
+
+  Problem& p;
+  std::string id, where;
+  std::optional<double> a_km, e, i_deg, node_deg, argp_deg;
+};
+
+// The unit vectors P (to the periapsis) and Q (90 deg ahead in the sense of motion) of the orbit
+// with node W, inclination I and argument of periapsis w.
+std::pair<std::vector<ex>, std::vector<ex>> perifocal_axes(const ex& W, const ex& I, const ex& w) {
+  const ex cW = cos(W), sW = sin(W), cI = cos(I), sI = sin(I), cw = cos(w), sw = sin(w);
+  return {{cW * cw - sW * sw * cI, sW * cw + cW * sw * cI, sw * sI},
+          {-cW * sw - sW * cw * cI, -sW * sw + cW * cw * cI, cw * sI}};
+}
+
 }  // namespace
 
 OrbitRows orbit_rows(Problem& p, const std::string& id, const io::json& target) {
   auto& S = p.symbols;
-  const std::string where = "constraint '" + id + "'";
+  const OrbitElements el(p, id, target);
   const std::vector<ex> r = {S.get("rx"), S.get("ry"), S.get("rz")}, v = {S.get("vx"), S.get("vy"), S.get("vz")};
   const ex mu = S.get("mu");
   const ex r_norm = GiNaC::sqrt(dot(r, r)), v2 = dot(v, v);
@@ -47,24 +104,13 @@ OrbitRows orbit_rows(Problem& p, const std::string& id, const io::json& target) 
     rows.psi.push_back(row);
     rows.names.push_back(meaning);
   };
-  const auto parameter = [&](const std::string& stem, const std::string& meaning, const std::string& unit,
-                             double value) {
-    const std::string name = stem + "_" + id;
-    p.parameters.push_back({name, meaning + " of target orbit " + id, unit, value});
-    return ex(S.get(name));
-  };
-  const auto field = [&](const char* key) -> std::optional<double> {
-    if (!target.contains(key)) return std::nullopt;
-    return target.at(key).get<double>();
-  };
-  const std::optional<double> a_km = field("semi_major_axis_km"), e = field("eccentricity"),
-                              i_deg = field("inclination_deg"), node_deg = field("raan_deg");
-  if (!a_km && !e && !i_deg) throw std::invalid_argument(where + ": an orbit target needs an element to meet");
-  if (e && !(*e >= 0 && *e < 1)) throw std::invalid_argument(where + ": eccentricity must lie in [0, 1)");
-  if (a_km && !(*a_km > 0)) throw std::invalid_argument(where + ": semi_major_axis_km must be positive");
-  if (e && *e == 0) {
-    if (a_km) {
-      const ex a = parameter("a", "radius", p.units.length_name, *a_km / p.units.length_km);
+  if (!el.a_km && !el.e && !el.i_deg)
+    throw std::invalid_argument(el.where + ": an orbit target needs an element to meet");
+  std::vector<ex> e_vec = cross(v, h);
+  for (int k = 0; k < 3; ++k) e_vec[k] = e_vec[k] / mu - r[k] / r_norm;
+  if (el.e && *el.e == 0) {
+    if (el.a_km) {
+      const ex a = el.semi_major_axis("radius");
       add(r_norm - a, "|r| - a_" + id);
       add(dot(r, v), "r.v");
       add(v2 - mu / a, "|v|^2 - mu/a_" + id);
@@ -73,34 +119,66 @@ OrbitRows orbit_rows(Problem& p, const std::string& id, const io::json& target) 
       add(r_norm * v2 - mu, "|r| |v|^2 - mu");
     }
   } else {
-    if (a_km) {
-      const ex a = parameter("a", "semi-major axis", p.units.length_name, *a_km / p.units.length_km);
+    if (el.a_km) {
+      const ex a = el.semi_major_axis("semi-major axis");
       add(v2 / 2 - mu / r_norm + mu / (2 * a), "|v|^2/2 - mu/|r| + mu/(2 a_" + id + ")");
     }
-    if (e) {
-      const ex ecc = parameter("e", "eccentricity", "1", *e);
-      std::vector<ex> e_vec = cross(v, h);
-      for (int k = 0; k < 3; ++k) e_vec[k] = e_vec[k] / mu - r[k] / r_norm;
+    if (el.e) {
+      const ex ecc = el.eccentricity();
       add(dot(e_vec, e_vec) - ecc * ecc, "|e_vec|^2 - e_" + id + "^2");
     }
   }
-  if (node_deg && !i_deg) throw std::invalid_argument(where + ": a node needs the inclination");
-  if (i_deg) {
-    if (!(*i_deg >= 0 && *i_deg <= 180)) throw std::invalid_argument(where + ": inclination_deg must lie in [0, 180]");
-    const bool planar = node_deg || *i_deg == 0 || *i_deg == 180;
-    // The node first: the parameters' order is the derivation's.
-    const ex W = planar ? parameter("raan", "ascending node (rad)", "1", node_deg.value_or(0.0) * astro::DEG_TO_RAD)
-                        : ex(0);
-    const ex I = parameter("inc", "inclination (rad)", "1", *i_deg * astro::DEG_TO_RAD);
-    if (planar) {
-      // The plane's normal n and its node line N; n x N = (-cos i sin W, cos i cos W, sin i).
-      add(h[0] * cos(W) + h[1] * sin(W), "h.N_" + id);
-      add(-h[0] * cos(I) * sin(W) + h[1] * cos(I) * cos(W) + h[2] * sin(I), "h.(n x N)_" + id);
-    } else {
-      add(h[2] - GiNaC::sqrt(dot(h, h)) * cos(I), "h_z - |h| cos(inc_" + id + ")");
+  if (el.planar()) {
+    // The plane's normal n and its node line N; n x N = (-cos i sin W, cos i cos W, sin i).
+    const auto [W, I] = el.plane();
+    add(h[0] * cos(W) + h[1] * sin(W), "h.N_" + id);
+    add(-h[0] * cos(I) * sin(W) + h[1] * cos(I) * cos(W) + h[2] * sin(I), "h.(n x N)_" + id);
+    if (el.argp_deg) {
+      const ex w = el.angle("argp", "argument of periapsis", *el.argp_deg);
+      add(dot(e_vec, perifocal_axes(W, I, w).second), "e_vec.Q_" + id);
     }
+  } else if (el.i_deg) {
+    const ex I = el.angle("inc", "inclination", *el.i_deg);
+    add(h[2] - GiNaC::sqrt(dot(h, h)) * cos(I), "h_z - |h| cos(inc_" + id + ")");
   }
   return rows;
+}
+
+std::vector<ex> orbit_point(Problem& p, const std::string& id, const io::json& target, const ex& theta) {
+  const OrbitElements el(p, id, target);
+  const auto need = [&](bool given, const std::string& what) {
+    if (!given)
+      throw std::invalid_argument(el.where + ": a departure orbit needs its " + what +
+                                  " (only the position on it may be free)");
+  };
+  need(el.a_km.has_value(), "semi-major axis (or radius)");
+  need(el.e.has_value(), "eccentricity (or the word circular)");
+  need(el.i_deg.has_value(), "inclination (or the word equatorial)");
+  need(el.planar(), "node");
+  need(*el.e == 0 || el.argp_deg.has_value(), "argument of periapsis");
+  const ex semi_latus = el.parameter("p", "semi-latus rectum a (1 - e^2)", p.units.length_name,
+                                     *el.a_km * (1 - *el.e * *el.e) / p.units.length_km);
+  const ex e = *el.e == 0 ? ex(0) : el.eccentricity();
+  // P and Q as parameters of their own: the orbit's orientation in six numbers, not in the angles.
+  const double deg = astro::DEG_TO_RAD;
+  const auto [P_value, Q_value] = perifocal_axes(el.node_deg.value_or(0) * deg, *el.i_deg * deg,
+                                                 el.argp_deg.value_or(0) * deg);
+  std::vector<ex> P, Q;
+  for (int k = 0; k < 3; ++k) {
+    const std::string c(1, static_cast<char>('x' + k));
+    P.push_back(el.parameter("P" + c, c + " of the unit vector to the periapsis (the node if circular)", "1",
+                             GiNaC::ex_to<GiNaC::numeric>(P_value[k].evalf()).to_double()));
+    Q.push_back(el.parameter("Q" + c, c + " of the unit vector 90 deg ahead of P in the sense of motion", "1",
+                             GiNaC::ex_to<GiNaC::numeric>(Q_value[k].evalf()).to_double()));
+  }
+  const ex radius = semi_latus / (1 + e * cos(theta));
+  const ex speed = GiNaC::sqrt(p.symbols.get("mu") / semi_latus);
+  std::vector<ex> x(6);
+  for (int k = 0; k < 3; ++k) {
+    x[k] = radius * (cos(theta) * P[k] + sin(theta) * Q[k]);
+    x[3 + k] = speed * (-sin(theta) * P[k] + (e + cos(theta)) * Q[k]);
+  }
+  return x;
 }
 
 }  // namespace helios::pmp

@@ -260,7 +260,7 @@ void Builder::finish_events() {
                 " moves with time, so the text needs a calendar epoch: depart 'at MJD2000 N' (or 'at MJD N') or "
                 "state 'The departure epoch is free between Q before and Q after MJD2000 N'");
   };
-  departure->target = resolve(departure->target, departure->where);
+  departure->target = geostationary(resolve(departure->target, departure->where), departure->where);
   needs_epoch(departure->target, departure->where);
   for (auto& e : events) {
     e.target = resolve(json{{"ref", e.body}}, e.where);

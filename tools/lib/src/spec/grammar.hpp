@@ -197,6 +197,8 @@ struct Builder {
   void on_depart_from(const std::smatch& m);
   void on_depart(const std::smatch& m);
   void depart(const std::string& at, const std::string& target);
+  void depart_from_orbit(const std::string& at, const std::string& orbit);
+  void on_depart_orbit(const std::smatch& m);
   void set_epoch(double mjd2000);
   void epoch(const std::string& phrase);
   void on_free_dep(const std::smatch& m);

@@ -1,7 +1,9 @@
-// A final condition that is an orbit, not a point: "At the final time the spacecraft is on the
-// circular equatorial orbit of radius 42165 km", "The spacecraft transfers into geostationary
-// orbit", "... an orbit with semi-major axis 24500 km, eccentricity 0.72 and inclination 7 deg".
-// The elements named are met; the others and the position on the orbit stay free.
+// An endpoint that is an orbit, not a point: "At the final time the spacecraft is on the circular
+// equatorial orbit of radius 42165 km", "The spacecraft transfers into geostationary orbit", "...
+// an orbit with semi-major axis 24500 km, eccentricity 0.72 and inclination 7 deg". The elements
+// named are met; the others and the position on the orbit stay free. A departure ("The spacecraft
+// departs from the circular orbit of radius 7000 km inclined 28.5 deg with node 40 deg") names
+// every element that fixes its orbit: only the position on it is free.
 #include <cmath>
 
 #include "grammar.hpp"
@@ -14,7 +16,7 @@ namespace {
 const char* const kOrbitForms =
     "an orbit reads e.g. 'the circular equatorial orbit of radius 42165 km', 'geostationary orbit', 'a circular "
     "orbit of 7500 km radius inclined 28.5 deg' or 'an orbit with semi-major axis 24500 km, eccentricity 0.72, "
-    "inclination 7 deg and node 30 deg'";
+    "inclination 7 deg, node 30 deg and argument of periapsis 90 deg'";
 
 // The Earth's sidereal day [s]: the period of a geostationary orbit.
 constexpr double kSiderealDayS = 86164.0905;
@@ -73,6 +75,10 @@ json parse_orbit_target(const std::string& phrase) {
   take_all(rest,
            words("(?:a |an )?(?:right ascension of the ascending node|ascending node|RAAN|node) (?:of |= ?)?" + deg),
            [&](const std::smatch& m) { set("raan_deg", angle(m, 1), m.str()); });
+  take_all(rest,
+           words("(?:an )?(?:argument of (?:periapsis|perigee|pericenter|pericentre|perihelion)|argp) (?:of |= ?)?" +
+                 deg),
+           [&](const std::smatch& m) { set("argp_deg", angle(m, 1), m.str()); });
   // What leaves the rest free, said in words.
   take_all(rest, words("(?:with |at )?any (?:true |mean )?(?:anomaly|longitude|position(?: on it)?)"),
            [](const std::smatch&) {});
@@ -87,10 +93,39 @@ json parse_orbit_target(const std::string& phrase) {
     throw sentence_error("the orbit gives its node but not its inclination; " + std::string(kOrbitForms));
   if (t.contains("eccentricity") && !(t["eccentricity"].get<double>() < 1))
     throw sentence_error("the orbit's eccentricity must be below 1 (a closed orbit)");
+  if (t.contains("argp_deg") && !(t.value("eccentricity", 0.0) > 0))
+    throw sentence_error("the orbit gives an argument of periapsis but no eccentricity above 0; " +
+                         std::string(kOrbitForms));
   json ordered = {{"kind", "orbital_elements"}};  // the elements in one order, however they were written
-  for (const char* key : {"geostationary", "semi_major_axis_km", "eccentricity", "inclination_deg", "raan_deg"})
+  for (const char* key :
+       {"geostationary", "semi_major_axis_km", "eccentricity", "inclination_deg", "raan_deg", "argp_deg"})
     if (t.contains(key)) ordered[key] = t[key];
   return ordered;
+}
+
+void Builder::on_depart_orbit(const std::smatch& m) {
+  depart_from_orbit("", m[1].str());
+}
+
+void Builder::depart_from_orbit(const std::string& at, const std::string& orbit) {
+  json target = parse_orbit_target(orbit);
+  const auto need = [&](bool given, const std::string& what) {
+    if (!given)
+      throw sentence_error("a departure orbit needs its " + what +
+                           ": only the position on it may be free (e.g. 'departs from the circular orbit of radius "
+                           "7000 km inclined 28.5 deg with node 40 deg')");
+  };
+  if (!target.contains("geostationary")) {
+    const double e = target.value("eccentricity", -1.0), i = target.value("inclination_deg", -1.0);
+    need(target.contains("semi_major_axis_km"), "semi-major axis (or its radius, if circular)");
+    need(e >= 0, "eccentricity (or the word 'circular')");
+    need(i >= 0, "inclination (or the word 'equatorial')");
+    need(i == 0 || i == 180 || target.contains("raan_deg"), "node");
+    need(e == 0 || target.contains("argp_deg"), "argument of periapsis");
+  }
+  once("the departure");
+  if (!at.empty()) epoch(at);
+  departure = Endpoint{here, target, "initial_state", std::nullopt};
 }
 
 void Builder::on_arrive_orbit(const std::smatch& m) {

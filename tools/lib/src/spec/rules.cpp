@@ -20,6 +20,7 @@ void Builder::handle(const std::string& s) {
           kQuantity + ")"),
        &Builder::on_free_tof},
       {re(R"(The spacecraft has (.+))"), &Builder::on_has},
+      {re(R"(At the initial time the spacecraft is (?:on|in) (.+\borbit\b.*))"), &Builder::on_depart_orbit},
       {re(R"(The spacecraft departs from (.+) at ((?:t\s*=|MJD2000 |MJD ).+))"), &Builder::on_depart_from},
       {re(R"(The spacecraft departs(?: at (.+?))? from (.+))"), &Builder::on_depart},
       {re(R"(The (?:total )?time of flight is (?:fixed at )?)" + kQuantity), &Builder::on_tof},

@@ -32,6 +32,8 @@ void Builder::on_depart(const std::smatch& m) {
 }
 
 void Builder::depart(const std::string& at, const std::string& target_text) {
+  static const std::regex orbit_word = re(R"(.*\borbit\b.*)");
+  if (std::regex_match(target_text, orbit_word)) return depart_from_orbit(at, target_text);
   json target;
   try {
     target = parse_target(target_text);

@@ -145,7 +145,35 @@ class BoundaryFamily : public Family {
                         "(t0) is free (no initial constraint involves it); add it to shooting.equations.");
       checks.push_back(c);
     }
+    for (const auto& k : ctx.constraints)
+      if (k.at == "t0") check_initial_stationarity(k);
     if (ctx.free_tf) check_free_tf(to_tf);
+  }
+
+  // A free parameter q of psi at t0 (a departure orbit's anomaly): nu^T dpsi/dq = 0 with nu from
+  // lambda(t0) = -nu^T dpsi/dx(t0).
+  void check_initial_stationarity(const Constraint& k) {
+    for (const auto& q : k.free_params) {
+      Check c = start("initial_stationarity:" + k.id + "_" + q, "transversality", "random_points+exact");
+      std::vector<ex> dpsi;
+      for (const auto& e : k.psi) dpsi.push_back(e.diff(GiNaC::ex_to<symbol>(ctx.sym(q))));
+      ex expected;
+      try {
+        expected = nu_dot(k.psi, dpsi, [&](std::size_t i) { return -ctx.sym(names::at_t0(ctx.costates[i])); });
+        expected = GiNaC::normal(expected).expand();
+      } catch (const std::exception& e) {
+        c.max_rel = 2;
+        c.fail("cannot form the stationarity condition of " + q + ": " + std::string(e.what()) + ".");
+        checks.push_back(c);
+        continue;
+      }
+      find_equation(c, expected,
+                    "missing stationarity condition " + short_print(expected) + " = 0 (dPhi/d" + q +
+                        " = nu^T dpsi/d" + q + " with lambda(t0) = -nu^T dpsi/dx: " + q +
+                        " is a free parameter of psi at t0); add it to shooting.equations as " +
+                        names::stationarity_row(k.id, q) + ".");
+      checks.push_back(c);
+    }
   }
 
   // Free final time: H(tf) + dPhi/dtf = 0 with Phi = lambda0 phi + nu.psi, where nu is eliminated

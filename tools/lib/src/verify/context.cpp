@@ -233,8 +233,15 @@ void Context::read_statement() {
       throw input_error("derivation: constraint " + k.id + " is at '" + k.at + "', expected t0 or tf");
     GiNaC::exmap to_state;
     for (const auto& s : states) to_state[sym(names::at(s, k.at))] = sym(s);
-    for (std::size_t j = 0; j < c.psi.size(); ++j)
+    for (std::size_t j = 0; j < c.psi.size(); ++j) {
+      if (k.at == "t0")
+        for (const auto& name : identifiers(c.psi[j].text))
+          if (unknowns.count(name) && !slots.count(name)) {
+            declare(name, Kind::Free);
+            k.free_params.push_back(name);
+          }
       k.psi.push_back(statement(c.psi[j].text, "constraints[" + k.id + "].psi[" + std::to_string(j) + "]").subs(to_state));
+    }
     k.multipliers = c.multipliers;
     k.multipliers_unknown = k.at == "tf" && !k.multipliers.empty() &&
                             std::all_of(k.multipliers.begin(), k.multipliers.end(),

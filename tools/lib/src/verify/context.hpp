@@ -60,6 +60,8 @@ struct Constraint {
   // orbit), so each of their transversality rows lambda(tf) = lambda0 dphi/dx + nu^T dpsi/dx is
   // an equation of its own.
   bool multipliers_unknown = false;
+  // Shooting variables inside psi at t0 (a departure orbit's anomaly): found by stationarity.
+  std::vector<std::string> free_params;
 };
 
 // A shooting equation as written, with its values at the sample points.

@@ -57,6 +57,13 @@ struct EndpointConstraint {
   // psi is not solved for the states it involves (an orbit: five rows in six states), so its
   // multipliers are shooting variables and every state's transversality row an equation.
   bool multipliers_unknown = false;
+  // Unknowns inside psi that no state fixes (a departure orbit's anomaly): shooting variables found
+  // by stationarity, dPhi/dq = nu^T dpsi/dq = 0, guessed uniformly in [lo, hi].
+  struct FreeParameter {
+    std::string name, meaning;
+    double lo = 0, hi = 0;
+  };
+  std::vector<FreeParameter> free_parameters;
 };
 
 // A body on a Keplerian orbit about the central body, propagated by the runtime.
