@@ -89,19 +89,51 @@ inline RecordedPath recorded_path(const Settings& s, const std::vector<double>& 
   return path;
 }
 
-// The objective is the propellant (minimum fuel, minimum initial mass), else the flight time.
+// The objective is the propellant (minimum fuel, minimum initial mass).
 inline bool objective_is_propellant() {
-  return kProblem.minimum_fuel && kProblem.mass_index >= 0;
+  return kProblem.objective == Objective::propellant && kProblem.mass_index >= 0;
 }
 
-// A normalized objective in its named unit: kg of propellant, or days.
+// The objective is a Mayer term on the final state (the final radius or energy, maximized).
+inline bool objective_is_final_state() {
+  return kProblem.objective == Objective::final_radius || kProblem.objective == Objective::final_energy;
+}
+
+// The Mayer term phi(y) of a final-state objective at the state y (normalized).
+inline double final_state_cost(const double* y) {
+  const double r = std::sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]);
+  if (kProblem.objective == Objective::final_radius) return -r;
+  return -((y[3] * y[3] + y[4] * y[4] + y[5] * y[5]) / 2 - kProblem.mu / r);
+}
+
+// The key of the objective in named units in solution.json.
+inline const char* objective_key() {
+  switch (kProblem.objective) {
+    case Objective::final_radius:
+      return "final_radius_km";
+    case Objective::final_energy:
+      return "final_energy_km2_s2";
+    default:
+      return objective_is_propellant() ? "propellant_kg" : "tof_days";
+  }
+}
+
+// A normalized objective in its named unit: kg of propellant, days, or the final radius [km] or
+// orbital energy [km^2/s^2] (the objective is their negative).
 inline double objective_in_named_unit(double objective) {
-  return objective * (objective_is_propellant() ? kProblem.mass_unit_kg : kProblem.time_unit_days);
+  switch (kProblem.objective) {
+    case Objective::final_radius:
+      return -objective * kProblem.length_unit_km;
+    case Objective::final_energy:
+      return -objective * kProblem.speed_unit_km_s * kProblem.speed_unit_km_s;
+    default:
+      return objective * (objective_is_propellant() ? kProblem.mass_unit_kg : kProblem.time_unit_days);
+  }
 }
 
 // The Shape of a converged x at eps (the first three states are the position). At eps = 0 its
 // cost is the objective: the propellant summed over the arcs (a dropped lander is not
-// propellant), or the flight time. The companion problem of a minimum-time one (fuel_weight > 0)
+// propellant), the flight time, or the final state's Mayer term. The companion problem of a minimum-time one (fuel_weight > 0)
 // costs its propellant.
 inline Shape shape_of(const Settings& s, const std::vector<double>& x, double eps, double fuel_weight = 0) {
   Shape out;
@@ -137,7 +169,9 @@ inline Shape shape_of(const Settings& s, const std::vector<double>& x, double ep
     }
   }
   out.revolutions = swept / (2 * M_PI);
-  if (!propellant_objective)
+  if (objective_is_final_state() && fuel_weight == 0)
+    out.cost = final_state_cost(samples.back().y.data());
+  else if (!propellant_objective)
     out.cost = samples.back().t - samples.front().t;
   else if (eps == 0)
     out.cost = propellant;

@@ -47,7 +47,7 @@ inline FreeFinalTime free_final_time() {
 // free, and the throttle burns mass at a rate of its own (full_mass_flow).
 inline bool has_fuel_companion() {
   const FreeFinalTime f = free_final_time();
-  return !kProblem.minimum_fuel && f.variable >= 0 && f.row >= 0 && full_mass_flow() > 0;
+  return kProblem.objective == Objective::time && f.variable >= 0 && f.row >= 0 && full_mass_flow() > 0;
 }
 
 // The final time the companion is held at first, as a fraction of its window: the window's end,

@@ -146,12 +146,9 @@ inline TrajectorySummary trajectory(const Settings& s, const Result& r, const st
   return out;
 }
 
-// A finite objective in named units: the propellant under `mass_key`, or the flight time under
-// `time_key`.
-inline void objective_in_units(nlohmann::ordered_json& to, double objective, const char* mass_key = "propellant_kg",
-                               const char* time_key = "tof_days") {
-  if (std::isfinite(objective))
-    to[objective_is_propellant() ? mass_key : time_key] = objective_in_named_unit(objective);
+// A finite objective in named units, under its key (propellant_kg, tof_days, final_radius_km...).
+inline void objective_in_units(nlohmann::ordered_json& to, double objective) {
+  if (std::isfinite(objective)) to[objective_key()] = objective_in_named_unit(objective);
 }
 
 // The distinct extremals at eps_start as solution.json records them ("search", "extremals_at_eps_start"),
@@ -173,6 +170,8 @@ inline nlohmann::ordered_json start_extremals_record(const std::vector<StartExtr
     if (std::isfinite(e.shape.cost)) {  // the smoothed problem's cost
       if (propellant)
         entry["cost_kg"] = e.shape.cost * kProblem.mass_unit_kg;
+      else if (objective_is_final_state())
+        objective_in_units(entry, e.shape.cost);
       else
         entry["cost_days"] = e.shape.cost * kProblem.time_unit_days;
     }
@@ -339,6 +338,7 @@ inline void solution_record(const Settings& s, const Result& r, const std::strin
     out["propellant_kg"] = path.propellant * kProblem.mass_unit_kg;  // a mass drop is not propellant
     out["delta_v_m_s"] = path.delta_v_m_s;
   }
+  if (objective_is_final_state()) objective_in_units(out, final_state_cost(path.final_state.data()));
   out["epsilon"] = r.eps;
   out["max_residual"] = r.max_residual;
   out["residual_noise"] = residual_noise(s, r);

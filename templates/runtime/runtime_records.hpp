@@ -32,6 +32,10 @@ struct OrbitBody {
   const double* elements;  // a, e, i_rad, raan_rad, argp_rad, mean_anomaly_rad, epoch
 };
 
+// What the search minimizes: the flight time, the propellant (minimum fuel or initial mass), or a
+// Mayer term on the final state, phi = -|r(tf)| or -(|v(tf)|^2/2 - mu/|r(tf)|) (both maximized).
+enum class Objective { time, propellant, final_radius, final_energy };
+
 // The problem as the runtime reads it (the PROBLEM block's constants, defined by the program).
 // Its numbers are references to the program's parameters, so they read the loaded values.
 struct ProblemShape {
@@ -40,7 +44,7 @@ struct ProblemShape {
   int throttle_index;  // -1: no throttle (one mode)
   int num_vars;
   int mass_index;     // -1: no mass state (a sail)
-  bool minimum_fuel;  // the objective is the propellant (minimum fuel or initial mass), else the time
+  Objective objective;
   const double& t0;
   const double& tf;      // the final time, or the upper end of its window when it is free
   const double& tf_min;  // the lower end of the final time's window (tf when it is fixed)

@@ -118,8 +118,11 @@ inline void take_extremal(Result& r) {
 // An objective in named units for the progress lines.
 inline std::string objective_text(double objective) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, objective_is_propellant() ? "%.6g kg of propellant" : "%.6g days",
-                objective_in_named_unit(objective));
+  const char* format = objective_is_propellant()                     ? "%.6g kg of propellant"
+                       : kProblem.objective == Objective::final_radius ? "a final radius of %.9g km"
+                       : kProblem.objective == Objective::final_energy ? "a final energy of %.9g km^2/s^2"
+                                                                       : "%.6g days";
+  std::snprintf(buf, sizeof buf, format, objective_in_named_unit(objective));
   return buf;
 }
 

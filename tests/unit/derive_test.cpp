@@ -441,6 +441,26 @@ TEST(Derive, ADepartureOrbitsInitialStateIsTheOrbitAtItsAnomaly) {
   EXPECT_NEAR(helios::symbolic::evaluate(table.parse(row, "row"), table, values), expected, 1e-7 * std::abs(expected));
 }
 
+// A final-state objective needs a fixed final time; an engine at full throttle burns a fixed
+// amount of fuel, so it cannot minimize it.
+TEST(Derive, AFinalStateObjectiveNeedsAFixedTimeAndFullThrottleNoFuelObjective) {
+  const std::string path = kSource + "/tests/fixtures/problems/maximum_radius.txt";
+  const json spec = helios::spec::parse_problem_text(helios::io::read_text(path), path);
+  json free_time = spec;
+  free_time["time"] = {{"t0_days", 0.0}, {"final_time", "free"}, {"tof_min_days", 0.0}, {"tof_max_days", 300.0}};
+  EXPECT_THROW(helios::pmp::derive_from_spec(free_time), std::invalid_argument);
+  json fuel = spec;
+  fuel["objective"]["kind"] = "minimum_fuel";
+  EXPECT_THROW(helios::pmp::derive_from_spec(fuel), std::invalid_argument);
+  // The Mayer term enters the transversality: lambda_r(tf) = -lambda0 r/|r| + nu^T dpsi/dr.
+  const json d = helios::pmp::derive_from_spec(spec);
+  for (const auto& e : d["shooting"]["equations"])
+    if (e["name"] == "transversality_rx") {
+      const std::string row = e["expression"];
+      EXPECT_NE(row.find("(rx_tf^2+ry_tf^2+rz_tf^2)^(-1/2)*lambda0*rx_tf"), std::string::npos) << row;
+    }
+}
+
 TEST(Derive, SailWithFuelObjectiveIsRefused) {
   const std::string path = kSource + "/scenarios/S11/problem.txt";
   json spec = helios::spec::parse_problem_text(helios::io::read_text(path), path);

@@ -1195,4 +1195,22 @@ TEST(ParseOrbitTarget, ReadsADepartureOrbitWithEveryElement) {
       "a departure orbit needs its inclination");
 }
 
+// Objectives on the final state and an engine at full throttle throughout.
+TEST(ParseOrbitTarget, ReadsAFinalStateObjectiveAndAFullThrottleEngine) {
+  const std::string s14 = scenario("S14");
+  const std::string fixed = replaced(s14, "The time of flight is free, at most 2 days.", "The time of flight is 1 day.");
+  for (const auto& [sentence, kind] : std::vector<std::pair<std::string, std::string>>{
+           {"Maximize the final radius.", "maximum_final_radius"},
+           {"Maximise the final orbital energy.", "maximum_final_energy"}}) {
+    const json spec = parse(replaced(fixed, "Minimize the time of flight.", sentence));
+    helios::io::validate("spec", spec, "test");
+    EXPECT_EQ(spec["objective"]["kind"], kind) << sentence;
+  }
+  const json full = parse(replaced(fixed, "Minimize the time of flight.",
+                                   "The engine thrusts at full throttle throughout.\nMaximize the final radius."));
+  EXPECT_EQ(full["spacecraft"]["full_throttle"], true);
+  has(error_of(replaced(s14, "Minimize the time of flight.", "Maximize the final radius.\nMinimize the fuel.")),
+      "objective");
+}
+
 }  // namespace

@@ -436,6 +436,19 @@ TEST(Verify, ADepartureOrbitsStationarityIsRecomputedFromPsi) {
   EXPECT_TRUE(failed_ids(verify(d)).count(id));
 }
 
+// A Mayer objective (the final radius) with the engine at full throttle: the endpoint cost and the
+// throttle-free thrust are recomputed from their terms.
+TEST(Verify, AFinalStateObjectiveAndAFullThrottleEngineAreRecomputed) {
+  json d = derive_text("tests/fixtures/problems/maximum_radius.txt");
+  EXPECT_EQ(verify(d)["verdict"], "pass");
+  json maximized = d;
+  maximized["dynamics"]["endpoint_cost"] = "sqrt(rx^2+ry^2+rz^2)";  // phi = +|r|: the radius minimized
+  EXPECT_TRUE(failed_ids(verify(maximized)).count("cost_terms"));
+  json throttled = d;
+  throttled["dynamics"]["state_rhs"].back() = "-Tmax/c/2";  // m's rate: half a full throttle's mass flow
+  EXPECT_TRUE(failed_ids(verify(throttled)).count("dynamics_terms"));
+}
+
 TEST(Verify, RightHandSideWithTheOptimalControlSubstitutedPasses) {
   json d = s01();
   costate_ode(d, "l_m")["rhs"] = "-Tmax*u*sqrt(l_vx^2+l_vy^2+l_vz^2)/m^2";  // a* = -l_v/|l_v| substituted

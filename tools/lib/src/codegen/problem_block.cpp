@@ -18,6 +18,15 @@ std::pair<std::string, double> physical(const derivation::Units& units, const de
   return {state.name, 1.0};
 }
 
+// The runtime's Objective of the derivation's problem.objective.
+std::string runtime_objective(const std::string& objective) {
+  if (objective == "minimum_time") return "time";
+  if (objective == "minimum_fuel" || objective == "minimum_initial_mass") return "propellant";
+  if (objective == "maximum_final_radius") return "final_radius";
+  if (objective == "maximum_final_energy") return "final_energy";
+  throw std::invalid_argument("field /problem/objective: '" + objective + "' is no objective the runtime knows");
+}
+
 }  // namespace
 
 std::string problem_block(Context& c) {
@@ -42,8 +51,8 @@ std::string problem_block(Context& c) {
     << ";  // the module table names shooting_legs\n"
     << "constexpr bool kCoastingTarget = " << (c.coast_dynamics ? "true" : "false")
     << ";  // the module table names coast_dynamics\n"
-    << "// The objective: the propellant (minimum fuel or minimum initial mass), else minimum time.\n"
-    << "constexpr bool kMinimumFuel = " << (c.objective != "minimum_time" ? "true" : "false")
+    << "// The objective the search minimizes.\n"
+    << "constexpr helios_rt::Objective kObjective = helios_rt::Objective::" << runtime_objective(c.objective)
     << ";\n"
     << "// The problem's numbers: globals set from these literals, which a parameters file may replace\n"
     << "// at run time (shoot --parameters; helios_runtime.hpp's HELIOS_PARAMETER).\n"
@@ -102,7 +111,7 @@ std::string problem_block(Context& c) {
     << "constexpr int kNY = 2 * problem::kNumStates;  // states then costates\n"
     << "const ProblemShape kProblem = {problem::kProblemId, problem::kNumStates, problem::kNumControls,\n"
     << "                               problem::kThrottleIndex, problem::kNumVars, problem::kMassIndex,\n"
-    << "                               problem::kMinimumFuel, problem::kT0, problem::kTf, problem::kTfMin,\n"
+    << "                               problem::kObjective, problem::kT0, problem::kTf, problem::kTfMin,\n"
     << "                               problem::kHomotopyStart,\n"
     << "                               problem::kTimeUnitDays, problem::kLengthUnitKm, problem::kSpeedUnitKmS,\n"
     << "                               problem::kEpochMjd2000, problem::kMassUnitKg, problem::kExhaustVelocityMS,\n"

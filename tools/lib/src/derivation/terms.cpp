@@ -39,7 +39,8 @@ Term read_term(const json& entry, const std::string& at) {
   const bool force = known(force_term_names(), t.name), cost = known(cost_term_names(), t.name);
   if (!force && !cost)
     throw helios::input_error(at + ".name: unknown term '" + t.name + "' (known: two_body, j2, solar_sail, thrust, " +
-                          "user_acceleration, third_body, fuel, time, initial_mass)");
+                              "full_thrust, user_acceleration, third_body, fuel, time, initial_mass, final_radius, "
+                              "final_energy)");
   if (t.kind != (force ? "force" : "cost"))
     throw helios::input_error(at + ".kind: '" + t.kind + "', but " + t.name + " is a " + (force ? "force" : "cost"));
   t.parameters = strings(entry, "parameters", at);
@@ -55,13 +56,13 @@ Term read_term(const json& entry, const std::string& at) {
 }  // namespace
 
 const std::vector<std::string>& force_term_names() {
-  static const std::vector<std::string> names = {"two_body", "j2",      "solar_sail",
-                                                 "thrust",   "user_acceleration", "third_body"};
+  static const std::vector<std::string> names = {"two_body",    "j2",          "solar_sail", "thrust",
+                                                 "full_thrust", "user_acceleration", "third_body"};
   return names;
 }
 
 const std::vector<std::string>& cost_term_names() {
-  static const std::vector<std::string> names = {"fuel", "time", "initial_mass"};
+  static const std::vector<std::string> names = {"fuel", "time", "initial_mass", "final_radius", "final_energy"};
   return names;
 }
 

@@ -49,6 +49,12 @@ bool Problem::has_state(const std::string& name) const {
   return false;
 }
 
+bool Problem::has_control(const std::string& name) const {
+  for (const auto& c : controls)
+    if (c.name == name) return true;
+  return false;
+}
+
 namespace {
 
 // The problem's name, its dynamics model (with its perturbations) and its objective and units;
@@ -161,20 +167,29 @@ void dynamics(Problem& p, const terms::ForceList& forces) {
   if (has_mass) p.f.push_back(mass_rate);
 }
 
-// The running cost L of the objective's cost term (no endpoint cost).
+// The running cost L and the endpoint cost phi of the objective's cost term.
 void objective(Problem& p) {
   std::unique_ptr<terms::CostTerm> cost;
+  const bool full_throttle = !p.has_control("u") && p.propulsion != "solar_sail";
   if (p.objective == "minimum_fuel" || p.objective == "minimum_initial_mass") {
     if (p.propulsion == "solar_sail")
       throw std::invalid_argument("field /objective/kind: a solar sail uses no fuel; minimize the time instead");
+    if (full_throttle)
+      throw std::invalid_argument("field /objective/kind: an engine at full throttle throughout burns a fixed "
+                                  "amount of fuel; minimize the time or maximize the final radius instead");
     cost = p.objective == "minimum_fuel" ? terms::fuel_cost() : terms::initial_mass_cost();
   } else if (p.objective == "minimum_time") {
     cost = terms::time_cost();
+  } else if (p.objective == "maximum_final_radius" || p.objective == "maximum_final_energy") {
+    if (p.free_final_time)
+      throw std::invalid_argument("field /objective/kind: " + p.objective +
+                                  " needs a fixed time of flight (with it free the final radius has no maximum)");
+    cost = p.objective == "maximum_final_radius" ? terms::final_radius_cost() : terms::final_energy_cost();
   } else {
     throw std::invalid_argument("field /objective/kind: " + p.objective + " is not supported");
   }
   p.running_cost = cost->running_cost(p);
-  p.endpoint_cost = 0;
+  p.endpoint_cost = cost->endpoint_cost(p);
   p.terms.push_back(terms::listing(cost->name(), "cost", cost->parameters()));
 }
 
@@ -232,8 +247,8 @@ Problem build_problem(const json& spec) {
   const terms::ForceList forces = spacecraft(p, spec, j2);
   register_symbols(p);
   dynamics(p, forces);
-  objective(p);
   times(p, spec.at("time"));
+  objective(p);
   for (const auto& c : spec.at("constraints")) {
     if (c.at("at") == "interior")
       p.events.push_back(interior_event(p, c));

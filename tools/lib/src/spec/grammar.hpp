@@ -190,6 +190,8 @@ struct Builder {
   void on_initial_mass(const std::smatch&);
   void on_fuel(const std::smatch&);
   void on_time(const std::smatch&);
+  void on_final_state_objective(const std::smatch& m);
+  void on_full_throttle(const std::smatch&);
 
   // ---- time of flight, departure and epochs (time.cpp) ----
   void on_tof(const std::smatch& m);

@@ -34,6 +34,10 @@ void Builder::handle(const std::string& s) {
       {re(R"(Minimi[sz]e (?:the )?(?:initial|launch|departure|wet) mass)"), &Builder::on_initial_mass},
       {re(R"(Minimi[sz]e (?:the )?(?:fuel(?: consumption)?|propellant(?: mass)?|fuel use))"), &Builder::on_fuel},
       {re(R"(Minimi[sz]e (?:the )?(?:time of flight|flight time|final time|transfer time))"), &Builder::on_time},
+      {re(R"(Maximi[sz]e (?:the )?final (?:orbital |orbit )?(radius|energy)(?: of the orbit)?)"),
+       &Builder::on_final_state_objective},
+      {re(R"(The (?:engine|thruster) (?:thrusts|runs|burns|fires) at full (?:throttle|thrust) (?:throughout|all the time|at all times|from start to end))"),
+       &Builder::on_full_throttle},
       {re(R"((?:the (?:asteroid|comet|planet|moon|body|object) )?(.+?) moves on an? (?:Keplerian )?orbit (?:about|around) (the central body|(?:the )?[A-Za-z][A-Za-z0-9_]*) with (.+?)(?: at (?:the )?(?:epoch )?(MJD2000|MJD) ()" +
           kNum + "))?"),
        &Builder::on_orbit},

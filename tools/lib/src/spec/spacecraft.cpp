@@ -178,4 +178,16 @@ void Builder::on_time(const std::smatch&) {
   objective = {{"kind", "minimum_time"}};
 }
 
+// "Maximize the final radius" / "... the final orbital energy": a Mayer objective on x(tf).
+void Builder::on_final_state_objective(const std::smatch& m) {
+  once("the objective");
+  objective = {{"kind", lowercase(m[1].str()) == "radius" ? "maximum_final_radius" : "maximum_final_energy"}};
+}
+
+// "The engine thrusts at full throttle throughout": the throttle is 1, the direction the only control.
+void Builder::on_full_throttle(const std::smatch&) {
+  once("the engine's throttle");
+  spacecraft["full_throttle"] = true;
+}
+
 }  // namespace helios::spec::grammar

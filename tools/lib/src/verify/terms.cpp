@@ -54,6 +54,8 @@ class TermFamily : public Family {
 
 // The position, velocity and mass states by their kinds.
 bool TermFamily::read_frame(Check& c) {
+  r_.clear();
+  v_.clear();
   for (std::size_t i = 0; i < ctx.states.size(); ++i) {
     const Kind k = ctx.kinds[static_cast<std::size_t>(ctx.slot(ctx.states[i]))];
     if (k == Kind::Position) r_.push_back(ctx.sym(ctx.states[i]));
@@ -138,7 +140,7 @@ std::optional<ex> central_mu(const Context& ctx, const std::vector<Term>& all) {
 // One force term's contribution to the velocities' (and the mass's) rates.
 std::optional<Contribution> TermFamily::force(const Term& t, const std::vector<Term>& all, Check& c) const {
   static const std::map<std::string, std::size_t> counts = {{"two_body", 1},   {"j2", 2},
-                                                            {"solar_sail", 2}, {"thrust", 2},
+                                                            {"solar_sail", 2}, {"thrust", 2},       {"full_thrust", 2},
                                                             {"user_acceleration", 0}, {"third_body", 6}};
   const auto q = parameters_of(t, counts.at(t.name), c);
   if (!q) return std::nullopt;
@@ -171,6 +173,13 @@ std::optional<Contribution> TermFamily::force(const Term& t, const std::vector<T
     const ex u = ctx.sym(ctx.throttle);
     for (const auto& d : ctx.directions) a.push_back((*q)[0] * u * ctx.sym(d) / m_);
     out.rate[static_cast<std::size_t>(mass_)] = -(*q)[0] * u / (*q)[1];
+  } else if (t.name == "full_thrust") {  // u = 1 throughout: no throttle control
+    if (!ctx.throttle.empty() || ctx.directions.size() != 3 || mass_ < 0) {
+      c.fail("term full_thrust needs three direction controls, a mass state and no throttle (it is 1 throughout).");
+      return std::nullopt;
+    }
+    for (const auto& d : ctx.directions) a.push_back((*q)[0] * ctx.sym(d) / m_);
+    out.rate[static_cast<std::size_t>(mass_)] = -(*q)[0] / (*q)[1];
   } else if (t.name == "solar_sail") {
     if (ctx.sails.size() != 3) {
       c.fail("term solar_sail needs three sail_normal controls.");
@@ -266,8 +275,8 @@ bool TermFamily::depends(const ex& difference, const ex& expected, const ex& q) 
 // "<check>: the derivation lists no terms" when it has no listing.
 const char* kNoTerms =
     "the derivation lists no terms (field terms): list each term of the dynamics (two_body, j2, solar_sail, thrust, "
-    "user_acceleration, third_body) and of the running cost (fuel, time, initial_mass) by name with the parameters "
-    "it uses.";
+    "full_thrust, user_acceleration, third_body) and of the cost (fuel, time, initial_mass, final_radius, "
+    "final_energy) by name with the parameters it uses.";
 
 Check TermFamily::dynamics(const std::optional<std::vector<Term>>& terms) {
   Check c = start("dynamics_terms", "state_odes", "random_points");
@@ -293,31 +302,47 @@ Check TermFamily::dynamics(const std::optional<std::vector<Term>>& terms) {
   return c;
 }
 
-// The running cost against its one cost term: fuel or initial_mass Tmax/c (u - eps u (1 - u)),
-// time 1.
+// The running and endpoint costs against the one cost term: fuel or initial_mass L = Tmax/c (u -
+// eps u (1 - u)), time L = 1; final_radius phi = -|r|, final_energy phi = -(|v|^2/2 - mu/|r|)
+// (maximized), with L = 0. The other term's endpoint cost is 0.
 Check TermFamily::cost(const std::optional<std::vector<Term>>& terms) {
   Check c = start("cost_terms", "hamiltonian", "random_points");
   if (!terms) return c.fail(kNoTerms), c;
   std::vector<const Term*> costs;
   for (const auto& t : *terms)
     if (t.kind == "cost") costs.push_back(&t);
-  if (costs.size() != 1) return c.fail("the derivation lists " + std::to_string(costs.size()) +
-                                       " cost terms; the running cost is one of fuel, time, initial_mass."), c;
+  if (costs.size() != 1)
+    return c.fail("the derivation lists " + std::to_string(costs.size()) +
+                  " cost terms; the cost is one of fuel, time, initial_mass, final_radius, final_energy."),
+           c;
   const Term& t = *costs[0];
-  ex expected = 1;
-  if (t.name != "time") {
+  ex running = 1, endpoint = 0;
+  if (t.name == "fuel" || t.name == "initial_mass") {
     const auto q = parameters_of(t, 2, c);
     if (!q) return c;
     if (ctx.throttle.empty()) return c.fail("the cost term " + t.name + " needs a throttle control."), c;
     const ex u = ctx.sym(ctx.throttle), eps = ctx.sym(ctx.eps);
-    expected = (*q)[0] / (*q)[1] * (u - eps * u * (1 - u));
+    running = (*q)[0] / (*q)[1] * (u - eps * u * (1 - u));
+  } else if (t.name == "final_radius" || t.name == "final_energy") {
+    const auto q = parameters_of(t, t.name == "final_energy" ? 1 : 0, c);
+    if (!q || !read_frame(c)) return c;
+    const ex r = GiNaC::sqrt(r_[0] * r_[0] + r_[1] * r_[1] + r_[2] * r_[2]);
+    running = 0;
+    endpoint = t.name == "final_radius"
+                   ? -r
+                   : -((v_[0] * v_[0] + v_[1] * v_[1] + v_[2] * v_[2]) / 2 - (*q)[0] / r);
   } else if (!t.parameters.empty()) {
     return c.fail("the cost term time has no parameters; it lists " + join(t.parameters, ", ") + "."), c;
   }
-  c.max_rel = mismatch(ctx.running_cost, expected, c);
+  c.max_rel = mismatch(ctx.running_cost, running, c);
   if (c.max_rel > kTol && c.pass)
-    c.fail("dynamics.running_cost is not the cost term " + t.name + " = " + print(expected) + ": it differs by " +
-           short_print(tidy(ctx.running_cost - expected)) + ".");
+    c.fail("dynamics.running_cost is not the cost term " + t.name + "'s L = " + print(running) + ": it differs by " +
+           short_print(tidy(ctx.running_cost - running)) + ".");
+  const double endpoint_rel = mismatch(ctx.endpoint_cost, endpoint, c);
+  if (endpoint_rel > kTol && c.pass)
+    c.fail("dynamics.endpoint_cost is not the cost term " + t.name + "'s phi = " + print(endpoint) +
+           ": it differs by " + short_print(tidy(ctx.endpoint_cost - endpoint)) + ".");
+  c.max_rel = std::max(c.max_rel, endpoint_rel);
   return c;
 }
 

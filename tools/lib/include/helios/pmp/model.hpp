@@ -135,6 +135,7 @@ struct Problem {
   bool free_initial_mass = false;
   double final_mass = 1;
   bool has_state(const std::string& name) const;
+  bool has_control(const std::string& name) const;
 };
 
 // Builds the problem of a validated spec. Throws std::invalid_argument / std::domain_error

@@ -56,6 +56,8 @@ class CostTerm {
   virtual std::vector<std::string> parameters() const = 0;
   // Its contribution to the running cost L (with the homotopy parameter eps).
   virtual ex running_cost(Problem& p) const = 0;
+  // Its endpoint cost phi(x(tf)) (a Mayer term; 0 for a running cost).
+  virtual ex endpoint_cost(Problem&) const { return 0; }
 };
 
 using ForceList = std::vector<std::unique_ptr<ForceTerm>>;
@@ -72,6 +74,8 @@ std::unique_ptr<ForceTerm> third_body(const json& perturbation, const json& cent
 std::unique_ptr<CostTerm> fuel_cost();
 std::unique_ptr<CostTerm> time_cost();
 std::unique_ptr<CostTerm> initial_mass_cost();
+std::unique_ptr<CostTerm> final_radius_cost();
+std::unique_ptr<CostTerm> final_energy_cost();
 
 // The listing of one term in the derivation: name, kind (force | cost), the parameters it uses.
 TermListing listing(const std::string& name, const std::string& kind, const std::vector<std::string>& parameters,

@@ -1,5 +1,6 @@
 // A thruster of maximum thrust Tmax and exhaust velocity c: a = Tmax u a_hat / m with the
-// throttle u in [0, 1] and the unit direction a_hat, and the mass flow dm/dt = -Tmax u / c.
+// throttle u in [0, 1] and the unit direction a_hat, and the mass flow dm/dt = -Tmax u / c. An
+// engine at full throttle throughout (full_thrust) has u = 1: its direction is its only control.
 #include <stdexcept>
 
 #include "helios/astro/constants.hpp"
@@ -11,7 +12,8 @@ namespace {
 class Thrust : public ForceTerm {
  public:
   Thrust(const json& sc, const Units& U, std::string mass_unit)
-      : thrust_(sc.at("thrust_N").get<double>() / U.force_N()),
+      : full_(sc.value("full_throttle", false)),
+        thrust_(sc.at("thrust_N").get<double>() / U.force_N()),
         exhaust_(sc.at("isp_s").get<double>() * helios::astro::G0_M_S2 * 1e-3 / U.speed_km_s()),
         mass_unit_(std::move(mass_unit)),
         L_(U.length_name),
@@ -23,13 +25,14 @@ class Thrust : public ForceTerm {
                               " is 0 in normalized units: the spacecraft's magnitudes (thrust, Isp, mass) are beyond "
                               "the range of double precision");
   }
-  std::string name() const override { return "thrust"; }
+  std::string name() const override { return full_ ? "full_thrust" : "thrust"; }
   std::vector<Named> states() const override { return {{"m", "mass", mass_unit_}}; }
   std::vector<Control> controls() const override {
-    return {{"u", "throttle T/Tmax in [0, 1]", "throttle"},
-            {"ax", "thrust direction x (unit vector)", "direction"},
-            {"ay", "thrust direction y (unit vector)", "direction"},
-            {"az", "thrust direction z (unit vector)", "direction"}};
+    std::vector<Control> out = {{"ax", "thrust direction x (unit vector)", "direction"},
+                                {"ay", "thrust direction y (unit vector)", "direction"},
+                                {"az", "thrust direction z (unit vector)", "direction"}};
+    if (!full_) out.insert(out.begin(), {"u", "throttle T/Tmax in [0, 1]", "throttle"});
+    return out;
   }
   std::vector<Named> parameters() const override {
     return {{"Tmax", "maximum thrust", mass_unit_ + "*" + L_ + "/" + T_ + "^2", thrust_},
@@ -37,12 +40,15 @@ class Thrust : public ForceTerm {
   }
   std::vector<ex> acceleration(Problem& p, const Frame& x) const override {
     auto& S = p.symbols;
-    const ex u = S.get("u"), TM = S.get("Tmax");
+    const ex u = throttle(p), TM = S.get("Tmax");
     return {TM * u * S.get("ax") / x.mass, TM * u * S.get("ay") / x.mass, TM * u * S.get("az") / x.mass};
   }
-  ex mass_rate(Problem& p) const override { return -p.symbols.get("Tmax") * p.symbols.get("u") / p.symbols.get("c"); }
+  ex mass_rate(Problem& p) const override { return -p.symbols.get("Tmax") * throttle(p) / p.symbols.get("c"); }
 
  private:
+  ex throttle(Problem& p) const { return full_ ? ex(1) : ex(p.symbols.get("u")); }
+
+  bool full_;
   double thrust_, exhaust_;
   std::string mass_unit_, L_, T_;
 };
