@@ -61,6 +61,7 @@ inline Settings read_settings(const std::string& path) {
   s.search_continue_all = j.value("search_continue_all", s.search_continue_all);
   s.search_families = j.value("search_families", s.search_families);
   s.search_fuel_companion = j.value("search_fuel_companion", s.search_fuel_companion);
+  s.search_thrust_continuation = j.value("search_thrust_continuation", s.search_thrust_continuation);
   s.threads = j.value("threads", s.threads);
   s.search_tol = j.value("search_integrator_tol", s.search_tol);
   s.node_spacing_days = j.value("node_spacing_days", s.node_spacing_days);
@@ -144,6 +145,16 @@ inline TrajectorySummary trajectory(const Settings& s, const Result& r, const st
   out.t0 = first.t;
   out.tf = last.t;
   return out;
+}
+
+// A continuation step as solution.json records it (max_residual only where the evaluation was
+// finite, revolutions where the continuation follows them).
+inline nlohmann::ordered_json continuation_step_record(const ContinuationStep& c) {
+  nlohmann::ordered_json step = {
+      {"stage", c.stage}, {"value", c.value}, {"converged", c.converged}, {"evaluations", c.evaluations}};
+  if (std::isfinite(c.max_residual)) step["max_residual"] = c.max_residual;
+  if (std::isfinite(c.revolutions)) step["revolutions"] = c.revolutions;
+  return step;
 }
 
 // A finite objective in named units, under its key (propellant_kg, tof_days, final_radius_km...).
@@ -244,6 +255,11 @@ inline nlohmann::ordered_json search_record(const SearchRecord& rec) {
                                      {"starts", rec.companion_draws},
                                      {"converged", rec.companion_converged},
                                      {"solutions", start_extremals_record(rec.companion_solutions, true)}};
+  if (!rec.thrust_continuation.empty()) {
+    nlohmann::ordered_json steps = nlohmann::ordered_json::array();
+    for (const auto& c : rec.thrust_continuation) steps.push_back(continuation_step_record(c));
+    out["thrust_continuation"] = {{"arrived", rec.thrust_continuation_arrived}, {"steps", steps}};
+  }
   if (rec.returned >= 0) {
     out["returned"] = rec.returned;
     out["reason"] = rec.reason;
@@ -283,12 +299,7 @@ inline void steps_record(const Result& r, nlohmann::ordered_json& out) {
   out["search"] = search_record(r.search);
   if (!r.continuation.empty()) {
     out["continuation"] = nlohmann::ordered_json::array();
-    for (const auto& c : r.continuation) {
-      nlohmann::ordered_json step = {
-          {"stage", c.stage}, {"value", c.value}, {"converged", c.converged}, {"evaluations", c.evaluations}};
-      if (std::isfinite(c.max_residual)) step["max_residual"] = c.max_residual;
-      out["continuation"].push_back(step);
-    }
+    for (const auto& c : r.continuation) out["continuation"].push_back(continuation_step_record(c));
   }
 }
 

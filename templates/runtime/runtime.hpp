@@ -14,8 +14,9 @@
 // tangent predictors and retreat (homotopy.hpp); interior events reached by continuation from the
 // problem without them, else leg by leg (continuation.hpp, legs.hpp); bounds psi <= 0 by passes
 // over the active set (bounds.hpp); a global search over seeded starts until saturated, with the
-// revolution families and a minimum-time problem's minimum-fuel companion (search.hpp,
-// families.hpp, minimum_time.hpp); and the last polish of a converged solution by multiple
+// revolution families, a minimum-time problem's minimum-fuel companion and the continuation of a
+// many-revolution transfer on the thrust (search.hpp, families.hpp, minimum_time.hpp,
+// thrust_continuation.hpp); and the last polish of a converged solution by multiple
 // shooting (nodes.hpp).
 // ---------------------------------------------------------------------------------------------
 #pragma once
@@ -39,6 +40,7 @@
 #include "draws.hpp"
 #include "families.hpp"
 #include "minimum_time.hpp"
+#include "thrust_continuation.hpp"
 #include "search.hpp"
 #include "nodes.hpp"
 #include "report.hpp"

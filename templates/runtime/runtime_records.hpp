@@ -106,6 +106,7 @@ struct Settings {
   bool search_continue_all = false;
   bool search_families = true;
   bool search_fuel_companion = true;
+  bool search_thrust_continuation = true;
   // The integrator's rtol and atol during the search (never tighter than rtol and atol; 0: those):
   // every distinct extremal it reaches at eps = 0 is then polished at rtol and atol.
   double search_tol = 1e-10;
@@ -226,6 +227,7 @@ struct ContinuationStep {
   bool converged;
   double max_residual;
   int evaluations;
+  double revolutions = NAN;  // of the solution reached, where the continuation follows them
 };
 
 // What tells one extremal from another (search.hpp's shape_of): the revolutions about the
@@ -305,6 +307,10 @@ struct SearchRecord {
   double companion_tf_days = 0;
   int companion_draws = 0, companion_converged = 0;
   std::vector<StartExtremal> companion_solutions;
+  // The thrust continuation of a many-revolution transfer (thrust_continuation.hpp): every search
+  // at a raised thrust and every step down, and whether it arrived at the problem's thrust.
+  std::vector<ContinuationStep> thrust_continuation;
+  bool thrust_continuation_arrived = false;
   std::vector<StartExtremal> start_extremals;
   std::vector<Extremal> extremals;
   int returned = -1;  // index into extremals

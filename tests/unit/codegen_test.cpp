@@ -250,6 +250,17 @@ TEST(Codegen, CellsOfASweepDifferOnlyInTheirParameters) {
   EXPECT_NE(pa.structure.find("HELIOS_PARAMETER(Tmax, #);  // maximum thrust ["), std::string::npos);
 }
 
+// A free final time is its window's map written with the window's parameters kTfMin and kTf, which
+// the runtime's thrust continuation scales: two windows are one structure.
+TEST(Codegen, AFreeFinalTimeIsWrittenWithItsWindowsParameters) {
+  const std::string free = "The time of flight is free, between 50 days and 600 days.";
+  const std::string a = p01_program("9700", "", {{"The time of flight is  days.", free}});
+  const std::string b = p01_program("9700", "", {{"The time of flight is  days.",
+                                                  "The time of flight is free, between 80 days and 700 days."}});
+  EXPECT_NE(a.find("const T tf = problem::kTfMin + (problem::kTf - problem::kTfMin) * tf_frac;"), std::string::npos);
+  EXPECT_EQ(helios::solve::program_parameters(a).structure, helios::solve::program_parameters(b).structure);
+}
+
 // Anything but the numbers is structure: another target body, another objective.
 TEST(Codegen, AnotherTargetOrObjectiveIsAnotherStructure) {
   const std::string structure = helios::solve::program_parameters(p01_program("9700", "350")).structure;

@@ -3,6 +3,7 @@
 #include "context.hpp"
 #include "plans.hpp"
 
+#include <cmath>
 #include <algorithm>
 #include <map>
 #include <stdexcept>
@@ -75,6 +76,7 @@ class ShootingFunction {
  private:
   void unpack_variables();
   void epochs();
+  bool window_map(const derivation::Times& times) const;
   void targets();
   void start();
   void event(std::size_t k);
@@ -195,13 +197,37 @@ void ShootingFunction::unpack_variables() {
     body_.unpack(vars_[i].name, "x[" + std::to_string(i) + "]", vars_[i].meaning);
 }
 
+// Whether tf_expression is the map of tf_frac onto the final time's window, tf_min + (tf_max -
+// tf_min) tf_frac: then the program writes it with the window's parameters kTfMin and kTf, which
+// the runtime's thrust continuation scales (a sliding departure's tf moves with t0 instead).
+bool ShootingFunction::window_map(const derivation::Times& times) const {
+  if (times.tf_window.size() != 2 || times.t0_expression) return false;
+  const GiNaC::symbol frac = c_.symbols.get(names::fraction("tf"));
+  const GiNaC::ex tf = c_.parsed(*times.tf_expression);
+  const auto free = symbolic::free_symbols(tf);
+  if (free.size() > 1 || (free.size() == 1 && *free.begin() != frac.get_name()) || !tf.is_polynomial(frac) ||
+      tf.degree(frac) > 1)
+    return false;
+  for (const double at : {0.0, 1.0}) {
+    const GiNaC::ex value = tf.subs(frac == at).evalf();
+    const double want = times.tf_window[0] + (times.tf_window[1] - times.tf_window[0]) * at;
+    if (!GiNaC::is_a<GiNaC::numeric>(value) ||
+        std::fabs(GiNaC::ex_to<GiNaC::numeric>(value).to_double() - want) > 1e-12 * std::max(1.0, std::fabs(want)))
+      return false;
+  }
+  return true;
+}
+
 // t0, tf and the epochs of the interior events (a stay ends at t_<id>_dep), checked to be in order.
 void ShootingFunction::epochs() {
   const derivation::Times& times = c_.times;
   auto& o = body_.code();
   o << "  const T t0 = " << (times.t0_expression ? body_.cpp(c_.parsed(*times.t0_expression)) : std::string("problem::kT0"))
     << ";\n";
-  if (times.tf_expression)
+  if (times.tf_expression && window_map(times))
+    o << "  const T tf = problem::kTfMin + (problem::kTf - problem::kTfMin) * "
+      << body_.cpp(c_.symbols.get(names::fraction("tf"))) << ";  // times.tf_expression\n";
+  else if (times.tf_expression)
     o << "  const T tf = " << body_.cpp(c_.parsed(*times.tf_expression)) << ";\n";
   else
     o << "  const T tf = problem::kTf;\n";

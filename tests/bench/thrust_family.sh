@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# The GTO -> GEO minimum-time family t_f(T_max): S14's problem text at 60, 20, 10, 5, 2, 1 and
+# 0.5 N (the thrust and the final time's window, 1.6 x 888 N h / T, changed in its sentences,
+# nothing else), each cold from its own search with an empty compile cache. Prints per thrust t_f,
+# the product t_f T (nearly constant at low thrust in the literature on this transfer: a check),
+# the revolutions, max|F|, the wall time and how the returned extremal was reached (the search
+# itself, or the thrust continuation from the raised thrust it started at, with its steps).
+# usage: tests/bench/thrust_family.sh [THRUST_N...]   (run from the repository root; needs `make tools`)
+set -euo pipefail
+bin=build/bin
+if (($# == 0)); then thrusts=(60 20 10 5 2 1 0.5); else thrusts=("$@"); fi
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+# A larger budget than S14's: the low-thrust transfers integrate for weeks of flight per evaluation.
+jq '.time_limit_s = 3000 | .search_time_s = 240' scenarios/S14/settings.json >"$work/settings.json"
+
+printf '%-8s %-12s %-10s %-8s %-10s %-8s %s\n' "T [N]" "t_f [h]" "t_f T [N h]" "revs" "max|F|" "wall [s]" "reached by"
+for thrust in "${thrusts[@]}"; do
+  dir="$work/T$thrust"
+  mkdir -p "$dir"
+  window=$(echo "1.6 * 888 / $thrust / 24" | bc -l | xargs printf '%.1f')
+  sed -e "s/a maximum thrust of 60 N/a maximum thrust of $thrust N/" \
+    -e "s/The time of flight is free, at most 2 days./The time of flight is free, at most $window days./" \
+    scenarios/S14/problem.txt >"$dir/problem.txt"
+  grep -q "maximum thrust of $thrust N" "$dir/problem.txt"
+  "$bin/helios-parse" "$dir/problem.txt" -o "$dir/spec.json"
+  "$bin/helios-derive" "$dir/spec.json" -o "$dir/derivation.json"
+  "$bin/helios-gen" "$dir/derivation.json" -o "$dir/shoot.cpp"
+  t0=$(date +%s.%N)
+  "$bin/helios-solve" "$dir/shoot.cpp" --settings "$work/settings.json" --time-limit 3100 --cache-dir "$dir/cache" \
+    --plots "" --trajectory "$dir/trajectory.csv" -o "$dir/solution.json" 2>"$dir/stderr" || true
+  wall=$(echo "$(date +%s.%N) - $t0" | bc -l)
+  jq -r --arg T "$thrust" --arg wall "$wall" '
+    def n(f): if . == null then "-" else (. | tostring | .[0:f]) end;
+    (.search.returned // -1) as $k
+    | (if $k >= 0 then .search.extremals[$k].revolutions else null end) as $revs
+    | [$T,
+       (if .status == "converged" then (.tof_days * 24 | n(10)) else .status end),
+       (if .status == "converged" then (.tof_days * 24 * ($T | tonumber) | n(8)) else "-" end),
+       ($revs | n(6)), (.max_residual | n(9)), ($wall | .[0:7]),
+       (if (.continuation // []) | any(.stage | startswith("maximum thrust"))
+        then "thrust continuation from \(.continuation | map(select(.stage | startswith("raised thrust")))[-1].value | tostring | .[0:6]) N, \(.continuation | map(select(.stage | startswith("maximum thrust"))) | length) steps"
+        else "the search" end)]
+    | @tsv' "$dir/solution.json" | awk -F'\t' '{ printf "%-8s %-12s %-10s %-8s %-10s %-8s %s\n", $1, $2, $3, $4, $5, $6, $7 }'
+done
