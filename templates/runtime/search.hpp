@@ -548,71 +548,41 @@ class MultiStart {
   }
 
   // Whether the search leaves a many-revolution transfer unsettled: its best extremal winds more
-  // than kFewRevolutions times, or it found none, and the starts did not saturate.
+  // than kFewRevolutions times, or it found none, and the starts did not saturate. Only where no
+  // target moves on the calendar (no epoch, no body on an orbit): a raised thrust shortens the
+  // flight, and a moving target would be met elsewhere, another transfer than the problem's.
   bool many_revolutions() const {
+    if (kProblem.epoch_mjd2000 != 0 || kProblem.num_orbit_bodies > 0) return false;
     if (rec_.saturated && !rec_.extremals.empty()) return false;
     const int best = best_index(rec_);
     return best < 0 || rec_.extremals[best].shape.revolutions > kFewRevolutions;
   }
 
   // The thrust continuation (thrust_continuation.hpp), with a budget of its own (search_time_s
-  // again, within time_limit_s): the thrust raised by a factor until a search there (itself
-  // without this stage, half of what is left) returns an extremal of few revolutions, the
-  // factor guessed from the revolutions seen (they fall about as the thrust rises) and quadrupled
-  // where the search there finds none; its best extremals continued down to the problem's thrust,
-  // one after the other (they share the program's thrust), and merged with the search's.
+  // again, within time_limit_s): the thrust raised until a search there returns an extremal of few
+  // revolutions (search_at_raised_thrust), then its best extremals continued down to the problem's
+  // thrust, one after the other (they share the program's thrust), and merged with the search's.
   void thrust_continuation() {
     const ThrustScaling scaling;
     if (!scaling) return;
     const double stage_end = std::min(s_.time_limit_s, wall_seconds() + std::max(s_.search_time_s, 0.0));
-    const auto factor_for = [](double revolutions) {
-      return std::exp2(std::ceil(std::log2(std::max(2.0, revolutions / kFewRevolutions))));
-    };
-    const int best = best_index(rec_);
-    double factor = best < 0 ? 4.0 : factor_for(rec_.extremals[best].shape.revolutions);
-    std::vector<ContinuationStep> steps;
-    Result raised;
-    double sigma = 0;
-    while (factor <= std::exp2(kMaxThrustDoublings) && wall_seconds() < stage_end) {
-      sigma = std::log(factor);
-      scaling.set(sigma);
-      progress_.stage("thrust raised to " + std::to_string(scaling.thrust_N(sigma)).substr(0, 7) + " N (x" +
-                      std::to_string(static_cast<int>(factor)) + "), the final time's window scaled by 1/" +
-                      std::to_string(static_cast<int>(factor)) + ": the search there");
-      Settings fine = fine_, coarse = s_;
-      for (Settings* level : {&fine, &coarse}) {
-        level->search_thrust_continuation = false;
-        level->search_time_s = std::max(1.0, 0.5 * (stage_end - wall_seconds()));
-      }
-      raised = MultiStart(fine, coarse, guess_, admissible_).solve();
-      count(raised.evaluations);
-      const bool found = raised.status == Status::kConverged;
-      const double revolutions = found ? shape_of(s_, raised.x, 0.0).revolutions : NAN;
-      ContinuationStep step{"raised thrust: the search there [N]", scaling.thrust_N(sigma), found,
-                            found ? raised.max_residual : INFINITY, raised.evaluations};
-      step.revolutions = revolutions;
-      steps.push_back(step);
-      if (found && revolutions <= kFewRevolutions) break;
-      factor *= found ? factor_for(revolutions) : 4.0;
-      raised.status = Status::kNotConverged;
-    }
+    double factor = 1;
+    const Result raised = search_at_raised_thrust(scaling, stage_end, factor);
+    scaling.set(0);
     if (raised.status != Status::kConverged) {
-      scaling.set(0);
-      rec_.thrust_continuation = steps;
       progress_.stage("thrust continuation: no search at a raised thrust returned a transfer of few revolutions");
       return;
     }
+    const double sigma = std::log(factor);
     // The distinct extremals the search there reached, lowest objective first (the best path down
-    // need not start from the best extremal up there), kThrustBranches of them continued.
+    // need not start from the best extremal up there), kThrustBranches of them.
     std::vector<const Extremal*> branches;
     for (const Extremal& e : raised.search.extremals)
       if (e.polished && within_window(e.x)) branches.push_back(&e);
     std::stable_sort(branches.begin(), branches.end(),
                      [](const Extremal* a, const Extremal* b) { return a->shape.cost < b->shape.cost; });
     if (branches.size() > static_cast<std::size_t>(kThrustBranches)) branches.resize(kThrustBranches);
-    const std::string from = std::to_string(scaling.thrust_N(sigma)).substr(0, 7) + " N (x" +
-                             std::to_string(static_cast<int>(factor)) + ")";
-    rec_.thrust_continuation = steps;
+    const std::vector<ContinuationStep> raising = rec_.thrust_continuation;
     for (std::size_t k = 0; k < branches.size() && wall_seconds() < stage_end; ++k) {
       int evaluations = 0;
       const double end = wall_seconds() + (stage_end - wall_seconds()) / static_cast<double>(branches.size() - k);
@@ -621,7 +591,8 @@ class MultiStart {
       count(evaluations);
       rec_.thrust_continuation.insert(rec_.thrust_continuation.end(), a.steps.begin(), a.steps.end());
       const std::string which = "the extremal " + std::to_string(k + 1) + " of " + std::to_string(branches.size()) +
-                                " of the search at " + from;
+                                " of the search at " + std::to_string(scaling.thrust_N(sigma)).substr(0, 7) +
+                                " N (x" + std::to_string(static_cast<int>(factor)) + ")";
       if (!a.arrived) {
         progress_.stage("thrust continuation from " + which + ": stopped at " +
                         std::to_string(a.steps.back().value).substr(0, 7) + " N");
@@ -634,13 +605,48 @@ class MultiStart {
       entry.max_residual = a.max_residual;
       entry.info = a.info;
       entry.method = "single shooting, continued down the maximum thrust from " + which;
-      entry.continuation = steps;
+      entry.continuation = raising;
       entry.continuation.insert(entry.continuation.end(), a.steps.begin(), a.steps.end());
       const Shape shape = shape_of(s_, a.x, 0.0);
       merge_extremal(rec_.extremals, a.x, shape, -1, std::move(entry));
       progress_.stage("thrust continuation from " + which + ": arrived with " + objective_text(shape.cost) + ", " +
                       std::to_string(shape.revolutions).substr(0, 6) + " revolutions");
     }
+  }
+
+  // The thrust raised by `factor` until a search there (itself without the thrust continuation,
+  // half of what is left of the stage) returns an extremal of at most kFewRevolutions: the factor
+  // guessed from the revolutions seen (they fall about as the thrust rises), quadrupled where the
+  // search there finds none, at most 2^kMaxThrustDoublings. Each search is recorded in
+  // rec_.thrust_continuation; the scaling is left at the last factor.
+  Result search_at_raised_thrust(const ThrustScaling& scaling, double stage_end, double& factor) {
+    const auto factor_for = [](double revolutions) {
+      return std::exp2(std::ceil(std::log2(std::max(2.0, revolutions / kFewRevolutions))));
+    };
+    const int best = best_index(rec_);
+    factor = best < 0 ? 4.0 : factor_for(rec_.extremals[best].shape.revolutions);
+    while (factor <= std::exp2(kMaxThrustDoublings) && wall_seconds() < stage_end) {
+      const double sigma = std::log(factor);
+      scaling.set(sigma);
+      progress_.stage("thrust raised to " + std::to_string(scaling.thrust_N(sigma)).substr(0, 7) + " N (x" +
+                      std::to_string(static_cast<int>(factor)) + "), the final time's window scaled by 1/" +
+                      std::to_string(static_cast<int>(factor)) + ": the search there");
+      Settings fine = fine_, coarse = s_;
+      for (Settings* level : {&fine, &coarse}) {
+        level->search_thrust_continuation = false;
+        level->search_time_s = std::max(1.0, 0.5 * (stage_end - wall_seconds()));
+      }
+      Result raised = MultiStart(fine, coarse, guess_, admissible_).solve();
+      count(raised.evaluations);
+      const bool found = raised.status == Status::kConverged;
+      ContinuationStep step{"raised thrust: the search there [N]", scaling.thrust_N(sigma), found,
+                            found ? raised.max_residual : INFINITY, raised.evaluations};
+      step.revolutions = found ? shape_of(s_, raised.x, 0.0).revolutions : NAN;
+      rec_.thrust_continuation.push_back(step);
+      if (found && step.revolutions <= kFewRevolutions) return raised;
+      factor *= found ? factor_for(step.revolutions) : 4.0;
+    }
+    return {};
   }
 
   // The flight time of x in days (its trajectory's span).

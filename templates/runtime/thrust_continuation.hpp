@@ -7,10 +7,11 @@
 // the same transfer takes few revolutions, where the search is reliable. The problem family
 //   Tmax(sigma) = Tmax e^sigma,   the final time's window [tf_min, tf] e^-sigma,
 // (a transfer at full thrust takes a time close to inversely proportional to the thrust, so its
-// final time keeps its place in the scaled window) is the problem itself at sigma = 0. Its
-// solution at a raised thrust is continued down to sigma = 0 with a tangent predictor and adaptive
-// steps, the revolutions recorded at every step. The search (search.hpp) raises the thrust by doublings until its own
-// search there returns an extremal of few revolutions, then continues it down.
+// final time keeps its place in the scaled window) is the problem itself at sigma = 0. The search
+// (search.hpp) raises the thrust until its own search there returns an extremal of few
+// revolutions, then continues its best extremals down to sigma = 0 (continue_thrust_down), the
+// revolutions recorded at every step. The parameters are the program's globals, shared by its
+// threads: the continuation runs alone, one path after the other.
 #pragma once
 
 namespace helios_rt {

@@ -1,9 +1,13 @@
 # Included by the Makefile (make runs in the repository's root; the paths are from there).
-.PHONY: bench bench-search bench-sweep bench-house
+.PHONY: bench bench-search bench-sweep bench-house bench-thrust
 
 # ---- benchmarks: each stage's wall time (bench.sh), the search audit, the P01 bench grid -------
-bench: $(TOOLS_STAMP) bench-sweep bench-search bench-house
+bench: $(TOOLS_STAMP) bench-sweep bench-search bench-house bench-thrust
 	tests/bench/bench.sh
+
+# The GTO -> GEO minimum-time family t_f(T_max) from 60 N down to 0.5 N, each cold (tests/bench/thrust_family.sh).
+bench-thrust: $(TOOLS_STAMP)
+	tests/bench/thrust_family.sh
 
 # The search audit: the default search against an exhaustive one, seeds 1-5 (tests/bench/search_audit.sh).
 bench-search: $(TOOLS_STAMP)

@@ -31,15 +31,13 @@ for thrust in "${thrusts[@]}"; do
     --plots "" --trajectory "$dir/trajectory.csv" -o "$dir/solution.json" 2>"$dir/stderr" || true
   wall=$(echo "$(date +%s.%N) - $t0" | bc -l)
   jq -r --arg T "$thrust" --arg wall "$wall" '
-    def n(f): if . == null then "-" else (. | tostring | .[0:f]) end;
     (.search.returned // -1) as $k
-    | (if $k >= 0 then .search.extremals[$k].revolutions else null end) as $revs
-    | [$T,
-       (if .status == "converged" then (.tof_days * 24 | n(10)) else .status end),
-       (if .status == "converged" then (.tof_days * 24 * ($T | tonumber) | n(8)) else "-" end),
-       ($revs | n(6)), (.max_residual | n(9)), ($wall | .[0:7]),
+    | [$T, .status, (.tof_days // 0) * 24,
+       (if $k >= 0 then .search.extremals[$k].revolutions else 0 end), (.max_residual // 0), $wall,
        (if (.continuation // []) | any(.stage | startswith("maximum thrust"))
-        then "thrust continuation from \(.continuation | map(select(.stage | startswith("raised thrust")))[-1].value | tostring | .[0:6]) N, \(.continuation | map(select(.stage | startswith("maximum thrust"))) | length) steps"
+        then "thrust continuation from \(.continuation | map(select(.stage | startswith("raised thrust")))[-1].value | floor) N, \(.continuation | map(select(.stage | startswith("maximum thrust"))) | length) steps"
         else "the search" end)]
-    | @tsv' "$dir/solution.json" | awk -F'\t' '{ printf "%-8s %-12s %-10s %-8s %-10s %-8s %s\n", $1, $2, $3, $4, $5, $6, $7 }'
+    | @tsv' "$dir/solution.json" | awk -F'\t' '{
+      if ($2 == "converged") printf "%-8s %-12.7f %-10.2f %-8.2f %-10.2e %-8.1f %s\n", $1, $3, $3 * $1, $4, $5, $6, $7
+      else printf "%-8s %-12s %-10s %-8s %-10s %-8.1f %s\n", $1, $2, "-", "-", "-", $6, $7 }'
 done

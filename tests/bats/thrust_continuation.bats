@@ -1,0 +1,46 @@
+#!/usr/bin/env bats
+# A many-revolution transfer reached by continuation on the thrust: S14's GTO -> GEO transfer at
+# 10 N instead of 60 N (the thrust and the window changed in its sentences, nothing else), cold,
+# default settings. The search alone returns a poor extremal there (t_f = 103.0 h, 8 revolutions,
+# measured); the runtime raises the thrust, searches where the transfer takes few revolutions and
+# continues down. The product t_f T is nearly constant at low thrust in the literature on this
+# transfer: at 60 N it is 888.02 N h (the published 14.800364 h), so at 10 N t_f is at most 88.8 h.
+#
+# setup_file runs the chain once.
+
+load test_helper
+
+setup_file() {
+  require_tool parse derive verify gen solve
+  export WORK="$BATS_FILE_TMPDIR/t10"
+  mkdir -p "$WORK"
+  sed -e 's/a maximum thrust of 60 N/a maximum thrust of 10 N/' \
+    -e 's/The time of flight is free, at most 2 days./The time of flight is free, at most 8 days./' \
+    "$ROOT/scenarios/S14/problem.txt" >"$WORK/problem.txt"
+  "$BIN/helios-parse" "$WORK/problem.txt" -o "$WORK/spec.json"
+  "$BIN/helios-derive" "$WORK/spec.json" -o "$WORK/derivation.json"
+  "$BIN/helios-gen" "$WORK/derivation.json" -o "$WORK/shoot.cpp"
+  "$BIN/helios-solve" "$WORK/shoot.cpp" --settings "$ROOT/scenarios/S14/settings.json" --cache-dir "$BATS_FILE_TMPDIR/cache" --plots "" \
+    --trajectory "$WORK/trajectory.csv" -o "$WORK/solution.json" 2>"$WORK/stderr"
+}
+
+setup() {
+  common_setup
+}
+
+@test "thrust continuation: the problem text says 10 N and the program is S14's structure" {
+  assert_jq "$WORK/spec.json" '.spacecraft.thrust_N == 10 and .time.tof_max_days == 8'
+  run grep -c "const T tf = problem::kTfMin + (problem::kTf - problem::kTfMin) \* tf_frac;" "$WORK/shoot.cpp"
+  [ "$output" = 1 ]
+}
+
+@test "thrust continuation: 10 N converges cold through the raised thrust, t_f T at most 60 N's, H = 0" {
+  local sol="$WORK/solution.json"
+  assert_jq "$sol" '.status == "converged" and .start == "cold" and .max_residual < 1e-10 and .hamiltonian_drift < 1e-10'
+  assert_jq "$sol" '.method | startswith("single shooting, continued down the maximum thrust")'
+  assert_jq "$sol" '.search.thrust_continuation.arrived'
+  # the route: a search at a raised thrust, then steps down ending converged at 10 N, revolutions recorded
+  assert_jq "$sol" '.continuation[0].stage == "raised thrust: the search there [N]" and .continuation[0].value > 10'
+  assert_jq "$sol" '.continuation[-1] | .converged and ((.value - 10) | fabs < 1e-9) and .revolutions > 2.5'
+  assert_jq "$sol" '(.tof_days * 24 * 10) as $p | $p <= 888.02 and $p >= 800'
+}
