@@ -548,11 +548,13 @@ class MultiStart {
   }
 
   // Whether the search leaves a many-revolution transfer unsettled: its best extremal winds more
-  // than kFewRevolutions times, or it found none, and the starts did not saturate. Only where no
-  // target moves on the calendar (no epoch, no body on an orbit): a raised thrust shortens the
-  // flight, and a moving target would be met elsewhere, another transfer than the problem's.
+  // than kFewRevolutions times, or it found none, and the starts did not saturate. Only for
+  // minimum time (a flight at full thrust, whose time the scaled window follows) where no target
+  // moves on the calendar (no epoch, no body on an orbit): a raised thrust shortens the flight, and
+  // a moving target would be met elsewhere, another transfer than the problem's.
   bool many_revolutions() const {
-    if (kProblem.epoch_mjd2000 != 0 || kProblem.num_orbit_bodies > 0) return false;
+    if (kProblem.objective != Objective::time || kProblem.epoch_mjd2000 != 0 || kProblem.num_orbit_bodies > 0)
+      return false;
     if (rec_.saturated && !rec_.extremals.empty()) return false;
     const int best = best_index(rec_);
     return best < 0 || rec_.extremals[best].shape.revolutions > kFewRevolutions;
@@ -586,7 +588,9 @@ class MultiStart {
     for (std::size_t k = 0; k < branches.size() && wall_seconds() < stage_end; ++k) {
       int evaluations = 0;
       const double end = wall_seconds() + (stage_end - wall_seconds()) / static_cast<double>(branches.size() - k);
-      ThrustArrival a = continue_thrust_down(s_, scaling, branches[k]->x, sigma, admissible_, evaluations, end);
+      // At the integrator's own tolerance: over tens of revolutions the search's leaves F a floor
+      // near 1e-6 (measured at 0.5 N), above the acceptance.
+      ThrustArrival a = continue_thrust_down(fine_, scaling, branches[k]->x, sigma, admissible_, evaluations, end);
       scaling.set(0);
       count(evaluations);
       rec_.thrust_continuation.insert(rec_.thrust_continuation.end(), a.steps.begin(), a.steps.end());

@@ -114,8 +114,8 @@ ThrustArrival continue_thrust_down(const Settings& s, const ThrustScaling& scali
       }
       int info = 0;
       double res = 0;
-      ok = shooter.solve(trial, 0.0, next == 0 ? s.final_residual : s.accept_residual, info, res) &&
-           admissible(trial.data());
+      // Every step at the search's acceptance; the search polishes the arrival at final_residual.
+      ok = shooter.solve(trial, 0.0, s.accept_residual, info, res) && admissible(trial.data());
       ContinuationStep record{"maximum thrust [N], the final time's window scaled inversely", scaling.thrust_N(next),
                               ok, res, shooter.last_step_evaluations};
       if (ok) {
