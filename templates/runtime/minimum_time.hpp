@@ -103,13 +103,8 @@ inline Function companion_function(const FreeFinalTime& f, const double& hold) {
 
 // What the companion's path reached: the shortest held final time (a window fraction) and the
 // minimum-time extremal solved from there.
-struct CompanionArrival {
+struct CompanionArrival : PathArrival {
   double held = 1;
-  bool arrived = false;
-  std::vector<double> x, F;
-  double max_residual = INFINITY;
-  int info = 0;
-  std::vector<ContinuationStep> steps;
 };
 
 // Steps 2 and 3 above from a companion solution x (all N variables, tf_frac = hold) at

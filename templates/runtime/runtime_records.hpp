@@ -230,6 +230,16 @@ struct ContinuationStep {
   double revolutions = NAN;  // of the solution reached, where the continuation follows them
 };
 
+// Where a continuation path arrived (minimum_time.hpp, thrust_continuation.hpp): the problem's own
+// extremal at its end, if it got there, and every step on the way.
+struct PathArrival {
+  bool arrived = false;
+  std::vector<double> x, F;
+  double max_residual = INFINITY;
+  int info = 0;
+  std::vector<ContinuationStep> steps;
+};
+
 // What tells one extremal from another (search.hpp's shape_of): the revolutions about the
 // central body (the angle the position sweeps about the initial angular momentum, over 2 pi), the
 // throttle's mode changes (at eps = 0 its bang-bang switches), and the cost at its eps: the

@@ -590,7 +590,7 @@ class MultiStart {
       const double end = wall_seconds() + (stage_end - wall_seconds()) / static_cast<double>(branches.size() - k);
       // At the integrator's own tolerance: over tens of revolutions the search's leaves F a floor
       // near 1e-6 (measured at 0.5 N), above the acceptance.
-      ThrustArrival a = continue_thrust_down(fine_, scaling, branches[k]->x, sigma, admissible_, evaluations, end);
+      PathArrival a = continue_thrust_down(fine_, scaling, branches[k]->x, sigma, admissible_, evaluations, end);
       scaling.set(0);
       count(evaluations);
       rec_.thrust_continuation.insert(rec_.thrust_continuation.end(), a.steps.begin(), a.steps.end());

@@ -58,15 +58,6 @@ class ThrustScaling {
   double thrust0_ = 0, tf0_ = 0, tf_min0_ = 0;
 };
 
-// Where the continuation down the thrust arrived: the problem's own extremal at sigma = 0.
-struct ThrustArrival {
-  bool arrived = false;
-  std::vector<double> x, F;
-  double max_residual = INFINITY;
-  int info = 0;
-  std::vector<ContinuationStep> steps;
-};
-
 // From the solution x (eps = 0) at `sigma0` down to sigma = 0: at each step a tangent predictor
 // (dx/dsigma = -J^-1 dF/dsigma) and hybrd from it; a step that fails is retried from predictions
 // perturbed at random (relative scales 1e-3 to 1e-1, kThrustRetries of them) before it is halved,
@@ -76,10 +67,10 @@ struct ThrustArrival {
 // shows a change of branch). The scaling is set to sigma0 first and left at the last sigma reached
 // (the caller restores it).
 template <class Admissible>
-ThrustArrival continue_thrust_down(const Settings& s, const ThrustScaling& scaling, std::vector<double> x,
+PathArrival continue_thrust_down(const Settings& s, const ThrustScaling& scaling, std::vector<double> x,
                                    double sigma0, Admissible& admissible, int& evaluations, double deadline) {
   constexpr int kThrustRetries = 8;
-  ThrustArrival out;
+  PathArrival out;
   Shooter shooter(s, kContinuationStart);
   std::mt19937_64 rng(s.seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);

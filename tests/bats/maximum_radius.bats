@@ -11,13 +11,7 @@ load test_helper
 setup_file() {
   require_tool parse derive verify gen solve
   export WORK="$BATS_FILE_TMPDIR/maxr"
-  mkdir -p "$WORK"
-  "$BIN/helios-parse" "$ROOT/tests/fixtures/problems/maximum_radius.txt" -o "$WORK/spec.json"
-  "$BIN/helios-derive" "$WORK/spec.json" -o "$WORK/derivation.json"
-  "$BIN/helios-verify" "$WORK/derivation.json" -o "$WORK/verify.json"
-  "$BIN/helios-gen" "$WORK/derivation.json" -o "$WORK/shoot.cpp"
-  "$BIN/helios-solve" "$WORK/shoot.cpp" --settings "$ROOT/scenarios/S14/settings.json" --cache-dir "$BATS_FILE_TMPDIR/cache" --plots "" \
-    --trajectory "$WORK/trajectory.csv" -o "$WORK/solution.json" 2>"$WORK/stderr"
+  run_chain "$ROOT/tests/fixtures/problems/maximum_radius.txt" "$ROOT/scenarios/S14/settings.json" "$WORK"
 }
 
 setup() {

@@ -118,6 +118,20 @@ assert_dir_empty() {
   fi
 }
 
+# run_chain PROBLEM SETTINGS WORK: the builtin chain in WORK, cold, compile cache in the file's
+# temp folder: spec, derivation, verify, shoot.cpp, solution.json (stderr in WORK/stderr) and
+# trajectory.csv.
+run_chain() {
+  local problem=$1 settings=$2 work=$3
+  mkdir -p "$work"
+  "$BIN/helios-parse" "$problem" -o "$work/spec.json"
+  "$BIN/helios-derive" "$work/spec.json" -o "$work/derivation.json"
+  "$BIN/helios-verify" "$work/derivation.json" -o "$work/verify.json"
+  "$BIN/helios-gen" "$work/derivation.json" -o "$work/shoot.cpp"
+  "$BIN/helios-solve" "$work/shoot.cpp" --settings "$settings" --cache-dir "$BATS_FILE_TMPDIR/cache" --plots "" \
+    --trajectory "$work/trajectory.csv" -o "$work/solution.json" 2>"$work/stderr"
+}
+
 # assert_jq FILE FILTER: `jq -e FILTER FILE` is true (prints the file's relevant part on failure).
 assert_jq() {
   local file="$1" filter="$2"

@@ -17,13 +17,9 @@ setup_file() {
   sed -e 's/a maximum thrust of 60 N/a maximum thrust of 10 N/' \
     -e 's/The time of flight is free, at most 2 days./The time of flight is free, at most 8 days./' \
     "$ROOT/scenarios/S14/problem.txt" >"$WORK/problem.txt"
-  "$BIN/helios-parse" "$WORK/problem.txt" -o "$WORK/spec.json"
-  "$BIN/helios-derive" "$WORK/spec.json" -o "$WORK/derivation.json"
-  "$BIN/helios-gen" "$WORK/derivation.json" -o "$WORK/shoot.cpp"
   # S14's settings with half its search budget (30 s for the search, 30 s for the thrust continuation)
   jq '.search_time_s = 30' "$ROOT/scenarios/S14/settings.json" >"$WORK/settings.json"
-  "$BIN/helios-solve" "$WORK/shoot.cpp" --settings "$WORK/settings.json" --cache-dir "$BATS_FILE_TMPDIR/cache" --plots "" \
-    --trajectory "$WORK/trajectory.csv" -o "$WORK/solution.json" 2>"$WORK/stderr"
+  run_chain "$WORK/problem.txt" "$WORK/settings.json" "$WORK"
 }
 
 setup() {
