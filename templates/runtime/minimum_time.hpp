@@ -123,15 +123,7 @@ CompanionArrival companion_to_minimum_time(const Settings& s, const std::vector<
   double step = 0.05 * std::max(hold, 1e-3);
   // The tangent dz/dhold, with dF/dhold by a difference over 1e-7 of the window.
   const auto predict = [&] {
-    std::vector<double> F0(z.size()), F1(z.size());
-    const double d = -1e-7, kept = held;
-    bool ok = companion.evaluate_at(z.data(), eps_companion, F0.data());
-    held = kept + d;
-    ok = ok && companion.evaluate_at(z.data(), eps_companion, F1.data());
-    held = kept;
-    if (!ok) return false;
-    for (std::size_t i = 0; i < z.size(); ++i) F1[i] = (F1[i] - F0[i]) / d;
-    return path_tangent(companion, z, eps_companion, F1, tangent);
+    return parameter_tangent(companion, z, eps_companion, [&](double v) { held = v; }, held, -1e-7, tangent);
   };
   bool predicted = predict();
   while (held > 0 && wall_seconds() <= s.time_limit_s) {

@@ -272,6 +272,23 @@ inline bool path_tangent(Shooter& shooter, const std::vector<double>& x, double 
   return solve_linear(static_cast<int>(x.size()), J, dx);
 }
 
+// The tangent dx/dp of the solution path in a parameter p of the shooting function, held outside
+// it (a held final time, the thrust's scaling): dF/dp by a difference over d, `set(v)` putting the
+// parameter at v, left at `at`.
+template <class Set>
+bool parameter_tangent(Shooter& shooter, const std::vector<double>& x, double eps, Set&& set, double at, double d,
+                       std::vector<double>& dx) {
+  std::vector<double> F0(x.size()), F1(x.size());
+  set(at);
+  bool ok = shooter.evaluate_at(x.data(), eps, F0.data());
+  set(at + d);
+  ok = ok && shooter.evaluate_at(x.data(), eps, F1.data());
+  set(at);
+  if (!ok) return false;
+  for (std::size_t i = 0; i < x.size(); ++i) F1[i] = (F1[i] - F0[i]) / d;
+  return path_tangent(shooter, x, eps, F1, dx);
+}
+
 // One hybrd solve from x at eps, recorded in r: true if max|F| <= accept and x is admissible.
 template <class Admissible>
 bool homotopy_step(Shooter& shooter, std::vector<double>& x, double eps, double accept, Result& r,

@@ -79,15 +79,7 @@ PathArrival continue_thrust_down(const Settings& s, const ThrustScaling& scaling
   scaling.set(sigma);
   // dx/dsigma at the current point, dF/dsigma by a difference over 1e-7.
   const auto predict = [&] {
-    std::vector<double> F0(x.size()), F1(x.size());
-    constexpr double d = 1e-7;
-    bool ok = shooter.evaluate_at(x.data(), 0.0, F0.data());
-    scaling.set(sigma + d);
-    ok = ok && shooter.evaluate_at(x.data(), 0.0, F1.data());
-    scaling.set(sigma);
-    if (!ok) return false;
-    for (std::size_t i = 0; i < x.size(); ++i) F1[i] = (F1[i] - F0[i]) / d;
-    return path_tangent(shooter, x, 0.0, F1, tangent);
+    return parameter_tangent(shooter, x, 0.0, [&](double v) { scaling.set(v); }, sigma, 1e-7, tangent);
   };
   bool predicted = predict();
   while (sigma > 0 && wall_seconds() < deadline) {

@@ -14,6 +14,13 @@ bool known(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
+// The names, separated by ", ".
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
 // The strings of the array field `key` of `entry` (empty when it is absent).
 std::vector<std::string> strings(const json& entry, const std::string& key, const std::string& at) {
   std::vector<std::string> out;
@@ -38,9 +45,8 @@ Term read_term(const json& entry, const std::string& at) {
   t.kind = text("kind");
   const bool force = known(force_term_names(), t.name), cost = known(cost_term_names(), t.name);
   if (!force && !cost)
-    throw helios::input_error(at + ".name: unknown term '" + t.name + "' (known: two_body, j2, solar_sail, thrust, " +
-                              "full_thrust, user_acceleration, third_body, fuel, time, initial_mass, final_radius, "
-                              "final_energy)");
+    throw helios::input_error(at + ".name: unknown term '" + t.name + "' (known: " + join(force_term_names()) + ", " +
+                              join(cost_term_names()) + ")");
   if (t.kind != (force ? "force" : "cost"))
     throw helios::input_error(at + ".kind: '" + t.kind + "', but " + t.name + " is a " + (force ? "force" : "cost"));
   t.parameters = strings(entry, "parameters", at);
@@ -77,9 +83,9 @@ std::optional<std::vector<Term>> read_terms(const json& derivation, const std::s
 }
 
 std::string term_names(const std::vector<Term>& terms) {
-  std::string out;
-  for (const auto& t : terms) out += (out.empty() ? "" : ", ") + t.name;
-  return out;
+  std::vector<std::string> names;
+  for (const auto& t : terms) names.push_back(t.name);
+  return join(names);
 }
 
 }  // namespace helios::derivation
