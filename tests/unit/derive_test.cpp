@@ -290,7 +290,7 @@ struct OrbitRowsOf {
     length_km = d["units"]["length_km"];
     speed_km_s = length_km / d["units"]["time_s"].get<double>();
     for (const auto& c : d["constraints"])
-      if (c["kind"] == "orbit_insertion")
+      if (c["kind"] == "orbit_insertion" || c["kind"] == "state_conditions")
         for (const auto& row : c["psi"]) psi.push_back(table.parse(row, "psi"));
   }
   std::vector<double> at(const std::array<double, 6>& state_km) {
@@ -348,7 +348,8 @@ std::array<double, 6> circular_state(double a, double i_deg, double node_deg, do
 }
 
 // An orbit target's psi vanishes along the whole orbit (the anomaly is free) and its rows are
-// independent there, also on the circular equatorial orbit where the elements' angles are undefined.
+// independent there, also on the circular equatorial orbit where the elements' angles are undefined;
+// so do the same orbits written as equations of the final state.
 TEST(Derive, AnOrbitTargetsRowsVanishAlongItAndAreIndependent) {
   struct Case {
     std::string sentence;
@@ -359,7 +360,10 @@ TEST(Derive, AnOrbitTargetsRowsVanishAlongItAndAreIndependent) {
            {"At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km.", 42165, 0, 0, 5},
            {"At the final time the spacecraft is on a circular orbit of 7500 km radius inclined 28.5 deg.", 7500, 28.5, 40, 4},
            {"At the final time the spacecraft is on a circular orbit of radius 26600 km with inclination 55 deg and node 120 deg.",
-            26600, 55, 120, 5}}) {
+            26600, 55, 120, 5},
+           // the same orbits written as equations of the state, in other units
+           {"At the final time |r| = 42165000 m, r\xC2\xB7v = 0, |r|\xC2\xB7|v|\xC2\xB2 = mu, z = 0 and vz = 0 km/s.", 42165, 0, 0, 5},
+           {"At the final time r = 7500 km, dot(r, v) = 0 and v^2 = mu/r.", 7500, 28.5, 40, 3}}) {
     OrbitRowsOf o(c.sentence);
     ASSERT_EQ(o.psi.size(), c.rows) << c.sentence;
     for (double u : {0.0, 1.0, 2.5, 4.0}) {
@@ -459,6 +463,39 @@ TEST(Derive, AFinalStateObjectiveNeedsAFixedTimeAndFullThrottleNoFuelObjective) 
       const std::string row = e["expression"];
       EXPECT_NE(row.find("(rx_tf^2+ry_tf^2+rz_tf^2)^(-1/2)*lambda0*rx_tf"), std::string::npos) << row;
     }
+}
+
+// Equations of the final state that do not fix independent directions, or more of them than there
+// are states, are refused naming the condition; their rows are the problem's ψ with unknown
+// multipliers, every state's transversality row an equation.
+TEST(Derive, StateConditionsAreIndependentRowsWithUnknownMultipliers) {
+  const std::string text = helios::io::read_text(kSource + "/scenarios/S14/problem.txt");
+  const std::string from = "At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km.";
+  const auto spec_with = [&](const std::string& sentence) {
+    return helios::spec::parse_problem_text(
+        text.substr(0, text.find(from)) + sentence + text.substr(text.find(from) + from.size()), "t");
+  };
+  const auto error_of = [&](const std::string& sentence) {
+    try {
+      helios::pmp::derive_from_spec(spec_with(sentence));
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error_of("At the final time |r| = 42165 km and r = 42165000 m.")
+                .find("target/conditions/1 ('r = 42165 km') is not independent of the conditions before it"),
+            std::string::npos);
+  EXPECT_NE(error_of("At the final time x = 1 km, y = 1 km, z = 1 km, vx = 0, vy = 0, vz = 0, m = 1000 kg and r = 2 km.")
+                .find("8 conditions on 7 states"),
+            std::string::npos);
+  const json d = helios::pmp::derive_from_spec(spec_with("At the final time r = 42165 km, r.v = 0 and v^2 = mu/r."));
+  int multipliers = 0, transversality = 0;
+  for (const auto& v : d["shooting"]["variables"]) multipliers += v["name"].get<std::string>().rfind("nu_arrival_", 0) == 0;
+  for (const auto& e : d["shooting"]["equations"])
+    transversality += e["name"].get<std::string>().rfind("transversality_", 0) == 0;
+  EXPECT_EQ(multipliers, 3);
+  EXPECT_EQ(transversality, 8);  // seven states and the final time
 }
 
 TEST(Derive, SailWithFuelObjectiveIsRefused) {

@@ -1,4 +1,5 @@
 #include "helios/spec/parse.hpp"
+#include "helios/spec/state_conditions.hpp"
 
 #include <gtest/gtest.h>
 
@@ -1139,6 +1140,40 @@ TEST(ParseOrbitTarget, ReadsAnOrbitInEverydayWords) {
   EXPECT_EQ(geo["eccentricity"], 0.0);
   EXPECT_EQ(geo["inclination_deg"], 0.0);
   helios::io::validate("spec", parse(with_final_orbit("The spacecraft transfers into geostationary orbit.")), "test");
+}
+
+// Equations of the final state: the notation rewritten, the value in the expression's unit, one
+// constraint from several sentences; what has no consistent unit is refused naming it.
+TEST(ParseStateConditions, ReadsEquationsOfTheFinalStateInTheirUnits) {
+  const json spec = parse(with_final_orbit(
+      "At the final time r\xC2\xB7v = 0 and |r| = 0.25 AU. At the final time |r|\xC2\xB7|v|\xC2\xB2 = mu; "
+      "h = 1.2e11 m^2/s, dot(r, v) = 0 and vz = 10 m/s."));
+  helios::io::validate("spec", spec, "test");
+  const json& c = spec["constraints"][1];
+  EXPECT_EQ(c["kind"], "state_conditions");
+  EXPECT_EQ(c["at"], "tf");
+  EXPECT_EQ(c["target"], json::parse(R"json({"kind": "expressions", "conditions": [
+      {"expression": "(x*vx+y*vy+z*vz)", "equals": 0.0, "unit": "km^2/s"},
+      {"expression": "r", "equals": 37399467.67275, "unit": "km"},
+      {"expression": "(r*v^2) - (mu)", "equals": 0.0, "unit": "km^3/s^2"},
+      {"expression": "h", "equals": 120000.0, "unit": "km^2/s"},
+      {"expression": "(x*vx+y*vy+z*vz)", "equals": 0.0, "unit": "km^2/s"},
+      {"expression": "vz", "equals": 0.01, "unit": "km/s"}]})json"));
+  // a period between two letters is a dot product, not the end of the sentence
+  EXPECT_EQ(parse(with_final_orbit("At the final time r.v = 0 and r = 42165 km."))["constraints"][1]["target"]
+                ["conditions"][0]["expression"],
+            "(x*vx+y*vy+z*vz)");
+  EXPECT_EQ(helios::spec::parse_unit("km^3/s^2").factor, 1.0);
+  EXPECT_EQ(helios::spec::unit_text(helios::spec::parse_unit("kg*m/s^2").dimension), "kg*km/s^2");
+  EXPECT_DOUBLE_EQ(helios::spec::parse_unit("kg*m/s^2").factor, 1e-3);
+  const auto e = [&](const std::string& sentence) { return error_of(with_final_orbit(sentence)); };
+  has(e("At the final time r + v = 42165 km."), "mixes units");
+  has(e("At the final time |r| = 42165."), "'42165' needs a unit: '|r|' is in km");
+  has(e("At the final time |r| = 3 km/s."), "'3 km/s' is in km/s, but '|r|' is in km");
+  has(e("At the final time |r| = 3 furlongs."), "'furlongs', which is not one of km, m, AU");
+  has(e("At the final time q = 0."), "symbol \"q\" not found");
+  has(e("At the final time mu = 398600 km^3/s^2."), "involves no state");
+  has(e("At the final time x = 1 km = 2 km."), "is not one equation");
 }
 
 TEST(ParseOrbitTarget, RefusesWhatItCannotPlaceWithTheForms) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "helios/astro/constants.hpp"
+#include "helios/spec/state_conditions.hpp"
 #include "helios/symbolic/expr.hpp"
 
 namespace helios::pmp {
@@ -219,6 +220,89 @@ EndpointConstraint orbit_insertion(Problem& p, EndpointConstraint k) {
   return k;
 }
 
+// Whether the rows' gradients in the states are independent at a generic state (random states
+// and parameters): -1, or the first row that depends on those before it.
+int dependent_row(Problem& p, const std::vector<ex>& psi) {
+  std::vector<GiNaC::symbol> states;
+  for (const auto& s : p.states) states.push_back(GiNaC::ex_to<GiNaC::symbol>(p.symbols.get(s.name)));
+  GiNaC::exmap at;
+  double v = 0.61;
+  for (const auto& [name, s] : p.symbols.symtab()) at[s] = (v = std::fmod(v * 7.31 + 0.37, 1.0)) + 0.5;
+  std::vector<std::vector<double>> basis;
+  for (std::size_t j = 0; j < psi.size(); ++j) {
+    std::vector<double> g;
+    for (const auto& s : states) g.push_back(GiNaC::ex_to<GiNaC::numeric>(psi[j].diff(s).subs(at).evalf()).to_double());
+    double norm0 = 0;
+    for (const double a : g) norm0 += a * a;
+    for (const auto& b : basis) {  // Gram-Schmidt against the unit rows before
+      double d = 0;
+      for (std::size_t i = 0; i < g.size(); ++i) d += g[i] * b[i];
+      for (std::size_t i = 0; i < g.size(); ++i) g[i] -= d * b[i];
+    }
+    double norm = 0;
+    for (const double a : g) norm += a * a;
+    if (!(norm > 1e-18 * norm0) || norm0 == 0) return static_cast<int>(j);
+    for (double& a : g) a /= std::sqrt(norm);
+    basis.push_back(g);
+  }
+  return -1;
+}
+
+// Conditions written as equations of the final state (spec target "expressions", one row each,
+// in normalized units: (f(x) - value) / its unit). Like an orbit they fix no state, so their
+// multipliers are unknowns of the shooting; they do not depend on time.
+EndpointConstraint state_conditions(Problem& p, EndpointConstraint k) {
+  auto& S = p.symbols;
+  const Units& U = p.units;
+  const std::string where = "constraint '" + k.id + "'";
+  if (k.at != "tf") throw std::invalid_argument(where + ": conditions on the state are at tf");
+  if (k.target.at("kind") != "expressions")
+    throw std::invalid_argument(where + ": state conditions need a target of kind expressions");
+  if (p.free_departure) throw std::invalid_argument(where + ": state conditions need a fixed departure epoch");
+  if (p.free_initial_mass) throw std::invalid_argument(where + ": state conditions need a known initial mass");
+  symbolic::SymbolTable vars = spec::state_condition_symbols();
+  const std::vector<ex> r = {S.get("rx"), S.get("ry"), S.get("rz")}, v = {S.get("vx"), S.get("vy"), S.get("vz")};
+  const std::vector<ex> h = {r[1] * v[2] - r[2] * v[1], r[2] * v[0] - r[0] * v[2], r[0] * v[1] - r[1] * v[0]};
+  const auto norm = [](const std::vector<ex>& a) { return GiNaC::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); };
+  // f is a power law in the units (expression_dimension checks it), so f of the normalized state
+  // is f of the state in km, s and kg divided by its unit in normalized units.
+  GiNaC::exmap to_model = {{vars.get("x"), r[0]},   {vars.get("y"), r[1]},   {vars.get("z"), r[2]},
+                           {vars.get("r"), norm(r)}, {vars.get("vx"), v[0]},  {vars.get("vy"), v[1]},
+                           {vars.get("vz"), v[2]},  {vars.get("v"), norm(v)}, {vars.get("hx"), h[0]},
+                           {vars.get("hy"), h[1]},  {vars.get("hz"), h[2]},  {vars.get("h"), norm(h)},
+                           {vars.get("mu"), S.get("mu")}};
+  if (p.has_state("m")) to_model[vars.get("m")] = S.get("m");
+  const json& conditions = k.target.at("conditions");
+  if (!conditions.is_array() || conditions.empty())
+    throw std::invalid_argument(where + ": target/conditions must list at least one condition");
+  if (conditions.size() > p.states.size())
+    throw std::invalid_argument(where + ": " + std::to_string(conditions.size()) + " conditions on " +
+                                std::to_string(p.states.size()) + " states: at most one per state");
+  for (std::size_t j = 0; j < conditions.size(); ++j) {
+    const std::string at = where + ": target/conditions/" + std::to_string(j);
+    const json& c = conditions[j];
+    const std::string text = c.at("expression").get<std::string>();
+    const ex f = vars.parse(text, at + "/expression");
+    if (f.has(vars.get("m")) && !p.has_state("m"))
+      throw std::invalid_argument(at + "/expression: '" + text + "' uses m, and this spacecraft has no mass state");
+    const spec::UnitDimension d = spec::expression_dimension(f, vars, at + "/expression");
+    if (c.at("unit").get<std::string>() != spec::unit_text(d))
+      throw std::invalid_argument(at + "/unit: '" + c.at("unit").get<std::string>() + "', but '" + text + "' is in " +
+                                  spec::unit_text(d));
+    const double unit = std::pow(U.length_km, d.length) * std::pow(U.time_s, d.time) * std::pow(U.mass_kg, d.mass);
+    const double value = c.at("equals").get<double>();
+    k.psi.push_back(f.subs(to_model) - value / unit);
+    k.psi_names.push_back(text + " = " + io::short_number(value) + " " + spec::unit_text(d));
+  }
+  if (const int j = dependent_row(p, k.psi); j >= 0)
+    throw std::invalid_argument(where + ": target/conditions/" + std::to_string(j) + " ('" + k.psi_names[j] +
+                                "') is not independent of the conditions before it");
+  k.psi_inequality.assign(k.psi.size(), false);
+  k.psi_t.assign(k.psi.size(), 0);
+  k.multipliers_unknown = true;
+  return k;
+}
+
 // The departure from an orbit given by all its elements, the position on it free: x(t0) =
 // X(theta) with the anomaly theta a free parameter of psi, found by stationarity (lambda(t0) is
 // orthogonal to the orbit's tangent dX/dtheta); the initial mass is known.
@@ -294,6 +378,7 @@ EndpointConstraint endpoint_constraint(Problem& p, const json& c) {
   k.target = c.at("target");
   const std::string where = "constraint '" + k.id + "'";
   if (k.kind == "orbit_insertion") return orbit_insertion(p, std::move(k));
+  if (k.kind == "state_conditions") return state_conditions(p, std::move(k));
   if (k.kind == "initial_state" && k.target.at("kind") == "orbital_elements") {
     if (k.at != "t0") throw std::invalid_argument(where + ": an initial state must be at t0");
     return orbit_departure(p, std::move(k));

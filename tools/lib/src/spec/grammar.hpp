@@ -212,6 +212,7 @@ struct Builder {
   void on_arrive_flyby(const std::smatch& m);
   // ---- a final condition that is an orbit (orbit_target.cpp) ----
   void on_arrive_orbit(const std::smatch& m);
+  void on_final_conditions(const std::smatch& m);
   json geostationary(json target, const Where& w) const;
   void on_event(const std::smatch& m);
   static EpochRef epoch_ref(const std::string& scale, const std::string& value);

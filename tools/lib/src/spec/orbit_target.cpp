@@ -8,6 +8,7 @@
 
 #include "grammar.hpp"
 #include "helios/astro/constants.hpp"
+#include "helios/spec/state_conditions.hpp"
 
 namespace helios::spec::grammar {
 namespace {
@@ -132,6 +133,48 @@ void Builder::on_arrive_orbit(const std::smatch& m) {
   once("the final rendezvous");
   arrival = Endpoint{here, parse_orbit_target(m[1].matched ? m[1].str() : m[2].str()), "orbit_insertion",
                      std::nullopt};
+}
+
+// "At the final time r·v = 0 and |r| = 42165 km.": equations of the final state
+// (state_conditions.hpp), split at the commas, semicolons and "and"s outside parentheses; more
+// sentences of this form add to the same constraint.
+void Builder::on_final_conditions(const std::smatch& m) {
+  const std::string list = m[1].str();
+  std::vector<std::string> items;
+  std::string current;
+  int depth = 0;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const char c = list[i];
+    depth += c == '(' ? 1 : c == ')' ? -1 : 0;
+    const bool comma = depth == 0 && (c == ',' || c == ';');
+    const bool word_and = depth == 0 && list.compare(i, 5, " and ") == 0;
+    if (comma || word_and) {
+      items.push_back(trimmed(current));
+      current.clear();
+      i += word_and ? 4 : 0;
+      continue;
+    }
+    current += c;
+  }
+  items.push_back(trimmed(current));
+  json conditions = json::array();
+  for (const std::string& item : items) {
+    if (item.empty()) continue;
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || item.find('=', eq + 1) != std::string::npos)
+      throw sentence_error("'" + item + "' is not one equation 'expression = value' (e.g. 'r·v = 0', '|r| = 42165 km')");
+    try {
+      conditions.push_back(state_condition(item.substr(0, eq), item.substr(eq + 1)));
+    } catch (const std::invalid_argument& e) {
+      throw sentence_error(e.what());
+    }
+  }
+  if (arrival && arrival->kind == "state_conditions") {
+    for (auto& c : conditions) arrival->target["conditions"].push_back(c);
+    return;
+  }
+  once("the final rendezvous");
+  arrival = Endpoint{here, {{"kind", "expressions"}, {"conditions", conditions}}, "state_conditions", std::nullopt};
 }
 
 // "geostationary": circular and equatorial about the Earth, with the radius of a sidereal day's

@@ -31,6 +31,8 @@ void Builder::handle(const std::string& s) {
       {re(R"(At the final time the spacecraft (?:flies|must fly) by (.+?)(?:,? with a relative speed of at most )" +
           kQuantity + ")?"),
        &Builder::on_arrive_flyby},
+      {re(R"(At the final time,? (?!the spacecraft\b)(?:the (?:final )?state (?:satisfies|meets) )?(.+=.+))"),
+       &Builder::on_final_conditions},
       {re(R"(Minimi[sz]e (?:the )?(?:initial|launch|departure|wet) mass)"), &Builder::on_initial_mass},
       {re(R"(Minimi[sz]e (?:the )?(?:fuel(?: consumption)?|propellant(?: mass)?|fuel use))"), &Builder::on_fuel},
       {re(R"(Minimi[sz]e (?:the )?(?:time of flight|flight time|final time|transfer time))"), &Builder::on_time},

@@ -98,9 +98,13 @@ std::vector<Sentence> split_sentences(const std::string& text) {
       continue;
     }
     if (current.empty()) start_line = line;
-    // A period ends a sentence unless it sits inside a number (digit on both sides).
-    const bool next_is_digit = i + 1 < text.size() && std::isdigit(static_cast<unsigned char>(text[i + 1]));
-    if (c == '.' && !next_is_digit) {
+    // A period ends a sentence unless a digit follows (inside a number) or it sits between two
+    // letters ("r.v", a dot product).
+    const auto is = [&](std::size_t k, int (*test)(int)) {
+      return k < text.size() && test(static_cast<unsigned char>(text[k])) != 0;
+    };
+    const bool inside = is(i + 1, std::isdigit) || (i > 0 && is(i - 1, std::isalpha) && is(i + 1, std::isalpha));
+    if (c == '.' && !inside) {
       while (!current.empty() && current.back() == ' ') current.pop_back();
       if (!current.empty()) out.push_back({current, start_line});
       current.clear();
