@@ -119,34 +119,12 @@ CompanionArrival companion_to_minimum_time(const Settings& s, const std::vector<
   const auto admissible_z = [&](const std::vector<double>& z) {
     return admissible(with_held(z, f.variable, held).data());
   };
-  std::vector<double> z = without_held(x, f.variable), tangent;
-  double step = 0.05 * std::max(hold, 1e-3);
-  // The tangent dz/dhold, with dF/dhold by a difference over 1e-7 of the window.
-  const auto predict = [&] {
-    return parameter_tangent(companion, z, eps_companion, [&](double v) { held = v; }, held, -1e-7, tangent);
-  };
-  bool predicted = predict();
-  while (held > 0 && wall_seconds() <= s.time_limit_s) {
-    const double next = std::max(0.0, held - step), kept = held;
-    std::vector<double> trial = z;
-    if (predicted)
-      for (std::size_t i = 0; i < z.size(); ++i) trial[i] += tangent[i] * (next - kept);
-    held = next;
-    int info = 0;
-    double res = 0;
-    const bool ok = companion.solve(trial, eps_companion, s.accept_residual, info, res) && admissible_z(trial);
-    out.steps.push_back(
-        {"minimum fuel, tf held (window fraction)", next, ok, res, companion.last_step_evaluations});
-    if (!ok) {
-      held = kept;
-      step *= 0.5;
-      if (step < 1e-4 * std::max(hold, 1e-3)) break;
-      continue;
-    }
-    z = trial;
-    step = std::min(step * 1.5, 0.2);
-    predicted = predict();
-  }
+  std::vector<double> z = without_held(x, f.variable);
+  const double scale = std::max(hold, 1e-3);
+  held = follow_parameter(
+      s, companion, z, eps_companion, [&](double v) { held = v; }, hold, 0.0, -1e-7,
+      {0.05 * scale, 1e-4 * scale, 0.2}, "minimum fuel, tf held (window fraction)", out.steps, admissible_z,
+      [](const std::vector<double>&) { return false; });
   out.held = held;
   evaluations += companion.evaluations;
   // Step 3: the problem itself, tf free, from the companion's last solution.

@@ -35,6 +35,13 @@ std::vector<double> parameter_values(const Parameter& p, const nlohmann::json& v
   return out;
 }
 
+// The program's scalar parameter `name` (nullptr: it has none), for the paths that move one.
+inline double* scalar_parameter(const std::string& name) {
+  for (const Parameter& p : parameters())
+    if (!p.array && p.name == name) return p.values;
+  return nullptr;
+}
+
 }  // namespace
 
 ParameterRegistration::ParameterRegistration(const char* name, double* values, int count, bool array) {

@@ -62,6 +62,7 @@ inline Settings read_settings(const std::string& path) {
   s.search_families = j.value("search_families", s.search_families);
   s.search_fuel_companion = j.value("search_fuel_companion", s.search_fuel_companion);
   s.search_thrust_continuation = j.value("search_thrust_continuation", s.search_thrust_continuation);
+  s.search_fuel_from_time = j.value("search_fuel_from_time", s.search_fuel_from_time);
   s.threads = j.value("threads", s.threads);
   s.search_tol = j.value("search_integrator_tol", s.search_tol);
   s.node_spacing_days = j.value("node_spacing_days", s.node_spacing_days);
@@ -255,6 +256,18 @@ inline nlohmann::ordered_json search_record(const SearchRecord& rec) {
                                      {"starts", rec.companion_draws},
                                      {"converged", rec.companion_converged},
                                      {"solutions", start_extremals_record(rec.companion_solutions, true)}};
+  if (!rec.time_route.empty()) {
+    nlohmann::ordered_json steps = nlohmann::ordered_json::array();
+    for (const auto& c : rec.time_route) steps.push_back(continuation_step_record(c));
+    nlohmann::ordered_json paths = nlohmann::ordered_json::array();
+    for (const auto& p : rec.time_route_paths)
+      paths.push_back({{"from", p.from},
+                       {"minimum_tf_days", std::isfinite(p.tf_min_days) ? nlohmann::ordered_json(p.tf_min_days) : nullptr},
+                       {"revolutions", std::isfinite(p.revolutions) ? nlohmann::ordered_json(p.revolutions) : nullptr},
+                       {"reached_before", p.reached_before},
+                       {"extremal", p.extremal}});
+    out["minimum_time_route"] = {{"paths", paths}, {"steps", steps}};
+  }
   if (!rec.thrust_continuation.empty()) {
     nlohmann::ordered_json steps = nlohmann::ordered_json::array();
     for (const auto& c : rec.thrust_continuation) steps.push_back(continuation_step_record(c));

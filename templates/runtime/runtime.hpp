@@ -41,6 +41,7 @@
 #include "families.hpp"
 #include "minimum_time.hpp"
 #include "thrust_continuation.hpp"
+#include "fuel_from_time.hpp"
 #include "search.hpp"
 #include "nodes.hpp"
 #include "report.hpp"

@@ -107,6 +107,10 @@ struct Settings {
   bool search_families = true;
   bool search_fuel_companion = true;
   bool search_thrust_continuation = true;
+  // A minimum-fuel problem at a fixed final time also solved from its minimum-time extremal
+  // (fuel_from_time.hpp): "auto" where the search leaves it unsettled (as for the thrust
+  // continuation: many revolutions or no extremal, the starts not saturated), "always", "never".
+  std::string search_fuel_from_time = "auto";
   // The integrator's rtol and atol during the search (never tighter than rtol and atol; 0: those):
   // every distinct extremal it reaches at eps = 0 is then polished at rtol and atol.
   double search_tol = 1e-10;
@@ -321,6 +325,17 @@ struct SearchRecord {
   // at a raised thrust and every step down, and whether it arrived at the problem's thrust.
   std::vector<ContinuationStep> thrust_continuation;
   bool thrust_continuation_arrived = false;
+  // A minimum-fuel problem's route from its minimum-time extremals (fuel_from_time.hpp): each path
+  // (where it started, the minimum time it reached, whether that one was reached before, the
+  // extremal at eps = 0 it arrived at) and every step.
+  struct TimeRoutePath {
+    std::string from;
+    double tf_min_days = NAN, revolutions = NAN;
+    bool reached_before = false;
+    int extremal = -1;
+  };
+  std::vector<TimeRoutePath> time_route_paths;
+  std::vector<ContinuationStep> time_route;
   std::vector<StartExtremal> start_extremals;
   std::vector<Extremal> extremals;
   int returned = -1;  // index into extremals

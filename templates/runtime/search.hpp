@@ -17,6 +17,9 @@
 //      neighbours with one revolution fewer and more, then theirs, while the objective improves;
 //   5. the distinct extremals at eps = 0 are compared: the lowest objective is returned, and the
 //      record says whether the starts saturated (stderr too, where they did not).
+// A minimum-fuel problem at a fixed final time that the search leaves unsettled is also solved
+// from its minimum-time extremals (fuel_from_time.hpp), and a minimum-time one by continuation on
+// the thrust (thrust_continuation.hpp).
 // Problems with interior events search over search_attempts complete attempts (each a
 // continuation onto the events from a solution of the problem without them, searched first, or a
 // solve by legs: events_homotopy_solve). The search integrates at search_tol and polishes every
@@ -222,6 +225,9 @@ class MultiStart {
       continue_promising();
     }
     if (s_.search_thrust_continuation && many_revolutions()) thrust_continuation();
+    if (has_time_route() &&
+        (s_.search_fuel_from_time == "always" || (s_.search_fuel_from_time == "auto" && unsettled())))
+      fuel_from_minimum_time();
     r_.attempts = rec_.starts;
     r_.evaluations = evaluations_;
     r_.iterations = rec_.starts + rec_.continued;
@@ -547,14 +553,18 @@ class MultiStart {
                     " distinct extremals" + (std::isfinite(best) ? ", best " + objective_text(best) : ""));
   }
 
-  // Whether the search leaves a many-revolution transfer unsettled: its best extremal winds more
-  // than kFewRevolutions times, or it found none, and the starts did not saturate. Only for
-  // minimum time (a flight at full thrust, whose time the scaled window follows) where no target
+  // Whether the search leaves a many-revolution transfer unsettled (unsettled()), for the thrust
+  // continuation: only for minimum time (a flight at full thrust, whose time the scaled window follows) where no target
   // moves on the calendar (no epoch, no body on an orbit): a raised thrust shortens the flight, and
   // a moving target would be met elsewhere, another transfer than the problem's.
   bool many_revolutions() const {
-    if (kProblem.objective != Objective::time || kProblem.epoch_mjd2000 != 0 || kProblem.num_orbit_bodies > 0)
-      return false;
+    return kProblem.objective == Objective::time && kProblem.epoch_mjd2000 == 0 && kProblem.num_orbit_bodies == 0 &&
+           unsettled();
+  }
+
+  // Whether the search leaves the problem unsettled: its best extremal winds more than
+  // kFewRevolutions times, or it found none, and the starts did not saturate.
+  bool unsettled() const {
     if (rec_.saturated && !rec_.extremals.empty()) return false;
     const int best = best_index(rec_);
     return best < 0 || rec_.extremals[best].shape.revolutions > kFewRevolutions;
@@ -638,6 +648,7 @@ class MultiStart {
       Settings fine = fine_, coarse = s_;
       for (Settings* level : {&fine, &coarse}) {
         level->search_thrust_continuation = false;
+        level->search_fuel_from_time = "never";
         level->search_time_s = std::max(1.0, 0.5 * (stage_end - wall_seconds()));
       }
       Result raised = MultiStart(fine, coarse, guess_, admissible_).solve();
@@ -651,6 +662,134 @@ class MultiStart {
       factor *= found ? factor_for(step.revolutions) : 4.0;
     }
     return {};
+  }
+
+  // The route from the minimum-time extremals (fuel_from_time.hpp), at the integrator's own
+  // tolerance, one path at a time: from each of the kTimeRouteSources lowest-cost extremals at
+  // eps_start down to a minimum-time extremal, and from each distinct one up to the problem's final
+  // time at eps = 0, the arrivals merged with the search's extremals. Where every minimum-time
+  // extremal so reached winds more than kFewRevolutions times (or none was reached), the minimum
+  // time is also sought at a raised thrust and continued down to the problem's
+  // (time_route_by_raised_thrust).
+  void fuel_from_minimum_time() {
+    rec_.method += "; minimum fuel also continued from the minimum-time extremals";
+    FinalTime tf;
+    const double stage_end = std::min(s_.time_limit_s, wall_seconds() + std::max(s_.search_time_s, 0.0));
+    double fewest = INFINITY;
+    for (const int k : lowest_cost(rec_.start_extremals)) {
+      if (wall_seconds() >= stage_end) break;
+      TimeRouteArrival a;
+      std::vector<double> z;
+      int evaluations = 0;
+      const bool reached = minimum_time_from_fuel_solution(fine_, tf, rec_.start_extremals[k].x, s_.eps_start, z, a,
+                                                           evaluations);
+      count(evaluations);
+      if (reached) fewest = std::min(fewest, minimum_time_revolutions(s_, tf, z));
+      fuel_from_time_path("the extremal at eps_start " + std::to_string(k), tf, reached ? &z : nullptr, a);
+    }
+    if (s_.search_thrust_continuation && !(fewest <= kFewRevolutions)) time_route_by_raised_thrust(tf, stage_end);
+  }
+
+  // The indices of the kTimeRouteSources lowest-cost extremals of `list`.
+  static std::vector<int> lowest_cost(const std::vector<StartExtremal>& list) {
+    constexpr std::size_t kTimeRouteSources = 3;
+    std::vector<int> order(list.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return list[a].shape.cost < list[b].shape.cost; });
+    if (order.size() > kTimeRouteSources) order.resize(kTimeRouteSources);
+    return order;
+  }
+
+  // The minimum time at a raised thrust: the fuel problem searched there (search_at_raised_thrust:
+  // its final time scaled inversely, so it winds fewer times), its lowest-cost extremals at eps_start
+  // taken down to minimum-time extremals there, and those continued down the thrust to the
+  // problem's (continue_thrust_down along the minimum-time system), then up to its final time.
+  void time_route_by_raised_thrust(FinalTime& tf, double stage_end) {
+    const ThrustScaling scaling;
+    if (!scaling) return;
+    double factor = 1;
+    const Result raised = search_at_raised_thrust(scaling, stage_end, factor);
+    const double sigma = std::log(factor);
+    const std::string where = " of the search at " + std::to_string(scaling.thrust_N(sigma)).substr(0, 7) + " N";
+    const int l0 = lambda0_variable();
+    const double held = 0;
+    ThrustPath along{held_multiplier_function(tf, l0, held), [&](double v) { tf.rescale(v); },
+                     [&](const std::vector<double>& z) { return minimum_time_revolutions(fine_, tf, z); }};
+    auto positive_time = [&](const double* z) { return z[l0] > 0; };
+    std::vector<double> seen;  // the minimum times reached at the raised thrust (fractions)
+    for (const int k : lowest_cost(raised.search.start_extremals)) {
+      if (wall_seconds() >= stage_end || raised.status != Status::kConverged) break;
+      scaling.set(sigma);
+      tf.rescale(sigma);
+      TimeRouteArrival a;
+      std::vector<double> z;
+      int evaluations = 0;
+      bool reached = minimum_time_from_fuel_solution(fine_, tf, raised.search.start_extremals[k].x, s_.eps_start, z, a,
+                                                     evaluations);
+      const bool repeated = reached && std::any_of(seen.begin(), seen.end(), [&](double f) {
+                              return std::fabs(f - z[l0]) <= 1e-7 * f;
+                            });
+      if (reached && !repeated) {
+        seen.push_back(z[l0]);
+        PathArrival down = continue_thrust_down(fine_, scaling, z, sigma, positive_time, evaluations, stage_end, along);
+        a.steps.insert(a.steps.end(), down.steps.begin(), down.steps.end());
+        reached = down.arrived;
+        if (reached) z = down.x;
+      }
+      scaling.set(0);
+      tf.rescale(0);
+      count(evaluations);
+      if (!repeated) fuel_from_time_path("the extremal at eps_start " + std::to_string(k) + where, tf, reached ? &z : nullptr, a);
+    }
+    scaling.set(0);
+    tf.rescale(0);
+  }
+
+  // One path of the route from its minimum-time extremal z at the problem's thrust (null: none was
+  // reached; its steps in `a`): up to the problem's final time unless that minimum time was reached
+  // before, recorded, and its arrival merged with the search's extremals.
+  void fuel_from_time_path(const std::string& from, const FinalTime& tf, const std::vector<double>* z,
+                           TimeRouteArrival& a) {
+    SearchRecord::TimeRoutePath path;
+    path.from = from;
+    if (z) {
+      const int l0 = lambda0_variable();
+      path.tf_min_days = (*z)[l0] * tf.unit() * kProblem.time_unit_days;
+      path.revolutions = minimum_time_revolutions(s_, tf, *z);
+      for (const auto& p : rec_.time_route_paths)
+        if (std::fabs(p.tf_min_days - path.tf_min_days) <= 1e-7 * path.tf_min_days) path.reached_before = true;
+      if (!path.reached_before) {
+        int evaluations = 0;
+        fuel_path_from_minimum_time(fine_, tf, *z, admissible_, a, evaluations);
+        count(evaluations);
+      }
+    }
+    rec_.time_route.insert(rec_.time_route.end(), a.steps.begin(), a.steps.end());
+    const std::string t_min = std::isfinite(path.tf_min_days)
+                                  ? "t_min " + std::to_string(path.tf_min_days * 24).substr(0, 9) + " h"
+                                  : std::string("no minimum time reached");
+    if (a.arrived) {
+      ++rec_.converged_final;
+      Extremal entry;
+      entry.F = a.F;
+      entry.max_residual = a.max_residual;
+      entry.info = a.info;
+      entry.method = "single shooting, minimum fuel continued from the minimum-time extremal (" + t_min +
+                     ") reached from " + from;
+      entry.continuation = a.steps;
+      entry.homotopy = a.homotopy;
+      const Shape shape = shape_of(s_, a.x, 0.0);
+      path.extremal = merge_extremal(rec_.extremals, a.x, shape, -1, std::move(entry));
+      progress_.stage("minimum fuel from the minimum-time extremal (" + t_min + ", from " + from + "): " +
+                      objective_text(shape.cost) + ", " + std::to_string(shape.revolutions).substr(0, 6) +
+                      " revolutions");
+    } else {
+      progress_.stage("minimum time from " + from + ": " + t_min +
+                      (path.reached_before ? ", reached before"
+                       : z                 ? "; minimum fuel from it did not reach the problem's final time"
+                                           : ""));
+    }
+    rec_.time_route_paths.push_back(path);
   }
 
   // The flight time of x in days (its trajectory's span).

@@ -289,6 +289,50 @@ bool parameter_tangent(Shooter& shooter, const std::vector<double>& x, double ep
   return path_tangent(shooter, x, eps, F1, dx);
 }
 
+// The steps of a natural continuation in a parameter: the first, the smallest tried before the
+// path is given up, and the largest.
+struct ParameterSteps {
+  double first, smallest, largest;
+};
+
+// The solution x of `shooter` followed in a parameter p (`set(v)` puts it at v) from `from`
+// toward `to` while the steps converge: each step predicted along the path's tangent (dF/dp by a
+// difference over `d`), grown by 1.5 after a success and halved after a failure; `accept(x)` must
+// hold as well, and `stop(x)` ends the path after a step. Every step is recorded as `what`.
+// Returns the last p reached, where x is the solution and the parameter is left.
+template <class Set, class Accept, class Stop>
+double follow_parameter(const Settings& s, Shooter& shooter, std::vector<double>& x, double eps, Set&& set,
+                        double from, double to, double d, ParameterSteps steps, const char* what,
+                        std::vector<ContinuationStep>& record, Accept&& accept, Stop&& stop) {
+  const double direction = to >= from ? 1.0 : -1.0;
+  double p = from, step = steps.first;
+  std::vector<double> tangent;
+  bool predicted = parameter_tangent(shooter, x, eps, set, p, d, tangent);
+  while (direction * (to - p) > 0 && wall_seconds() <= s.time_limit_s) {
+    const double next = direction > 0 ? std::min(to, p + step) : std::max(to, p - step), kept = p;
+    std::vector<double> trial = x;
+    if (predicted)
+      for (std::size_t i = 0; i < x.size(); ++i) trial[i] += tangent[i] * (next - kept);
+    set(next);
+    int info = 0;
+    double res = 0;
+    const bool ok = shooter.solve(trial, eps, s.accept_residual, info, res) && accept(trial);
+    record.push_back({what, next, ok, res, shooter.last_step_evaluations});
+    if (!ok) {
+      set(kept);
+      step *= 0.5;
+      if (step < steps.smallest) break;
+      continue;
+    }
+    x = trial;
+    p = next;
+    step = std::min(step * 1.5, steps.largest);
+    if (stop(x)) break;
+    predicted = parameter_tangent(shooter, x, eps, set, p, d, tangent);
+  }
+  return p;
+}
+
 // One hybrd solve from x at eps, recorded in r: true if max|F| <= accept and x is admissible.
 template <class Admissible>
 bool homotopy_step(Shooter& shooter, std::vector<double>& x, double eps, double accept, Result& r,

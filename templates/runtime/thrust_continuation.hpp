@@ -29,14 +29,9 @@ constexpr int kThrustBranches = 3;
 // window, with their own values (sigma = 0).
 class ThrustScaling {
  public:
-  ThrustScaling() {
-    for (const Parameter& p : parameters()) {
-      if (p.array) continue;
-      if (p.name == "Tmax") thrust_ = p.values;
-      if (p.name == "kTf") tf_ = p.values;
-      if (p.name == "kTfMin") tf_min_ = p.values;
-    }
-    if (thrust_) thrust0_ = *thrust_, tf0_ = *tf_, tf_min0_ = *tf_min_;
+  ThrustScaling()
+      : thrust_(scalar_parameter("Tmax")), tf_(scalar_parameter("kTf")), tf_min_(scalar_parameter("kTfMin")) {
+    if (*this) thrust0_ = *thrust_, tf0_ = *tf_, tf_min0_ = *tf_min_;
   }
   // Whether the program has a maximum thrust to scale.
   explicit operator bool() const { return thrust_ && tf_ && tf_min_; }
@@ -65,26 +60,36 @@ class ThrustScaling {
 // that shape no longer exists) the continuation goes on on a neighbouring one; it stops when the
 // step falls below 1e-3 in sigma. The revolutions of every solution reached are recorded (a jump
 // shows a change of branch). The scaling is set to sigma0 first and left at the last sigma reached
-// (the caller restores it).
+// (the caller restores it). `along` is the system followed: the shooting function itself by
+// default, or another with the same variables (fuel_from_time.hpp's minimum-time system), whose
+// own parameters `along.set` moves with sigma and whose revolutions `along.revolutions` tells.
+struct ThrustPath {
+  Function function = shooting_function_and_jacobian;
+  std::function<void(double sigma)> set;
+  std::function<double(const std::vector<double>& x)> revolutions;
+};
 template <class Admissible>
 PathArrival continue_thrust_down(const Settings& s, const ThrustScaling& scaling, std::vector<double> x,
-                                   double sigma0, Admissible& admissible, int& evaluations, double deadline) {
+                                   double sigma0, Admissible& admissible, int& evaluations, double deadline,
+                                   const ThrustPath& along = {}) {
   constexpr int kThrustRetries = 8;
   PathArrival out;
-  Shooter shooter(s, kContinuationStart);
+  Shooter shooter(s, along.function, kContinuationStart);
   std::mt19937_64 rng(s.seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   double sigma = sigma0, step = std::min(0.25, sigma0);
   std::vector<double> tangent;
-  scaling.set(sigma);
-  // dx/dsigma at the current point, dF/dsigma by a difference over 1e-7.
-  const auto predict = [&] {
-    return parameter_tangent(shooter, x, 0.0, [&](double v) { scaling.set(v); }, sigma, 1e-7, tangent);
+  const auto set = [&](double v) {
+    scaling.set(v);
+    if (along.set) along.set(v);
   };
+  set(sigma);
+  // dx/dsigma at the current point, dF/dsigma by a difference over 1e-7.
+  const auto predict = [&] { return parameter_tangent(shooter, x, 0.0, set, sigma, 1e-7, tangent); };
   bool predicted = predict();
   while (sigma > 0 && wall_seconds() < deadline) {
     const double next = std::max(0.0, sigma - step);
-    scaling.set(next);
+    set(next);
     std::vector<double> trial;
     bool ok = false;
     for (int attempt = 0; attempt <= kThrustRetries && !ok && wall_seconds() < deadline; ++attempt) {
@@ -102,14 +107,14 @@ PathArrival continue_thrust_down(const Settings& s, const ThrustScaling& scaling
       ContinuationStep record{"maximum thrust [N], the final time's window scaled inversely", scaling.thrust_N(next),
                               ok, res, shooter.last_step_evaluations};
       if (ok) {
-        record.revolutions = shape_of(s, trial, 0.0).revolutions;
+        record.revolutions = along.revolutions ? along.revolutions(trial) : shape_of(s, trial, 0.0).revolutions;
         out.info = info;
         out.max_residual = res;
       }
       out.steps.push_back(record);
     }
     if (!ok) {
-      scaling.set(sigma);
+      set(sigma);
       step *= 0.5;
       if (step < 1e-3) break;
       continue;
