@@ -27,14 +27,6 @@ setup() {
 }
 
 @test "state conditions: S14's minimum time cold, the equations met at tf, H = 0" {
-  local sol="$WORK/solution.json"
-  assert_jq "$sol" '.status == "converged" and .start == "cold" and .max_residual < 1e-10'
-  assert_jq "$sol" '(.tof_days * 24 - 14.800364354648908) | fabs < 1e-5'
-  assert_jq "$sol" '.hamiltonian_drift < 1e-10'
-  tail -n 1 "$WORK/trajectory.csv" | awk -F, '{
-    mu = 398600.47; r = sqrt($2*$2 + $3*$3 + $4*$4); v2 = $5*$5 + $6*$6 + $7*$7
-    rv = $2*$5 + $3*$6 + $4*$7
-    if ((r - 42165)^2 > 1e-8 || rv^2 > 1e-12 || (r * v2 / mu - 1)^2 > 1e-20 || $4^2 > 1e-8 || $7^2 > 1e-16) {
-      printf "r %.9f r.v %g r v^2/mu %.15f z %g vz %g\n", r, rv, r * v2 / mu, $4, $7 > "/dev/stderr"; exit 1 }
-  }'
+  assert_s14_minimum_time "$WORK/solution.json"
+  assert_ends_on_geo "$WORK/trajectory.csv"
 }

@@ -132,6 +132,28 @@ run_chain() {
     --trajectory "$work/trajectory.csv" -o "$work/solution.json" 2>"$work/stderr"
 }
 
+# assert_s14_minimum_time SOLUTION: converged cold to S14's published minimum time,
+# 14.800364354648908 h (the control-toolbox tutorial's), within 1e-5 h, with H = 0 on the whole arc
+# (minimum time with tf free: the drift at round-off).
+assert_s14_minimum_time() {
+  local sol=$1
+  assert_jq "$sol" '.status == "converged" and .start == "cold" and .max_residual < 1e-10'
+  assert_jq "$sol" '(.tof_days * 24 - 14.800364354648908) | fabs <= 1e-5'
+  assert_jq "$sol" '.hamiltonian_drift < 1e-10'
+}
+
+# assert_ends_on_geo TRAJECTORY: the last row of a trajectory.csv is on the circular equatorial
+# orbit of radius 42165 km about the Earth (mu 398600.47 km^3/s^2): |r| = 42165 km, r.v = 0,
+# |v| = sqrt(mu/42165), z and vz 0.
+assert_ends_on_geo() {
+  tail -n 1 "$1" | awk -F, '{
+    r = sqrt($2*$2 + $3*$3 + $4*$4); v = sqrt($5*$5 + $6*$6 + $7*$7); rv = $2*$5 + $3*$6 + $4*$7
+    ok = (r - 42165 < 1e-4 && 42165 - r < 1e-4) && (rv * rv < 1e-20 * r * r * v * v) && \
+         ((v - sqrt(398600.47 / 42165))^2 < 1e-16) && ($4^2 < 1e-8) && ($7^2 < 1e-16)
+    if (!ok) { printf "r %.9f v %.12f r.v %g z %g vz %g\n", r, v, rv, $4, $7 > "/dev/stderr"; exit 1 }
+  }'
+}
+
 # assert_jq FILE FILTER: `jq -e FILTER FILE` is true (prints the file's relevant part on failure).
 assert_jq() {
   local file="$1" filter="$2"

@@ -207,6 +207,22 @@ TEST(Report, AnExpressionItCannotReadIsShownAsText) {
   EXPECT_NE(md.find("`rx +* 2` (not an expression this report can typeset)"), std::string::npos);
 }
 
+// The search's extremals table gives each objective in the unit its record names: propellant,
+// flight time or a final-state objective alike.
+TEST(Report, TheExtremalsTableGivesTheObjectiveInItsUnit) {
+  helios::report::ReportInputs in;
+  in.spec = spec_of("S01");
+  in.derivation = helios::pmp::derive_from_spec(in.spec);
+  in.solution = json{{"status", "converged"},
+                     {"search", {{"returned", 1},
+                                 {"extremals", json::array({{{"id", 0}, {"objective", -1.52}, {"final_radius_km", 2.25e8}},
+                                                            {{"id", 1}, {"objective", 0.1}, {"propellant_kg", 150.5}}})}}}};
+  const std::string md = helios::report::report_markdown(in);
+  EXPECT_NE(md.find("| extremal | objective | in named units |"), std::string::npos);
+  EXPECT_NE(md.find("| 0 | -1.52 | 225000000 km |"), std::string::npos) << md.substr(md.find("| extremal |"), 400);
+  EXPECT_NE(md.find("| 1 (returned) | 0.1 | 150.5 kg |"), std::string::npos);
+}
+
 // Strings of the artifacts are text wherever they land: escaped outside code, quoted inside it, and
 // a key typed as a number prints only a number.
 TEST(Report, HostileArtifactStringsAreTextAndNumbersAreNumbers) {

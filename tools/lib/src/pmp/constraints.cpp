@@ -201,6 +201,13 @@ void gravity_assist(Problem& p, const json& c, InteriorEvent& e, const std::vect
   }
 }
 
+// An orbit or conditions on the state fix fewer states than a point: they are formulated with the
+// departure epoch and the initial mass known.
+void require_known_start(const Problem& p, const std::string& where, const std::string& what) {
+  if (p.free_departure) throw std::invalid_argument(where + ": " + what + " needs a fixed departure epoch");
+  if (p.free_initial_mass) throw std::invalid_argument(where + ": " + what + " needs a known initial mass");
+}
+
 // The state on a target orbit at tf, the position on it free: the orbit's rows (orbit_rows), none
 // of which fixes a state, so their multipliers are unknowns of the shooting. The orbit does not
 // move: dpsi/dtf = 0.
@@ -209,8 +216,7 @@ EndpointConstraint orbit_insertion(Problem& p, EndpointConstraint k) {
   if (k.at != "tf") throw std::invalid_argument(where + ": an orbit insertion is at tf");
   if (k.target.at("kind") != "orbital_elements")
     throw std::invalid_argument(where + ": an orbit insertion needs a target of kind orbital_elements");
-  if (p.free_departure) throw std::invalid_argument(where + ": an orbit target needs a fixed departure epoch");
-  if (p.free_initial_mass) throw std::invalid_argument(where + ": an orbit target needs a known initial mass");
+  require_known_start(p, where, "an orbit target");
   const OrbitRows rows = orbit_rows(p, k.id, k.target);
   k.psi = rows.psi;
   k.psi_names = rows.names;
@@ -258,8 +264,7 @@ EndpointConstraint state_conditions(Problem& p, EndpointConstraint k) {
   if (k.at != "tf") throw std::invalid_argument(where + ": conditions on the state are at tf");
   if (k.target.at("kind") != "expressions")
     throw std::invalid_argument(where + ": state conditions need a target of kind expressions");
-  if (p.free_departure) throw std::invalid_argument(where + ": state conditions need a fixed departure epoch");
-  if (p.free_initial_mass) throw std::invalid_argument(where + ": state conditions need a known initial mass");
+  require_known_start(p, where, "a condition on the state");
   symbolic::SymbolTable vars = spec::state_condition_symbols();
   const std::vector<ex> r = {S.get("rx"), S.get("ry"), S.get("rz")}, v = {S.get("vx"), S.get("vy"), S.get("vz")};
   const std::vector<ex> h = {r[1] * v[2] - r[2] * v[1], r[2] * v[0] - r[0] * v[2], r[0] * v[1] - r[1] * v[0]};
@@ -308,8 +313,7 @@ EndpointConstraint state_conditions(Problem& p, EndpointConstraint k) {
 // orthogonal to the orbit's tangent dX/dtheta); the initial mass is known.
 EndpointConstraint orbit_departure(Problem& p, EndpointConstraint k) {
   const std::string where = "constraint '" + k.id + "'";
-  if (p.free_departure) throw std::invalid_argument(where + ": a departure orbit needs a fixed departure epoch");
-  if (p.free_initial_mass) throw std::invalid_argument(where + ": a departure orbit needs a known initial mass");
+  require_known_start(p, where, "a departure orbit");
   const std::string theta = "theta_" + k.id;
   const std::vector<ex> x = orbit_point(p, k.id, k.target, p.symbols.get(theta));
   for (std::size_t j = 0; j < kPositionVelocity.size(); ++j) {

@@ -554,11 +554,20 @@ void Writer::solution(std::ostringstream& o) const {
       << escaped(sr.value("method", "")) << ": " << numeric(sr.value("starts", json())) << " starts on "
       << numeric(sr.value("threads", json())) << " threads, " << numeric(sr.value("seconds", json())) << " s"
       << (sr.value("cut_by_time", false) ? ", cut by the time limit" : "") << ". " << escaped(sr.value("reason", ""))
-      << ".\n\n| extremal | objective | propellant (kg) | revolutions | switches | reached from | max residual "
+      << ".\n\n| extremal | objective | in named units | revolutions | switches | reached from | max residual "
          "|\n|---|---|---|---|---|---|---|\n";
+    // The objective in the unit the extremal's record names: propellant, flight time or final state.
+    const auto named = [&](const json& e) {
+      for (const auto& [key, unit] : {std::pair<const char*, const char*>{"propellant_kg", " kg"},
+                                      {"tof_days", " d"},
+                                      {"final_radius_km", " km"},
+                                      {"final_energy_km2_s2", " km^2/s^2"}})
+        if (e.contains(key)) return numeric(e.at(key)) + unit;
+      return std::string();
+    };
     for (const auto& e : sr.value("extremals", json::array()))
       o << "| " << numeric(e.value("id", json())) << (e.value("id", -1) == sr.value("returned", -2) ? " (returned)" : "")
-        << " | " << numeric(e.value("objective", json())) << " | " << numeric(e.value("propellant_kg", json())) << " | "
+        << " | " << numeric(e.value("objective", json())) << " | " << named(e) << " | "
         << numeric(e.value("revolutions", json())) << " | " << numeric(e.value("switches", json())) << " | "
         << numeric(e.value("reached", json())) << " starts | " << numeric(e.value("max_residual", json())) << " |\n";
     o << "\n";
