@@ -445,6 +445,69 @@ TEST(Derive, ADepartureOrbitsInitialStateIsTheOrbitAtItsAnomaly) {
   EXPECT_NEAR(helios::symbolic::evaluate(table.parse(row, "row"), table, values), expected, 1e-7 * std::abs(expected));
 }
 
+// A departure orbit whose node or argument of periapsis is left free: x(t0) = X(theta, node, argp)
+// is the state of the orbit with those elements (elements_to_state), each free angle an unknown
+// with its stationarity row; a free node is refused where the problem does not change when turned
+// about z, and an element that is undefined cannot be free.
+TEST(Derive, ADepartureOrbitsFreeNodeAndPeriapsisAreUnknownsOfItsState) {
+  const std::string text = helios::io::read_text(kSource + "/tests/fixtures/problems/gto_anywhere_to_geo.txt");
+  const auto derive_with = [&](const std::string& elements, const std::string& target) {
+    std::string t = text;
+    const std::string from = "node 0 deg and argument of perigee 0 deg, with any true anomaly";
+    t.replace(t.find(from), from.size(), elements);
+    const std::string geo = "the circular equatorial orbit of radius 42165 km";
+    t.replace(t.find(geo), geo.size(), target);
+    return helios::pmp::derive_from_spec(helios::spec::parse_problem_text(t, "t"));
+  };
+  const json d = derive_with("with any node, any argument of perigee and any true anomaly",
+                             "the circular orbit of radius 42165 km inclined 1 deg with node 20 deg");
+  std::vector<std::string> unknowns, rows;
+  for (const auto& v : d["shooting"]["variables"])
+    if (v["role"] == "initial_state") unknowns.push_back(v["name"]);
+  for (const auto& q : d["shooting"]["equations"])
+    if (q["name"].get<std::string>().rfind("stationarity_departure_", 0) == 0) rows.push_back(q["name"]);
+  EXPECT_EQ(unknowns, (std::vector<std::string>{"theta_departure", "node_departure", "argp_departure"}));
+  EXPECT_EQ(rows.size(), 3u);
+  SymbolTable table;
+  Values values;
+  for (const auto& q : d["parameters"]) values[q["name"]] = q["value"].get<double>();
+  for (const auto& q : d["parameters"]) table.get(q["name"]);
+  for (const auto& u : unknowns) table.get(u);
+  const double length_km = d["units"]["length_km"], speed_km_s = length_km / d["units"]["time_s"].get<double>();
+  const double a = 26571.428571428576, e = 0.75, i = 7.004267441546314 * M_PI / 180;
+  for (const auto& [theta, node, argp] : std::vector<std::array<double, 3>>{{0.5, 1.0, 2.0}, {2.5, 4.0, 0.3}, {5.0, 6.0, 3.5}}) {
+    values["theta_departure"] = theta;
+    values["node_departure"] = node;
+    values["argp_departure"] = argp;
+    const double E = 2 * std::atan(std::sqrt((1 - e) / (1 + e)) * std::tan(theta / 2));
+    const auto expected = helios::astro::elements_to_state({a, e, i, node, argp, E - e * std::sin(E)}, 398600.47);
+    for (const auto& v : d["initial_values"]) {
+      const char* names[] = {"rx", "ry", "rz", "vx", "vy", "vz"};
+      for (int k = 0; k < 6; ++k)
+        if (v["state"] == names[k])
+          EXPECT_NEAR(helios::symbolic::evaluate(table.parse(v["value"], "x0"), table, values) *
+                          (k < 3 ? length_km : speed_km_s),
+                      expected[k], 1e-9 * (k < 3 ? a : 10))
+              << theta << " " << node << " " << argp << " " << k;
+    }
+  }
+  const auto error_of = [&](const std::string& elements, const std::string& target) {
+    try {
+      derive_with(elements, target);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // GEO, equatorial, turns into itself about z: every node gives the same transfer
+  EXPECT_NE(error_of("argument of perigee 0 deg, with any node", "the circular equatorial orbit of radius 42165 km")
+                .find("every node gives the same transfer"),
+            std::string::npos);
+  EXPECT_EQ(error_of("argument of perigee 0 deg, with any node", "the circular orbit of radius 42165 km inclined 1 deg "
+                                                                  "with node 20 deg"),
+            "");
+}
+
 // A final-state objective needs a fixed final time; an engine at full throttle burns a fixed
 // amount of fuel, so it cannot minimize it.
 TEST(Derive, AFinalStateObjectiveNeedsAFixedTimeAndFullThrottleNoFuelObjective) {

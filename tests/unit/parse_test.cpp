@@ -1228,6 +1228,20 @@ TEST(ParseOrbitTarget, ReadsADepartureOrbitWithEveryElement) {
       "a departure orbit needs its argument of periapsis");
   has(error_of(with_departure("The spacecraft departs from the circular orbit of radius 7000 km.")),
       "a departure orbit needs its inclination");
+  // a node or an argument of periapsis said to be free is left to the minimum principle
+  EXPECT_EQ(departure_target("The spacecraft departs from the circular orbit of radius 7000 km inclined 28.5 deg with "
+                             "any node.")["free"],
+            json::parse(R"(["raan"])"));
+  EXPECT_EQ(departure_target("The spacecraft departs from an orbit with semi-major axis 24500 km, eccentricity 0.72, "
+                             "inclination 7 deg, node 30 deg and the argument of perigee free.")["free"],
+            json::parse(R"(["argp"])"));
+  has(error_of(with_departure("The spacecraft departs from the circular orbit of radius 7000 km inclined 28.5 deg with "
+                              "node 40 deg and any node.")),
+      "gives its node and says it is free");
+  // a target's unstated elements are free already
+  EXPECT_FALSE(final_target("At the final time the spacecraft is on a circular orbit of 7500 km radius inclined 28.5 deg "
+                            "with any node.")
+                   .contains("free"));
 }
 
 // Objectives on the final state and an engine at full throttle throughout.

@@ -2,7 +2,9 @@
 // Keplerian orbits, coasting or fixed states), endpoint constraints psi and interior events.
 #include "constraints.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <regex>
 #include <stdexcept>
 
 #include "helios/astro/constants.hpp"
@@ -314,8 +316,12 @@ EndpointConstraint state_conditions(Problem& p, EndpointConstraint k) {
 EndpointConstraint orbit_departure(Problem& p, EndpointConstraint k) {
   const std::string where = "constraint '" + k.id + "'";
   require_known_start(p, where, "a departure orbit");
-  const std::string theta = "theta_" + k.id;
-  const std::vector<ex> x = orbit_point(p, k.id, k.target, p.symbols.get(theta));
+  const std::string theta = "theta_" + k.id, node = "node_" + k.id, argp = "argp_" + k.id;
+  const json free = k.target.value("free", json::array());
+  const auto angle = [&](const std::string& name, const char* element) {
+    return std::find(free.begin(), free.end(), element) != free.end() ? ex(p.symbols.get(name)) : ex(0);
+  };
+  const std::vector<ex> x = orbit_point(p, k.id, k.target, {p.symbols.get(theta), angle(node, "raan"), angle(argp, "argp")});
   for (std::size_t j = 0; j < kPositionVelocity.size(); ++j) {
     const std::string& n = kPositionVelocity[j];
     k.psi.push_back(p.symbols.get(n) - x[j]);
@@ -332,6 +338,11 @@ EndpointConstraint orbit_departure(Problem& p, EndpointConstraint k) {
   k.free_parameters.push_back({theta, "true anomaly on the departure orbit " + k.id + " (rad; from the node where the "
                                       "orbit is circular, from the x axis where it is also equatorial)",
                                0, 2 * M_PI});
+  // The node and the argument of periapsis the departure leaves free (orbit_point turns P and Q by them).
+  if (!angle(node, "raan").is_zero())
+    k.free_parameters.push_back({node, "ascending node of the departure orbit " + k.id + " (rad)", 0, 2 * M_PI});
+  if (!angle(argp, "argp").is_zero())
+    k.free_parameters.push_back({argp, "argument of periapsis of the departure orbit " + k.id + " (rad)", 0, 2 * M_PI});
   return k;
 }
 
@@ -371,6 +382,32 @@ InteriorEvent interior_event(Problem& p, const json& c) {
   return e;
 }
 
+void refuse_free_node_by_symmetry(const json& spec) {
+  const json* departure = nullptr;
+  bool symmetric = true;
+  for (const auto& q : spec.at("dynamics").value("perturbations", json::array()))
+    symmetric = symmetric && q.at("kind") == "j2";
+  for (const auto& c : spec.at("constraints")) {
+    const json& t = c.at("target");
+    const json free = t.value("free", json::array());
+    if (c.at("at") == "t0" && std::find(free.begin(), free.end(), "raan") != free.end()) {
+      departure = &c;
+    } else if (c.at("kind") == "orbit_insertion") {
+      symmetric = symmetric && !t.contains("raan_deg");
+    } else if (c.at("kind") == "state_conditions") {
+      static const std::regex turning(R"(\b(x|y|vx|vy|hx|hy)\b)");
+      for (const auto& condition : t.at("conditions"))
+        symmetric = symmetric && !std::regex_search(condition.at("expression").get<std::string>(), turning);
+    } else {
+      symmetric = false;  // a state, a body or an event fixes a direction in the plane
+    }
+  }
+  if (departure && symmetric)
+    throw std::invalid_argument("constraint '" + departure->at("id").get<std::string>() +
+                                "': target/free lists the node, but nothing else changes when turned about the z axis: "
+                                "every node gives the same transfer, turned; state one (e.g. raan_deg 0)");
+}
+
 // psi(t_k, x(t_k), p) of an endpoint constraint: the state meets the target (a flyby in
 // position only), a flyby's bounded relative speed, and the mass where it is known.
 EndpointConstraint endpoint_constraint(Problem& p, const json& c) {
@@ -381,6 +418,8 @@ EndpointConstraint endpoint_constraint(Problem& p, const json& c) {
   k.at = c.at("at").get<std::string>();
   k.target = c.at("target");
   const std::string where = "constraint '" + k.id + "'";
+  if (k.kind == "orbit_insertion" && k.target.contains("free"))
+    throw std::invalid_argument(where + ": target/free is for a departure orbit (a target's unstated elements are free)");
   if (k.kind == "orbit_insertion") return orbit_insertion(p, std::move(k));
   if (k.kind == "state_conditions") return state_conditions(p, std::move(k));
   if (k.kind == "initial_state" && k.target.at("kind") == "orbital_elements") {

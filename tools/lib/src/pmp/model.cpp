@@ -249,6 +249,7 @@ Problem build_problem(const json& spec) {
   dynamics(p, forces);
   times(p, spec.at("time"));
   objective(p);
+  refuse_free_node_by_symmetry(spec);
   for (const auto& c : spec.at("constraints")) {
     if (c.at("at") == "interior")
       p.events.push_back(interior_event(p, c));

@@ -15,6 +15,7 @@
 //                                 (e > 0 and the plane given; P, Q below)
 // The gradient of |e_vec|^2 vanishes at e = 0, and that of h_z - |h| cos i at i = 0: those two are
 // refused there and the circular and equatorial rows used instead.
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -52,7 +53,8 @@ struct OrbitElements {
     if (node_deg && !i_deg) throw std::invalid_argument(where + ": a node needs the inclination");
     if (argp_deg && !(e && *e > 0))
       throw std::invalid_argument(where + ": an argument of periapsis needs an eccentricity above 0");
-    if (argp_deg && !planar())
+    const io::json free = target.value("free", io::json::array());
+    if (argp_deg && !planar() && std::find(free.begin(), free.end(), "raan") == free.end())
       throw std::invalid_argument(where + ": an argument of periapsis needs the orbit's plane (inclination and node)");
   }
   // The plane is given: by its inclination and node, or as equatorial (the node undefined, 0).
@@ -144,8 +146,10 @@ OrbitRows orbit_rows(Problem& p, const std::string& id, const io::json& target) 
   return rows;
 }
 
-std::vector<ex> orbit_point(Problem& p, const std::string& id, const io::json& target, const ex& theta) {
+std::vector<ex> orbit_point(Problem& p, const std::string& id, const io::json& target, const FreeOrbitAngles& angles) {
   const OrbitElements el(p, id, target);
+  const io::json free = target.value("free", io::json::array());
+  const auto is_free = [&](const char* element) { return std::find(free.begin(), free.end(), element) != free.end(); };
   const auto need = [&](bool given, const std::string& what) {
     if (!given)
       throw std::invalid_argument(el.where + ": a departure orbit needs its " + what +
@@ -154,15 +158,21 @@ std::vector<ex> orbit_point(Problem& p, const std::string& id, const io::json& t
   need(el.a_km.has_value(), "semi-major axis (or radius)");
   need(el.e.has_value(), "eccentricity (or the word circular)");
   need(el.i_deg.has_value(), "inclination (or the word equatorial)");
-  need(el.planar(), "node");
-  need(*el.e == 0 || el.argp_deg.has_value(), "argument of periapsis");
+  const bool equatorial = *el.i_deg == 0 || *el.i_deg == 180, node_free = is_free("raan"), argp_free = is_free("argp");
+  if (node_free && equatorial)
+    throw std::invalid_argument(el.where + ": an equatorial orbit has no node to leave free");
+  if (argp_free && *el.e == 0)
+    throw std::invalid_argument(el.where + ": a circular orbit has no periapsis to leave free");
+  need(el.planar() || node_free, "node (or free: \"free\": [\"raan\"])");
+  need(*el.e == 0 || el.argp_deg.has_value() || argp_free, "argument of periapsis (or free: \"free\": [\"argp\"])");
   const ex semi_latus = el.parameter("p", "semi-latus rectum a (1 - e^2)", p.units.length_name,
                                      *el.a_km * (1 - *el.e * *el.e) / p.units.length_km);
   const ex e = *el.e == 0 ? ex(0) : el.eccentricity();
-  // P and Q as parameters of their own: the orbit's orientation in six numbers, not in the angles.
+  // P and Q as parameters of their own: the orbit's orientation in six numbers, not in the angles
+  // (at node 0 and argument of periapsis 0 where those are free).
   const double deg = astro::DEG_TO_RAD;
-  const auto [P_value, Q_value] = perifocal_axes(el.node_deg.value_or(0) * deg, *el.i_deg * deg,
-                                                 el.argp_deg.value_or(0) * deg);
+  const auto [P_value, Q_value] = perifocal_axes(node_free ? 0.0 : el.node_deg.value_or(0) * deg, *el.i_deg * deg,
+                                                 argp_free ? 0.0 : el.argp_deg.value_or(0) * deg);
   std::vector<ex> P, Q;
   for (int k = 0; k < 3; ++k) {
     const std::string c(1, static_cast<char>('x' + k));
@@ -171,6 +181,19 @@ std::vector<ex> orbit_point(Problem& p, const std::string& id, const io::json& t
     Q.push_back(el.parameter("Q" + c, c + " of the unit vector 90 deg ahead of P in the sense of motion", "1",
                              GiNaC::ex_to<GiNaC::numeric>(Q_value[k].evalf()).to_double()));
   }
+  if (argp_free) {  // turned in the plane by the argument of periapsis
+    const std::vector<ex> P0 = P, Q0 = Q;
+    for (int k = 0; k < 3; ++k) {
+      P[k] = cos(angles.argp) * P0[k] + sin(angles.argp) * Q0[k];
+      Q[k] = -sin(angles.argp) * P0[k] + cos(angles.argp) * Q0[k];
+    }
+  }
+  if (node_free)  // turned about z by the node
+    for (std::vector<ex>* axis : {&P, &Q}) {
+      const std::vector<ex> a = *axis;
+      *axis = {cos(angles.node) * a[0] - sin(angles.node) * a[1], sin(angles.node) * a[0] + cos(angles.node) * a[1], a[2]};
+    }
+  const ex& theta = angles.theta;
   const ex radius = semi_latus / (1 + e * cos(theta));
   const ex speed = GiNaC::sqrt(p.symbols.get("mu") / semi_latus);
   std::vector<ex> x(6);

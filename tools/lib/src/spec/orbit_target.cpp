@@ -4,7 +4,9 @@
 // named are met; the others and the position on the orbit stay free. A departure ("The spacecraft
 // departs from the circular orbit of radius 7000 km inclined 28.5 deg with node 40 deg") names
 // every element that fixes its orbit: only the position on it is free.
+#include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "grammar.hpp"
 #include "helios/astro/constants.hpp"
@@ -80,7 +82,15 @@ json parse_orbit_target(const std::string& phrase) {
            words("(?:an )?(?:argument of (?:periapsis|perigee|pericenter|pericentre|perihelion)|argp) (?:of |= ?)?" +
                  deg),
            [&](const std::smatch& m) { set("argp_deg", angle(m, 1), m.str()); });
-  // What leaves the rest free, said in words.
+  // What leaves the rest free, said in words: the node and the argument of periapsis are kept as
+  // "free" (a departure orbit states them or says so; a target's unstated elements are free).
+  const std::string node_words = "(?:right ascension of the ascending node|ascending node|RAAN|node)";
+  const std::string argp_words = "(?:argument of (?:periapsis|perigee|pericenter|pericentre|perihelion)|argp)";
+  std::set<std::string> free;
+  take_all(rest, words("(?:with |at )?any " + node_words + "|(?:with )?(?:the )?" + node_words + " free"),
+           [&](const std::smatch&) { free.insert("raan"); });
+  take_all(rest, words("(?:with |at )?any " + argp_words + "|(?:with )?(?:the )?" + argp_words + " free"),
+           [&](const std::smatch&) { free.insert("argp"); });
   take_all(rest, words("(?:with |at )?any (?:true |mean )?(?:anomaly|longitude|position(?: on it)?)"),
            [](const std::smatch&) {});
   take_all(rest, words("(?:with )?(?:the )?(?:true |mean )?(?:anomaly|longitude) free"), [](const std::smatch&) {});
@@ -97,10 +107,15 @@ json parse_orbit_target(const std::string& phrase) {
   if (t.contains("argp_deg") && !(t.value("eccentricity", 0.0) > 0))
     throw sentence_error("the orbit gives an argument of periapsis but no eccentricity above 0; " +
                          std::string(kOrbitForms));
+  if (free.count("raan") && t.contains("raan_deg"))
+    throw sentence_error("the orbit gives its node and says it is free: say one");
+  if (free.count("argp") && t.contains("argp_deg"))
+    throw sentence_error("the orbit gives its argument of periapsis and says it is free: say one");
   json ordered = {{"kind", "orbital_elements"}};  // the elements in one order, however they were written
   for (const char* key :
        {"geostationary", "semi_major_axis_km", "eccentricity", "inclination_deg", "raan_deg", "argp_deg"})
     if (t.contains(key)) ordered[key] = t[key];
+  if (!free.empty()) ordered["free"] = free;
   return ordered;
 }
 
@@ -121,8 +136,12 @@ void Builder::depart_from_orbit(const std::string& at, const std::string& orbit)
     need(target.contains("semi_major_axis_km"), "semi-major axis (or its radius, if circular)");
     need(e >= 0, "eccentricity (or the word 'circular')");
     need(i >= 0, "inclination (or the word 'equatorial')");
-    need(i == 0 || i == 180 || target.contains("raan_deg"), "node");
-    need(e == 0 || target.contains("argp_deg"), "argument of periapsis");
+    const auto free = [&](const char* element) {
+      const json list = target.value("free", json::array());
+      return std::find(list.begin(), list.end(), element) != list.end();
+    };
+    need(i == 0 || i == 180 || target.contains("raan_deg") || free("raan"), "node (or 'with any node')");
+    need(e == 0 || target.contains("argp_deg") || free("argp"), "argument of periapsis (or 'with any argument of perigee')");
   }
   once("the departure");
   if (!at.empty()) epoch(at);
@@ -131,8 +150,9 @@ void Builder::depart_from_orbit(const std::string& at, const std::string& orbit)
 
 void Builder::on_arrive_orbit(const std::smatch& m) {
   once("the final rendezvous");
-  arrival = Endpoint{here, parse_orbit_target(m[1].matched ? m[1].str() : m[2].str()), "orbit_insertion",
-                     std::nullopt};
+  json target = parse_orbit_target(m[1].matched ? m[1].str() : m[2].str());
+  target.erase("free");  // a target's unstated elements are free already
+  arrival = Endpoint{here, target, "orbit_insertion", std::nullopt};
 }
 
 // "At the final time r·v = 0 and |r| = 42165 km.": equations of the final state
