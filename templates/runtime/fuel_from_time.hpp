@@ -103,16 +103,16 @@ struct TimeRouteArrival : PathArrival {
 
 // Step 1 from the fuel solution x (at eps_start, the problem's final time): the minimum-time
 // extremal as held-multiplier variables z (s in lambda0's slot); false where it was not reached.
-inline bool minimum_time_from_fuel_solution(const Settings& s, const FinalTime& tf, std::vector<double> x,
-                                            double eps, std::vector<double>& z, TimeRouteArrival& out,
-                                            int& evaluations) {
+inline bool minimum_time_from_fuel_solution(const Settings& s, const FinalTime& tf, std::vector<double> x, double eps,
+                                            std::vector<double>& z, TimeRouteArrival& out, int& evaluations) {
   const int l0 = lambda0_variable();
   Shooter fuel(s, kContinuationStart);
   const double day = 1 / kProblem.time_unit_days, own_days = tf.unit() / day;
   const double reached = day * follow_parameter(
-      s, fuel, x, eps, [&](double days) { tf.set(days * day); }, own_days, 0.0, -1e-7 * own_days,
-      {0.05 * own_days, 1e-4 * own_days, 0.2 * own_days}, kFinalTimeDown, out.steps,
-      [&](const std::vector<double>& y) { return y[l0] >= 0; }, [](const std::vector<double>&) { return false; });
+                                   s, fuel, x, eps, [&](double days) { tf.set(days * day); }, own_days, 0.0,
+                                   -1e-7 * own_days, {0.05 * own_days, 1e-4 * own_days, 0.2 * own_days}, kFinalTimeDown,
+                                   out.steps, [&](const std::vector<double>& y) { return y[l0] >= 0; },
+                                   [](const std::vector<double>&) { return false; });
   evaluations += fuel.evaluations;
   const double held = 0;
   Shooter time(s, held_multiplier_function(tf, l0, held), kContinuationStart);
@@ -154,8 +154,8 @@ void fuel_path_from_minimum_time(const Settings& s, const FinalTime& tf, std::ve
   double held = 0;
   Shooter opening(s, held_multiplier_function(tf, l0, held), kContinuationStart);
   const double a = follow_parameter(
-      s, opening, z, eps, [&](double v) { held = v; }, 0.0, 0.999, 1e-7, {1e-3, 1e-7, 0.05},
-      kLambda0Held, out.steps, [&](const std::vector<double>& y) { return y[l0] > 0; },
+      s, opening, z, eps, [&](double v) { held = v; }, 0.0, 0.999, 1e-7, {1e-3, 1e-7, 0.05}, kLambda0Held, out.steps,
+      [&](const std::vector<double>& y) { return y[l0] > 0; },
       [&](const std::vector<double>& y) { return y[l0] >= opened; });
   evaluations += opening.evaluations;
   if (!(z[l0] >= opened) || z[l0] > 1) {
@@ -175,7 +175,8 @@ void fuel_path_from_minimum_time(const Settings& s, const FinalTime& tf, std::ve
   if (reached_days == own_days) {
     Result path;
     double res = 0;
-    out.arrived = homotopy_to_zero(s, itself, x, path, [&](const double* y) { return admissible(y); }, res);
+    out.arrived = homotopy_to_zero(
+        s, itself, x, path, [&](const double* y) { return admissible(y); }, res);
     out.homotopy = path.homotopy;
     if (out.arrived) {
       out.x = x;

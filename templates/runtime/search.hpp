@@ -554,9 +554,10 @@ class MultiStart {
   }
 
   // Whether the search leaves a many-revolution transfer unsettled (unsettled()), for the thrust
-  // continuation: only for minimum time (a flight at full thrust, whose time the scaled window follows) where no target
-  // moves on the calendar (no epoch, no body on an orbit): a raised thrust shortens the flight, and
-  // a moving target would be met elsewhere, another transfer than the problem's.
+  // continuation: only for minimum time (a flight at full thrust, whose time the scaled window
+  // follows) where no target moves on the calendar (no epoch, no body on an orbit): a raised thrust
+  // shortens the flight, and a moving target would be met elsewhere, another transfer than the
+  // problem's.
   bool many_revolutions() const {
     return kProblem.objective == Objective::time && kProblem.epoch_mjd2000 == 0 && kProblem.num_orbit_bodies == 0 &&
            unsettled();
@@ -667,7 +668,7 @@ class MultiStart {
   // The route from the minimum-time extremals (fuel_from_time.hpp), at the integrator's own
   // tolerance, one path at a time: from each of the kTimeRouteSources lowest-cost extremals at
   // eps_start down to a minimum-time extremal, and from each distinct one up to the problem's final
-  // time at eps = 0, the arrivals merged with the search's extremals. Where every minimum-time
+  // time and on to eps = 0, the arrivals merged with the search's extremals. Where every minimum-time
   // extremal so reached winds more than kFewRevolutions times (or none was reached), the minimum
   // time is also sought at a raised thrust and continued down to the problem's
   // (time_route_by_raised_thrust).
@@ -714,7 +715,7 @@ class MultiStart {
     const int l0 = lambda0_variable();
     const double held = 0;
     ThrustPath along{held_multiplier_function(tf, l0, held), [&](double v) { tf.rescale(v); },
-                     [&](const std::vector<double>& z) { return minimum_time_revolutions(fine_, tf, z); }};
+                     [&](const std::vector<double>& z) { return minimum_time_revolutions(s_, tf, z); }};
     auto positive_time = [&](const double* z) { return z[l0] > 0; };
     std::vector<double> seen;  // the minimum times reached at the raised thrust (fractions)
     for (const int k : lowest_cost(raised.search.start_extremals)) {

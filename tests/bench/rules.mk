@@ -1,13 +1,18 @@
 # Included by the Makefile (make runs in the repository's root; the paths are from there).
-.PHONY: bench bench-search bench-sweep bench-house bench-thrust
+.PHONY: bench bench-search bench-sweep bench-house bench-thrust bench-fuel
 
 # ---- benchmarks: each stage's wall time (bench.sh), the search audit, the P01 bench grid -------
-bench: $(TOOLS_STAMP) bench-sweep bench-search bench-house bench-thrust
+bench: $(TOOLS_STAMP) bench-sweep bench-search bench-house bench-thrust bench-fuel
 	tests/bench/bench.sh
 
 # The GTO -> GEO minimum-time family t_f(T_max) from 60 N down to 0.5 N, each cold (tests/bench/thrust_family.sh).
 bench-thrust: $(TOOLS_STAMP)
 	tests/bench/thrust_family.sh
+
+# Minimum fuel at 1.5 t_min with and without the route from the minimum time, 60 to 10 N
+# (tests/bench/fuel_from_time.sh).
+bench-fuel: $(TOOLS_STAMP)
+	tests/bench/fuel_from_time.sh
 
 # The search audit: the default search against an exhaustive one, seeds 1-5 (tests/bench/search_audit.sh).
 bench-search: $(TOOLS_STAMP)

@@ -17,9 +17,9 @@ namespace {
 // The dimension of each variable: (km, s, kg) exponents.
 const std::map<std::string, UnitDimension>& variable_dimensions() {
   static const std::map<std::string, UnitDimension> d = {
-      {"x", {1, 0, 0}},   {"y", {1, 0, 0}},   {"z", {1, 0, 0}},   {"r", {1, 0, 0}},  {"vx", {1, -1, 0}},
-      {"vy", {1, -1, 0}}, {"vz", {1, -1, 0}}, {"v", {1, -1, 0}},  {"hx", {2, -1, 0}}, {"hy", {2, -1, 0}},
-      {"hz", {2, -1, 0}}, {"h", {2, -1, 0}},  {"m", {0, 0, 1}},   {"mu", {3, -2, 0}}};
+      {"x", {1, 0, 0}},   {"y", {1, 0, 0}},   {"z", {1, 0, 0}},  {"r", {1, 0, 0}},   {"vx", {1, -1, 0}},
+      {"vy", {1, -1, 0}}, {"vz", {1, -1, 0}}, {"v", {1, -1, 0}}, {"hx", {2, -1, 0}}, {"hy", {2, -1, 0}},
+      {"hz", {2, -1, 0}}, {"h", {2, -1, 0}},  {"m", {0, 0, 1}},  {"mu", {3, -2, 0}}};
   return d;
 }
 
@@ -90,8 +90,7 @@ UnitDimension expression_dimension(const GiNaC::ex& f, const symbolic::SymbolTab
 
 std::string unit_text(const UnitDimension& d) {
   std::string up, down;
-  for (const auto& [unit, power] :
-       {std::pair<const char*, double>{"kg", d.mass}, {"km", d.length}, {"s", d.time}}) {
+  for (const auto& [unit, power] : {std::pair<const char*, double>{"kg", d.mass}, {"km", d.length}, {"s", d.time}}) {
     if (power == 0) continue;
     std::string& side = power > 0 ? up : down;
     side += (side.empty() ? "" : "*") + exponent_text(unit, power);
@@ -102,10 +101,10 @@ std::string unit_text(const UnitDimension& d) {
 
 ParsedUnit parse_unit(const std::string& unit) {
   static const std::map<std::string, std::pair<UnitDimension, double>> base = {
-      {"km", {{1, 0, 0}, 1.0}},   {"m", {{1, 0, 0}, 1e-3}},      {"AU", {{1, 0, 0}, astro::AU_KM}},
-      {"s", {{0, 1, 0}, 1.0}},    {"min", {{0, 1, 0}, 60.0}},    {"h", {{0, 1, 0}, 3600.0}},
+      {"km", {{1, 0, 0}, 1.0}},    {"m", {{1, 0, 0}, 1e-3}},      {"AU", {{1, 0, 0}, astro::AU_KM}},
+      {"s", {{0, 1, 0}, 1.0}},     {"min", {{0, 1, 0}, 60.0}},    {"h", {{0, 1, 0}, 3600.0}},
       {"d", {{0, 1, 0}, 86400.0}}, {"day", {{0, 1, 0}, 86400.0}}, {"days", {{0, 1, 0}, 86400.0}},
-      {"kg", {{0, 0, 1}, 1.0}},   {"g", {{0, 0, 1}, 1e-3}}};
+      {"kg", {{0, 0, 1}, 1.0}},    {"g", {{0, 0, 1}, 1e-3}}};
   static const std::regex factor(R"(\s*([*/·]?)\s*([A-Za-z]+)(?:\^(-?[0-9]+))?\s*)");
   ParsedUnit out;
   std::string rest = unit;
@@ -190,8 +189,8 @@ io::json state_condition(const std::string& lhs_written, const std::string& rhs_
   const std::string right = trim(state_expression_text(rhs));
   parse(right, "the right side '" + rhs + "'");
   const std::string both = "(" + left + ") - (" + right + ")";
-  const UnitDimension d = expression_dimension(parse(both, "'" + lhs + " = " + rhs + "'"), vars,
-                                               "'" + lhs + " = " + rhs + "'");
+  const UnitDimension d =
+      expression_dimension(parse(both, "'" + lhs + " = " + rhs + "'"), vars, "'" + lhs + " = " + rhs + "'");
   return {{"expression", both}, {"equals", 0.0}, {"unit", unit_text(d)}};
 }
 

@@ -17,8 +17,8 @@
 
 namespace helios::spec {
 
-inline constexpr const char* kStateConditionVariables[] = {"x",  "y",  "z",  "r",  "vx", "vy", "vz",
-                                                           "v",  "hx", "hy", "hz", "h",  "m",  "mu"};
+inline constexpr const char* kStateConditionVariables[] = {"x", "y",  "z",  "r",  "vx", "vy", "vz",
+                                                           "v", "hx", "hy", "hz", "h",  "m",  "mu"};
 
 // The exponents of km, s and kg in an expression's unit.
 struct UnitDimension {
