@@ -463,7 +463,7 @@ TEST(Derive, ADepartureOrbitsFreeNodeAndPeriapsisAreUnknownsOfItsState) {
                              "the circular orbit of radius 42165 km inclined 1 deg with node 20 deg");
   std::vector<std::string> unknowns, rows;
   for (const auto& v : d["shooting"]["variables"])
-    if (v["role"] == "initial_state") unknowns.push_back(v["name"]);
+    if (v.value("role", "") == "initial_state") unknowns.push_back(v["name"]);
   for (const auto& q : d["shooting"]["equations"])
     if (q["name"].get<std::string>().rfind("stationarity_departure_", 0) == 0) rows.push_back(q["name"]);
   EXPECT_EQ(unknowns, (std::vector<std::string>{"theta_departure", "node_departure", "argp_departure"}));
@@ -483,12 +483,13 @@ TEST(Derive, ADepartureOrbitsFreeNodeAndPeriapsisAreUnknownsOfItsState) {
     const auto expected = helios::astro::elements_to_state({a, e, i, node, argp, E - e * std::sin(E)}, 398600.47);
     for (const auto& v : d["initial_values"]) {
       const char* names[] = {"rx", "ry", "rz", "vx", "vy", "vz"};
-      for (int k = 0; k < 6; ++k)
-        if (v["state"] == names[k])
-          EXPECT_NEAR(helios::symbolic::evaluate(table.parse(v["value"], "x0"), table, values) *
-                          (k < 3 ? length_km : speed_km_s),
-                      expected[k], 1e-9 * (k < 3 ? a : 10))
-              << theta << " " << node << " " << argp << " " << k;
+      for (int k = 0; k < 6; ++k) {
+        if (v["state"] != names[k]) continue;
+        EXPECT_NEAR(helios::symbolic::evaluate(table.parse(v["value"], "x0"), table, values) *
+                        (k < 3 ? length_km : speed_km_s),
+                    expected[k], 1e-9 * (k < 3 ? a : 10))
+            << theta << " " << node << " " << argp << " " << k;
+      }
     }
   }
   const auto error_of = [&](const std::string& elements, const std::string& target) {
