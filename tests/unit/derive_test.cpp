@@ -233,7 +233,7 @@ TEST(Derive, MinimumInitialMassFreesM0WithItsTransversality) {
   const auto& vars = d["shooting"]["variables"];
   int m0 = 0, lm0 = 0;
   for (const auto& v : vars) {
-    m0 += v["name"] == "m_t0" && v["role"] == "initial_state" && v["range"][0] == 1.0 ? 1 : 0;
+    m0 += v["name"] == "m_t0" && v.value("role", "") == "initial_state" && v["range"][0] == 1.0 ? 1 : 0;
     lm0 += v["name"] == "l_m_t0" ? 1 : 0;
   }
   EXPECT_EQ(m0, 1);
