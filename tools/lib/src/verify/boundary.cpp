@@ -185,7 +185,7 @@ class BoundaryFamily : public Family {
     const std::map<std::string, ex> rates = rates_at("tf", problems);
     const EventValue* H_tf = nullptr;
     for (const auto& v : ctx.event_values)
-      if (v.hamiltonian && !H_tf) H_tf = &v;
+      if (v.hamiltonian && v.at == "tf" && !H_tf) H_tf = &v;
     if (!H_tf)
       problems.push_back("event_values must declare the Hamiltonian at tf (e.g. {\"name\": \"" +
                          names::hamiltonian("tf") +
