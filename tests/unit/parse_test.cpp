@@ -1244,6 +1244,47 @@ TEST(ParseOrbitTarget, ReadsADepartureOrbitWithEveryElement) {
                    .contains("free"));
 }
 
+// An orbit on the way: an interior event with its window, the window before or after the orbit,
+// its id "orbit" (then "orbit_2"), no body; without a window it is refused with both forms.
+TEST(ParseOrbitTarget, ReadsAnOrbitOnTheWayWithItsWindow) {
+  const std::string s14 = scenario("S14");
+  const auto interior = [&](const std::string& sentences) {
+    const json spec = parse(replaced(s14, "The time of flight is free, at most 2 days.",
+                                     "The time of flight is free, at most 2 days. " + sentences));
+    json out = json::array();
+    for (const auto& c : spec["constraints"])
+      if (c["at"] == "interior") out.push_back(c);
+    return out;
+  };
+  const json one = interior("The spacecraft passes through the circular orbit of radius 30000 km between day 0.1 and "
+                            "day 0.5.");
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0], json::parse(R"({"id": "orbit", "kind": "orbit_insertion", "at": "interior",
+                                    "target": {"kind": "orbital_elements", "semi_major_axis_km": 30000.0,
+                                               "eccentricity": 0.0},
+                                    "window_days": [0.1, 0.5]})"));
+  const json two = interior("Between day 0.1 and day 0.5, the spacecraft reaches an equatorial orbit. The spacecraft "
+                            "must pass through an orbit with eccentricity 0.2 and inclination 3 deg between day 0.6 "
+                            "and day 0.9.");
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_EQ(two[0]["id"], "orbit");
+  EXPECT_EQ(two[0]["target"], json::parse(R"({"kind": "orbital_elements", "inclination_deg": 0.0})"));
+  EXPECT_EQ(two[1]["id"], "orbit_2");
+  EXPECT_EQ(two[1]["window_days"], json::parse("[0.6, 0.9]"));
+  helios::io::validate("spec", parse(replaced(s14, "The time of flight is free, at most 2 days.",
+                                              "The time of flight is free, at most 2 days. The spacecraft crosses an "
+                                              "equatorial orbit between day 0.1 and day 0.5.")),
+                       "test");
+  has(error_of(replaced(s14, "The time of flight is free, at most 2 days.",
+                        "The time of flight is free, at most 2 days. The spacecraft passes through the circular orbit "
+                        "of radius 30000 km.")),
+      "an orbit on the way needs its window");
+  has(error_of(replaced(s14, "The time of flight is free, at most 2 days.",
+                        "The time of flight is free, at most 2 days. The spacecraft reaches an equatorial orbit "
+                        "between day 1 and day 3.")),
+      "must lie inside the flight");
+}
+
 // Objectives on the final state and an engine at full throttle throughout.
 TEST(ParseOrbitTarget, ReadsAFinalStateObjectiveAndAFullThrottleEngine) {
   const std::string s14 = scenario("S14");

@@ -134,9 +134,19 @@ InteriorEvent event_window(const Problem& p, const json& c) {
   return e;
 }
 
+// The window as two bounds on the epoch (two-pass): window_lo - t <= 0 and t - window_hi <= 0.
+void window_rows(Problem& p, InteriorEvent& e) {
+  const ex t = p.symbols.get(names::event_time(e.id));
+  e.c.push_back(e.window_lo - t);
+  e.c_names.push_back("window start - " + names::event_time(e.id) + " (<= 0: not before the window)");
+  e.c_inequality.push_back(true);
+  e.c.push_back(t - e.window_hi);
+  e.c_names.push_back(names::event_time(e.id) + " - window end (<= 0: not after the window)");
+  e.c_inequality.push_back(true);
+}
+
 // The conditions c on the arriving state x-: it meets the target (a flyby or swing-by in
-// position only), a flyby's bounded relative speed, and the window as two bounds on the epoch
-// (two-pass): window_lo - t <= 0 and t - window_hi <= 0.
+// position only), a flyby's bounded relative speed, and the window.
 void arrival_conditions(Problem& p, const json& c, InteriorEvent& e, const std::vector<ex>& xm,
                         const std::vector<ex>& arrival) {
   const std::size_t matched = e.kind == "rendezvous" ? 6 : 3;
@@ -154,13 +164,7 @@ void arrival_conditions(Problem& p, const json& c, InteriorEvent& e, const std::
     e.c_names.push_back("|v - v_" + e.id + "|^2 - vmax_" + e.id + "^2 (<= 0)");
     e.c_inequality.push_back(true);
   }
-  const ex t = p.symbols.get(names::event_time(e.id));
-  e.c.push_back(e.window_lo - t);
-  e.c_names.push_back("window start - " + names::event_time(e.id) + " (<= 0: not before the window)");
-  e.c_inequality.push_back(true);
-  e.c.push_back(t - e.window_hi);
-  e.c_names.push_back(names::event_time(e.id) + " - window end (<= 0: not after the window)");
-  e.c_inequality.push_back(true);
+  window_rows(p, e);
 }
 
 // Unpowered patched-conic swing-by: the excess velocity v_inf = v- - v_body keeps its size and
@@ -346,6 +350,28 @@ EndpointConstraint orbit_departure(Problem& p, EndpointConstraint k) {
   return k;
 }
 
+// An orbit on the way: at a free epoch inside the window the arriving state x- is on the orbit
+// (its rows, orbit_rows, written in x-), the position on it free; the state goes on unchanged.
+InteriorEvent orbit_on_the_way(Problem& p, InteriorEvent e, const std::vector<ex>& xm) {
+  const std::string where = "constraint '" + e.id + "'";
+  if (e.target.at("kind") != "orbital_elements")
+    throw std::invalid_argument(where + ": an orbit on the way needs a target of kind orbital_elements");
+  if (e.target.contains("free"))
+    throw std::invalid_argument(where + ": target/free is for a departure orbit (a target's unstated elements are free)");
+  require_known_start(p, where, "an orbit on the way");
+  GiNaC::exmap arriving;
+  for (std::size_t j = 0; j < p.states.size(); ++j) arriving[p.symbols.get(p.states[j].name)] = xm[j];
+  const OrbitRows rows = orbit_rows(p, e.id, e.target);
+  for (std::size_t j = 0; j < rows.psi.size(); ++j) {
+    e.c.push_back(rows.psi[j].subs(arriving));
+    e.c_names.push_back(rows.names[j]);
+    e.c_inequality.push_back(false);
+  }
+  window_rows(p, e);
+  e.map = xm;
+  return e;
+}
+
 }  // namespace
 
 // An interior event: conditions c on the arriving state and the map g to the leaving state.
@@ -358,12 +384,13 @@ InteriorEvent interior_event(Problem& p, const json& c) {
     throw std::invalid_argument(where + ": only a rendezvous has a stay or a mass drop");
   if (drop > 0 && !p.has_state("m")) throw std::invalid_argument(where + ": a mass drop needs a mass state");
 
-  std::vector<ex> rates;
-  const std::vector<ex> arrival = target_state(p, e.id, e.target, e.id, true, rates);
   std::vector<ex> xm;
   for (const auto& s : p.states) xm.push_back(S.get(names::before(s.name, e.id)));
   for (const auto& s : p.states) S.get(names::after(s.name, e.id));
   S.get(names::event_time(e.id));
+  if (e.kind == "orbit_insertion") return orbit_on_the_way(p, std::move(e), xm);
+  std::vector<ex> rates;
+  const std::vector<ex> arrival = target_state(p, e.id, e.target, e.id, true, rates);
   arrival_conditions(p, c, e, xm, arrival);
   e.map = xm;  // continuous unless changed below
   if (e.kind == "rendezvous" && e.duration > 0) {

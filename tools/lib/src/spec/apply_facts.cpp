@@ -10,7 +10,8 @@ namespace helios::spec::grammar {
 std::map<std::string, std::string> Builder::body_names() const {
   std::map<std::string, std::string> names;
   for (const auto& o : orbits) names[lowercase(o.name)] = o.name;
-  for (const auto& e : events) names[lowercase(e.body)] = e.body;
+  for (const auto& e : events)
+    if (!e.body.empty()) names[lowercase(e.body)] = e.body;
   return names;
 }
 

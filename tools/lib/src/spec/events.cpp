@@ -263,7 +263,7 @@ void Builder::finish_events() {
   departure->target = geostationary(resolve(departure->target, departure->where), departure->where);
   needs_epoch(departure->target, departure->where);
   for (auto& e : events) {
-    e.target = resolve(json{{"ref", e.body}}, e.where);
+    if (e.kind != "orbit_insertion") e.target = resolve(json{{"ref", e.body}}, e.where);
     needs_epoch(e.target, e.where);
   }
   arrival->target = geostationary(resolve(arrival->target, arrival->where), arrival->where);
@@ -298,7 +298,7 @@ void Builder::finish_events() {
       fail(e.where, "its window, " + window + ", must lie inside the flight: after day " + io::short_number(start) +
                         " and before day " + io::short_number(end) + " (days count from the epoch)");
     if (previous && e.window_lo < previous->window_hi)
-      fail(e.where, "its window, " + window + ", starts before the window of the event at " + previous->body +
+      fail(e.where, "its window, " + window + ", starts before the window of the event at " + previous->place() +
                         " (day " + io::short_number(previous->window_lo) + " to day " +
                         io::short_number(previous->window_hi) +
                         ") ends: state the events in the order they happen, with windows that do not overlap");
@@ -357,7 +357,7 @@ json Builder::constraints() {
   std::map<std::string, int> visits;
   std::vector<std::string> ids;
   for (const auto& e : events) {
-    const std::string base = lowercase(e.body);
+    const std::string base = e.kind == "orbit_insertion" ? "orbit" : lowercase(e.body);
     int& n = visits[base];
     std::string id = ++n == 1 ? base : base + "_" + std::to_string(n);
     while (std::find(ids.begin(), ids.end(), id) != ids.end()) id = base + "_" + std::to_string(++n);

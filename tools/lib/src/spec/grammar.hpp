@@ -97,12 +97,13 @@ struct OrbitDef {
 // An event on the way: a rendezvous, a flyby or a gravity assist inside a window.
 struct Event {
   Where where;
-  std::string kind, body;
+  std::string kind, body;  // an orbit on the way (kind orbit_insertion) has no body, its target is the orbit
   EpochRef lo, hi;
   std::optional<double> stay, drop, mu, rmin, max_speed;
   Where drop_where;
   json target;
   double window_lo = 0, window_hi = 0;
+  std::string place() const { return body.empty() ? "the orbit on the way" : body; }
 };
 
 // The departure or the final condition (a rendezvous, or a flyby with an optional speed bound).
@@ -212,6 +213,7 @@ struct Builder {
   void on_arrive_flyby(const std::smatch& m);
   // ---- a final condition that is an orbit (orbit_target.cpp) ----
   void on_arrive_orbit(const std::smatch& m);
+  void on_orbit_on_the_way(const std::smatch& m);
   void on_final_conditions(const std::smatch& m);
   json geostationary(json target, const Where& w) const;
   void on_event(const std::smatch& m);

@@ -155,6 +155,26 @@ void Builder::on_arrive_orbit(const std::smatch& m) {
   arrival = Endpoint{here, target, "orbit_insertion", std::nullopt};
 }
 
+// "The spacecraft passes through the circular orbit of radius 30000 km between day 2 and day 4"
+// (or "Between day 2 and day 4 the spacecraft reaches ..."): an orbit on the way, met at a free
+// epoch inside the window anywhere along it; the state goes on unchanged.
+void Builder::on_orbit_on_the_way(const std::smatch& m) {
+  const bool before = m[1].matched, after = m[6].matched;
+  if (before == after)
+    throw sentence_error(before ? "the sentence gives two windows"
+                                : "an orbit on the way needs its window ('... between day N and day N'); an orbit "
+                                  "that ends the flight reads 'At the final time the spacecraft is on ...'");
+  const std::size_t w = before ? 1 : 6;
+  Event e;
+  e.where = here;
+  e.kind = "orbit_insertion";
+  e.target = parse_orbit_target(m[5].str());
+  e.target.erase("free");  // a target's unstated elements are free already
+  e.lo = epoch_ref(m[w].str(), m[w + 1].str());
+  e.hi = epoch_ref(m[w + 2].str(), m[w + 3].str());
+  events.push_back(e);
+}
+
 // "At the final time r·v = 0 and |r| = 42165 km.": equations of the final state
 // (state_conditions.hpp), split at the commas, semicolons and "and"s outside parentheses; more
 // sentences of this form add to the same constraint.

@@ -28,6 +28,10 @@ void Builder::handle(const std::string& s) {
        &Builder::on_arrive},
       {re(R"(At the final time the spacecraft is (?:on|in) (.+\borbit\b.*)|The spacecraft (?:transfers|is transferred|is inserted|must transfer|arrives) (?:in)?to (.+\borbit\b.*?)(?: at the final time)?)"),
        &Builder::on_arrive_orbit},
+      {re(R"((?:Between (day|MJD2000|MJD) ()" + kNum + R"() and (day|MJD2000|MJD) ()" + kNum +
+          R"(),? )?the spacecraft (?:passes through|crosses|reaches|is (?:on|in)|must (?:pass through|cross|reach|be (?:on|in))) (.+\borbit\b.*?)(?: between (day|MJD2000|MJD) ()" +
+          kNum + R"() and (day|MJD2000|MJD) ()" + kNum + R"())?)"),
+       &Builder::on_orbit_on_the_way},
       {re(R"(At the final time the spacecraft (?:flies|must fly) by (.+?)(?:,? with a relative speed of at most )" +
           kQuantity + ")?"),
        &Builder::on_arrive_flyby},
