@@ -210,6 +210,7 @@ inline nlohmann::ordered_json extremals_record(const std::vector<Extremal>& list
                                     {"polished", e.polished},
                                     {"method", e.method}};
     if (!within_window(e.x)) entry["outside_window"] = true;
+    if (!e.shape.off_side.empty()) entry["off_side"] = e.shape.off_side;
     objective_in_units(entry, e.shape.cost);
     if (e.bounded_tried) {  // where the passes over the bounds led from this extremal
       nlohmann::ordered_json bounded = {{"converged", std::isfinite(e.bounded_objective)}};

@@ -89,6 +89,19 @@ Dual bound_row(Propagator& prop, int k, const Dual& psi, const Dual& inactive) {
   return prop.bound_active(k) ? psi : inactive;
 }
 
+void side_condition(Propagator& prop, int k, double g, const char* meaning) {
+  if (static_cast<std::size_t>(k) >= prop.side_values.size()) {
+    prop.side_values.resize(k + 1, INFINITY);
+    prop.side_meanings.resize(k + 1, "");
+  }
+  prop.side_values[k] = g;
+  prop.side_meanings[k] = meaning;
+}
+
+void side_condition(Propagator& prop, int k, const Dual& g, const char* meaning) {
+  side_condition(prop, k, g.v, meaning);
+}
+
 void dual_jacobian(int n, const double* x, double* F, double* J,
                    const std::function<void(const Dual* x, Dual* F)>& dual_function) {
   ad::begin_jacobian(n);

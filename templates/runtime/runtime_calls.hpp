@@ -173,6 +173,11 @@ class Propagator {
   // (Settings::active_bounds), and psi of each bound at the last evaluation (bound_row).
   bool bound_active(int k) const;
   std::vector<double> bound_values;
+  // The conditions g > 0 the rows leave to the runtime (the derivation's must_be_positive: the
+  // rows also hold on the target's mirror), each g and its meaning at the last evaluation
+  // (side_condition).
+  std::vector<double> side_values;
+  std::vector<const char*> side_meanings;
 
   // With `tangents`: also carries k tangent directions of z = (y, lambda0) by the variational
   // equations (the same steps as y, so they are the derivatives of the integration itself), with
@@ -233,6 +238,9 @@ void dual_jacobian(int n, const double* x, double* F, double* J,
 // expression (its multiplier).
 double bound_row(Propagator& prop, int k, double psi, double inactive);
 Dual bound_row(Propagator& prop, int k, const Dual& psi, const Dual& inactive);
+// Records side condition k, g > 0 (its value and meaning), on the propagator.
+void side_condition(Propagator& prop, int k, double g, const char* meaning);
+void side_condition(Propagator& prop, int k, const Dual& g, const char* meaning);
 
 // The SOLVE module's calls: `initial_guess(rng, x)` draws a start, `admissible(x)` accepts a
 // solution (lambda0 > 0).

@@ -253,6 +253,9 @@ struct Shape {
   double revolutions = 0;
   int switches = 0;
   double cost = INFINITY;
+  // The meaning of the first side condition g > 0 that fails (the extremal ends on the mirror of
+  // a target: derivation's must_be_positive), empty when all hold: such an extremal is never returned.
+  std::string off_side;
 };
 
 // A distinct solution at eps_start, and how many starts reached it.

@@ -39,13 +39,18 @@ inline bool within_window(const std::vector<double>& x) {
   return at < 0 || (x[at] >= -1e-9 && x[at] <= 1 + 1e-9);
 }
 
-// The extremal at eps = 0 with the lowest objective, the first reached among equals (-1: none).
-// Only a polished one in the final time's window counts.
+// Whether an extremal may be returned: polished, in the final time's window, and on the stated
+// side of every target (not on a mirror the rows also admit: Shape::off_side).
+inline bool returnable(const Extremal& e) {
+  return e.polished && within_window(e.x) && e.shape.off_side.empty();
+}
+
+// The returnable extremal at eps = 0 with the lowest objective, the first reached among equals
+// (-1: none).
 inline int best_index(const SearchRecord& rec) {
   int best = -1;
   for (std::size_t i = 0; i < rec.extremals.size(); ++i)
-    if (rec.extremals[i].polished && within_window(rec.extremals[i].x) &&
-        (best < 0 || rec.extremals[i].shape.cost < rec.extremals[best].shape.cost))
+    if (returnable(rec.extremals[i]) && (best < 0 || rec.extremals[i].shape.cost < rec.extremals[best].shape.cost))
       best = static_cast<int>(i);
   return best;
 }
@@ -150,7 +155,9 @@ inline void say_if_not_saturated(const SearchRecord& rec, const Settings& s, Pro
                 "not saturated: %d of %d starts converged, and the chance that another finds a new extremal is %.3g "
                 "(saturated: at most %.3g); stopped by %s. %s; %s lets the search go on.",
                 converged, rec.starts, rec.unseen, s.search_saturation, rec.stopped.c_str(),
-                rec.extremals.empty() ? "Nothing was found" : "The best extremal found is returned",
+                best_index(rec) >= 0 ? "The best extremal found is returned"
+                : rec.extremals.empty() ? "Nothing was found"
+                                        : "None of the extremals found may be returned",
                 capped ? "a larger search_starts (or max_attempts)" : "a larger search_time_s");
   progress.stage(line);
 }
@@ -170,6 +177,13 @@ inline void finish_search(const Settings& fine, const Settings& coarse, Result& 
   } else if (wall_seconds() > fine.time_limit_s) {
     r.status = Status::kTimeout;
     r.detail = "time limit reached before convergence";
+  } else if (const auto mirrored = std::find_if(rec.extremals.begin(), rec.extremals.end(),
+                                                [](const Extremal& e) { return !e.shape.off_side.empty(); });
+             mirrored != rec.extremals.end() &&
+             std::all_of(rec.extremals.begin(), rec.extremals.end(),
+                         [](const Extremal& e) { return !e.polished || !e.shape.off_side.empty(); })) {
+    r.detail = "every extremal the search reached ends on the mirror of a target, which the rows also admit (" +
+               mirrored->shape.off_side + " fails)";
   } else if (!rec.extremals.empty() && std::none_of(rec.extremals.begin(), rec.extremals.end(),
                                                     [](const Extremal& e) { return within_window(e.x); })) {
     const auto shortest = std::min_element(rec.extremals.begin(), rec.extremals.end(),
@@ -591,7 +605,7 @@ class MultiStart {
     // need not start from the best extremal up there), kThrustBranches of them.
     std::vector<const Extremal*> branches;
     for (const Extremal& e : raised.search.extremals)
-      if (e.polished && within_window(e.x)) branches.push_back(&e);
+      if (returnable(e)) branches.push_back(&e);
     std::stable_sort(branches.begin(), branches.end(),
                      [](const Extremal* a, const Extremal* b) { return a->shape.cost < b->shape.cost; });
     if (branches.size() > static_cast<std::size_t>(kThrustBranches)) branches.resize(kThrustBranches);

@@ -25,6 +25,12 @@ setup() {
   assert_jq "$WORK/verify.json" '.verdict == "pass"'
 }
 
+@test "orbit target: the rows also hold on the retrograde GEO; h.n > 0 keeps every extremal there from being returned" {
+  assert_jq "$WORK/derivation.json" '.constraints[1].must_be_positive | length == 1 and (.[0].meaning | startswith("h.n_arrival > 0"))'
+  assert_jq "$WORK/solution.json" '.search.extremals[.search.returned] | has("off_side") | not'
+  assert_jq "$WORK/solution.json" 'all(.search.extremals[] | select(has("off_side")); .off_side | startswith("h.n_arrival > 0"))'
+}
+
 @test "orbit target: S14 reaches t_f = 14.80036 +- 0.00001 h cold, on the orbit, with H = 0 along the extremal" {
   assert_s14_minimum_time "$WORK/solution.json"
   assert_ends_on_geo "$WORK/trajectory.csv"

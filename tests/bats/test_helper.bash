@@ -144,13 +144,14 @@ assert_s14_minimum_time() {
 
 # assert_ends_on_geo TRAJECTORY: the last row of a trajectory.csv is on the circular equatorial
 # orbit of radius 42165 km about the Earth (mu 398600.47 km^3/s^2): |r| = 42165 km, r.v = 0,
-# |v| = sqrt(mu/42165), z and vz 0.
+# |v| = sqrt(mu/42165), z and vz 0, and prograde (h_z = x vy - y vx > 0, not the retrograde mirror).
 assert_ends_on_geo() {
   tail -n 1 "$1" | awk -F, '{
     r = sqrt($2*$2 + $3*$3 + $4*$4); v = sqrt($5*$5 + $6*$6 + $7*$7); rv = $2*$5 + $3*$6 + $4*$7
+    hz = $2*$6 - $3*$5
     ok = (r - 42165 < 1e-4 && 42165 - r < 1e-4) && (rv * rv < 1e-20 * r * r * v * v) && \
-         ((v - sqrt(398600.47 / 42165))^2 < 1e-16) && ($4^2 < 1e-8) && ($7^2 < 1e-16)
-    if (!ok) { printf "r %.9f v %.12f r.v %g z %g vz %g\n", r, v, rv, $4, $7 > "/dev/stderr"; exit 1 }
+         ((v - sqrt(398600.47 / 42165))^2 < 1e-16) && ($4^2 < 1e-8) && ($7^2 < 1e-16) && hz > 0
+    if (!ok) { printf "r %.9f v %.12f r.v %g z %g vz %g h_z %g\n", r, v, rv, $4, $7, hz > "/dev/stderr"; exit 1 }
   }'
 }
 

@@ -15,6 +15,7 @@
 #include "helios/pmp/derivation.hpp"
 #include "helios/spec/parse.hpp"
 #include "helios/symbolic/expr.hpp"
+#include "helios/verify/verify.hpp"
 #include "test_helpers.hpp"
 
 namespace {
@@ -560,6 +561,77 @@ TEST(Derive, StateConditionsAreIndependentRowsWithUnknownMultipliers) {
     transversality += e["name"].get<std::string>().rfind("transversality_", 0) == 0;
   EXPECT_EQ(multipliers, 3);
   EXPECT_EQ(transversality, 8);  // seven states and the final time
+}
+
+// A target orbit's rows also hold on its mirrors: the plane run the other way (h along -n) and the
+// periapsis opposite the stated one (e_vec along -P). The side conditions h.n > 0 and e_vec.P > 0
+// tell them apart: at states on the stated orbit and on each mirror (built here from P and Q read
+// off the orbit's own state at periapsis) every row vanishes, and only the mirror fails its side.
+TEST(Derive, ATargetOrbitsSideConditionsRejectItsMirrorsThatMeetItsRows) {
+  std::string text = helios::io::read_text(kSource + "/scenarios/S14/problem.txt");
+  const std::string geo = "the circular equatorial orbit of radius 42165 km";
+  text.replace(text.find(geo), geo.size(),
+               "an orbit with semi-major axis 30000 km, eccentricity 0.3, inclination 20 deg, node 40 deg and "
+               "argument of perigee 60 deg");
+  const json d = helios::pmp::derive_from_spec(helios::spec::parse_problem_text(text, "t"));
+  const json& arrival = d["constraints"][1];
+  ASSERT_EQ(arrival["must_be_positive"].size(), 2u);
+  SymbolTable table;
+  Values values;
+  for (const auto& q : d["parameters"]) values[q["name"]] = q["value"].get<double>(), table.get(q["name"]);
+  for (const char* x : {"rx", "ry", "rz", "vx", "vy", "vz"}) table.get(x);
+  const double length_km = d["units"]["length_km"], speed_km_s = length_km / d["units"]["time_s"].get<double>();
+  const double mu = 398600.47, a = 30000, e = 0.3, p = a * (1 - e * e), deg = M_PI / 180;
+  const auto periapsis = helios::astro::elements_to_state({a, e, 20 * deg, 40 * deg, 60 * deg, 0}, mu);
+  std::array<double, 3> P{}, Q{};
+  const double rp = std::hypot(periapsis[0], periapsis[1], periapsis[2]);
+  const double vp = std::hypot(periapsis[3], periapsis[4], periapsis[5]);
+  for (int k = 0; k < 3; ++k) P[k] = periapsis[k] / rp, Q[k] = periapsis[3 + k] / vp;
+  const auto evaluate = [&](const json& list, double theta, double p_sign, double q_sign) {
+    const double radius = p / (1 + e * std::cos(theta)), speed = std::sqrt(mu / p);
+    const char* names[] = {"rx", "ry", "rz", "vx", "vy", "vz"};
+    for (int k = 0; k < 3; ++k) {
+      values[names[k]] = radius * (std::cos(theta) * p_sign * P[k] + std::sin(theta) * q_sign * Q[k]) / length_km;
+      values[names[3 + k]] =
+          speed * (-std::sin(theta) * p_sign * P[k] + (e + std::cos(theta)) * q_sign * Q[k]) / speed_km_s;
+    }
+    std::vector<double> out;
+    for (const auto& row : list)
+      out.push_back(helios::symbolic::evaluate(table.parse(row.is_string() ? row : row["expression"], "row"), table,
+                                               values));
+    return out;
+  };
+  for (const double theta : {0.3, 2.0, 4.5}) {
+    // stated, the plane's mirror (Q reversed), the periapsis' (P and Q reversed)
+    for (const auto& [p_sign, q_sign] : std::vector<std::pair<double, double>>{{1, 1}, {1, -1}, {-1, -1}}) {
+      for (const double row : evaluate(arrival["psi"], theta, p_sign, q_sign)) EXPECT_NEAR(row, 0, 1e-12) << theta;
+      const std::vector<double> sides = evaluate(arrival["must_be_positive"], theta, p_sign, q_sign);
+      EXPECT_EQ(sides[0] > 0, q_sign * p_sign > 0) << "h.n at " << theta << " " << p_sign << q_sign;
+      EXPECT_EQ(sides[1] > 0, p_sign > 0) << "e_vec.P at " << theta << " " << p_sign << q_sign;
+    }
+  }
+}
+
+// An orbit on the way: its rows in the state just before the event, its multipliers unknowns, the
+// state carried over; the costates jump by nu^T dc/dx-. helios-verify recomputes it all,
+// including H(tf) = 0 with an H before and after the event declared too.
+TEST(Derive, AnOrbitOnTheWayIsAnEventWithTheOrbitsRowsAndAContinuousState) {
+  std::string text = helios::io::read_text(kSource + "/scenarios/S14/problem.txt");
+  const std::string tof = "The time of flight is free, at most 2 days.";
+  text.replace(text.find(tof), tof.size(),
+               tof + " The spacecraft passes through the circular orbit of radius 30000 km between day 0.05 and day 1.");
+  const json d = helios::pmp::derive_from_spec(helios::spec::parse_problem_text(text, "t"));
+  ASSERT_EQ(d["events"].size(), 1u);
+  const json& e = d["events"][0];
+  EXPECT_EQ(e["kind"], "orbit_insertion");
+  EXPECT_EQ(e["psi"][0], "-a_orbit+sqrt(rx_orbit_m^2+ry_orbit_m^2+rz_orbit_m^2)");
+  EXPECT_EQ(e["psi"][1], "rx_orbit_m*vx_orbit_m+ry_orbit_m*vy_orbit_m+rz_orbit_m*vz_orbit_m");
+  for (const auto& entry : e["state_map"]) EXPECT_EQ(entry["expression"], entry["state"].get<std::string>() + "_orbit_m");
+  int multipliers = 0;
+  for (const auto& v : d["shooting"]["variables"]) multipliers += v["name"].get<std::string>().rfind("nu_orbit_", 0) == 0;
+  EXPECT_EQ(multipliers, 5);  // three rows of the orbit, two of the window
+  const json report = helios::verify::verify_derivation(d, {});
+  EXPECT_EQ(report["verdict"], "pass") << report.dump(1);
 }
 
 TEST(Derive, SailWithFuelObjectiveIsRefused) {

@@ -95,6 +95,10 @@ class ShootingFunction {
   void evaluate_h(const std::string& at, const std::string& time);
   // Locals for y[] named <state>_<label>, <costate>_<label> (names::at).
   void unpack_y(const std::string& label);
+  // The conditions g > 0 the rows leave to the runtime, recorded on the propagator in order
+  // (side_condition; the runtime's Shape reads them).
+  // `at` renames their symbols to the locals of where they are evaluated.
+  void side_conditions(const std::vector<derivation::SideCondition>& sides, const GiNaC::exmap& at = {});
 
   Context& c_;
   const std::vector<derivation::ShootingEquation>& eqs_;
@@ -103,6 +107,7 @@ class ShootingFunction {
   Body body_;
   std::map<std::string, std::string> hamiltonian_at_;  // event value names by where H is evaluated
   std::vector<int> leg_sizes_;
+  int side_conditions_ = 0;
 };
 
 std::string ShootingFunction::text(bool jacobian) {
@@ -189,6 +194,13 @@ void ShootingFunction::unpack_y(const std::string& label) {
     body_.unpack(names::at(c_.states[i], label), "y[" + std::to_string(i) + "]");
   for (std::size_t i = 0; i < c_.costates.size(); ++i)
     body_.unpack(names::at(c_.costates[i], label), "y[" + std::to_string(c_.states.size() + i) + "]");
+}
+
+void ShootingFunction::side_conditions(const std::vector<derivation::SideCondition>& sides, const GiNaC::exmap& at) {
+  for (const auto& side : sides)
+    body_.code() << "  side_condition(prop, " << side_conditions_++ << ", "
+                 << body_.cpp(c_.parsed(side.expression).subs(at))
+                 << ", " << cpp_string(side.meaning) << ");\n";
 }
 
 // The shooting variables x[] as locals, each with its meaning.
@@ -310,6 +322,7 @@ void ShootingFunction::event(std::size_t k) {
   const std::string from = k == 0 ? "t0" : names::event_departure_time(events_[k - 1].id);
   body_.code() << "  propagate(prop, " << from << ", " << names::event_time(id) << ", y, mult);\n";
   unpack_y(names::before_label(id));
+  side_conditions(e.must_be_positive);
   relative_to_target(id);
   evaluate_h(names::before_label(id), names::event_time(id));
   leg_alone_at_event(k);
@@ -399,6 +412,10 @@ void ShootingFunction::end() {
       events_.empty() ? "t0" : names::event_departure_time(events_.back().id);
   body_.code() << "  propagate(prop, " << from << ", tf, y, mult);\n";
   unpack_y("tf");
+  GiNaC::exmap final_states;  // a constraint's rows at tf are in the states' own symbols
+  for (const auto& x : c_.states) final_states[c_.symbols.get(x)] = c_.symbols.get(names::at(x, "tf"));
+  for (const auto& k : c_.constraints)
+    if (k.at == "tf") side_conditions(k.must_be_positive, final_states);
   evaluate_h("tf", "tf");
   if (!hamiltonian_at_.empty())
     throw std::invalid_argument("field /event_values: no event '" + hamiltonian_at_.begin()->first + "'");

@@ -114,6 +114,17 @@ std::vector<Ode> read_odes(const json& d, const std::string& key, const std::str
   return out;
 }
 
+std::vector<SideCondition> read_side_conditions(const json& obj, const std::string& where) {
+  std::vector<SideCondition> out;
+  if (!obj.contains("must_be_positive")) return out;
+  const json& list = array(obj, "must_be_positive", where);
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string w = at(where + "/must_be_positive", i);
+    out.push_back({expression(list[i], "expression", w), io::require_string(list[i], "meaning", w)});
+  }
+  return out;
+}
+
 std::vector<Constraint> read_constraints(const json& d) {
   std::vector<Constraint> out;
   const json& list = array(d, "constraints", "");
@@ -125,6 +136,7 @@ std::vector<Constraint> read_constraints(const json& d) {
     c.at = io::require_string(list[i], "at", where);
     c.psi = expressions(list[i], "psi", where);
     c.multipliers = strings(list[i], "multipliers", where);
+    c.must_be_positive = read_side_conditions(list[i], where);
     c.target = optional_json(list[i], "target");
     out.push_back(std::move(c));
   }
@@ -153,6 +165,7 @@ Event read_event(const json& e, const std::string& where) {
   out.duration = io::require_number(time, "duration", where + "/time");
   out.psi = expressions(e, "psi", where);
   out.multipliers = strings(e, "multipliers", where);
+  out.must_be_positive = read_side_conditions(e, where);
   const json& map = array(e, "state_map", where);
   for (std::size_t i = 0; i < map.size(); ++i)
     out.state_map.push_back({io::require_string(map[i], "state", at(where + "/state_map", i)),

@@ -228,6 +228,7 @@ EndpointConstraint orbit_insertion(Problem& p, EndpointConstraint k) {
   k.psi_names = rows.names;
   k.psi_inequality.assign(rows.psi.size(), false);
   k.psi_t.assign(rows.psi.size(), 0);
+  k.must_be_positive = rows.must_be_positive;
   k.multipliers_unknown = true;
   return k;
 }
@@ -367,6 +368,7 @@ InteriorEvent orbit_on_the_way(Problem& p, InteriorEvent e, const std::vector<ex
     e.c_names.push_back(rows.names[j]);
     e.c_inequality.push_back(false);
   }
+  for (const auto& side : rows.must_be_positive) e.must_be_positive.push_back({side.expression.subs(arriving), side.meaning});
   window_rows(p, e);
   e.map = xm;
   return e;

@@ -9,9 +9,12 @@ namespace helios::pmp {
 
 // The rows psi(x) = 0 of an orbit given by some of its classical elements (the spec's target of
 // kind "orbital_elements"), with their meanings; adds the elements as parameters <element>_<id>.
+// With them, the conditions g > 0 that tell the orbit from its mirror (the rows hold on both): h.n
+// > 0 where the plane is given (the normal n, not -n), e_vec.P > 0 where the periapsis is.
 struct OrbitRows {
   std::vector<GiNaC::ex> psi;
   std::vector<std::string> names;
+  std::vector<SideCondition> must_be_positive;
 };
 OrbitRows orbit_rows(Problem& p, const std::string& id, const io::json& target);
 

@@ -75,11 +75,19 @@ json control_law_json(const ControlLaw& law, bool smoothed) {
   return control;
 }
 
+// The conditions g > 0 a constraint's rows leave to the runtime (model.hpp's SideCondition).
+json side_conditions_json(const std::vector<SideCondition>& sides) {
+  json out = json::array();
+  for (const auto& side : sides) out.push_back({{"expression", to_text(side.expression)}, {"meaning", side.meaning}});
+  return out;
+}
+
 json constraint_json(const EndpointConditions& c) {
   const EndpointConstraint& k = c.constraint;
   json out = {{"id", k.id}, {"kind", k.kind}, {"at", k.at}, {"target", k.target}};
   out["psi"] = texts(k.psi);
   out["multipliers"] = c.multipliers;
+  if (!k.must_be_positive.empty()) out["must_be_positive"] = side_conditions_json(k.must_be_positive);
   if (k.at == "t0") {
     out["conditions"] = json::array({"x(t0) is fixed for " + std::to_string(k.fixed_states.size()) +
                                      " states, so their costates at t0 are free (shooting variables)"});
@@ -112,19 +120,21 @@ json event_json(const Problem& p, const EventConditions& c) {
   conditions.push_back("lambda(t+) = -nu_g (the multipliers of x+ - g)");
   conditions.push_back("H(t-) - H(t+) + nu_c^T dc/dt + lambda(t+)^T dg/dt = 0 (free epoch)");
   for (const auto& q : e.free_parameters) conditions.push_back("nu_c^T dc/d" + q + " + lambda(t+)^T dg/d" + q + " = 0");
-  return {{"id", e.id},
-          {"kind", e.kind},
-          {"target", e.target},
-          {"time",
-           {{"symbol", c.time_symbol},
-            {"window", {e.window_lo, e.window_hi}},
-            {"expression", to_text(c.time)},
-            {"duration", e.duration}}},
-          {"psi", texts(c.psi)},
-          {"multipliers", c.multipliers},
-          {"conditions", conditions},
-          {"state_map", state_map},
-          {"costate_map", costate_map}};
+  json out = {{"id", e.id},
+              {"kind", e.kind},
+              {"target", e.target},
+              {"time",
+               {{"symbol", c.time_symbol},
+                {"window", {e.window_lo, e.window_hi}},
+                {"expression", to_text(c.time)},
+                {"duration", e.duration}}},
+              {"psi", texts(c.psi)},
+              {"multipliers", c.multipliers}};
+  if (!e.must_be_positive.empty()) out["must_be_positive"] = side_conditions_json(e.must_be_positive);
+  out["conditions"] = conditions;
+  out["state_map"] = state_map;
+  out["costate_map"] = costate_map;
+  return out;
 }
 
 json variable_json(const ShootingVariable& v) {

@@ -13,6 +13,9 @@
 //   inclination i, node free      h_z - |h| cos i = 0 (0 < i < 180 deg; the rows above at 0)  1 row
 //   argument of periapsis w       e_vec.Q = 0: the periapsis along P in the plane            1 row
 //                                 (e > 0 and the plane given; P, Q below)
+// The plane's rows also hold with h along -n, and e_vec.Q = 0 with the periapsis along -P: the
+// mirrors are told apart by h.n > 0 and e_vec.P > 0, conditions the runtime checks on every
+// extremal (no two smooth rows on the sphere of directions vanish at one point only).
 // The gradient of |e_vec|^2 vanishes at e = 0, and that of h_z - |h| cos i at i = 0: those two are
 // refused there and the circular and equatorial rows used instead.
 #include <algorithm>
@@ -135,9 +138,15 @@ OrbitRows orbit_rows(Problem& p, const std::string& id, const io::json& target) 
     const auto [W, I] = el.plane();
     add(h[0] * cos(W) + h[1] * sin(W), "h.N_" + id);
     add(-h[0] * cos(I) * sin(W) + h[1] * cos(I) * cos(W) + h[2] * sin(I), "h.(n x N)_" + id);
+    rows.must_be_positive.push_back(
+        {h[0] * sin(I) * sin(W) - h[1] * sin(I) * cos(W) + h[2] * cos(I),
+         "h.n_" + id + " > 0: the orbit runs the stated way round its plane, not on its retrograde mirror"});
     if (el.argp_deg) {
       const ex w = el.angle("argp", "argument of periapsis", *el.argp_deg);
-      add(dot(e_vec, perifocal_axes(W, I, w).second), "e_vec.Q_" + id);
+      const auto [P, Q] = perifocal_axes(W, I, w);
+      add(dot(e_vec, Q), "e_vec.Q_" + id);
+      rows.must_be_positive.push_back(
+          {dot(e_vec, P), "e_vec.P_" + id + " > 0: the periapsis at the stated argument, not opposite it"});
     }
   } else if (el.i_deg) {
     const ex I = el.angle("inc", "inclination", *el.i_deg);

@@ -85,11 +85,19 @@ struct ControlLaw {
   std::vector<std::string> other;  // members of another name: laws of controls no reader knows
 };
 
+// A condition g > 0 the rows leave to the runtime (must_be_positive): they also hold on the
+// target's mirror, where an extremal is not returned.
+struct SideCondition {
+  Expression expression;
+  std::string meaning;
+};
+
 // An endpoint constraint psi = 0 at t0 or tf with the multipliers nu of its rows.
 struct Constraint {
   std::string id, kind, at;
   std::vector<Expression> psi;
   std::vector<std::string> multipliers;
+  std::vector<SideCondition> must_be_positive;
   io::json target;  // where the constraint takes its target from, as written (null when absent)
 };
 
@@ -115,6 +123,7 @@ struct Event {
   double duration = 0;
   std::vector<Expression> psi;
   std::vector<std::string> multipliers;
+  std::vector<SideCondition> must_be_positive;  // in the state just before the event
   std::vector<StateMapEntry> state_map;
   std::vector<CostateMapEntry> costate_map;
   io::json target;  // null when absent

@@ -46,6 +46,14 @@ struct Control {
 };
 
 // psi(t_k, x(t_k), p) = 0 at t0 or tf, comparing states with target parameters.
+// A condition g(x) > 0 a constraint's rows do not impose: they also hold on its mirror (an orbit
+// of the stated plane run the other way, the periapsis opposite the stated one), which a
+// converged extremal must not be on. The runtime checks it on every extremal it returns.
+struct SideCondition {
+  GiNaC::ex expression;  // in the symbols of the constraint's rows
+  std::string meaning;
+};
+
 struct EndpointConstraint {
   std::string id, kind, at;      // kind: initial_state | rendezvous | flyby (position only) | orbit_insertion
   std::vector<GiNaC::ex> psi;    // in the state symbols (evaluated at `at`)
@@ -64,6 +72,7 @@ struct EndpointConstraint {
     double lo = 0, hi = 0;
   };
   std::vector<FreeParameter> free_parameters;
+  std::vector<SideCondition> must_be_positive;
 };
 
 // A body on a Keplerian orbit about the central body, propagated by the runtime.
@@ -86,6 +95,7 @@ struct InteriorEvent {
   std::vector<bool> c_inequality;            // true: the row is a bound c_j <= 0 (active only in pass 2)
   std::vector<GiNaC::ex> map;                // g, one per state
   std::vector<std::string> free_parameters;  // Category C parameters inside psi (found by stationarity)
+  std::vector<SideCondition> must_be_positive;  // in the state just before the event
   io::json target;
 };
 
