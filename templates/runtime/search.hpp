@@ -578,9 +578,11 @@ class MultiStart {
   }
 
   // Whether the search leaves the problem unsettled: its best extremal winds more than
-  // kFewRevolutions times, or it found none, and the starts did not saturate.
+  // kFewRevolutions times, or it found none, and the starts did not saturate on kMinConverged
+  // converged ones at least. Starts that saturate with fewer (the companion's extremals stop the
+  // draws: draws.hpp) say only that starts find nothing, not that the extremals found are the best.
   bool unsettled() const {
-    if (rec_.saturated && !rec_.extremals.empty()) return false;
+    if (rec_.saturated && rec_.converged_start >= kMinConverged && !rec_.extremals.empty()) return false;
     const int best = best_index(rec_);
     return best < 0 || rec_.extremals[best].shape.revolutions > kFewRevolutions;
   }
