@@ -222,6 +222,9 @@ ifneq ($(filter run,$(or $(MAKECMDGOALS),run)),)
   ifeq ($(filter $(scenario),$(KNOWN_SCENARIOS)),)
     $(error scenario=$(scenario) is not a scenario of $(SCENARIOS_DIR)/: use one of $(filter-out P%,$(KNOWN_SCENARIOS))$(if $(filter P%,$(KNOWN_SCENARIOS)), (sweeps, make sweep sweep=P..: $(filter P%,$(KNOWN_SCENARIOS)))))
   endif
+  # The solve reads settings.json and the score reference.json: a folder without one is named here.
+  $(foreach f,settings.json reference.json,$(if $(wildcard $(SCENARIOS_DIR)/$(scenario)/$(f)),,\
+    $(error $(SCENARIOS_DIR)/$(scenario)/$(f) is missing: a scenario is a folder of problem.txt, settings.json and reference.json (scenarios/S01/ has examples))))
 endif
 ifneq ($(sweep),)
 ifneq ($(BACKEND),builtin)

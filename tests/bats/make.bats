@@ -46,6 +46,12 @@ mk() {
     { echo "$output" >&2; false; }
   run -2 --separate-stderr mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=S01
   assert_stderr_contains "scenario=S01 is not a scenario of $BATS_TEST_TMPDIR/mine/: use one of X01"
+  # a folder without its settings is named, not make's "No rule to make target"
+  mkdir -p mine/X02
+  cp "$S01"/{problem.txt,reference.json} mine/X02/
+  run -2 --separate-stderr mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=X02
+  [[ ${#stderr_lines[@]} -eq 1 ]] || { echo "$stderr" >&2; false; }
+  assert_stderr_contains "$BATS_TEST_TMPDIR/mine/X02/settings.json is missing: a scenario is a folder of problem.txt, settings.json and reference.json"
 }
 
 @test "make help: lists the main targets and variables" {
