@@ -207,6 +207,18 @@ TEST(Report, AnExpressionItCannotReadIsShownAsText) {
   EXPECT_NE(md.find("`rx +* 2` (not an expression this report can typeset)"), std::string::npos);
 }
 
+// A target orbit's side condition (h.n > 0 for GEO: h_z) is typeset under its rows with its meaning.
+TEST(Report, ATargetOrbitsSideConditionIsShownUnderItsRows) {
+  helios::report::ReportInputs in;
+  in.spec = spec_of("S14");
+  in.derivation = helios::pmp::derive_from_spec(in.spec);
+  const std::string md = helios::report::report_markdown(in);
+  const std::size_t at = md.find("g_{1} = r_{x} v_{y} - r_{y} v_{x} > 0\n$$\n");
+  ASSERT_NE(at, std::string::npos) << md;
+  EXPECT_NE(md.find("(h.n\\_arrival \\> 0: the orbit runs the stated way", at), std::string::npos)
+      << md.substr(at, 300);
+}
+
 // The search's extremals table gives each objective in the unit its record names: propellant,
 // flight time or a final-state objective alike.
 TEST(Report, TheExtremalsTableGivesTheObjectiveInItsUnit) {

@@ -193,6 +193,8 @@ class Writer {
   std::string condition(const std::string& text, const std::string& where);
   std::string inline_symbol(const std::string& name) const { return "$" + tex_.symbol(name) + "$"; }
   std::string findings(const std::function<bool(const json&)>& concerns) const;
+  // The conditions g > 0 an owner's rows leave to the runtime (must_be_positive), each with its meaning.
+  std::string side_conditions(const json& owner, const std::string& where);
 
   void header(std::ostringstream& o) const;
   void problem(std::ostringstream& o) const;
@@ -456,6 +458,7 @@ void Writer::boundaries(std::ostringstream& o) {
     const json& psi = c.value("psi", json::array());
     for (std::size_t i = 0; i < psi.size(); ++i)
       o << display("\\psi_{" + std::to_string(i + 1) + "}", psi[i], "/constraints/" + id + "/psi", " = 0");
+    o << side_conditions(c, "/constraints/" + id);
     o << "Conditions:\n\n";
     for (const auto& cond : c.value("conditions", json::array())) o << condition(cond, "/constraints/" + id);
     if (c.contains("time_condition")) o << "- " << escaped(c.at("time_condition")) << "\n";
@@ -465,6 +468,16 @@ void Writer::boundaries(std::ostringstream& o) {
                   (c.at("at") == "t0" ? id_starts(check, "transversality_t0") : !id_starts(check, "transversality_t0"));
          });
   }
+}
+
+std::string Writer::side_conditions(const json& owner, const std::string& where) {
+  const json& sides = owner.value("must_be_positive", json::array());
+  if (sides.empty()) return "";
+  std::string out = "The rows also hold on the target's mirror; the solver returns no extremal where one of these fails:\n";
+  for (std::size_t i = 0; i < sides.size(); ++i)
+    out += display("g_{" + std::to_string(i + 1) + "}", sides[i].at("expression"), where + "/must_be_positive", " > 0") +
+           "(" + escaped(sides[i].at("meaning")) + ")\n\n";
+  return out;
 }
 
 void Writer::events(std::ostringstream& o) {
@@ -481,6 +494,7 @@ void Writer::events(std::ostringstream& o) {
     const json& psi = ev.value("psi", json::array());
     for (std::size_t i = 0; i < psi.size(); ++i)
       o << display("\\psi_{" + std::to_string(i + 1) + "}", psi[i], "/events/" + id + "/psi", " = 0");
+    o << side_conditions(ev, "/events/" + id);
     o << "Conditions:\n\n";
     for (const auto& cond : ev.value("conditions", json::array())) o << condition(cond, "/events/" + id);
     o << "\nState and costate after the event:\n";
