@@ -108,9 +108,11 @@ struct Settings {
   bool search_fuel_companion = true;
   bool search_thrust_continuation = true;
   // A minimum-fuel problem at a fixed final time also solved from its minimum-time extremal
-  // (fuel_from_time.hpp): "auto" where the search leaves it unsettled (as for the thrust
-  // continuation: many revolutions or no extremal, the starts not saturated), "always", "never".
-  std::string search_fuel_from_time = "auto";
+  // (fuel_from_time.hpp): "always" (the default: starts that saturate can miss the best extremal,
+  // and where they settle the route is cheap), "auto" only where the search leaves it unsettled
+  // (as for the thrust continuation: many revolutions or no extremal, the starts not saturated),
+  // "never".
+  std::string search_fuel_from_time = "always";
   // The integrator's rtol and atol during the search (never tighter than rtol and atol; 0: those):
   // every distinct extremal it reaches at eps = 0 is then polished at rtol and atol.
   double search_tol = 1e-10;
