@@ -32,7 +32,7 @@ for thrust in "${thrusts[@]}"; do
     "$bin/helios-gen" "$dir/derivation.json" -o "$dir/shoot.cpp"
     t0=$(date +%s.%N)
     "$bin/helios-solve" "$dir/shoot.cpp" --settings "$dir/settings.json" --time-limit 1300 --cache-dir "$dir/cache" \
-      --plots "" -o "$dir/solution.json" 2>"$dir/stderr" || true
+      --plots "" --trajectory "$dir/trajectory.csv" -o "$dir/solution.json" 2>"$dir/stderr" || true
     wall=$(echo "$(date +%s.%N) - $t0" | bc -l)
     jq -r --arg T "$thrust" --arg route "$route" --arg wall "$wall" --arg tof "$(echo "$tof_days * 24" | bc -l)" '
       (.search.returned // -1) as $k
