@@ -74,8 +74,7 @@ bool homotopy_to_zero(const Settings& s, Shooter& shooter, std::vector<double>& 
 struct RecordedPath {
   std::vector<Sample> samples;
   std::vector<Switch> switches;
-  std::vector<double> side_values;  // the side conditions g > 0 (Propagator::side_values)
-  std::vector<const char*> side_meanings;
+  std::vector<Propagator::SideValue> side_values;  // the side conditions g > 0 at x
 };
 inline RecordedPath recorded_path(const Settings& s, const std::vector<double>& x, double eps, double max_step,
                                   const std::vector<double>& nodes = {}, int segments = 1, double fuel_weight = 0) {
@@ -89,7 +88,6 @@ inline RecordedPath recorded_path(const Settings& s, const std::vector<double>& 
   z.insert(z.end(), nodes.begin(), nodes.end());
   solution_function(z.data(), nodes.size(), eps, segments, prop, F.data());
   path.side_values = prop.side_values;
-  path.side_meanings = prop.side_meanings;
   return path;
 }
 
@@ -150,8 +148,8 @@ inline Shape shape_of(const Settings& s, const std::vector<double>& x, double ep
   const std::vector<Sample>& samples = path.samples;
   if (samples.size() < 2) return out;
   out.switches = static_cast<int>(path.switches.size());
-  for (std::size_t k = 0; k < path.side_values.size(); ++k)
-    if (!(path.side_values[k] > 0) && out.off_side.empty()) out.off_side = path.side_meanings[k];
+  for (const auto& side : path.side_values)
+    if (!(side.g > 0) && out.off_side.empty()) out.off_side = side.meaning;
   const auto& y0 = samples.front().y;
   std::array<double, 3> h{y0[1] * y0[5] - y0[2] * y0[4], y0[2] * y0[3] - y0[0] * y0[5], y0[0] * y0[4] - y0[1] * y0[3]};
   double hn = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);

@@ -90,12 +90,8 @@ Dual bound_row(Propagator& prop, int k, const Dual& psi, const Dual& inactive) {
 }
 
 void side_condition(Propagator& prop, int k, double g, const char* meaning) {
-  if (static_cast<std::size_t>(k) >= prop.side_values.size()) {
-    prop.side_values.resize(k + 1, INFINITY);
-    prop.side_meanings.resize(k + 1, "");
-  }
-  prop.side_values[k] = g;
-  prop.side_meanings[k] = meaning;
+  if (static_cast<std::size_t>(k) >= prop.side_values.size()) prop.side_values.resize(k + 1);
+  prop.side_values[k] = {g, meaning};
 }
 
 void side_condition(Propagator& prop, int k, const Dual& g, const char* meaning) {

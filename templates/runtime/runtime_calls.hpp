@@ -176,8 +176,11 @@ class Propagator {
   // The conditions g > 0 the rows leave to the runtime (the derivation's must_be_positive: the
   // rows also hold on the target's mirror), each g and its meaning at the last evaluation
   // (side_condition).
-  std::vector<double> side_values;
-  std::vector<const char*> side_meanings;
+  struct SideValue {
+    double g = INFINITY;
+    const char* meaning = "";
+  };
+  std::vector<SideValue> side_values;
 
   // With `tangents`: also carries k tangent directions of z = (y, lambda0) by the variational
   // equations (the same steps as y, so they are the derivatives of the integration itself), with

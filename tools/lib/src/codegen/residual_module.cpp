@@ -107,7 +107,7 @@ class ShootingFunction {
   Body body_;
   std::map<std::string, std::string> hamiltonian_at_;  // event value names by where H is evaluated
   std::vector<int> leg_sizes_;
-  int side_conditions_ = 0;
+  int side_condition_count_ = 0;  // recorded so far (each one's index on the propagator)
 };
 
 std::string ShootingFunction::text(bool jacobian) {
@@ -198,7 +198,7 @@ void ShootingFunction::unpack_y(const std::string& label) {
 
 void ShootingFunction::side_conditions(const std::vector<derivation::SideCondition>& sides, const GiNaC::exmap& at) {
   for (const auto& side : sides)
-    body_.code() << "  side_condition(prop, " << side_conditions_++ << ", "
+    body_.code() << "  side_condition(prop, " << side_condition_count_++ << ", "
                  << body_.cpp(c_.parsed(side.expression).subs(at))
                  << ", " << cpp_string(side.meaning) << ");\n";
 }

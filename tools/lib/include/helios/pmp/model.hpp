@@ -45,7 +45,6 @@ struct Control {
   std::string kind;
 };
 
-// psi(t_k, x(t_k), p) = 0 at t0 or tf, comparing states with target parameters.
 // A condition g(x) > 0 a constraint's rows do not impose: they also hold on its mirror (an orbit
 // of the stated plane run the other way, the periapsis opposite the stated one), which a
 // converged extremal must not be on. The runtime checks it on every extremal it returns.
@@ -54,6 +53,7 @@ struct SideCondition {
   std::string meaning;
 };
 
+// psi(t_k, x(t_k), p) = 0 at t0 or tf, comparing states with target parameters.
 struct EndpointConstraint {
   std::string id, kind, at;      // kind: initial_state | rendezvous | flyby (position only) | orbit_insertion
   std::vector<GiNaC::ex> psi;    // in the state symbols (evaluated at `at`)
