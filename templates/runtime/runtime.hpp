@@ -15,9 +15,9 @@
 // problem without them, else leg by leg (continuation.hpp, legs.hpp); bounds psi <= 0 by passes
 // over the active set (bounds.hpp); a global search over seeded starts until saturated, with the
 // revolution families, a minimum-time problem's minimum-fuel companion and the continuation of a
-// many-revolution transfer on the thrust (search.hpp, families.hpp, minimum_time.hpp,
-// thrust_continuation.hpp); and the last polish of a converged solution by multiple
-// shooting (nodes.hpp).
+// many-revolution transfer on the thrust (search.hpp, extremals.hpp, families.hpp,
+// minimum_time.hpp, thrust_continuation.hpp); and the last polish of a converged solution by
+// multiple shooting (nodes.hpp).
 // ---------------------------------------------------------------------------------------------
 #pragma once
 
@@ -42,6 +42,7 @@
 #include "minimum_time.hpp"
 #include "thrust_continuation.hpp"
 #include "fuel_from_time.hpp"
+#include "extremals.hpp"
 #include "search.hpp"
 #include "nodes.hpp"
 #include "report.hpp"
