@@ -270,12 +270,13 @@ Result two_pass_solve(const Settings& given, const std::vector<Bound>& bounds, c
     first = bound_values(s, r.x, bounds.size());
     std::vector<Extremal>& extremals = r.search.extremals;
     const std::vector<std::size_t> order = pass_one_starts(s, r);
-    Result best = r;
-    double best_objective = INFINITY;
-    int best_from = r.search.returned;
+    // Each start's result with the bounds (its active set and changes), by extremal; the chooser
+    // decides which is returned.
+    std::map<int, std::tuple<Result, std::vector<char>, std::vector<std::string>>> reached;
+    double lowest = INFINITY;
     for (const std::size_t i : order) {
       Extremal& o = extremals[i];
-      if (wall_seconds() > s.time_limit_s || o.shape.cost >= best_objective) continue;
+      if (out_of_time(s) || o.shape.cost >= lowest) continue;
       o.bounded_tried = true;
       Result from = r;
       from.x = o.x;
@@ -285,16 +286,16 @@ Result two_pass_solve(const Settings& given, const std::vector<Bound>& bounds, c
       if (!active_set_passes(s, bounds, from, false, solve, admissible, log, changes)) continue;
       o.bounded_objective = objective_of(s, from.x);
       o.bounded_passes = from.passes;
-      if (o.bounded_objective < best_objective) {
-        best_objective = o.bounded_objective;
-        best = from;
-        best_from = static_cast<int>(i);
-        final_set = s.active_bounds;
-        steps = changes;
-        consistent = true;
-      }
+      lowest = std::min(lowest, o.bounded_objective);
+      reached.emplace(static_cast<int>(i), std::make_tuple(from, s.active_bounds, changes));
     }
-    if (!consistent && wall_seconds() <= s.time_limit_s) {
+    const Choice choice = choose_with_bounds(r.search);
+    Result best = r;
+    if (choice.returned >= 0) {
+      std::tie(best, final_set, steps) = reached.at(choice.returned);
+      consistent = true;
+    }
+    if (!consistent && !out_of_time(s)) {
       log.from = "cold: ";
       best = r;
       steps.clear();
@@ -304,10 +305,9 @@ Result two_pass_solve(const Settings& given, const std::vector<Bound>& bounds, c
     SearchRecord record = std::move(r.search);
     r = best;
     r.search = std::move(record);
-    if (consistent) {
-      r.search.returned = best_from;
-      r.search.reason = "the lowest objective with the bounds reached from the " +
-                        std::to_string(r.search.extremals.size()) + " distinct extremals of pass 1";
+    if (choice.returned >= 0) {
+      r.search.returned = choice.returned;
+      r.search.reason = choice.reason;
     }
     if (!consistent) {
       r.status = Status::kNotConverged;

@@ -209,7 +209,9 @@ inline nlohmann::ordered_json extremals_record(const std::vector<Extremal>& list
                                     {"max_residual", recorded(e.max_residual)},
                                     {"polished", e.polished},
                                     {"method", e.method}};
-    if (!within_window(e.x)) entry["outside_window"] = true;
+    if (e.outside_window) entry["outside_window"] = true;
+    if (std::isfinite(e.tf_days)) entry["tf_days"] = e.tf_days;
+    if (!e.route.empty()) entry["route"] = e.route;
     if (!e.shape.off_side.empty()) entry["off_side"] = e.shape.off_side;
     objective_in_units(entry, e.shape.cost);
     if (e.bounded_tried) {  // where the passes over the bounds led from this extremal
@@ -262,11 +264,12 @@ inline nlohmann::ordered_json search_record(const SearchRecord& rec) {
     for (const auto& c : rec.time_route) steps.push_back(continuation_step_record(c));
     nlohmann::ordered_json paths = nlohmann::ordered_json::array();
     for (const auto& p : rec.time_route_paths)
-      paths.push_back({{"from", p.from},
-                       {"minimum_tf_days", std::isfinite(p.tf_min_days) ? nlohmann::ordered_json(p.tf_min_days) : nullptr},
-                       {"revolutions", std::isfinite(p.revolutions) ? nlohmann::ordered_json(p.revolutions) : nullptr},
-                       {"reached_before", p.reached_before},
-                       {"extremal", p.extremal}});
+      paths.push_back(
+          {{"from", p.from},
+           {"minimum_tf_days", std::isfinite(p.tf_min_days) ? nlohmann::ordered_json(p.tf_min_days) : nullptr},
+           {"revolutions", std::isfinite(p.revolutions) ? nlohmann::ordered_json(p.revolutions) : nullptr},
+           {"reached_before", p.reached_before},
+           {"extremal", p.extremal}});
     out["minimum_time_route"] = {{"paths", paths}, {"steps", steps}};
   }
   if (!rec.thrust_continuation.empty()) {
@@ -274,6 +277,23 @@ inline nlohmann::ordered_json search_record(const SearchRecord& rec) {
     for (const auto& c : rec.thrust_continuation) steps.push_back(continuation_step_record(c));
     out["thrust_continuation"] = {{"arrived", rec.thrust_continuation_arrived}, {"steps", steps}};
   }
+  if (!rec.routes.empty()) {
+    nlohmann::ordered_json routes = nlohmann::ordered_json::array();
+    for (const auto& run : rec.routes)
+      routes.push_back({{"name", run.name},
+                        {"ran", run.ran},
+                        {"outcome", run.outcome},
+                        {"extremals_added", run.added},
+                        {"evaluations", run.evaluations}});
+    out["routes"] = routes;
+  }
+  if (std::isfinite(rec.minimum_time_days))
+    out["minimum_time"] = {
+        {"tf_days", rec.minimum_time_days},
+        {"bound_days", std::isfinite(rec.bound_days) ? nlohmann::ordered_json(rec.bound_days) : nullptr},
+        {"settled", rec.minimum_time_settled},
+        {"how", rec.minimum_time_how}};
+  out["time_limit_hit"] = rec.time_limit_hit;
   if (rec.returned >= 0) {
     out["returned"] = rec.returned;
     out["reason"] = rec.reason;
@@ -449,6 +469,8 @@ const char* status_text(Status status) {
   switch (status) {
     case Status::kConverged:
       return "converged";
+    case Status::kInfeasible:
+      return "infeasible";
     case Status::kNotConverged:
       return "not_converged";
     case Status::kTimeout:

@@ -13,10 +13,11 @@
 // hybrd's differences without it (shooter.hpp); eps-homotopy from eps = 1 with adaptive steps,
 // tangent predictors and retreat (homotopy.hpp); interior events reached by continuation from the
 // problem without them, else leg by leg (continuation.hpp, legs.hpp); bounds psi <= 0 by passes
-// over the active set (bounds.hpp); a global search over seeded starts until saturated, with the
-// revolution families, a minimum-time problem's minimum-fuel companion and the continuation of a
-// many-revolution transfer on the thrust (search.hpp, extremals.hpp, families.hpp,
-// minimum_time.hpp, thrust_continuation.hpp); and the last polish of a converged solution by
+// over the active set (bounds.hpp); a global search of routes over one pool of extremals, decided
+// by one chooser (search/: pipeline.hpp, pool.hpp, chooser.hpp, a file per route: starts, the
+// revolution families, a minimum-time problem's minimum-fuel companion, the continuation of a
+// many-revolution transfer on the thrust, the route from the minimum time, the complete attempts
+// of a problem with events); and the last polish of a converged solution by
 // multiple shooting (nodes.hpp).
 // ---------------------------------------------------------------------------------------------
 #pragma once
@@ -36,14 +37,20 @@
 #include "homotopy.hpp"
 #include "legs.hpp"
 #include "continuation.hpp"
+#include "search/draws.hpp"
+#include "search/knobs.hpp"
+#include "search/pool.hpp"
+#include "search/chooser.hpp"
 #include "bounds.hpp"
-#include "draws.hpp"
-#include "families.hpp"
-#include "minimum_time.hpp"
-#include "thrust_continuation.hpp"
-#include "fuel_from_time.hpp"
-#include "extremals.hpp"
-#include "search.hpp"
+#include "search/route.hpp"
+#include "search/starts.hpp"
+#include "search/families.hpp"
+#include "search/companion.hpp"
+#include "search/thrust.hpp"
+#include "search/time_route.hpp"
+#include "search/attempts.hpp"
+#include "search/warm.hpp"
+#include "search/pipeline.hpp"
 #include "nodes.hpp"
 #include "report.hpp"
 // clang-format on

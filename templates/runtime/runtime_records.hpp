@@ -43,7 +43,7 @@ struct ProblemShape {
   int num_states, num_controls;
   int throttle_index;  // -1: no throttle (one mode)
   int num_vars;
-  int mass_index;     // -1: no mass state (a sail)
+  int mass_index;  // -1: no mass state (a sail)
   Objective objective;
   const double& t0;
   const double& tf;      // the final time, or the upper end of its window when it is free
@@ -79,7 +79,7 @@ struct numerical_error : std::runtime_error {
 struct Settings {
   unsigned seed = 1;
   int max_attempts = 100000;
-  double time_limit_s = 600;
+  double time_limit_s = 3600;
   double rtol = 1e-13, atol = 1e-13;
   double hybrd_tol = 1e-12;
   double accept_residual = 1e-8;  // intermediate homotopy steps
@@ -88,16 +88,18 @@ struct Settings {
   double eps_min = 1e-6;  // below this the next step is eps = 0
   double eps_first_ratio = 0.5;
   int leg_attempts = 20;  // random guesses per leg before the attempt is abandoned
-  // The global search (search.hpp): starts at eps_start are drawn until the Good-Turing chance
-  // that the next one finds a new extremal is at most search_saturation (draws.hpp), at most
-  // search_starts of them (0: no cap); the lowest-cost distinct extremals are continued to eps = 0
-  // search_continued at a time (problems without interior events); complete attempts (problems
-  // with them); its own time budget (0: only time_limit_s) and threads (0: the cores).
+  // The global search (search/pipeline.hpp): starts at eps_start are drawn until the Good-Turing
+  // chance that the next one finds a new extremal is at most search_saturation (search/draws.hpp),
+  // at most search_starts of them (0: kDefaultStartCap); the lowest-cost distinct extremals are
+  // continued to eps = 0 search_continued at a time (problems without interior events); complete
+  // attempts (problems with them); threads (0: the cores). Every stopping rule counts work: a run
+  // stops on the clock only at time_limit_s (the safety net, said in the record), or at
+  // search_time_s where a user sets one (0, the default: none).
   int search_starts = 0;
   double search_saturation = 0.01;
   int search_continued = 4;
   int search_attempts = 4;
-  double search_time_s = 60;
+  double search_time_s = 0;
   int threads = 0;
   // Problems without interior events: every distinct extremal at eps_start continued (false: only
   // those whose cost there, a lower bound of their objective, can still beat the best); the
@@ -240,6 +242,7 @@ struct ContinuationStep {
 // extremal at its end, if it got there, and every step on the way.
 struct PathArrival {
   bool arrived = false;
+  double reached = NAN;  // the path's parameter where it stopped (its last converged step)
   std::vector<double> x, F;
   double max_residual = INFINITY;
   int info = 0;
@@ -288,6 +291,12 @@ struct Extremal {
   std::vector<LegStep> legs;
   std::vector<ContinuationStep> continuation;
   bool polished = true;  // it converged again at the integrator's own tolerance (search_tol)
+  // Its free final time lies outside the final time's window (never returned; search/pool.hpp).
+  bool outside_window = false;
+  // Its final time in days where the final time is free (the window's check and an infeasibility
+  // verdict read it), NaN where it is fixed.
+  double tf_days = NAN;
+  std::string route;  // the route of the search that reached it first (search/pipeline.hpp)
   bool bounded_tried = false;
   double bounded_objective = NAN;
   int bounded_passes = 0;
@@ -345,13 +354,31 @@ struct SearchRecord {
   std::vector<Extremal> extremals;
   int returned = -1;  // index into extremals
   std::string reason;
+  // What each route of the search did (search/pipeline.hpp), in the order they ran: its name, what
+  // it found or why it was skipped, the extremals at eps = 0 it added and its function evaluations.
+  struct RouteRun {
+    std::string name, outcome;
+    int added = 0, evaluations = 0;
+    bool ran = false;
+  };
+  std::vector<RouteRun> routes;
+  // The shortest final time at which the transfer was found possible (days; NaN: not sought), how,
+  // and whether the search for it settled; the stated bound it is compared with (a minimum-time
+  // problem's window end or a fixed time of flight). Where it exceeds the bound the verdict is
+  // infeasible (search/chooser.hpp).
+  double minimum_time_days = NAN, bound_days = NAN;
+  bool minimum_time_settled = false;
+  std::string minimum_time_how;
+  // The run's time limit (time_limit_s) was reached: the one way two runs of a seed may differ.
+  bool time_limit_hit = false;
 };
 
 // How a solve ended. The default says the solver did not run (a Result nobody solved); the
-// runtime's solves end converged, not converged or timed out. Its text (status_text) is written
-// only where solution.json and stdout are.
-enum class Status { kNotSolved, kConverged, kNotConverged, kTimeout };
-// "not_solved", "converged", "not_converged", "timeout": solution.json's status.
+// runtime's solves end converged, infeasible (the transfer needs longer than the problem allows,
+// with the minimum time that shows it), not converged or timed out. Its text (status_text) is
+// written only where solution.json and stdout are.
+enum class Status { kNotSolved, kConverged, kInfeasible, kNotConverged, kTimeout };
+// "not_solved", "converged", "infeasible", "not_converged", "timeout": solution.json's status.
 const char* status_text(Status status);
 
 struct Result {

@@ -1,6 +1,7 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, families (templates/runtime/families.hpp): the transfer-angle
-// continuation, by which the search looks for the neighbours of an extremal along its family.
+// HELIOS shooting runtime, the families route (templates/runtime/search/families.hpp): the
+// transfer-angle continuation, by which the search looks for the neighbours of an extremal along
+// its family, and the walk along the family of the best extremal while the objective improves.
 //
 // The extremals of a rendezvous with many revolutions form a family ordered by the revolutions
 // they sweep (the objective often monotone along it), and random starts may never land in the
@@ -120,6 +121,107 @@ bool turn_one_revolution(const Settings& s, std::vector<double>& x, double eps, 
   evaluations += shooter.evaluations;
   return arrived;
 }
+
+// The family walk: from the best extremal, its neighbours with one revolution fewer and one more,
+// each taken from the search where it has one of that count (reached, or at eps_start and not
+// continued: continued now), else turned from the best by the transfer angle; then again from the
+// new best, until a round finds no better one. Every neighbour looked for is recorded (rec.family).
+class FamiliesRoute : public Route {
+ public:
+  const char* name() const override { return "families"; }
+  std::string skip(const SearchContext& c) const override {
+    if (!c.coarse.search_families) return "search_families is off";
+    if (best_index(c.rec()) < 0) return "no extremal to walk from";
+    return "";
+  }
+
+  std::string run(SearchContext& c) override {
+    std::vector<std::pair<int, int>> tried;  // (extremal, direction)
+    const double first = best_objective(c.rec());
+    for (;;) {
+      const int best = best_index(c.rec());
+      if (best < 0 || c.out_of_time()) break;
+      const double before = best_objective(c.rec());
+      for (const int direction : {-1, 1}) {
+        if (std::find(tried.begin(), tried.end(), std::make_pair(best, direction)) != tried.end()) continue;
+        tried.emplace_back(best, direction);
+        if (!c.out_of_time()) look_for_neighbour(c, best, direction);
+      }
+      if (!(best_objective(c.rec()) < before)) break;
+    }
+    const double last = best_objective(c.rec());
+    return std::to_string(tried.size()) + " neighbours looked for" +
+           (last < first ? ", best improved to " + objective_text(last) : ", no better one");
+  }
+
+ private:
+  // One neighbour of extremal `of` (see the class).
+  void look_for_neighbour(SearchContext& c, int of, int direction) {
+    SearchRecord& rec = c.rec();
+    FamilyProbe probe;
+    probe.from = of;
+    probe.direction = direction;
+    probe.revolutions = rec.extremals[of].shape.revolutions + direction;
+    const auto near = [&](const Shape& shape) { return std::fabs(shape.revolutions - probe.revolutions) < 0.5; };
+    for (std::size_t i = 0; i < rec.extremals.size() && probe.found < 0; ++i)
+      if (near(rec.extremals[i].shape)) {
+        probe.how = "reached by the search";
+        probe.found = static_cast<int>(i);
+      }
+    for (std::size_t i = 0; i < rec.start_extremals.size() && probe.found < 0 && probe.how.empty(); ++i)
+      if (near(rec.start_extremals[i].shape) && !rec.start_extremals[i].continued) {
+        probe.how = "an extremal at eps_start of that count";
+        probe.found = continue_if_promising(c, name(), static_cast<int>(i), probe.how);
+      }
+    if (probe.how.empty()) probe.found = turn(c, of, direction, probe.how);
+    c.progress.stage("family of extremal " + std::to_string(of) + ": " +
+                     (direction < 0 ? "one fewer, " : "one more, ") + number_text(probe.revolutions, 3) +
+                     " revolutions (" + probe.how +
+                     "): " + (probe.found < 0 ? "none" : "extremal " + std::to_string(probe.found)));
+    rec.family.push_back(probe);
+  }
+
+  // The transfer angle from extremal `of`: from its eps_start extremal where it has one (the turned
+  // solution joins them and is continued to eps = 0), else from itself at eps = 0. Returns the
+  // extremal at eps = 0 reached (-1: none).
+  int turn(SearchContext& c, int of, int direction, std::string& how) {
+    SearchRecord& rec = c.rec();
+    const Extremal& e = rec.extremals[of];
+    std::vector<ContinuationStep> steps;
+    int evaluations = 0;
+    if (!e.from.empty()) {
+      const int parent = e.from.front();
+      StartRun run;
+      run.x = rec.start_extremals[parent].x;
+      how = "transfer angle from the extremal at eps_start " + std::to_string(parent);
+      const bool ok = turn_one_revolution(c.coarse, run.x, c.coarse.eps_start, direction, c.coarse.accept_residual,
+                                          c.admissible, steps, evaluations);
+      c.count(evaluations);
+      if (!ok) return -1;
+      run.res = steps.back().max_residual;
+      run.shape = shape_of(c.coarse, run.x, c.coarse.eps_start);
+      const int k = c.pool.enter_start(rec.start_extremals, run, -1, how);
+      if (rec.start_extremals[k].continued) return rec.start_extremals[k].arrived;
+      return continue_if_promising(c, name(), k, how);
+    }
+    std::vector<double> x = e.x;
+    how = "transfer angle from it at eps = 0";
+    const bool ok =
+        turn_one_revolution(c.coarse, x, 0.0, direction, c.coarse.final_residual, c.admissible, steps, evaluations);
+    c.count(evaluations);
+    if (!ok) return -1;
+    Extremal entry;
+    entry.x = x;
+    entry.F.assign(x.size(), 0.0);
+    Propagator prop(c.coarse);
+    shooting_function(x.data(), 0.0, prop, entry.F.data());
+    for (const double f : entry.F) entry.max_residual = std::max(entry.max_residual, std::fabs(f));
+    entry.shape = shape_of(c.coarse, x, 0.0);
+    entry.method = "single shooting, transfer angle from extremal " + std::to_string(of);
+    entry.continuation = std::move(steps);
+    return c.pool.enter(name(), std::move(entry));
+  }
+};
 
 }  // namespace
 

@@ -1,23 +1,23 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, draws (templates/runtime/draws.hpp): what every part of the global
+// HELIOS shooting runtime, draws (templates/runtime/search/draws.hpp): what every route of the
 // search draws its starts with. Start k of a stream gets its guess from a generator of (seed, k,
-// stream), starts run in batches on the search's threads and are merged in start order, so a
-// search is deterministic for a given seed whatever the thread count (unless its time budget cuts
-// it, which the record says). Converged starts are told apart (same_extremal), and the draws stop
-// when they look saturated:
+// stream), starts run in batches of kSearchBatch on the search's threads and are merged in start
+// order, and no rule reads the clock, so a search gives the same answer for a given seed on any
+// thread count and any load (only the run's time limit, the safety net, can cut it, and the record
+// says so). The draws stop when they look saturated:
 //
 //   Good-Turing: the chance that the next draw reaches a solution not seen yet is estimated by
 //   N1 / n, the share of the n draws so far whose solution no other draw reached (a draw that
-//   did not converge reaches none). The draws are saturated when at least kMinDraws were made, at
-//   least kMinConverged of them converged (where no other source supplies extremals), and that
-//   estimate is at most search_saturation (never with search_saturation 0). With 128 draws at
-//   least, an extremal whose basin holds 2.3 % of the starts is seen with probability 0.95; where
-//   few starts converge (a minimum-time problem's small basins), the converged ones are what
-//   the estimate rests on, so there must be enough of them.
+//   did not converge reaches none). The draws are saturated when at least kMinDraws were made and
+//   that estimate is at most search_saturation (never with search_saturation 0). With 128 draws at
+//   least, an extremal whose basin holds 2.3 % of the starts is seen with probability 0.95.
 //
 // The estimate is per draw, not per converged draw: where few starts converge, each draw is
 // unlikely to find anything new, and drawing on is cheap evidence of that; where many distinct
-// solutions are each reached once, the estimate stays high and the draws go on until the budget.
+// solutions are each reached once, the estimate stays high and the draws go on to their cap.
+// Saturation on few converged draws says that starts find little, not that what they found is the
+// best: the pipeline then calls the problem unsettled (search/chooser.hpp's settled) and runs its
+// other routes.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 
@@ -73,7 +73,7 @@ void parallel_for(int n, int threads, Work&& work) {
 }
 
 // One line on stderr per stage and at most one every two seconds in between, so a user waiting
-// for a long search sees it working.
+// for a long search sees what it is doing and how far it got. Only these lines read the clock.
 class Progress {
  public:
   void stage(const std::string& line) { print(line, true); }
@@ -92,46 +92,22 @@ class Progress {
   double last_ = -INFINITY;
 };
 
-// Two converged solutions are one extremal when their structure agrees (revolutions, switches)
-// and their shooting variables or their cost do.
-inline bool same_extremal(const std::vector<double>& xa, const Shape& a, const std::vector<double>& xb,
-                          const Shape& b) {
-  if (a.switches != b.switches || std::fabs(a.revolutions - b.revolutions) > 1e-3) return false;
-  double dx = 0, size = 1;
-  for (std::size_t i = 0; i < xa.size(); ++i) {
-    dx = std::max(dx, std::fabs(xa[i] - xb[i]));
-    size = std::max(size, std::fabs(xa[i]));
-  }
-  return dx <= 1e-6 * size || std::fabs(a.cost - b.cost) <= 1e-9 * std::max(1e-3, std::fabs(a.cost));
-}
-
-// Adds a converged solution to the distinct ones (`list` of StartExtremal or Extremal); returns
-// its index.
-template <class List>
-int merge_extremal(List& list, const std::vector<double>& x, const Shape& shape, int start,
-                   typename List::value_type&& entry) {
-  for (std::size_t i = 0; i < list.size(); ++i)
-    if (same_extremal(list[i].x, list[i].shape, x, shape)) {
-      ++list[i].reached;
-      return static_cast<int>(i);
-    }
-  entry.x = x;
-  entry.shape = shape;
-  entry.first_start = start;
-  entry.reached = 1;
-  list.push_back(std::move(entry));
-  return static_cast<int>(list.size()) - 1;
-}
-
 // Starts are drawn and merged in batches of this many, and saturation is not declared before
-// this many draws.
+// this many draws. Without search_starts, the starts of one route stop at kDefaultStartCap.
 constexpr int kSearchBatch = 8;
 constexpr int kMinDraws = 128;
 constexpr int kMinConverged = 16;
+constexpr int kDefaultStartCap = 1024;
 
 inline int search_threads(const Settings& s) {
   if (s.threads > 0) return s.threads;
   return static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
+}
+
+// The most starts a route draws: search_starts where set, else kDefaultStartCap, and never more
+// than max_attempts.
+inline int start_cap(const Settings& s) {
+  return std::min(s.max_attempts, s.search_starts > 0 ? s.search_starts : kDefaultStartCap);
 }
 
 // The Good-Turing chance that the next of `draws` draws reaches a solution not in `list` (see the
@@ -145,12 +121,18 @@ double unseen_chance(const List& list, int draws) {
 
 // Whether draws whose distinct solutions are `list` look saturated (see the top of this file).
 template <class List>
-bool saturated(const Settings& s, const List& list, int drawn, int converged, int min_converged) {
-  return s.search_saturation > 0 && drawn >= kMinDraws && converged >= min_converged &&
-         unseen_chance(list, drawn) <= s.search_saturation;
+bool saturated(const Settings& s, const List& list, int drawn) {
+  return s.search_saturation > 0 && drawn >= kMinDraws && unseen_chance(list, drawn) <= s.search_saturation;
 }
 
-// One start's outcome: x solved (empty x: not run, the time ran out), its shape and residual.
+// Whether the run's time limit (the safety net) has passed, or a user's search_time_s since
+// `started`.
+inline bool out_of_time(const Settings& s, double started = 0) {
+  const double now = wall_seconds();
+  return now > s.time_limit_s || (s.search_time_s > 0 && now - started > s.search_time_s);
+}
+
+// One start's outcome: x solved (empty x: not run, the time limit passed), its shape and residual.
 struct StartRun {
   bool ok = false;
   std::vector<double> x;
@@ -158,20 +140,26 @@ struct StartRun {
   double res = INFINITY;
 };
 
+// Why a run of draws stopped.
+enum class DrawStop { kSaturated, kCap, kTime };
+
 // Draws starts from `drawn` on (start k solved by solve_start(k, rng), the generator of (seed, k,
-// stream)) in batches of kSearchBatch on `threads` threads, merged in start order into `list`, until
-// the draws are saturated (with `min_converged` converged ones at least), `cap` starts were drawn
-// (0: no cap) or `deadline` (wall seconds) passes; `drawn` and `converged` count them. Returns the
-// Good-Turing chance of a new solution at the stop.
-template <class List, class SolveStart, class Tick>
-double draw_until_saturated(const Settings& s, int threads, std::uint64_t stream, List& list, int& drawn,
-                            int& converged, bool& cut_by_time, int cap, double deadline, int min_converged,
-                            SolveStart&& solve_start, Tick&& tick) {
-  while (!saturated(s, list, drawn, converged, min_converged) && (cap <= 0 || drawn < cap) && wall_seconds() < deadline) {
-    const int from = drawn, to = cap > 0 ? std::min(cap, from + kSearchBatch) : from + kSearchBatch;
+// stream)) in batches of kSearchBatch on `threads` threads, merged in start order by
+// `merge(run, k)`, until the draws are saturated (unless `past_saturation`), `cap` starts were
+// drawn or the time runs out (out_of_time since `started`); `drawn` and `converged` count them.
+// `list` is what saturation is judged on.
+template <class List, class SolveStart, class Merge, class Tick>
+DrawStop draw_until_saturated(const Settings& s, int threads, std::uint64_t stream, const List& list, int& drawn,
+                              int& converged, bool& cut_by_time, int cap, double started, SolveStart&& solve_start,
+                              Merge&& merge, Tick&& tick, bool past_saturation = false) {
+  for (;;) {
+    if (!past_saturation && saturated(s, list, drawn)) return DrawStop::kSaturated;
+    if (drawn >= cap) return DrawStop::kCap;
+    if (out_of_time(s, started)) return DrawStop::kTime;
+    const int from = drawn, to = std::min(cap, from + kSearchBatch);
     std::vector<StartRun> runs(static_cast<std::size_t>(to - from));
     parallel_for(to - from, threads, [&](int i) {
-      if (wall_seconds() >= deadline) return;
+      if (out_of_time(s, started)) return;
       std::mt19937_64 rng = start_generator(s.seed, from + i, stream);
       runs[i] = solve_start(from + i, rng);
       tick(from + i + 1);
@@ -184,12 +172,9 @@ double draw_until_saturated(const Settings& s, int threads, std::uint64_t stream
       ++drawn;
       if (!runs[i].ok) continue;
       ++converged;
-      typename List::value_type entry;
-      entry.max_residual = runs[i].res;
-      merge_extremal(list, runs[i].x, runs[i].shape, from + i, std::move(entry));
+      merge(runs[i], from + i);
     }
   }
-  return unseen_chance(list, drawn);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // ---------------------------------------------------------------------------------------------
-// HELIOS shooting runtime, minimum time (templates/runtime/minimum_time.hpp): a minimum-time
-// problem with a throttle, solved from its minimum-fuel companion.
+// HELIOS shooting runtime, the companion route (templates/runtime/search/companion.hpp): a
+// minimum-time problem with a throttle, solved from its minimum-fuel companion.
 //
 // Random costates land in a minimum-time problem's basin rarely (a fraction of a percent of the
 // starts for an Earth-Mars transfer at some dates, none of 200 at others). Physics offers a better
@@ -28,20 +28,6 @@
 namespace helios_rt {
 
 namespace {
-
-// A free final time's shooting variable (tf_frac: tf = tf_min + (tf_max - tf_min) tf_frac) and
-// row (transversality_tf: H(tf) + dPhi/dtf = 0), by the derivation's names; -1 where there are none.
-struct FreeFinalTime {
-  int variable = -1, row = -1;
-};
-inline FreeFinalTime free_final_time() {
-  FreeFinalTime f;
-  for (int i = 0; i < kProblem.num_vars; ++i) {
-    if (std::string(kProblem.variable_names[i]) == "tf_frac") f.variable = i;
-    if (std::string(kProblem.equation_names[i]) == "transversality_tf") f.row = i;
-  }
-  return f;
-}
 
 // Whether the problem has a minimum-fuel companion: the objective is the time, the final time is
 // free, and the throttle burns mass at a rate of its own (full_mass_flow).
@@ -122,8 +108,8 @@ CompanionArrival companion_to_minimum_time(const Settings& s, const std::vector<
   std::vector<double> z = without_held(x, f.variable);
   const double scale = std::max(hold, 1e-3);
   held = follow_parameter(
-      s, companion, z, eps_companion, [&](double v) { held = v; }, hold, 0.0, -1e-7,
-      {0.05 * scale, 1e-4 * scale, 0.2}, "minimum fuel, tf held (window fraction)", out.steps, admissible_z,
+      s, companion, z, eps_companion, [&](double v) { held = v; }, hold, 0.0, -1e-7, {0.05 * scale, 1e-4 * scale, 0.2},
+      "minimum fuel, tf held (window fraction)", out.steps, admissible_z,
       [](const std::vector<double>&) { return false; });
   out.held = held;
   evaluations += companion.evaluations;
@@ -143,6 +129,85 @@ CompanionArrival companion_to_minimum_time(const Settings& s, const std::vector<
   }
   return out;
 }
+
+// The route: the companion's starts at eps = 1 with tf held (companion_hold), drawn until
+// saturated or their cap; each distinct solution, cheapest first, continued down in tf and released
+// into the problem itself.
+class CompanionRoute : public Route {
+ public:
+  const char* name() const override { return "minimum-fuel companion"; }
+  std::string skip(const SearchContext& c) const override {
+    if (!c.coarse.search_fuel_companion) return "search_fuel_companion is off";
+    if (!has_fuel_companion()) return "not a minimum-time problem with a throttle that burns mass at a free final time";
+    return "";
+  }
+
+  std::string run(SearchContext& c) override {
+    SearchRecord& rec = c.rec();
+    const FreeFinalTime f = free_final_time();
+    const double hold = companion_hold(), eps = 1;
+    std::vector<StartExtremal>& list = rec.companion_solutions;
+    bool cut = false;
+    draw_until_saturated(
+        c.coarse, c.threads, kCompanionStream, list, rec.companion_draws, rec.companion_converged, cut,
+        start_cap(c.coarse), c.started,
+        [&](int, std::mt19937_64& rng) {
+          StartRun run;
+          run.x.assign(kProblem.num_vars, 0.0);
+          c.guess(rng, run.x.data());
+          std::vector<double> z = without_held(run.x, f.variable);
+          Shooter shooter(c.coarse, companion_function(f, hold));
+          int info = 0;
+          run.ok = shooter.solve(z, eps, c.coarse.accept_residual, info, run.res);
+          run.x = with_held(z, f.variable, hold);
+          run.ok = run.ok && c.admissible(run.x.data());
+          if (run.ok) run.shape = shape_of(c.coarse, run.x, eps, 1.0);
+          c.count(shooter.evaluations);
+          return run;
+        },
+        [&](const StartRun& run, int k) { c.pool.enter_start(list, run, k); },
+        [&](int k) { c.progress.tick(std::to_string(k) + " starts of the minimum-fuel companion"); });
+    rec.cut_by_time = rec.cut_by_time || cut;
+    rec.companion_tf_days =
+        (kProblem.tf_min + (kProblem.tf - kProblem.tf_min) * hold - kProblem.t0) * kProblem.time_unit_days;
+    c.progress.stage(std::to_string(rec.companion_draws) +
+                     " starts of the minimum-fuel companion (the final time held at " +
+                     days_text(rec.companion_tf_days, 6) + "): " + std::to_string(rec.companion_converged) +
+                     " converged, " + std::to_string(list.size()) + " distinct");
+    const std::vector<int> order = lowest_cost(list, list.size());
+    std::vector<CompanionArrival> arrivals(order.size());
+    parallel_for(static_cast<int>(order.size()), c.threads, [&](int i) {
+      if (c.out_of_time()) return;
+      int evaluations = 0;
+      arrivals[i] = companion_to_minimum_time(c.coarse, list[order[i]].x, hold, eps, c.admissible, evaluations);
+      c.count(evaluations);
+    });
+    int arrived = 0;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      StartExtremal& from = list[order[i]];
+      from.continued = true;
+      CompanionArrival& a = arrivals[i];
+      if (!a.arrived) continue;
+      ++arrived;
+      Extremal entry;
+      entry.x = a.x;
+      entry.F = a.F;
+      entry.max_residual = a.max_residual;
+      entry.info = a.info;
+      entry.shape = shape_of(c.coarse, a.x, 0.0);
+      entry.method = "minimum time released from the minimum-fuel companion's solution " + std::to_string(order[i]) +
+                     ", continued down to tf held at window fraction " + number_text(a.held, 5);
+      entry.continuation = std::move(a.steps);
+      from.arrived = c.pool.enter(name(), std::move(entry));
+    }
+    const double best = best_objective(rec);
+    c.progress.stage("minimum time from the companion: " + std::to_string(rec.extremals.size()) +
+                     " distinct extremals" + (std::isfinite(best) ? ", best " + objective_text(best) : ""));
+    return std::to_string(rec.companion_draws) + " companion starts (tf held at " +
+           days_text(rec.companion_tf_days, 6) + "), " + std::to_string(list.size()) + " distinct, " +
+           std::to_string(arrived) + " released to minimum time";
+  }
+};
 
 }  // namespace
 

@@ -1,0 +1,102 @@
+// ---------------------------------------------------------------------------------------------
+// HELIOS shooting runtime, the program's knobs (templates/runtime/search/knobs.hpp): the one
+// object that owns what the routes of the search move in the program: its maximum thrust and its
+// final time (or the final time's window), which are the program's parameters (parameters.hpp),
+// shared by its threads. Routes that move them run alone, one path after the other, and the knobs
+// put the problem's own values back when they go. Also the handles the routes find by the
+// derivation's names: the free final time's variable and row, and lambda0's variable.
+// ---------------------------------------------------------------------------------------------
+#pragma once
+
+namespace helios_rt {
+
+namespace {
+
+// A free final time's shooting variable (tf_frac: tf = tf_min + (tf_max - tf_min) tf_frac) and
+// row (transversality_tf: H(tf) + dPhi/dtf = 0), by the derivation's names; -1 where there are none.
+struct FreeFinalTime {
+  int variable = -1, row = -1;
+};
+inline FreeFinalTime free_final_time() {
+  FreeFinalTime f;
+  for (int i = 0; i < kProblem.num_vars; ++i) {
+    if (std::string(kProblem.variable_names[i]) == "tf_frac") f.variable = i;
+    if (std::string(kProblem.equation_names[i]) == "transversality_tf") f.row = i;
+  }
+  return f;
+}
+
+// The index of the shooting variable lambda0 (-1: none).
+inline int lambda0_variable() {
+  for (int i = 0; i < kProblem.num_vars; ++i)
+    if (std::string(kProblem.variable_names[i]) == "lambda0") return i;
+  return -1;
+}
+
+// Whether the problem's targets stay put on the calendar: no epoch, no body on an orbit, no
+// coasting target. Only then does a changed thrust or final time leave the transfer the same
+// problem (a moving target would be met elsewhere).
+inline bool targets_fixed_in_time() {
+  return kProblem.epoch_mjd2000 == 0 && kProblem.num_orbit_bodies == 0 && kModules.coast_dynamics == nullptr;
+}
+
+class ProgramKnobs {
+ public:
+  ProgramKnobs()
+      : thrust_(scalar_parameter("Tmax")), tf_(scalar_parameter("kTf")), tf_min_(scalar_parameter("kTfMin")) {
+    if (thrust_) thrust0_ = *thrust_;
+    if (tf_) tf0_ = *tf_;
+    if (tf_min_) tf_min0_ = *tf_min_;
+  }
+  ~ProgramKnobs() { restore(); }
+  ProgramKnobs(const ProgramKnobs&) = delete;
+  ProgramKnobs& operator=(const ProgramKnobs&) = delete;
+
+  // Whether the program has a maximum thrust to scale with its final time (or window).
+  bool thrust_scalable() const { return thrust_ && tf_ && (tf_min_ || free_final_time().variable < 0); }
+  // Whether the program's final time is a parameter.
+  bool final_time_movable() const { return tf_ != nullptr; }
+
+  // The problem at Tmax e^sigma, its final time (or window) scaled by e^-sigma: a transfer at full
+  // thrust takes a time nearly inversely proportional to the thrust.
+  void scale_thrust(double sigma) {
+    sigma_ = sigma;
+    *thrust_ = thrust0_ * std::exp(sigma);
+    *tf_ = tf0_ * std::exp(-sigma);
+    if (tf_min_) *tf_min_ = tf_min0_ * std::exp(-sigma);
+  }
+  double sigma() const { return sigma_; }
+  // The maximum thrust at sigma in newtons.
+  double thrust_N(double sigma) const {
+    const double time_unit_s = kProblem.time_unit_days * 86400.0;
+    return thrust0_ * std::exp(sigma) * kProblem.mass_unit_kg * kProblem.length_unit_km * 1e3 /
+           (time_unit_s * time_unit_s);
+  }
+  double own_thrust_N() const { return thrust_N(0); }
+
+  // The problem's final time at the current thrust scaling (the unit of set_final_fraction), its
+  // own one, and the program's final time put at `tf` or at a fraction s of the unit.
+  double final_time_unit() const { return tf0_ * std::exp(-sigma_); }
+  double own_final_time() const { return tf0_; }
+  void set_final_time(double tf) { *tf_ = tf; }
+  void set_final_fraction(double s) { *tf_ = s * final_time_unit(); }
+  double final_time() const { return *tf_; }
+  // Back to the current scaling's final time.
+  void reset_final_time() { *tf_ = final_time_unit(); }
+
+  // The problem's own thrust and final time.
+  void restore() {
+    sigma_ = 0;
+    if (thrust_) *thrust_ = thrust0_;
+    if (tf_) *tf_ = tf0_;
+    if (tf_min_) *tf_min_ = tf_min0_;
+  }
+
+ private:
+  double *thrust_ = nullptr, *tf_ = nullptr, *tf_min_ = nullptr;
+  double thrust0_ = 0, tf0_ = 0, tf_min0_ = 0, sigma_ = 0;
+};
+
+}  // namespace
+
+}  // namespace helios_rt

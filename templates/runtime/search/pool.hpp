@@ -1,0 +1,140 @@
+// ---------------------------------------------------------------------------------------------
+// HELIOS shooting runtime, the pool (templates/runtime/search/pool.hpp): the one place where the
+// solutions the routes reach enter the search's record. Two lists: the distinct solutions at
+// eps_start (a route's starts, or the minimum-fuel companion's), and the distinct extremals at
+// eps = 0, the ones the chooser (chooser.hpp) picks from. A solution that is the same extremal as
+// one already there (same_extremal) is counted with its twin, never listed twice; every extremal
+// entering is marked with its route and with what makes it returnable or not (its final time's
+// window). Before the choice, every extremal found at the search's tolerance is solved again at
+// the integrator's own (polish).
+// ---------------------------------------------------------------------------------------------
+#pragma once
+
+namespace helios_rt {
+
+namespace {
+
+// Two converged solutions are one extremal when their structure agrees (revolutions, switches)
+// and their shooting variables or their cost do.
+inline bool same_extremal(const std::vector<double>& xa, const Shape& a, const std::vector<double>& xb,
+                          const Shape& b) {
+  if (a.switches != b.switches || std::fabs(a.revolutions - b.revolutions) > 1e-3) return false;
+  double dx = 0, size = 1;
+  for (std::size_t i = 0; i < xa.size(); ++i) {
+    dx = std::max(dx, std::fabs(xa[i] - xb[i]));
+    size = std::max(size, std::fabs(xa[i]));
+  }
+  return dx <= 1e-6 * size || std::fabs(a.cost - b.cost) <= 1e-9 * std::max(1e-3, std::fabs(a.cost));
+}
+
+// Adds a converged solution to the distinct ones (`list` of StartExtremal or Extremal); returns
+// its index.
+template <class List>
+int merge_extremal(List& list, const std::vector<double>& x, const Shape& shape, int start,
+                   typename List::value_type&& entry) {
+  for (std::size_t i = 0; i < list.size(); ++i)
+    if (same_extremal(list[i].x, list[i].shape, x, shape)) {
+      ++list[i].reached;
+      return static_cast<int>(i);
+    }
+  entry.x = x;
+  entry.shape = shape;
+  entry.first_start = start;
+  entry.reached = 1;
+  list.push_back(std::move(entry));
+  return static_cast<int>(list.size()) - 1;
+}
+
+// The final time of x in days where it is free (its window fraction's variable), NaN where fixed.
+inline double free_final_time_days(const std::vector<double>& x) {
+  static const int at = free_final_time().variable;
+  if (at < 0) return NAN;
+  return (kProblem.tf_min + (kProblem.tf - kProblem.tf_min) * x[at] - kProblem.t0) * kProblem.time_unit_days;
+}
+
+// Whether x's free final time (if any) lies in its window: tf_frac in [0, 1]. Nothing in the
+// shooting system keeps it there, so an extremal can end outside (a minimum time below the
+// window's start, or beyond its end); it stays in the record and is never returned.
+inline bool within_window(const std::vector<double>& x) {
+  static const int at = free_final_time().variable;
+  return at < 0 || (x[at] >= -1e-9 && x[at] <= 1 + 1e-9);
+}
+
+class Pool {
+ public:
+  explicit Pool(SearchRecord& rec) : rec_(rec) {}
+
+  // A start's solution at eps_start into `list` (the starts' or the companion's distinct ones).
+  int enter_start(std::vector<StartExtremal>& list, const StartRun& run, int start, const std::string& origin = "") {
+    StartExtremal entry;
+    entry.max_residual = run.res;
+    entry.origin = origin;
+    return merge_extremal(list, run.x, run.shape, start, std::move(entry));
+  }
+
+  // An extremal at eps = 0 reached by `route` (its x, shape and solve in `entry`); returns its index.
+  int enter(const std::string& route, Extremal&& entry, int first_start = -1) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++rec_.converged_final;
+    const std::vector<double> x = entry.x;
+    const Shape shape = entry.shape;
+    entry.route = route;
+    mark(entry);
+    const std::size_t before = rec_.extremals.size();
+    const int k = merge_extremal(rec_.extremals, x, shape, first_start, std::move(entry));
+    if (rec_.extremals.size() > before) ++added_[route];
+    return k;
+  }
+
+  // How many distinct extremals `route` added.
+  int added_by(const std::string& route) const {
+    const auto it = added_.find(route);
+    return it == added_.end() ? 0 : it->second;
+  }
+
+  // Each distinct extremal at eps = 0 found at the search's tolerance, solved again at the
+  // integrator's own (`fine`) from there, where the search's was looser: a single shooting solve at
+  // eps = 0 to final_residual, recorded in its homotopy, its shape (and objective) taken again.
+  // One that does not converge is kept in the record, marked, and not returned.
+  void polish(const Settings& fine, const Settings& coarse) {
+    if (coarse.rtol == fine.rtol && coarse.atol == fine.atol) return;
+    for (Extremal& e : rec_.extremals) {
+      if (out_of_time(fine)) {
+        e.polished = false;
+        continue;
+      }
+      Shooter shooter(fine, kContinuationStart);
+      std::vector<double> x = e.x;
+      int info = 0;
+      double res = 0;
+      Result step;
+      const auto anything = [](const double*) { return true; };
+      e.polished = homotopy_step(shooter, x, 0.0, fine.final_residual, step, anything, info, res);
+      e.homotopy.insert(e.homotopy.end(), step.homotopy.begin(), step.homotopy.end());
+      if (!e.polished) continue;
+      e.x = x;
+      e.F = shooter.last_F;
+      e.max_residual = res;
+      e.info = info;
+      e.shape = shape_of(fine, x, 0.0);
+      mark(e);
+    }
+  }
+
+  SearchRecord& record() { return rec_; }
+  const SearchRecord& record() const { return rec_; }
+
+ private:
+  static void mark(Extremal& e) {
+    e.outside_window = !within_window(e.x);
+    e.tf_days = free_final_time_days(e.x);
+  }
+
+  SearchRecord& rec_;
+  std::map<std::string, int> added_;
+  std::mutex mutex_;
+};
+
+}  // namespace
+
+}  // namespace helios_rt

@@ -1,0 +1,228 @@
+// ---------------------------------------------------------------------------------------------
+// HELIOS shooting runtime, the thrust route (templates/runtime/search/thrust.hpp): a
+// many-revolution transfer reached from a few-revolution one along the maximum thrust.
+// ---------------------------------------------------------------------------------------------
+// At low thrust a transfer winds many times about the central body, the shooting function's basin
+// shrinks with the revolutions, and random starts find poor extremals or none. At a higher thrust
+// the same transfer takes few revolutions, where the search is reliable. The problem family
+//   Tmax(sigma) = Tmax e^sigma,   the final time's window [tf_min, tf] e^-sigma,
+// (a transfer at full thrust takes a time close to inversely proportional to the thrust, so its
+// final time keeps its place in the scaled window) is the problem itself at sigma = 0. The route
+// raises the thrust until a search there returns an extremal of few revolutions, then continues
+// its best extremals down to sigma = 0 (continue_thrust_down), the revolutions recorded at every
+// step. The parameters are the program's, shared by its threads (knobs.hpp): the continuation runs
+// alone, one path after the other. Every rule counts: the doublings of the thrust, the branches
+// continued, the steps (which halve on failure down to a smallest one); no clock but the run's
+// time limit.
+#pragma once
+
+namespace helios_rt {
+
+namespace {
+
+// The most doublings of the thrust tried.
+constexpr int kMaxThrustDoublings = 10;
+// The most extremals of the search at the raised thrust continued down.
+constexpr int kThrustBranches = 3;
+// The most solves of one continuation down the thrust.
+constexpr int kMaxThrustSolves = 4000;
+
+// From the solution x (eps = 0) at `sigma0` down to sigma = 0: at each step a tangent predictor
+// (dx/dsigma = -J^-1 dF/dsigma) and hybrd from it; a step that fails is retried from predictions
+// perturbed at random (relative scales 1e-3 to 1e-1, kThrustRetries of them) before it is halved,
+// so that where the branch being followed turns back (a fold: below some thrust the extremal of
+// that shape no longer exists) the continuation goes on on a neighbouring one; it stops when the
+// step falls below 1e-3 in sigma, or after kMaxThrustSolves solves. The revolutions of every
+// solution reached are recorded (a jump shows a change of branch). The knobs are set to sigma0
+// first and left at the last sigma reached (the caller restores them). `along` is the system
+// followed: the shooting function itself by default, or another with the same variables
+// (time_route.hpp's minimum-time system), whose own parameters `along.set` moves with sigma and
+// whose revolutions `along.revolutions` tells. `tick(thrust_N, revolutions)` reports progress.
+struct ThrustPath {
+  Function function = shooting_function_and_jacobian;
+  std::function<void(double sigma)> set;
+  std::function<double(const std::vector<double>& x)> revolutions;
+};
+template <class Admissible, class Tick>
+PathArrival continue_thrust_down(const Settings& s, ProgramKnobs& knobs, std::vector<double> x, double sigma0,
+                                 Admissible& admissible, int& evaluations, Tick&& tick, const ThrustPath& along = {}) {
+  constexpr int kThrustRetries = 8;
+  PathArrival out;
+  Shooter shooter(s, along.function, kContinuationStart);
+  std::mt19937_64 rng(s.seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  double sigma = sigma0, step = std::min(0.25, sigma0);
+  std::vector<double> tangent;
+  const auto set = [&](double v) {
+    knobs.scale_thrust(v);
+    if (along.set) along.set(v);
+  };
+  set(sigma);
+  // dx/dsigma at the current point, dF/dsigma by a difference over 1e-7.
+  const auto predict = [&] { return parameter_tangent(shooter, x, 0.0, set, sigma, 1e-7, tangent); };
+  bool predicted = predict();
+  int solves = 0;
+  while (sigma > 0 && solves < kMaxThrustSolves && !out_of_time(s)) {
+    const double next = std::max(0.0, sigma - step);
+    set(next);
+    std::vector<double> trial;
+    bool ok = false;
+    for (int attempt = 0; attempt <= kThrustRetries && !ok && !out_of_time(s); ++attempt) {
+      trial = x;
+      if (predicted)
+        for (std::size_t i = 0; i < x.size(); ++i) trial[i] += tangent[i] * (next - sigma);
+      if (attempt > 0) {
+        const double scale = std::pow(10.0, -3.0 + 2.0 * (attempt - 1) / std::max(1, kThrustRetries - 1));
+        for (double& v : trial) v *= 1 + scale * unit(rng);
+      }
+      int info = 0;
+      double res = 0;
+      ++solves;
+      // Every step at the acceptance of intermediate steps; the search polishes the arrival.
+      ok = shooter.solve(trial, 0.0, s.accept_residual, info, res) && admissible(trial.data());
+      ContinuationStep record{"maximum thrust [N], the final time's window scaled inversely", knobs.thrust_N(next), ok,
+                              res, shooter.last_step_evaluations};
+      if (ok) {
+        record.revolutions = along.revolutions ? along.revolutions(trial) : shape_of(s, trial, 0.0).revolutions;
+        out.info = info;
+        out.max_residual = res;
+        tick(record.value, record.revolutions);
+      }
+      out.steps.push_back(record);
+    }
+    if (!ok) {
+      set(sigma);
+      step *= 0.5;
+      if (step < 1e-3) break;
+      continue;
+    }
+    x = trial;
+    sigma = next;
+    step = std::min(step * 1.5, 0.5);
+    if (sigma > 0) predicted = predict();
+  }
+  evaluations += shooter.evaluations;
+  out.reached = knobs.thrust_N(sigma);
+  if (sigma == 0) {
+    out.arrived = true;
+    out.x = x;
+    out.F = shooter.last_F;
+  }
+  return out;
+}
+
+// A search of the problem as the knobs leave it (the thrust raised), with the routes a nested
+// search runs (pipeline.hpp).
+Result nested_search(SearchContext& parent);
+
+// The factor by which to raise the thrust so that a transfer of `revolutions` winds at most
+// kFewRevolutions times (the revolutions fall about as the thrust rises): a power of two, 2 at least.
+inline double raise_factor(double revolutions) {
+  return std::exp2(std::ceil(std::log2(std::max(2.0, revolutions / kFewRevolutions))));
+}
+
+// The thrust raised by `factor` (guessed from the revolutions seen, quadrupled where the search
+// there finds none, at most 2^kMaxThrustDoublings) until a search there returns an extremal of at
+// most kFewRevolutions. Each search is recorded in `record`; the knobs are left at the last factor.
+inline Result search_at_raised_thrust(SearchContext& c, double& factor, std::vector<ContinuationStep>& record) {
+  const int best = best_index(c.rec());
+  factor = best < 0 ? 4.0 : raise_factor(c.rec().extremals[best].shape.revolutions);
+  while (factor <= std::exp2(kMaxThrustDoublings) && !c.out_of_time()) {
+    const double sigma = std::log(factor);
+    c.knobs.scale_thrust(sigma);
+    c.progress.stage("thrust raised to " + number_text(c.knobs.thrust_N(sigma)) + " N (x" + number_text(factor) +
+                     "), the final time's window scaled by 1/" + number_text(factor) + ": the search there");
+    Result raised = nested_search(c);
+    c.count(raised.evaluations);
+    const bool found = raised.status == Status::kConverged;
+    ContinuationStep step{"raised thrust: the search there [N]", c.knobs.thrust_N(sigma), found,
+                          found ? raised.max_residual : INFINITY, raised.evaluations};
+    step.revolutions = found ? shape_of(c.coarse, raised.x, 0.0).revolutions : NAN;
+    record.push_back(step);
+    if (found && step.revolutions <= kFewRevolutions) return raised;
+    factor *= found ? raise_factor(step.revolutions) : 4.0;
+  }
+  return {};
+}
+
+// The route: the thrust raised until a search there returns a transfer of few revolutions
+// (search_at_raised_thrust), then its best extremals continued down to the problem's thrust, one
+// after the other (they share the program's thrust), and entered into the pool.
+class ThrustRoute : public Route {
+ public:
+  const char* name() const override { return "thrust continuation"; }
+  std::string skip(const SearchContext& c) const override {
+    if (!c.coarse.search_thrust_continuation) return "search_thrust_continuation is off";
+    if (c.nested) return "inside a search at a raised thrust";
+    if (kProblem.objective != Objective::time) return "not a minimum-time problem";
+    if (!targets_fixed_in_time()) return "a target moves on the calendar: a raised thrust would meet it elsewhere";
+    if (!c.knobs.thrust_scalable()) return "the program has no maximum thrust to scale";
+    if (settled(c.rec())) return "the search settled the problem with few revolutions";
+    return "";
+  }
+
+  std::string run(SearchContext& c) override {
+    SearchRecord& rec = c.rec();
+    double factor = 1;
+    const Result raised = search_at_raised_thrust(c, factor, rec.thrust_continuation);
+    c.knobs.restore();
+    if (raised.status != Status::kConverged) {
+      c.progress.stage("thrust continuation: no search at a raised thrust returned a transfer of few revolutions");
+      return "no search at a raised thrust returned a transfer of few revolutions";
+    }
+    const double sigma = std::log(factor);
+    // The distinct extremals the search there reached, lowest objective first (the best path down
+    // need not start from the best extremal up there), kThrustBranches of them.
+    std::vector<const Extremal*> branches;
+    for (const Extremal& e : raised.search.extremals)
+      if (returnable(e)) branches.push_back(&e);
+    std::stable_sort(branches.begin(), branches.end(),
+                     [](const Extremal* a, const Extremal* b) { return a->shape.cost < b->shape.cost; });
+    if (branches.size() > static_cast<std::size_t>(kThrustBranches)) branches.resize(kThrustBranches);
+    const std::vector<ContinuationStep> raising = rec.thrust_continuation;
+    const double target_N = c.knobs.own_thrust_N();
+    int arrived = 0;
+    for (std::size_t k = 0; k < branches.size() && !c.out_of_time(); ++k) {
+      int evaluations = 0;
+      const std::string which = "the extremal " + std::to_string(k + 1) + " of " + std::to_string(branches.size()) +
+                                " of the search at " + number_text(c.knobs.thrust_N(sigma)) + " N (x" +
+                                number_text(factor) + ")";
+      const auto tick = [&](double thrust_N, double revolutions) {
+        c.progress.tick("thrust continuation from " + which + ": " + number_text(thrust_N) + " N of " +
+                        number_text(target_N) + " N, " + number_text(revolutions, 4) + " revolutions");
+      };
+      // At the integrator's own tolerance: over tens of revolutions the search's leaves F a floor
+      // near 1e-6 (measured at 0.5 N), above the acceptance.
+      PathArrival a = continue_thrust_down(c.fine, c.knobs, branches[k]->x, sigma, c.admissible, evaluations, tick);
+      c.knobs.restore();
+      c.count(evaluations);
+      rec.thrust_continuation.insert(rec.thrust_continuation.end(), a.steps.begin(), a.steps.end());
+      if (!a.arrived) {
+        c.progress.stage("thrust continuation from " + which + ": stopped at " + number_text(a.reached) + " N");
+        continue;
+      }
+      rec.thrust_continuation_arrived = true;
+      ++arrived;
+      Extremal entry;
+      entry.x = a.x;
+      entry.F = a.F;
+      entry.max_residual = a.max_residual;
+      entry.info = a.info;
+      entry.shape = shape_of(c.coarse, a.x, 0.0);
+      entry.method = "single shooting, continued down the maximum thrust from " + which;
+      entry.continuation = raising;
+      entry.continuation.insert(entry.continuation.end(), a.steps.begin(), a.steps.end());
+      const Shape shape = entry.shape;
+      c.pool.enter(name(), std::move(entry));
+      c.progress.stage("thrust continuation from " + which + ": arrived with " + objective_text(shape.cost) + ", " +
+                       number_text(shape.revolutions, 5) + " revolutions");
+    }
+    return "raised x" + number_text(factor) + " to " + number_text(c.knobs.thrust_N(sigma)) + " N; " +
+           std::to_string(arrived) + " of " + std::to_string(branches.size()) + " branches arrived at " +
+           number_text(target_N) + " N";
+  }
+};
+
+}  // namespace
+
+}  // namespace helios_rt
