@@ -15,8 +15,12 @@ inline int ny() {
 
 // The mass flow at full throttle, Tmax/c in normalized units (the mass equation's -dm/dt at u = 1),
 // where the problem has a throttle and a mass whose flow depends on nothing but the throttle; else
-// 0. The companion problem of a minimum-time one prices its throttle by it (fuel_weight).
+// 0. The companion problem of a minimum-time one prices its throttle by it (fuel_weight). Measured
+// once at the program's own thrust and followed in proportion to the maximum thrust where the
+// search moves it (search/knobs.hpp): the flow is Tmax/c.
 inline double full_mass_flow() {
+  static const double* const thrust = scalar_parameter("Tmax");
+  static const double own_thrust = thrust ? *thrust : 1.0;
   static const double flow = [] {
     const int m = kProblem.mass_index, u = kProblem.throttle_index;
     if (m < 0 || u < 0) return 0.0;
@@ -34,7 +38,7 @@ inline double full_mass_flow() {
     const double a = flow_at(1.0, 1.0), b = flow_at(0.5, 2.0);
     return std::isfinite(a) && a > 0 && a == b ? a : 0.0;
   }();
-  return flow;
+  return thrust && own_thrust > 0 ? flow * (*thrust / own_thrust) : flow;
 }
 
 // dH/du at u = 0 and u = 1 (the SWITCH module's throttle_slopes), with the companion's price of

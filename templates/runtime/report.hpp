@@ -293,6 +293,18 @@ inline nlohmann::ordered_json search_record(const SearchRecord& rec) {
         {"bound_days", std::isfinite(rec.bound_days) ? nlohmann::ordered_json(rec.bound_days) : nullptr},
         {"settled", rec.minimum_time_settled},
         {"how", rec.minimum_time_how}};
+  if (!std::isnan(rec.coast_bound))
+    out["minimum_time_and_coast"] = {{objective_key(), objective_in_named_unit(rec.coast_bound)}};
+  if (rec.time_scale.factor > 0)
+    out["time_scale"] = {
+        {"factor", rec.time_scale.factor},
+        {"raised_tf_days", std::isfinite(rec.time_scale.raised_tf_days)
+                               ? nlohmann::ordered_json(rec.time_scale.raised_tf_days)
+                               : nullptr},
+        {"estimate_days",
+         std::isfinite(rec.time_scale.estimate_days) ? nlohmann::ordered_json(rec.time_scale.estimate_days) : nullptr},
+        {"revolutions",
+         std::isfinite(rec.time_scale.revolutions) ? nlohmann::ordered_json(rec.time_scale.revolutions) : nullptr}};
   out["time_limit_hit"] = rec.time_limit_hit;
   if (rec.returned >= 0) {
     out["returned"] = rec.returned;

@@ -60,6 +60,10 @@ struct ProblemShape {
   const char* const* equation_names;
   const OrbitBody* orbit_bodies;
   int num_orbit_bodies;
+  // The final constraint still holds after a coast from any state that meets it (an orbit with the
+  // position on it free, two-body dynamics): a transfer that arrives early may coast to the final
+  // time (search/time_route.hpp's minimum time plus a coast). A program that does not say so: false.
+  bool final_coast_keeps_target = false;
 };
 extern const ProblemShape kProblem;  // the program defines it (module_interface.hpp)
 
@@ -242,7 +246,8 @@ struct ContinuationStep {
 // extremal at its end, if it got there, and every step on the way.
 struct PathArrival {
   bool arrived = false;
-  double reached = NAN;  // the path's parameter where it stopped (its last converged step)
+  double reached = NAN;       // the path's parameter where it stopped (its last converged step)
+  double reached_time = NAN;  // the flight time there (normalized), where the path knows it
   std::vector<double> x, F;
   double max_residual = INFINITY;
   int info = 0;
@@ -369,6 +374,17 @@ struct SearchRecord {
   double minimum_time_days = NAN, bound_days = NAN;
   bool minimum_time_settled = false;
   std::string minimum_time_how;
+  // A minimum-time problem's time scale, measured by a search at a raised thrust where the
+  // window allows many revolutions (search/scale.hpp): the factor, the minimum time and revolutions
+  // found there, and what they make of the problem's own (the flight time inversely proportional to
+  // the thrust).
+  struct TimeScale {
+    double factor = 0, raised_tf_days = NAN, raised_revolutions = NAN, estimate_days = NAN, revolutions = NAN;
+  } time_scale;
+  // A minimum-fuel problem whose final constraint a coast keeps (final_coast_keeps_target): the
+  // propellant of its minimum-time transfer completed by a coast to the final time (normalized;
+  // NaN: none), a feasible transfer no returned extremal may cost more than (search/chooser.hpp).
+  double coast_bound = NAN;
   // The run's time limit (time_limit_s) was reached: the one way two runs of a seed may differ.
   bool time_limit_hit = false;
 };

@@ -25,16 +25,19 @@ inline bool returnable(const Extremal& e) {
   return e.polished && !e.outside_window && e.shape.off_side.empty();
 }
 
-// The returnable extremal with the lowest objective, the first reached among equals (-1: none).
-inline int best_index(const std::vector<Extremal>& extremals) {
+// The returnable extremal with the lowest objective, the first reached among equals, if it costs no
+// more than `bound` (-1: none).
+inline int best_index(const std::vector<Extremal>& extremals, double bound = INFINITY) {
   int best = -1;
   for (std::size_t i = 0; i < extremals.size(); ++i)
     if (returnable(extremals[i]) && (best < 0 || extremals[i].shape.cost < extremals[best].shape.cost))
       best = static_cast<int>(i);
-  return best;
+  return best >= 0 && extremals[best].shape.cost <= bound ? best : -1;
 }
+// The record's: never one that costs more than a feasible transfer known to the search, the
+// minimum time completed by a coast (rec.coast_bound): it cannot be the optimum.
 inline int best_index(const SearchRecord& rec) {
-  return best_index(rec.extremals);
+  return best_index(rec.extremals, std::isnan(rec.coast_bound) ? INFINITY : rec.coast_bound * (1 + 1e-9));
 }
 
 // The best objective among the returnable extremals (INFINITY: none yet).
@@ -114,6 +117,14 @@ Verdict verdict(const SearchRecord& rec, DaysText&& days_text, ObjectiveText&& o
     v.status = Status::kInfeasible;
     v.detail = "no transfer within the stated bound of " + days_text(rec.bound_days) + ": the minimum time is " +
                days_text(rec.minimum_time_days) + " (" + rec.minimum_time_how + ")";
+    return v;
+  }
+  const int beaten = best_index(rec.extremals);
+  if (beaten >= 0 && !std::isnan(rec.coast_bound)) {
+    v.detail = "the best extremal the search reached costs " + objective_text(ex[beaten].shape.cost) +
+               ", more than the minimum-time transfer completed by a coast on the target (" +
+               objective_text(rec.coast_bound) +
+               "): it is not the optimum, and no extremal at most as costly was reached";
     return v;
   }
   if (rec.time_limit_hit) {

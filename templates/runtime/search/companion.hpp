@@ -39,12 +39,16 @@ inline bool has_fuel_companion() {
 // The final time the companion is held at first, as a fraction of its window: the window's end,
 // but no later than 95 % of the time full thrust takes to burn the whole initial mass (a
 // minimum-time flight thrusts throughout, so it is shorter than that; random costates that thrust
-// throughout a longer flight would run out of mass).
-inline double companion_hold() {
+// throughout a longer flight would run out of mass), and no later than 1.5 times the minimum time
+// the time scale estimates (`estimate`, normalized; NaN: none), where a flight comfortably longer
+// than the minimum converges easily.
+inline double companion_hold(double estimate) {
   const double burnout = 1 / full_mass_flow();  // the initial mass is the mass unit
   const double window = kProblem.tf - kProblem.tf_min;
   if (!(window > 0)) return 1;
-  return std::clamp((std::min(kProblem.tf, 0.95 * burnout) - kProblem.tf_min) / window, 0.0, 1.0);
+  double end = std::min(kProblem.tf, kProblem.t0 + 0.95 * burnout);
+  if (estimate > 0) end = std::min(end, kProblem.t0 + 1.5 * estimate);
+  return std::clamp((end - kProblem.tf_min) / window, 0.0, 1.0);
 }
 
 // x with the held final time inserted at `at` (z: the other variables), and z from x.
@@ -139,13 +143,16 @@ class CompanionRoute : public Route {
   std::string skip(const SearchContext& c) const override {
     if (!c.coarse.search_fuel_companion) return "search_fuel_companion is off";
     if (!has_fuel_companion()) return "not a minimum-time problem with a throttle that burns mass at a free final time";
+    if (c.many_revolutions_expected())
+      return "the time scale expects " + number_text(c.rec().time_scale.revolutions, 3) +
+             " revolutions: the thrust route reaches them";
     return "";
   }
 
   std::string run(SearchContext& c) override {
     SearchRecord& rec = c.rec();
     const FreeFinalTime f = free_final_time();
-    const double hold = companion_hold(), eps = 1;
+    const double hold = companion_hold(c.estimated_time()), eps = 1;
     std::vector<StartExtremal>& list = rec.companion_solutions;
     bool cut = false;
     draw_until_saturated(

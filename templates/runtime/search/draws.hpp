@@ -26,10 +26,12 @@ namespace helios_rt {
 namespace {
 
 // The streams of draws: the starts of the problem itself (0), the events-off draws of a problem
-// with events (1), the starts of a minimum-time problem's companion (2).
+// with events (1), the starts of a minimum-time problem's companion (2), the guess whose departure
+// the time scale reads (3).
 constexpr std::uint64_t kStartStream = 0;
 constexpr std::uint64_t kEventlessStream = 1;
 constexpr std::uint64_t kCompanionStream = 2;
+constexpr std::uint64_t kScaleStream = 3;
 
 // The generator of start k (of a stream): SplitMix64 of (seed, k, stream), so a start's guess does
 // not depend on which thread runs it or on how many starts came before.
@@ -98,6 +100,8 @@ constexpr int kSearchBatch = 8;
 constexpr int kMinDraws = 128;
 constexpr int kMinConverged = 16;
 constexpr int kDefaultStartCap = 1024;
+// While no route has reached an extremal, the starts go on past saturation up to this many.
+constexpr int kMoreStarts = 4 * kMinDraws;
 
 inline int search_threads(const Settings& s) {
   if (s.threads > 0) return s.threads;

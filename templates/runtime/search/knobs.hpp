@@ -45,10 +45,11 @@ class ProgramKnobs {
   ProgramKnobs()
       : thrust_(scalar_parameter("Tmax")), tf_(scalar_parameter("kTf")), tf_min_(scalar_parameter("kTfMin")) {
     if (thrust_) thrust0_ = *thrust_;
-    if (tf_) tf0_ = *tf_;
+    if (tf_) tf0_ = own_tf_ = *tf_;
     if (tf_min_) tf_min0_ = *tf_min_;
+    full_mass_flow();  // measured at the problem's own thrust, before any route moves it
   }
-  ~ProgramKnobs() { restore(); }
+  ~ProgramKnobs() { reset_base(); }
   ProgramKnobs(const ProgramKnobs&) = delete;
   ProgramKnobs& operator=(const ProgramKnobs&) = delete;
 
@@ -74,17 +75,30 @@ class ProgramKnobs {
   }
   double own_thrust_N() const { return thrust_N(0); }
 
-  // The problem's final time at the current thrust scaling (the unit of set_final_fraction), its
-  // own one, and the program's final time put at `tf` or at a fraction s of the unit.
+  // The final time (or the window's end) moved from the problem's own to `tf` as the base the
+  // thrust scaling and restore() start from (the bound route, bound.hpp, opens the window so);
+  // back to the problem's own with reset_base().
+  void open_final_time(double tf) {
+    tf0_ = tf;
+    restore();
+  }
+  void reset_base() {
+    tf0_ = own_tf_;
+    restore();
+  }
+  bool opened() const { return tf0_ != own_tf_; }
+
+  // The problem's final time (or window's end) at the current thrust scaling from its base (the
+  // unit of set_final_fraction), and the program's final time put at `tf` or at a fraction s of
+  // the unit.
   double final_time_unit() const { return tf0_ * std::exp(-sigma_); }
-  double own_final_time() const { return tf0_; }
   void set_final_time(double tf) { *tf_ = tf; }
   void set_final_fraction(double s) { *tf_ = s * final_time_unit(); }
   double final_time() const { return *tf_; }
   // Back to the current scaling's final time.
   void reset_final_time() { *tf_ = final_time_unit(); }
 
-  // The problem's own thrust and final time.
+  // The problem's own thrust, and its final time (or window) at the base.
   void restore() {
     sigma_ = 0;
     if (thrust_) *thrust_ = thrust0_;
@@ -94,7 +108,7 @@ class ProgramKnobs {
 
  private:
   double *thrust_ = nullptr, *tf_ = nullptr, *tf_min_ = nullptr;
-  double thrust0_ = 0, tf0_ = 0, tf_min0_ = 0, sigma_ = 0;
+  double thrust0_ = 0, tf0_ = 0, own_tf_ = 0, tf_min0_ = 0, sigma_ = 0;
 };
 
 }  // namespace

@@ -95,7 +95,10 @@ class Pool {
   // Each distinct extremal at eps = 0 found at the search's tolerance, solved again at the
   // integrator's own (`fine`) from there, where the search's was looser: a single shooting solve at
   // eps = 0 to final_residual, recorded in its homotopy, its shape (and objective) taken again.
-  // One that does not converge is kept in the record, marked, and not returned.
+  // Over many revolutions single shooting resolves F no better than ~1e-10 (its round-off grows
+  // with each revolution), so where it stops short the extremal is solved by multiple shooting
+  // (nodes.hpp, node_parts) instead, which is then what proves it. One that converges neither way
+  // is kept in the record, marked, and not returned.
   void polish(const Settings& fine, const Settings& coarse) {
     if (coarse.rtol == fine.rtol && coarse.atol == fine.atol) return;
     for (Extremal& e : rec_.extremals) {
@@ -111,12 +114,15 @@ class Pool {
       const auto anything = [](const double*) { return true; };
       e.polished = homotopy_step(shooter, x, 0.0, fine.final_residual, step, anything, info, res);
       e.homotopy.insert(e.homotopy.end(), step.homotopy.begin(), step.homotopy.end());
-      if (!e.polished) continue;
-      e.x = x;
-      e.F = shooter.last_F;
-      e.max_residual = res;
-      e.info = info;
-      e.shape = shape_of(fine, x, 0.0);
+      if (e.polished) {
+        e.x = x;
+        e.F = shooter.last_F;
+        e.max_residual = res;
+        e.info = info;
+      } else if (!by_nodes(fine, e)) {
+        continue;
+      }
+      e.shape = shape_of(fine, e.x, 0.0);
       mark(e);
     }
   }
@@ -125,6 +131,27 @@ class Pool {
   const SearchRecord& record() const { return rec_; }
 
  private:
+  // The polish by multiple shooting (see polish): true with e's x, F (the shooting function's rows)
+  // and max|F| (every row's, the nodes' too) taken from it where it converges.
+  static bool by_nodes(const Settings& fine, Extremal& e) {
+    std::vector<double> times;
+    int arcs = 0;
+    node_values(fine, e.x, 0.0, 1, times, arcs);
+    const int parts = node_parts(fine, arcs, e.shape.revolutions);
+    if (parts < 1 || (arcs == 1 && parts == 1)) return false;
+    const NodesSolution ms = solve_with_nodes(fine, e.x, 0.0, parts);
+    e.homotopy.push_back({0.0, ms.converged, ms.max_residual, ms.evaluations});
+    if (!ms.converged) return false;
+    const int N = kProblem.num_vars;
+    e.x.assign(ms.z.begin(), ms.z.begin() + N);
+    e.F.assign(ms.F.begin(), ms.F.begin() + N);
+    e.max_residual = ms.max_residual;
+    e.info = ms.info;
+    e.polished = true;
+    e.method += ", polished by multiple shooting (" + std::to_string(parts) + " parts per arc)";
+    return true;
+  }
+
   static void mark(Extremal& e) {
     e.outside_window = !within_window(e.x);
     e.tf_days = free_final_time_days(e.x);

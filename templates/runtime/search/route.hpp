@@ -77,7 +77,16 @@ struct SearchContext {
   // that would call it again do not run.
   const bool nested;
 
+  // The search at a raised thrust that measured the problem's time scale (scale.hpp), kept for the
+  // thrust route to continue down from; status kNotSolved where none was made.
+  Result scale_search;
+
   SearchRecord& rec() { return pool.record(); }
+  // The minimum time the time scale estimates (normalized), NaN where it was not measured.
+  double estimated_time() const { return rec().time_scale.estimate_days / kProblem.time_unit_days; }
+  // Whether the time scale says the transfer winds many revolutions at the problem's own thrust,
+  // where starts there rarely converge and cost the most: the thrust route reaches it instead.
+  bool many_revolutions_expected() const { return rec().time_scale.revolutions > kFewRevolutions; }
   const SearchRecord& rec() const { return pool.record(); }
   bool out_of_time() const { return helios_rt::out_of_time(coarse, started); }
   void count(int e) {

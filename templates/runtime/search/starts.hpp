@@ -17,15 +17,21 @@ namespace {
 class StartsRoute : public Route {
  public:
   const char* name() const override { return "starts"; }
-  std::string skip(const SearchContext&) const override { return ""; }
+  std::string skip(const SearchContext& c) const override {
+    if (c.many_revolutions_expected())
+      return "the time scale expects " + number_text(c.rec().time_scale.revolutions, 3) +
+             " revolutions: starts rarely converge there, the thrust route reaches them";
+    return "";
+  }
 
   std::string run(SearchContext& c) override {
     SearchRecord& rec = c.rec();
     explore(c, start_cap(c.coarse), false);
     continue_promising(c);
     // While nothing has arrived: as many starts again (kMinDraws at least), past saturation and
-    // search_starts, up to max_attempts (at most kDefaultStartCap unless search_starts is larger).
-    const int most = std::min(c.coarse.max_attempts, std::max(start_cap(c.coarse), kDefaultStartCap));
+    // search_starts, up to max_attempts (at most kMoreStarts unless search_starts is larger); not
+    // in a nested search, whose caller has its own routes to go on with.
+    const int most = c.nested ? 0 : std::min(c.coarse.max_attempts, std::max(start_cap(c.coarse), kMoreStarts));
     while (rec.extremals.empty() && rec.starts < most && !c.out_of_time()) {
       explore(c, std::min(most, rec.starts + std::max(kMinDraws, rec.starts)), true);
       continue_promising(c);
@@ -71,6 +77,7 @@ class StartsRoute : public Route {
     StartRun run;
     run.x.assign(kProblem.num_vars, 0.0);
     c.guess(rng, run.x.data());
+    draw_final_time(c, rng, run.x);
     Shooter shooter(c.coarse);
     int info = 0;
     run.ok =
@@ -78,6 +85,16 @@ class StartsRoute : public Route {
     if (run.ok) run.shape = shape_of(c.coarse, run.x, c.coarse.eps_start);
     c.count(shooter.evaluations);
     return run;
+  }
+
+  // Where the time scale estimated the minimum time t (scale.hpp), a free final time is drawn
+  // log-uniformly in [t/2, 2t] (within the window) instead of the guess's spread over the window.
+  static void draw_final_time(const SearchContext& c, std::mt19937_64& rng, std::vector<double>& x) {
+    const int at = free_final_time().variable;
+    const double t = c.estimated_time(), window = kProblem.tf - kProblem.tf_min;
+    if (at < 0 || !(t > 0) || !(window > 0)) return;
+    const double tf = kProblem.t0 + t * std::exp2(std::uniform_real_distribution<double>(-1.0, 1.0)(rng));
+    x[at] = std::clamp((tf - kProblem.tf_min) / window, 0.0, 1.0);
   }
 
   // Continues the eps_start extremals not continued yet, lowest cost first, search_continued at a

@@ -26,23 +26,50 @@ constexpr int kMaxThrustDoublings = 10;
 constexpr int kThrustBranches = 3;
 // The most solves of one continuation down the thrust.
 constexpr int kMaxThrustSolves = 4000;
+// The most searches where every branch continued down ended at a fold.
+constexpr int kMaxThrustRestarts = 4;
+
+// The system a continuation down the thrust follows (continue_thrust_down).
+struct ThrustPath {
+  Function function = shooting_function_and_jacobian;
+  std::function<void(double sigma)> set;
+  std::function<double(const std::vector<double>& x)> revolutions;
+  // The flight time of x times the thrust's scale e^sigma (nearly constant along a branch; NaN:
+  // not checked): by default the free final time's, from its window fraction.
+  std::function<double(const std::vector<double>& x, double sigma)> time_thrust = free_time_thrust;
+
+  static double free_time_thrust(const std::vector<double>& x, double sigma) {
+    static const int at = free_final_time().variable;
+    if (at < 0) return NAN;
+    return (kProblem.tf_min + (kProblem.tf - kProblem.tf_min) * x[at] - kProblem.t0) * std::exp(sigma);
+  }
+};
+
+// Whether a step of the continuation over `dsigma` stays on its branch or moves to a better one:
+// the flight time times the thrust's scale it reached (`reached`) against the one the path's
+// tangent predicted (`predicted`; NaN: no prediction, no check). Along a branch that product
+// changes slowly and smoothly (GTO to GEO: 888 N h at 60 N, 846 N h at 20 N), so the prediction
+// misses it by the step's second order only; a step that lands on a worse extremal's branch jumps
+// up (seen: 850 to 946 N h between 0.67 N and 0.5 N, the revolutions from 67 to 131) and is
+// refused. A step to a better branch (a retry past a fold, where the branch followed ends) is
+// taken: for a minimum the better one is what matters.
+inline bool stays_on_branch(double predicted, double reached, double dsigma) {
+  if (!std::isfinite(predicted) || !std::isfinite(reached) || !(predicted > 0)) return true;
+  return std::log(reached / predicted) <= 0.005 + 0.1 * dsigma * dsigma;
+}
 
 // From the solution x (eps = 0) at `sigma0` down to sigma = 0: at each step a tangent predictor
 // (dx/dsigma = -J^-1 dF/dsigma) and hybrd from it; a step that fails is retried from predictions
 // perturbed at random (relative scales 1e-3 to 1e-1, kThrustRetries of them) before it is halved,
 // so that where the branch being followed turns back (a fold: below some thrust the extremal of
-// that shape no longer exists) the continuation goes on on a neighbouring one; it stops when the
-// step falls below 1e-3 in sigma, or after kMaxThrustSolves solves. The revolutions of every
-// solution reached are recorded (a jump shows a change of branch). The knobs are set to sigma0
-// first and left at the last sigma reached (the caller restores them). `along` is the system
-// followed: the shooting function itself by default, or another with the same variables
-// (time_route.hpp's minimum-time system), whose own parameters `along.set` moves with sigma and
-// whose revolutions `along.revolutions` tells. `tick(thrust_N, revolutions)` reports progress.
-struct ThrustPath {
-  Function function = shooting_function_and_jacobian;
-  std::function<void(double sigma)> set;
-  std::function<double(const std::vector<double>& x)> revolutions;
-};
+// that shape no longer exists) the continuation goes on on a neighbouring one, never a worse one
+// (stays_on_branch); it stops when the step falls below 1e-3 in sigma, or after kMaxThrustSolves
+// solves. The revolutions of every solution reached are recorded (a jump shows a change of
+// branch). The knobs are set to sigma0 first and left at the last sigma reached (the caller
+// restores them). `along` is the system followed: the shooting function itself by default, or
+// another with the same variables (time_route.hpp's minimum-time system), whose own parameters
+// `along.set` moves with sigma, whose revolutions `along.revolutions` tells and whose flight time
+// times thrust `along.time_thrust` gives. `tick(thrust_N, revolutions)` reports progress.
 template <class Admissible, class Tick>
 PathArrival continue_thrust_down(const Settings& s, ProgramKnobs& knobs, std::vector<double> x, double sigma0,
                                  Admissible& admissible, int& evaluations, Tick&& tick, const ThrustPath& along = {}) {
@@ -67,10 +94,13 @@ PathArrival continue_thrust_down(const Settings& s, ProgramKnobs& knobs, std::ve
     set(next);
     std::vector<double> trial;
     bool ok = false;
+    double prediction = NAN;  // the flight time times the thrust's scale the tangent predicts
     for (int attempt = 0; attempt <= kThrustRetries && !ok && !out_of_time(s); ++attempt) {
       trial = x;
-      if (predicted)
+      if (predicted) {
         for (std::size_t i = 0; i < x.size(); ++i) trial[i] += tangent[i] * (next - sigma);
+        prediction = along.time_thrust(trial, next);
+      }
       if (attempt > 0) {
         const double scale = std::pow(10.0, -3.0 + 2.0 * (attempt - 1) / std::max(1, kThrustRetries - 1));
         for (double& v : trial) v *= 1 + scale * unit(rng);
@@ -79,7 +109,8 @@ PathArrival continue_thrust_down(const Settings& s, ProgramKnobs& knobs, std::ve
       double res = 0;
       ++solves;
       // Every step at the acceptance of intermediate steps; the search polishes the arrival.
-      ok = shooter.solve(trial, 0.0, s.accept_residual, info, res) && admissible(trial.data());
+      ok = shooter.solve(trial, 0.0, s.accept_residual, info, res) && admissible(trial.data()) &&
+           stays_on_branch(prediction, along.time_thrust(trial, next), next - sigma);
       ContinuationStep record{"maximum thrust [N], the final time's window scaled inversely", knobs.thrust_N(next), ok,
                               res, shooter.last_step_evaluations};
       if (ok) {
@@ -103,6 +134,7 @@ PathArrival continue_thrust_down(const Settings& s, ProgramKnobs& knobs, std::ve
   }
   evaluations += shooter.evaluations;
   out.reached = knobs.thrust_N(sigma);
+  out.reached_time = along.time_thrust(x, sigma) * std::exp(-sigma);
   if (sigma == 0) {
     out.arrived = true;
     out.x = x;
@@ -112,8 +144,9 @@ PathArrival continue_thrust_down(const Settings& s, ProgramKnobs& knobs, std::ve
 }
 
 // A search of the problem as the knobs leave it (the thrust raised), with the routes a nested
-// search runs (pipeline.hpp).
-Result nested_search(SearchContext& parent);
+// search runs (pipeline.hpp); where the flight time is known to be about `estimate` (normalized)
+// its companion and starts start from it (scale.hpp).
+Result nested_search(SearchContext& parent, double estimate = NAN);
 
 // The factor by which to raise the thrust so that a transfer of `revolutions` winds at most
 // kFewRevolutions times (the revolutions fall about as the thrust rises): a power of two, 2 at least.
@@ -157,22 +190,57 @@ class ThrustRoute : public Route {
     if (kProblem.objective != Objective::time) return "not a minimum-time problem";
     if (!targets_fixed_in_time()) return "a target moves on the calendar: a raised thrust would meet it elsewhere";
     if (!c.knobs.thrust_scalable()) return "the program has no maximum thrust to scale";
-    if (settled(c.rec())) return "the search settled the problem with few revolutions";
+    if (settled(c.rec()) && !c.many_revolutions_expected())
+      return "the search settled the problem with few revolutions";
     return "";
   }
 
   std::string run(SearchContext& c) override {
     SearchRecord& rec = c.rec();
     double factor = 1;
-    const Result raised = search_at_raised_thrust(c, factor, rec.thrust_continuation);
+    // The time scale's search, where it found a transfer of few revolutions, else a search of its own.
+    const bool measured =
+        c.scale_search.status == Status::kConverged && rec.time_scale.raised_revolutions <= kFewRevolutions;
+    if (measured) factor = rec.time_scale.factor;
+    Result raised = measured ? c.scale_search : search_at_raised_thrust(c, factor, rec.thrust_continuation);
     c.knobs.restore();
     if (raised.status != Status::kConverged) {
       c.progress.stage("thrust continuation: no search at a raised thrust returned a transfer of few revolutions");
       return "no search at a raised thrust returned a transfer of few revolutions";
     }
-    const double sigma = std::log(factor);
-    // The distinct extremals the search there reached, lowest objective first (the best path down
-    // need not start from the best extremal up there), kThrustBranches of them.
+    double sigma = std::log(factor);
+    const std::string first = number_text(c.knobs.thrust_N(sigma));
+    int arrived = 0, restarts = 0;
+    for (;;) {
+      double lowest = sigma, time = NAN;  // the lowest scale any branch reached, its flight time
+      arrived = continue_branches(c, raised, sigma, lowest, time);
+      if (arrived > 0 || restarts >= kMaxThrustRestarts || !(lowest < sigma - 1e-3) || c.out_of_time()) break;
+      // Every branch ended at a fold above the problem's thrust: a search where they went lowest.
+      ++restarts;
+      sigma = lowest;
+      c.knobs.scale_thrust(sigma);
+      c.progress.stage("thrust continuation: every branch ended above the problem's thrust; a search at " +
+                       number_text(c.knobs.thrust_N(sigma)) + " N, where they went lowest");
+      raised = nested_search(c, time);
+      c.knobs.restore();
+      c.count(raised.evaluations);
+      ContinuationStep step{"raised thrust: the search there [N]", c.knobs.thrust_N(sigma),
+                            raised.status == Status::kConverged, raised.max_residual, raised.evaluations};
+      rec.thrust_continuation.push_back(step);
+      if (raised.status != Status::kConverged) break;
+    }
+    return "from the search at " + first + " N (x" + number_text(factor) + ")" +
+           (restarts > 0 ? ", " + std::to_string(restarts) + " more where the branches ended" : "") + "; " +
+           std::to_string(arrived) + " branches arrived at " + number_text(c.knobs.own_thrust_N()) + " N";
+  }
+
+ private:
+  // The kThrustBranches best distinct extremals of the search `raised` at the scale sigma (the
+  // best path down need not start from the best extremal up there), continued down one after the
+  // other (they share the program's thrust), each arrival entered into the pool. Returns how many
+  // arrived; `lowest` is the lowest scale any reached, and `time` the flight time there.
+  int continue_branches(SearchContext& c, const Result& raised, double sigma, double& lowest, double& time) {
+    SearchRecord& rec = c.rec();
     std::vector<const Extremal*> branches;
     for (const Extremal& e : raised.search.extremals)
       if (returnable(e)) branches.push_back(&e);
@@ -185,8 +253,7 @@ class ThrustRoute : public Route {
     for (std::size_t k = 0; k < branches.size() && !c.out_of_time(); ++k) {
       int evaluations = 0;
       const std::string which = "the extremal " + std::to_string(k + 1) + " of " + std::to_string(branches.size()) +
-                                " of the search at " + number_text(c.knobs.thrust_N(sigma)) + " N (x" +
-                                number_text(factor) + ")";
+                                " of the search at " + number_text(c.knobs.thrust_N(sigma)) + " N";
       const auto tick = [&](double thrust_N, double revolutions) {
         c.progress.tick("thrust continuation from " + which + ": " + number_text(thrust_N) + " N of " +
                         number_text(target_N) + " N, " + number_text(revolutions, 4) + " revolutions");
@@ -197,8 +264,12 @@ class ThrustRoute : public Route {
       c.knobs.restore();
       c.count(evaluations);
       rec.thrust_continuation.insert(rec.thrust_continuation.end(), a.steps.begin(), a.steps.end());
+      if (std::log(a.reached / target_N) < lowest) {
+        lowest = std::log(a.reached / target_N);
+        time = a.reached_time;
+      }
       if (!a.arrived) {
-        c.progress.stage("thrust continuation from " + which + ": stopped at " + number_text(a.reached) + " N");
+        c.progress.stage("thrust continuation from " + which + ": ended at " + number_text(a.reached) + " N");
         continue;
       }
       rec.thrust_continuation_arrived = true;
@@ -217,9 +288,7 @@ class ThrustRoute : public Route {
       c.progress.stage("thrust continuation from " + which + ": arrived with " + objective_text(shape.cost) + ", " +
                        number_text(shape.revolutions, 5) + " revolutions");
     }
-    return "raised x" + number_text(factor) + " to " + number_text(c.knobs.thrust_N(sigma)) + " N; " +
-           std::to_string(arrived) + " of " + std::to_string(branches.size()) + " branches arrived at " +
-           number_text(target_N) + " N";
+    return arrived;
   }
 };
 

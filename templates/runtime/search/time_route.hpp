@@ -193,9 +193,20 @@ class TimeRoute : public Route {
     if (c.coarse.search_thrust_continuation && c.knobs.thrust_scalable() && !(fewest <= kFewRevolutions))
       by_raised_thrust(c);
     int arrived = 0;
-    for (const auto& p : c.rec().time_route_paths) arrived += p.extremal >= 0;
-    return std::to_string(c.rec().time_route_paths.size()) + " paths, " + std::to_string(arrived) +
-           " arrived at the problem's final time";
+    double t_min = INFINITY;
+    for (const auto& p : c.rec().time_route_paths) {
+      arrived += p.extremal >= 0;
+      if (std::isfinite(p.tf_min_days)) t_min = std::min(t_min, p.tf_min_days);
+    }
+    std::string line = std::to_string(c.rec().time_route_paths.size()) + " paths, " + std::to_string(arrived) +
+                       " arrived at the problem's final time";
+    if (kProblem.final_coast_keeps_target && std::isfinite(t_min)) {
+      // The minimum-time transfer burns throughout; completed by a coast on the target it is a
+      // feasible transfer at the problem's final time, which no returned extremal may cost more than.
+      c.rec().coast_bound = full_mass_flow() * t_min / kProblem.time_unit_days;
+      line += "; the minimum time " + days_text(t_min) + " and a coast cost " + objective_text(c.rec().coast_bound);
+    }
+    return line;
   }
 
  private:
@@ -215,7 +226,8 @@ class TimeRoute : public Route {
     const int l0 = lambda0_variable();
     const double held = 0;
     ThrustPath along{held_multiplier_function(c.knobs, l0, held), nullptr,
-                     [&](const std::vector<double>& z) { return minimum_time_revolutions(c.coarse, c.knobs, z); }};
+                     [&](const std::vector<double>& z) { return minimum_time_revolutions(c.coarse, c.knobs, z); },
+                     [l0](const std::vector<double>& z, double) { return z[l0]; }};
     auto positive_time = [&](const double* z) { return z[l0] > 0; };
     const auto tick = [&](double thrust_N, double revolutions) {
       c.progress.tick("minimum time down the thrust: " + number_text(thrust_N) + " N of " +

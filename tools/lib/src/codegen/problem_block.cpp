@@ -27,6 +27,23 @@ std::string runtime_objective(const std::string& objective) {
   throw std::invalid_argument("field /problem/objective: '" + objective + "' is no objective the runtime knows");
 }
 
+// Whether a coast keeps the final constraint: the constraint at tf is an orbit insertion (an orbit
+// with the position on it free: the spec's orbit targets never fix an anomaly) and the listed
+// forces are the central body's and the thrust alone (a perturbation drifts the orbit's elements
+// during the coast). A derivation without a terms listing: false.
+bool final_coast_keeps_target(const Context& c) {
+  if (!c.terms) return false;
+  for (const auto& t : *c.terms)
+    if (t.kind == "force" && t.name != "two_body" && t.name != "thrust") return false;
+  bool orbit = false;
+  for (const auto& k : c.constraints) {
+    if (k.at != "tf") continue;
+    if (k.kind != "orbit_insertion") return false;
+    orbit = true;
+  }
+  return orbit && c.interior_events.empty();
+}
+
 }  // namespace
 
 std::string problem_block(Context& c) {
@@ -52,8 +69,7 @@ std::string problem_block(Context& c) {
     << "constexpr bool kCoastingTarget = " << (c.coast_dynamics ? "true" : "false")
     << ";  // the module table names coast_dynamics\n"
     << "// The objective the search minimizes.\n"
-    << "constexpr helios_rt::Objective kObjective = helios_rt::Objective::" << runtime_objective(c.objective)
-    << ";\n"
+    << "constexpr helios_rt::Objective kObjective = helios_rt::Objective::" << runtime_objective(c.objective) << ";\n"
     << "// The problem's numbers: globals set from these literals, which a parameters file may replace\n"
     << "// at run time (shoot --parameters; helios_runtime.hpp's HELIOS_PARAMETER).\n"
     << "HELIOS_PARAMETER(kT0, " << number(times.t0) << ");\n"
@@ -68,8 +84,8 @@ std::string problem_block(Context& c) {
     << "HELIOS_PARAMETER(kEpochMjd2000, " << number(times.epoch_mjd2000.value_or(0.0)) << ");\n"
     << "HELIOS_PARAMETER(kMassUnitKg, " << number(c.units.mass_kg) << ");\n";
   const derivation::Quantity* exhaust = c.exhaust_velocity();
-  o << "HELIOS_PARAMETER(kExhaustVelocityMS, "
-    << number(exhaust ? c.units.to_si(exhaust->value, exhaust->unit) : 0.0) << ");\n";
+  o << "HELIOS_PARAMETER(kExhaustVelocityMS, " << number(exhaust ? c.units.to_si(exhaust->value, exhaust->unit) : 0.0)
+    << ");\n";
   std::vector<std::string> columns;
   std::string factors;
   for (const auto& s : c.state_quantities) {
@@ -105,6 +121,9 @@ std::string problem_block(Context& c) {
     if (!p.runtime_evaluated())
       o << "HELIOS_PARAMETER(" << p.name << ", " << number(p.value) << ");  // "
         << comment_text(p.meaning + " [" + p.unit_text + "]") << "\n";
+  o << "// A coast keeps the final constraint: it is an orbit with the position on it free, and the only\n"
+    << "// force but the thrust is the central body's (a transfer that arrives early may coast to tf).\n"
+    << "constexpr bool kFinalCoastKeepsTarget = " << (final_coast_keeps_target(c) ? "true" : "false") << ";\n";
   o << "}  // namespace problem\n\n"
     << "// The problem's shape as the runtime library reads it (helios_runtime.hpp's ProblemShape).\n"
     << "namespace helios_rt {\n"
@@ -118,7 +137,8 @@ std::string problem_block(Context& c) {
     << "                               problem::mu, problem::kStateNames, problem::kStateColumns,\n"
     << "                               problem::kStateToPhysical, problem::kControlNames, problem::kVariableNames,\n"
     << "                               problem::kEquationNames, "
-    << (bodies.empty() ? "nullptr, 0" : "problem::kOrbitBodies, " + std::to_string(bodies.size())) << "};\n"
+    << (bodies.empty() ? "nullptr, 0" : "problem::kOrbitBodies, " + std::to_string(bodies.size()))
+    << ", problem::kFinalCoastKeepsTarget};\n"
     << "}  // namespace helios_rt\n";
   return o.str();
 }

@@ -1,0 +1,168 @@
+// ---------------------------------------------------------------------------------------------
+// HELIOS shooting runtime, the bound route (templates/runtime/search/bound.hpp): where the routes
+// before it returned nothing, the minimum time sought past the stated bound, so that a problem
+// whose bound is below its minimum time ends infeasible with that minimum instead of failed.
+//
+// A minimum-time problem: its window's end is opened to the longest flight the engine can make
+// (95 % of the time full thrust burns the whole mass; 16 times the window without a mass flow) and
+// the problem searched again there with every route but this one. Its returned extremal is the
+// minimum time: beyond the stated end, it proves the problem infeasible (the record says the
+// search settled it); within, the first search missed it, and it is an extremal of the problem as
+// stated, entered into the pool.
+//
+// A minimum-fuel problem at a fixed final time: the final time is doubled until starts converge
+// (at most kMaxOpenings times, never past the burnout), and each of the lowest-cost solutions there
+// continued down in the final time to the minimum-time extremal (time_route.hpp). Longer than the
+// stated time, it proves the problem infeasible; shorter, the fuel extremal is continued up from it
+// to the stated time and entered into the pool. Targets that move on the calendar are met where
+// they are at each final time, so this route serves a fixed-date rendezvous too.
+// ---------------------------------------------------------------------------------------------
+#pragma once
+
+namespace helios_rt {
+
+namespace {
+
+class BoundRoute : public Route {
+ public:
+  const char* name() const override { return "minimum time past the bound"; }
+  std::string skip(const SearchContext& c) const override {
+    if (c.nested || c.knobs.opened()) return "inside another search";
+    if (best_index(c.rec()) >= 0) return "an extremal within the bound was reached";
+    if (!c.knobs.final_time_movable()) return "the program's final time is not a parameter";
+    if (free_final_time().variable >= 0) {
+      if (kProblem.objective != Objective::time) return "not a minimum-time problem";
+      if (!(opened_end() > kProblem.tf * (1 + 1e-9))) return "the window already ends where the engine burns out";
+      return "";
+    }
+    if (!objective_is_propellant() || full_mass_flow() <= 0 || lambda0_variable() < 0)
+      return "not a minimum-fuel problem with an engine that burns mass";
+    return "";
+  }
+
+  std::string run(SearchContext& c) override {
+    const std::string line = free_final_time().variable >= 0 ? open_window(c) : lengthen_final_time(c);
+    c.knobs.reset_base();
+    c.progress.stage(line);
+    return line;
+  }
+
+ private:
+  static constexpr int kMaxOpenings = 6;
+  static constexpr std::size_t kSources = 3;
+
+  // The longest flight's end for a minimum-time problem (absolute, normalized).
+  static double opened_end() {
+    const double flow = full_mass_flow();
+    return kProblem.t0 + (flow > 0 ? 0.95 / flow : 16 * (kProblem.tf - kProblem.t0));
+  }
+
+  std::string open_window(SearchContext& c) {
+    SearchRecord& rec = c.rec();
+    const double bound = kProblem.tf, end = opened_end(), tf_min = kProblem.tf_min;
+    const double day = kProblem.time_unit_days;
+    rec.bound_days = (bound - kProblem.t0) * day;
+    const std::string how = "the window opened to " + days_text((end - kProblem.t0) * day, 6);
+    c.progress.stage("nothing within the window: " + how + " to find the minimum time");
+    c.knobs.open_final_time(end);
+    std::vector<std::unique_ptr<Route>> routes;
+    routes.push_back(std::make_unique<TimeScaleRoute>());
+    routes.push_back(std::make_unique<CompanionRoute>());
+    routes.push_back(std::make_unique<StartsRoute>());
+    routes.push_back(std::make_unique<FamiliesRoute>());
+    routes.push_back(std::make_unique<ThrustRoute>());
+    const Result opened = Search(c.fine, c.guess, c.admissible, c.knobs, false, std::move(routes)).solve();
+    c.count(opened.evaluations);
+    if (opened.status != Status::kConverged) return how + ": no transfer found there either";
+    const Extremal& best = opened.search.extremals[opened.search.returned];
+    rec.minimum_time_days = best.tf_days;
+    rec.minimum_time_settled = true;
+    rec.minimum_time_how = how + ", the search there returned it by " + best.route;
+    if (best.tf_days > rec.bound_days * (1 + kInfeasibleMargin))
+      return "minimum time " + days_text(best.tf_days) + ", " + how;
+    // Within the stated window: the problem's own extremal, its final time as a fraction of the window.
+    c.knobs.reset_base();
+    Extremal entry = best;
+    const int at = free_final_time().variable;
+    entry.x[at] = (tf_min + (end - tf_min) * best.x[at] - tf_min) / (bound - tf_min);
+    entry.shape = shape_of(c.coarse, entry.x, 0.0);
+    entry.method += " (found with " + how + ")";
+    c.pool.enter(name(), std::move(entry));
+    return "minimum time " + days_text(best.tf_days) + " within the window, found with " + how;
+  }
+
+  std::string lengthen_final_time(SearchContext& c) {
+    SearchRecord& rec = c.rec();
+    const double own = c.knobs.final_time_unit(), day = kProblem.time_unit_days;
+    const double burnout = kProblem.t0 + 0.95 / full_mass_flow();
+    rec.bound_days = (own - kProblem.t0) * day;
+    for (int k = 1; k <= kMaxOpenings && !c.out_of_time(); ++k) {
+      const double longer = kProblem.t0 + (own - kProblem.t0) * std::exp2(k);
+      if (longer > burnout) break;
+      c.knobs.open_final_time(longer);
+      c.progress.stage("nothing at the stated final time: the final time lengthened to " +
+                       days_text((longer - kProblem.t0) * day, 6) + " to find the minimum time");
+      std::vector<std::unique_ptr<Route>> routes;
+      routes.push_back(std::make_unique<StartsRoute>());
+      const Result there = Search(c.fine, c.guess, c.admissible, c.knobs, true, std::move(routes)).solve();
+      c.count(there.evaluations);
+      if (there.search.start_extremals.empty()) continue;
+      return from_longer(c, there.search, longer,
+                         "the final time lengthened to " + days_text((longer - kProblem.t0) * day, 6));
+    }
+    return "no start converged at any final time up to the burnout: no minimum time found";
+  }
+
+  // The minimum time from the solutions at the lengthened final time `longer`, then the fuel
+  // extremal up from it to the stated time where it is shorter.
+  std::string from_longer(SearchContext& c, const SearchRecord& there, double longer, const std::string& how) {
+    SearchRecord& rec = c.rec();
+    const int l0 = lambda0_variable();
+    std::vector<double> shortest;
+    for (const int k : lowest_cost(there.start_extremals, kSources)) {
+      TimeRouteArrival a;
+      std::vector<double> z;
+      int evaluations = 0;
+      const bool reached = minimum_time_from_fuel_solution(c.fine, c.knobs, there.start_extremals[k].x,
+                                                           c.coarse.eps_start, z, a, evaluations);
+      c.count(evaluations);
+      rec.time_route.insert(rec.time_route.end(), a.steps.begin(), a.steps.end());
+      if (reached && (shortest.empty() || z[l0] < shortest[l0])) shortest = z;
+    }
+    if (shortest.empty()) return how + ": no minimum time reached from the solutions there";
+    const double t_min = shortest[l0] * longer;  // the held system's final time, a fraction of `longer`
+    rec.minimum_time_days = (t_min - kProblem.t0) * kProblem.time_unit_days;
+    rec.minimum_time_settled = true;
+    rec.minimum_time_how = how + ", then continued down to the shortest final time that converges";
+    if (rec.minimum_time_days > rec.bound_days * (1 + kInfeasibleMargin))
+      return "minimum time " + days_text(rec.minimum_time_days) + " (" + how + ")";
+    // Shorter than the stated time: the fuel extremal continued up from the minimum time to it.
+    c.knobs.reset_base();
+    shortest[l0] = t_min / c.knobs.final_time_unit();
+    TimeRouteArrival a;
+    int evaluations = 0;
+    fuel_path_from_minimum_time(c.fine, c.knobs, shortest, c.admissible, a, evaluations);
+    c.count(evaluations);
+    rec.time_route.insert(rec.time_route.end(), a.steps.begin(), a.steps.end());
+    if (!a.arrived)
+      return "minimum time " + days_text(rec.minimum_time_days) +
+             "; minimum fuel from it did not reach the stated time";
+    Extremal entry;
+    entry.x = a.x;
+    entry.F = a.F;
+    entry.max_residual = a.max_residual;
+    entry.info = a.info;
+    entry.shape = shape_of(c.coarse, a.x, 0.0);
+    entry.method = "single shooting, minimum fuel continued from the minimum-time extremal (t_min " +
+                   days_text(rec.minimum_time_days) + ", " + how + ")";
+    entry.continuation = a.steps;
+    entry.homotopy = a.homotopy;
+    c.pool.enter(name(), std::move(entry));
+    return "minimum time " + days_text(rec.minimum_time_days) +
+           ", minimum fuel continued up from it to the stated time";
+  }
+};
+
+}  // namespace
+
+}  // namespace helios_rt
