@@ -317,3 +317,21 @@ case_dir score-oem-csv-time-back; sed '3s/^[^,]*,/-5,/' "$OEM_FIX/trajectory.csv
 case_dir score-oem-other-problem; cp "$OEM_FIX/trajectory.csv" t.csv; jq '.problem.id = "S01"' "$OEM_FIX/solution.json" >sol.json
 expect 3 'sol.json: field /problem/id' score --oem --spec "$OEM_FIX/spec.json" --solution sol.json --trajectory t.csv
 case_dir score-oem-usage-no-trajectory; expect 2 'needs --trajectory' score --oem --spec "$OEM_FIX/spec.json" --solution "$OEM_FIX/solution.json"
+
+# ---- every tool: -o naming a stream -----------------------------------------------------------
+# A FIFO, or a device like /dev/null, is written into, never renamed over (as root that replaced
+# the system's /dev/null with a regular file).
+for kind in fifo device; do
+  case_dir "parse-output-$kind"; cp "$BASE/problem.txt" p.txt; stream_case "$kind" 0 '' parse p.txt
+  case_dir "derive-output-$kind"; stream_case "$kind" 0 '' derive "$BASE/spec.json"
+  case_dir "verify-output-$kind"; stream_case "$kind" 0 '' verify "$BASE/derivation.json"
+  case_dir "gen-output-$kind"; stream_case "$kind" 0 '' gen "$BASE/derivation.json"
+  # (a program that does not compile: its compile report, quickly)
+  case_dir "solve-output-$kind"; echo 'int main() {' >shoot.cpp
+  stream_case "$kind" 0 '' solve shoot.cpp --compile-only --cache-dir "$WORK/stream-cache"
+  case_dir "score-output-$kind"; cp "$BASE/problem.txt" p.txt
+  stream_case "$kind" 0 '' score --report --problem p.txt --spec "$BASE/spec.json" --derivation "$BASE/derivation.json"
+done
+# Other kinds are refused, naming them.
+case_dir parse-output-directory; cp "$BASE/problem.txt" p.txt; mkdir out
+expect 1 'out: is a directory, not a file to write' parse p.txt
