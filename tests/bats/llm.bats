@@ -148,11 +148,11 @@ script() {
   touch "$prompts/pmp_derive.txt"
   run -0 lmake -q scenario=S01 BACKEND=builtin HELIOS_PROMPTS_DIR="$prompts"
   run -0 lmake -n scenario=S01 BACKEND=llm HELIOS_PROMPTS_DIR="$prompts"
-  [[ $output == *"helios-derive --backend llm --round 1 "* && $output != *"helios-parse"* ]] || { echo "$output" >&2; false; }
+  [[ $output == *"helios-derive' --backend llm --round 1 "* && $output != *"helios-parse"* ]] || { echo "$output" >&2; false; }
   touch "$prompts/parse.txt"
   run -0 lmake -q scenario=S01 BACKEND=builtin HELIOS_PROMPTS_DIR="$prompts"
   run -0 lmake -n scenario=S01 BACKEND=llm HELIOS_PROMPTS_DIR="$prompts"
-  [[ $output == *"helios-parse --backend llm"* ]] || { echo "$output" >&2; false; }
+  [[ $output == *"helios-parse' --backend llm"* ]] || { echo "$output" >&2; false; }
 }
 
 @test "llm: an interrupted run resumes at the first missing round and redoes nothing before it" {
@@ -169,8 +169,8 @@ script() {
     {"content_file": "codegen_good.txt", "match": "four modules"}]}')" requests.jsonl
   run -0 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES make --no-print-directory -C "$ROOT" \
     -o build/tools.stamp RUNS_ROOT="$copy" CACHE="$LLM_CACHE" scenario=S01 BACKEND=llm
-  [[ $output != *"helios-parse"* && $output != *"helios-derive --backend llm --round 1 "* ]] || { echo "$output" >&2; false; }
-  [[ $output == *"helios-derive --backend llm --round 2"* ]]
+  [[ $output != *"helios-parse"* && $output != *"helios-derive' --backend llm --round 1 "* ]] || { echo "$output" >&2; false; }
+  [[ $output == *"helios-derive' --backend llm --round 2"* ]]
   [[ $(cd "$copy/llm/S01" && stat -c '%n %.9Y' spec.json derivation.r1.json verify.r1.json) == "$before" ]]
   [[ $(wc -l <requests.jsonl) -eq 2 ]]
   assert_jq "$copy/llm/S01/score.json" '.total == 100'
