@@ -335,3 +335,26 @@ done
 # Other kinds are refused, naming them.
 case_dir parse-output-directory; cp "$BASE/problem.txt" p.txt; mkdir out
 expect 1 'out: is a directory, not a file to write' parse p.txt
+
+# ---- the llm backend: what the endpoint and the environment give -------------------------------
+# Numeric variables out of their range are refused in one line before any request (1e10 retries
+# overflowed an int).
+for v in 'HELIOS_LLM_MAX_RETRIES=1e10' 'HELIOS_LLM_MAX_TURNS=0' 'HELIOS_LLM_TIMEOUT_S=1e300' 'HELIOS_LLM_TEMPERATURE=nan'; do
+  case_dir "parse-llm-env-${v%%=*}"; cp "$BASE/problem.txt" p.txt
+  export "$v" HELIOS_LLM_BASE_URL=http://127.0.0.1:9/v1 HELIOS_LLM_MODEL=m
+  expect 2 "^helios-parse: error: $v is not a (whole )?number in" parse --backend llm p.txt
+  unset "${v%%=*}" HELIOS_LLM_BASE_URL HELIOS_LLM_MODEL
+done
+# A reply of 300 MB (streamed, no Content-Length) is refused at the limit while it is read: exit 3,
+# the memory of the read bounded (the budget below), its transcript without it.
+case_dir parse-llm-reply-300MB; cp "$BASE/problem.txt" p.txt; mkdir -p "$WORK/llm"
+echo '{"replies": [{"flood_bytes": 300000000}]}' >"$WORK/llm/flood.json"
+"$BIN/fake-llm" --script "$WORK/llm/flood.json" --port-file "$WORK/llm/port" --lifetime 120 >/dev/null &
+fake=$!
+for _ in $(seq 100); do [[ -s $WORK/llm/port ]] && break; sleep 0.05; done
+export HELIOS_LLM_BASE_URL="http://127.0.0.1:$(cat "$WORK/llm/port")/v1" HELIOS_LLM_MODEL=m
+expect 3 'the reply is larger than the limit of an llm reply \(67108864 bytes' parse --backend llm p.txt \
+  --memory-limit 1000 --transcript "$WORK/llm/flood.transcript.json"
+unset HELIOS_LLM_BASE_URL HELIOS_LLM_MODEL
+kill "$fake"; wait "$fake"
+holds "the transcript is kept and small" eval "[[ \$(wc -c <'$WORK/llm/flood.transcript.json') -lt 100000 ]]"
