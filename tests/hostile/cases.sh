@@ -225,6 +225,12 @@ case_dir verify-usage-points; cp "$BASE/derivation.json" d.json; expect 2 'point
 case_dir verify-clean; cp "$BASE/derivation.json" d.json; expect 0 '' verify d.json
 case_dir verify-cpu-budget; jq_derivation '.hamiltonian = "3^(10^10)*rx"' >d.json
 expect 1 'CPU-time budget of 2 s' verify d.json --time-limit 2
+# helios-gen has the same budgets (it had none): GiNaC computes 3^(10^10) while reading the equation.
+case_dir gen-cpu-budget; jq_derivation '.costate_odes[0].rhs = "3^(10^10)*rx"' >d.json
+expect 1 'CPU-time budget of 2 s' gen d.json --time-limit 2
+case_dir gen-memory-budget; jq_derivation '.costate_odes[0].rhs = "3^(10^10)*rx"' >d.json
+# (Under AddressSanitizer the memory budget is not applied: the CPU-time budget stops it.)
+expect 1 'memory budget of 200 MB|CPU-time budget of 20 s' gen d.json --memory-limit 200 --time-limit 20
 
 # ---- helios-solve: settings and programs (each refused before any compile) -------------------
 
