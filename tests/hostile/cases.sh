@@ -272,6 +272,13 @@ expect 3 'd.json' score --reference r.json --derivation d.json
 case_dir score-verify-number-1e400; cp "$ROOT/scenarios/S01/reference.json" r.json; echo '{"schema": "helios/verify", "x": 1e400}' >v.json
 expect 3 'v.json: malformed JSON: the number 1e400 is outside the range of a double' score --reference r.json --verify v.json
 case_dir score-usage-nothing; expect 2 '.' score
+# A model's name is text in its cell of scoreboard.md: no new row, heading or HTML.
+case_dir score-scoreboard-model-markup; mkdir -p runs/S01
+"$BIN/helios-score" --reference "$ROOT/scenarios/S01/reference.json" --spec "$BASE/spec.json" |
+  jq '.producer.backend = "llm" | .producer.model = "m | S99 | 100 |\n# Pwned <img src=x onerror=alert(1)>"' >runs/S01/score.json
+expect 0 '' score --scoreboard runs
+holds "scoreboard.md has one row for the one run, no heading or HTML from the model" \
+  eval "[[ \$(grep -c '^|' out) -eq 4 && \$(grep -c '^#' out) -eq 1 ]] && ! grep -q ' <img' out"
 case_dir score-scoreboard-missing; expect 3 'nowhere' score --scoreboard nowhere
 
 # ---- helios-score --report: the problem text it quotes ---------------------------------------
