@@ -95,6 +95,20 @@ case_dir parse-table-row-alone; printf '| a | b |\n' >p.txt; expect 3 '.' parse 
 s01_edited parse-mjd-nan 's/at t = 0 days/at MJD2000 nan/' 'p.txt:[0-9]+: cannot use sentence'
 case_dir parse-flyby-unknown; { s01_text; echo "The spacecraft flies by Nibiru on the way."; } >p.txt; expect 3 '.' parse p.txt
 
+# Equations of the final state: a value beyond a double where it is written or in its unit, a
+# power beyond a double, a unit power beyond an int (each was a raw "stod"/"stoi", exit 1).
+s01_final() { grep -v -e '^At the final time' -e '^Minimize' "$BASE/problem.txt"; printf '%s\nMinimize the fuel consumption.\n' "$1"; }
+for c in 'overflow:r = 1e400 km:the number 1e400 is outside the range of a double' \
+  'underflow:r = 1e-400 km:the number 1e-400 is outside the range of a double' \
+  'unit-overflow:r^40 = 1e300 AU^40:.1e300 AU\^40. in km\^40 is beyond the range of a double' \
+  'unit-underflow:r^2 = 1e-305 m^2:.1e-305 m\^2. in km\^2 is beyond the range of a double' \
+  'power-digits:r = 1 km^'"$(printf '9%.0s' $(seq 400))"':the number 9+ is outside the range of a double'; do
+  IFS=: read -r name sentence pattern <<<"$c"
+  case_dir "parse-final-state-$name"; s01_final "At the final time $sentence." >p.txt
+  expect 3 "p.txt:7: cannot use sentence .At the final time .*: $pattern" parse p.txt
+done
+s01_edited parse-unit-power-beyond-int 's/0.5 N/0.5 N^99999999999/' 'p.txt:4: cannot use sentence'
+
 # User-written accelerations (parsed as text here; helios-derive reads them).
 for a in 'unbalanced:(x+' 'deep:'"$(printf '(%.0s' $(seq 300))"'x'"$(printf ')%.0s' $(seq 300))" 'unknown-symbol:q*x' \
   'empty:' 'quote:x"; system("id")'; do
@@ -173,6 +187,11 @@ for a in 'unbalanced:(x+:cannot parse' 'deep:'"$(printf '(%.0s' $(seq 300))"'x'"
   rm -f long.txt
   expect 3 "s.json: field /dynamics/perturbations \\(srp\\)/components/0: .*${rest##*:}" derive s.json
 done
+# A final-state value a double holds in km^40 but not in the normalized units (AU^40 > 1.8e308):
+# it became r^40 = 0, r = 0.
+case_dir derive-final-state-beyond-normalized
+s01_final "At the final time r^40 = 1e300 km^40." >p.txt; "$BIN/helios-parse" p.txt -o s.json; rm p.txt
+expect 3 "s.json: constraint 'arrival': target/conditions/0/equals: 1e\+300 km\^40 in the normalized units .* is beyond the range of a double" derive s.json
 case_dir derive-cpu-budget
 jq '.dynamics.perturbations[0].components[0] = "3^(10^10)*x"' "$BASE/s12-spec.json" >s.json
 expect 1 'CPU-time budget of 2 s' derive s.json --time-limit 2

@@ -1174,6 +1174,19 @@ TEST(ParseStateConditions, ReadsEquationsOfTheFinalStateInTheirUnits) {
   has(e("At the final time q = 0."), "symbol \"q\" not found");
   has(e("At the final time mu = 398600 km^3/s^2."), "involves no state");
   has(e("At the final time x = 1 km = 2 km."), "is not one equation");
+  // Numbers that would vanish or overflow are refused at their sentence, naming the value.
+  EXPECT_EQ(e("At the final time r = 1e400 km."),
+            "problem.txt:7: cannot use sentence \"At the final time r = 1e400 km\": the number 1e400 is outside "
+            "the range of a double (magnitudes 2.2e-308 to 1.8e308)");
+  has(e("At the final time r = 1e-400 km."), "the number 1e-400 is outside the range of a double");
+  has(e("At the final time r^40 = 1e300 AU^40."),
+      "'1e300 AU^40' in km^40 is beyond the range of a double (magnitudes 2.2e-308 to 1.8e308), state the "
+      "condition with a lower power (e.g. 'r = Q' for 'r^40 = Q^40')");
+  has(e("At the final time r^2 = 1e-305 m^2."), "'1e-305 m^2' in km^2 is beyond the range of a double");
+  has(e("At the final time r = 1 km^" + std::string(400, '9') + "."), "is outside the range of a double");
+  EXPECT_EQ(parse(with_final_orbit(
+                "At the final time r^40 = 1e300 km^40."))["constraints"][1]["target"]["conditions"][0]["equals"],
+            1e300);
 }
 
 TEST(ParseOrbitTarget, RefusesWhatItCannotPlaceWithTheForms) {
