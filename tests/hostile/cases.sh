@@ -108,6 +108,10 @@ for c in 'overflow:r = 1e400 km:the number 1e400 is outside the range of a doubl
   expect 3 "p.txt:7: cannot use sentence .At the final time .*: $pattern" parse p.txt
 done
 s01_edited parse-unit-power-beyond-int 's/0.5 N/0.5 N^99999999999/' 'p.txt:4: cannot use sentence'
+# An orbit on the way named "geostationary": its spec is the schema's (it was not).
+case_dir parse-geostationary-on-the-way; sed 's/^The time of flight is free, at most 2 days./&\nThe spacecraft passes through geostationary orbit between day 0.1 and day 0.5./' \
+  "$ROOT/scenarios/S14/problem.txt" >p.txt
+expect 0 '' parse p.txt
 
 # User-written accelerations (parsed as text here; helios-derive reads them).
 for a in 'unbalanced:(x+' 'deep:'"$(printf '(%.0s' $(seq 300))"'x'"$(printf ')%.0s' $(seq 300))" 'unknown-symbol:q*x' \

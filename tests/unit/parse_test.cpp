@@ -1288,6 +1288,18 @@ TEST(ParseOrbitTarget, ReadsAnOrbitOnTheWayWithItsWindow) {
                                               "The time of flight is free, at most 2 days. The spacecraft crosses an "
                                               "equatorial orbit between day 0.1 and day 0.5.")),
                        "test");
+  // "geostationary" on the way is the orbit it names, as at the end: the spec is the schema's.
+  const json geo = interior("The spacecraft passes through geostationary orbit between day 0.1 and day 0.5.");
+  ASSERT_EQ(geo.size(), 1u);
+  EXPECT_FALSE(geo[0]["target"].contains("geostationary"));
+  EXPECT_NEAR(geo[0]["target"]["semi_major_axis_km"].get<double>(), 42164.17, 0.01);
+  EXPECT_EQ(geo[0]["target"]["eccentricity"], 0.0);
+  EXPECT_EQ(geo[0]["target"]["inclination_deg"], 0.0);
+  helios::io::validate("spec",
+                       parse(replaced(s14, "The time of flight is free, at most 2 days.",
+                                      "The time of flight is free, at most 2 days. Between day 0.1 and day "
+                                      "0.5, the spacecraft reaches the geostationary orbit.")),
+                       "test");
   has(error_of(replaced(s14, "The time of flight is free, at most 2 days.",
                         "The time of flight is free, at most 2 days. The spacecraft passes through the circular orbit "
                         "of radius 30000 km.")),
