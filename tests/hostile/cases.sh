@@ -275,6 +275,11 @@ case_dir solve-usage-time-limit; cp "$BASE/settings.json" .; echo 'int main() {}
 expect 2 'time-limit' solve shoot.cpp --settings settings.json --time-limit 0
 case_dir solve-settings-node-spacing-tiny; jq_settings '.node_spacing_days = 0.001' >settings.json; echo 'int main() {}' >shoot.cpp
 expect 3 'settings.json: field /node_spacing_days: 0.001 is below 1 day' solve shoot.cpp --settings settings.json --cache-dir cache --trajectory t.csv
+# A cache folder that is a file (or under one): one line naming the option (was a raw library message).
+case_dir solve-cache-dir-file; cp "$BASE/settings.json" .; echo 'int main() {}' >shoot.cpp; echo x >cache
+expect 2 '^helios-solve: error: --cache-dir cache: is not a folder' solve shoot.cpp --settings settings.json --cache-dir cache
+case_dir solve-cache-dir-under-file; cp "$BASE/settings.json" .; echo 'int main() {}' >shoot.cpp; echo x >cache
+expect 2 '^helios-solve: error: --cache-dir cache/sub: cache is not a folder' solve shoot.cpp --settings settings.json --cache-dir cache/sub
 # Readers stop at their limit: a device that never ends is refused, not read until memory runs out.
 case_dir solve-settings-dev-zero; echo 'int main() {}' >shoot.cpp
 expect 3 '/dev/zero: .*larger than the limit' solve shoot.cpp --settings /dev/zero --cache-dir cache --trajectory t.csv
@@ -302,6 +307,9 @@ case_dir score-scoreboard-model-markup; mkdir -p runs/S01
 expect 0 '' score --scoreboard runs
 holds "scoreboard.md has one row for the one run, no heading or HTML from the model" \
   eval "[[ \$(grep -c '^|' out) -eq 4 && \$(grep -c '^#' out) -eq 1 ]] && ! grep -q ' <img' out"
+case_dir score-crosscheck-cache-dir-file; echo '{}' >sweep.json; echo '{}' >settings.json; echo x >cache
+expect 2 '^helios-score: error: --cache-dir cache: is not a folder' score --sweep-crosscheck sweep.json --cells cells \
+  --settings settings.json --cache-dir cache --solver "$BIN/helios-solve"
 case_dir score-scoreboard-missing; expect 3 'nowhere' score --scoreboard nowhere
 
 # ---- helios-score --report: the problem text it quotes ---------------------------------------

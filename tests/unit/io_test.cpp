@@ -345,6 +345,32 @@ TEST(Io, CliRejectsUnknownOptionsAndCountsInputs) {
 
 // A library's "field /x: ..." about a tool's input names the file; a message that names it
 // already, and any other error, pass unchanged.
+// A folder option (--cache-dir) that names a file, or a path through one, is a one-line usage
+// error naming the option and its value; a missing folder (made later) or an existing one is taken.
+TEST(Cli, AFolderOptionNamingAFileIsRefusedNamingTheOption) {
+  const fs::path dir = fresh_dir("folder-option");
+  helios::io::write_text_atomic((dir / "file").string(), "x");
+  const auto error_of = [](const std::string& value) {
+    helios::cli::Args args;
+    args.values["cache-dir"] = value;
+    try {
+      EXPECT_EQ(helios::cli::folder_option(args, "cache-dir"), value);
+    } catch (const helios::usage_error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string file = (dir / "file").string();
+  EXPECT_EQ(error_of(file), "--cache-dir " + file + ": is not a folder, name a folder (it is made when missing)");
+  EXPECT_EQ(error_of(file + "/sub/deeper"), "--cache-dir " + file + "/sub/deeper: " + file +
+                                                " is not a folder, name a folder (it is made when missing)");
+  EXPECT_EQ(error_of("/dev/null"), "--cache-dir /dev/null: is not a folder, name a folder (it is made when missing)");
+  EXPECT_EQ(error_of((dir / "new" / "cache").string()), "");
+  EXPECT_EQ(error_of(dir.string()), "");
+  EXPECT_EQ(error_of("relative-and-new"), "");
+  fs::remove_all(dir);
+}
+
 TEST(Cli, NamingInputPrefixesTheFileOnce) {
   const auto error_of = [](const std::string& source, const std::function<void()>& work) {
     try {
