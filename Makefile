@@ -40,10 +40,47 @@ PARSE_BACKEND ?= $(BACKEND)
 # Where runs go (tests point it at a private folder).
 RUNS_ROOT ?= runs
 
+# ---- names and folders are data --------------------------------------------------------------
+# Recipes quote every path, and a name or folder that reaches them is refused unless it is plain:
+# a name (scenario, sweep, RUN_TAG, SWEEP_GRID, a scenario's folder) of A-Z a-z 0-9 _ -, a folder
+# variable of those and . / + (no blank, quote, $$ or other shell or make syntax), a count of
+# digits. The variables are checked by their text before make expands it.
+empty :=
+space := $(empty) $(empty)
+tab := $(empty)	$(empty)
+define newline
+
+
+endef
+DIGITS := 0 1 2 3 4 5 6 7 8 9
+NAME_CHARS := $(DIGITS) a b c d e f g h i j k l m n o p q r s t u v w x y z \
+  A B C D E F G H I J K L M N O P Q R S T U V W X Y Z _ -
+PATH_CHARS := $(NAME_CHARS) . / +
+# without TEXT,CHARS: TEXT with each of CHARS removed, blanks first turned into '?' (so they stay).
+without = $(if $(2),$(call without,$(subst $(firstword $(2)),,$(1)),$(wordlist 2,$(words $(2)),$(2))),$(1))
+unplain = $(call without,$(subst $(space),?,$(subst $(tab),?,$(subst $(newline),?,$(1)))),$(2))
+# check_text NAME,TEXT,CHARS,WHAT[,optional]: stops unless TEXT is made of CHARS (and not empty
+# unless optional), naming the variable NAME; check_plain VARIABLE,... checks a variable's own text.
+check_text = $(if $(or $(call unplain,$(2),$(3)),$(if $(5)$(2),,empty)),\
+  $(error $(1)='$(2)' is not $(4): use only $(if $(filter .,$(3)),A-Z a-z 0-9 _ - . / +,$(if $(filter a,$(3)),A-Z a-z 0-9 _ -,digits))))
+check_plain = $(call check_text,$(1),$(value $(1)),$(2),$(3),$(4))
+$(call check_plain,SCENARIOS_DIR,$(PATH_CHARS),a plain folder)
+$(call check_plain,RUNS_ROOT,$(PATH_CHARS),a plain folder)
+$(call check_plain,scenario,$(NAME_CHARS),a scenario name)
+$(call check_plain,RUN_TAG,$(NAME_CHARS),a plain name,optional)
+$(foreach v,SOLVE_TIME_LIMIT DERIVE_ROUNDS GEN_ROUNDS,$(call check_plain,$(v),$(DIGITS),a count))
+# A folder of SCENARIOS_DIR (but a hidden one) is a scenario's name; the first one that is not plain.
+UNPLAIN_SCENARIO := $(shell find -L '$(SCENARIOS_DIR)' -mindepth 1 -maxdepth 1 \( -type d -o -name 'S[0-9]*' \) \
+  ! -name '.*' ! -regex '.*/[A-Za-z0-9_-]+' -printf '%P' -quit 2>/dev/null | LC_ALL=C tr -c '[:print:]' '?')
+ifneq ($(UNPLAIN_SCENARIO),)
+  $(error $(SCENARIOS_DIR)/$(UNPLAIN_SCENARIO) is not a scenario name: rename the folder to A-Z a-z 0-9 _ - only)
+endif
+
 BUILD := build
 BIN := $(BUILD)/bin
 RUNS := $(RUNS_ROOT)/$(BACKEND)$(if $(RUN_TAG),-$(RUN_TAG))
 CACHE := $(RUNS_ROOT)/.cache
+$(foreach v,BUILD CACHE,$(call check_plain,$(v),$(PATH_CHARS),a plain folder))
 SCENARIOS := $(notdir $(wildcard $(SCENARIOS_DIR)/S[0-9]*))
 TOOLS := parse derive verify gen solve score
 TOOL_BINS := $(addprefix $(BIN)/helios-,$(TOOLS))
@@ -53,10 +90,16 @@ TOOLS_STAMP := $(BUILD)/tools.stamp
 # project's prompts/, each a prerequisite of the llm rules that send it, and of no builtin rule.
 HELIOS_PROMPTS_DIR ?= $(CURDIR)/prompts
 export HELIOS_PROMPTS_DIR
+ifneq ($(filter llm,$(BACKEND) $(PARSE_BACKEND)),)
+  $(call check_text,HELIOS_PROMPTS_DIR,$(HELIOS_PROMPTS_DIR),$(PATH_CHARS),a plain folder)
+endif
 LLM_PROMPT = $(if $(filter llm,$(2)),$(HELIOS_PROMPTS_DIR)/$(1))
 
 ifeq ($(filter $(BACKEND),builtin llm),)
   $(error BACKEND=$(BACKEND) is not a backend of this build (use builtin or llm))
+endif
+ifeq ($(filter $(PARSE_BACKEND),builtin llm),)
+  $(error PARSE_BACKEND=$(PARSE_BACKEND) is not a backend of this build (use builtin or llm))
 endif
 ifeq ($(filter $(VERIFY_MODE),advisory strict),)
   $(error VERIFY_MODE=$(VERIFY_MODE) is not advisory or strict)
@@ -85,12 +128,12 @@ deps:
 	@tools/install-deps.sh
 
 $(BUILD)/build.ninja: CMakeLists.txt | deps
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON >/dev/null
+	cmake -S . -B '$(BUILD)' -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON >/dev/null
 
 # The tools are rebuilt when any library, tool, template or schema source changes.
 $(TOOLS_STAMP): $(BUILD)/build.ninja $(TOOL_SOURCES)
-	cmake --build $(BUILD) --target $(addprefix helios-,$(TOOLS)) helios-prompts helios-runtime
-	touch $@
+	cmake --build '$(BUILD)' --target $(addprefix helios-,$(TOOLS)) helios-prompts helios-runtime
+	touch '$@'
 
 # Each artifact depends on the tool that writes it through that tool's content stamp, which
 # changes only when the tool's bytes do: a rebuild that leaves a tool the same (a touched source,
@@ -99,9 +142,9 @@ $(TOOLS_STAMP): $(BUILD)/build.ninja $(TOOL_SOURCES)
 RUNTIME_FILES := $(addprefix $(BUILD)/include/helios-runtime/,helios_runtime.hpp runtime_records.hpp runtime_calls.hpp \
   module_interface.hpp) $(BUILD)/lib/libhelios-runtime.a
 $(BUILD)/stamps/helios-%: $(TOOLS_STAMP)
-	@mkdir -p $(@D)
-	@cat $(BIN)/helios-$* $(if $(filter gen solve,$*),$(RUNTIME_FILES)) | sha256sum >$@.new && \
-	  if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
+	@mkdir -p '$(@D)'
+	@cat '$(BIN)/helios-$*' $(if $(filter gen solve,$*),$(foreach f,$(RUNTIME_FILES),'$(f)')) | sha256sum >'$@.new' && \
+	  if cmp -s '$@.new' '$@'; then rm '$@.new'; else mv '$@.new' '$@'; fi
 TOOL_STAMP = $(BUILD)/stamps/helios-$(1)
 # Named here, so make does not take them for intermediate files and delete them.
 TOOL_STAMPS := $(foreach t,$(TOOLS),$(call TOOL_STAMP,$(t)))
@@ -109,18 +152,18 @@ TOOL_STAMPS := $(foreach t,$(TOOLS),$(call TOOL_STAMP,$(t)))
 tools: $(TOOLS_STAMP) $(TOOL_STAMPS)
 
 $(RUNS)/%/spec.json: $(SCENARIOS_DIR)/%/problem.txt $(call TOOL_STAMP,parse) $(call LLM_PROMPT,parse.txt,$(PARSE_BACKEND))
-	@mkdir -p $(@D)
-	$(BIN)/helios-parse --backend $(PARSE_BACKEND) $< -o $@
+	@mkdir -p '$(@D)'
+	'$(BIN)/helios-parse' --backend $(PARSE_BACKEND) '$<' -o '$@'
 
 $(RUNS)/%/verify.json: $(RUNS)/%/derivation.json $(call TOOL_STAMP,verify)
-	$(BIN)/helios-verify $(VERIFY_FLAGS) $< -o $@
+	'$(BIN)/helios-verify' $(VERIFY_FLAGS) '$<' -o '$@'
 
 ifeq ($(BACKEND),builtin)
 $(RUNS)/%/derivation.json: $(RUNS)/%/spec.json $(call TOOL_STAMP,derive)
-	$(BIN)/helios-derive $< -o $@
+	'$(BIN)/helios-derive' '$<' -o '$@'
 
 $(RUNS)/%/shoot.cpp: $(RUNS)/%/derivation.json $(RUNS)/%/verify.json $(call TOOL_STAMP,gen)
-	$(BIN)/helios-gen $< -o $@
+	'$(BIN)/helios-gen' '$<' -o '$@'
 else
 # Static pattern rules over the explicit list of every scenario's rounds: each round is its own
 # rule (make would not reuse one implicit rule twice in a chain), every round file is a named
@@ -130,47 +173,47 @@ each_run = $(foreach s,$(LLM_SCENARIOS),$(RUNS)/$(s)/$(1))
 
 $(call each_run,derivation.r1.json): $(RUNS)/%/derivation.r1.json: $(RUNS)/%/spec.json $(call TOOL_STAMP,derive) \
     $(HELIOS_PROMPTS_DIR)/pmp_derive.txt
-	$(BIN)/helios-derive --backend llm --round 1 $< -o $@
+	'$(BIN)/helios-derive' --backend llm --round 1 '$<' -o '$@'
 
 # Verification of a round is advisory: its failed checks are the next round's feedback.
 define derive_round
 $(call each_run,verify.r$(2).json): $(RUNS)/%/verify.r$(2).json: $(RUNS)/%/derivation.r$(2).json $(call TOOL_STAMP,verify)
-	$(BIN)/helios-verify --advisory $$< -o $$@
+	'$(BIN)/helios-verify' --advisory '$$<' -o '$$@'
 
 $(call each_run,derivation.r$(1).json): $(RUNS)/%/derivation.r$(1).json: $(RUNS)/%/spec.json \
     $(RUNS)/%/derivation.r$(2).json $(RUNS)/%/verify.r$(2).json $(call TOOL_STAMP,derive) $(HELIOS_PROMPTS_DIR)/pmp_derive.txt
-	$(BIN)/helios-derive --backend llm --round $(1) --previous $$(@D)/derivation.r$(2).json \
-	  --feedback $$(@D)/verify.r$(2).json $$< -o $$@
+	'$(BIN)/helios-derive' --backend llm --round $(1) --previous '$$(@D)/derivation.r$(2).json' \
+	  --feedback '$$(@D)/verify.r$(2).json' '$$<' -o '$$@'
 endef
 $(foreach k,$(wordlist 2,$(DERIVE_ROUNDS),$(derive_rounds)),$(eval $(call derive_round,$(k),$(word $(k),0 $(derive_rounds)))))
 
 # The final derivation is the last round (a relative link: make sees the round's time stamp).
 $(call each_run,derivation.json): $(RUNS)/%/derivation.json: $(RUNS)/%/derivation.r$(DERIVE_ROUNDS).json
-	ln -sfn $(<F) $@
+	ln -sfn '$(<F)' '$@'
 
 $(call each_run,shoot.r1.cpp): $(RUNS)/%/shoot.r1.cpp: $(RUNS)/%/derivation.json $(RUNS)/%/verify.json $(call TOOL_STAMP,gen) \
     $(HELIOS_PROMPTS_DIR)/codegen.txt
-	$(BIN)/helios-gen --backend llm --round 1 $< -o $@
+	'$(BIN)/helios-gen' --backend llm --round 1 '$<' -o '$@'
 
 define gen_round
 $(call each_run,compile.r$(2).json): $(RUNS)/%/compile.r$(2).json: $(RUNS)/%/shoot.r$(2).cpp $(call TOOL_STAMP,solve)
-	$(BIN)/helios-solve --backend llm --compile-only --cache-dir $(CACHE) $$< -o $$@
+	'$(BIN)/helios-solve' --backend llm --compile-only --cache-dir '$(CACHE)' '$$<' -o '$$@'
 
 $(call each_run,shoot.r$(1).cpp): $(RUNS)/%/shoot.r$(1).cpp: $(RUNS)/%/derivation.json \
     $(RUNS)/%/shoot.r$(2).cpp $(RUNS)/%/compile.r$(2).json $(call TOOL_STAMP,gen) $(HELIOS_PROMPTS_DIR)/codegen.txt $(HELIOS_PROMPTS_DIR)/repair.txt
-	$(BIN)/helios-gen --backend llm --round $(1) --previous $$(@D)/shoot.r$(2).cpp \
-	  --compile-report $$(@D)/compile.r$(2).json $$< -o $$@
+	'$(BIN)/helios-gen' --backend llm --round $(1) --previous '$$(@D)/shoot.r$(2).cpp' \
+	  --compile-report '$$(@D)/compile.r$(2).json' '$$<' -o '$$@'
 endef
 $(foreach k,$(wordlist 2,$(GEN_ROUNDS),$(gen_rounds)),$(eval $(call gen_round,$(k),$(word $(k),0 $(gen_rounds)))))
 
 $(call each_run,shoot.cpp): $(RUNS)/%/shoot.cpp: $(RUNS)/%/shoot.r$(GEN_ROUNDS).cpp
-	ln -sfn $(<F) $@
+	ln -sfn '$(<F)' '$@'
 endif
 
 # trajectory.csv and the plots are written before solution.json, which marks the stage done.
 $(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp $(SCENARIOS_DIR)/%/settings.json $(call TOOL_STAMP,solve)
-	$(LAUNCH) $(BIN)/helios-solve --backend $(BACKEND) $< --settings $(SCENARIOS_DIR)/$*/settings.json --cache-dir $(CACHE) \
-	  --time-limit $(SOLVE_TIME_LIMIT) --trajectory $(@D)/trajectory.csv --plots $(@D)/ -o $@
+	$(LAUNCH) '$(BIN)/helios-solve' --backend $(BACKEND) '$<' --settings '$(SCENARIOS_DIR)/$*/settings.json' --cache-dir '$(CACHE)' \
+	  --time-limit $(SOLVE_TIME_LIMIT) --trajectory '$(@D)/trajectory.csv' --plots '$(@D)/' -o '$@'
 
 # The converged trajectory as a CCSDS OEM 2.0 (tools/lib/src/oem/README.md).
 # trajectory.csv is written before solution.json and only for a converged solution, so it is no
@@ -178,20 +221,20 @@ $(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp $(SCENARIOS_DIR)/%/settings.json $(
 # OEM) and exits 0, so make goes on; the target stays missing and this cheap step runs again at each
 # make of that run.
 $(RUNS)/%/trajectory.oem: $(RUNS)/%/spec.json $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
-	$(BIN)/helios-score --oem --spec $(@D)/spec.json --solution $(@D)/solution.json \
-	  --trajectory $(@D)/trajectory.csv -o $@
+	'$(BIN)/helios-score' --oem --spec '$(@D)/spec.json' --solution '$(@D)/solution.json' \
+	  --trajectory '$(@D)/trajectory.csv' -o '$@'
 
 # The run as a document: the derivation as LaTeX mathematics beside verify's verdicts, the
 # solution and its plots (tools/lib/src/report/README.md).
 $(RUNS)/%/report.md: $(SCENARIOS_DIR)/%/problem.txt $(RUNS)/%/spec.json $(RUNS)/%/derivation.json $(RUNS)/%/verify.json \
                      $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
-	$(BIN)/helios-score --report --problem $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
-	  --verify $(@D)/verify.json --solution $(@D)/solution.json -o $@
+	'$(BIN)/helios-score' --report --problem '$<' --spec '$(@D)/spec.json' --derivation '$(@D)/derivation.json' \
+	  --verify '$(@D)/verify.json' --solution '$(@D)/solution.json' -o '$@'
 
 $(RUNS)/%/score.json: $(SCENARIOS_DIR)/%/reference.json $(RUNS)/%/spec.json $(RUNS)/%/derivation.json \
                       $(RUNS)/%/verify.json $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
-	$(BIN)/helios-score --reference $< --spec $(@D)/spec.json --derivation $(@D)/derivation.json \
-	  --verify $(@D)/verify.json --solution $(@D)/solution.json -o $@
+	'$(BIN)/helios-score' --reference '$<' --spec '$(@D)/spec.json' --derivation '$(@D)/derivation.json' \
+	  --verify '$(@D)/verify.json' --solution '$(@D)/solution.json' -o '$@'
 
 # ---- launch-window sweeps (tools/lib/src/sweep/README.md) ------------------------------------
 # make sweep sweep=P01 [SWEEP_GRID=bench] [LAUNCH="srun -n1 -c1"] [-j N]: first each departure's
@@ -212,6 +255,9 @@ ifeq ($(filter $(SWEEP_START),warm cold),)
 endif
 # Cross-check solves at a time (make's -j does not reach into one recipe).
 SWEEP_JOBS ?= 2
+$(call check_plain,sweep,$(NAME_CHARS),a sweep name,optional)
+$(call check_plain,SWEEP_GRID,$(NAME_CHARS),a grid name,optional)
+$(call check_plain,SWEEP_JOBS,$(DIGITS),a count)
 ifneq ($(filter P%,$(scenario)),)
   $(error scenario=$(scenario) is a sweep template: use make sweep sweep=$(scenario))
 endif
@@ -239,45 +285,45 @@ SWEEP_SETTINGS := $(SCENARIOS_DIR)/$(sweep)/settings.json
 SWEEP_GRID_FLAG := $(if $(SWEEP_GRID),--grid $(SWEEP_GRID))
 SWEEP_BOUNDARY :=
 $(SWEEP_DIR)/boundary.mk: $(SWEEP_SOURCES) $(SWEEP_SETTINGS) $(call TOOL_STAMP,score) $(call TOOL_STAMP,parse)
-	@mkdir -p $(@D)
-	$(BIN)/helios-score --sweep-boundary $< --cells $(@D) --settings $(SWEEP_SETTINGS) $(SWEEP_GRID_FLAG) -o $@
+	@mkdir -p '$(@D)'
+	'$(BIN)/helios-score' --sweep-boundary '$<' --cells '$(@D)' --settings '$(SWEEP_SETTINGS)' $(SWEEP_GRID_FLAG) -o '$@'
 -include $(SWEEP_DIR)/boundary.mk
 SWEEP_BOUNDARY_SOLUTIONS := $(foreach b,$(SWEEP_BOUNDARY),$(SWEEP_DIR)/$(b)/solution.json)
 SWEEP_CELLS :=
 $(SWEEP_DIR)/cells.mk: $(SWEEP_SOURCES) $(SWEEP_DIR)/boundary.mk $(SWEEP_BOUNDARY_SOLUTIONS) $(call TOOL_STAMP,score)
-	@mkdir -p $(@D)
-	$(BIN)/helios-score --sweep-cells $< --cells $(@D) $(SWEEP_GRID_FLAG) -o $@
+	@mkdir -p '$(@D)'
+	'$(BIN)/helios-score' --sweep-cells '$<' --cells '$(@D)' $(SWEEP_GRID_FLAG) -o '$@'
 -include $(SWEEP_DIR)/cells.mk
 SWEEP_SOLUTIONS := $(foreach c,$(SWEEP_CELLS),$(SWEEP_DIR)/$(c)/solution.json)
 # A cell's and a boundary's artifacts are kept (make would delete them as intermediate, and redo them).
 .SECONDARY: $(foreach c,$(SWEEP_CELLS) $(SWEEP_BOUNDARY),$(addprefix $(SWEEP_DIR)/$(c)/,problem.txt spec.json derivation.json verify.json shoot.cpp))
 
 $(SWEEP_DIR)/%/spec.json: $(SWEEP_DIR)/%/problem.txt $(call TOOL_STAMP,parse)
-	$(BIN)/helios-parse --backend builtin $< -o $@
+	'$(BIN)/helios-parse' --backend builtin '$<' -o '$@'
 
 # A boundary's solve: its own settings (the sweep's without the search budget), always cold.
 $(SWEEP_BOUNDARY_SOLUTIONS): $(SWEEP_DIR)/%/solution.json: $(SWEEP_DIR)/%/shoot.cpp $(SWEEP_DIR)/boundary.mk \
                              $(call TOOL_STAMP,solve)
-	$(LAUNCH) $(BIN)/helios-solve --backend builtin $< --settings $(@D)/settings.json --cache-dir $(CACHE) \
-	  --time-limit $(SOLVE_TIME_LIMIT) --quiet --trajectory $(@D)/trajectory.csv -o $@
+	$(LAUNCH) '$(BIN)/helios-solve' --backend builtin '$<' --settings '$(@D)/settings.json' --cache-dir '$(CACHE)' \
+	  --time-limit $(SOLVE_TIME_LIMIT) --quiet --trajectory '$(@D)/trajectory.csv' -o '$@'
 
 # A cell's solve, warm from its neighbour's solution.json when the chain gives it one.
 $(SWEEP_SOLUTIONS): $(SWEEP_DIR)/%/solution.json: $(SWEEP_DIR)/%/shoot.cpp $(SWEEP_SETTINGS) $(call TOOL_STAMP,solve)
-	$(LAUNCH) $(BIN)/helios-solve --backend builtin $< --settings $(SWEEP_SETTINGS) --cache-dir $(CACHE) \
-	  --time-limit $(SOLVE_TIME_LIMIT) --quiet $(if $(and $(filter warm,$(SWEEP_START)),$(SWEEP_WARM_$*)),--warm-start $(SWEEP_DIR)/$(SWEEP_WARM_$*)/solution.json) \
-	  --trajectory $(@D)/trajectory.csv -o $@
+	$(LAUNCH) '$(BIN)/helios-solve' --backend builtin '$<' --settings '$(SWEEP_SETTINGS)' --cache-dir '$(CACHE)' \
+	  --time-limit $(SOLVE_TIME_LIMIT) --quiet $(if $(and $(filter warm,$(SWEEP_START)),$(SWEEP_WARM_$*)),--warm-start '$(SWEEP_DIR)/$(SWEEP_WARM_$*)/solution.json') \
+	  --trajectory '$(@D)/trajectory.csv' -o '$@'
 
 # Every cell re-solved warm from its converged neighbours until none improves.
 $(SWEEP_DIR)/crosscheck.json: $(SWEEP_DIR)/cells.mk $(SWEEP_SOLUTIONS) $(call TOOL_STAMP,score) $(call TOOL_STAMP,solve)
-	$(BIN)/helios-score --sweep-crosscheck $(SCENARIOS_DIR)/$(sweep)/sweep.json --cells $(@D) --settings $(SWEEP_SETTINGS) \
-	  --cache-dir $(CACHE) --solver $(BIN)/helios-solve --jobs $(SWEEP_JOBS) --time-limit $(SOLVE_TIME_LIMIT) \
-	  $(if $(LAUNCH),--launch "$(LAUNCH)") $(SWEEP_GRID_FLAG) -o $@
+	'$(BIN)/helios-score' --sweep-crosscheck '$(SCENARIOS_DIR)/$(sweep)/sweep.json' --cells '$(@D)' --settings '$(SWEEP_SETTINGS)' \
+	  --cache-dir '$(CACHE)' --solver '$(BIN)/helios-solve' --jobs $(SWEEP_JOBS) --time-limit $(SOLVE_TIME_LIMIT) \
+	  $(if $(LAUNCH),--launch "$(LAUNCH)") $(SWEEP_GRID_FLAG) -o '$@'
 
 # porkchop.png is drawn before sweep.csv, which marks the sweep done.
 $(SWEEP_DIR)/sweep.csv: $(SWEEP_SOURCES) $(SWEEP_DIR)/cells.mk $(SWEEP_SOLUTIONS) $(SWEEP_DIR)/crosscheck.json \
                         $(call TOOL_STAMP,score)
-	$(BIN)/helios-score --sweep $< --cells $(@D) --crosscheck $(@D)/crosscheck.json $(SWEEP_GRID_FLAG) \
-	  --porkchop $(@D)/porkchop.png -o $@
+	'$(BIN)/helios-score' --sweep '$<' --cells '$(@D)' --crosscheck '$(@D)/crosscheck.json' $(SWEEP_GRID_FLAG) \
+	  --porkchop '$(@D)/porkchop.png' -o '$@'
 sweep: $(SWEEP_DIR)/sweep.csv
 else
 sweep:
@@ -287,20 +333,20 @@ endif
 # This backend's table, and the paper's three tables over every run folder under $(RUNS_ROOT).
 scoreboard: $(RUNS)/scoreboard.md $(RUNS_ROOT)/scoreboard.md
 $(RUNS)/scoreboard.md: $(wildcard $(RUNS)/S*/score.json) $(call TOOL_STAMP,score)
-	$(BIN)/helios-score --scoreboard $(RUNS) -o $@
+	'$(BIN)/helios-score' --scoreboard '$(RUNS)' -o '$@'
 
 $(RUNS_ROOT)/scoreboard.md: $(wildcard $(RUNS_ROOT)/*/*/score.json $(RUNS_ROOT)/*/*/*.transcript.json \
                               $(RUNS_ROOT)/*/*/compile.r*.json) $(call TOOL_STAMP,score)
-	$(BIN)/helios-score --tables $(RUNS_ROOT) -o $@
+	'$(BIN)/helios-score' --tables '$(RUNS_ROOT)' -o '$@'
 
 unit: $(TOOLS_STAMP)
-	cmake --build $(BUILD)
-	ctest --test-dir $(BUILD) --output-on-failure -j2
+	cmake --build '$(BUILD)'
+	ctest --test-dir '$(BUILD)' --output-on-failure -j2
 
 # The tools' content stamps too: the pipeline tests run make with -o $(TOOLS_STAMP), under which
 # a stamp left from before a source edit would be brought up to date only in the middle of a test.
 bats: $(TOOLS_STAMP) $(TOOL_STAMPS)
-	cmake --build $(BUILD) --target json-patch
+	cmake --build '$(BUILD)' --target json-patch
 	tests/run-bats.sh tests/bats
 
 test: unit bats
@@ -314,7 +360,7 @@ include tests/fuzz/rules.mk
 include tests/bench/rules.mk
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) runs/builtin runs/llm runs/llm-* runs/scoreboard.md runs/.cache
+	rm -rf '$(BUILD)' $(ASAN_BUILD) $(FUZZ_BUILD) runs/builtin runs/llm runs/llm-* runs/scoreboard.md runs/.cache
 
 # make help: the targets and variables a user sets (the rest of this file says how they work).
 define HELP_TEXT

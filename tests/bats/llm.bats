@@ -148,11 +148,11 @@ script() {
   touch "$prompts/pmp_derive.txt"
   run -0 lmake -q scenario=S01 BACKEND=builtin HELIOS_PROMPTS_DIR="$prompts"
   run -0 lmake -n scenario=S01 BACKEND=llm HELIOS_PROMPTS_DIR="$prompts"
-  [[ $output == *"helios-derive --backend llm --round 1 "* && $output != *"helios-parse"* ]] || { echo "$output" >&2; false; }
+  [[ $output == *"helios-derive' --backend llm --round 1 "* && $output != *"helios-parse"* ]] || { echo "$output" >&2; false; }
   touch "$prompts/parse.txt"
   run -0 lmake -q scenario=S01 BACKEND=builtin HELIOS_PROMPTS_DIR="$prompts"
   run -0 lmake -n scenario=S01 BACKEND=llm HELIOS_PROMPTS_DIR="$prompts"
-  [[ $output == *"helios-parse --backend llm"* ]] || { echo "$output" >&2; false; }
+  [[ $output == *"helios-parse' --backend llm"* ]] || { echo "$output" >&2; false; }
 }
 
 @test "llm: an interrupted run resumes at the first missing round and redoes nothing before it" {
@@ -169,8 +169,8 @@ script() {
     {"content_file": "codegen_good.txt", "match": "four modules"}]}')" requests.jsonl
   run -0 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES make --no-print-directory -C "$ROOT" \
     -o build/tools.stamp RUNS_ROOT="$copy" CACHE="$LLM_CACHE" scenario=S01 BACKEND=llm
-  [[ $output != *"helios-parse"* && $output != *"helios-derive --backend llm --round 1 "* ]] || { echo "$output" >&2; false; }
-  [[ $output == *"helios-derive --backend llm --round 2"* ]]
+  [[ $output != *"helios-parse"* && $output != *"helios-derive' --backend llm --round 1 "* ]] || { echo "$output" >&2; false; }
+  [[ $output == *"helios-derive' --backend llm --round 2"* ]]
   [[ $(cd "$copy/llm/S01" && stat -c '%n %.9Y' spec.json derivation.r1.json verify.r1.json) == "$before" ]]
   [[ $(wc -l <requests.jsonl) -eq 2 ]]
   assert_jq "$copy/llm/S01/score.json" '.total == 100'
@@ -297,6 +297,40 @@ script() {
   assert_stderr_contains "--feedback needs --backend llm"
   run -2 --separate-stderr "$BIN/helios-parse" --backend llm "$S01/problem.txt"
   assert_stderr_contains "--transcript"
+}
+
+@test "llm: a 300 MB reply is refused at the limit while it is read, in bounded memory, once" {
+  start_fake "$(script flood.json '{"replies": [{"flood_bytes": 300000000}, {"content_file": "spec.txt"}]}')" requests.jsonl
+  # (within a memory budget of 600 MB: reading the whole reply took 1.24 GB)
+  run -3 --separate-stderr "$BIN/helios-parse" --backend llm --memory-limit 600 "$S01/problem.txt" -o spec.json
+  assert_one_error_line parse
+  assert_stderr_contains "POST $HELIOS_LLM_BASE_URL/chat/completions: the reply is larger than the limit of an llm reply (67108864 bytes"
+  [[ ! -e spec.json && $(wc -l <requests.jsonl) -eq 1 ]]
+  assert_jq spec.transcript.json '.outcome == "failed" and (.turns | length) == 1 and .turns[0].reply == null'
+  assert_jq spec.transcript.json '.turns[0].attempts[0].error | test("larger than 67108864 bytes")'
+  [[ $(wc -c <spec.transcript.json) -lt 100000 ]]
+}
+
+@test "llm: an unusable reply goes back to the model cut to 256 KiB, and into the transcript once" {
+  start_fake "$(script long.json '{"replies": [{"content_bytes": 10000000}, {"content_file": "spec.txt"}]}')" requests.jsonl
+  run -0 --separate-stderr "$BIN/helios-parse" --backend llm "$S01/problem.txt" -o spec.json
+  assert_jq spec.transcript.json '[.turns[].outcome] == ["rejected", "accepted"]'
+  assert_jq spec.transcript.json '.turns[1].request.messages[-2].content | length <= 262144 and
+    endswith("[... the rest of this reply is not repeated: 10000000 bytes in all]")'
+  # The second request carried the cut reply, not the 10 MB; the transcript holds the reply once.
+  [[ $(sed -n 2p requests.jsonl | wc -c) -lt 1000000 ]]
+  [[ $(wc -c <spec.transcript.json) -lt 11000000 ]]
+}
+
+@test "llm: a numeric variable out of its range is refused in one line naming it" {
+  local v
+  for v in HELIOS_LLM_MAX_RETRIES=1e10 HELIOS_LLM_MAX_RETRIES=-1 HELIOS_LLM_MAX_TURNS=1000 HELIOS_LLM_TIMEOUT_S=1e300 \
+    HELIOS_LLM_BACKOFF_MAX_S=inf; do
+    run -2 --separate-stderr env "$v" "$BIN/helios-parse" --backend llm "$S01/problem.txt" -o spec.json
+    assert_one_error_line parse
+    assert_stderr_contains "$v is not a" "number in [" "], fix or unset it"
+  done
+  [[ ! -e spec.json && ! -e spec.transcript.json ]]
 }
 
 # ---- untrusted code ----------------------------------------------------------------------------

@@ -1,6 +1,7 @@
 #!/usr/bin/env bats
 # The Makefile's interface: the spellings of its variables, its errors for an unknown scenario or
-# sweep, and make help. make runs with -n (nothing is built or run) into a private RUNS_ROOT.
+# sweep, names and folders that are refused, and make help. make runs with -n (nothing is built or
+# run) into a private RUNS_ROOT, but where a test needs the recipes run.
 
 load test_helper
 
@@ -16,7 +17,7 @@ mk() {
 
 @test "make: SCENARIO= and scenario= are one variable; two different values are refused" {
   run -0 mk SCENARIO=S07
-  [[ $output == *"helios-parse --backend builtin scenarios/S07/problem.txt"* ]] || { echo "$output" >&2; false; }
+  [[ $output == *"helios-parse' --backend builtin 'scenarios/S07/problem.txt'"* ]] || { echo "$output" >&2; false; }
   [[ $output != *"/S01/"* ]]
   run -0 mk scenario=S07 SCENARIO=S07
   [[ $output == *"scenarios/S07/problem.txt"* ]]
@@ -42,7 +43,7 @@ mk() {
   mkdir -p mine/X01
   cp "$S01"/{problem.txt,settings.json,reference.json} mine/X01/
   run -0 mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=X01
-  [[ $output == *"helios-parse --backend builtin $BATS_TEST_TMPDIR/mine/X01/problem.txt -o $BATS_TEST_TMPDIR/runs/builtin/X01/spec.json"* ]] ||
+  [[ $output == *"helios-parse' --backend builtin '$BATS_TEST_TMPDIR/mine/X01/problem.txt' -o '$BATS_TEST_TMPDIR/runs/builtin/X01/spec.json'"* ]] ||
     { echo "$output" >&2; false; }
   run -2 --separate-stderr mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=S01
   assert_stderr_contains "scenario=S01 is not a scenario of $BATS_TEST_TMPDIR/mine/: use one of X01"
@@ -52,6 +53,62 @@ mk() {
   run -2 --separate-stderr mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=X02
   [[ ${#stderr_lines[@]} -eq 1 ]] || { echo "$stderr" >&2; false; }
   assert_stderr_contains "$BATS_TEST_TMPDIR/mine/X02/settings.json is missing: a scenario is a folder of problem.txt, settings.json and reference.json"
+}
+
+@test "make: a scenario folder named like shell code is refused in one line and its code never runs" {
+  local name='S9$(id>X)'
+  mkdir -p "mine/$name" mine/X01
+  cp "$S01"/{problem.txt,settings.json,reference.json} "mine/$name/"
+  cp "$S01"/{problem.txt,settings.json,reference.json} mine/X01/
+  # make for real (the recipes would run), the tools as they are.
+  run -2 --separate-stderr env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES make --no-print-directory \
+    -C "$ROOT" -o build/tools.stamp SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" RUNS_ROOT="$BATS_TEST_TMPDIR/runs" all
+  [[ ${#stderr_lines[@]} -eq 1 ]] || { echo "$stderr" >&2; false; }
+  assert_stderr_contains "$BATS_TEST_TMPDIR/mine/$name is not a scenario name: rename the folder to A-Z a-z 0-9 _ - only"
+  [[ ! -e $ROOT/X && ! -e X && ! -e $BATS_TEST_TMPDIR/runs ]]
+  # The other folders of such a SCENARIOS_DIR are not made either, and a name with a blank, a quote
+  # or a newline is refused the same way (a control byte shown as '?').
+  run -2 --separate-stderr mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=X01
+  assert_stderr_contains "mine/$name is not a scenario name"
+  rm -r "mine/$name"
+  local bad
+  for bad in 'S9 x' "S9'x" 'S9"x' $'S9\nx' 'S9;x' 'S9`x`'; do
+    mkdir "mine/$bad"
+    run -2 --separate-stderr mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=X01
+    [[ ${#stderr_lines[@]} -eq 1 ]] || { echo "$stderr" >&2; false; }
+    assert_stderr_contains "mine/${bad//$'\n'/?} is not a scenario name"
+    rm -r "mine/$bad"
+  done
+  # A hidden folder is no scenario, and a plain one is made.
+  mkdir "mine/.git x"
+  run -0 mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=X01
+  [[ $output == *"'$BATS_TEST_TMPDIR/mine/X01/problem.txt'"* ]] || { echo "$output" >&2; false; }
+}
+
+@test "make: a folder variable or a name with a blank, a quote or \$ is refused in one line naming it" {
+  local v value
+  for v in RUNS_ROOT SCENARIOS_DIR CACHE; do
+    for value in "$BATS_TEST_TMPDIR/my runs" "$BATS_TEST_TMPDIR/it's" "$BATS_TEST_TMPDIR/a\"b" '$(shell id>X)' 'a;id'; do
+      run -2 --separate-stderr mk "$v=$value"
+      [[ ${#stderr_lines[@]} -eq 1 ]] || { echo "$stderr" >&2; false; }
+      assert_stderr_contains "$v='$value' is not a plain folder: use only A-Z a-z 0-9 _ - . / +"
+    done
+  done
+  for v in scenario RUN_TAG sweep SWEEP_GRID; do
+    run -2 --separate-stderr mk "$v=S0 1"
+    [[ ${#stderr_lines[@]} -eq 1 ]] || { echo "$stderr" >&2; false; }
+    assert_stderr_contains "$v='S0 1' is not a"
+  done
+  run -2 --separate-stderr mk SOLVE_TIME_LIMIT='1;id'
+  assert_stderr_contains "SOLVE_TIME_LIMIT='1;id' is not a count: use only digits"
+  run -2 --separate-stderr mk PARSE_BACKEND=magic
+  assert_stderr_contains "PARSE_BACKEND=magic is not a backend of this build"
+  [[ ! -e X && ! -e $ROOT/X ]]
+  # An environment variable is checked by its text too, before make would expand it.
+  RUNS_ROOT='r$(shell id>X)' run -2 --separate-stderr env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
+    make --no-print-directory -C "$ROOT" -n
+  assert_stderr_contains "RUNS_ROOT='r\$(shell id>X)' is not a plain folder"
+  [[ ! -e X && ! -e $ROOT/X ]]
 }
 
 @test "make help: lists the main targets and variables" {

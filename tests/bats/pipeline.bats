@@ -116,11 +116,11 @@ group_gone() {
 # assert_ran TOOL...: make's output shows these tools running; assert_not_ran: it does not.
 assert_ran() {
   local t
-  for t in "$@"; do [[ $output == *"bin/helios-$t "* ]] || { echo "make did not run helios-$t:" >&2; echo "$output" >&2; return 1; }; done
+  for t in "$@"; do [[ $output == *"bin/helios-$t' "* ]] || { echo "make did not run helios-$t:" >&2; echo "$output" >&2; return 1; }; done
 }
 assert_not_ran() {
   local t
-  for t in "$@"; do [[ $output != *"bin/helios-$t "* ]] || { echo "make ran helios-$t:" >&2; echo "$output" >&2; return 1; }; done
+  for t in "$@"; do [[ $output != *"bin/helios-$t' "* ]] || { echo "make ran helios-$t:" >&2; echo "$output" >&2; return 1; }; done
 }
 
 # ---- tests -------------------------------------------------------------------------------------

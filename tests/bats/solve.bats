@@ -347,6 +347,16 @@ CPP
   assert_one_error_line solve
 }
 
+@test "solve: a --cache-dir that is a file, or under one -> exit 2 naming the option, nothing written" {
+  echo x >cache
+  run -2 --separate-stderr "$BIN/helios-solve" "$SRC/shoot.cpp" --settings "$S01/settings.json" --cache-dir cache -o sol.json
+  assert_one_error_line solve
+  [[ $stderr == "helios-solve: error: --cache-dir cache: is not a folder, name a folder (it is made when missing)" ]]
+  run -2 --separate-stderr "$BIN/helios-solve" "$SRC/shoot.cpp" --settings "$S01/settings.json" --cache-dir cache/c -o sol.json
+  [[ $stderr == "helios-solve: error: --cache-dir cache/c: cache is not a folder, name a folder (it is made when missing)" ]]
+  [[ ! -e sol.json ]]
+}
+
 @test "solve: an unknown --backend -> exit 2" {
   run -2 --separate-stderr "$BIN/helios-solve" "$SRC/shoot.cpp" --settings "$S01/settings.json" \
     --cache-dir "$CACHE" --plots "" --backend nope

@@ -81,6 +81,32 @@ solve() {
   [[ -z $(find . -type p) ]]
 }
 
+@test "untrusted: a trajectory, plot or -o that is a FIFO or a device is written into, never replaced" {
+  program plain.cpp normal
+  mkdir out
+  mkfifo out/trajectory.csv
+  timeout 60 cat out/trajectory.csv >trajectory.got &
+  local reader=$! node=""
+  # A private device like /dev/null (root only; the real one is never used).
+  if ((EUID == 0)); then
+    mknod out/trajectory.png c 1 3
+    mknod solution.json c 1 3
+    node=$(stat -c '%F %i %t:%T' out/trajectory.png solution.json)
+  fi
+  run -0 --separate-stderr solve plain.cpp -o solution.json
+  wait "$reader"
+  [[ -p out/trajectory.csv ]]
+  cmp trajectory.got "$FIXTURE/trajectory.csv"
+  [[ -z $node || $(stat -c '%F %i %t:%T' out/trajectory.png solution.json) == "$node" ]]
+  [[ -s out/throttle_mass.png && -z $(find . -name '.*.tmp*' -o -name '.run.*') ]]
+  # Any other kind is refused, naming it.
+  rm out/trajectory.csv
+  mkdir other.json
+  run -1 --separate-stderr solve plain.cpp --quiet -o other.json
+  assert_one_error_line solve
+  [[ $stderr == "helios-solve: error: other.json: is a directory, not a file to write, name a file (or a character device such as /dev/null, or a FIFO)" ]]
+}
+
 @test "untrusted: the program's stdout never reaches helios-solve's: with -o - it carries only the solution" {
   program loud.cpp loud
   solve loud.cpp --quiet -o - >stdout.json

@@ -7,13 +7,17 @@
 // and answers POST .../chat/completions from the script, one entry per request, in order:
 //   {"replies": [{"status": 200, "content": "...", "content_file": "relative/to/script",
 //                 "body": "raw body instead of a completion", "delay_s": 0, "retry_after": "1",
-//                 "model": "fake-model", "usage": {"prompt_tokens": 1, ...}, "match": "substring"}]}
-// An entry with "match" is used only for a request whose body contains that text. Every request
+//                 "model": "fake-model", "usage": {"prompt_tokens": 1, ...}, "match": "substring",
+//                 "content_bytes": N, "flood_bytes": N}]}
+// An entry with "match" is used only for a request whose body contains that text. "content_bytes"
+// is a content of N letters x; "flood_bytes" a completion whose content is N letters x, streamed
+// as it is made (no Content-Length), for a client that must stop reading. Every request
 // is appended to --log as one JSON line (path, authorization header, body, entry used). A request
 // with no entry left gets HTTP 400. The server exits after --lifetime seconds (default 900) so a
 // test that dies cannot leave it running.
 #include <httplib.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -136,6 +140,25 @@ int main(int argc, char** argv) {
     }
     res.status = entry.value("status", 200);
     if (entry.contains("retry_after")) res.set_header("Retry-After", entry["retry_after"].get<std::string>());
+    if (entry.contains("flood_bytes")) {
+      const std::string head = R"({"model": "fake-model", "choices": [{"message": {"role": "assistant", "content": ")";
+      const std::string tail = R"("}, "finish_reason": "stop"}]})";
+      const std::size_t total = entry["flood_bytes"].get<std::size_t>();
+      res.set_chunked_content_provider("application/json",
+                                       [head, tail, total, sent = std::size_t{0}, chunk = std::string(65536, 'x')](
+                                           std::size_t, httplib::DataSink& sink) mutable {
+                                         if (sent == 0 && !sink.write(head.data(), head.size())) return false;
+                                         const std::size_t n = std::min(chunk.size(), total - sent);
+                                         if (n > 0 && !sink.write(chunk.data(), n)) return false;
+                                         sent += n;
+                                         if (sent == total) {
+                                           sink.write(tail.data(), tail.size());
+                                           sink.done();
+                                         }
+                                         return true;
+                                       });
+      return;
+    }
     if (entry.contains("body")) {
       res.set_content(entry["body"].get<std::string>(), "application/json");
       return;
@@ -144,7 +167,9 @@ int main(int argc, char** argv) {
       res.set_content(R"({"error": {"message": "scripted error"}})", "application/json");
       return;
     }
-    const std::string content = entry.value("content", "");
+    const std::string content = entry.contains("content_bytes")
+                                    ? std::string(entry["content_bytes"].get<std::size_t>(), 'x')
+                                    : entry.value("content", "");
     json usage = entry.value("usage", json::object());
     // Deterministic token counts when the script gives none: about 4 characters per token.
     const long prompt = usage.value("prompt_tokens", static_cast<long>(req.body.size() / 4 + 1));

@@ -95,6 +95,24 @@ case_dir parse-table-row-alone; printf '| a | b |\n' >p.txt; expect 3 '.' parse 
 s01_edited parse-mjd-nan 's/at t = 0 days/at MJD2000 nan/' 'p.txt:[0-9]+: cannot use sentence'
 case_dir parse-flyby-unknown; { s01_text; echo "The spacecraft flies by Nibiru on the way."; } >p.txt; expect 3 '.' parse p.txt
 
+# Equations of the final state: a value beyond a double where it is written or in its unit, a
+# power beyond a double, a unit power beyond an int (each was a raw "stod"/"stoi", exit 1).
+s01_final() { grep -v -e '^At the final time' -e '^Minimize' "$BASE/problem.txt"; printf '%s\nMinimize the fuel consumption.\n' "$1"; }
+for c in 'overflow:r = 1e400 km:the number 1e400 is outside the range of a double' \
+  'underflow:r = 1e-400 km:the number 1e-400 is outside the range of a double' \
+  'unit-overflow:r^40 = 1e300 AU^40:.1e300 AU\^40. in km\^40 is beyond the range of a double' \
+  'unit-underflow:r^2 = 1e-305 m^2:.1e-305 m\^2. in km\^2 is beyond the range of a double' \
+  'power-digits:r = 1 km^'"$(printf '9%.0s' $(seq 400))"':the number 9+ is outside the range of a double'; do
+  IFS=: read -r name sentence pattern <<<"$c"
+  case_dir "parse-final-state-$name"; s01_final "At the final time $sentence." >p.txt
+  expect 3 "p.txt:7: cannot use sentence .At the final time .*: $pattern" parse p.txt
+done
+s01_edited parse-unit-power-beyond-int 's/0.5 N/0.5 N^99999999999/' 'p.txt:4: cannot use sentence'
+# An orbit on the way named "geostationary": its spec is the schema's (it was not).
+case_dir parse-geostationary-on-the-way; sed 's/^The time of flight is free, at most 2 days./&\nThe spacecraft passes through geostationary orbit between day 0.1 and day 0.5./' \
+  "$ROOT/scenarios/S14/problem.txt" >p.txt
+expect 0 '' parse p.txt
+
 # User-written accelerations (parsed as text here; helios-derive reads them).
 for a in 'unbalanced:(x+' 'deep:'"$(printf '(%.0s' $(seq 300))"'x'"$(printf ')%.0s' $(seq 300))" 'unknown-symbol:q*x' \
   'empty:' 'quote:x"; system("id")'; do
@@ -173,6 +191,11 @@ for a in 'unbalanced:(x+:cannot parse' 'deep:'"$(printf '(%.0s' $(seq 300))"'x'"
   rm -f long.txt
   expect 3 "s.json: field /dynamics/perturbations \\(srp\\)/components/0: .*${rest##*:}" derive s.json
 done
+# A final-state value a double holds in km^40 but not in the normalized units (AU^40 > 1.8e308):
+# it became r^40 = 0, r = 0.
+case_dir derive-final-state-beyond-normalized
+s01_final "At the final time r^40 = 1e300 km^40." >p.txt; "$BIN/helios-parse" p.txt -o s.json; rm p.txt
+expect 3 "s.json: constraint 'arrival': target/conditions/0/equals: 1e\+300 km\^40 in the normalized units .* is beyond the range of a double" derive s.json
 case_dir derive-cpu-budget
 jq '.dynamics.perturbations[0].components[0] = "3^(10^10)*x"' "$BASE/s12-spec.json" >s.json
 expect 1 'CPU-time budget of 2 s' derive s.json --time-limit 2
@@ -225,6 +248,12 @@ case_dir verify-usage-points; cp "$BASE/derivation.json" d.json; expect 2 'point
 case_dir verify-clean; cp "$BASE/derivation.json" d.json; expect 0 '' verify d.json
 case_dir verify-cpu-budget; jq_derivation '.hamiltonian = "3^(10^10)*rx"' >d.json
 expect 1 'CPU-time budget of 2 s' verify d.json --time-limit 2
+# helios-gen has the same budgets (it had none): GiNaC computes 3^(10^10) while reading the equation.
+case_dir gen-cpu-budget; jq_derivation '.costate_odes[0].rhs = "3^(10^10)*rx"' >d.json
+expect 1 'CPU-time budget of 2 s' gen d.json --time-limit 2
+case_dir gen-memory-budget; jq_derivation '.costate_odes[0].rhs = "3^(10^10)*rx"' >d.json
+# (Under AddressSanitizer the memory budget is not applied: the CPU-time budget stops it.)
+expect 1 'memory budget of 200 MB|CPU-time budget of 20 s' gen d.json --memory-limit 200 --time-limit 20
 
 # ---- helios-solve: settings and programs (each refused before any compile) -------------------
 
@@ -246,6 +275,11 @@ case_dir solve-usage-time-limit; cp "$BASE/settings.json" .; echo 'int main() {}
 expect 2 'time-limit' solve shoot.cpp --settings settings.json --time-limit 0
 case_dir solve-settings-node-spacing-tiny; jq_settings '.node_spacing_days = 0.001' >settings.json; echo 'int main() {}' >shoot.cpp
 expect 3 'settings.json: field /node_spacing_days: 0.001 is below 1 day' solve shoot.cpp --settings settings.json --cache-dir cache --trajectory t.csv
+# A cache folder that is a file (or under one): one line naming the option (was a raw library message).
+case_dir solve-cache-dir-file; cp "$BASE/settings.json" .; echo 'int main() {}' >shoot.cpp; echo x >cache
+expect 2 '^helios-solve: error: --cache-dir cache: is not a folder' solve shoot.cpp --settings settings.json --cache-dir cache
+case_dir solve-cache-dir-under-file; cp "$BASE/settings.json" .; echo 'int main() {}' >shoot.cpp; echo x >cache
+expect 2 '^helios-solve: error: --cache-dir cache/sub: cache is not a folder' solve shoot.cpp --settings settings.json --cache-dir cache/sub
 # Readers stop at their limit: a device that never ends is refused, not read until memory runs out.
 case_dir solve-settings-dev-zero; echo 'int main() {}' >shoot.cpp
 expect 3 '/dev/zero: .*larger than the limit' solve shoot.cpp --settings /dev/zero --cache-dir cache --trajectory t.csv
@@ -266,6 +300,16 @@ expect 3 'd.json' score --reference r.json --derivation d.json
 case_dir score-verify-number-1e400; cp "$ROOT/scenarios/S01/reference.json" r.json; echo '{"schema": "helios/verify", "x": 1e400}' >v.json
 expect 3 'v.json: malformed JSON: the number 1e400 is outside the range of a double' score --reference r.json --verify v.json
 case_dir score-usage-nothing; expect 2 '.' score
+# A model's name is text in its cell of scoreboard.md: no new row, heading or HTML.
+case_dir score-scoreboard-model-markup; mkdir -p runs/S01
+"$BIN/helios-score" --reference "$ROOT/scenarios/S01/reference.json" --spec "$BASE/spec.json" |
+  jq '.producer.backend = "llm" | .producer.model = "m | S99 | 100 |\n# Pwned <img src=x onerror=alert(1)>"' >runs/S01/score.json
+expect 0 '' score --scoreboard runs
+holds "scoreboard.md has one row for the one run, no heading or HTML from the model" \
+  eval "[[ \$(grep -c '^|' out) -eq 4 && \$(grep -c '^#' out) -eq 1 ]] && ! grep -q ' <img' out"
+case_dir score-crosscheck-cache-dir-file; echo '{}' >sweep.json; echo '{}' >settings.json; echo x >cache
+expect 2 '^helios-score: error: --cache-dir cache: is not a folder' score --sweep-crosscheck sweep.json --cells cells \
+  --settings settings.json --cache-dir cache --solver "$BIN/helios-solve"
 case_dir score-scoreboard-missing; expect 3 'nowhere' score --scoreboard nowhere
 
 # ---- helios-score --report: the problem text it quotes ---------------------------------------
@@ -317,3 +361,44 @@ case_dir score-oem-csv-time-back; sed '3s/^[^,]*,/-5,/' "$OEM_FIX/trajectory.csv
 case_dir score-oem-other-problem; cp "$OEM_FIX/trajectory.csv" t.csv; jq '.problem.id = "S01"' "$OEM_FIX/solution.json" >sol.json
 expect 3 'sol.json: field /problem/id' score --oem --spec "$OEM_FIX/spec.json" --solution sol.json --trajectory t.csv
 case_dir score-oem-usage-no-trajectory; expect 2 'needs --trajectory' score --oem --spec "$OEM_FIX/spec.json" --solution "$OEM_FIX/solution.json"
+
+# ---- every tool: -o naming a stream -----------------------------------------------------------
+# A FIFO, or a device like /dev/null, is written into, never renamed over (as root that replaced
+# the system's /dev/null with a regular file).
+for kind in fifo device; do
+  case_dir "parse-output-$kind"; cp "$BASE/problem.txt" p.txt; stream_case "$kind" 0 '' parse p.txt
+  case_dir "derive-output-$kind"; stream_case "$kind" 0 '' derive "$BASE/spec.json"
+  case_dir "verify-output-$kind"; stream_case "$kind" 0 '' verify "$BASE/derivation.json"
+  case_dir "gen-output-$kind"; stream_case "$kind" 0 '' gen "$BASE/derivation.json"
+  # (a program that does not compile: its compile report, quickly)
+  case_dir "solve-output-$kind"; echo 'int main() {' >shoot.cpp
+  stream_case "$kind" 0 '' solve shoot.cpp --compile-only --cache-dir "$WORK/stream-cache"
+  case_dir "score-output-$kind"; cp "$BASE/problem.txt" p.txt
+  stream_case "$kind" 0 '' score --report --problem p.txt --spec "$BASE/spec.json" --derivation "$BASE/derivation.json"
+done
+# Other kinds are refused, naming them.
+case_dir parse-output-directory; cp "$BASE/problem.txt" p.txt; mkdir out
+expect 1 'out: is a directory, not a file to write' parse p.txt
+
+# ---- the llm backend: what the endpoint and the environment give -------------------------------
+# Numeric variables out of their range are refused in one line before any request (1e10 retries
+# overflowed an int).
+for v in 'HELIOS_LLM_MAX_RETRIES=1e10' 'HELIOS_LLM_MAX_TURNS=0' 'HELIOS_LLM_TIMEOUT_S=1e300' 'HELIOS_LLM_TEMPERATURE=nan'; do
+  case_dir "parse-llm-env-${v%%=*}"; cp "$BASE/problem.txt" p.txt
+  export "$v" HELIOS_LLM_BASE_URL=http://127.0.0.1:9/v1 HELIOS_LLM_MODEL=m
+  expect 2 "^helios-parse: error: $v is not a (whole )?number in" parse --backend llm p.txt
+  unset "${v%%=*}" HELIOS_LLM_BASE_URL HELIOS_LLM_MODEL
+done
+# A reply of 300 MB (streamed, no Content-Length) is refused at the limit while it is read: exit 3,
+# the memory of the read bounded (the budget below), its transcript without it.
+case_dir parse-llm-reply-300MB; cp "$BASE/problem.txt" p.txt; mkdir -p "$WORK/llm"
+echo '{"replies": [{"flood_bytes": 300000000}]}' >"$WORK/llm/flood.json"
+"$BIN/fake-llm" --script "$WORK/llm/flood.json" --port-file "$WORK/llm/port" --lifetime 120 >/dev/null &
+fake=$!
+for _ in $(seq 100); do [[ -s $WORK/llm/port ]] && break; sleep 0.05; done
+export HELIOS_LLM_BASE_URL="http://127.0.0.1:$(cat "$WORK/llm/port")/v1" HELIOS_LLM_MODEL=m
+expect 3 'the reply is larger than the limit of an llm reply \(67108864 bytes' parse --backend llm p.txt \
+  --memory-limit 1000 --transcript "$WORK/llm/flood.transcript.json"
+unset HELIOS_LLM_BASE_URL HELIOS_LLM_MODEL
+kill "$fake"; wait "$fake"
+holds "the transcript is kept and small" eval "[[ \$(wc -c <'$WORK/llm/flood.transcript.json') -lt 100000 ]]"

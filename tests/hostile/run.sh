@@ -7,7 +7,8 @@
 #   - print, when it fails, exactly one line on stderr, "helios-TOOL: error: ...", with no
 #     control byte in it;
 #   - leave no file but its output (written only on success, or with exit 4 the report of the
-#     failed check) in its folder or in TMPDIR.
+#     failed check) in its folder or in TMPDIR;
+#   - leave an output that is not a regular file (a FIFO, a device) the node it was.
 # usage: tests/hostile/run.sh BIN_DIR WORK_DIR   (prints the outcome table; exit 1 on a failure)
 set -uo pipefail
 BIN=$(cd "$1" && pwd)
@@ -38,16 +39,19 @@ case_dir() {
   cd "$WORK/cases/$CASE" || exit 1
 }
 
-# The files of the case's folder, but its TMPDIR and the tool's captured output.
-case_files() { find . -path ./tmp -prune -o -type f -print | grep -v -e '^./stdout.log$' -e '^./stderr.log$' | sort; }
+# The files (and FIFOs, devices) of the case's folder, but its TMPDIR and the tool's captured output.
+case_files() { find . -path ./tmp -prune -o ! -type d -print | grep -v -e '^./stdout.log$' -e '^./stderr.log$' | sort; }
+# The node ./out is (its links followed): kind, inode and device numbers; empty when it is none.
+out_node() { stat -L -c '%F %i %t:%T' out 2>/dev/null; }
 
 # expect EXIT PATTERN TOOL ARGS...: runs helios-TOOL ARGS -o out (in the case's folder) and
 # checks the rules above; PATTERN (grep -E) must match the error line (ignored for exit 0).
 expect() {
   local want=$1 pattern=$2 tool=$3
   shift 3
-  local before expected after rc line lines
+  local before expected after rc line lines node=""
   before=$(case_files)
+  [[ -e out && ! -f out ]] && node=$(out_node)
   TMPDIR=$PWD/tmp timeout -s KILL 60 "$BIN/helios-$tool" "$@" -o out >stdout.log 2>stderr.log
   rc=$?
   total=$((total + 1))
@@ -74,7 +78,10 @@ expect() {
   after=$(case_files)
   expected=$before
   # Exit 4 (a check failed) writes the artifact saying why, as success does.
-  [[ $rc -eq 0 || $rc -eq 4 ]] && expected=$(printf '%s\n./out\n' "$before" | sed '/^$/d' | sort)
+  [[ $rc -eq 0 || $rc -eq 4 ]] && expected=$(printf '%s\n./out\n' "$before" | sed '/^$/d' | sort -u)
+  if [[ -z $why && -n $node && $(out_node) != "$node" ]]; then
+    why="the output ./out ($node) was replaced: $(out_node)"
+  fi
   if [[ -z $why && "$after" != "$expected" ]]; then
     why="files changed: $(diff <(printf '%s\n' "$expected") <(printf '%s\n' "$after") | grep '^[<>]' | tr '\n' ' ')"
   fi
@@ -83,6 +90,36 @@ expect() {
     failures=$((failures + 1))
     echo "FAIL $CASE (helios-$tool): $why"
     head -c 400 stderr.log | cat -v | sed 's/^/    stderr: /'
+  fi
+}
+
+# stream_case KIND EXIT PATTERN TOOL ARGS...: expect with ./out a FIFO (KIND fifo, read by cat,
+# which must receive the output) or a private character device like /dev/null (KIND device, made by
+# mknod; root only, else the case is skipped).
+stream_case() {
+  local kind=$1 reader=""
+  shift
+  if [[ $kind == device ]]; then
+    [[ $EUID -eq 0 ]] || return 0
+    mknod out c 1 3
+  else
+    mkfifo out
+    mkdir -p "$WORK/streams"
+    timeout 20 cat out >"$WORK/streams/$CASE" &
+    reader=$!
+  fi
+  expect "$@"
+  [[ -z $reader ]] || holds "the FIFO's reader received the output" eval "wait $reader && [[ -s $WORK/streams/$CASE ]]"
+}
+
+# holds WHAT COMMAND...: after an expect, COMMAND (in the case's folder) must succeed; else the case
+# fails saying WHAT did not hold.
+holds() {
+  local what=$1
+  shift
+  if ! "$@" >/dev/null 2>&1; then
+    failures=$((failures + 1))
+    echo "FAIL $CASE: not so: $what"
   fi
 }
 

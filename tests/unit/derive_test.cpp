@@ -563,6 +563,28 @@ TEST(Derive, StateConditionsAreIndependentRowsWithUnknownMultipliers) {
   EXPECT_EQ(transversality, 8);  // seven states and the final time
 }
 
+// A condition's value must stay a number in the normalized units: r^40 = 1e300 km^40 about the
+// Sun is 1e300 / AU^40, and AU^40 is beyond a double (the row became r^40 = 0, r = 0). Refused
+// naming the row and the value; a power the units can hold is derived.
+TEST(Derive, AStateConditionsValueBeyondADoubleInNormalizedUnitsIsRefused) {
+  const std::string text = helios::io::read_text(kSource + "/scenarios/S01/problem.txt");
+  const std::string from = text.substr(text.find("At the final time"));
+  const auto derive_with = [&](const std::string& sentence) {
+    return helios::pmp::derive_from_spec(helios::spec::parse_problem_text(
+        text.substr(0, text.find(from)) + sentence + "\nMinimize the fuel consumption.\n", "t"));
+  };
+  try {
+    derive_with("At the final time r^40 = 1e300 km^40.");
+    FAIL() << "derived";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "constraint 'arrival': target/conditions/0/equals: 1e+300 km^40 in the normalized units (length "
+              "149597870.7 km, time 31557600 s, mass 1000 kg) is beyond the range of a double (magnitudes 2.2e-308 to "
+              "1.8e308), state the condition with a lower power (e.g. 'r = Q' for 'r^40 = Q^40')");
+  }
+  EXPECT_NO_THROW(derive_with("At the final time r^2 = 5.6e16 km^2."));
+}
+
 // A target orbit's rows also hold on its mirrors: the plane run the other way (h along -n) and the
 // periapsis opposite the stated one (e_vec along -P). The side conditions h.n > 0 and e_vec.P > 0
 // tell them apart: at states on the stated orbit and on each mirror (built here from P and Q read

@@ -1,5 +1,7 @@
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -43,6 +45,66 @@ TEST(Io, AtomicWriteLeavesOnlyTheTarget) {
   helios::io::write_json_atomic((dir / "a.json").string(), json{{"x", 2}});
   EXPECT_EQ(helios::io::read_json((dir / "a.json").string())["x"], 2);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  fs::remove_all(dir);
+}
+
+// An output that is a stream is written into, never renamed over (as root a rename replaced the
+// system's /dev/null with a regular file): a FIFO, a link to one, and a private character device
+// like /dev/null (root only: mknod) keep their node and get the text; a directory is refused.
+TEST(Io, AnOutputThatIsAFifoOrADeviceIsWrittenIntoNeverReplaced) {
+  const fs::path dir = fresh_dir("stream");
+  const std::string fifo = (dir / "fifo").string(), link = (dir / "link").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  fs::create_symlink(fifo, link);
+  const auto node = [](const std::string& path) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0 ? std::to_string(st.st_mode & S_IFMT) + ":" + std::to_string(st.st_ino) : "";
+  };
+  const std::string fifo_node = node(fifo);
+  // A reader is there first (a non-blocking open), so the writer's open does not wait.
+  const auto received = [&](const std::function<void()>& write) {
+    const int in = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+    if (in < 0) return std::string("no reader");
+    write();
+    std::string got(4096, '\0');
+    const ssize_t n = ::read(in, got.data(), got.size());
+    ::close(in);
+    got.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+    return got;
+  };
+  EXPECT_EQ(received([&] { helios::io::write_json_atomic(fifo, json{{"x", 1}}); }), "{\n  \"x\": 1\n}\n");
+  EXPECT_EQ(received([&] { helios::io::write_text_atomic(link, "through the link\n"); }), "through the link\n");
+  const std::string finished = (dir / "finished.csv").string();
+  helios::io::write_text_atomic(finished, "t,x\n");
+  EXPECT_EQ(received([&] { helios::io::move_into_place(finished, fifo); }), "t,x\n");
+  EXPECT_FALSE(fs::exists(finished));
+  EXPECT_EQ(node(fifo), fifo_node);
+  EXPECT_TRUE(fs::is_symlink(link));
+  std::set<std::string> expected = {"fifo", "folder", "link"};
+  if (::geteuid() == 0) {
+    expected.insert("null");
+    const std::string null = (dir / "null").string();
+    ASSERT_EQ(::mknod(null.c_str(), S_IFCHR | 0666, makedev(1, 3)), 0);
+    const std::string null_node = node(null);
+    helios::io::write_text_atomic(null, "discarded\n");
+    helios::io::write_text_atomic(finished, "t,x\n");
+    helios::io::move_into_place(finished, null);
+    EXPECT_EQ(node(null), null_node);
+    EXPECT_TRUE(fs::is_character_file(null));
+  }
+  fs::create_directory(dir / "folder");
+  try {
+    helios::io::write_text_atomic((dir / "folder").string(), "x");
+    ADD_FAILURE() << "a directory was written";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), (dir / "folder").string() +
+                                         ": is a directory, not a file to write, name a file (or a character device "
+                                         "such as /dev/null, or a FIFO)");
+  }
+  // Nothing else was left: no temp file beside the streams.
+  std::set<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir)) left.insert(e.path().filename().string());
+  EXPECT_EQ(left, expected);
   fs::remove_all(dir);
 }
 
@@ -283,6 +345,32 @@ TEST(Io, CliRejectsUnknownOptionsAndCountsInputs) {
 
 // A library's "field /x: ..." about a tool's input names the file; a message that names it
 // already, and any other error, pass unchanged.
+// A folder option (--cache-dir) that names a file, or a path through one, is a one-line usage
+// error naming the option and its value; a missing folder (made later) or an existing one is taken.
+TEST(Cli, AFolderOptionNamingAFileIsRefusedNamingTheOption) {
+  const fs::path dir = fresh_dir("folder-option");
+  helios::io::write_text_atomic((dir / "file").string(), "x");
+  const auto error_of = [](const std::string& value) {
+    helios::cli::Args args;
+    args.values["cache-dir"] = value;
+    try {
+      EXPECT_EQ(helios::cli::folder_option(args, "cache-dir"), value);
+    } catch (const helios::usage_error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string file = (dir / "file").string();
+  EXPECT_EQ(error_of(file), "--cache-dir " + file + ": is not a folder, name a folder (it is made when missing)");
+  EXPECT_EQ(error_of(file + "/sub/deeper"), "--cache-dir " + file + "/sub/deeper: " + file +
+                                                " is not a folder, name a folder (it is made when missing)");
+  EXPECT_EQ(error_of("/dev/null"), "--cache-dir /dev/null: is not a folder, name a folder (it is made when missing)");
+  EXPECT_EQ(error_of((dir / "new" / "cache").string()), "");
+  EXPECT_EQ(error_of(dir.string()), "");
+  EXPECT_EQ(error_of("relative-and-new"), "");
+  fs::remove_all(dir);
+}
+
 TEST(Cli, NamingInputPrefixesTheFileOnce) {
   const auto error_of = [](const std::string& source, const std::function<void()>& work) {
     try {

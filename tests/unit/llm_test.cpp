@@ -252,6 +252,122 @@ TEST(LlmClient, ATimeoutIsRetried) {
   EXPECT_NE(x.attempts[0].error.find("timed out"), std::string::npos);
 }
 
+// A reply is read only up to its limit: an endless body (no Content-Length) and one whose declared
+// length is beyond it both stop the request at once, as invalid input, without a retry.
+TEST(LlmClient, AReplyIsReadOnlyUpToItsLimitAndNotRetried) {
+  std::atomic<std::size_t> streamed{0};
+  const auto endless = [&](const httplib::Request&, httplib::Response& res) {
+    res.set_chunked_content_provider("application/json", [&](std::size_t, httplib::DataSink& sink) {
+      const std::string chunk(65536, 'x');
+      streamed += chunk.size();
+      return sink.write(chunk.data(), chunk.size());
+    });
+  };
+  const auto declared = [](const httplib::Request&, httplib::Response& res) {
+    res.set_content(std::string(3 << 20, 'x'), "application/json");
+  };
+  ScriptedServer s({endless, declared, reply("never")});
+  Config c = config_for(s);
+  c.reply_limit_bytes = 1 << 20;
+  Client client(c);
+  for (int request = 0; request < 2; ++request) {
+    Exchange failed;
+    try {
+      client.chat({{"user", "q"}}, &failed);
+      FAIL() << "no input_error";
+    } catch (const helios::input_error& e) {
+      EXPECT_EQ(std::string(e.what()), "POST " + s.base() +
+                                           "/chat/completions: the reply is larger than the limit of an llm reply "
+                                           "(1048576 bytes, the replies for one artifact together), check "
+                                           "HELIOS_LLM_BASE_URL and HELIOS_LLM_MODEL");
+    }
+    ASSERT_EQ(failed.attempts.size(), 1u);
+    EXPECT_NE(failed.attempts[0].error.find("larger than 1048576 bytes"), std::string::npos);
+  }
+  EXPECT_EQ(s.count(), 2);
+  // The endless body was stopped near the limit (what the sockets buffer aside), not read on.
+  EXPECT_LT(streamed.load(), std::size_t{64} << 20);
+}
+
+// The replies for one artifact share the limit, and what goes back of a reply that could not be
+// used is at most kMaxEchoBytes of it, cut between characters, in the request and the transcript.
+TEST(LlmConversation, RepliesShareTheLimitAndAnUnusableOneGoesBackCut) {
+  // One byte, then two-byte characters (e acute): a character starts at each odd offset, and the
+  // echo's cut (kMaxEchoBytes less its note, an even offset here) would split one.
+  std::string long_reply = "a";
+  while (long_reply.size() < kMaxEchoBytes + 1000) long_reply += "\xc3\xa9";
+  ScriptedServer s({reply(long_reply), reply(std::string(500000, 'y')), reply("```json\n{\"answer\": 1}\n```")});
+  Config c = config_for(s);
+  c.reply_limit_bytes = 700000;
+  c.max_turns = 3;
+  Client client(c);
+  const fs::path dir = fresh_dir("bounded");
+  const std::string path = (dir / "x.transcript.json").string();
+  Conversation conv(client, {path, "helios-test", "parse", "x.json", 1});
+  const auto check = [](const std::string& content) {
+    const json j = parse_reply_json(content);
+    if (!j.contains("answer")) throw reply_error("no answer");
+    return j;
+  };
+  EXPECT_THROW(conv.ask({{"user", "give me JSON"}}, check), helios::input_error);
+  ASSERT_EQ(s.count(), 2);
+  const json second = json::parse(s.requests()[1]);
+  const std::string echo = second["messages"][1]["content"].get<std::string>();
+  EXPECT_LE(echo.size(), kMaxEchoBytes);
+  EXPECT_NE(
+      echo.find("[... the rest of this reply is not repeated: " + std::to_string(long_reply.size()) + " bytes in all]"),
+      std::string::npos);
+  const std::size_t cut = echo.find("\n[...");
+  EXPECT_EQ(cut % 2, 1u);  // before a character, not inside one
+  EXPECT_EQ(long_reply.compare(0, cut, echo, 0, cut), 0);
+  // The transcript: the first reply once, the second stopped at the limit and not kept.
+  const json t = helios::io::read_artifact("transcript", path);
+  ASSERT_EQ(t["turns"].size(), 2u);
+  EXPECT_EQ(t["turns"][0]["outcome"], "rejected");
+  EXPECT_EQ(t["turns"][1]["outcome"], "failed");
+  EXPECT_TRUE(t["turns"][1]["reply"].is_null());
+  EXPECT_LT(fs::file_size(path), long_reply.size() + kMaxEchoBytes + 100000);
+  fs::remove_all(dir);
+}
+
+// Numeric variables are read whole and within their range, or refused in one line naming them.
+TEST(LlmClient, NumericVariablesOutsideTheirRangeAreRefused) {
+  setenv("HELIOS_LLM_BASE_URL", "http://127.0.0.1:9/v1", 1);
+  setenv("HELIOS_LLM_MODEL", "m", 1);
+  const auto refused = [](const char* name, const char* value) {
+    setenv(name, value, 1);
+    std::string what;
+    try {
+      Config::from_env();
+    } catch (const helios::usage_error& e) {
+      what = e.what();
+    }
+    unsetenv(name);
+    return what;
+  };
+  EXPECT_EQ(refused("HELIOS_LLM_MAX_RETRIES", "1e10"),
+            "HELIOS_LLM_MAX_RETRIES=1e10 is not a whole number in [0, 100], fix or unset it");
+  EXPECT_EQ(refused("HELIOS_LLM_MAX_RETRIES", "99999999999999999999"),
+            "HELIOS_LLM_MAX_RETRIES=99999999999999999999 is not a whole number in [0, 100], fix or unset it");
+  EXPECT_EQ(refused("HELIOS_LLM_MAX_TURNS", "0"),
+            "HELIOS_LLM_MAX_TURNS=0 is not a whole number in [1, 100], fix or unset it");
+  EXPECT_EQ(refused("HELIOS_LLM_MAX_TURNS", "-3"),
+            "HELIOS_LLM_MAX_TURNS=-3 is not a whole number in [1, 100], fix or unset it");
+  EXPECT_EQ(refused("HELIOS_LLM_TIMEOUT_S", "1e300"),
+            "HELIOS_LLM_TIMEOUT_S=1e300 is not a number in [0.001, 86400], fix or unset it");
+  EXPECT_EQ(refused("HELIOS_LLM_TEMPERATURE", "nan"),
+            "HELIOS_LLM_TEMPERATURE=nan is not a number in [0, 2], fix or unset it");
+  EXPECT_EQ(refused("HELIOS_LLM_BACKOFF_S", "1e400"),
+            "HELIOS_LLM_BACKOFF_S=1e400 is not a number in [0, 3600], fix or unset it");
+  setenv("HELIOS_LLM_MAX_RETRIES", "100", 1);
+  setenv("HELIOS_LLM_TIMEOUT_S", "0.5", 1);
+  const Config c = Config::from_env();
+  EXPECT_EQ(c.max_retries, 100);
+  EXPECT_DOUBLE_EQ(c.timeout_s, 0.5);
+  for (const char* name : {"HELIOS_LLM_MAX_RETRIES", "HELIOS_LLM_TIMEOUT_S", "HELIOS_LLM_BASE_URL", "HELIOS_LLM_MODEL"})
+    unsetenv(name);
+}
+
 TEST(LlmConversation, AMalformedReplyIsFedBackAndTheTranscriptRecordsBoth) {
   ScriptedServer s({reply("not json at all"), reply("```json\n{\"answer\": 42}\n```", 30, 7)});
   Client client(config_for(s));

@@ -1174,6 +1174,19 @@ TEST(ParseStateConditions, ReadsEquationsOfTheFinalStateInTheirUnits) {
   has(e("At the final time q = 0."), "symbol \"q\" not found");
   has(e("At the final time mu = 398600 km^3/s^2."), "involves no state");
   has(e("At the final time x = 1 km = 2 km."), "is not one equation");
+  // Numbers that would vanish or overflow are refused at their sentence, naming the value.
+  EXPECT_EQ(e("At the final time r = 1e400 km."),
+            "problem.txt:7: cannot use sentence \"At the final time r = 1e400 km\": the number 1e400 is outside "
+            "the range of a double (magnitudes 2.2e-308 to 1.8e308)");
+  has(e("At the final time r = 1e-400 km."), "the number 1e-400 is outside the range of a double");
+  has(e("At the final time r^40 = 1e300 AU^40."),
+      "'1e300 AU^40' in km^40 is beyond the range of a double (magnitudes 2.2e-308 to 1.8e308), state the "
+      "condition with a lower power (e.g. 'r = Q' for 'r^40 = Q^40')");
+  has(e("At the final time r^2 = 1e-305 m^2."), "'1e-305 m^2' in km^2 is beyond the range of a double");
+  has(e("At the final time r = 1 km^" + std::string(400, '9') + "."), "is outside the range of a double");
+  EXPECT_EQ(parse(with_final_orbit(
+                "At the final time r^40 = 1e300 km^40."))["constraints"][1]["target"]["conditions"][0]["equals"],
+            1e300);
 }
 
 TEST(ParseOrbitTarget, RefusesWhatItCannotPlaceWithTheForms) {
@@ -1274,6 +1287,18 @@ TEST(ParseOrbitTarget, ReadsAnOrbitOnTheWayWithItsWindow) {
   helios::io::validate("spec", parse(replaced(s14, "The time of flight is free, at most 2 days.",
                                               "The time of flight is free, at most 2 days. The spacecraft crosses an "
                                               "equatorial orbit between day 0.1 and day 0.5.")),
+                       "test");
+  // "geostationary" on the way is the orbit it names, as at the end: the spec is the schema's.
+  const json geo = interior("The spacecraft passes through geostationary orbit between day 0.1 and day 0.5.");
+  ASSERT_EQ(geo.size(), 1u);
+  EXPECT_FALSE(geo[0]["target"].contains("geostationary"));
+  EXPECT_NEAR(geo[0]["target"]["semi_major_axis_km"].get<double>(), 42164.17, 0.01);
+  EXPECT_EQ(geo[0]["target"]["eccentricity"], 0.0);
+  EXPECT_EQ(geo[0]["target"]["inclination_deg"], 0.0);
+  helios::io::validate("spec",
+                       parse(replaced(s14, "The time of flight is free, at most 2 days.",
+                                      "The time of flight is free, at most 2 days. Between day 0.1 and day "
+                                      "0.5, the spacecraft reaches the geostationary orbit.")),
                        "test");
   has(error_of(replaced(s14, "The time of flight is free, at most 2 days.",
                         "The time of flight is free, at most 2 days. The spacecraft passes through the circular orbit "

@@ -295,4 +295,37 @@ TEST(Score, ScoreboardHasARowPerScenarioAndTotals) {
   fs::remove_all(dir);
 }
 
+// The model's name is the endpoint's text: in scoreboard.md and the tables it stays text in its
+// cell (no new row or heading, no HTML, link, code or math), whatever it holds.
+TEST(Score, AModelNameIsMarkdownTextInItsCell) {
+  const std::string hostile = "m | S99 | 100 |\n# Pwned <img src=x onerror=alert(1)> [a](http://x) `c` $x$ *b*";
+  json s = helios::score::score_run(perfect_inputs());
+  s["producer"]["backend"] = "llm";
+  s["producer"]["model"] = hostile;
+  const std::string escaped =
+      "m \\| S99 \\| 100 \\| \\# Pwned \\<img src=x onerror=alert(1)\\> \\[a\\](http://x) \\`c\\` \\$x\\$ \\*b\\*";
+  const auto rows = [](const std::string& md) {
+    std::size_t n = 0;
+    for (std::size_t at = 0; (at = md.find("\n|", at)) != std::string::npos; ++at) ++n;
+    return n;
+  };
+  const std::string md = helios::score::render_scoreboard({s});
+  EXPECT_NE(md.find("| S01 | llm (" + escaped + ") | 30 |"), std::string::npos) << md;
+  EXPECT_EQ(rows(md), 4u) << md;  // header, rule, the run, the totals
+  EXPECT_EQ(md.find("\n#", md.find("| S01")), std::string::npos) << md;
+  EXPECT_EQ(md.find(" <img"), std::string::npos) << md;
+
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() / ("helios_score_tables_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root / "llm" / "S01");
+  helios::io::write_json_atomic((root / "llm" / "S01" / "score.json").string(), s);
+  const std::string tables = helios::score::tables_from_runs(root.string());
+  EXPECT_NE(tables.find("| S01 | llm (" + escaped + ") | 1 | 100.0 | 1/1 | 1/1 |"), std::string::npos) << tables;
+  EXPECT_NE(tables.find("| llm (" + escaped + ") | 1 | 0 | 0 | 0 | 0 | 0 |"), std::string::npos) << tables;
+  EXPECT_EQ(tables.find(" <img"), std::string::npos) << tables;
+  EXPECT_EQ(tables.find("\n# Pwned"), std::string::npos) << tables;
+  fs::remove_all(root);
+}
+
 }  // namespace

@@ -27,7 +27,9 @@ int main(int argc, char** argv) {
        {"previous", "", "FILE", "llm: shoot.cpp of the round before", ""},
        {"compile-report", "", "FILE", "llm: compile report of --previous (helios-solve --compile-only)", ""},
        {"round", "", "N", "llm: repair round number (1 = first generation)", "1"},
-       {"transcript", "", "FILE", "llm: transcript of the exchange (default: next to -o, NAME.transcript.json)", ""}},
+       {"transcript", "", "FILE", "llm: transcript of the exchange (default: next to -o, NAME.transcript.json)", ""},
+       helios::cli::time_limit_option("the generation", "120"),
+       helios::cli::memory_limit_option("the generation", "2048")},
       {"DERIVATION"},
       "The program is one C++17 file of the problem and its modules (RESIDUAL and SOLVE generated\n"
       "from the shooting system); it links the prebuilt runtime libhelios-runtime.a (ephemeris,\n"
@@ -39,6 +41,7 @@ int main(int argc, char** argv) {
       "helios-gen runs/builtin/S01/derivation.json -o runs/builtin/S01/shoot.cpp"};
   return helios::cli::run_tool(info, argc, argv, [](const helios::cli::Args& args) {
     const std::string backend = helios::cli::backend_option(args, {"builtin", "llm"});
+    helios::cli::limit_work("helios-gen", args);
     if (backend == "llm") {
       helios::llm::GenRequest request{helios::io::read_artifact("derivation", args.positionals[0]), std::nullopt,
                                       std::nullopt};

@@ -103,7 +103,7 @@ int sweep_crosscheck(const Args& args) {
   helios::sweep::CrosscheckOptions o;
   o.solver = args.get("solver");
   o.settings = args.get("settings");
-  o.cache_dir = args.get("cache-dir");
+  o.cache_dir = helios::cli::folder_option(args, "cache-dir");
   std::istringstream launch(args.get("launch"));
   for (std::string word; launch >> word;) o.launch.push_back(word);
   o.time_limit_s = helios::cli::positive_option(args, "time-limit");

@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
     o.settings_path = args.get("settings");
     o.trajectory_path = args.get("trajectory");
     o.plot_prefix = args.get("plots");
-    o.cache_dir = args.get("cache-dir");
+    o.cache_dir = helios::cli::folder_option(args, "cache-dir");
     o.warm_start_path = args.get("warm-start");
     o.warm_only = args.has("warm-only");
     if (o.warm_only && o.warm_start_path.empty())

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <new>
 #include <sstream>
@@ -218,6 +219,20 @@ double positive_option(const Args& args, const std::string& name) {
   }
   if (used == 0 || used != text.size() || !(value > 0) || !std::isfinite(value))
     throw usage_error("--" + name + " " + text + " is not a positive number");
+  return value;
+}
+
+std::string folder_option(const Args& args, const std::string& name) {
+  const std::string& value = args.get(name);
+  std::error_code ec;
+  for (std::filesystem::path p = value; !p.empty(); p = p.parent_path()) {
+    const auto status = std::filesystem::status(p, ec);
+    if (std::filesystem::is_directory(status)) break;
+    if (std::filesystem::exists(status))
+      throw usage_error("--" + name + " " + value + ": " + (p == value ? "" : p.string() + " ") +
+                        "is not a folder, name a folder (it is made when missing)");
+    if (p == p.parent_path()) break;
+  }
   return value;
 }
 

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iostream>
 #include <iterator>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -233,29 +234,66 @@ void write_text_if_changed(const std::string& path, const std::string& text) {
   write_text_atomic(path, text);
 }
 
+namespace {
+
+// Writes all of `text` to `fd`; false on an error.
+bool write_all(int fd, const std::string& text) {
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+// Whether `path` (its links followed) is a stream to write into rather than a file to replace: a
+// character device (/dev/null, a terminal) or a FIFO. A regular file, or nothing, is replaced; any
+// other kind is refused, as renaming over it would replace it.
+bool is_stream_target(const std::string& path) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return false;
+  if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) return true;
+  const std::string kind = S_ISDIR(st.st_mode) ? "a directory" : S_ISBLK(st.st_mode) ? "a block device" : "a socket";
+  throw std::runtime_error(path + ": is " + kind +
+                           ", not a file to write, name a file (or a character device such as /dev/null, or a FIFO)");
+}
+
+// Writes `text` into the stream `path` as it is (no temp file, no rename, no truncation).
+void write_into_stream(const std::string& path, const std::string& text) {
+  const Descriptor out(::open(path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC));
+  if (out.fd < 0 || !write_all(out.fd, text))
+    throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+}
+
+}  // namespace
+
 void write_text_atomic(const std::string& path, const std::string& text) {
   if (path == "-") {
     std::cout << text << std::flush;
     return;
   }
+  if (is_stream_target(path)) return write_into_stream(path, text);
   const std::string tmp = temp_name_for(path);
   const TempFiles guard({tmp});
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
   if (fd < 0) throw std::runtime_error(path + ": cannot create temp file: " + std::strerror(errno));
-  std::size_t done = 0;
-  bool ok = true;
-  while (done < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      ok = false;
-      break;
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  ok = ok && ::fsync(fd) == 0;
+  bool ok = write_all(fd, text) && ::fsync(fd) == 0;
   ok = (::close(fd) == 0) && ok;
   if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+}
+
+void move_into_place(const std::string& from, const std::string& path) {
+  if (is_stream_target(path)) {
+    write_into_stream(path, read_text(from, std::numeric_limits<std::size_t>::max()));
+    ::unlink(from.c_str());
+    return;
+  }
+  if (std::rename(from.c_str(), path.c_str()) != 0)
     throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
 }
 

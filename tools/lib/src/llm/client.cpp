@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "helios/io/error.hpp"
+#include "helios/io/json_io.hpp"
 #include "helios/io/sha256.hpp"
 
 namespace helios::llm {
@@ -21,19 +22,33 @@ std::string env(const char* name) {
   return v ? std::string(v) : std::string();
 }
 
-double env_number(const char* name, double fallback, double min) {
+// A variable's number in [min, max] (or `fallback` when unset); anything else is refused in one
+// line naming it, before it could overflow what it sets (a count, a time in milliseconds).
+double env_number(const char* name, double fallback, double min, double max) {
   const std::string text = env(name);
   if (text.empty()) return fallback;
   std::size_t used = 0;
-  double value = 0;
+  double value = NAN;
   try {
     value = std::stod(text, &used);
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used != text.size() || !std::isfinite(value) || value < min)
-    throw usage_error(std::string(name) + "=" + text + " is not a number >= " + std::to_string(min).substr(0, 4) +
-                      ", fix or unset it");
+  if (used != text.size() || !(value >= min && value <= max))
+    throw usage_error(std::string(name) + "=" + text + " is not a number in [" + io::short_number(min) + ", " +
+                      io::short_number(max) + "], fix or unset it");
+  return value;
+}
+
+// A variable's whole number in [min, max] (digits only: no sign, point or exponent).
+int env_integer(const char* name, int fallback, int min, int max) {
+  const std::string text = env(name);
+  if (text.empty()) return fallback;
+  const bool digits = text.size() <= 9 && text.find_first_not_of("0123456789") == std::string::npos;
+  const int value = digits ? std::stoi(text) : -1;
+  if (!digits || value < min || value > max)
+    throw usage_error(std::string(name) + "=" + text + " is not a whole number in [" + std::to_string(min) + ", " +
+                      std::to_string(max) + "], fix or unset it");
   return value;
 }
 
@@ -69,14 +84,23 @@ std::string status_words(long status) {
 struct HttpReply {
   long status = 0;
   std::string body;
+  std::size_t limit = 0;   // of the body: reading stops beyond it
+  bool too_large = false;  // the body was longer than `limit`
   std::string retry_after;
   CURLcode code = CURLE_OK;
   std::string curl_error;
   double seconds = 0;
 };
 
+// Keeps the body while it is within its limit; one byte beyond, the transfer stops (returning less
+// than was given aborts it), so a reply never takes more memory than its limit.
 std::size_t on_body(char* data, std::size_t size, std::size_t n, void* user) {
-  static_cast<std::string*>(user)->append(data, size * n);
+  auto& r = *static_cast<HttpReply*>(user);
+  if (size * n > r.limit - r.body.size()) {
+    r.too_large = true;
+    return 0;
+  }
+  r.body.append(data, size * n);
   return size * n;
 }
 
@@ -96,10 +120,11 @@ std::size_t on_header(char* data, std::size_t size, std::size_t n, void* user) {
   return size * n;
 }
 
-HttpReply post(const Config& c, const std::string& body) {
+HttpReply post(const Config& c, const std::string& body, std::size_t limit) {
   static const bool initialized = [] { return curl_global_init(CURL_GLOBAL_DEFAULT) == CURLE_OK; }();
   if (!initialized) throw llm_error("libcurl could not be initialized");
   HttpReply r;
+  r.limit = limit;
   CURL* curl = curl_easy_init();
   if (!curl) throw llm_error("libcurl could not create a handle");
   curl_slist* headers = nullptr;
@@ -119,7 +144,9 @@ HttpReply post(const Config& c, const std::string& body) {
   curl_easy_setopt(curl, CURLOPT_POSTFIELDS, body.c_str());
   curl_easy_setopt(curl, CURLOPT_POSTFIELDSIZE_LARGE, static_cast<curl_off_t>(body.size()));
   curl_easy_setopt(curl, CURLOPT_WRITEFUNCTION, on_body);
-  curl_easy_setopt(curl, CURLOPT_WRITEDATA, &r.body);
+  curl_easy_setopt(curl, CURLOPT_WRITEDATA, &r);
+  // A Content-Length beyond the limit is refused before the body is read.
+  curl_easy_setopt(curl, CURLOPT_MAXFILESIZE_LARGE, static_cast<curl_off_t>(limit));
   curl_easy_setopt(curl, CURLOPT_HEADERFUNCTION, on_header);
   curl_easy_setopt(curl, CURLOPT_HEADERDATA, &r.retry_after);
   curl_easy_setopt(curl, CURLOPT_TIMEOUT_MS, static_cast<long>(c.timeout_s * 1000));
@@ -130,6 +157,7 @@ HttpReply post(const Config& c, const std::string& body) {
   const auto start = std::chrono::steady_clock::now();
   r.code = curl_easy_perform(curl);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.too_large = r.too_large || r.code == CURLE_FILESIZE_EXCEEDED;
   if (r.code == CURLE_OK) curl_easy_getinfo(curl, CURLINFO_RESPONSE_CODE, &r.status);
   r.curl_error = error[0] ? error : curl_easy_strerror(r.code);
   curl_slist_free_all(headers);
@@ -163,13 +191,13 @@ Config Config::from_env() {
   c.model = env("HELIOS_LLM_MODEL");
   c.api_key = env("HELIOS_LLM_API_KEY");
   c.replay_dir = env("HELIOS_LLM_REPLAY");
-  c.temperature = env_number("HELIOS_LLM_TEMPERATURE", c.temperature, 0);
-  c.timeout_s = env_number("HELIOS_LLM_TIMEOUT_S", c.timeout_s, 0.001);
+  c.temperature = env_number("HELIOS_LLM_TEMPERATURE", c.temperature, 0, 2);
+  c.timeout_s = env_number("HELIOS_LLM_TIMEOUT_S", c.timeout_s, 0.001, 86400);
   c.connect_timeout_s = std::min(c.connect_timeout_s, c.timeout_s);
-  c.max_retries = static_cast<int>(env_number("HELIOS_LLM_MAX_RETRIES", c.max_retries, 0));
-  c.backoff_s = env_number("HELIOS_LLM_BACKOFF_S", c.backoff_s, 0);
-  c.backoff_max_s = env_number("HELIOS_LLM_BACKOFF_MAX_S", c.backoff_max_s, 0);
-  c.max_turns = static_cast<int>(env_number("HELIOS_LLM_MAX_TURNS", c.max_turns, 1));
+  c.max_retries = env_integer("HELIOS_LLM_MAX_RETRIES", c.max_retries, 0, 100);
+  c.backoff_s = env_number("HELIOS_LLM_BACKOFF_S", c.backoff_s, 0, 3600);
+  c.backoff_max_s = env_number("HELIOS_LLM_BACKOFF_MAX_S", c.backoff_max_s, 0, 3600);
+  c.max_turns = env_integer("HELIOS_LLM_MAX_TURNS", c.max_turns, 1, 100);
   if (!c.replay_dir.empty()) {
     std::error_code ec;
     if (!std::filesystem::is_directory(c.replay_dir, ec))
@@ -218,8 +246,9 @@ std::string redact(std::string text, const std::string& secret) {
 
 Client::Client(Config config) : config_(std::move(config)) {}
 
-Exchange Client::chat(const std::vector<Message>& messages, Exchange* failed) {
+Exchange Client::chat(const std::vector<Message>& messages, Exchange* failed, std::optional<std::size_t> bytes_left) {
   if (!config_.replay_dir.empty()) return replay(messages);
+  const std::size_t reply_limit = bytes_left.value_or(config_.reply_limit_bytes);
   Exchange x;
   x.request = {{"model", config_.model}, {"messages", messages_json(messages)}, {"temperature", config_.temperature}};
   x.request_sha256 = request_hash(messages);
@@ -227,10 +256,20 @@ Exchange Client::chat(const std::vector<Message>& messages, Exchange* failed) {
   const std::string where = "POST " + config_.endpoint();
   std::string last;
   for (int attempt = 1; attempt <= config_.max_retries + 1; ++attempt) {
-    const HttpReply r = post(config_, body);
+    const HttpReply r = post(config_, body, reply_limit);
     Attempt a;
     a.http_status = static_cast<int>(r.status);
     a.latency_s = r.seconds;
+    if (r.too_large) {
+      // Not retried: the same request would bring the same flood.
+      a.error = "the reply was larger than " + std::to_string(reply_limit) + " bytes; reading stopped there";
+      x.attempts.push_back(a);
+      if (failed) *failed = x;
+      throw input_error(where + ": the reply is larger than the limit of an llm reply (" +
+                        std::to_string(config_.reply_limit_bytes) +
+                        " bytes, the replies for one artifact together), check HELIOS_LLM_BASE_URL and "
+                        "HELIOS_LLM_MODEL");
+    }
     if (r.code != CURLE_OK) {
       const bool timeout = r.code == CURLE_OPERATION_TIMEDOUT;
       a.error = timeout
@@ -261,6 +300,7 @@ Exchange Client::chat(const std::vector<Message>& messages, Exchange* failed) {
       }
       x.http_status = 200;
       x.latency_s = r.seconds;
+      x.reply_bytes = r.body.size();
       x.attempts.push_back(a);
       return x;
     } else if (r.status == 429 || r.status >= 500) {
@@ -340,6 +380,7 @@ Exchange Client::replay(const std::vector<Message>& messages) {
   }
   x.http_status = turn.value("http_status", 200);
   x.replayed = true;
+  x.reply_bytes = x.content.size();
   x.attempts.push_back(Attempt{x.http_status, "", 0, 0});
   return x;
 }

@@ -35,6 +35,18 @@ bool fenced(const std::string& content, const std::string& opener, std::string& 
   return false;
 }
 
+// What is sent back of a reply that could not be used: all of it up to kMaxEchoBytes, else its
+// start (cut between characters) and a note. The same reply gives the same text, so a replay asks
+// what was asked.
+std::string echo_of(const std::string& content) {
+  if (content.size() <= kMaxEchoBytes) return content;
+  const std::string note =
+      "\n[... the rest of this reply is not repeated: " + std::to_string(content.size()) + " bytes in all]";
+  std::size_t cut = kMaxEchoBytes - note.size();
+  while (cut > 0 && (static_cast<unsigned char>(content[cut]) & 0xC0) == 0x80) --cut;
+  return content.substr(0, cut) + note;
+}
+
 json usage_json(const Usage& u) {
   return {
       {"prompt_tokens", u.prompt_tokens}, {"completion_tokens", u.completion_tokens}, {"total_tokens", u.total_tokens}};
@@ -133,13 +145,14 @@ json Conversation::ask(std::vector<Message> messages, const ReplyCheck& check) {
   for (int turn = 1; turn <= max_turns; ++turn) {
     Exchange x;
     try {
-      x = client_.chat(messages, &x);
-    } catch (const llm_error&) {
+      x = client_.chat(messages, &x, client_.config().reply_limit_bytes - received_);
+    } catch (const std::exception&) {
       turns_.push_back(turn_json(x, "failed", "no reply"));
       failed_ = true;
       write();
       throw;
     }
+    received_ += x.reply_bytes;
     if (!x.reply_model.empty()) model_ = x.reply_model;
     try {
       json accepted = check(x.content);
@@ -150,7 +163,7 @@ json Conversation::ask(std::vector<Message> messages, const ReplyCheck& check) {
     } catch (const reply_error& e) {
       last_error = e.what();
       turns_.push_back(turn_json(x, "rejected", last_error));
-      messages.push_back({"assistant", x.content});
+      messages.push_back({"assistant", echo_of(x.content)});
       messages.push_back({"user", "Your reply could not be used: " + last_error +
                                       ". Reply again with the complete corrected JSON object only, in one ```json "
                                       "fence."});

@@ -303,6 +303,10 @@ EndpointConstraint state_conditions(Problem& p, EndpointConstraint k) {
                                   spec::unit_text(d));
     const double unit = std::pow(U.length_km, d.length) * std::pow(U.time_s, d.time) * std::pow(U.mass_kg, d.mass);
     const double value = c.at("equals").get<double>();
+    spec::require_in_range(value, value / unit,
+                           at + "/equals: " + io::short_number(value) + " " + spec::unit_text(d) +
+                               " in the normalized units (length " + io::short_number(U.length_km) + " km, time " +
+                               io::short_number(U.time_s) + " s, mass " + io::short_number(U.mass_kg) + " kg)");
     k.psi.push_back(f.subs(to_model) - value / unit);
     k.psi_names.push_back(text + " = " + io::short_number(value) + " " + spec::unit_text(d));
   }

@@ -22,25 +22,6 @@ using io::json;
 // Width of a display line of LaTeX before a sum is broken (about a page's width rendered).
 constexpr std::size_t kLineWidth = 150;
 
-// Artifact text as Markdown that stays text: every character that opens markup in Markdown or
-// pandoc's extensions (math, raw TeX, code, emphasis, links, HTML and entities, sub/superscript,
-// citations, table cells) is backslash-escaped, and a
-// line break or other control character becomes a space, so a string cannot open math, a code
-// span, a link, an HTML element or a new line of the document.
-std::string escaped(const std::string& text) {
-  static const std::string markup = "\\`*_[]<>|$^~&@#";
-  std::string out;
-  for (char c : text) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-      out += ' ';
-    else if (markup.find(c) != std::string::npos)
-      out += std::string("\\") + c;
-    else
-      out += c;
-  }
-  return out;
-}
-
 // A code span of artifact text: pandoc typesets its characters verbatim (no math, no TeX, no
 // HTML); a backtick becomes a quote, a cell separator is escaped and a control character a space.
 std::string code(const std::string& text) {
@@ -56,7 +37,7 @@ std::string code(const std::string& text) {
 
 // A value of an artifact as report text: numbers formatted, strings escaped, booleans as words.
 std::string value(const json& v) {
-  if (v.is_string()) return escaped(v.get<std::string>());
+  if (v.is_string()) return markdown_text(v.get<std::string>());
   if (v.is_number_integer()) return std::to_string(v.get<long long>());
   if (v.is_number()) return io::short_number(v.get<double>());
   if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
@@ -66,7 +47,7 @@ std::string value(const json& v) {
     for (const auto& x : v) out += (out.size() > 1 ? ", " : "") + value(x);
     return out + "]";
   }
-  return escaped(v.dump());
+  return markdown_text(v.dump());
 }
 
 // A key the schemas type as a number: its value when it is one, blank when absent, and a marked
@@ -128,13 +109,14 @@ std::string fence_for(const std::string& text) {
 void search_coverage(std::ostringstream& o, const json& sr) {
   if (sr.contains("saturated"))
     o << (sr.at("saturated").get<bool>() ? "The starts saturated" : "**The starts did not saturate**") << " ("
-      << escaped(sr.value("stopped", "")) << "; chance that another start finds a new extremal: "
-      << numeric(sr.value("new_extremal_chance", json())) << ").\n\n";
+      << markdown_text(sr.value("stopped", ""))
+      << "; chance that another start finds a new extremal: " << numeric(sr.value("new_extremal_chance", json()))
+      << ").\n\n";
   if (sr.contains("family")) {
     o << "| family of extremal | direction | revolutions looked for | how | found |\n|---|---|---|---|---|\n";
     for (const auto& p : sr.at("family"))
       o << "| " << numeric(p.value("from", json())) << " | " << (p.value("direction", 0) < 0 ? "one fewer" : "one more")
-        << " | " << numeric(p.value("revolutions", json())) << " | " << escaped(p.value("how", "")) << " | "
+        << " | " << numeric(p.value("revolutions", json())) << " | " << markdown_text(p.value("how", "")) << " | "
         << (p.contains("found") ? "extremal " + numeric(p.at("found")) : std::string("none")) << " |\n";
     o << "\n";
   }
@@ -274,7 +256,7 @@ std::string Writer::condition(const std::string& text, const std::string& where)
     const auto lhs = parsed(text.substr(0, eq), where), rhs = parsed(text.substr(eq + 3), where);
     if (lhs && rhs) return display_expression(tex_.latex(*lhs), *rhs);
   }
-  return "- " + escaped(text) + "\n";
+  return "- " + markdown_text(text) + "\n";
 }
 
 std::string Writer::findings(const std::function<bool(const json&)>& concerns) const {
@@ -285,9 +267,9 @@ std::string Writer::findings(const std::function<bool(const json&)>& concerns) c
     if (!concerns(c)) continue;
     const bool pass = c.value("verdict", "") == "pass";
     o << (shown++ ? "; " : "> helios-verify: ") << code(c.value("id", "")) << " "
-      << (pass ? escaped(c.value("verdict", "")) : "**" + escaped(c.value("verdict", "")) + "**");
+      << (pass ? markdown_text(c.value("verdict", "")) : "**" + markdown_text(c.value("verdict", "")) + "**");
     const std::string feedback = c.value("feedback", "");
-    if (!pass && !feedback.empty()) o << ": " << escaped(feedback);
+    if (!pass && !feedback.empty()) o << ": " << markdown_text(feedback);
   }
   return shown ? o.str() + "\n\n" : "";
 }
@@ -308,28 +290,29 @@ bool concerns_event(const json& check, const std::string& id) {
 
 void Writer::header(std::ostringstream& o) const {
   const json& p = in_.spec.at("problem");
-  o << "# " << escaped(p.value("id", "")) << ": " << escaped(p.value("title", "")) << "\n\n";
+  o << "# " << markdown_text(p.value("id", "")) << ": " << markdown_text(p.value("title", "")) << "\n\n";
   const json& producer = d_.at("producer");
-  o << "Derivation by " << escaped(producer.value("tool", "")) << " " << escaped(producer.value("version", "")) << " ("
-    << escaped(producer.value("backend", "")) << " backend)";
+  o << "Derivation by " << markdown_text(producer.value("tool", "")) << " "
+    << markdown_text(producer.value("version", "")) << " (" << markdown_text(producer.value("backend", ""))
+    << " backend)";
   if (in_.verify) {
     int passed = 0, total = 0;
     for (const auto& c : in_.verify->at("checks")) {
       ++total;
       passed += c.value("verdict", "") == "pass";
     }
-    o << "; verification **" << escaped(in_.verify->value("verdict", "")) << "** (" << passed << " of " << total
+    o << "; verification **" << markdown_text(in_.verify->value("verdict", "")) << "** (" << passed << " of " << total
       << " checks pass)";
   } else {
     o << "; not verified (no verify.json given)";
   }
   if (in_.solution)
-    o << "; solution **" << escaped(in_.solution->value("status", "")) << "**.\n\n";
+    o << "; solution **" << markdown_text(in_.solution->value("status", "")) << "**.\n\n";
   else
     o << "; not solved (no solution.json given).\n\n";
   o << "Written by `helios-score --report` from the run's artifacts. Every formula is an exact rewrite of the "
        "expression stored in "
-    << escaped(in_.derivation_source)
+    << markdown_text(in_.derivation_source)
     << ": norms and differences are named (see *Named quantities*), terms collected and factored where "
        "that is shorter.\n\n";
 }
@@ -352,29 +335,30 @@ void Writer::specification(std::ostringstream& o) const {
 void Writer::symbols(std::ostringstream& o) {
   const json& u = d_.at("units");
   o << "## The derivation\n\n### Units and symbols\n\nThe solver works in normalized units: length "
-    << escaped(u.value("length", "")) << " = " << io::short_number(u.value("length_km", 0.0)) << " km, time "
-    << escaped(u.value("time", "")) << " = " << io::short_number(u.value("time_s", 0.0)) << " s, mass "
+    << markdown_text(u.value("length", "")) << " = " << io::short_number(u.value("length_km", 0.0)) << " km, time "
+    << markdown_text(u.value("time", "")) << " = " << io::short_number(u.value("time_s", 0.0)) << " s, mass "
     << io::short_number(u.value("mass_kg", 0.0))
     << " kg.\n\n| symbol | name | meaning | unit | value |\n|---|---|---|---|---|\n";
   for (const auto& s : d_.at("states"))
     o << "| " << inline_symbol(s.at("name")) << " | " << code(s.at("name"))
-      << " | state: " << escaped(s.value("meaning", "")) << " | " << escaped(s.value("unit", "")) << " | |\n";
+      << " | state: " << markdown_text(s.value("meaning", "")) << " | " << markdown_text(s.value("unit", ""))
+      << " | |\n";
   for (const auto& s : d_.at("states"))
     o << "| " << inline_symbol(s.at("costate")) << " | " << code(s.at("costate")) << " | costate of "
-      << escaped(s.value("meaning", "")) << " | | |\n";
+      << markdown_text(s.value("meaning", "")) << " | | |\n";
   for (const auto& c : d_.at("controls"))
     o << "| " << inline_symbol(c.at("name")) << " | " << code(c.at("name"))
-      << " | control: " << escaped(c.value("meaning", "")) << " | | |\n";
+      << " | control: " << markdown_text(c.value("meaning", "")) << " | | |\n";
   for (const auto& p : d_.at("parameters"))
-    o << "| " << inline_symbol(p.at("name")) << " | " << code(p.at("name")) << " | " << escaped(p.value("meaning", ""))
-      << " | " << escaped(p.value("unit", "")) << " | "
+    o << "| " << inline_symbol(p.at("name")) << " | " << code(p.at("name")) << " | "
+      << markdown_text(p.value("meaning", "")) << " | " << markdown_text(p.value("unit", "")) << " | "
       << (p.value("source", "").empty() ? io::short_number(p.value("value", 0.0))
                                         : "evaluated by the program: " + code(p.at("source")))
       << " |\n";
   o << "| " << inline_symbol(reader_.multiplier) << " | " << code(reader_.multiplier) << " | cost multiplier | | |\n";
   if (!reader_.homotopy.empty())
     o << "| " << inline_symbol(reader_.homotopy) << " | " << code(reader_.homotopy) << " | "
-      << escaped(d_.at("homotopy").value("meaning", "")) << " | | |\n";
+      << markdown_text(d_.at("homotopy").value("meaning", "")) << " | | |\n";
   o << "\n";
 }
 
@@ -410,7 +394,7 @@ void Writer::control(std::ostringstream& o) {
   const json& law = d_.at("control_law");
   if (law.contains("direction")) {
     const json& dir = law.at("direction");
-    o << "Thrust direction: " << escaped(dir.value("reason", "")) << "\n";
+    o << "Thrust direction: " << markdown_text(dir.value("reason", "")) << "\n";
     for (std::size_t i = 0; i < dir.at("controls").size(); ++i)
       o << display(tex_.symbol(dir.at("controls")[i]) + "^{*}", dir.at("law")[i], "/control_law/direction/law");
   }
@@ -418,7 +402,8 @@ void Writer::control(std::ostringstream& o) {
     const json& th = law.at("throttle");
     const std::string u = tex_.symbol(th.at("control"));
     o << "Throttle " << inline_symbol(th.at("control")) << " in [" << numeric(th.at("bounds")[0]) << ", "
-      << numeric(th.at("bounds")[1]) << "], smoothing " << escaped(th.value("smoothing", "")) << ". Switching function:\n"
+      << numeric(th.at("bounds")[1]) << "], smoothing " << markdown_text(th.value("smoothing", ""))
+      << ". Switching function:\n"
       << display("S", th.at("switching_function"), "/control_law/throttle/switching_function")
       << display("\\left.\\frac{\\partial H}{\\partial " + u + "}\\right|_{" + u + "=0}", th.at("dH_du_at_lower"),
                  "/control_law/throttle/dH_du_at_lower")
@@ -427,17 +412,17 @@ void Writer::control(std::ostringstream& o) {
       << display("\\frac{\\partial^2 H}{\\partial " + u + "^2}", th.at("d2H_du2"), "/control_law/throttle/d2H_du2")
       << "Interior throttle (stationarity of H):\n"
       << display(u + "_{\\mathrm{int}}", th.at("interior"), "/control_law/throttle/interior")
-      << "Law: " << escaped(th.value("law", "")) << "\n\n";
+      << "Law: " << markdown_text(th.value("law", "")) << "\n\n";
   }
   if (law.contains("sail")) {
     const json& sail = law.at("sail");
-    o << "Sail normal: " << escaped(sail.value("reason", "")) << "\n";
+    o << "Sail normal: " << markdown_text(sail.value("reason", "")) << "\n";
     for (const auto& def : sail.value("definitions", json::array()))
       o << display(tex_.symbol(def.at("name")), def.at("expression"), "/control_law/sail/definitions");
     for (std::size_t i = 0; i < sail.at("controls").size(); ++i)
       o << display(tex_.symbol(sail.at("controls")[i]) + "^{*}", sail.at("law")[i], "/control_law/sail/law");
-    o << "Stationarity: " << escaped(sail.value("stationarity", ""))
-      << ". Admissible: " << escaped(sail.value("admissible", "")) << ".\n\n";
+    o << "Stationarity: " << markdown_text(sail.value("stationarity", ""))
+      << ". Admissible: " << markdown_text(sail.value("admissible", "")) << ".\n\n";
   }
   o << findings([](const json& c) { return c.value("category", "") == "control"; });
 }
@@ -445,7 +430,8 @@ void Writer::control(std::ostringstream& o) {
 void Writer::boundaries(std::ostringstream& o) {
   o << "### Boundary conditions and transversality\n\n";
   const json& times = d_.at("times");
-  o << "Times (normalized): t0 = " << numeric(times.at("t0")) << ", final time " << escaped(times.value("final_time", ""));
+  o << "Times (normalized): t0 = " << numeric(times.at("t0")) << ", final time "
+    << markdown_text(times.value("final_time", ""));
   if (times.contains("tf")) o << ", tf = " << numeric(times.at("tf"));
   if (times.contains("tf_window")) o << ", tf in " << numeric(times.at("tf_window"));
   o << ".\n";
@@ -453,7 +439,8 @@ void Writer::boundaries(std::ostringstream& o) {
   o << "\n";
   for (const auto& c : d_.at("constraints")) {
     const std::string id = c.at("id");
-    o << "#### " << escaped(id) << " (" << escaped(c.value("kind", "")) << " at " << escaped(c.value("at", "")) << ")\n\n"
+    o << "#### " << markdown_text(id) << " (" << markdown_text(c.value("kind", "")) << " at "
+      << markdown_text(c.value("at", "")) << ")\n\n"
       << "Target: " << code(c.at("target").dump()) << "\n";
     const json& psi = c.value("psi", json::array());
     for (std::size_t i = 0; i < psi.size(); ++i)
@@ -461,7 +448,7 @@ void Writer::boundaries(std::ostringstream& o) {
     o << side_conditions(c, "/constraints/" + id);
     o << "Conditions:\n\n";
     for (const auto& cond : c.value("conditions", json::array())) o << condition(cond, "/constraints/" + id);
-    if (c.contains("time_condition")) o << "- " << escaped(c.at("time_condition")) << "\n";
+    if (c.contains("time_condition")) o << "- " << markdown_text(c.at("time_condition")) << "\n";
     o << "\n"
       << findings([&](const json& check) {
            return c.at("at") != "interior" && check.value("category", "") == "transversality" &&
@@ -475,8 +462,9 @@ std::string Writer::side_conditions(const json& owner, const std::string& where)
   if (sides.empty()) return "";
   std::string out = "The rows also hold on the target's mirror; the solver returns no extremal where one of these fails:\n";
   for (std::size_t i = 0; i < sides.size(); ++i)
-    out += display("g_{" + std::to_string(i + 1) + "}", sides[i].at("expression"), where + "/must_be_positive", " > 0") +
-           "(" + escaped(sides[i].at("meaning")) + ")\n\n";
+    out +=
+        display("g_{" + std::to_string(i + 1) + "}", sides[i].at("expression"), where + "/must_be_positive", " > 0") +
+        "(" + markdown_text(sides[i].at("meaning")) + ")\n\n";
   return out;
 }
 
@@ -487,9 +475,10 @@ void Writer::events(std::ostringstream& o) {
   for (const auto& ev : evs) {
     const std::string id = ev.at("id");
     const json& time = ev.at("time");
-    o << "#### " << escaped(id) << " (" << escaped(ev.value("kind", "")) << ")\n\nTarget: " << code(ev.at("target").dump())
-      << ". Epoch " << inline_symbol(time.at("symbol")) << " in " << numeric(time.value("window", json::array()))
-      << ", stay " << numeric(time.value("duration", json(0.0))) << " (normalized):\n"
+    o << "#### " << markdown_text(id) << " (" << markdown_text(ev.value("kind", ""))
+      << ")\n\nTarget: " << code(ev.at("target").dump()) << ". Epoch " << inline_symbol(time.at("symbol")) << " in "
+      << numeric(time.value("window", json::array())) << ", stay " << numeric(time.value("duration", json(0.0)))
+      << " (normalized):\n"
       << display(tex_.symbol(time.at("symbol")), time.at("expression"), "/events/" + id + "/time/expression");
     const json& psi = ev.value("psi", json::array());
     for (std::size_t i = 0; i < psi.size(); ++i)
@@ -514,13 +503,13 @@ void Writer::shooting(std::ostringstream& o) {
        "|\n|---|---|---|---|---|\n";
   int i = 0;
   for (const auto& v : sh.at("variables"))
-    o << "| " << ++i << " | " << inline_symbol(v.at("name")) << " | " << escaped(v.value("meaning", "")) << " | "
-      << numeric(v.value("scale", json(1.0))) << " | " << escaped(v.value("init", "")) << " |\n";
+    o << "| " << ++i << " | " << inline_symbol(v.at("name")) << " | " << markdown_text(v.value("meaning", "")) << " | "
+      << numeric(v.value("scale", json(1.0))) << " | " << markdown_text(v.value("init", "")) << " |\n";
   o << "\n" << sh.at("equations").size() << " equations in " << sh.at("variables").size() << " unknowns:\n\n";
   i = 0;
   for (const auto& e : sh.at("equations")) {
     ++i;
-    o << "**F" << i << "** " << code(e.value("name", "")) << ": " << escaped(e.value("meaning", "")) << "\n"
+    o << "**F" << i << "** " << code(e.value("name", "")) << ": " << markdown_text(e.value("meaning", "")) << "\n"
       << display("F_{" + std::to_string(i) + "}", e.at("expression"), "/shooting/equations/" + std::to_string(i - 1));
   }
   o << findings([](const json& c) { return c.value("category", "") == "counts"; });
@@ -528,13 +517,13 @@ void Writer::shooting(std::ostringstream& o) {
 
 void Writer::verification(std::ostringstream& o) const {
   if (!in_.verify) return;
-  o << "## Verification (verify.json)\n\nVerdict: **" << escaped(in_.verify->value("verdict", ""))
+  o << "## Verification (verify.json)\n\nVerdict: **" << markdown_text(in_.verify->value("verdict", ""))
     << "**.\n\n| check | category | verdict | method | max rel. error | finding |\n|---|---|---|---|---|---|\n";
   for (const auto& c : in_.verify->at("checks"))
-    o << "| " << code(c.value("id", "")) << " | " << escaped(c.value("category", "")) << " | "
-      << escaped(c.value("verdict", "")) << " | " << escaped(c.value("method", "")) << " | "
-      << (c.contains("max_rel_error") ? numeric(c.at("max_rel_error")) : "") << " | " << escaped(c.value("feedback", ""))
-      << " |\n";
+    o << "| " << code(c.value("id", "")) << " | " << markdown_text(c.value("category", "")) << " | "
+      << markdown_text(c.value("verdict", "")) << " | " << markdown_text(c.value("method", "")) << " | "
+      << (c.contains("max_rel_error") ? numeric(c.at("max_rel_error")) : "") << " | "
+      << markdown_text(c.value("feedback", "")) << " |\n";
   o << "\n";
 }
 
@@ -565,9 +554,10 @@ void Writer::solution(std::ostringstream& o) const {
   if (s.contains("search")) {
     const json& sr = s.at("search");
     o << "### The search\n\n"
-      << escaped(sr.value("method", "")) << ": " << numeric(sr.value("starts", json())) << " starts on "
+      << markdown_text(sr.value("method", "")) << ": " << numeric(sr.value("starts", json())) << " starts on "
       << numeric(sr.value("threads", json())) << " threads, " << numeric(sr.value("seconds", json())) << " s"
-      << (sr.value("cut_by_time", false) ? ", cut by the time limit" : "") << ". " << escaped(sr.value("reason", ""))
+      << (sr.value("cut_by_time", false) ? ", cut by the time limit" : "") << ". "
+      << markdown_text(sr.value("reason", ""))
       << ".\n\n| extremal | objective | in named units | revolutions | switches | reached from | max residual "
          "|\n|---|---|---|---|---|---|---|\n";
     // The objective in the unit the extremal's record names: propellant, flight time or final state.
@@ -594,9 +584,9 @@ void Writer::solution(std::ostringstream& o) const {
     for (const auto& [k, v] : s.at("files").items()) {
       const std::string file = v.is_string() ? v.get<std::string>() : "";
       if (std::regex_match(file, png))
-        o << "![" << escaped(k) << "](" << file << ")\n\n";
+        o << "![" << markdown_text(k) << "](" << file << ")\n\n";
       else if (file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0)
-        o << escaped(k) << ": " << code(file) << "\n\n";
+        o << markdown_text(k) << ": " << code(file) << "\n\n";
     }
   }
 }
@@ -625,6 +615,20 @@ std::string Writer::write() {
 }
 
 }  // namespace
+
+std::string markdown_text(const std::string& text) {
+  static const std::string markup = "\\`*_[]<>|$^~&@#";
+  std::string out;
+  for (char c : text) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      out += ' ';
+    else if (markup.find(c) != std::string::npos)
+      out += std::string("\\") + c;
+    else
+      out += c;
+  }
+  return out;
+}
 
 std::string report_markdown(const ReportInputs& in) {
   return Writer(in).write();

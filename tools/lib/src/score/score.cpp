@@ -9,6 +9,7 @@
 
 #include "helios/io/error.hpp"
 #include "helios/io/schema.hpp"
+#include "helios/report/report.hpp"
 
 namespace helios::score {
 namespace {
@@ -330,11 +331,6 @@ std::string cell(const json& v, const char* format) {
   return v.is_number() ? fmt(v.get<double>(), format) : std::string("n/a");
 }
 
-std::string md_escape(std::string s) {
-  for (std::size_t i = 0; (i = s.find('|', i)) != std::string::npos; i += 2) s.replace(i, 1, "\\|");
-  return s;
-}
-
 }  // namespace
 
 void check_reference(const json& r, const std::string& source) {
@@ -441,7 +437,7 @@ std::string render_scoreboard(const std::vector<json>& scores) {
     const json& p = s.value("producer", json::object());
     std::string backend = p.value("backend", "?");
     if (p.contains("model") && p["model"].is_string()) backend += " (" + p["model"].get<std::string>() + ")";
-    md << "| " << md_escape(s.value("scenario", "?")) << " | " << md_escape(backend);
+    md << "| " << report::markdown_text(s.value("scenario", "?")) << " | " << report::markdown_text(backend);
     for (int i = 0; i < 5; ++i) {
       const json& dim = s["dimensions"][kDims[i]];
       sums[i] += dim.value("points", 0.0);
@@ -476,11 +472,11 @@ std::string render_search_table(const std::vector<json>& scores, const std::vect
         search.contains("extremals") && search["extremals"].is_array() ? json(search["extremals"].size()) : json();
     const json saturated = search.value("saturated", json());
     const json variables = sol.contains("x") && sol["x"].is_array() ? json(sol["x"].size()) : json();
-    md << "| " << md_escape(scores[k].value("scenario", "?")) << " | " << md_escape(sol.value("status", "?")) << " | "
-       << cell(sol.value("tof_days", json()), "%.3f") << " | " << cell(sol.value("propellant_kg", json()), "%.3f")
-       << " | " << cell(variables, "%.0f") << " | " << cell(extremals, "%.0f") << " | "
-       << (saturated.is_boolean() ? (saturated.get<bool>() ? "yes" : "no") : "-") << " | "
-       << cell(search.value("starts", json()), "%.0f") << " | "
+    md << "| " << report::markdown_text(scores[k].value("scenario", "?")) << " | "
+       << report::markdown_text(sol.value("status", "?")) << " | " << cell(sol.value("tof_days", json()), "%.3f")
+       << " | " << cell(sol.value("propellant_kg", json()), "%.3f") << " | " << cell(variables, "%.0f") << " | "
+       << cell(extremals, "%.0f") << " | " << (saturated.is_boolean() ? (saturated.get<bool>() ? "yes" : "no") : "-")
+       << " | " << cell(search.value("starts", json()), "%.0f") << " | "
        << cell(sol.value("timings", json::object()).value("total_s", json()), "%.1f") << " |\n";
   }
   return md.str();
@@ -640,7 +636,7 @@ class RunTables {
         requests += r->requests;
       }
       const long n = static_cast<long>(sel.size());
-      md << "| " << md_escape(group) << " | " << n << " | " << requests << " | " << thousands(in) << " | "
+      md << "| " << report::markdown_text(group) << " | " << n << " | " << requests << " | " << thousands(in) << " | "
          << thousands(out) << " | " << thousands(total) << " | " << thousands((total + n / 2) / n) << " |\n";
     }
   }
@@ -662,8 +658,8 @@ class RunTables {
         loop = loop || r->has_repair_loop;
       }
       const int n = static_cast<int>(sel.size());
-      md << "| " << md_escape(group) << " | " << n << " | " << frac(before, n) << " | " << frac(after, n) << " | "
-         << repaired << " | " << (loop ? std::to_string(rounds) : std::string("no loop")) << " |\n";
+      md << "| " << report::markdown_text(group) << " | " << n << " | " << frac(before, n) << " | " << frac(after, n)
+         << " | " << repaired << " | " << (loop ? std::to_string(rounds) : std::string("no loop")) << " |\n";
     }
   }
 
@@ -689,9 +685,9 @@ class RunTables {
     }
     const int n = static_cast<int>(sel.size());
     const std::string b = scenario.empty() ? "**" : "";
-    md << "| " << (scenario.empty() ? "**all**" : md_escape(scenario)) << " | " << md_escape(group) << " | " << n
-       << " | " << b << fmt(sum / n, "%.1f") << b << " | " << b << frac(compiled, n) << b << " | " << b
-       << frac(converged, n) << b << " |\n";
+    md << "| " << (scenario.empty() ? "**all**" : report::markdown_text(scenario)) << " | "
+       << report::markdown_text(group) << " | " << n << " | " << b << fmt(sum / n, "%.1f") << b << " | " << b
+       << frac(compiled, n) << b << " | " << b << frac(converged, n) << b << " |\n";
   }
 
   std::vector<RunRecord> runs_;
@@ -704,7 +700,7 @@ std::string tables_from_runs(const std::string& root) {
   const RunTables tables(read_runs(root));
   std::ostringstream md;
   md << "# HELIOS results across backends and models\n\n"
-     << "From every `<run folder>/<scenario>/` under " << md_escape(root)
+     << "From every `<run folder>/<scenario>/` under " << report::markdown_text(root)
      << " that has a score.json. Rubric as in the scoreboard (total 100); tokens from the llm "
         "transcripts (`*.transcript.json`).\n\n";
   tables.comparison(md);

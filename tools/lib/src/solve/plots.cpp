@@ -98,8 +98,8 @@ json plot_trajectory(const std::string& csv_path, const std::string& prefix, con
   std::error_code ec;
   if (fs::file_size(tmp1, ec) == 0 || fs::file_size(tmp2, ec) == 0)
     throw std::runtime_error("gnuplot did not draw the plots (is gnuplot installed?): " + io::first_line(out));
-  fs::rename(tmp1, traj_png);
-  fs::rename(tmp2, panel_png);
+  io::move_into_place(tmp1, traj_png);
+  io::move_into_place(tmp2, panel_png);
   return {{"trajectory_plot", fs::path(traj_png).filename().string()},
           {panel + "_plot", fs::path(panel_png).filename().string()}};
 }

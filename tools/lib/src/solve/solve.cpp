@@ -263,10 +263,11 @@ json solve(const SolveOptions& o) {
     doc["status_detail"] = "the program's trajectory is missing or not a regular file";
   }
   if (doc.at("status") == "converged") {
-    fs::rename(files.trajectory, o.trajectory_path);
     doc["files"] = {{"trajectory", fs::path(o.trajectory_path).filename().string()}};
+    // Plotted from the run's own copy: the trajectory's path may be a stream (/dev/null, a FIFO).
     if (!o.plot_prefix.empty())
-      doc["files"].update(plot_trajectory(o.trajectory_path, o.plot_prefix, doc["problem"]["id"].get<std::string>()));
+      doc["files"].update(plot_trajectory(files.trajectory, o.plot_prefix, doc["problem"]["id"].get<std::string>()));
+    io::move_into_place(files.trajectory, o.trajectory_path);
   }
   doc["timings"]["total_s"] = io::seconds_since(start);
   return doc;

@@ -263,7 +263,7 @@ void Builder::finish_events() {
   departure->target = geostationary(resolve(departure->target, departure->where), departure->where);
   needs_epoch(departure->target, departure->where);
   for (auto& e : events) {
-    if (e.kind != "orbit_insertion") e.target = resolve(json{{"ref", e.body}}, e.where);
+    e.target = e.kind == "orbit_insertion" ? geostationary(e.target, e.where) : resolve(json{{"ref", e.body}}, e.where);
     needs_epoch(e.target, e.where);
   }
   arrival->target = geostationary(resolve(arrival->target, arrival->where), arrival->where);

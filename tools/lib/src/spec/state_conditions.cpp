@@ -8,6 +8,7 @@
 #include <regex>
 #include <stdexcept>
 
+#include "grammar.hpp"
 #include "helios/astro/constants.hpp"
 #include "helios/io/json_io.hpp"
 
@@ -118,7 +119,7 @@ ParsedUnit parse_unit(const std::string& unit) {
     if (it == base.end())
       throw std::invalid_argument("the unit '" + unit + "' has '" + m[2].str() +
                                   "', which is not one of km, m, AU, s, min, h, day, kg, g");
-    const double power = (m[3].matched ? std::stod(m[3].str()) : 1.0) * (m[1].str() == "/" ? -1 : 1);
+    const double power = (m[3].matched ? grammar::number(m[3].str()) : 1.0) * (m[1].str() == "/" ? -1 : 1);
     out.dimension.length += it->second.first.length * power;
     out.dimension.time += it->second.first.time * power;
     out.dimension.mass += it->second.first.mass * power;
@@ -128,6 +129,13 @@ ParsedUnit parse_unit(const std::string& unit) {
   }
   if (first) throw std::invalid_argument("the unit is empty");
   return out;
+}
+
+void require_in_range(double stated, double in_unit, const std::string& what) {
+  if (!std::isfinite(in_unit) || (stated != 0 && !std::isnormal(in_unit)))
+    throw std::invalid_argument(what +
+                                " is beyond the range of a double (magnitudes 2.2e-308 to 1.8e308), state the "
+                                "condition with a lower power (e.g. 'r = Q' for 'r^40 = Q^40')");
 }
 
 std::string state_expression_text(const std::string& written) {
@@ -174,7 +182,8 @@ io::json state_condition(const std::string& lhs_written, const std::string& rhs_
   std::smatch m;
   if (std::regex_match(rhs, m, number_with_unit)) {
     const UnitDimension d = expression_dimension(f, vars, "'" + lhs + "'");
-    double value = std::stod(m[1].str());
+    const double written = grammar::number(m[1].str());
+    double value = written;
     if (!m[2].str().empty()) {
       const ParsedUnit u = parse_unit(m[2].str());
       if (!(u.dimension == d))
@@ -184,6 +193,7 @@ io::json state_condition(const std::string& lhs_written, const std::string& rhs_
     } else if (value != 0 && !(d == UnitDimension{})) {
       throw std::invalid_argument("'" + rhs + "' needs a unit: '" + lhs + "' is in " + unit_text(d));
     }
+    require_in_range(written, value, "'" + rhs + "' in " + unit_text(d));
     return {{"expression", left}, {"equals", value}, {"unit", unit_text(d)}};
   }
   const std::string right = trim(state_expression_text(rhs));

@@ -119,11 +119,14 @@ std::optional<Measure> factor(const std::string& text) {
   if (caret != std::string::npos) {
     name = text.substr(0, caret);
     const std::string p = text.substr(caret + 1);
-    if (p.empty() || p.find_first_not_of("-0123456789") != std::string::npos || p == "-") return std::nullopt;
+    // (at most 3 characters: a power beyond +-9 is refused below, and stoi would throw beyond an int)
+    if (p.empty() || p.size() > 3 || p.find_first_not_of("-0123456789") != std::string::npos || p == "-")
+      return std::nullopt;
     power = std::stoi(p);
   } else {
     const std::size_t digits = text.find_last_not_of("0123456789");
     if (digits != std::string::npos && digits + 1 < text.size()) {
+      if (text.size() - digits - 1 > 3) return std::nullopt;
       name = text.substr(0, digits + 1);
       power = std::stoi(text.substr(digits + 1));
     }

@@ -368,7 +368,7 @@ void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, cons
   std::error_code ec;
   if (fs::file_size(tmp_png, ec) == 0)
     throw std::runtime_error("gnuplot did not draw " + png_path + " (is gnuplot installed?): " + out.substr(0, 300));
-  fs::rename(tmp_png, png_path);
+  io::move_into_place(tmp_png, png_path);
 }
 
 }  // namespace helios::sweep

@@ -40,6 +40,9 @@ std::string help_text(const ToolInfo& info);
 // Typed option values; each throws usage_error "--NAME VALUE is not ..." on a bad value.
 long integer_option(const Args& args, const std::string& name, long min, long max);
 double positive_option(const Args& args, const std::string& name);
+// The value of option `name`, a folder made when missing: refused (usage_error naming the option
+// and its value) when it, or the nearest part of its path that exists, is not a folder.
+std::string folder_option(const Args& args, const std::string& name);
 // The --backend value, which must be one of `available`.
 std::string backend_option(const Args& args, const std::vector<std::string>& available);
 

@@ -45,7 +45,14 @@ json read_json(const std::string& path);
 
 // Writes `text` to `path` atomically: a temp file in the same folder, fsync, rename. "-" writes
 // to stdout. The temp file is removed if the process is interrupted (SIGINT/SIGTERM/SIGHUP).
+// An existing `path` that is (through its links) a character device such as /dev/null, or a FIFO,
+// is written into directly, never renamed over (a FIFO waits for its reader, as a shell's `>`
+// does); a directory, block device or socket is refused (std::runtime_error naming it).
 void write_text_atomic(const std::string& path, const std::string& text);
+
+// Puts the finished file `from` at `path` by the same rule: renamed over a regular file (or none),
+// copied into a character device or FIFO (and then removed), refused for another kind.
+void move_into_place(const std::string& from, const std::string& path);
 
 // write_text_atomic unless `path` already holds `text` (its time stamp then stays: make does not
 // redo what depends on it), creating the parent folders.

@@ -30,9 +30,11 @@ struct Config {
   double backoff_max_s = 60;      // HELIOS_LLM_BACKOFF_MAX_S: cap of a wait and of Retry-After
   int max_turns = 3;              // HELIOS_LLM_MAX_TURNS: replies per artifact until one is usable
   std::string replay_dir;         // HELIOS_LLM_REPLAY: answer from transcripts under this folder
+  // Not a variable: the limit of the reply bodies for one artifact together (README "Limits").
+  std::size_t reply_limit_bytes = io::kMaxJsonBytes;
 
   // Reads the variables above. Throws usage_error naming a variable that is missing (base URL
-  // and model, unless replaying) or malformed.
+  // and model, unless replaying), malformed or out of its range (tools/lib/src/llm/README.md).
   static Config from_env();
   // base_url + "/chat/completions" without user:password@ (safe to print).
   std::string endpoint() const;
@@ -63,7 +65,8 @@ struct Exchange {
   std::string reply_model;     // "model" of the reply (the configured model if absent)
   std::string finish_reason;
   Usage usage;
-  double latency_s = 0;  // of the successful attempt
+  double latency_s = 0;         // of the successful attempt
+  std::size_t reply_bytes = 0;  // of the reply's body (replayed: of its content)
   int http_status = 0;
   std::vector<Attempt> attempts;
   bool replayed = false;
@@ -87,8 +90,11 @@ class Client {
   // Sends the conversation and returns the first usable reply. Retries timeouts, connection
   // errors, 429 and 5xx up to config.max_retries times with exponential back-off; fails at once
   // on other statuses. In replay mode answers from the recorded transcripts, without network.
-  // On failure throws llm_error; `failed` (if given) receives the attempts made.
-  Exchange chat(const std::vector<Message>& messages, Exchange* failed = nullptr);
+  // On failure throws llm_error; `failed` (if given) receives the attempts made. The reply's body
+  // is read up to `bytes_left` of config.reply_limit_bytes (all of it by default): one byte beyond,
+  // reading stops and input_error is thrown at once, without a retry.
+  Exchange chat(const std::vector<Message>& messages, Exchange* failed = nullptr,
+                std::optional<std::size_t> bytes_left = std::nullopt);
   const Config& config() const { return config_; }
 
  private:

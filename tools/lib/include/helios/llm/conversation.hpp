@@ -16,6 +16,10 @@ struct reply_error : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The most of a reply that could not be used that is sent back to the model with the error (and
+// so into each later request): its start and a note beyond it (tools/lib/src/llm/README.md, "Limits").
+inline constexpr std::size_t kMaxEchoBytes = std::size_t{256} << 10;
+
 // The JSON text of a reply: the first ```json fence, else the first ``` fence, else the text from
 // the first '{' to the last '}', else the whole reply.
 std::string extract_json_text(const std::string& content);
@@ -37,9 +41,10 @@ struct TranscriptInfo {
 class Conversation {
  public:
   Conversation(Client& client, TranscriptInfo info);
-  // Sends `messages`; while a reply fails `check`, appends it and the error and asks again, up to
-  // config.max_turns replies. Writes the transcript whatever happens. Throws input_error when no
-  // reply was usable, llm_error when the endpoint failed.
+  // Sends `messages`; while a reply fails `check`, appends it (at most kMaxEchoBytes of it) and the
+  // error and asks again, up to config.max_turns replies. The replies' bodies together are read up
+  // to config.reply_limit_bytes. Writes the transcript whatever happens. Throws input_error when no reply
+  // was usable or the replies are beyond that limit, llm_error when the endpoint failed.
   io::json ask(std::vector<Message> messages, const ReplyCheck& check);
   // The model that answered (the configured one before any reply).
   std::string model() const { return model_; }
@@ -51,6 +56,7 @@ class Conversation {
   TranscriptInfo info_;
   std::string model_;
   io::json turns_ = io::json::array();
+  std::size_t received_ = 0;  // bytes of the replies so far
   bool failed_ = false;
 };
 

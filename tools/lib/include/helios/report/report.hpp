@@ -19,6 +19,13 @@ struct ReportInputs {
   std::string derivation_source = "derivation.json";
 };
 
+// Text from an artifact as Markdown that stays text: every character that opens markup in
+// Markdown or pandoc's extensions (math, raw TeX, code, emphasis, links, HTML and entities,
+// sub/superscript, citations, table cells) is backslash-escaped, and a line break or other control
+// character becomes a space, so a string cannot open math, a code span, a link, an HTML element or
+// a new line (a new table row) of the document. The report's and the scoreboard's escape.
+std::string markdown_text(const std::string& text);
+
 // The Markdown text. Throws input_error naming the derivation field an expression of which cannot
 // be read (an expression the verifier could not read either is shown as its text instead).
 std::string report_markdown(const ReportInputs& in);

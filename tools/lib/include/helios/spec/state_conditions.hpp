@@ -45,6 +45,12 @@ struct ParsedUnit {
 };
 ParsedUnit parse_unit(const std::string& unit);
 
+// Refuses a condition's value `stated` that another unit takes out of the range of a double:
+// `in_unit`, the same value there, is infinite, or zero or subnormal while `stated` is not (1e300
+// AU^40 in km^40; 1e300 km^40 in a derivation's normalized units, AU^40 being beyond 1e308).
+// Throws std::invalid_argument "<what> is beyond the range of a double ...".
+void require_in_range(double stated, double in_unit, const std::string& what);
+
 // The notations a user writes rewritten into the expression language: "r·v" (also "r . v",
 // "dot(r, v)") the dot product, "|r|", "|v|", "|h|" and "|r x v|" the norms.
 std::string state_expression_text(const std::string& written);
