@@ -1,5 +1,5 @@
 #!/usr/bin/env bats
-# Minimum time from minimum fuel (templates/runtime/minimum_time.hpp): a minimum-time problem with a
+# Minimum time from minimum fuel (templates/runtime/search/companion.hpp): a minimum-time problem with a
 # throttle is solved from its companion, the same program with the throttle priced as fuel and the
 # final time held, continued down in the held time and released. Checked here:
 #   - the companion IS the minimum-fuel problem at the held time: its solutions' costs at eps = 1
