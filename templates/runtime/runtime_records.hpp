@@ -380,6 +380,7 @@ struct SearchRecord {
   // the thrust).
   struct TimeScale {
     double factor = 0, raised_tf_days = NAN, raised_revolutions = NAN, estimate_days = NAN, revolutions = NAN;
+    bool saturated = false;  // the starts of the search there saturated
   } time_scale;
   // A minimum-fuel problem whose final constraint a coast keeps (final_coast_keeps_target): the
   // propellant of its minimum-time transfer completed by a coast to the final time (normalized;

@@ -76,8 +76,10 @@ class BoundRoute : public Route {
     if (opened.status != Status::kConverged) return how + ": no transfer found there either";
     const Extremal& best = opened.search.extremals[opened.search.returned];
     rec.minimum_time_days = best.tf_days;
-    rec.minimum_time_settled = true;
-    rec.minimum_time_how = how + ", the search there returned it by " + best.route;
+    // Settled where the starts there saturated, at the problem's thrust or at the time scale's.
+    rec.minimum_time_settled = opened.search.saturated || opened.search.time_scale.saturated;
+    rec.minimum_time_how = how + ", the search there returned it by " + best.route +
+                           (rec.minimum_time_settled ? ", its starts saturated" : ", its starts not saturated");
     if (best.tf_days > rec.bound_days * (1 + kInfeasibleMargin))
       return "minimum time " + days_text(best.tf_days) + ", " + how;
     // Within the stated window: the problem's own extremal, its final time as a fraction of the window.
@@ -108,7 +110,8 @@ class BoundRoute : public Route {
       c.count(there.evaluations);
       if (there.search.start_extremals.empty()) continue;
       return from_longer(c, there.search, longer,
-                         "the final time lengthened to " + days_text((longer - kProblem.t0) * day, 6));
+                         "the final time lengthened to " + days_text((longer - kProblem.t0) * day, 6) +
+                             (there.search.saturated ? ", where the starts saturated" : ", where the starts did not saturate"));
     }
     return "no start converged at any final time up to the burnout: no minimum time found";
   }
@@ -132,7 +135,7 @@ class BoundRoute : public Route {
     if (shortest.empty()) return how + ": no minimum time reached from the solutions there";
     const double t_min = shortest[l0] * longer;  // the held system's final time, a fraction of `longer`
     rec.minimum_time_days = (t_min - kProblem.t0) * kProblem.time_unit_days;
-    rec.minimum_time_settled = true;
+    rec.minimum_time_settled = there.saturated;
     rec.minimum_time_how = how + ", then continued down to the shortest final time that converges";
     if (rec.minimum_time_days > rec.bound_days * (1 + kInfeasibleMargin))
       return "minimum time " + days_text(rec.minimum_time_days) + " (" + how + ")";
