@@ -225,6 +225,14 @@ case_dir verify-usage-points; cp "$BASE/derivation.json" d.json; expect 2 'point
 case_dir verify-clean; cp "$BASE/derivation.json" d.json; expect 0 '' verify d.json
 case_dir verify-cpu-budget; jq_derivation '.hamiltonian = "3^(10^10)*rx"' >d.json
 expect 1 'CPU-time budget of 2 s' verify d.json --time-limit 2
+# psi that asks for another state than its target (issue 46): the row moved, its initial value
+# moved, the target taken away or of an unknown kind; each a failed check, not a pass.
+for e in 'departure-shifted:(.constraints[0].psi[0] = "-departure_rx-4.3e-6+rx") | (.initial_values[0].value = "departure_rx+4.3e-6")' \
+  'initial-value-shifted:.initial_values[0].value = "departure_rx+4.3e-6"' 'target-removed:del(.constraints[1].target)' \
+  'target-unknown-kind:.constraints[1].target.kind = "wish"' 'target-moved:.constraints[1].target.position_km[0] += 638'; do
+  case_dir "verify-${e%%:*}"; jq_derivation "${e#*:}" >d.json
+  expect 4 'verdict fail: 1 of [0-9]+ checks failed \((target:(departure|arrival)|initial_values)\)' verify d.json
+done
 
 # ---- helios-solve: settings and programs (each refused before any compile) -------------------
 
