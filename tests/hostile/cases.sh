@@ -234,6 +234,21 @@ for e in 'departure-shifted:(.constraints[0].psi[0] = "-departure_rx-4.3e-6+rx")
   expect 4 'verdict fail: 1 of [0-9]+ checks failed \((target:(departure|arrival)|initial_values)\)' verify d.json
 done
 
+# ---- helios-solve: the compile cache (issue 46) ----------------------------------------------
+# cache_entry: an empty program compiled into ./cache; prints its entry's folder.
+cache_entry() {
+  printf '#include "helios_runtime.hpp"\nint main() {}\n' >p.cpp
+  "$BIN/helios-solve" p.cpp --compile-only --cache-dir cache -o setup.json
+  echo "cache/$(jq -r .structure_sha256 setup.json)"
+}
+# An entry folder that is a link (to a copy of itself) is not this user's alone: refused.
+case_dir solve-cache-entry-link; entry=$(cache_entry); mv "$entry" elsewhere; ln -s "$PWD/elsewhere" "$entry"
+expect 1 'the compile cache entry is not a private folder of this user' solve p.cpp --compile-only --cache-dir cache
+# A program planted in an entry does not match its stored hash: compiled anew, never run.
+case_dir solve-cache-planted-program; entry=$(cache_entry); printf '#!/bin/sh\necho planted\n' >"$entry/shoot"
+expect 0 '' solve p.cpp --compile-only --cache-dir cache
+[[ $(jq -r .cached out) == false ]] || { failures=$((failures + 1)); echo "FAIL $CASE: the planted program was taken"; }
+
 # ---- helios-solve: settings and programs (each refused before any compile) -------------------
 
 for s in 'seed-huge:.seed = 1e30' 'seed-string:.seed = "1"' 'attempts-huge:.max_attempts = 1e12' 'attempts-zero:.max_attempts = 0' \

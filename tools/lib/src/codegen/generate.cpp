@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "helios/derivation/terms.hpp"
 #include "helios/io/embedded.hpp"
 #include "helios/solve/runtime_files.hpp"
+#include "helios/solve/solve.hpp"
 
 namespace helios::codegen {
 using namespace detail;
@@ -51,6 +53,11 @@ GeneratedProgram generate(const json& derivation, const GenOptions& options) {
                       dynamics + "\n" + (jacobian ? generated_jacobians(c) + "\n" : std::string()) +
                           residual_module(c, jacobian) + "\n" + solve_module(c) + "\n" + module_table(c, jacobian) + "\n",
                       "builtin");
+  // The output check: the compile cache reads its numbers (one program serves every problem of its
+  // structure), which nothing reads before main (tools/lib/src/solve/README.md, "The compile cache").
+  if (const solve::ProgramParameters p = solve::program_parameters(g.source); !p.readable)
+    throw std::logic_error("the generated program's numbers are not the compile cache's to replace: " +
+                           p.whole_source_because);
   return g;
 }
 
