@@ -324,6 +324,17 @@ echo '{"departure_mjd2000": {"values": [9700]}, "tof_days": {"values": [300]}}' 
 grep -v '^Minimize' "$ROOT/scenarios/P01/problem.txt" >problem.txt; echo '{}' >settings.json
 expect 3 "problem.txt: the sweep's boundary .its minimum-time form.: the template must state its objective in exactly one sentence" \
   score --sweep-boundary sweep.json --cells cells --settings settings.json
+# Cells that would fly another problem than their labels (issue 46): refused before any is written.
+for e in "weeks:s/@TOF_DAYS@ days/@TOF_DAYS@ weeks/:a time of flight of 2100 d" \
+  "glued:s/@TOF_DAYS@ days/1@TOF_DAYS@ days/:a time of flight of 1300 d" \
+  "comment:s/is @TOF_DAYS@ days./is 350 days.\n# @TOF_DAYS@/:a time of flight of 350 d" \
+  "bound:s/is @TOF_DAYS@ days./is free, between @TOF_DAYS@ days and 500 days./:a free time of flight" \
+  "epoch-glued:s/MJD2000 @DEPARTURE_MJD2000@/MJD2000 1@DEPARTURE_MJD2000@/:departure MJD2000 19700"; do
+  IFS=: read -r id edit stated <<<"$e"
+  case_dir "score-sweep-cell-$id"; sed "$edit" "$ROOT/scenarios/P01/problem.txt" >problem.txt
+  echo '{"departure_mjd2000": {"values": [9700]}, "tof_days": {"values": [300]}, "boundary": false}' >sweep.json
+  expect 3 "problem.txt: the sweep's cell d9700_t300 states .*$stated.*, not its grid values" score --sweep-cells sweep.json --cells cells
+done
 
 # ---- helios-score --oem: trajectory.csv and the run it belongs to ---------------------------
 
