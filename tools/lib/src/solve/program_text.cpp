@@ -343,7 +343,7 @@ class Scanner {
     if (d.head_has("constexpr", head)) return;  // constant initialization, or the compiler refuses it
     if (in_class) {
       if (!d.head_has("static", head)) return;  // a member: initialized when an object is made
-      if (d.head_has("inline", head) || head < v.size() && !is(v[head], "("))
+      if (d.head_has("inline", head) || (head < v.size() && !is(v[head], "(")))
         return refuse(line, "'" + d.text() + "' is a static member initialized before main");
       return;
     }

@@ -216,8 +216,8 @@ void check_cell_problem(const json& spec, const std::string& template_source, co
                         double departure_mjd2000, std::optional<double> tof_days) {
   const json& time = spec.at("time");
   const std::optional<double> epoch = number_of(time, "epoch_mjd2000");
-  const std::optional<double> tof =
-      time.value("final_time", "") == "fixed" ? number_of(time, "tof_days") : std::optional<double>();
+  const bool fixed = time.value("final_time", "") == "fixed";
+  const std::optional<double> tof = number_of(fixed ? time : json(), "tof_days");  // none when free
   if (same(epoch, departure_mjd2000) && same(tof, tof_days)) return;
   throw input_error(template_source + ": the sweep's cell " + name + " states " + flown(epoch, tof) +
                     ", not its grid values, " + grid_values(departure_mjd2000, tof_days) + ": write " +

@@ -3,10 +3,12 @@
 // some of its elements, equations of the final state), re-derived here from the target as written
 // with the verifier's own formulas (elements to state by Kepler's equation, not the deriver's
 // rows); the initial values must meet the rows at t0.
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <optional>
-#include <set>
+#include <stdexcept>
 
 #include "family.hpp"
 #include "helios/astro/kepler.hpp"
@@ -676,12 +678,13 @@ class TargetFamily : public Family {
   void check_initial_values() {
     if (ctx.doc.initial_values.empty()) return;
     Check c = start("initial_values", "transversality", "random_points");
-    GiNaC::exmap start_at;
+    std::vector<std::pair<int, Compiled>> start;  // the slot of each state given and its value
     try {
       for (const auto& v : ctx.doc.initial_values) {
         if (!ctx.slots.count(v.state) || std::find(ctx.states.begin(), ctx.states.end(), v.state) == ctx.states.end())
           throw std::invalid_argument("initial_values names '" + v.state + "', which is not a state");
-        start_at[ctx.sym(v.state)] = ctx.statement(v.expression.text, "initial_values[" + v.state + "]");
+        start.emplace_back(ctx.slot(v.state),
+                           ctx.compile(ctx.statement(v.expression.text, "initial_values[" + v.state + "]")));
       }
     } catch (const std::exception& e) {
       c.max_rel = 2;
@@ -689,16 +692,16 @@ class TargetFamily : public Family {
       checks.push_back(c);
       return;
     }
+    const auto given = [&](const std::string& state) {
+      return std::any_of(start.begin(), start.end(), [&](const auto& s) { return s.first == ctx.slot(state); });
+    };
     for (const auto& k : ctx.constraints) {
       if (k.at != "t0") continue;
       for (const std::size_t j : equality_rows(k)) {
-        bool all_given = true;
-        for (const auto& s : ctx.states)
-          if (k.psi[j].has(ctx.sym(s)) && !start_at.count(ctx.sym(s))) all_given = false;
-        if (!all_given) continue;
+        if (std::any_of(ctx.states.begin(), ctx.states.end(),
+                        [&](const std::string& s) { return k.psi[j].has(ctx.sym(s)) && !given(s); }))
+          continue;  // a row of a state the program does not start from (a shooting variable's)
         const Rows row = psi_rows(k, {j});
-        std::vector<std::pair<int, Compiled>> start;
-        for (const auto& [state, value] : start_at) start.emplace_back(ctx.slot(print(state)), ctx.compile(value));
         for (const auto& p : ctx.points) {
           Point q = p;
           for (const auto& [slot, value] : start) q[static_cast<std::size_t>(slot)] = value(p);
