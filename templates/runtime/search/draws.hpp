@@ -98,7 +98,6 @@ class Progress {
 // this many draws. Without search_starts, the starts of one route stop at kDefaultStartCap.
 constexpr int kSearchBatch = 8;
 constexpr int kMinDraws = 128;
-constexpr int kMinConverged = 16;
 constexpr int kDefaultStartCap = 1024;
 // While no route has reached an extremal, the starts go on past saturation up to this many.
 constexpr int kMoreStarts = 4 * kMinDraws;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "helios/io/error.hpp"
+#include "helios/solve/verdict.hpp"
 #include "helios/spec/parse.hpp"
 #include "helios/sweep/sweep.hpp"
 
@@ -19,9 +20,6 @@ namespace fs = std::filesystem;
 using io::json;
 
 namespace {
-
-// A cell is below the boundary when its time of flight is shorter than t_min by more than this.
-constexpr double kBoundaryToleranceDays = 1e-6;
 
 // The sentences of a problem text as [begin, end) spans: from the first character after a
 // sentence's end ('.' then white space or the end of the text) to its own '.', skipping comment
@@ -175,7 +173,7 @@ Boundary read_boundary(const SweepGrid& grid, const std::string& dir, double dep
 }
 
 bool below_boundary(const Boundary& b, double tof_days) {
-  return b.status == "converged" && tof_days < b.t_min_days - kBoundaryToleranceDays;
+  return b.status == "converged" && solve::beyond_bound(b.t_min_days, tof_days);
 }
 
 }  // namespace helios::sweep
