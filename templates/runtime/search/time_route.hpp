@@ -184,7 +184,7 @@ class TimeRoute : public Route {
       TimeRouteArrival a;
       std::vector<double> z;
       int evaluations = 0;
-      const bool reached = minimum_time_from_fuel_solution(c.fine, c.knobs, c.rec().start_extremals[k].x,
+      const bool reached = minimum_time_from_fuel_solution(c.coarse, c.knobs, c.rec().start_extremals[k].x,
                                                            c.coarse.eps_start, z, a, evaluations);
       c.count(evaluations);
       if (reached) fewest = std::min(fewest, minimum_time_revolutions(c.coarse, c.knobs, z));
@@ -320,7 +320,10 @@ class TimeRoute : public Route {
         if (std::fabs(p.tf_min_days - path.tf_min_days) <= 1e-7 * path.tf_min_days) path.reached_before = true;
       if (!path.reached_before) {
         int evaluations = 0;
-        fuel_path_from_minimum_time(c.fine, c.knobs, *z, c.admissible, a, evaluations);
+        // At the search's tolerance (its arrival is polished with the others) where the minimum-time
+        // extremal winds few times; over many revolutions only the integrator's own resolves the path.
+        fuel_path_from_minimum_time(path.revolutions <= kScaleRevolutions ? c.coarse : c.fine, c.knobs, *z,
+                                    c.admissible, a, evaluations);
         c.count(evaluations);
       }
     }
