@@ -65,13 +65,7 @@ class BoundRoute : public Route {
     const std::string how = "the window opened to " + days_text((end - kProblem.t0) * day, 6);
     c.progress.stage("nothing within the window: " + how + " to find the minimum time");
     c.knobs.open_final_time(end);
-    std::vector<std::unique_ptr<Route>> routes;
-    routes.push_back(std::make_unique<TimeScaleRoute>());
-    routes.push_back(std::make_unique<CompanionRoute>());
-    routes.push_back(std::make_unique<StartsRoute>());
-    routes.push_back(std::make_unique<FamiliesRoute>());
-    routes.push_back(std::make_unique<ThrustRoute>());
-    const Result opened = Search(c.fine, c.guess, c.admissible, c.knobs, false, std::move(routes)).solve();
+    const Result opened = Search(c.fine, c.guess, c.admissible, c.knobs, false, transfer_routes()).solve();
     c.count(opened.evaluations);
     if (opened.status != Status::kConverged) return how + ": no transfer found there either";
     const Extremal& best = opened.search.extremals[opened.search.returned];
@@ -151,15 +145,9 @@ class BoundRoute : public Route {
     if (!a.arrived)
       return "minimum time " + days_text(rec.minimum_time_days) +
              "; minimum fuel from it did not reach the stated time";
-    Extremal entry;
-    entry.x = a.x;
-    entry.F = a.F;
-    entry.max_residual = a.max_residual;
-    entry.info = a.info;
-    entry.shape = shape_of(c.coarse, a.x, 0.0);
-    entry.method = "single shooting, minimum fuel continued from the minimum-time extremal (t_min " +
-                   days_text(rec.minimum_time_days) + ", " + how + ")";
-    entry.continuation = a.steps;
+    Extremal entry = arrival_extremal(c.coarse, a,
+                                      "single shooting, minimum fuel continued from the minimum-time extremal (t_min " +
+                                          days_text(rec.minimum_time_days) + ", " + how + ")");
     entry.homotopy = a.homotopy;
     c.pool.enter(name(), std::move(entry));
     return "minimum time " + days_text(rec.minimum_time_days) +

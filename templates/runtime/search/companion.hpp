@@ -196,16 +196,11 @@ class CompanionRoute : public Route {
       CompanionArrival& a = arrivals[i];
       if (!a.arrived) continue;
       ++arrived;
-      Extremal entry;
-      entry.x = a.x;
-      entry.F = a.F;
-      entry.max_residual = a.max_residual;
-      entry.info = a.info;
-      entry.shape = shape_of(c.coarse, a.x, 0.0);
-      entry.method = "minimum time released from the minimum-fuel companion's solution " + std::to_string(order[i]) +
-                     ", continued down to tf held at window fraction " + number_text(a.held, 5);
-      entry.continuation = std::move(a.steps);
-      from.arrived = c.pool.enter(name(), std::move(entry));
+      from.arrived = c.pool.enter(
+          name(), arrival_extremal(c.coarse, a,
+                                   "minimum time released from the minimum-fuel companion's solution " +
+                                       std::to_string(order[i]) + ", continued down to tf held at window fraction " +
+                                       number_text(a.held, 5)));
     }
     const double best = best_objective(rec);
     c.progress.stage("minimum time from the companion: " + std::to_string(rec.extremals.size()) +

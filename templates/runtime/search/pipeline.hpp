@@ -15,15 +15,22 @@ namespace helios_rt {
 
 namespace {
 
-// The routes of a problem without interior events, in order (a nested search, at a raised thrust,
-// skips those that would call it again). A new route is its file and a line here.
-inline std::vector<std::unique_ptr<Route>> eventless_routes() {
+// The routes that look for transfers within the window, in order (a nested search, at a raised
+// thrust, skips those that would call it again). A new route is its file and a line here.
+inline std::vector<std::unique_ptr<Route>> transfer_routes() {
   std::vector<std::unique_ptr<Route>> routes;
   routes.push_back(std::make_unique<TimeScaleRoute>());
   routes.push_back(std::make_unique<CompanionRoute>());
   routes.push_back(std::make_unique<StartsRoute>());
   routes.push_back(std::make_unique<FamiliesRoute>());
   routes.push_back(std::make_unique<ThrustRoute>());
+  return routes;
+}
+
+// The routes of a problem without interior events: the transfer routes, then the minimum-time
+// route and the bound (whose search past the window runs the transfer routes).
+inline std::vector<std::unique_ptr<Route>> eventless_routes() {
+  std::vector<std::unique_ptr<Route>> routes = transfer_routes();
   routes.push_back(std::make_unique<TimeRoute>());
   routes.push_back(std::make_unique<BoundRoute>());
   return routes;

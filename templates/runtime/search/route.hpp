@@ -47,6 +47,20 @@ inline std::string objective_text(double objective) {
   return days_text(v);
 }
 
+// The extremal a path arrived at (a.x solved at eps = 0) as the pool takes it: its residuals and
+// shape, how it was reached, and the path's steps.
+inline Extremal arrival_extremal(const Settings& s, const PathArrival& a, std::string method) {
+  Extremal entry;
+  entry.x = a.x;
+  entry.F = a.F;
+  entry.max_residual = a.max_residual;
+  entry.info = a.info;
+  entry.shape = shape_of(s, a.x, 0.0);
+  entry.method = std::move(method);
+  entry.continuation = a.steps;
+  return entry;
+}
+
 // What every route of one search sees: the settings (the search's, `coarse`, and the integrator's
 // own, `fine`), the problem's guess and admissibility, the pool, the program's knobs, the progress
 // lines, the threads, and the evaluations counted so far.
@@ -109,6 +123,9 @@ class Route {
   // Runs the route: what it did, in a line for the record.
   virtual std::string run(SearchContext& c) = 0;
 };
+
+// The routes that look for transfers within the window, in order (pipeline.hpp).
+inline std::vector<std::unique_ptr<Route>> transfer_routes();
 
 // The eps_start extremal `which` of the starts continued to eps = 0: true with `e` filled when it
 // arrived. Each eps step starts hybrd's trust region next to the last solution and must keep the

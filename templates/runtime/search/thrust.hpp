@@ -274,15 +274,9 @@ class ThrustRoute : public Route {
       }
       rec.thrust_continuation_arrived = true;
       ++arrived;
-      Extremal entry;
-      entry.x = a.x;
-      entry.F = a.F;
-      entry.max_residual = a.max_residual;
-      entry.info = a.info;
-      entry.shape = shape_of(c.coarse, a.x, 0.0);
-      entry.method = "single shooting, continued down the maximum thrust from " + which;
-      entry.continuation = raising;
-      entry.continuation.insert(entry.continuation.end(), a.steps.begin(), a.steps.end());
+      Extremal entry =
+          arrival_extremal(c.coarse, a, "single shooting, continued down the maximum thrust from " + which);
+      entry.continuation.insert(entry.continuation.begin(), raising.begin(), raising.end());
       const Shape shape = entry.shape;
       c.pool.enter(name(), std::move(entry));
       c.progress.stage("thrust continuation from " + which + ": arrived with " + objective_text(shape.cost) + ", " +

@@ -220,7 +220,8 @@ class TimeRoute : public Route {
   // So the minimum-time problem itself is searched: starts on the held-multiplier system (lambda0
   // held at 0, the final time free in its slot, drawn log-uniformly between a tenth of the
   // problem's and the problem's), drawn until saturated; each distinct minimum-time extremal is
-  // taken up to the problem's final time.
+  // taken up to the problem's final time. The held-multiplier system writes the program's final
+  // time (one for the whole program) at every evaluation, so these starts run on one thread.
   void minimum_time_starts(SearchContext& c) {
     SearchRecord& rec = c.rec();
     const int l0 = lambda0_variable();
@@ -229,7 +230,7 @@ class TimeRoute : public Route {
     int drawn = 0, converged = 0;
     bool cut = false;
     draw_until_saturated(
-        c.coarse, c.threads, kMinimumTimeStream, found, drawn, converged, cut, start_cap(c.coarse), c.started,
+        c.coarse, 1, kMinimumTimeStream, found, drawn, converged, cut, start_cap(c.coarse), c.started,
         [&](int, std::mt19937_64& rng) {
           StartRun run;
           run.x.assign(kProblem.num_vars, 0.0);
@@ -331,16 +332,10 @@ class TimeRoute : public Route {
     const std::string t_min = std::isfinite(path.tf_min_days) ? "t_min " + days_text(path.tf_min_days)
                                                               : std::string("no minimum time reached");
     if (a.arrived) {
-      Extremal entry;
-      entry.x = a.x;
-      entry.F = a.F;
-      entry.max_residual = a.max_residual;
-      entry.info = a.info;
-      entry.method =
-          "single shooting, minimum fuel continued from the minimum-time extremal (" + t_min + ") reached from " + from;
-      entry.continuation = a.steps;
+      Extremal entry = arrival_extremal(c.coarse, a,
+                                        "single shooting, minimum fuel continued from the minimum-time extremal (" +
+                                            t_min + ") reached from " + from);
       entry.homotopy = a.homotopy;
-      entry.shape = shape_of(c.coarse, a.x, 0.0);
       const Shape shape = entry.shape;
       path.extremal = c.pool.enter(name(), std::move(entry));
       c.progress.stage("minimum fuel from the minimum-time extremal (" + t_min + ", from " + from +
