@@ -218,10 +218,11 @@ bool matches(const json& spec, const json& expect, bool on_the_way, std::string&
              key == "orbit_argp_deg")
       ok = orbit_matches(spec["constraints"].back(), expect);
     else if (key == "t0_window_mjd2000")
-      ok = spec["time"].value("departure", "") == "free" &&
-           close_vec(json{spec["time"]["t0_window_days"][0].get<double>() + spec["time"]["epoch_mjd2000"].get<double>(),
-                          spec["time"]["t0_window_days"][1].get<double>() + spec["time"]["epoch_mjd2000"].get<double>()},
-                     want);
+      ok =
+          spec["time"].value("departure", "") == "free" &&
+          close_vec(json{spec["time"]["t0_window_days"][0].get<double>() + spec["time"]["epoch_mjd2000"].get<double>(),
+                         spec["time"]["t0_window_days"][1].get<double>() + spec["time"]["epoch_mjd2000"].get<double>()},
+                    want);
     else if (key == "tof_min_days" || key == "tof_max_days")
       ok = spec["time"]["final_time"] == "free" && close(spec["time"][key].get<double>(), want);
     else if (key == "tof_free")
@@ -277,9 +278,9 @@ Result run(const Entry& e, std::string& detail) {
       for (const auto& omit : contexts)
         for (const bool on_the_way : {false, true}) {
           try {
-            helios::spec::parse_problem_text(text_without(*base, omit, sentence, on_the_way ? kEpoch : "",
-                                                          on_the_way ? visit("Nikko") : ""),
-                                             "p.txt");
+            helios::spec::parse_problem_text(
+                text_without(*base, omit, sentence, on_the_way ? kEpoch : "", on_the_way ? visit("Nikko") : ""),
+                "p.txt");
             detail = std::string("accepted") + (base == &kGeo ? " about the Earth" : "") +
                      (on_the_way ? " on the way" : "") + " without";
             for (const auto& g : omit) detail += " " + g;
@@ -315,7 +316,8 @@ Result run(const Entry& e, std::string& detail) {
     extra += "Minimize the time of flight.\n";
   }
   // A gravitational parameter is the central body's: the body whose known value it is.
-  if (e.kind == "mu" && !x.contains("central_body") && (near(x, "mu_km3_s2", 398600.4418) || near(x, "mu_km3_s2", 42828.3))) {
+  if (e.kind == "mu" && !x.contains("central_body") &&
+      (near(x, "mu_km3_s2", 398600.4418) || near(x, "mu_km3_s2", 42828.3))) {
     omit.insert("central");
     before += near(x, "mu_km3_s2", 398600.4418) ? "The central body is the Earth.\n" : "The central body is Mars.\n";
   }

@@ -36,76 +36,9 @@ json parse_target(const std::string& phrase) {
       "... with velocity ...' or a body's name");
 }
 
-void Builder::on_arrive(const std::smatch& m) {
-  once("the final rendezvous");
-  const std::string phrase = m[1].matched ? m[1].str() : m[2].str();
-  arrival = Endpoint{here, parse_target(phrase), "rendezvous", std::nullopt};
-}
-
-void Builder::on_arrive_flyby(const std::smatch& m) {
-  once("the final rendezvous");
-  arrival = Endpoint{here, parse_target(m[1].str()), "flyby", std::nullopt};
-  if (m[2].matched) {
-    const double v = quantity(m, 2, Dimension::Speed);
-    if (!(v > 0)) throw sentence_error("the relative speed bound must be positive");
-    arrival->max_speed = v;
-  }
-}
-
-void Builder::on_event(const std::smatch& m) {
-  const std::string verb = lowercase(m[1].str());
-  event(verb.find("rendezvous") != std::string::npos ? "rendezvous"
-        : verb.find("fl") != std::string::npos       ? "flyby"
-                                                     : "gravity_assist",
-        m[2].str());
-}
-
 EpochRef Builder::epoch_ref(const std::string& scale, const std::string& value) {
   if (lowercase(scale) == "day") return {number(value), false};
   return {mjd2000_of(scale, value), true};
-}
-
-// "<verb> NAME between day N and day N[ in an unpowered gravity assist][, CLAUSE[ and CLAUSE]]".
-void Builder::event(const std::string& kind, const std::string& rest) {
-  static const std::regex window_re =
-      re(R"((.+?) between (day|MJD2000|MJD) ()" + kNum + R"() and (day|MJD2000|MJD) ()" + kNum + R"()(.*))");
-  std::smatch m;
-  if (!std::regex_match(rest, m, window_re)) {
-    if (rest.find(" between ") != std::string::npos)
-      throw sentence_error(
-          "the window must read 'between day N and day N' (days after the epoch) or 'between "
-          "MJD2000 N and MJD2000 N'");
-    // "The spacecraft must rendezvous with Mars.": with no window, the rendezvous that ends the flight
-    if (kind == "rendezvous" && rest.find_first_of("[,;") == std::string::npos) {
-      once("the final rendezvous");
-      arrival = Endpoint{here, {{"ref", body_name(rest)}}, "rendezvous", std::nullopt};
-      windowless_rendezvous = here;
-      return;
-    }
-    throw sentence_error(
-        "an event on the way needs its window ('... between day N and day N'); a rendezvous at "
-        "the end reads 'At the final time the spacecraft rendezvouses with NAME'");
-  }
-  Event e;
-  e.where = here;
-  e.kind = kind;
-  e.body = body_name(m[1].str());
-  e.lo = epoch_ref(m[2].str(), m[3].str());
-  e.hi = epoch_ref(m[4].str(), m[5].str());
-  std::string tail = m[6].str();
-  if (kind == "gravity_assist") {
-    static const std::regex ga_re = re(R"(\s*(?:in|as|for) an? (?:unpowered )?gravity assist(.*))");
-    std::smatch g;
-    if (std::regex_match(tail, g, ga_re)) tail = g[1].str();
-  }
-  if (!trimmed(tail).empty()) {
-    static const std::regex lead = re(R"(\s*(?:[;,]\s*(?:and\s+)?|and\s+)(.+))");
-    std::smatch l;
-    if (!std::regex_match(tail, l, lead))
-      throw sentence_error("cannot read '" + trimmed(tail) + "' after the window: " + clause_forms(kind));
-    for (const auto& part : clauses_of(l[1].str())) event_clause(e, part);
-  }
-  add_event(std::move(e));
 }
 
 // An event stated whole: a gravity assist takes the known mu of its body unless it states one.
@@ -127,63 +60,6 @@ std::string Builder::clause_forms(const std::string& kind) {
   if (kind == "flyby") return "a flyby matches the position only and takes 'the relative speed must be at most Q'";
   return "a gravity assist takes 'NAME has a gravitational parameter of Q' and 'the periapsis radius must be at "
          "least Q'";
-}
-
-// The body a clause names ("at NAME", "NAME has ...") must be the event's.
-void Builder::same_body(const Event& e, const std::string& phrase) {
-  const std::string named = body_name(phrase);
-  if (lowercase(named) != lowercase(e.body) && lowercase(named) != "it")
-    throw sentence_error("the clause names " + named + " but the event is at " + e.body);
-}
-
-void Builder::event_clause(Event& e, const std::string& part) {
-  static const std::regex stay_re = re(R"(stays(?: there| at (.+?))? for )" + kQuantity);
-  static const std::regex no_stay_re = re(R"(does not stay(?: there)?)");
-  static const std::regex lander_re = re(R"((?:leaves|drops|releases) (?:a|an) (?:lander|probe|payload|package) of )" +
-                                         kQuantity + R"((?: there| at (.+))?)");
-  static const std::regex mu_re = re(R"((.+?) has a gravitational parameter of )" + kQuantity);
-  static const std::regex rmin_re = re(
-      R"((?:(?:the )?(?:periapsis|pericenter|pericentre|closest approach) radius (?:must be|is) at least |(?:the )?(?:minimum|lowest) (?:periapsis|pericenter|pericentre) radius is ))" +
-      kQuantity);
-  static const std::regex speed_re =
-      re(R"((?:(?:the )?relative speed (?:must be|is) at most |with a relative speed of at most ))" + kQuantity);
-  std::smatch m;
-  const auto set = [&](std::optional<double>& slot, double value, const std::string& what) {
-    if (slot) throw sentence_error(what + " at " + e.body + " is given twice");
-    slot = value;
-  };
-  if (e.kind == "rendezvous" && std::regex_match(part, m, stay_re)) {
-    if (m[1].matched) same_body(e, m[1].str());
-    const double stay = quantity(m, 2, Dimension::Time);
-    if (stay < 0) throw sentence_error("the stay must not be negative, got " + m[2].str() + " " + m[3].str());
-    set(e.stay, stay, "the stay");
-  } else if (e.kind == "rendezvous" && std::regex_match(part, m, no_stay_re)) {
-    set(e.stay, 0.0, "the stay");
-  } else if (e.kind == "rendezvous" && std::regex_match(part, m, lander_re)) {
-    if (m[3].matched) same_body(e, m[3].str());
-    const double drop = quantity(m, 1, Dimension::Mass);
-    if (!(drop > 0)) throw sentence_error("the lander's mass must be positive, got " + m[1].str() + " " + m[2].str());
-    set(e.drop, drop, "the lander");
-  } else if (e.kind == "gravity_assist" && std::regex_match(part, m, mu_re)) {
-    same_body(e, m[1].str());
-    const double mu = quantity(m, 2, Dimension::GravParam);
-    if (!(mu > 0)) throw sentence_error("the gravitational parameter must be positive");
-    set(e.mu, mu, "the gravitational parameter");
-  } else if (e.kind == "flyby" && std::regex_match(part, m, speed_re)) {
-    const double v = quantity(m, 1, Dimension::Speed);
-    if (!(v > 0)) throw sentence_error("the relative speed bound must be positive");
-    set(e.max_speed, v, "the relative speed bound");
-  } else if (e.kind == "gravity_assist" && std::regex_match(part, m, rmin_re)) {
-    const double r = quantity(m, 1, Dimension::Length);
-    if (!(r > 0)) throw sentence_error("the periapsis radius must be positive");
-    set(e.rmin, r, "the lowest periapsis radius");
-  } else {
-    throw sentence_error("cannot read '" + part + "': " + clause_forms(e.kind));
-  }
-}
-
-void Builder::on_drop(const std::smatch& m) {
-  lander(quantity(m, 1, Dimension::Mass), body_name(m[3].str()));
 }
 
 // The one interior rendezvous with NAME stated before ("" = the one rendezvous, whatever its body).
@@ -211,15 +87,6 @@ Event& Builder::rendezvous_of(const std::string& name) {
   if (found.size() > 1)
     throw sentence_error("the spacecraft rendezvouses with " + names + " on the way: say which one");
   return *found.front();
-}
-
-// "It leaves a lander of Q at NAME": the one rendezvous with NAME stated before.
-void Builder::lander(double kg, const std::string& name) {
-  if (!(kg > 0)) throw sentence_error("the lander's mass must be positive");
-  Event* found = &rendezvous_of(name);
-  if (found->drop) throw sentence_error("the lander at " + name + " is given twice");
-  found->drop = kg;
-  found->drop_where = here;
 }
 
 // A target's {"ref": NAME} as the body given by its orbit, else a planet with an ephemeris.

@@ -266,13 +266,102 @@ std::vector<Token> windows_of(const std::vector<Token>& in) {
 
 }  // namespace
 
+namespace {
+
+const std::regex& number_pattern() {
+  static const std::regex num(R"(^[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)");
+  return num;
+}
+
+// "[a, b, c] UNIT" or "(a, b, c) UNIT" at s[i]: a vector with its unit; i moves past it.
+Quantity read_vector(const std::string& s, std::size_t& i) {
+  const char open = s[i], close = open == '[' ? ']' : ')';
+  const std::size_t end = s.find(close, i);
+  if (end == std::string::npos) throw facts_error(std::string("a '") + open + "' has no closing '" + close + "'");
+  const std::string body = s.substr(i + 1, end - i - 1);
+  Quantity q;
+  q.vector = true;
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t comma = body.find(',', from);
+    std::string item = body.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+    item.erase(0, item.find_first_not_of(' '));
+    item.erase(item.find_last_not_of(' ') + 1);
+    std::smatch n;
+    if (!std::regex_match(item, n, number_pattern()) || n.length(0) != static_cast<std::ptrdiff_t>(item.size()))
+      throw facts_error("the vector " + s.substr(i, end - i + 1) + " has a component '" + item +
+                        "' that is not a number");
+    q.nums.push_back(number_of(item));
+    q.texts.push_back(item);
+    if (comma == std::string::npos) break;
+    from = comma + 1;
+  }
+  if (q.nums.size() != 3)
+    throw facts_error("the vector " + s.substr(i, end - i + 1) + " has " + std::to_string(q.nums.size()) +
+                      " components; a position or velocity has 3");
+  i = end + 1;
+  q.unit = read_unit(s, i);
+  q.written = "[" + q.texts[0] + ", " + q.texts[1] + ", " + q.texts[2] + "]" + (q.unit.empty() ? "" : " " + q.unit);
+  return q;
+}
+
+// The number `text` (its first characters matched as one) at s[i], with its unit; i moves past them.
+Quantity read_number(const std::string& s, std::size_t& i, std::string text) {
+  // thousands written with commas: "3,100 s", "1,600,000 kg"
+  static const std::regex thousands(R"(^\d{1,3}(?:,\d{3})+(?:\.\d+)?(?![\d,]))");
+  std::smatch t;
+  const std::string rest = s.substr(i);
+  if (std::regex_search(rest, t, thousands)) text = t.str(0);
+  Quantity q;
+  q.texts = {text};
+  std::string plain = text;
+  plain.erase(std::remove(plain.begin(), plain.end(), ','), plain.end());
+  q.nums = {number_of(plain)};
+  i += text.size();
+  q.unit = read_unit(s, i);
+  q.written = q.texts[0] + (q.unit.empty() ? "" : " " + q.unit);
+  return q;
+}
+
+// The word at s[i] (a possessive "'s" dropped), or "day N" as a day counted from the epoch; i moves
+// past it, and past a hyphen joining it to the next word.
+Token read_word(const std::string& s, std::size_t& i) {
+  std::size_t k = i;
+  while (k < s.size() && (word_char(s[k]) || s[k] == '\'')) ++k;
+  std::string text = s.substr(i, k - i);
+  if (text.size() > 2 && text.compare(text.size() - 2, 2, "'s") == 0) text.resize(text.size() - 2);
+  std::string w = lowercase(text);
+  i = k;
+  // an element's symbol before '=' ("a = 1.2 AU", "Omega = 80 deg" the node, "omega" the argument)
+  static const std::map<std::string, std::string> symbols = {
+      {"a", "semi major axis"}, {"e", "eccentricity"}, {"i", "inclination"}, {"M", "mean anomaly"},
+      {"nu", "true anomaly"},   {"Omega", "raan"},     {"omega", "argp"}};
+  const std::size_t eq = s.find_first_not_of(' ', i);
+  if (eq != std::string::npos && s[eq] == '=' && symbols.count(text)) w = symbols.at(text);
+  std::smatch d;
+  const std::string after = i < s.size() && s[i] == ' ' ? s.substr(i + 1) : "";
+  if (w == "day" && std::regex_search(after, d, number_pattern())) {
+    Quantity q;  // "day 120": a day counted from the epoch
+    q.day = true;
+    q.texts = {d.str(0)};
+    q.nums = {number_of(d.str(0))};
+    q.written = "day " + d.str(0);
+    i += 1 + d.length(0);
+    return {Token::Value, "", q};
+  }
+  if (i < s.size() && s[i] == '-' && i + 1 < s.size() && std::isalpha(static_cast<unsigned char>(s[i + 1]))) ++i;
+  if (w == "and") return {Token::Separator, w, {}};
+  return {Token::Word, w, {}, text};
+}
+
+}  // namespace
+
 std::vector<Token> scan(const std::string& sentence) {
   // Superscripts as written in many texts: km³/s² is km^3/s^2.
   // Ω and ω are the node and the argument of periapsis, ° is deg.
   std::string raw = replace_all(replace_all(sentence, "\xC2\xB3", "^3"), "\xC2\xB2", "^2");
   raw = replace_all(replace_all(replace_all(raw, "\xCE\xA9", "RAAN"), "\xCF\x89", "argp"), "\xC2\xB0", " deg");
   const std::string s = unwrap_word_parens(raw);
-  static const std::regex num(R"(^[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)");
   std::vector<Token> out;
   std::size_t i = 0;
   const auto prev_word = [&] { return i > 0 && word_char(s[i - 1]); };
@@ -290,83 +379,15 @@ std::vector<Token> scan(const std::string& sentence) {
       date.written = date.texts[0];
       out.push_back({Token::Value, "", date});
     } else if (c == '[' || (c == '(' && paren_vector(s, i))) {
-      const char close = c == '[' ? ']' : ')';
-      const std::size_t end = s.find(close, i);
-      if (end == std::string::npos) throw facts_error(std::string("a '") + c + "' has no closing '" + close + "'");
-      const std::string body = s.substr(i + 1, end - i - 1);
-      Quantity q;
-      q.vector = true;
-      std::size_t from = 0;
-      for (;;) {
-        const std::size_t comma = body.find(',', from);
-        std::string item = body.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
-        item.erase(0, item.find_first_not_of(' '));
-        item.erase(item.find_last_not_of(' ') + 1);
-        std::smatch n;
-        if (!std::regex_match(item, n, num) || n.length(0) != static_cast<std::ptrdiff_t>(item.size()))
-          throw facts_error("the vector " + s.substr(i, end - i + 1) + " has a component '" + item +
-                            "' that is not a number");
-        q.nums.push_back(number_of(item));
-        q.texts.push_back(item);
-        if (comma == std::string::npos) break;
-        from = comma + 1;
-      }
-      if (q.nums.size() != 3)
-        throw facts_error("the vector " + s.substr(i, end - i + 1) + " has " + std::to_string(q.nums.size()) +
-                          " components; a position or velocity has 3");
-      i = end + 1;
-      q.unit = read_unit(s, i);
-      q.written = "[" + q.texts[0] + ", " + q.texts[1] + ", " + q.texts[2] + "]" + (q.unit.empty() ? "" : " " + q.unit);
-      out.push_back({Token::Value, "", q});
+      out.push_back({Token::Value, "", read_vector(s, i)});
     } else if (!prev_word() && (std::isdigit(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '+') &&
-               std::regex_search(rest, m, num)) {
-      Quantity q;
-      std::string text = m.str(0);
-      // thousands written with commas: "3,100 s", "1,600,000 kg"
-      static const std::regex thousands(R"(^\d{1,3}(?:,\d{3})+(?:\.\d+)?(?![\d,]))");
-      std::smatch t;
-      if (std::regex_search(rest, t, thousands)) text = t.str(0);
-      q.texts = {text};
-      std::string plain = text;
-      plain.erase(std::remove(plain.begin(), plain.end(), ','), plain.end());
-      q.nums = {number_of(plain)};
-      i += text.size();
-      q.unit = read_unit(s, i);
-      q.written = q.texts[0] + (q.unit.empty() ? "" : " " + q.unit);
-      out.push_back({Token::Value, "", q});
+               std::regex_search(rest, m, number_pattern())) {
+      out.push_back({Token::Value, "", read_number(s, i, m.str(0))});
     } else if (c == ',' || c == ';' || c == '(' || c == ')') {
       out.push_back({Token::Separator, "", {}});
       ++i;
     } else if (word_char(c)) {
-      std::size_t k = i;
-      while (k < s.size() && (word_char(s[k]) || s[k] == '\'')) ++k;
-      std::string text = s.substr(i, k - i);
-      if (text.size() > 2 && text.compare(text.size() - 2, 2, "'s") == 0) text.resize(text.size() - 2);
-      std::string w = lowercase(text);
-      i = k;
-      // an element's symbol before '=' ("a = 1.2 AU", "Omega = 80 deg" the node, "omega" the argument)
-      static const std::map<std::string, std::string> symbols = {
-          {"a", "semi major axis"}, {"e", "eccentricity"}, {"i", "inclination"}, {"M", "mean anomaly"},
-          {"nu", "true anomaly"},   {"Omega", "raan"},     {"omega", "argp"}};
-      const std::size_t eq = s.find_first_not_of(' ', i);
-      if (eq != std::string::npos && s[eq] == '=' && symbols.count(text)) w = symbols.at(text);
-      std::smatch d;
-      const std::string after = i < s.size() && s[i] == ' ' ? s.substr(i + 1) : "";
-      if (w == "and") {
-        out.push_back({Token::Separator, w, {}});
-      } else if (w == "day" && std::regex_search(after, d, num)) {
-        Quantity q;  // "day 120": a day counted from the epoch
-        q.day = true;
-        q.texts = {d.str(0)};
-        q.nums = {number_of(d.str(0))};
-        q.written = "day " + d.str(0);
-        i += 1 + d.length(0);
-        out.push_back({Token::Value, "", q});
-        continue;
-      } else {
-        out.push_back({Token::Word, w, {}, text});
-      }
-      if (i < s.size() && s[i] == '-' && i + 1 < s.size() && std::isalpha(static_cast<unsigned char>(s[i + 1]))) ++i;
+      out.push_back(read_word(s, i));
     } else {
       if (static_cast<unsigned char>(c) >= 0x80) throw facts_error("cannot read a non-ASCII character here");
       throw facts_error(std::string("cannot read the character '") + c + "' here");

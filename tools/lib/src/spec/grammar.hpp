@@ -1,14 +1,13 @@
 #pragma once
 // The reader of the controlled English (internal to tools/lib/src/spec): the Builder that gathers a
-// problem text's sentences into a spec, and the pieces its sentence forms share. Each concept's
-// sentences are handled in their own file:
-//   rules.cpp        the rule table: which sentence form a sentence is, and its handler
-//   spacecraft.cpp   the central body, the spacecraft, the dynamics' perturbations, the objective
-//   time.cpp         the time of flight, the departure, its epoch and window
-//   events.cpp       the final condition, events on the way (rendezvous, flyby, gravity assist,
-//                    stays, landers) and the constraints they become
-//   orbit_target.cpp a final condition that is an orbit (its elements, the position on it free)
-//   tables.cpp       bodies given by their orbital elements: orbit sentences and elements tables
+// problem text's sentences into a spec, and the pieces its sentence forms share. Each sentence form
+// is a file of forms/ (form.hpp); what several forms and the facts in other words share is here:
+//   form_registry.cpp the forms in their order, the one that reads a sentence, their examples' problems
+//   spacecraft.cpp   the central body and its constants, the propulsion
+//   time.cpp         the departure's epoch and window
+//   events.cpp       targets, events on the way, the checks of the whole text and the constraints
+//   orbit_target.cpp an orbit given by some of its elements (a departure, a final or interior target)
+//   tables.cpp       bodies given by their orbital elements, elements tables
 //   apply_facts.cpp  facts stated in other words (facts.cpp), applied to the spec
 //   grammar.cpp      numbers with units, vectors, names and clause lists
 //   parse.cpp        reading the text item by item, and the spec assembled from it
@@ -72,6 +71,9 @@ json parse_target(const std::string& phrase);
 json parse_orbit_target(const std::string& phrase);
 // Orbital elements {a [AU], e, i, raan, argp [deg], mean or true [deg]} as the spec's (tables.cpp).
 json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v);
+// Which element a name in an orbit sentence or a table header stands for: a, e, i, raan, argp, mean
+// or true (the anomaly), or "" if none (tables.cpp).
+std::string element_field(const std::string& name);
 
 // Where an item of the text stands, for errors found after the whole text was read.
 struct Where {
@@ -157,12 +159,6 @@ struct Builder {
   std::optional<std::pair<std::string, Where>> constants_body;  // the body whose mu, radius or J2 a sentence gave
   bool radius_stated = false;                                   // else the radius is the known one
 
-  // A sentence of the controlled English: the first rule whose pattern matches it whole applies.
-  struct SentenceRule {
-    std::regex pattern;
-    void (Builder::*apply)(const std::smatch&);
-  };
-
   // ---- reading the text (parse.cpp) ----
   void once(const std::string& what);
   // A fact of the table (facts.hpp), keyed by its field; its value checked as the table says.
@@ -170,74 +166,39 @@ struct Builder {
   void check_value(detail::Field f, double v, const std::string& written) const;
   [[noreturn]] void fail(const Where& w, const std::string& why) const;
   void read(const Sentence& item);
-  void on_problem(const std::smatch& m);
 
-  // ---- the rule table (rules.cpp) ----
+  // ---- a sentence: the form that reads it, else the facts in other words (form_registry.cpp) ----
   void handle(const std::string& s);
 
-  // ---- central body, spacecraft, perturbations, objective (spacecraft.cpp) ----
-  void on_central(const std::smatch& m);
+  // ---- the central body and its constants, the propulsion (spacecraft.cpp) ----
+  // "gravitational parameter Q", "equatorial radius Q", "J2 coefficient N" in any order.
   void central(const std::string& name, const std::string& list);
   void set_mu(double mu);
-  void on_has(const std::smatch& m);
-  void spacecraft_clauses(const std::string& list);
-  void on_sail(const std::smatch& m);
   void sail(double ac_mm_s2, double ref_au);
-  void on_j2(const std::smatch&);
-  void on_accel(const std::smatch& m);
-  static json user_acceleration(const std::string& name, const std::string& list, const std::string& unit);
-  // ---- a third body perturbing the spacecraft (third_body.cpp) ----
-  void on_third_body(const std::smatch& m);
-  void on_initial_mass(const std::smatch&);
-  void on_fuel(const std::smatch&);
-  void on_time(const std::smatch&);
-  void on_final_state_objective(const std::smatch& m);
-  void on_full_throttle(const std::smatch&);
 
-  // ---- time of flight, departure and epochs (time.cpp) ----
-  void on_tof(const std::smatch& m);
-  void on_free_tof(const std::smatch& m);
-  void on_depart_from(const std::smatch& m);
-  void on_depart(const std::smatch& m);
-  void depart(const std::string& at, const std::string& target);
-  void depart_from_orbit(const std::string& at, const std::string& orbit);
-  void on_depart_orbit(const std::smatch& m);
+  // ---- the departure's epoch and window (time.cpp) ----
   void set_epoch(double mjd2000);
-  void epoch(const std::string& phrase);
-  void on_free_dep(const std::smatch& m);
-  void on_free_dep_within(const std::smatch& m);
   void free_departure(double lo, double hi, double mjd2000);
 
-  // ---- the final condition, events on the way, constraints (events.cpp) ----
-  void on_arrive(const std::smatch& m);
-  void on_arrive_flyby(const std::smatch& m);
-  // ---- a final condition that is an orbit (orbit_target.cpp) ----
-  void on_arrive_orbit(const std::smatch& m);
-  void on_orbit_on_the_way(const std::smatch& m);
-  void on_final_conditions(const std::smatch& m);
-  json geostationary(json target, const Where& w) const;
-  void on_event(const std::smatch& m);
+  // ---- targets, events on the way, the checks of the whole text, constraints (events.cpp) ----
+  // "day N" (days after the epoch), "MJD N" or "MJD2000 N" (absolute).
   static EpochRef epoch_ref(const std::string& scale, const std::string& value);
-  void event(const std::string& kind, const std::string& rest);
+  // The clauses an event of `kind` takes, for its errors.
   static std::string clause_forms(const std::string& kind);
-  static void same_body(const Event& e, const std::string& phrase);
-  void event_clause(Event& e, const std::string& part);
+  // An event stated whole: a gravity assist takes the known mu of its body unless it states one.
   void add_event(Event e);
   Event& rendezvous_of(const std::string& name);
-  void on_drop(const std::smatch& m);
-  void lander(double kg, const std::string& name);
   json resolve(const json& target, const Where& w);
   void finish_events();
   json constraints();
   void check_event_ids(const std::vector<std::string>& ids) const;
+  // "geostationary" made the elements of the orbit about the Earth (orbit_target.cpp).
+  json geostationary(json target, const Where& w) const;
 
   // ---- bodies given by their orbits, elements tables (tables.cpp) ----
-  void on_orbit(const std::smatch& m);
-  void orbit_sentence(const std::smatch& m);
   void define_orbit(const std::string& written, const std::string& about, json elements);
   static std::string element_label(const std::string& field);
   static double element_unit(const std::string& field, const std::string& unit);
-  void on_intro(const std::smatch& m);
   static std::vector<std::string> cells_of(const std::string& row);
   static bool is_table_header(const std::string& row);
   void table_line(const std::string& row);

@@ -78,10 +78,10 @@ json parse_orbit_target(const std::string& phrase) {
   take_all(rest,
            words("(?:a |an )?(?:right ascension of the ascending node|ascending node|RAAN|node) (?:of |= ?)?" + deg),
            [&](const std::smatch& m) { set("raan_deg", angle(m, 1), m.str()); });
-  take_all(rest,
-           words("(?:an )?(?:argument of (?:periapsis|perigee|pericenter|pericentre|perihelion)|argp) (?:of |= ?)?" +
-                 deg),
-           [&](const std::smatch& m) { set("argp_deg", angle(m, 1), m.str()); });
+  take_all(
+      rest,
+      words("(?:an )?(?:argument of (?:periapsis|perigee|pericenter|pericentre|perihelion)|argp) (?:of |= ?)?" + deg),
+      [&](const std::smatch& m) { set("argp_deg", angle(m, 1), m.str()); });
   // What leaves the rest free, said in words: the node and the argument of periapsis are kept as
   // "free" (a departure orbit states them or says so; a target's unstated elements are free).
   const std::string node_words = "(?:right ascension of the ascending node|ascending node|RAAN|node)";
@@ -119,104 +119,6 @@ json parse_orbit_target(const std::string& phrase) {
   return ordered;
 }
 
-void Builder::on_depart_orbit(const std::smatch& m) {
-  depart_from_orbit("", m[1].str());
-}
-
-void Builder::depart_from_orbit(const std::string& at, const std::string& orbit) {
-  json target = parse_orbit_target(orbit);
-  const auto need = [&](bool given, const std::string& what) {
-    if (!given)
-      throw sentence_error("a departure orbit needs its " + what +
-                           ": only the position on it may be free (e.g. 'departs from the circular orbit of radius "
-                           "7000 km inclined 28.5 deg with node 40 deg')");
-  };
-  if (!target.contains("geostationary")) {
-    const double e = target.value("eccentricity", -1.0), i = target.value("inclination_deg", -1.0);
-    need(target.contains("semi_major_axis_km"), "semi-major axis (or its radius, if circular)");
-    need(e >= 0, "eccentricity (or the word 'circular')");
-    need(i >= 0, "inclination (or the word 'equatorial')");
-    const auto free = [&](const char* element) {
-      const json list = target.value("free", json::array());
-      return std::find(list.begin(), list.end(), element) != list.end();
-    };
-    need(i == 0 || i == 180 || target.contains("raan_deg") || free("raan"), "node (or 'with any node')");
-    need(e == 0 || target.contains("argp_deg") || free("argp"), "argument of periapsis (or 'with any argument of perigee')");
-  }
-  once("the departure");
-  if (!at.empty()) epoch(at);
-  departure = Endpoint{here, target, "initial_state", std::nullopt};
-}
-
-void Builder::on_arrive_orbit(const std::smatch& m) {
-  once("the final rendezvous");
-  json target = parse_orbit_target(m[1].matched ? m[1].str() : m[2].str());
-  target.erase("free");  // a target's unstated elements are free already
-  arrival = Endpoint{here, target, "orbit_insertion", std::nullopt};
-}
-
-// "The spacecraft passes through the circular orbit of radius 30000 km between day 2 and day 4"
-// (or "Between day 2 and day 4 the spacecraft reaches ..."): an orbit on the way, met at a free
-// epoch inside the window anywhere along it; the state goes on unchanged.
-void Builder::on_orbit_on_the_way(const std::smatch& m) {
-  const bool before = m[1].matched, after = m[6].matched;
-  if (before == after)
-    throw sentence_error(before ? "the sentence gives two windows"
-                                : "an orbit on the way needs its window ('... between day N and day N'); an orbit "
-                                  "that ends the flight reads 'At the final time the spacecraft is on ...'");
-  const std::size_t w = before ? 1 : 6;
-  Event e;
-  e.where = here;
-  e.kind = "orbit_insertion";
-  e.target = parse_orbit_target(m[5].str());
-  e.target.erase("free");  // a target's unstated elements are free already
-  e.lo = epoch_ref(m[w].str(), m[w + 1].str());
-  e.hi = epoch_ref(m[w + 2].str(), m[w + 3].str());
-  events.push_back(e);
-}
-
-// "At the final time r·v = 0 and |r| = 42165 km.": equations of the final state
-// (state_conditions.hpp), split at the commas, semicolons and "and"s outside parentheses; more
-// sentences of this form add to the same constraint.
-void Builder::on_final_conditions(const std::smatch& m) {
-  const std::string list = m[1].str();
-  std::vector<std::string> items;
-  std::string current;
-  int depth = 0;
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const char c = list[i];
-    depth += c == '(' ? 1 : c == ')' ? -1 : 0;
-    const bool comma = depth == 0 && (c == ',' || c == ';');
-    const bool word_and = depth == 0 && list.compare(i, 5, " and ") == 0;
-    if (comma || word_and) {
-      items.push_back(trimmed(current));
-      current.clear();
-      i += word_and ? 4 : 0;
-      continue;
-    }
-    current += c;
-  }
-  items.push_back(trimmed(current));
-  json conditions = json::array();
-  for (const std::string& item : items) {
-    if (item.empty()) continue;
-    const auto eq = item.find('=');
-    if (eq == std::string::npos || item.find('=', eq + 1) != std::string::npos)
-      throw sentence_error("'" + item + "' is not one equation 'expression = value' (e.g. 'r·v = 0', '|r| = 42165 km')");
-    try {
-      conditions.push_back(state_condition(item.substr(0, eq), item.substr(eq + 1)));
-    } catch (const std::invalid_argument& e) {
-      throw sentence_error(e.what());
-    }
-  }
-  if (arrival && arrival->kind == "state_conditions") {
-    for (auto& c : conditions) arrival->target["conditions"].push_back(c);
-    return;
-  }
-  once("the final rendezvous");
-  arrival = Endpoint{here, {{"kind", "expressions"}, {"conditions", conditions}}, "state_conditions", std::nullopt};
-}
-
 // "geostationary": circular and equatorial about the Earth, with the radius of a sidereal day's
 // period, a = (mu T^2 / (4 pi^2))^(1/3).
 json Builder::geostationary(json target, const Where& w) const {
@@ -227,9 +129,8 @@ json Builder::geostationary(json target, const Where& w) const {
                 " state the orbit's radius ('the circular equatorial orbit of radius Q km')");
   const double mu = central_body.at("mu_km3_s2").get<double>();
   const double a = std::cbrt(mu * kSiderealDayS * kSiderealDayS / (4 * M_PI * M_PI));
-  for (const auto& [key, value] : {std::pair<const char*, double>{"semi_major_axis_km", a},
-                                   {"eccentricity", 0.0},
-                                   {"inclination_deg", 0.0}})
+  for (const auto& [key, value] :
+       {std::pair<const char*, double>{"semi_major_axis_km", a}, {"eccentricity", 0.0}, {"inclination_deg", 0.0}})
     if (target.contains(key) && std::abs(target[key].get<double>() - value) > 1e-9 * std::max(1.0, value))
       fail(w, std::string("a geostationary orbit has its own ") + key + ": remove the one stated");
   target["semi_major_axis_km"] = a;

@@ -51,11 +51,6 @@ void Builder::read(const Sentence& item) {
   }
 }
 
-void Builder::on_problem(const std::smatch& m) {
-  once("the problem name");
-  problem = {{"id", m[1].str()}, {"title", m[2].str()}};
-}
-
 }  // namespace helios::spec::grammar
 
 namespace helios::spec {

@@ -1,4 +1,5 @@
-// Bodies given by their orbital elements: the orbit sentence and the elements table.
+// Bodies given by their orbital elements: the elements as the spec keeps them, the orbits defined,
+// and the elements table (its lines are items of their own, read here).
 #include "grammar.hpp"
 
 #include <algorithm>
@@ -6,8 +7,6 @@
 #include "helios/astro/constants.hpp"
 
 namespace helios::spec::grammar {
-
-namespace {
 
 // Which element a name in an orbit sentence or a table header stands for: a, e, i, raan, argp,
 // mean or true (the anomaly), or "" if none.
@@ -34,8 +33,6 @@ std::string element_field(const std::string& name) {
   return it == fields.end() ? "" : it->second;
 }
 
-}  // namespace
-
 // Classical elements in the spec's units, checked for an ellipse.
 json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v) {
   const double a = v.at("a"), e = v.at("e");
@@ -49,37 +46,6 @@ json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v)
           {"raan_deg", v.at("raan")},
           {"argp_deg", v.at("argp")},
           {mean ? "mean_anomaly_deg" : "true_anomaly_deg", mean ? v.at("mean") : v.at("true")}};
-}
-
-void Builder::on_orbit(const std::smatch& m) {
-  orbit_sentence(m);
-}
-
-// "NAME moves on a Keplerian orbit about the Sun with a = Q, e = N, ... at MJD N".
-void Builder::orbit_sentence(const std::smatch& m) {
-  const std::string name = body_name(m[1].str());
-  if (!m[4].matched)
-    throw sentence_error("the elements of " + name +
-                         " need their epoch: end the sentence with 'at MJD N' or "
-                         "'at MJD2000 N'");
-  static const std::regex clause = re(R"((.+?)\s*=\s*()" + kNum + R"()(?:\s*()" + kUnit + "))?");
-  std::map<std::string, double> v;
-  for (const auto& part : clauses_of(m[3].str())) {
-    std::smatch c;
-    const std::string field = std::regex_match(part, c, clause) ? element_field(c[1].str()) : "";
-    if (field.empty())
-      throw sentence_error("cannot read '" + part +
-                           "': expected 'a = Q', 'e = N', 'i = Q', 'node = Q', 'argument of perihelion = Q' and "
-                           "'mean anomaly = Q' or 'true anomaly = Q'");
-    if (v.count(field) || (field == "mean" && v.count("true")) || (field == "true" && v.count("mean")))
-      throw sentence_error("'" + part + "' repeats an element of " + name);
-    v[field] = number(c[2].str()) * element_unit(field, c[3].matched ? c[3].str() : "");
-  }
-  for (const char* f : {"a", "e", "i", "raan", "argp"})
-    if (!v.count(f)) throw sentence_error("the orbit of " + name + " lacks its " + element_label(f));
-  if (!v.count("mean") && !v.count("true"))
-    throw sentence_error("the orbit of " + name + " lacks its anomaly ('mean anomaly = Q' or 'true anomaly = Q')");
-  define_orbit(name, m[2].str(), elements_json(mjd2000_of(m[4].str(), m[5].str()), v));
 }
 
 void Builder::define_orbit(const std::string& written, const std::string& about, json elements) {
@@ -111,11 +77,6 @@ double Builder::element_unit(const std::string& field, const std::string& unit) 
                                                            : "angles need a unit (deg or rad)"));
   if (field == "a") return unit_factor(Dimension::Length, unit) / helios::astro::AU_KM;
   return unit_factor(Dimension::Angle, unit);
-}
-
-void Builder::on_intro(const std::smatch& m) {
-  table_intro = here;
-  table_about = m[1].str();
 }
 
 std::vector<std::string> Builder::cells_of(const std::string& row) {
