@@ -127,13 +127,13 @@ void Builder::finish_events() {
                 " moves with time, so the text needs a calendar epoch: depart 'at MJD2000 N' (or 'at MJD N') or "
                 "state 'The departure epoch is free between Q before and Q after MJD2000 N'");
   };
-  departure->target = geostationary(resolve(departure->target, departure->where), departure->where);
+  departure->target = resolve_orbit(resolve(departure->target, departure->where), departure->where);
   needs_epoch(departure->target, departure->where);
   for (auto& e : events) {
-    e.target = e.kind == "orbit_insertion" ? geostationary(e.target, e.where) : resolve(json{{"ref", e.body}}, e.where);
+    e.target = e.kind == "orbit_insertion" ? resolve_orbit(e.target, e.where) : resolve(json{{"ref", e.body}}, e.where);
     needs_epoch(e.target, e.where);
   }
-  arrival->target = geostationary(resolve(arrival->target, arrival->where), arrival->where);
+  arrival->target = resolve_orbit(resolve(arrival->target, arrival->where), arrival->where);
   needs_epoch(arrival->target, arrival->where);
   for (const auto& o : orbits)
     if (!o.used)

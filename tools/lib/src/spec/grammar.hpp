@@ -67,7 +67,8 @@ double mjd2000_of(const std::string& scale, const std::string& value);
 // A state, a coasting target or a body's name as {"ref": NAME} (events.cpp).
 json parse_target(const std::string& phrase);
 // An orbit given by some of its elements, as a target of kind orbital_elements (orbit_target.cpp);
-// "geostationary" is kept as a flag until the central body is known (Builder::geostationary).
+// "geostationary", "altitude_km" and "about" (the body named) are kept until the central body is
+// known (Builder::resolve_orbit).
 json parse_orbit_target(const std::string& phrase);
 // Orbital elements {a [AU], e, i, raan, argp [deg], mean or true [deg]} as the spec's (tables.cpp).
 json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v);
@@ -192,8 +193,8 @@ struct Builder {
   void finish_events();
   json constraints();
   void check_event_ids(const std::vector<std::string>& ids) const;
-  // "geostationary" made the elements of the orbit about the Earth (orbit_target.cpp).
-  json geostationary(json target, const Where& w) const;
+  // An orbit target's elements once the central body is known (orbit_target.cpp).
+  json resolve_orbit(json target, const Where& w) const;
 
   // ---- bodies given by their orbits, elements tables (tables.cpp) ----
   void define_orbit(const std::string& written, const std::string& about, json elements);

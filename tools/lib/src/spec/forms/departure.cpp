@@ -36,7 +36,8 @@ void from_orbit(Builder& b, const std::string& at, const std::string& orbit) {
   };
   if (!target.contains("geostationary")) {
     const double e = target.value("eccentricity", -1.0), i = target.value("inclination_deg", -1.0);
-    need(target.contains("semi_major_axis_km"), "semi-major axis (or its radius, if circular)");
+    need(target.contains("semi_major_axis_km") || target.contains("altitude_km"),
+         "semi-major axis (or its radius or altitude, if circular)");
     need(e >= 0, "eccentricity (or the word 'circular')");
     need(i >= 0, "inclination (or the word 'equatorial')");
     const auto free = [&](const char* element) {
