@@ -1108,8 +1108,8 @@ namespace {
 
 // S14 with its final sentence replaced.
 std::string with_final_orbit(const std::string& sentence) {
-  return replaced(scenario("S14"), "At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km.",
-                  sentence);
+  return replaced(scenario("S14"),
+                  "At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km.", sentence);
 }
 
 json final_target(const std::string& sentence) {
@@ -1160,9 +1160,10 @@ TEST(ParseStateConditions, ReadsEquationsOfTheFinalStateInTheirUnits) {
       {"expression": "(x*vx+y*vy+z*vz)", "equals": 0.0, "unit": "km^2/s"},
       {"expression": "vz", "equals": 0.01, "unit": "km/s"}]})json"));
   // a period between two letters is a dot product, not the end of the sentence
-  EXPECT_EQ(parse(with_final_orbit("At the final time r.v = 0 and r = 42165 km."))["constraints"][1]["target"]
-                ["conditions"][0]["expression"],
-            "(x*vx+y*vy+z*vz)");
+  EXPECT_EQ(
+      parse(with_final_orbit(
+          "At the final time r.v = 0 and r = 42165 km."))["constraints"][1]["target"]["conditions"][0]["expression"],
+      "(x*vx+y*vy+z*vz)");
   EXPECT_EQ(helios::spec::parse_unit("km^3/s^2").factor, 1.0);
   EXPECT_EQ(helios::spec::unit_text(helios::spec::parse_unit("kg*m/s^2").dimension), "kg*km/s^2");
   EXPECT_DOUBLE_EQ(helios::spec::parse_unit("kg*m/s^2").factor, 1e-3);
@@ -1193,7 +1194,8 @@ TEST(ParseOrbitTarget, RefusesWhatItCannotPlaceWithTheForms) {
   std::string e = error_of(with_final_orbit(
       "At the final time the spacecraft is on the circular orbit of radius 42165 km with argument of perigee 30 deg."));
   has(e, "an argument of periapsis but no eccentricity above 0");
-  e = error_of(with_final_orbit("At the final time the spacecraft is on the circular orbit of radius 42165 km near Mars."));
+  e = error_of(
+      with_final_orbit("At the final time the spacecraft is on the circular orbit of radius 42165 km near Mars."));
   has(e, "cannot place 'near Mars' in the target orbit");
   has(e, "the circular equatorial orbit of radius 42165 km");
   has(error_of(with_final_orbit("At the final time the spacecraft is on the orbit.")), "names none of its elements");
@@ -1252,9 +1254,10 @@ TEST(ParseOrbitTarget, ReadsADepartureOrbitWithEveryElement) {
                               "node 40 deg and any node.")),
       "gives its node and says it is free");
   // a target's unstated elements are free already
-  EXPECT_FALSE(final_target("At the final time the spacecraft is on a circular orbit of 7500 km radius inclined 28.5 deg "
-                            "with any node.")
-                   .contains("free"));
+  EXPECT_FALSE(
+      final_target("At the final time the spacecraft is on a circular orbit of 7500 km radius inclined 28.5 deg "
+                   "with any node.")
+          .contains("free"));
 }
 
 // An orbit on the way: an interior event with its window, the window before or after the orbit,
@@ -1269,24 +1272,27 @@ TEST(ParseOrbitTarget, ReadsAnOrbitOnTheWayWithItsWindow) {
       if (c["at"] == "interior") out.push_back(c);
     return out;
   };
-  const json one = interior("The spacecraft passes through the circular orbit of radius 30000 km between day 0.1 and "
-                            "day 0.5.");
+  const json one = interior(
+      "The spacecraft passes through the circular orbit of radius 30000 km between day 0.1 and "
+      "day 0.5.");
   ASSERT_EQ(one.size(), 1u);
   EXPECT_EQ(one[0], json::parse(R"({"id": "orbit", "kind": "orbit_insertion", "at": "interior",
                                     "target": {"kind": "orbital_elements", "semi_major_axis_km": 30000.0,
                                                "eccentricity": 0.0},
                                     "window_days": [0.1, 0.5]})"));
-  const json two = interior("Between day 0.1 and day 0.5, the spacecraft reaches an equatorial orbit. The spacecraft "
-                            "must pass through an orbit with eccentricity 0.2 and inclination 3 deg between day 0.6 "
-                            "and day 0.9.");
+  const json two = interior(
+      "Between day 0.1 and day 0.5, the spacecraft reaches an equatorial orbit. The spacecraft "
+      "must pass through an orbit with eccentricity 0.2 and inclination 3 deg between day 0.6 "
+      "and day 0.9.");
   ASSERT_EQ(two.size(), 2u);
   EXPECT_EQ(two[0]["id"], "orbit");
   EXPECT_EQ(two[0]["target"], json::parse(R"({"kind": "orbital_elements", "inclination_deg": 0.0})"));
   EXPECT_EQ(two[1]["id"], "orbit_2");
   EXPECT_EQ(two[1]["window_days"], json::parse("[0.6, 0.9]"));
-  helios::io::validate("spec", parse(replaced(s14, "The time of flight is free, at most 2 days.",
-                                              "The time of flight is free, at most 2 days. The spacecraft crosses an "
-                                              "equatorial orbit between day 0.1 and day 0.5.")),
+  helios::io::validate("spec",
+                       parse(replaced(s14, "The time of flight is free, at most 2 days.",
+                                      "The time of flight is free, at most 2 days. The spacecraft crosses an "
+                                      "equatorial orbit between day 0.1 and day 0.5.")),
                        "test");
   // "geostationary" on the way is the orbit it names, as at the end: the spec is the schema's.
   const json geo = interior("The spacecraft passes through geostationary orbit between day 0.1 and day 0.5.");
@@ -1313,7 +1319,13 @@ TEST(ParseOrbitTarget, ReadsAnOrbitOnTheWayWithItsWindow) {
 // Objectives on the final state and an engine at full throttle throughout.
 TEST(ParseOrbitTarget, ReadsAFinalStateObjectiveAndAFullThrottleEngine) {
   const std::string s14 = scenario("S14");
-  const std::string fixed = replaced(s14, "The time of flight is free, at most 2 days.", "The time of flight is 1 day.");
+  const std::string radius_fixed =
+      replaced(s14, "The time of flight is free, at most 2 days.", "The time of flight is 1 day.");
+  // On the circular orbit of radius 42165 km the final radius is a constant: nothing to maximize.
+  has(error_of(replaced(radius_fixed, "Minimize the time of flight.", "Maximize the final radius.")),
+      "fixes the final radius, so maximizing it maximizes a constant");
+  const std::string fixed =
+      replaced(radius_fixed, "the circular equatorial orbit of radius 42165 km", "a circular equatorial orbit");
   for (const auto& [sentence, kind] : std::vector<std::pair<std::string, std::string>>{
            {"Maximize the final radius.", "maximum_final_radius"},
            {"Maximise the final orbital energy.", "maximum_final_energy"}}) {

@@ -57,6 +57,7 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
   if (!f.objective.empty()) {
     once("the objective");
     objective = {{"kind", f.objective}};
+    objective_where = here;
   }
 }
 
@@ -66,6 +67,7 @@ void Builder::set_central_value(const char* key, double v, bool stated) {
     throw sentence_error("state the central body before its J2 coefficient or radius");
   if (stated) throw sentence_error(std::string("the central body's ") + key + " is given twice");
   central_body[key] = v;
+  constant_where[key] = here;
 }
 
 void Builder::set_engine(detail::Field field, double v) {

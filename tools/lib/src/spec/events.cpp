@@ -51,6 +51,11 @@ void Builder::add_event(Event e) {
                            " has a gravitational parameter of Q km^3/s^2'");
     e.mu = *mu;
   }
+  const auto surface = surface_radius(e.body);
+  if (e.rmin && surface && !(*e.rmin > *surface))
+    throw sentence_error("the lowest periapsis radius at " + e.body + ", " + io::short_number(*e.rmin) +
+                         " km, is not above its surface (radius " + io::short_number(*surface) +
+                         " km): a periapsis radius counts from the body's centre");
   if (e.drop) e.drop_where = here;
   events.push_back(e);
 }
@@ -157,6 +162,11 @@ void Builder::finish_events() {
   const double end = (free_dep ? time["t0_window_days"][1].get<double>() : 0.0) + tof;
   const Event* previous = nullptr;
   for (auto& e : events) {
+    if ((e.lo.absolute || e.hi.absolute) && !has_epoch)
+      fail(e.where,
+           "its window is given as dates, but the text gives no calendar epoch to count the flight from: "
+           "state the departure's ('The spacecraft departs at MJD2000 N ...') or give the window in days "
+           "after the departure ('between day N and day N')");
     e.window_lo = e.lo.absolute ? e.lo.value - epoch : e.lo.value;
     e.window_hi = e.hi.absolute ? e.hi.value - epoch : e.hi.value;
     const std::string window = "day " + io::short_number(e.window_lo) + " to day " + io::short_number(e.window_hi);

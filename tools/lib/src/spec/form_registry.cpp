@@ -103,6 +103,9 @@ const std::map<std::string, std::string>& extras() {
        "The spacecraft has a maximum thrust of 0.5 N, a specific impulse of 2000 s and a final mass of 800 kg."},
       {"free_end", "The time of flight is 1 day.\nAt the final time the spacecraft is on a circular orbit."},
       {"to_azusa", "At the final time the spacecraft rendezvouses with Azusa."},
+      {"scaled_orbits",
+       "The spacecraft departs at t = 0 days from position [2, 0, 0] km with velocity [0, 0.7, 0] km/s.\n"
+       "At the final time the spacecraft is on the circular equatorial orbit of radius 3 km."},
       {"from_earth", "The spacecraft departs from Earth."},
       {"earth_j2", "The central body is the Earth with J2 coefficient 1.08262668e-3."},
   };

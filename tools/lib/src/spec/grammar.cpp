@@ -55,6 +55,12 @@ std::optional<double> known_radius(const std::string& body) {
   return std::nullopt;
 }
 
+std::optional<double> surface_radius(const std::string& body) {
+  constexpr double kSunRadiusKm = 695700.0;  // IAU 2015 nominal solar radius
+  if (lowercase(body) == "sun") return kSunRadiusKm;
+  return known_radius(body);
+}
+
 // Splits "a, b, c" at the commas outside parentheses.
 std::vector<std::string> top_level_items(const std::string& list) {
   std::vector<std::string> items(1);

@@ -50,8 +50,10 @@ json vector3(const std::smatch& m, std::size_t idx, Dimension d);
 std::regex re(const std::string& pattern);
 // Known gravitational parameters [km^3/s^2] for a central body named without one.
 std::optional<double> known_mu(const std::string& body);
-// Known equatorial radii [km].
+// Known equatorial radii [km], which a central body named without one takes.
 std::optional<double> known_radius(const std::string& body);
+// The radius below which nothing can fly [km]: the known equatorial radius, and the Sun's.
+std::optional<double> surface_radius(const std::string& body);
 // Splits "a, b, c" at the commas outside parentheses.
 std::vector<std::string> top_level_items(const std::string& list);
 std::string trimmed(const std::string& s);
@@ -159,6 +161,18 @@ struct Builder {
   std::optional<double> pending_mu;  // a gravitational parameter stated before the central body
   std::optional<std::pair<std::string, Where>> constants_body;  // the body whose mu, radius or J2 a sentence gave
   bool radius_stated = false;                                   // else the radius is the known one
+  // The central body named "scaled", "normalized", ...: its constants are the text's on purpose, none
+  // is taken from the body's known ones or checked against them.
+  bool central_on_purpose = false;
+  std::map<std::string, Where> constant_where;  // where the central body's mu_km3_s2, radius_km, j2 were stated
+  std::optional<Where> objective_where;
+  // A radius a sentence states that must lie above the central body's surface (a third body's orbit).
+  struct StatedRadius {
+    double km;
+    std::string what;
+    Where where;
+  };
+  std::vector<StatedRadius> stated_radii;
 
   // ---- reading the text (parse.cpp) ----
   void once(const std::string& what);
@@ -171,9 +185,17 @@ struct Builder {
   // ---- a sentence: the form that reads it, else the facts in other words (form_registry.cpp) ----
   void handle(const std::string& s);
 
+  // ---- what cannot be: a place inside the central body, a constant far from a body's known one,
+  // an objective the other facts make constant (plausibility.cpp) ----
+  void check_physics() const;
+  void check_constants() const;
+  void check_objective() const;
+
   // ---- the central body and its constants, the propulsion (spacecraft.cpp) ----
-  // "gravitational parameter Q", "equatorial radius Q", "J2 coefficient N" in any order.
+  // The central body, and its constants "gravitational parameter Q", "equatorial radius Q", "J2
+  // coefficient N" in any order (also "mu = Q", "R = Q", "J2 = N").
   void central(const std::string& name, const std::string& list);
+  void central_constant(const std::string& part);
   void set_mu(double mu);
   void sail(double ac_mm_s2, double ref_au);
 

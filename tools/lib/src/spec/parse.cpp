@@ -107,6 +107,9 @@ json parse_problem_text(const std::string& text, const std::string& source) {
     missing("the final condition", "At the final time the spacecraft rendezvouses with Mars.");
   if (b.objective.is_null()) missing("the objective", "Minimize the fuel consumption.");
   b.finish_events();
+  b.check_constants();
+  b.check_physics();
+  b.check_objective();
   if (!b.time.contains("t0_days")) b.time["t0_days"] = 0.0;
   json doc = io::artifact_header("spec", "helios-parse", "builtin");
   b.problem["source_file"] = source;

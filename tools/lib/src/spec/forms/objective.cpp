@@ -10,6 +10,7 @@ namespace {
 void set(Builder& b, const char* kind) {
   b.once("the objective");
   b.objective = {{"kind", kind}};
+  b.objective_where = b.here;
 }
 
 void initial_mass(Builder& b, const std::smatch&) {

@@ -48,6 +48,7 @@ void read(Builder& b, const std::smatch& m) {
   for (const auto& [key, labels] : angles)
     if (const auto v = labelled(clause, labels, Dimension::Angle)) body[key] = *v;
   b.perturbations.push_back(body);
+  b.stated_radii.push_back({*radius, "the orbit of " + name, b.here});
 }
 
 }  // namespace
@@ -62,6 +63,9 @@ std::vector<Form> third_body() {
              "earth",
              R"~({"/dynamics/perturbations": [{"kind": "third_body", "name": "Moon", "mu_km3_s2": 4902.8,
                  "orbit_radius_km": 384400, "inclination_deg": 5.1}]})~"},
+            {"The Moon perturbs the spacecraft as a point mass of mu = 4902.8 km^3/s^2 on a circular orbit of radius "
+             "384400 m.",
+             "earth", R"~({"error": "the orbit of Moon is 384.4 km from the centre of the Earth"})~"},
             {"The Moon perturbs the spacecraft as a point mass of mu = 4902.8 km^3/s^2.", "earth",
              R"~({"error": "the third body Moon needs the radius of its circular orbit"})~"}}}};
 }
