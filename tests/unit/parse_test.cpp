@@ -663,9 +663,10 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
   has(err(sc + " Minimize fuel and minimize time."), "it states two objectives");
   has(err(sc + " Tmax = 0.6 N."), "the maximum thrust is given twice");
   has(err("Tmax = 0.5 N, Isp = 2000 s, m0 = -1000 kg."), "the initial mass must be positive, got -1000 kg");
-  has(err(sc + " The maximum time of flight is 500 days."), "'maximum' makes 'time of flight' a bound, not a value");
-  has(err(sc + " The time of flight is up to 500 days."),
-      "'up to 500 days' is an upper bound on the time of flight, not its value (a bounded time of flight reads");
+  // A bound on the time of flight makes it free, between its bounds: beside a fixed one it is a second.
+  has(err(sc + " The maximum time of flight is 500 days."), "the time of flight is given twice");
+  has(err(sc + " The time of flight is up to 500 days."), "the time of flight is given twice");
+  has(err(sc + " The maximum isp is 2000 s."), "'maximum' makes 'isp' a bound, not a value");
   has(err(sc + " The thrust is 3 furlongs."),
       "'furlongs' after 3 is no unit HELIOS knows and no fact word; did you mean \"The spacecraft has a maximum "
       "thrust of 3 N.\"?");

@@ -103,9 +103,13 @@ void Builder::apply_fact(const detail::Fact& fact) {
       set_engine(fact.field, v);
       break;
     case Field::Tof:
-      once(fact.field);
-      time["tof_days"] = v;
-      time["final_time"] = "fixed";
+      fixed_time_of_flight(v);
+      break;
+    case Field::TofMin:
+      bound_time_of_flight(v, std::nullopt);
+      break;
+    case Field::TofMax:
+      bound_time_of_flight(std::nullopt, v);
       break;
     case Field::T0:
       once(fact.field);

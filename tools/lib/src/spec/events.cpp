@@ -114,8 +114,8 @@ json Builder::resolve(const json& target, const Where& w) {
               "Venus, Jupiter)");
 }
 
-// Checks that need the whole text: names, epochs, windows, landers.
-void Builder::finish_events() {
+// The targets once the whole text is read: names looked up, orbits resolved, epochs checked.
+void Builder::resolve_targets() {
   const std::string central = central_body.value("name", "");
   for (const auto& o : orbits) {
     static const std::regex the = re(R"((?:the )?(.+))");
@@ -143,7 +143,11 @@ void Builder::finish_events() {
   for (const auto& o : orbits)
     if (!o.used)
       fail(o.where, "no sentence sends the spacecraft to " + o.name + ": remove its orbit or state the event");
+}
 
+// Checks that need the whole text: a free departure, windows, landers.
+void Builder::finish_events() {
+  const bool has_epoch = time.contains("epoch_mjd2000");
   const bool free_dep = time.value("departure", "") == "free";
   if (free_dep && departure_at_t)
     fail(departure->where,

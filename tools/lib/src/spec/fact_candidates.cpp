@@ -77,6 +77,7 @@ std::vector<Candidate> candidates(const Meaning& m, int role, const std::string&
 
 bool fits(const Candidate& c, const Quantity& q) {
   if (c.vector != q.vector || c.date != q.date || c.window != q.window || q.day) return false;
+  if (q.range && c.field != Field::Tof) return false;  // a range bounds a free time of flight, nothing else
   if (q.date || q.window) return true;
   // t = 0 needs no unit; an eccentricity, a J2 coefficient or a lightness number has none
   if (c.pure || q.unit.empty()) return q.unit.empty() && (c.pure || (c.field == Field::T0 && q.nums[0] == 0));

@@ -8,15 +8,13 @@ namespace helios::spec::detail {
 void SentenceReader::check_bounds(const Clause& c, const ClauseWords& w) const {
   if (w.verb == kMinimum || w.verb == kMinimize || w.verb == kMaximize)
     throw facts_error("'" + w.words + "' mixes an objective with a value");
-  // A bound on the thrust is the maximum thrust; a bound on anything else is not a value.
+  // A bound on the thrust is the maximum thrust, one on the time of flight its longest (read_clause); a
+  // bound on anything else is not a value.
   for (const auto& m : c.mentions)
     for (const auto& n : c.mentions)
       if (m.meaning.bound && !m.on_quantity && n.meaning.slot != Slot::None && n.meaning.slot != Slot::Thrust &&
-          !n.meaning.weak)
-        throw facts_error("'" + m.text + "' makes '" + n.text + "' a bound, not a value" +
-                          (n.meaning.slot == Slot::Tof
-                               ? " (a bounded time of flight reads 'The time of flight is free, at most Q.')"
-                               : ""));
+          n.meaning.slot != Slot::Tof && !n.meaning.weak)
+        throw facts_error("'" + m.text + "' makes '" + n.text + "' a bound, not a value");
   // The periapsis radius is a lower bound, and only it is.
   bool lower = false, rmin = false;
   for (const auto& m : c.mentions) {
@@ -110,8 +108,15 @@ void SentenceReader::read_clause(const Clause& c) {
           (n.meaning.slot == Slot::Mass || n.meaning.slot == Slot::InitialMass) && !n.meaning.weak)
         throw facts_error("'" + n.text + "' is said of the '" + m.text +
                           "', not of the spacecraft: state the spacecraft's mass in a clause of its own");
+  // "The maximum time of flight is Q": the bound word qualifies the time of flight, not the quantity.
+  bool tof_bound = false;
+  for (const auto& m : c.mentions)
+    for (const auto& n : c.mentions) tof_bound = tof_bound || (m.meaning.bound && n.meaning.slot == Slot::Tof);
   std::map<Field, std::string> bound_here;
-  for (const auto& q : c.quantities) place(q, named, qualified, bound_here);
+  for (Quantity q : c.quantities) {
+    q.at_most = q.at_most || (tof_bound && !q.range);
+    place(q, named, qualified, bound_here);
+  }
   for (auto& n : named)
     if (!n.bound && n.none) {
       add({n.cands.front().field, {0.0}, n.text});
@@ -161,7 +166,7 @@ void SentenceReader::no_fit(const Quantity& q, const std::vector<Named>& named) 
                                        "final position or velocity"
                                  : "nothing in its clause says what " + q.written + " is");
     const Candidate& want = strong.front()->cands.front();
-    const bool plain = !q.vector && !q.date && !q.day && !q.window;
+    const bool plain = !q.vector && !q.date && !q.day && !q.window && !q.range;
     const std::string sug = strong.size() == 1 && plain && !want.exhaust ? suggestion(want.field, q, want.dim) : "";
     if (q.unit.empty())
       throw facts_error(
@@ -170,8 +175,9 @@ void SentenceReader::no_fit(const Quantity& q, const std::vector<Named>& named) 
     if (!want.pure) {
       try {
         to_spec_unit(want.dim, q.unit);
-        why = q.vector ? "a vector cannot be " + field_name(want.field)
-                       : "a single number cannot be " + field_name(want.field);
+        why = q.vector  ? "a vector cannot be " + field_name(want.field)
+              : q.range ? "a range is no value of " + field_name(want.field) + ": give one"
+                        : "a single number cannot be " + field_name(want.field);
       } catch (const std::invalid_argument& e) {
         why = e.what();
       }
@@ -192,12 +198,11 @@ void SentenceReader::place(const Quantity& q, std::vector<Named>& named, bool qu
     throw facts_error(q.written + " could be " + names + ": state one fact per clause");
   }
   const Candidate& cand = fit.front().first;
+  // A time of flight with a bound or a range is a free one, searched between its bounds.
+  if (cand.field == Field::Tof && (q.at_most || q.at_least || q.range)) return place_bounds(q, named, bound_here);
   if ((q.at_most && cand.field != Field::Thrust) || (q.at_least && cand.field != Field::Rmin))
     throw facts_error("'" + q.bound_words + " " + q.written + "' is " + (q.at_most ? "an upper" : "a lower") +
-                      " bound on " + field_name(cand.field) + ", not its value" +
-                      (cand.field == Field::Tof ? " (a bounded time of flight reads 'The time of flight is free, "
-                                                  "at most Q.')"
-                                                : ""));
+                      " bound on " + field_name(cand.field) + ", not its value");
   if (bound_here.count(cand.field))
     throw facts_error("two values for " + field_name(cand.field) + ": " + bound_here[cand.field] + " and " + q.written);
   bound_here[cand.field] = q.written;
@@ -215,6 +220,24 @@ void SentenceReader::place(const Quantity& q, std::vector<Named>& named, bool qu
   const double factor = q.unit.empty() ? 1.0 : to_spec_unit(cand.dim, q.unit);
   for (double v : q.nums) fact.value.push_back(cand.exhaust ? v * factor * 1000.0 / kG0 : v * factor);
   add(fact);
+}
+
+// "at most Q", "at least Q", "between N and Q": the bounds of a free time of flight.
+void SentenceReader::place_bounds(const Quantity& q, std::vector<Named>& named,
+                                  std::map<Field, std::string>& bound_here) {
+  const double factor = to_spec_unit(Dimension::Time, q.unit);
+  std::vector<std::pair<Field, double>> bounds;
+  if (q.range) bounds = {{Field::TofMin, q.nums[0] * factor}, {Field::TofMax, q.nums[1] * factor}};
+  if (q.at_most) bounds = {{Field::TofMax, q.nums[0] * factor}};
+  if (q.at_least) bounds = {{Field::TofMin, q.nums[0] * factor}};
+  for (const auto& [field, value] : bounds) {
+    if (bound_here.count(field))
+      throw facts_error("two values for " + field_name(field) + ": " + bound_here[field] + " and " + q.written);
+    bound_here[field] = q.written;
+    add({field, {value}, q.written});
+  }
+  for (auto& n : named)
+    for (const auto& x : n.cands) n.bound = n.bound || x.field == Field::Tof;
 }
 
 // An event's, an orbit's, a sail's and the central body's sentence hold what they need and no more.

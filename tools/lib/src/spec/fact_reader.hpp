@@ -140,6 +140,7 @@ class SentenceReader {
   [[noreturn]] void no_fit(const Quantity& q, const std::vector<Named>& named) const;
   // Places a quantity on the one fact it fits.
   void place(const Quantity& q, std::vector<Named>& named, bool qualified, std::map<Field, std::string>& bound_here);
+  void place_bounds(const Quantity& q, std::vector<Named>& named, std::map<Field, std::string>& bound_here);
   // An event's, an orbit's, a sail's and the central body's sentence hold what they need and no more.
   void check_kind();
   // A sentence states something; a body's state is its ephemeris; values are positive.

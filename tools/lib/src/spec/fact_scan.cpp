@@ -237,10 +237,14 @@ std::string unwrap_word_parens(std::string s) {
   return s;
 }
 
-// "between E and E", "from E to E" and "E to E" (E a date or "day N") as one window.
+// "between E and E", "from E to E" and "E to E" (E a date or "day N") as one window; two plain numbers
+// so joined, the second with a unit the first has too or lacks ("between 50 and 600 days"), as a range.
 std::vector<Token> windows_of(const std::vector<Token>& in) {
   const auto epoch = [&](std::size_t k) {
     return k < in.size() && in[k].kind == Token::Value && (in[k].q.date || in[k].q.day);
+  };
+  const auto plain = [&](std::size_t k) {
+    return k < in.size() && in[k].kind == Token::Value && !in[k].q.vector && !in[k].q.date && !in[k].q.day;
   };
   std::vector<Token> out;
   for (std::size_t k = 0; k < in.size(); ++k) {
@@ -248,15 +252,21 @@ std::vector<Token> windows_of(const std::vector<Token>& in) {
     const bool joined =
         k + 1 < in.size() && ((between && in[k + 1].kind == Token::Separator && in[k + 1].word == "and") ||
                               (in[k + 1].kind == Token::Word && in[k + 1].word == "to"));
-    if (!epoch(k) || !joined || !epoch(k + 2)) {
+    const bool window = joined && epoch(k) && epoch(k + 2);
+    const bool range = joined && plain(k) && plain(k + 2) && !in[k + 2].q.unit.empty() &&
+                       (in[k].q.unit.empty() || in[k].q.unit == in[k + 2].q.unit);
+    if (!window && !range) {
       out.push_back(in[k]);
       continue;
     }
     if (!out.empty() && out.back().kind == Token::Word && (between || out.back().word == "from")) out.pop_back();
     Token t{Token::Value, "", {}};
-    t.q.window = true;
+    t.q.window = window;
+    t.q.range = range;
     t.q.nums = {in[k].q.nums[0], in[k + 2].q.nums[0]};
     t.q.absolute = {in[k].q.date, in[k + 2].q.date};
+    t.q.unit = range ? in[k + 2].q.unit : "";
+    t.q.texts = {in[k].q.texts[0], in[k + 2].q.texts[0]};
     t.q.written = in[k].q.written + (between ? " and " : " to ") + in[k + 2].q.written;
     out.push_back(t);
     k += 2;
@@ -335,7 +345,7 @@ Token read_word(const std::string& s, std::size_t& i) {
   // an element's symbol before '=' ("a = 1.2 AU", "Omega = 80 deg" the node, "omega" the argument)
   static const std::map<std::string, std::string> symbols = {
       {"a", "semi major axis"}, {"e", "eccentricity"}, {"i", "inclination"}, {"M", "mean anomaly"},
-      {"nu", "true anomaly"},   {"Omega", "raan"},     {"omega", "argp"}};
+      {"nu", "true anomaly"},   {"Omega", "raan"},     {"omega", "argp"},    {"w", "argp"}};
   const std::size_t eq = s.find_first_not_of(' ', i);
   if (eq != std::string::npos && s[eq] == '=' && symbols.count(text)) w = symbols.at(text);
   std::smatch d;
@@ -361,6 +371,7 @@ std::vector<Token> scan(const std::string& sentence) {
   // Ω and ω are the node and the argument of periapsis, ° is deg.
   std::string raw = replace_all(replace_all(sentence, "\xC2\xB3", "^3"), "\xC2\xB2", "^2");
   raw = replace_all(replace_all(replace_all(raw, "\xCE\xA9", "RAAN"), "\xCF\x89", "argp"), "\xC2\xB0", " deg");
+  raw = replace_all(raw, "\xCE\xBD", "nu");  // ν, the true anomaly
   const std::string s = unwrap_word_parens(raw);
   std::vector<Token> out;
   std::size_t i = 0;

@@ -17,6 +17,7 @@ struct Quantity {
   bool date = false;               // an epoch: nums holds its MJD2000
   bool day = false;                // "day N": N days after the epoch
   bool window = false;             // "between E and E", "from E to E": nums holds both bounds
+  bool range = false;              // "between N and Q", "from N to Q": two numbers, one unit (the second's)
   std::array<bool, 2> absolute{};  // a window's bounds: MJD2000 (a date) or days after the epoch
   // A bound written just before it ("at most 0.5 N", "at least 300 km"), with its words.
   bool at_most = false, at_least = false;

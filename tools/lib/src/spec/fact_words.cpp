@@ -53,7 +53,7 @@ void engine_and_state_words(PhraseTable& t) {
       "vector state conditions we want find optimize optimise trajectory transfer mission operate operates possible "
       "reach looking use motion problem on place our single trip exactly body runs run carries carry hall "
       "take all computed frame only match matches equipped located scheduled expended spent solve occurs occur "
-      "achieved");
+      "achieved flight may anywhere");
   for (std::string w; fillers >> w;) t[w] = {};
   slot(t,
        {"thrust", "maximum thrust", "max thrust", "delivers", "deliver", "provides", "provide", "produces", "produce",
@@ -83,9 +83,9 @@ void engine_and_state_words(PhraseTable& t) {
   slot(t, {"initial mass", "wet mass", "launch mass", "starting mass", "m0", "m_0"}, Slot::InitialMass, kInitialMass);
   slot(t, {"final mass"}, Slot::FinalMass, kFinalMass);
   slot(t,
-       {"time of flight", "flight time", "transfer time", "tof", "takes", "lasts", "duration", "transfer duration",
-        "flight duration", "after departure", "after it departs", "after departing", "after launch", "after it leaves",
-        "after leaving", "after the departure", "after the launch"},
+       {"time of flight", "flight time", "transfer time", "tof", "takes", "lasts", "last", "duration",
+        "transfer duration", "flight duration", "after departure", "after it departs", "after departing",
+        "after launch", "after it leaves", "after leaving", "after the departure", "after the launch"},
        Slot::Tof, kTime);
   slot(t, {"mu", "gm", "gravitational parameter", "gravitational constant"}, Slot::Mu);
   slot(t, {"position", "location", "r"}, Slot::Position);
@@ -128,13 +128,17 @@ void objective_and_body_words(PhraseTable& t) {
   for (const char* w : {"up", "up to", "limited", "available", "most", "at most", "no more than", "not more than",
                         "not exceeding", "not to exceed", "no greater than", "not greater than", "at the most"})
     t[w] = {Slot::None, kNoRole, kNoVerb, kNoNoun, true};
+  // a duration's upper bound, said of the time of flight
+  for (const char* w : {"no longer than", "not longer than", "not take longer than", "not last longer than"})
+    t[w] = {Slot::Tof, kNoRole, kNoVerb, kTime, true};
   for (const char* w : {"fuel", "propellant", "fuel consumption", "propellant consumption", "fuel mass",
                         "propellant mass", "fuel use", "mass of propellant", "mass of fuel", "mass of the propellant",
                         "mass of the fuel", "propellant used", "fuel used"})
     t[w] = {Slot::None, kNoRole, kNoVerb, kFuel};
   for (const char* w : {"time", "final time"}) t[w] = {Slot::None, kNoRole, kNoVerb, kTime};
   for (const char* w : {"fuel optimal", "propellant optimal"}) t[w] = {Slot::None, kNoRole, kMinimize, kFuel};
-  for (const char* w : {"time optimal", "fastest", "quickest", "as fast as possible", "as short as possible"})
+  for (const char* w : {"time optimal", "fastest", "quickest", "as fast as possible", "as short as possible",
+                        "as early as possible", "as soon as possible"})
     t[w] = {Slot::None, kNoRole, kMinimize, kTime};
 }
 
@@ -182,6 +186,7 @@ void model_words(PhraseTable& t) {
   for (const char* w : {"solar sail", "sail", "solar sails"}) t[w].model = "sail";
   fact(t, {"characteristic acceleration", "a_c", "ac"}, Field::CharAccel);
   fact(t, {"lightness number", "lightness", "lightness parameter"}, Field::Lightness);
+  for (const char* w : {"modelled", "modeled", "through", "considered", "get there", "gets there"}) t[w] = {};
   for (const char* w : {"included", "dynamics", "plus", "account", "into", "model", "force", "propelled", "ideal",
                         "flat", "perfectly", "reflecting", "instead"})
     t[w] = {};

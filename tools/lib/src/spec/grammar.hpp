@@ -54,6 +54,9 @@ std::optional<double> known_mu(const std::string& body);
 std::optional<double> known_radius(const std::string& body);
 // The radius below which nothing can fly [km]: the known equatorial radius, and the Sun's.
 std::optional<double> surface_radius(const std::string& body);
+// The sentence with the numbers written in words before a unit as digits: "six weeks" is "6 weeks",
+// "three hundred days" "300 days" (grammar.cpp).
+std::string with_digits(const std::string& sentence);
 // Splits "a, b, c" at the commas outside parentheses.
 std::vector<std::string> top_level_items(const std::string& list);
 std::string trimmed(const std::string& s);
@@ -133,7 +136,8 @@ struct Builder {
   explicit Builder(std::string src) : source(std::move(src)) {}
 
   std::string source;
-  Where here;  // the item being read
+  Where here;            // the item being read
+  std::string sentence;  // the sentence being read, its numbers in words as digits
   json problem, central_body, spacecraft = json::object(), objective, time = json::object(),
                               perturbations = json::array();
   std::optional<Endpoint> departure, arrival;
@@ -166,6 +170,8 @@ struct Builder {
   bool central_on_purpose = false;
   std::map<std::string, Where> constant_where;  // where the central body's mu_km3_s2, radius_km, j2 were stated
   std::optional<Where> objective_where;
+  std::optional<Where> tof_where;  // the sentence that gave the time of flight or its bounds
+  json notes = json::array();      // what the parser derived rather than read (the spec's notes)
   // A radius a sentence states that must lie above the central body's surface (a third body's orbit).
   struct StatedRadius {
     double km;
@@ -199,7 +205,15 @@ struct Builder {
   void set_mu(double mu);
   void sail(double ac_mm_s2, double ref_au);
 
-  // ---- the departure's epoch and window (time.cpp) ----
+  // ---- the time of flight, the departure's epoch and window (time.cpp) ----
+  void fixed_time_of_flight(double days);
+  // A free time of flight, with the bounds a sentence gives (each once); the others are filled in once
+  // the whole text is read (finish_time).
+  void bound_time_of_flight(std::optional<double> lo, std::optional<double> hi);
+  // The free time of flight's bounds the text leaves open: 0, and for a minimum time an upper bound
+  // from the physics, said in the spec's notes.
+  void finish_time();
+  std::optional<double> departure_period_days() const;
   void set_epoch(double mjd2000);
   void free_departure(double lo, double hi, double mjd2000);
 
@@ -212,6 +226,7 @@ struct Builder {
   void add_event(Event e);
   Event& rendezvous_of(const std::string& name);
   json resolve(const json& target, const Where& w);
+  void resolve_targets();
   void finish_events();
   json constraints();
   void check_event_ids(const std::vector<std::string>& ids) const;

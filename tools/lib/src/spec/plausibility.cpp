@@ -120,7 +120,7 @@ void Builder::check_objective() const {
   const Where w = objective_where.value_or(here);
   if (kind == "minimum_time" && time.value("final_time", "") == "fixed")
     fail(w, "the time of flight is fixed (" + io::short_number(time["tof_days"].get<double>()) +
-                " days), so minimizing it minimizes a constant: make it free ('The time of flight is free, at most "
+                " d), so minimizing it minimizes a constant: make it free ('The time of flight is free, at most "
                 "Q.') or minimize the fuel");
   const json& t = arrival->target;
   const bool position_fixed = arrival->kind == "rendezvous" || arrival->kind == "flyby";

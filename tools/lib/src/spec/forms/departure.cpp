@@ -14,10 +14,11 @@ namespace {
 void departure_time(Builder& b, const std::string& phrase) {
   std::smatch m;
   static const std::regex t_re = re(R"(t\s*=\s*)" + kQuantity);
+  static const std::regex t0_re = re(R"(t\s*=\s*0)");  // the time 0 needs no unit
   static const std::regex mjd_re = re("(MJD2000|MJD) (" + kNum + ")");
-  if (std::regex_match(phrase, m, t_re)) {
+  if (std::regex_match(phrase, m, t_re) || std::regex_match(phrase, t0_re)) {
     b.once(detail::Field::T0);
-    b.time["t0_days"] = quantity(m, 1, Dimension::Time);
+    b.time["t0_days"] = m.empty() ? 0.0 : quantity(m, 1, Dimension::Time);
     b.departure_at_t = true;
   } else if (std::regex_match(phrase, m, mjd_re)) {
     b.set_epoch(mjd2000_of(m[1].str(), m[2].str()));
@@ -63,7 +64,7 @@ void depart(Builder& b, const std::string& at, const std::string& target_text) {
     // "departs from Earth on 2001-02-04": the facts in other words read what the form does not
     detail::SentenceFacts facts;
     try {
-      facts = detail::read_facts(b.here.text, b.body_names());
+      facts = detail::read_facts(b.sentence, b.body_names());
     } catch (const detail::facts_error& e) {
       // a body named, then words the form does not take: the facts' reason is the one to give
       static const std::regex named_then_more = re(R"([A-Za-z][A-Za-z0-9_]* (?:on|at|in) .+)");
@@ -119,6 +120,9 @@ std::vector<Form> departure() {
              "sun -departure",
              R"~({"/time/t0_days": 0, "/departure/target": {"kind": "fixed_state",
                  "position_km": [-140699693, -51614428, 980], "velocity_km_s": [9.774596, -28.07828, 4.337725e-4]}})~"},
+            {"The spacecraft departs at t = 0 from position [-140699693, -51614428, 980] km with velocity [9.774596, "
+             "-28.07828, 4.337725e-4] km/s.",
+             "sun -departure", R"~({"/time/t0_days": 0})~"},
             {"The spacecraft departs at MJD2000 400 from Earth.", "planets -departure",
              R"~({"/time/epoch_mjd2000": 400, "/departure/target/body": "Earth"})~"},
             {"The spacecraft departs from Earth on 2001-02-04.", "planets -departure",

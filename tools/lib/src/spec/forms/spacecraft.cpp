@@ -24,7 +24,7 @@ void read(Builder& b, const std::smatch& match) {
     if (std::regex_match(part, m, clause)) continue;
     detail::SentenceFacts f;
     try {
-      f = b.facts_of(b.here.text);
+      f = b.facts_of(b.sentence);
     } catch (const sentence_error& e) {
       throw sentence_error("cannot read '" + part +
                            "': expected 'a maximum thrust of Q', 'a specific impulse of Q', 'an initial mass of Q' "
