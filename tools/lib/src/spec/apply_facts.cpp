@@ -156,6 +156,14 @@ void Builder::apply_fact(const detail::Fact& fact) {
     case Field::Lightness:  // the ratio of the sail's acceleration to the Sun's gravity, here at 1 AU
       sail(v * astro::MU_SUN_KM3_S2 / (astro::AU_KM * astro::AU_KM) * 1e6, 1.0);
       break;
+    case Field::DepartureWindow:
+      once("the departure window");
+      if (!fact.absolute[0] || !fact.absolute[1])
+        throw sentence_error(
+            "a departure window reads in dates ('between 2030-01-01 and 2030-03-01'): days count "
+            "from the departure, which the window makes free");
+      departure_window_dates(fact.value[0], fact.value[1]);
+      break;
     case Field::Window:
     case Field::Stay:
     case Field::Drop:

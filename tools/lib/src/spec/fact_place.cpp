@@ -83,7 +83,7 @@ std::vector<Named> SentenceReader::fact_words(const Clause& c, const ClauseWords
     named.push_back({{{Field::Epoch, Dimension::Time, false, false, true}}, w.words, false});
   for (const auto& q : c.quantities)
     if (q.window) {
-      Candidate window{Field::Window, Dimension::Time, false, false};
+      Candidate window{departure_window ? Field::DepartureWindow : Field::Window, Dimension::Time, false, false};
       window.window = true;
       named.push_back({{window}, w.words, false});
       break;

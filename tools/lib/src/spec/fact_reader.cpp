@@ -73,6 +73,20 @@ void SentenceReader::find_kind() {
     }
     for (const auto& q : c.quantities) event_sentence = event_sentence || q.window || q.day;
   }
+  // "The spacecraft leaves Earth between 2032-01-10 and 2032-02-20": a window of the departure alone,
+  // no event on the way.
+  bool window = false, day = false;
+  for (const auto& c : clauses)
+    for (const auto& q : c.quantities) {
+      window = window || q.window;
+      day = day || q.day;
+    }
+  departure_window =
+      window && !day && event_kind.empty() && !rendezvous_word && sentence_roles == std::set<int>{kInitial};
+  for (const auto& c : clauses)
+    for (const auto& m : c.mentions)
+      departure_window = departure_window && !(m.meaning.slot == Slot::Fact && on_the_way(m.meaning.field));
+  if (departure_window) event_sentence = false;
 }
 
 // The body of orbital elements or of an event on the way.

@@ -109,6 +109,7 @@ class SentenceReader {
   std::set<std::string> bodies;
   bool elements = false, central_named = false, central_unnamed = false, event_sentence = false,
        rendezvous_word = false;
+  bool departure_window = false;  // a window in a sentence about the departure alone: when it may depart
   std::string event_kind, unplaced, objective_words;
 
   // ---- the clauses, the kind of sentence, its bodies (fact_reader.cpp) ----

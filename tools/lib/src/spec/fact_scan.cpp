@@ -333,6 +333,31 @@ Quantity read_number(const std::string& s, std::size_t& i, std::string text) {
   return q;
 }
 
+// "400 days after 1 January 2000", "2 weeks before MJD 60000": a duration `q` just read, then
+// "after" or "before" and a date, as that date; i moves past it. False when no date follows.
+bool relative_date(const std::string& s, std::size_t& i, Quantity& q) {
+  static const std::regex side(R"(^ (after|before) )", std::regex::icase);
+  std::smatch m;
+  const std::string rest = s.substr(i);
+  Quantity date;
+  std::size_t length = 0;
+  if (q.unit.empty() || !std::regex_search(rest, m, side) || !(length = read_date(rest.substr(m.length(0)), date)))
+    return false;
+  double days = 0;
+  try {
+    days = q.nums[0] * to_spec_unit(Dimension::Time, q.unit);
+  } catch (const std::invalid_argument&) {
+    return false;  // "5 km after ...": no duration
+  }
+  q.date = true;
+  q.nums = {date.nums[0] + (lowercase(m[1].str()) == "after" ? days : -days)};
+  q.written = q.written + " " + m[1].str() + " " + date.texts[0];
+  q.texts = {q.written};
+  q.unit.clear();
+  i += m.length(0) + length;
+  return true;
+}
+
 // The word at s[i] (a possessive "'s" dropped), or "day N" as a day counted from the epoch; i moves
 // past it, and past a hyphen joining it to the next word.
 Token read_word(const std::string& s, std::size_t& i) {
@@ -366,6 +391,12 @@ Token read_word(const std::string& s, std::size_t& i) {
 
 }  // namespace
 
+std::optional<double> epoch_of(const std::string& text) {
+  const std::vector<Token> tokens = scan(text);
+  if (tokens.size() != 1 || tokens[0].kind != Token::Value || !tokens[0].q.date) return std::nullopt;
+  return tokens[0].q.nums[0];
+}
+
 std::vector<Token> scan(const std::string& sentence) {
   // Superscripts as written in many texts: km³/s² is km^3/s^2.
   // Ω and ω are the node and the argument of periapsis, ° is deg.
@@ -393,7 +424,9 @@ std::vector<Token> scan(const std::string& sentence) {
       out.push_back({Token::Value, "", read_vector(s, i)});
     } else if (!prev_word() && (std::isdigit(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '+') &&
                std::regex_search(rest, m, number_pattern())) {
-      out.push_back({Token::Value, "", read_number(s, i, m.str(0))});
+      Quantity q = read_number(s, i, m.str(0));
+      relative_date(s, i, q);
+      out.push_back({Token::Value, "", q});
     } else if (c == ',' || c == ';' || c == '(' || c == ')') {
       out.push_back({Token::Separator, "", {}});
       ++i;

@@ -3,6 +3,7 @@
 // quantities: numbers and vectors with the unit written after them, epochs (calendar dates, MJD,
 // MJD2000, JD) and windows between two of them.
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,5 +42,9 @@ double day_number_epoch(const std::string& scale, double value, const std::strin
 
 // The tokens of `sentence`; throws facts_error on a character, date or unit it cannot read.
 std::vector<Token> scan(const std::string& sentence);
+
+// `text` read whole as one date (a calendar date, a day number on a named scale, "N days after
+// DATE"), as MJD2000; none when it is not one date. Throws facts_error as scan does.
+std::optional<double> epoch_of(const std::string& text);
 
 }  // namespace helios::spec::detail

@@ -35,6 +35,7 @@ const FactInfo& fact_info(Field f) {
     add({Field::Rf, "the final position", "", D::Length, "", Check::None});
     add({Field::Vf, "the final velocity", "", D::Speed, "", Check::None});
     add({Field::Window, "the event's window", "", D::Time, "", Check::None});
+    add({Field::DepartureWindow, "the departure window", "", D::Time, "", Check::None});
     add({Field::Stay, "the stay", "", D::Time, "", Check::NonNegative});
     add({Field::Drop, "the lander's mass", "", D::Mass, "", Check::Positive});
     add({Field::Rmin, "the lowest periapsis radius", "", D::Length, "", Check::Positive});

@@ -106,6 +106,7 @@ const std::map<std::string, std::string>& extras() {
       {"scaled_orbits",
        "The spacecraft departs at t = 0 days from position [2, 0, 0] km with velocity [0, 0.7, 0] km/s.\n"
        "At the final time the spacecraft is on the circular equatorial orbit of radius 3 km."},
+      {"window_epoch", "The spacecraft departs at MJD2000 11100 from Earth."},
       {"from_earth", "The spacecraft departs from Earth."},
       {"earth_j2", "The central body is the Earth with J2 coefficient 1.08262668e-3."},
   };

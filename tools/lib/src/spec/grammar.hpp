@@ -148,6 +148,7 @@ struct Builder {
   std::optional<Where> table_intro;  // a sentence announcing a table, waiting for its header
   std::string table_about;
   Where free_departure_where;
+  std::optional<std::pair<double, double>> window_dates;  // a departure window between two dates [MJD2000]
   bool departure_at_t = false;
   std::optional<Where> windowless_rendezvous;  // "The spacecraft rendezvouses with Mars.", read as the final one
   // "arrives at t = Q" [days] or "arrives on DATE" [MJD2000], made a time of flight at the end
@@ -216,6 +217,9 @@ struct Builder {
   std::optional<double> departure_period_days() const;
   void set_epoch(double mjd2000);
   void free_departure(double lo, double hi, double mjd2000);
+  // A departure window between two dates [MJD2000], made the epoch's window once the text is read.
+  void departure_window_dates(double lo, double hi);
+  void finish_departure_window();
 
   // ---- targets, events on the way, the checks of the whole text, constraints (events.cpp) ----
   // "day N" (days after the epoch), "MJD N" or "MJD2000 N" (absolute).

@@ -124,6 +124,7 @@ json parse_problem_text(const std::string& text, const std::string& source) {
     b.read(item);
   }
   check_complete(b, source);
+  b.finish_departure_window();
   b.resolve_targets();
   b.finish_time();
   b.finish_events();

@@ -117,6 +117,29 @@ void Builder::set_epoch(double mjd2000) {
   if (!time.contains("epoch_mjd2000")) time["epoch_mjd2000"] = mjd2000;
 }
 
+void Builder::departure_window_dates(double lo, double hi) {
+  if (!(hi > lo)) throw sentence_error("the departure window is empty: its start must come before its end");
+  window_dates = {lo, hi};
+  free_departure_where = here;
+}
+
+// The window between two dates about the departure epoch the text states, else about its start.
+void Builder::finish_departure_window() {
+  if (!window_dates) return;
+  const auto [lo, hi] = *window_dates;
+  if (time.contains("epoch_mjd2000")) {
+    const double epoch = time["epoch_mjd2000"].get<double>();
+    if (epoch < lo || epoch > hi)
+      fail(free_departure_where, "the departure epoch MJD2000 " + io::short_number(epoch) +
+                                     " lies outside the departure window (MJD2000 " + io::short_number(lo) + " to " +
+                                     io::short_number(hi) + "): state one epoch inside it, or none");
+  }
+  const double epoch = time.value("epoch_mjd2000", lo);
+  Where stated = free_departure_where;
+  free_departure(lo - epoch, hi - epoch, epoch);
+  free_departure_where = stated;
+}
+
 void Builder::free_departure(double lo, double hi, double mjd2000) {
   set_epoch(mjd2000);
   time["departure"] = "free";
