@@ -298,14 +298,20 @@ TEST(ParseEvents, ElementsTableErrors) {
       "|\n";
   const std::string row = "| Nikko | 2.2375176 | 0.1052183 | 5.70117 | 71.94548 | 2.08462 | 287.3844555 | 56800 |\n";
   const std::string events = kDeparture + "The spacecraft flies by Nikko between day 100 and day 200.\n";
-  // Columns in another order.
-  std::string swapped = header;
+  // Columns in another order are read by their names; a name it does not know is refused.
+  std::string swapped = header, swapped_row = row;
   swapped.replace(swapped.find("| e | i [deg] |"), 15, "| i [deg] | e |");
-  EXPECT_EQ(error_of(tour(swapped + row + events)),
-            "problem.txt:4: cannot use table row \"" + swapped.substr(0, swapped.size() - 1) +
-                "\": column 3 is 'i [deg]': the header reads | body | a [AU] | e | i [deg] | node [deg] | argument "
-                "of perihelion [deg] | mean anomaly [deg] | epoch [MJD] | (a in AU or km, angles in deg or rad, 'true "
-                "anomaly' instead of 'mean anomaly', epoch in MJD or MJD2000)");
+  swapped_row.replace(swapped_row.find("| 0.1052183 | 5.70117 |"), 23, "| 5.70117 | 0.1052183 |");
+  EXPECT_EQ(valid(tour(swapped + swapped_row + events))["constraints"],
+            valid(tour(header + row + events))["constraints"]);
+  std::string unknown = header;
+  unknown.replace(unknown.find("| e |"), 5, "| ecc |");
+  EXPECT_EQ(error_of(tour(unknown + row + events)),
+            "problem.txt:4: cannot use table row \"" + unknown.substr(0, unknown.size() - 1) +
+                "\": column 3 is 'ecc': the header reads e.g. | body | a [AU] | e | i [deg] | node [deg] | argument "
+                "of perihelion [deg] | mean anomaly [deg] | epoch [MJD] | (columns in any order; a in AU or km, "
+                "angles in deg or rad, 'true anomaly' instead of 'mean anomaly', epoch in MJD or MJD2000; units in "
+                "[ ] or ( ))");
   expect_error(tour(row + events), "problem.txt:4: cannot use table row \"| Nikko");
   expect_error(tour(row + events), "needs its header line just above it");
   std::string short_row = row;

@@ -136,6 +136,7 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
   std::vector<Candidate> cands;
   const Quantity* number = nullptr;
   int numbers = 0;
+  bool bounded = false;  // a bound or a minimization: a time of flight so said is free, not fixed
   for (std::size_t i = 0; i < tokens.size(); ++i) {
     if (tokens[i].kind == Token::Value) {
       ++numbers;
@@ -149,6 +150,7 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
       phrase += (len == 1 ? "" : " ") + tokens[i + len - 1].word;
       const auto it = phrases().find(phrase);
       if (it == phrases().end()) continue;
+      bounded = bounded || it->second.bound || it->second.verb == kMinimize;
       const Slot sl = it->second.slot;
       const bool named_fact = sl == Slot::Thrust || sl == Slot::Isp || sl == Slot::Mass || sl == Slot::InitialMass ||
                               sl == Slot::FinalMass || sl == Slot::Tof || sl == Slot::Mu;
@@ -159,7 +161,8 @@ std::string rough_suggestion(const std::vector<Token>& tokens) {
   }
   if (cands.size() != 1 || numbers != 1 || !number) return "";
   if (cands[0].exhaust) return "";
-  return suggestion(cands[0].field, *number, cands[0].dim);
+  const Field field = cands[0].field == Field::Tof && bounded ? Field::TofMax : cands[0].field;
+  return suggestion(field, *number, cands[0].dim);
 }
 
 }  // namespace helios::spec::detail

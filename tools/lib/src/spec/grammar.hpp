@@ -122,11 +122,13 @@ struct Endpoint {
   std::optional<double> max_speed;
 };
 
-// Columns of an elements table: unit factors of a and the angles, which anomaly, which epoch scale.
+// Columns of an elements table, in the order written: what each holds ("body", "a", "e", "i", "raan",
+// "argp", "mean" or "true", "epoch") and its factor to the spec's unit (a in AU, angles in deg); the
+// epoch's scale (MJD or MJD2000).
 struct TableColumns {
-  double a_factor = 1;
-  std::array<double, 4> angle_factor{};  // i, node, argp, anomaly
-  std::string anomaly, epoch_scale;
+  std::vector<std::string> fields;
+  std::vector<double> factors;
+  std::string epoch_scale;
 };
 
 inline constexpr const char* kTableHeader =

@@ -9,8 +9,12 @@
 namespace helios::spec::grammar {
 
 // Which element a name in an orbit sentence or a table header stands for: a, e, i, raan, argp,
-// mean or true (the anomaly), or "" if none.
-std::string element_field(const std::string& name) {
+// mean or true (the anomaly), or "" if none. Omega (Ω) is the node, omega (ω, w) the argument.
+std::string element_field(const std::string& written) {
+  const std::string name = trimmed(written);
+  static const std::map<std::string, std::string> symbols = {
+      {"Omega", "raan"}, {"\xCE\xA9", "raan"}, {"omega", "argp"}, {"\xCF\x89", "argp"}, {"\xCE\xBD", "true"}};
+  if (symbols.count(name)) return symbols.at(name);
   static const std::map<std::string, std::string> fields = {{"a", "a"},
                                                             {"semi-major axis", "a"},
                                                             {"semimajor axis", "a"},
@@ -20,16 +24,21 @@ std::string element_field(const std::string& name) {
                                                             {"inclination", "i"},
                                                             {"node", "raan"},
                                                             {"raan", "raan"},
+                                                            {"om", "raan"},
                                                             {"ascending node", "raan"},
                                                             {"longitude of the ascending node", "raan"},
                                                             {"right ascension of the ascending node", "raan"},
+                                                            {"w", "argp"},
+                                                            {"argp", "argp"},
                                                             {"argument of perihelion", "argp"},
                                                             {"argument of periapsis", "argp"},
                                                             {"argument of pericenter", "argp"},
                                                             {"argument of pericentre", "argp"},
+                                                            {"m", "mean"},
                                                             {"mean anomaly", "mean"},
+                                                            {"nu", "true"},
                                                             {"true anomaly", "true"}};
-  const auto it = fields.find(lowercase(trimmed(name)));
+  const auto it = fields.find(lowercase(name));
   return it == fields.end() ? "" : it->second;
 }
 
@@ -67,7 +76,8 @@ std::string Builder::element_label(const std::string& field) {
 }
 
 // Factor to the spec unit of an element: a in AU, angles in deg, e a pure number.
-double Builder::element_unit(const std::string& field, const std::string& unit) {
+double Builder::element_unit(const std::string& field, const std::string& written) {
+  const std::string unit = written == "\xC2\xB0" ? "deg" : written;  // °
   if (field == "e") {
     if (!unit.empty()) throw sentence_error("the eccentricity is a pure number, not in '" + unit + "'");
     return 1.0;
@@ -94,9 +104,31 @@ std::vector<std::string> Builder::cells_of(const std::string& row) {
   return cells;
 }
 
+namespace {
+
+// A header cell's name and unit: "a [AU]", "i (deg)", "e".
+std::pair<std::string, std::string> name_and_unit(const std::string& cell) {
+  static const std::regex cell_re(R"(([^\[(]*?)\s*(?:[\[(]\s*([^\])]*?)\s*[\])])?)");
+  std::smatch m;
+  if (!std::regex_match(cell, m, cell_re)) return {cell, ""};
+  return {trimmed(m[1].str()), m[2].str()};
+}
+
+bool is_body_column(const std::string& cell) {
+  const std::string name = lowercase(name_and_unit(cell).first);
+  return name == "body" || name == "name" || name == "asteroid" || name == "object" || name == "target";
+}
+
+}  // namespace
+
 bool Builder::is_table_header(const std::string& row) {
-  static const std::regex first = re(R"(\|\s*(?:body|name)\s*\|.*)");
-  return std::regex_match(row, first);
+  if (row.empty() || row.front() != '|') return false;
+  try {
+    const auto cells = cells_of(row);
+    return std::any_of(cells.begin(), cells.end(), is_body_column);
+  } catch (const sentence_error&) {
+    return false;
+  }
 }
 
 void Builder::table_line(const std::string& row) {
@@ -117,52 +149,65 @@ void Builder::table_line(const std::string& row) {
     return;
   }
   table_separator_allowed = false;
-  if (cells.size() != 8)
-    throw sentence_error("the row has " + std::to_string(cells.size()) + " cells where the header has 8");
+  const TableColumns& t = *table;
+  if (cells.size() != t.fields.size())
+    throw sentence_error("the row has " + std::to_string(cells.size()) + " cells where the header has " +
+                         std::to_string(t.fields.size()));
   static const std::regex num_re("\\s*" + kNum + "\\s*");
-  for (std::size_t k = 1; k < cells.size(); ++k)
+  std::map<std::string, double> v;
+  std::string body, epoch;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    if (t.fields[k] == "body") {
+      body = cells[k];
+      continue;
+    }
     if (!std::regex_match(cells[k], num_re))
       throw sentence_error("cell " + std::to_string(k + 1) + " '" + cells[k] + "' is not a number");
-  const TableColumns& t = *table;
-  std::map<std::string, double> v = {
-      {"a", number(cells[1]) * t.a_factor},           {"e", number(cells[2])},
-      {"i", number(cells[3]) * t.angle_factor[0]},    {"raan", number(cells[4]) * t.angle_factor[1]},
-      {"argp", number(cells[5]) * t.angle_factor[2]}, {t.anomaly, number(cells[6]) * t.angle_factor[3]}};
-  define_orbit(cells[0], table_about, elements_json(mjd2000_of(t.epoch_scale, cells[7]), v));
+    if (t.fields[k] == "epoch")
+      epoch = cells[k];
+    else
+      v[t.fields[k]] = number(cells[k]) * t.factors[k];
+  }
+  define_orbit(body, table_about, elements_json(mjd2000_of(t.epoch_scale, epoch), v));
 }
 
+// The columns by name, in any order: the body, the six elements (one anomaly, mean or true) with their
+// units in brackets or parentheses, and the epoch in MJD or MJD2000.
 TableColumns Builder::table_header(const std::vector<std::string>& cells) {
-  const std::string layout = std::string("the header reads ") + kTableHeader +
-                             " (a in AU or km, angles in deg or rad, 'true anomaly' instead of 'mean anomaly', "
-                             "epoch in MJD or MJD2000)";
-  if (cells.size() != 8)
-    throw sentence_error("the header has " + std::to_string(cells.size()) + " columns, not 8: " + layout);
-  static const std::regex cell_re(R"(([^\[]*?)\s*(?:\[\s*([^\]]*?)\s*\])?)");
-  static const std::array<std::string, 8> expected = {"body", "a", "e", "i", "raan", "argp", "anomaly", "epoch"};
+  const std::string layout = std::string("the header reads e.g. ") + kTableHeader +
+                             " (columns in any order; a in AU or km, angles in deg or rad, 'true anomaly' instead of "
+                             "'mean anomaly', epoch in MJD or MJD2000; units in [ ] or ( ))";
   TableColumns t;
-  for (std::size_t k = 1; k < 8; ++k) {
-    std::smatch m;
-    std::regex_match(cells[k], m, cell_re);
-    const std::string key = lowercase(m[1].str()), unit = m[2].str();
-    std::string field = key == "epoch" ? "epoch" : element_field(key);
-    if (field == "mean" || field == "true") {
-      t.anomaly = field;
-      field = "anomaly";
-    }
-    if (field != expected[k])
-      throw sentence_error("column " + std::to_string(k + 1) + " is '" + cells[k] + "': " + layout);
-    if (field == "epoch") {
-      if (lowercase(unit) != "mjd" && lowercase(unit) != "mjd2000")
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const auto [name, unit] = name_and_unit(cells[k]);
+    const std::string key = lowercase(name);
+    std::string field = is_body_column(cells[k]) ? "body" : element_field(name);
+    double factor = 1;
+    if (key == "epoch" || key == "mjd" || key == "mjd2000") {
+      field = "epoch";
+      t.epoch_scale = key == "epoch" ? unit : name;
+      if (lowercase(t.epoch_scale) != "mjd" && lowercase(t.epoch_scale) != "mjd2000")
         throw sentence_error("the epoch column must say [MJD] or [MJD2000], got '" + cells[k] + "'");
-      t.epoch_scale = unit;
-    } else if (field == "a") {
-      t.a_factor = element_unit("a", unit);
-    } else if (field == "e") {
-      element_unit("e", unit);
-    } else {
-      t.angle_factor[k - 3] = element_unit(field, unit);
+    } else if (field.empty()) {
+      throw sentence_error("column " + std::to_string(k + 1) + " is '" + cells[k] + "': " + layout);
+    } else if (field != "body") {
+      factor = element_unit(field, unit);
     }
+    const auto anomaly = [](const std::string& f) { return f == "mean" || f == "true"; };
+    for (const auto& seen : t.fields)
+      if (seen == field || (anomaly(seen) && anomaly(field)))
+        throw sentence_error("the header gives " + (anomaly(field) ? std::string("the anomaly") : "'" + field + "'") +
+                             " twice: " + layout);
+    t.fields.push_back(field);
+    t.factors.push_back(factor);
   }
+  std::string missing;
+  for (const char* f : {"body", "a", "e", "i", "raan", "argp", "epoch"})
+    if (std::find(t.fields.begin(), t.fields.end(), f) == t.fields.end())
+      missing += std::string(missing.empty() ? "" : ", ") + f;
+  if (std::none_of(t.fields.begin(), t.fields.end(), [](const std::string& f) { return f == "mean" || f == "true"; }))
+    missing += std::string(missing.empty() ? "" : ", ") + "an anomaly";
+  if (!missing.empty()) throw sentence_error("the header lacks " + missing + ": " + layout);
   return t;
 }
 

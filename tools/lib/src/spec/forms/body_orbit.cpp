@@ -1,6 +1,7 @@
 // "NAME moves on a Keplerian orbit about the Sun with a = Q, e = N, i = Q, node = Q, argument of
 // perihelion = Q and mean anomaly = Q at MJD N.": a body given by its elements (true anomaly may
-// replace the mean one; the epoch may be MJD2000).
+// replace the mean one; the epoch may be MJD2000; Omega or Ω the node, omega, ω or w the argument, M
+// the mean anomaly, nu or ν the true one; angles in deg, rad or °).
 #include "../form.hpp"
 #include "../grammar.hpp"
 
@@ -13,7 +14,7 @@ void read(Builder& b, const std::smatch& m) {
     throw sentence_error("the elements of " + name +
                          " need their epoch: end the sentence with 'at MJD N' or "
                          "'at MJD2000 N'");
-  static const std::regex clause = re(R"((.+?)\s*=\s*()" + kNum + R"()(?:\s*()" + kUnit + "))?");
+  static const std::regex clause = re(R"((.+?)\s*=\s*()" + kNum + R"()(?:\s*()" + kUnit + "|\xC2\xB0))?");
   std::map<std::string, double> v;
   for (const auto& part : clauses_of(m[3].str())) {
     std::smatch c;
@@ -47,6 +48,12 @@ std::vector<Form> body_orbit() {
          "planets -arrival +to_azusa",
          R"~({"/arrival/target": {"kind": "orbit", "body": "Azusa", "elements": {"epoch_mjd2000": 400, "a_AU": 2.6,
                  "e": 0.12, "i_deg": 3.5, "raan_deg": 120, "argp_deg": 40, "true_anomaly_deg": 10}}})~"},
+        {"Azusa moves on a Keplerian orbit about the Sun with a = 2.6 AU, e = 0.12, i = 3.5\xC2\xB0, Omega = "
+         "120\xC2\xB0, "
+         "omega = 40\xC2\xB0 and M = 10\xC2\xB0 at MJD2000 400.",
+         "planets -arrival +to_azusa",
+         R"~({"/arrival/target/elements": {"epoch_mjd2000": 400, "a_AU": 2.6, "e": 0.12, "i_deg": 3.5,
+             "raan_deg": 120, "argp_deg": 40, "mean_anomaly_deg": 10}})~"},
         {"Azusa moves on a Keplerian orbit about the Sun with a = 2.6 AU, e = 0.12, i = 3.5 deg, node = 120 deg "
          "and argument of perihelion = 40 deg at MJD2000 400.",
          "planets -arrival +to_azusa", R"~({"error": "the orbit of Azusa lacks its anomaly"})~"}}}};
