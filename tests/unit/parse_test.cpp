@@ -1347,4 +1347,57 @@ TEST(ParseOrbitTarget, ReadsAFinalStateObjectiveAndAFullThrottleEngine) {
       "objective");
 }
 
+// The problems issue 47 found accepted: each is refused at its sentence, saying what cannot be.
+TEST(ParseWhatCannotBe, PlacesInsideTheCentralBody) {
+  has(error_of(with_final_orbit("At the final time the spacecraft is on the circular orbit of radius 3000 km.")),
+      "problem.txt:7: cannot use sentence \"At the final time the spacecraft is on the circular orbit of radius 3000 "
+      "km\": the final orbit's radius is 3000 km from the centre of the Earth, 3378.137 km below its surface");
+  // written in km, it was not meant in km: no "write 3000000 km"
+  EXPECT_EQ(error_of(with_final_orbit("At the final time the spacecraft is on the circular orbit of radius 3000 km."))
+                .find("if it was meant in km"),
+            std::string::npos);
+  has(error_of(with_final_orbit("At the final time the spacecraft is on the circular orbit of radius 42165 m.")),
+      "if it was meant in km, write 42165 km");
+  has(error_of(with_final_orbit("At the final time the spacecraft is on an orbit with semi-major axis 26,571 km and "
+                                "eccentricity 0.85.")),
+      "the final orbit's periapsis (a = 26571 km, e = 0.85) is 3985.65 km from the centre of the Earth, 2392.487 km "
+      "below its surface");
+  has(error_of(replaced(scenario("S14"), "position [-46500, 0, 0] km", "position [-4650, 0, 0] km")),
+      "problem.txt:6: cannot use sentence \"The spacecraft departs at t = 0 days from position [-4650, 0, 0] km");
+  has(error_of(replaced(scenario("S14"), "position [-46500, 0, 0] km", "position [-4650, 0, 0] km")),
+      "the initial position is 4650 km from the centre of the Earth, 1728.137 km below its surface (equatorial "
+      "radius 6378.137 km): a radius counts from the centre (an altitude");
+  // an orbit about the Earth is no orbit about the Sun
+  has(error_of(replaced(s01_text(),
+                        "At the final time the spacecraft rendezvouses with position [-172682023, 176959469, 7948912] "
+                        "km and velocity [-16.427384, -14.860506, 9.21486e-2] km/s.",
+                        "At the final time the spacecraft is on the circular orbit of radius 42164 km about the "
+                        "Earth.")),
+      "the orbit is about Earth, but the central body is Sun");
+}
+
+TEST(ParseWhatCannotBe, ConstantsFarFromTheBodysAndConstantObjectives) {
+  const std::string s14 = scenario("S14");
+  has(error_of(replaced(s14, "398600.47 km^3/s^2", "398600.47 m^3/s^2")),
+      "problem.txt:4: cannot use sentence \"The central body is the Earth with gravitational parameter 398600.47 "
+      "m^3/s^2\": the gravitational parameter of the Earth is known: 398600.4418 km^3/s^2, and 0.00039860047 "
+      "km^3/s^2 is 999999929.3 times less");
+  // on purpose: a scaled Earth takes the text's constants
+  const json scaled = parse(replaced(replaced(s14, "the Earth with gravitational parameter 398600.47 km^3/s^2",
+                                              "a scaled Earth with gravitational parameter 398600.47 m^3/s^2"),
+                                     "The time of flight is free, at most 2 days.", "The time of flight is free."));
+  EXPECT_FALSE(scaled["central_body"].contains("radius_km"));
+  has(error_of(replaced(s14, "The time of flight is free, at most 2 days.", "The time of flight is 2 days.")),
+      "problem.txt:9: cannot use sentence \"Minimize the time of flight\": the time of flight is fixed (2 d), so "
+      "minimizing it minimizes a constant");
+  has(error_of(replaced(replaced(s14, "The time of flight is free, at most 2 days.", "The time of flight is 2 days."),
+                        "Minimize the time of flight.", "Maximize the final radius.")),
+      "fixes the final radius, so maximizing it maximizes a constant");
+  // a window in dates with no calendar epoch anywhere
+  has(error_of(replaced(s14, "The time of flight is free, at most 2 days.",
+                        "The time of flight is free, at most 400 days.\nThe spacecraft passes through the circular "
+                        "orbit of radius 30000 km between MJD2000 100 and MJD2000 101.")),
+      "its window is given as dates, but the text gives no calendar epoch");
+}
+
 }  // namespace

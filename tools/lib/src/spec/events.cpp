@@ -21,7 +21,8 @@ json parse_target(const std::string& phrase) {
     const std::size_t base = m[2].matched ? 2 : 10;
     return {{"kind", m[1].matched ? "coasting" : "fixed_state"},
             {"position_km", vector3(m, base, Dimension::Length)},
-            {"velocity_km_s", vector3(m, base + 4, Dimension::Speed)}};
+            {"velocity_km_s", vector3(m, base + 4, Dimension::Speed)},
+            {"length_unit", m[base + 3].str()}};
   }
   if (phrase.find('[') == std::string::npos) {
     try {
@@ -232,9 +233,16 @@ void Builder::check_event_ids(const std::vector<std::string>& ids) const {
   }
 }
 
+// A target as the spec keeps it: without the unit its length was written in, kept for messages.
+json spec_target(json target) {
+  target.erase("length_unit");
+  return target;
+}
+
 json Builder::constraints() {
   json out = json::array();
-  out.push_back({{"id", "departure"}, {"kind", "initial_state"}, {"at", "t0"}, {"target", departure->target}});
+  out.push_back(
+      {{"id", "departure"}, {"kind", "initial_state"}, {"at", "t0"}, {"target", spec_target(departure->target)}});
   std::map<std::string, int> visits;
   std::vector<std::string> ids;
   for (const auto& e : events) {
@@ -251,7 +259,7 @@ json Builder::constraints() {
     json c = {{"id", id},
               {"kind", e.kind},
               {"at", "interior"},
-              {"target", e.target},
+              {"target", spec_target(e.target)},
               {"window_days", json::array({e.window_lo, e.window_hi})}};
     if (e.stay) c["stay_days"] = *e.stay;
     if (e.drop) c["mass_drop_kg"] = *e.drop;
@@ -260,7 +268,7 @@ json Builder::constraints() {
     if (e.max_speed) c["max_relative_speed_km_s"] = *e.max_speed;
     out.push_back(c);
   }
-  json last = {{"id", "arrival"}, {"kind", arrival->kind}, {"at", "tf"}, {"target", arrival->target}};
+  json last = {{"id", "arrival"}, {"kind", arrival->kind}, {"at", "tf"}, {"target", spec_target(arrival->target)}};
   if (arrival->max_speed) last["max_relative_speed_km_s"] = *arrival->max_speed;
   out.push_back(last);
   return out;

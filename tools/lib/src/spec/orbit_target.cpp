@@ -67,6 +67,7 @@ struct OrbitPhrase {
     const auto radius = [&](const std::smatch& m) {
       set("semi_major_axis_km", quantity(m, 1, Dimension::Length), m.str());
       set("eccentricity", 0, m.str());
+      t["length_unit"] = m[2].str();
     };
     take_all(rest, words("(?:of |with )?(?:a )?radius (?:of )?" + q), radius);
     take_all(rest, words("(?:of )?" + q + " (?:in )?radius"), radius);
@@ -84,8 +85,10 @@ struct OrbitPhrase {
                altitude(m);
                if (m[3].matched && lowercase(m[3].str()) != "central") t["about"] = m[3].str();
              });
-    take_all(rest, words("(?:a )?semi-?major axis (?:of |= ?)?" + q),
-             [&](const std::smatch& m) { set("semi_major_axis_km", quantity(m, 1, Dimension::Length), m.str()); });
+    take_all(rest, words("(?:a )?semi-?major axis (?:of |= ?)?" + q), [&](const std::smatch& m) {
+      set("semi_major_axis_km", quantity(m, 1, Dimension::Length), m.str());
+      t["length_unit"] = m[2].str();
+    });
   }
 
   void angles() {
@@ -177,7 +180,7 @@ std::string without_thousands(const std::string& text) {
 json in_order(const json& t) {
   json ordered = {{"kind", "orbital_elements"}};
   for (const char* key : {"geostationary", "semi_major_axis_km", "altitude_km", "eccentricity", "inclination_deg",
-                          "raan_deg", "argp_deg", "about", "free"})
+                          "raan_deg", "argp_deg", "about", "free", "length_unit"})
     if (t.contains(key)) ordered[key] = t[key];
   return ordered;
 }

@@ -19,15 +19,17 @@ std::string km(double v) {
   return io::short_number(v) + " km";
 }
 
-// Why a radius `r_km` from the centre lies at or below the surface of radius `surface_km`, with the
-// length meant in km if it was written in metres.
-std::string below(const std::string& what, double r_km, const std::string& body, double surface_km) {
+// Why a radius `r_km` from the centre lies at or below the surface of radius `surface_km`. A length
+// written in a unit smaller than the km (`unit`, "" when not known) may have been meant in km.
+std::string below(const std::string& what, double r_km, const std::string& body, double surface_km,
+                  const std::string& unit = "") {
   std::string why =
       what + " is " + km(r_km) + " from the centre of " + body + ", " +
       (r_km > 0 && r_km < surface_km ? km(surface_km - r_km) + " below its surface" : "not above its surface") +
       " (equatorial radius " + km(surface_km) + "): a radius counts from the centre";
-  if (r_km > 0 && r_km < surface_km && r_km * 1000 > surface_km)
-    why += "; if it was meant in km, write " + km(r_km * 1000);
+  const double km_per_unit = unit.empty() ? 1.0 : to_spec_unit(Dimension::Length, unit);
+  if (km_per_unit < 1 && r_km / km_per_unit > surface_km)
+    why += "; if it was meant in km, write " + km(r_km / km_per_unit);
   else
     why += " (an altitude above the surface reads 'at an altitude of Q')";
   return why;
@@ -58,14 +60,15 @@ void Builder::check_physics() const {
     if (t.value("kind", "") != "orbital_elements" || !t.contains("semi_major_axis_km")) return;
     const double a = t["semi_major_axis_km"].get<double>(), e = t.value("eccentricity", 0.0);
     if (a * (1 - e) > r_surface) return;
+    const std::string unit = t.value("length_unit", "");
     fail(w, e > 0 ? below(what + "'s periapsis (a = " + km(a) + ", e = " + io::short_number(e) + ")", a * (1 - e), body,
-                          r_surface)
-                  : below(what + "'s radius", a, body, r_surface));
+                          r_surface, unit)
+                  : below(what + "'s radius", a, body, r_surface, unit));
   };
   const auto position = [&](const json& t, const Where& w, const std::string& what) {
     if (!t.contains("position_km")) return;
     const double r = norm(t["position_km"]);
-    if (r <= r_surface) fail(w, below(what, r, body, r_surface));
+    if (r <= r_surface) fail(w, below(what, r, body, r_surface, t.value("length_unit", "")));
   };
   orbit(departure->target, departure->where, "the departure orbit");
   position(departure->target, departure->where, "the initial position");
