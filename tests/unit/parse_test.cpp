@@ -1347,6 +1347,105 @@ TEST(ParseOrbitTarget, ReadsAFinalStateObjectiveAndAFullThrottleEngine) {
       "objective");
 }
 
+// The sentences issue 47 quotes as reasonable, read to the spec they state.
+TEST(ParseEverydayWords, OrbitsAsPeopleWriteThem) {
+  const json geo = json::parse(R"({"kind": "orbital_elements", "semi_major_axis_km": 42165, "eccentricity": 0,
+                                   "inclination_deg": 0})");
+  for (const char* sentence :
+       {"The spacecraft must end on a circular equatorial orbit with a radius of 42165 km.",
+        "The final orbit is circular and equatorial with radius 42165 km.",
+        "At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km (any longitude).",
+        "At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km; where on that "
+        "orbit it arrives is free.",
+        "The spacecraft must end on a circular equatorial orbit of radius 42,165 km."})
+    EXPECT_EQ(final_target(sentence), geo) << sentence;
+  const json altitude =
+      final_target("The spacecraft must end on a circular equatorial orbit at an altitude of 35786 km.");
+  EXPECT_EQ(altitude["semi_major_axis_km"], 35786 + 6378.137);  // above the Earth's equatorial radius
+}
+
+TEST(ParseEverydayWords, TimesOfFlightWithoutOrWithABound) {
+  const std::string s14 = scenario("S14");
+  const std::string bound = "The time of flight is free, at most 2 days.";
+  // A minimum time with no upper bound: 95 % of m0 g0 Isp / T, said in the notes.
+  const double burn_days = 1500 * 9.80665 * 1994.7500254 / 60 / 86400;
+  for (const std::string& text : {replaced(s14, bound, ""), replaced(s14, bound, "The time of flight is free.")}) {
+    const json spec = parse(text);
+    helios::io::validate("spec", spec, "test");
+    EXPECT_EQ(spec["time"]["final_time"], "free");
+    EXPECT_EQ(spec["time"]["tof_min_days"], 0.0);
+    EXPECT_TRUE(IsClose(spec["time"]["tof_max_days"], 0.95 * burn_days, 0, 1e-12));
+    ASSERT_EQ(spec["notes"].size(), 1u);
+    has(spec["notes"][0], "95 % of the 5.660247493 days the engine at full thrust (60 N at 1994.750025 s)");
+  }
+  for (const char* sentence : {"The time of flight is at most 2 days.", "The transfer takes no more than 2 days."}) {
+    const json spec = parse(replaced(s14, bound, sentence));
+    EXPECT_EQ(spec["time"], parse(s14)["time"]) << sentence;
+    EXPECT_FALSE(spec.contains("notes"));
+  }
+  const std::string s02 = scenario("S02");
+  EXPECT_EQ(parse(replaced(s02, "The time of flight is free, between 50 days and 600 days.",
+                           "The time of flight is free between 50 and 600 days."))["time"],
+            parse(s02)["time"]);
+  EXPECT_EQ(parse(replaced(s02, "Minimize the time of flight.",
+                           "The spacecraft should arrive as early as possible."))["objective"]["kind"],
+            "minimum_time");
+  const json weeks = parse(replaced(s01_text(), "348.795 days", "six weeks"));
+  EXPECT_EQ(weeks["time"]["tof_days"], 42.0);
+}
+
+TEST(ParseEverydayWords, DepartureWindowsAndDatesInCalendarForms) {
+  const std::string s02 =
+      replaced(replaced(scenario("S02"), "The spacecraft departs at MJD2000 400 from Earth.",
+                        "The spacecraft departs from Earth."),
+               "The time of flight is free, between 50 days and 600 days.", "The time of flight is 300 days.");
+  const std::string objective = "Minimize the time of flight.";
+  const auto window = [&](const std::string& sentence) {
+    return parse(replaced(s02, objective, "Minimize the fuel consumption.\n" + sentence))["time"];
+  };
+  const json year = window("The departure date is free between 2030-01-01 and 2030-12-31.");
+  EXPECT_EQ(year["epoch_mjd2000"], 10958.0);  // 2030-01-01
+  EXPECT_EQ(year["t0_window_days"], json::array({0.0, 364.0}));
+  EXPECT_EQ(year["departure"], "free");
+  const json within = window("The departure date is free within 182 days of 2030-07-02.");
+  EXPECT_EQ(within["epoch_mjd2000"], 11140.0);  // 2030-07-02
+  EXPECT_EQ(within["t0_window_days"], json::array({-182.0, 182.0}));
+  const json after = parse(replaced(scenario("S02"), "The spacecraft departs at MJD2000 400 from Earth.",
+                                    "The spacecraft departs from Earth 400 days after 1 January 2000."));
+  EXPECT_EQ(after["time"], parse(scenario("S02"))["time"]);
+  // t = 0 needs no unit, as LANGUAGE.md says
+  EXPECT_EQ(parse(replaced(s01_text(), "at t = 0 days from", "at t = 0 from")), parse(s01_text()));
+}
+
+TEST(ParseEverydayWords, ElementsTablesListsAndTheCentralBodysConstants) {
+  const std::string s08 = scenario("S08");
+  const std::string header =
+      "| body | a [AU] | e | i [deg] | node [deg] | argument of perihelion [deg] | mean anomaly [deg] | epoch [MJD] |";
+  EXPECT_EQ(
+      parse(replaced(s08, header,
+                     "| Body | a (AU) | e | i (deg) | Ω (deg) | ω (deg) | M (deg) | Epoch (MJD) |"))["constraints"],
+      parse(s08)["constraints"]);
+  const std::string s10 = scenario("S10");
+  const std::string elements =
+      "with a = 1.52363312 AU, e = 0.09327933, i = 1.84785414 deg, node = 49.48935357 deg, argument of perihelion = "
+      "286.67090811 deg and true anomaly = 328.88755274 deg at MJD 60389.";
+  EXPECT_EQ(parse(replaced(s10, elements,
+                           "with a = 1.52363312 AU, e = 0.09327933, i = 1.84785414°, Omega = 49.48935357°, w = "
+                           "286.67090811° and nu = 328.88755274° at MJD 60389."))["constraints"],
+            parse(s10)["constraints"]);
+  const std::string s05 = scenario("S05");
+  const std::string central =
+      "The central body is the Earth with gravitational parameter 398600.4418 km^3/s^2, equatorial radius 6378.137 km "
+      "and J2 coefficient 1.08262668e-3.";
+  EXPECT_EQ(parse(replaced(s05, central,
+                           "The central body is the Earth (mu = 398600.4418 km^3/s^2, R = 6378.137 km, J2 = "
+                           "1.08262668e-3).")),
+            parse(s05));
+  EXPECT_EQ(parse(replaced(s05, "The dynamics include the J2 perturbation of the central body.",
+                           "The J2 perturbation of the Earth is modelled.")),
+            parse(s05));
+}
+
 // The problems issue 47 found accepted: each is refused at its sentence, saying what cannot be.
 TEST(ParseWhatCannotBe, PlacesInsideTheCentralBody) {
   has(error_of(with_final_orbit("At the final time the spacecraft is on the circular orbit of radius 3000 km.")),
