@@ -40,6 +40,13 @@ constexpr int kLastEpochYear = 2200;
 // when it falls outside the years above.
 double day_number_epoch(const std::string& scale, double value, const std::string& text);
 
+// The number written `s`; throws facts_error beyond the range of a double.
+double number_of(const std::string& s);
+
+// An epoch written at the start of `rest` (fact_dates.cpp): fills `q` with its MJD2000 in TDB and
+// returns the characters read, 0 when none starts there.
+std::size_t read_date(const std::string& rest, Quantity& q);
+
 // The tokens of `sentence`; throws facts_error on a character, date or unit it cannot read.
 std::vector<Token> scan(const std::string& sentence);
 
