@@ -29,7 +29,8 @@ BACKEND ?= builtin
 VERIFY_MODE ?= advisory
 # Prefix for the solve step, e.g. LAUNCH="srun -c2" on a cluster.
 LAUNCH ?=
-SOLVE_TIME_LIMIT ?= 900
+# The solve's wall-clock limit: a safety net (a search stops on its own rules, counted in work).
+SOLVE_TIME_LIMIT ?= 3600
 # llm backend: derive <-> verify rounds, and gen <-> compile rounds (1 generation + repairs).
 DERIVE_ROUNDS ?= 3
 GEN_ROUNDS ?= 4
@@ -118,6 +119,10 @@ ROUND_ARTIFACTS := $(foreach k,$(derive_rounds),derivation.r$(k).json $(if $(fil
 ARTIFACTS := spec.json $(if $(filter llm,$(BACKEND)),$(ROUND_ARTIFACTS)) derivation.json verify.json shoot.cpp \
              solution.json trajectory.oem report.md score.json
 artifacts_of = $(addprefix $(RUNS)/$(1)/,$(ARTIFACTS))
+
+# helios-solve exits 5 when the artifact it wrote shows the problem infeasible: the run is
+# complete (its score and report say so), and the chain goes on.
+SOLVED := || test $$? -eq 5
 
 .PHONY: run all scoreboard test unit bats tools deps clean sweep help
 run: $(call artifacts_of,$(scenario))
@@ -213,7 +218,7 @@ endif
 # trajectory.csv and the plots are written before solution.json, which marks the stage done.
 $(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp $(SCENARIOS_DIR)/%/settings.json $(call TOOL_STAMP,solve)
 	$(LAUNCH) '$(BIN)/helios-solve' --backend $(BACKEND) '$<' --settings '$(SCENARIOS_DIR)/$*/settings.json' --cache-dir '$(CACHE)' \
-	  --time-limit $(SOLVE_TIME_LIMIT) --trajectory '$(@D)/trajectory.csv' --plots '$(@D)/' -o '$@'
+	  --time-limit $(SOLVE_TIME_LIMIT) --trajectory '$(@D)/trajectory.csv' --plots '$(@D)/' -o '$@' $(SOLVED)
 
 # The converged trajectory as a CCSDS OEM 2.0 (tools/lib/src/oem/README.md).
 # trajectory.csv is written before solution.json and only for a converged solution, so it is no
@@ -305,13 +310,13 @@ $(SWEEP_DIR)/%/spec.json: $(SWEEP_DIR)/%/problem.txt $(call TOOL_STAMP,parse)
 $(SWEEP_BOUNDARY_SOLUTIONS): $(SWEEP_DIR)/%/solution.json: $(SWEEP_DIR)/%/shoot.cpp $(SWEEP_DIR)/boundary.mk \
                              $(call TOOL_STAMP,solve)
 	$(LAUNCH) '$(BIN)/helios-solve' --backend builtin '$<' --settings '$(@D)/settings.json' --cache-dir '$(CACHE)' \
-	  --time-limit $(SOLVE_TIME_LIMIT) --quiet --trajectory '$(@D)/trajectory.csv' -o '$@'
+	  --time-limit $(SOLVE_TIME_LIMIT) --quiet --trajectory '$(@D)/trajectory.csv' -o '$@' $(SOLVED)
 
 # A cell's solve, warm from its neighbour's solution.json when the chain gives it one.
 $(SWEEP_SOLUTIONS): $(SWEEP_DIR)/%/solution.json: $(SWEEP_DIR)/%/shoot.cpp $(SWEEP_SETTINGS) $(call TOOL_STAMP,solve)
 	$(LAUNCH) '$(BIN)/helios-solve' --backend builtin '$<' --settings '$(SWEEP_SETTINGS)' --cache-dir '$(CACHE)' \
 	  --time-limit $(SOLVE_TIME_LIMIT) --quiet $(if $(and $(filter warm,$(SWEEP_START)),$(SWEEP_WARM_$*)),--warm-start '$(SWEEP_DIR)/$(SWEEP_WARM_$*)/solution.json') \
-	  --trajectory '$(@D)/trajectory.csv' -o '$@'
+	  --trajectory '$(@D)/trajectory.csv' -o '$@' $(SOLVED)
 
 # Every cell re-solved warm from its converged neighbours until none improves.
 $(SWEEP_DIR)/crosscheck.json: $(SWEEP_DIR)/cells.mk $(SWEEP_SOLUTIONS) $(call TOOL_STAMP,score) $(call TOOL_STAMP,solve)
@@ -383,7 +388,7 @@ Variables (scenario and sweep may also be spelled SCENARIO and SWEEP):
   BACKEND=builtin|llm          who parses, derives and writes the program ($(BACKEND))
   VERIFY_MODE=advisory|strict  strict: a failed verification stops the chain ($(VERIFY_MODE))
   LAUNCH=                      a prefix of the solve step, e.g. LAUNCH="srun -n1 -c1"
-  SOLVE_TIME_LIMIT=900         seconds of one solve
+  SOLVE_TIME_LIMIT=3600        seconds of one solve (a safety net)
   RUNS_ROOT=runs               where run folders go; SCENARIOS_DIR=scenarios where scenarios are read
   DERIVE_ROUNDS=3 GEN_ROUNDS=4 RUN_TAG= PARSE_BACKEND=   the llm backend's rounds, run folder tag, parser
   FUZZ_SECONDS=60              make fuzz: seconds of each target

@@ -20,6 +20,8 @@ checks=(
   "nlohmann-json3-dev:/usr/include/nlohmann/json.hpp"
   "libvalijson-dev:/usr/include/valijson/validator.hpp"
   "libcurl4-openssl-dev:/usr/include/x86_64-linux-gnu/curl/curl.h"
+  # SHA-256 of the compile cache's keys and programs (OpenSSL's EVP).
+  "libssl-dev:/usr/include/openssl/evp.h"
   "libgtest-dev:/usr/include/gtest/gtest.h"
   "libcpp-httplib-dev:/usr/include/httplib.h"
   "gnuplot-nox:cmd/gnuplot"

@@ -28,6 +28,7 @@
 #include "helios/astro/constants.hpp"
 #include "helios/astro/ephemeris.hpp"
 #include "helios/astro/kepler.hpp"
+#include "helios/solve/verdict.hpp"
 #include "helios_runtime.hpp"
 
 namespace helios_rt {

@@ -156,7 +156,7 @@ class Propagator {
   };
   ArcNodes* nodes = nullptr;
 
-  // Homotopy devices of the global search (search.hpp), off by default. fuel_weight > 0: the
+  // Homotopy devices of the global search (search/), off by default. fuel_weight > 0: the
   // throttle of a minimum-time problem is priced as fuel, w lambda0 (Tmax/c)(u - eps u (1 - u))
   // added to H (its companion problem at a held final time; every propagation with this
   // propagator). end_rotation: the position and velocity triples of the state and the costates
@@ -250,9 +250,9 @@ void side_condition(Propagator& prop, int k, const Dual& g, const char* meaning)
 using Guess = std::function<void(std::mt19937_64& rng, double* x)>;
 using Admissible = std::function<bool(const double* x)>;
 using Solve = std::function<Result(const Settings& s)>;
-// Problems without interior events: the global search (search.hpp's MultiStart).
+// Problems without interior events: the global search (search/pipeline.hpp).
 Result homotopy_solve(const Settings& s, const Guess& initial_guess, const Admissible& admissible);
-// Problems with interior events: search_attempts complete attempts (search.hpp).
+// Problems with interior events: search_attempts complete attempts (search/attempts.hpp).
 Result events_homotopy_solve(const Settings& s, const LegPlan& legs, const EventPlan& events,
                              const Guess& initial_guess, const Admissible& admissible);
 // Problems with bounds psi <= 0: the passes over their active set around `solve` (bounds.hpp).

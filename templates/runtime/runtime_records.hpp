@@ -70,7 +70,7 @@ extern const ProblemShape kProblem;  // the program defines it (module_interface
 struct Multipliers {
   double lambda0 = 1;
   double eps = 1;
-  // The companion problem's price of the throttle (search.hpp, minimum time from minimum fuel):
+  // The companion problem's price of the throttle (search/companion.hpp, minimum time from minimum fuel):
   // 0 in the problem itself. Set by the runtime's propagate from Propagator::fuel_weight.
   double fuel_weight = 0;
 };
@@ -107,14 +107,14 @@ struct Settings {
   int threads = 0;
   // Problems without interior events: every distinct extremal at eps_start continued (false: only
   // those whose cost there, a lower bound of their objective, can still beat the best); the
-  // families of extremals explored by the transfer angle (families.hpp); a minimum-time problem
-  // with a throttle also solved from its minimum-fuel companion (minimum_time.hpp).
+  // families of extremals explored by the transfer angle (search/families.hpp); a minimum-time problem
+  // with a throttle also solved from its minimum-fuel companion (search/companion.hpp).
   bool search_continue_all = false;
   bool search_families = true;
   bool search_fuel_companion = true;
   bool search_thrust_continuation = true;
   // A minimum-fuel problem at a fixed final time also solved from its minimum-time extremal
-  // (fuel_from_time.hpp): "always" (the default: starts that saturate can miss the best extremal,
+  // (search/time_route.hpp): "always" (the default: starts that saturate can miss the best extremal,
   // and where they settle the route is cheap), "auto" only where the search leaves it unsettled
   // (as for the thrust continuation: many revolutions or no extremal, the starts not saturated),
   // "never".
@@ -242,7 +242,7 @@ struct ContinuationStep {
   double revolutions = NAN;  // of the solution reached, where the continuation follows them
 };
 
-// Where a continuation path arrived (minimum_time.hpp, thrust_continuation.hpp): the problem's own
+// Where a continuation path arrived (search/companion.hpp, search/thrust.hpp): the problem's own
 // extremal at its end, if it got there, and every step on the way.
 struct PathArrival {
   bool arrived = false;
@@ -254,7 +254,7 @@ struct PathArrival {
   std::vector<ContinuationStep> steps;
 };
 
-// What tells one extremal from another (search.hpp's shape_of): the revolutions about the
+// What tells one extremal from another (homotopy.hpp's shape_of): the revolutions about the
 // central body (the angle the position sweeps about the initial angular momentum, over 2 pi), the
 // throttle's mode changes (at eps = 0 its bang-bang switches), and the cost at its eps: the
 // propellant of the smoothed problem (the integral of u - eps u (1 - u), in propellant units) for
@@ -307,7 +307,7 @@ struct Extremal {
   int bounded_passes = 0;
 };
 
-// A neighbour of an extremal looked for along its family (families.hpp): from the extremal at
+// A neighbour of an extremal looked for along its family (search/families.hpp): from the extremal at
 // eps = 0 `from`, one revolution more (+1) or fewer (-1); how (already reached by the search, an
 // extremal at eps_start of that count continued, or the transfer angle) and what it found (an
 // extremal at eps = 0, -1: none).
@@ -318,7 +318,7 @@ struct FamilyProbe {
   int found = -1;
 };
 
-// What the global search did (search.hpp), for solution.json.
+// What the global search did (search/pipeline.hpp), for solution.json.
 struct SearchRecord {
   std::string method;
   int threads = 1;
@@ -329,22 +329,22 @@ struct SearchRecord {
   int converged_final = 0;  // solves that reached eps = 0
   double seconds = 0;
   bool cut_by_time = false;
-  // Whether the draws stopped saturated (draws.hpp), the Good-Turing chance of a new extremal per
+  // Whether the draws stopped saturated (search/draws.hpp), the Good-Turing chance of a new extremal per
   // draw where they stopped, and why they stopped.
   bool saturated = false;
   double unseen = 1;
   std::string stopped;
   std::vector<FamilyProbe> family;
-  // A minimum-time problem's minimum-fuel companion (minimum_time.hpp): its draws at the held
+  // A minimum-time problem's minimum-fuel companion (search/companion.hpp): its draws at the held
   // final time and its distinct solutions (arrived: the extremal at eps = 0 reached from each).
   double companion_tf_days = 0;
   int companion_draws = 0, companion_converged = 0;
   std::vector<StartExtremal> companion_solutions;
-  // The thrust continuation of a many-revolution transfer (thrust_continuation.hpp): every search
+  // The thrust continuation of a many-revolution transfer (search/thrust.hpp): every search
   // at a raised thrust and every step down, and whether it arrived at the problem's thrust.
   std::vector<ContinuationStep> thrust_continuation;
   bool thrust_continuation_arrived = false;
-  // A minimum-fuel problem's route from its minimum-time extremals (fuel_from_time.hpp): each path
+  // A minimum-fuel problem's route from its minimum-time extremals (search/time_route.hpp): each path
   // (where it started, the minimum time it reached, whether that one was reached before, the
   // extremal at eps = 0 it arrived at) and every step.
   struct TimeRoutePath {
@@ -380,6 +380,7 @@ struct SearchRecord {
   // the thrust).
   struct TimeScale {
     double factor = 0, raised_tf_days = NAN, raised_revolutions = NAN, estimate_days = NAN, revolutions = NAN;
+    bool saturated = false;  // the starts of the search there saturated
   } time_scale;
   // A minimum-fuel problem whose final constraint a coast keeps (final_coast_keeps_target): the
   // propellant of its minimum-time transfer completed by a coast to the final time (normalized;

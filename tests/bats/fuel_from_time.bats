@@ -54,3 +54,14 @@ setup() {
   awk -F, 'NR > 1 && ($21 > 1e-9 && $16 != 0 || $21 < -1e-9 && $16 != 1) { print "row " NR ": S " $21 " u " $16 > "/dev/stderr"; bad = 1 }
     END { exit bad }' "$WORK/trajectory.csv"
 }
+
+@test "fuel from time: never costlier than the minimum-time transfer completed by a coast on the orbit" {
+  local sol="$WORK/solution.json"
+  # a coast keeps an orbit target under two-body forces, so the minimum-time flight followed by a
+  # coast to the final time is feasible: its propellant Tmax/(Isp g0) t_min bounds the returned one
+  grep -q 'kFinalCoastKeepsTarget = true' "$WORK/shoot.cpp"
+  assert_jq "$sol" '([.search.minimum_time_route.paths[].minimum_tf_days | select(. != null)] | min) as $t
+    | (($t * 24 - 14.800364354648908) | fabs) < 1e-5
+      and ((.search.minimum_time_and_coast.propellant_kg - 60 / 19561.815336588908 * $t * 86400) | fabs) < 1e-6'
+  assert_jq "$sol" '.propellant_kg <= .search.minimum_time_and_coast.propellant_kg'
+}

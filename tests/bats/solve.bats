@@ -149,6 +149,33 @@ p01_solve() {
   assert_no_temp_files "$BATS_TEST_TMPDIR"
 }
 
+# with_thrust_constant DIR: DIR/shoot.cpp with the thrust read once, before main, into a
+# namespace-scope constant problem::kThrust that the modules use (as a model writes naturally).
+with_thrust_constant() {
+  sed -i -e '/^}  \/\/ namespace problem$/a namespace problem {\nconst double kThrust = Tmax;\n}  // namespace problem' \
+    -e '/kThrust = Tmax/!s/problem::Tmax/problem::kThrust/g' "$1/shoot.cpp"
+  grep -q 'problem::kThrust' "$1/shoot.cpp"
+}
+
+# Issue 46: a value computed from a parameter at static initialisation keeps the number the
+# program was compiled with; served from the cache, the 0.6 N cell flew the 0.5 N one's thrust.
+@test "solve: a value computed from a parameter before main is the source's own, never a cached program's" {
+  p01_cell a 9700 350
+  p01_cell b 9700 350 0.6
+  with_thrust_constant a
+  with_thrust_constant b
+  p01_solve a cache
+  p01_solve b cache
+  assert_jq b/solution.json '.compile.cached == false and .compile.cache_key == "source" and .status == "converged"'
+  assert_jq b/solution.json '.compile.cache_key_detail | test("kThrust = Tmax") and test("before main")'
+  cp -r b own
+  rm own/solution.json
+  p01_solve own own-cache
+  jq -e --slurpfile own own/solution.json --slurpfile a a/solution.json \
+    '.propellant_kg == $own[0].propellant_kg and .propellant_kg != $a[0].propellant_kg' b/solution.json
+  assert_no_temp_files "$BATS_TEST_TMPDIR"
+}
+
 # The parameters file is helios-solve's, but the program refuses a bad one cleanly: exit 1 and one line.
 @test "solve: a program refuses a parameters file that is not its own numbers" {
   cp "$SRC/shoot.cpp" shoot.cpp

@@ -82,6 +82,48 @@ CELLS=(d9700_t300 d9700_t350 d9700_t400 d9740_t300 d9740_t350 d9740_t400 d9780_t
   done
 }
 
+# Issue 46: --sweep writes a row only for a solution of its cell's problem; one that flies another
+# time of flight (or another epoch) is refused, naming the cell and the values.
+@test "sweep: --sweep refuses a cell's solution of another time of flight or epoch, naming the cell" {
+  local copy="$BATS_TEST_TMPDIR/P01" edit answer
+  cp -r "$RUNS/builtin/P01" "$copy"
+  for edit in '.tof_days = 2100' '.departure_mjd2000 = 19700'; do
+    answer="$copy/$(jq -r '.cells.d9740_t350.answer' "$copy/crosscheck.json")"
+    jq "$edit" "$RUNS/builtin/P01/$(jq -r '.cells.d9740_t350.answer' "$copy/crosscheck.json")" >"$answer"
+    run -3 --separate-stderr "$BIN/helios-score" --sweep "$ROOT/scenarios/P01/sweep.json" --cells "$copy" \
+      --crosscheck "$copy/crosscheck.json" -o "$copy/sweep.csv"
+    [[ ${#stderr_lines[@]} == 1 && $stderr == "helios-score: error: $answer: the sweep's cell d9740_t350 has a solution that flies "* ]] ||
+      { echo "$stderr" >&2; false; }
+    [[ $stderr == *"not its grid values, departure MJD2000 9740 and 350 d"* ]]
+  done
+  [[ $(cat "$copy/sweep.csv") == $(cat "$RUNS/builtin/P01/sweep.csv") ]]
+}
+
+# Issue 46: a template whose cells state another time of flight or epoch than their labels (a
+# placeholder read in weeks, glued to a digit, only in a comment, in a bound) is refused before any
+# cell is solved, in one line naming the cell and the values.
+@test "sweep: a template whose cells fly another problem than their labels is refused, no cell solved" {
+  local scenarios="$BATS_TEST_TMPDIR/scenarios" runs="$BATS_TEST_TMPDIR/runs" sentence stated
+  for sentence in 'The time of flight is @TOF_DAYS@ weeks.:a time of flight of 2100 d' \
+    'The time of flight is 1@TOF_DAYS@ days.:a time of flight of 1300 d' \
+    'The time of flight is 250 days. # @TOF_DAYS@:a time of flight of 250 d' \
+    'The time of flight is free, between @TOF_DAYS@ days and 500 days.:a free time of flight'; do
+    stated=${sentence##*:}
+    rm -rf "$scenarios" "$runs"
+    mkdir -p "$scenarios"
+    cp -r "$ROOT/scenarios/P01" "$scenarios/P09"
+    sed -i "s/^The time of flight is @TOF_DAYS@ days.\$/${sentence%:*}/; s/ # @TOF_DAYS@/\n# @TOF_DAYS@/" \
+      "$scenarios/P09/problem.txt"
+    echo '{"departure_mjd2000": {"values": [9700]}, "tof_days": {"values": [300, 350]}, "boundary": false}' \
+      >"$scenarios/P09/sweep.json"
+    run ! env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES make --no-print-directory -C "$ROOT" \
+      -o build/tools.stamp sweep sweep=P09 SCENARIOS_DIR="$scenarios" RUNS_ROOT="$runs" CACHE="$SHARED_CACHE"
+    [[ $output == *"helios-score: error: $scenarios/P09/problem.txt: the sweep's cell d9700_t300 states departure MJD2000 9700 and $stated, not its grid values, departure MJD2000 9700 and 300 d"* ]] ||
+      { echo "$output" >&2; false; }
+    [[ -z $(find "$runs" -name 'problem.txt' -o -name solution.json) ]]
+  done
+}
+
 @test "sweep: a cell below its departure's minimum time is infeasible, with the t_min that proves it, and not solved" {
   local scenarios="$BATS_TEST_TMPDIR/scenarios" runs="$BATS_TEST_TMPDIR/runs"
   mkdir -p "$scenarios"

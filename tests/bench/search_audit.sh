@@ -82,7 +82,7 @@ for case in "$@"; do
   starts=$((most_starts * 10 > 1280 ? most_starts * 10 : 1280))
   for seed in $exhaustive_seeds; do
     read -r objective seconds < <(solve "$dir" "exhaustive-$seed" "{\"seed\": $seed, \"search_starts\": $starts, \
-      \"search_saturation\": 0, \"search_continue_all\": true, \"search_time_s\": 0, \"time_limit_s\": 3600}")
+      \"search_saturation\": 0, \"search_continue_all\": true, \"time_limit_s\": 3600}")
     exhaustive_s=$(echo "$exhaustive_s + $seconds" | bc -l)
     if [[ $objective != none ]] && { [[ $best == none ]] || (($(echo "$objective < $best" | bc -l))); }; then
       best=$objective best_name="exhaustive-$seed"

@@ -1,4 +1,4 @@
-// Measures start strategies for the global search (templates/runtime/search.hpp) on a problem
+// Measures start strategies for the global search (templates/runtime/search/pipeline.hpp) on a problem
 // without interior events whose shooting variables are all on the normalization sphere (S01,
 // S13). Built with its generated program (SHOOT_CPP, its main renamed) and the runtime's source,
 // it spends the same budget of shooting-function evaluations at eps_start per seed on each strategy:

@@ -254,6 +254,29 @@ expect 1 'CPU-time budget of 2 s' gen d.json --time-limit 2
 case_dir gen-memory-budget; jq_derivation '.costate_odes[0].rhs = "3^(10^10)*rx"' >d.json
 # (Under AddressSanitizer the memory budget is not applied: the CPU-time budget stops it.)
 expect 1 'memory budget of 200 MB|CPU-time budget of 20 s' gen d.json --memory-limit 200 --time-limit 20
+# psi that asks for another state than its target (issue 46): the row moved, its initial value
+# moved, the target taken away or of an unknown kind; each a failed check, not a pass.
+for e in 'departure-shifted:(.constraints[0].psi[0] = "-departure_rx-4.3e-6+rx") | (.initial_values[0].value = "departure_rx+4.3e-6")' \
+  'initial-value-shifted:.initial_values[0].value = "departure_rx+4.3e-6"' 'target-removed:del(.constraints[1].target)' \
+  'target-unknown-kind:.constraints[1].target.kind = "wish"' 'target-moved:.constraints[1].target.position_km[0] += 638'; do
+  case_dir "verify-${e%%:*}"; jq_derivation "${e#*:}" >d.json
+  expect 4 'verdict fail: 1 of [0-9]+ checks failed \((target:(departure|arrival)|initial_values)\)' verify d.json
+done
+
+# ---- helios-solve: the compile cache (issue 46) ----------------------------------------------
+# cache_entry: an empty program compiled into ./cache; prints its entry's folder.
+cache_entry() {
+  printf '#include "helios_runtime.hpp"\nint main() {}\n' >p.cpp
+  "$BIN/helios-solve" p.cpp --compile-only --cache-dir cache -o setup.json
+  echo "cache/$(jq -r .structure_sha256 setup.json)"
+}
+# An entry folder that is a link (to a copy of itself) is not this user's alone: refused.
+case_dir solve-cache-entry-link; entry=$(cache_entry); mv "$entry" elsewhere; ln -s "$PWD/elsewhere" "$entry"
+expect 1 'the compile cache entry is not a private folder of this user' solve p.cpp --compile-only --cache-dir cache
+# A program planted in an entry does not match its stored hash: compiled anew, never run.
+case_dir solve-cache-planted-program; entry=$(cache_entry); printf '#!/bin/sh\necho planted\n' >"$entry/shoot"
+expect 0 '' solve p.cpp --compile-only --cache-dir cache
+[[ $(jq -r .cached out) == false ]] || { failures=$((failures + 1)); echo "FAIL $CASE: the planted program was taken"; }
 
 # ---- helios-solve: settings and programs (each refused before any compile) -------------------
 
@@ -345,6 +368,17 @@ echo '{"departure_mjd2000": {"values": [9700]}, "tof_days": {"values": [300]}}' 
 grep -v '^Minimize' "$ROOT/scenarios/P01/problem.txt" >problem.txt; echo '{}' >settings.json
 expect 3 "problem.txt: the sweep's boundary .its minimum-time form.: the template must state its objective in exactly one sentence" \
   score --sweep-boundary sweep.json --cells cells --settings settings.json
+# Cells that would fly another problem than their labels (issue 46): refused before any is written.
+for e in "weeks:s/@TOF_DAYS@ days/@TOF_DAYS@ weeks/:a time of flight of 2100 d" \
+  "glued:s/@TOF_DAYS@ days/1@TOF_DAYS@ days/:a time of flight of 1300 d" \
+  "comment:s/is @TOF_DAYS@ days./is 350 days.\n# @TOF_DAYS@/:a time of flight of 350 d" \
+  "bound:s/is @TOF_DAYS@ days./is free, between @TOF_DAYS@ days and 500 days./:a free time of flight" \
+  "epoch-glued:s/MJD2000 @DEPARTURE_MJD2000@/MJD2000 1@DEPARTURE_MJD2000@/:departure MJD2000 19700"; do
+  IFS=: read -r id edit stated <<<"$e"
+  case_dir "score-sweep-cell-$id"; sed "$edit" "$ROOT/scenarios/P01/problem.txt" >problem.txt
+  echo '{"departure_mjd2000": {"values": [9700]}, "tof_days": {"values": [300]}, "boundary": false}' >sweep.json
+  expect 3 "problem.txt: the sweep's cell d9700_t300 states .*$stated.*, not its grid values" score --sweep-cells sweep.json --cells cells
+done
 
 # ---- helios-score --oem: trajectory.csv and the run it belongs to ---------------------------
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "helios/solve/verdict.hpp"
 #include "runtime_records.hpp"
 #include "search/chooser.hpp"
 
@@ -140,6 +141,18 @@ TEST(Chooser, InfeasibleOnlyWhereASettledMinimumTimeExceedsTheBound) {
   EXPECT_EQ(verdict_of(rec).status, Status::kConverged);
 }
 
+TEST(Chooser, NoExtremalCostlierThanTheMinimumTimeAndACoastIsReturned) {
+  SearchRecord rec;
+  rec.extremals = {extremal(0.13), extremal(0.11)};
+  rec.coast_bound = 0.108;  // the minimum-time transfer completed by a coast burns less than both
+  EXPECT_EQ(helios_rt::choose(rec, "").returned, -1);
+  const helios_rt::Verdict v = verdict_of(rec);
+  EXPECT_EQ(v.status, Status::kNotConverged);
+  EXPECT_NE(v.detail.find("more than the minimum-time transfer completed by a coast"), std::string::npos) << v.detail;
+  rec.coast_bound = 0.12;
+  EXPECT_EQ(helios_rt::choose(rec, "").returned, 1);
+}
+
 TEST(Chooser, TheTimeLimitAndWhatWasFoundInsteadAreSaid) {
   SearchRecord rec;
   rec.time_limit_hit = true;
@@ -183,6 +196,7 @@ SearchRecord record_of(const nlohmann::json& pool) {
     rec.minimum_time_how = m.at("how").get<std::string>();
   }
   rec.time_limit_hit = pool.value("time_limit_hit", false);
+  if (pool.contains("coast_bound")) rec.coast_bound = pool.at("coast_bound").get<double>();
   return rec;
 }
 

@@ -3,14 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
-#include <cmath>
-#include <cstdint>
-#include <random>
 
 #include "../../tools/lib/src/codegen/context.hpp"  // number(): how codegen prints a double
 #include "helios/pmp/derive.hpp"
@@ -151,7 +151,11 @@ TEST(Codegen, EveryResidualRowOfEveryScenarioSaysWhichConditionItIs) {
     const std::string id = dir.filename().string();
     const json d = helios::pmp::derive_from_spec(
         helios::spec::parse_problem_text(helios::io::read_text((dir / "problem.txt").string()), id));
-    const auto lines = module_lines(helios::codegen::generate(d, {}).source, "RESIDUAL");
+    const std::string source = helios::codegen::generate(d, {}).source;
+    // Its numbers are readable: it shares a compiled program with every problem of its structure.
+    const auto parameters = helios::solve::program_parameters(source);
+    EXPECT_TRUE(parameters.readable) << id << ": " << parameters.whole_source_because;
+    const auto lines = module_lines(source, "RESIDUAL");
     ASSERT_FALSE(lines.empty()) << id;
     for (const auto& line : lines) {
       if (line.find("F[") == std::string::npos || line.find("] = ") == std::string::npos) continue;
@@ -209,7 +213,8 @@ TEST(Codegen, CountMismatchIsAnError) {
 std::string p01_program(const std::string& departure, const std::string& tof,
                         const std::vector<std::pair<std::string, std::string>>& edits = {}) {
   std::string text = helios::io::read_text(std::string(HELIOS_SOURCE_DIR) + "/scenarios/P01/problem.txt");
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"@DEPARTURE_MJD2000@", departure}, {"@TOF_DAYS@", tof}})
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"@DEPARTURE_MJD2000@", departure}, {"@TOF_DAYS@", tof}})
     for (std::size_t at; (at = text.find(from)) != std::string::npos;) text.replace(at, from.size(), to);
   for (const auto& [from, to] : edits) {
     const std::size_t at = text.find(from);
@@ -255,8 +260,8 @@ TEST(Codegen, CellsOfASweepDifferOnlyInTheirParameters) {
 TEST(Codegen, AFreeFinalTimeIsWrittenWithItsWindowsParameters) {
   const std::string free = "The time of flight is free, between 50 days and 600 days.";
   const std::string a = p01_program("9700", "", {{"The time of flight is  days.", free}});
-  const std::string b = p01_program("9700", "", {{"The time of flight is  days.",
-                                                  "The time of flight is free, between 80 days and 700 days."}});
+  const std::string b = p01_program(
+      "9700", "", {{"The time of flight is  days.", "The time of flight is free, between 80 days and 700 days."}});
   EXPECT_NE(a.find("const T tf = problem::kTfMin + (problem::kTf - problem::kTfMin) * tf_frac;"), std::string::npos);
   EXPECT_EQ(helios::solve::program_parameters(a).structure, helios::solve::program_parameters(b).structure);
 }
@@ -266,9 +271,11 @@ TEST(Codegen, AnotherTargetOrObjectiveIsAnotherStructure) {
   const std::string structure = helios::solve::program_parameters(p01_program("9700", "350")).structure;
   const auto other = [](const std::string& source) { return helios::solve::program_parameters(source).structure; };
   EXPECT_NE(other(p01_program("9700", "350", {{"rendezvouses with Mars", "rendezvouses with Venus"}})), structure);
-  EXPECT_NE(other(p01_program("9700", "", {{"The time of flight is  days.", "The time of flight is free, between 50 "
-                                            "days and 600 days."},
-                                           {"Minimize the fuel consumption.", "Minimize the time of flight."}})),
+  EXPECT_NE(other(p01_program("9700", "",
+                              {{"The time of flight is  days.",
+                                "The time of flight is free, between 50 "
+                                "days and 600 days."},
+                               {"Minimize the fuel consumption.", "Minimize the time of flight."}})),
             structure);
 }
 
@@ -308,12 +315,14 @@ TEST(Codegen, ParameterValuesAreTheDerivationsDoublesBitForBit) {
 // runs on its literals: a parameter line of another form, a macro before the parameters, a
 // HELIOS_PARAMETER elsewhere in code; a comment line may name it.
 TEST(Codegen, ParameterLinesOfAnotherFormAreNotMasked) {
-  const std::string good = "#include \"helios_runtime.hpp\"\n// HELIOS_PARAMETER lines:\nHELIOS_PARAMETER(a, 1.5);\n"
-                           "HELIOS_PARAMETER_ARRAY(b, -2.0, 3e-05);  // note\nint main() {}\n";
+  const std::string good =
+      "#include \"helios_runtime.hpp\"\n// HELIOS_PARAMETER lines:\nHELIOS_PARAMETER(a, 1.5);\n"
+      "HELIOS_PARAMETER_ARRAY(b, -2.0, 3e-05);  // note\nint main() {}\n";
   const auto p = helios::solve::program_parameters(good);
   ASSERT_TRUE(p.readable);
-  EXPECT_EQ(p.structure, "#include \"helios_runtime.hpp\"\n// HELIOS_PARAMETER lines:\nHELIOS_PARAMETER(a, #);\n"
-                         "HELIOS_PARAMETER_ARRAY(b, #, #);  // note\nint main() {}\n");
+  EXPECT_EQ(p.structure,
+            "#include \"helios_runtime.hpp\"\n// HELIOS_PARAMETER lines:\nHELIOS_PARAMETER(a, #);\n"
+            "HELIOS_PARAMETER_ARRAY(b, #, #);  // note\nint main() {}\n");
   EXPECT_EQ(p.values, (json{{"a", 1.5}, {"b", {-2.0, 3e-05}}}));
   for (const std::string bad :
        {"HELIOS_PARAMETER(a, 1.5 * 2);\n", "HELIOS_PARAMETER(a, 1.5f);\n", "HELIOS_PARAMETER(a, 1.5); int x;\n",
@@ -327,5 +336,63 @@ TEST(Codegen, ParameterLinesOfAnotherFormAreNotMasked) {
   }
 }
 
-}  // namespace
+// A parameter line inside a comment is text, not a parameter: not masked, not in the file.
+TEST(Codegen, AParameterLineInACommentIsNotAParameter) {
+  const std::string source =
+      "#include \"helios_runtime.hpp\"\n/*\nHELIOS_PARAMETER(a, 1.5);\n*/\n"
+      "HELIOS_PARAMETER(b, 2.5);\nconst char* const kText = \"HELIOS_PARAMETER(c, 3.5);\";\n"
+      "int main() {}\n";
+  const auto p = helios::solve::program_parameters(source);
+  ASSERT_TRUE(p.readable) << p.whole_source_because;
+  EXPECT_EQ(p.values, (json{{"b", 2.5}}));
+  EXPECT_NE(p.structure.find("\nHELIOS_PARAMETER(a, 1.5);\n*/\nHELIOS_PARAMETER(b, #);\n"), std::string::npos);
+}
 
+// Code that runs before main (a namespace-scope initializer, a static member, a constructor
+// attribute) could read a parameter before the parameters file replaces it: such a source keeps its
+// numbers (compiled on its own, keyed on its whole text). Functions, types, constexpr and literal
+// initializers run nothing then.
+TEST(Codegen, CodeThatRunsBeforeMainKeysTheCacheOnTheWholeSource) {
+  const std::string head = "#include \"helios_runtime.hpp\"\nnamespace problem {\nHELIOS_PARAMETER(Tmax, 0.5);\n}\n";
+  for (const std::string bad : {"const double k = problem::Tmax;\n",
+                                "namespace n {\ndouble k{problem::Tmax};\n}\n",
+                                "double k(problem::Tmax);\n",
+                                "double f();\nconst double k = f();\n",
+                                "const double k = [] { return problem::Tmax; }();\n",
+                                "struct S {\n  static inline double k = problem::Tmax;\n};\n",
+                                "struct S {\n  double v = problem::Tmax;\n} s;\n",
+                                "__attribute__((constructor)) void f() { problem::Tmax = 1; }\n",
+                                "[[gnu::constructor]] void f() {}\n",
+                                "#define K 1\n",
+                                "double a = 1, b = problem::Tmax;\n",
+                                "namespace {\nconst double k = 2 * problem::Tmax;\n}\n",
+                                "extern \"C\" {\ndouble k = problem::Tmax;\n}\n",
+                                "thread_local double t = 1;\n",
+                                "const double k = problem::\\\nTmax;\n",
+                                "double \\u0054max2 = 1;\n",
+                                "template <class T> T k = T(problem::Tmax);\n",
+                                "struct Shape {} kShape;\n",
+                                "Foo foo;\n",
+                                "const helios_rt::ProblemShape kProblem = {problem::Tmax * 2};\n",
+                                "/* open\n"}) {
+    const auto p = helios::solve::program_parameters(head + bad + "int main() {}\n");
+    EXPECT_FALSE(p.readable) << bad;
+    EXPECT_FALSE(p.whole_source_because.empty()) << bad;
+    EXPECT_TRUE(p.values.empty()) << bad;
+  }
+  for (const std::string good :
+       {"constexpr double k = 2.0;\n", "const double kTwoPi = 2 * 3.141592653589793;\n",
+        "const char* const kNames[] = {\"a\", \"b\"};\n",
+        "double f(double x) {\n  static const double k = problem::Tmax;\n  return k * x;\n}\n",
+        "struct S {\n  double v = 1.0;\n  double f() const { return problem::Tmax * v; }\n};\n",
+        "namespace n {\ninline double g() { return problem::Tmax; }\n}  // namespace n\n", "enum class E { A = 1 };\n",
+        "using D = double;\n", "static_assert(sizeof(double) == 8, \"x\");\n",
+        "template <class T>\nT sq(T x) {\n  return x * x;\n}\n", "#pragma GCC optimize(\"O2\")\n#include <cmath>\n",
+        "// HELIOS_PARAMETER(b, 1.5); in a comment\n", "constexpr auto table = [] { return 1; }();\n"}) {
+    const auto p = helios::solve::program_parameters(head + good + "int main() {}\n");
+    EXPECT_TRUE(p.readable) << good << p.whole_source_because;
+    EXPECT_EQ(p.values, (json{{"Tmax", 0.5}})) << good;
+  }
+}
+
+}  // namespace

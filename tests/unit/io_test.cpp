@@ -37,6 +37,16 @@ TEST(Io, Sha256KnownVectors) {
   EXPECT_EQ(helios::io::sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
   EXPECT_EQ(helios::io::sha256_hex(std::string(1000, 'a')),
             "41edece42d63e8d9bf515a9ba6932e1c20cbc9f5a5d134645adb5db1b9737ea3");
+  // FIPS 180-4's two-block message and its million a's; bytes that are not text.
+  EXPECT_EQ(helios::io::sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
+            "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+  EXPECT_EQ(helios::io::sha256_hex(std::string(1000000, 'a')),
+            "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+  EXPECT_EQ(helios::io::sha256_hex(std::string(1, '\0')),
+            "6e340b9cffb37a989ca544e6bb780a2c78901d3fb33738768511a30617afa01d");
+  std::string bytes;
+  for (int k = 0; k < 3 * 256; ++k) bytes.push_back(static_cast<char>(k % 256));
+  EXPECT_EQ(helios::io::sha256_hex(bytes), "f3a25aa93aa2fbba28d79260535bbd6a5eb0fc1c24a8b0f04e12b484c1dfe363");
 }
 
 TEST(Io, AtomicWriteLeavesOnlyTheTarget) {
@@ -393,7 +403,7 @@ TEST(Cli, NamingInputPrefixesTheFileOnce) {
 TEST(Cli, SelectModeRefusesTheOptionsOfOtherJobs) {
   helios::cli::ToolInfo info;
   info.name = "helios-x";
-  info.options = {{"in", "", "FILE", "", ""},   {"report", "", "", "", ""}, {"problem", "", "FILE", "", ""},
+  info.options = {{"in", "", "FILE", "", ""},  {"report", "", "", "", ""}, {"problem", "", "FILE", "", ""},
                   {"level", "", "N", "", "3"}, {"oem", "", "", "", ""},    {"track", "", "FILE", "", ""}};
   const std::vector<helios::cli::Mode> modes = {{"", {"in"}, {"level"}, [](const auto&) { return 0; }},
                                                 {"report", {"problem"}, {"level"}, [](const auto&) { return 1; }},

@@ -266,7 +266,7 @@ TEST(Runtime, ArcNodesRecordReplaceAndMeasureContinuity) {
   for (int i = 0; i < kNY; ++i) EXPECT_EQ(moved_end[i], recorded_end[i]) << i;
 }
 
-// The companion's price of the throttle (Propagator::fuel_weight w, minimum_time.hpp) adds
+// The companion's price of the throttle (Propagator::fuel_weight w, search/companion.hpp) adds
 // w lambda0 (Tmax/c)(1 -+ eps) to dH/du at u = 0 and 1. The template module is minimum fuel, whose
 // slopes already hold lambda0 (Tmax/c)(1 -+ eps) and whose costate equations do not contain
 // lambda0: with w = 1 its extremal from a start is the one of lambda0 doubled, to round-off.
@@ -291,7 +291,7 @@ TEST(Runtime, FuelWeightPricesTheThrottleAsMoreFuel) {
   EXPECT_GT(switches_seen, 0);  // the price moved switches, not only interior throttles
 }
 
-// The transfer angle's device (Propagator::end_rotation, families.hpp): the position and velocity
+// The transfer angle's device (Propagator::end_rotation, search/families.hpp): the position and velocity
 // triples and their costates at the end are turned by the matrix; the mass and its costate, and
 // the trajectory itself, are not.
 TEST(Runtime, EndRotationTurnsThePositionVelocityAndTheirCostates) {

@@ -12,9 +12,12 @@
 #include <thread>
 #include <vector>
 
+#include "helios/codegen/generate.hpp"
 #include "helios/io/error.hpp"
+#include "helios/pmp/derive.hpp"
 #include "helios/solve/runtime_files.hpp"
 #include "helios/solve/solve.hpp"
+#include "helios/spec/parse.hpp"
 
 namespace {
 
@@ -66,11 +69,11 @@ TEST(Sandbox, StderrLinesAreForwardedAsTheyComeCleaned) {
 TEST(Sandbox, StdoutIsCollectedAndTheErrorLineIsTheOneNamingAnError) {
   const fs::path dir = fresh_dir("stdout");
   std::vector<std::string> lines;
-  const auto r = helios::solve::run_limited(
-      {"/bin/sh", "-c",
-       "echo '{\"schema\": \"fake\"}'; echo 'shoot: error: the settings are unusable' >&2; "
-       "echo 'progress 3 of 4' >&2; head -c 200000 /dev/zero | tr '\\0' x; exit 3"},
-      10, 512, dir.string(), [&](const std::string& line) { lines.push_back(line); });
+  const auto r =
+      helios::solve::run_limited({"/bin/sh", "-c",
+                                  "echo '{\"schema\": \"fake\"}'; echo 'shoot: error: the settings are unusable' >&2; "
+                                  "echo 'progress 3 of 4' >&2; head -c 200000 /dev/zero | tr '\\0' x; exit 3"},
+                                 10, 512, dir.string(), [&](const std::string& line) { lines.push_back(line); });
   EXPECT_EQ(r.exit_code, 3);
   ASSERT_GE(lines.size(), 3u);
   EXPECT_EQ(lines[0], "{\"schema\": \"fake\"}");
@@ -137,16 +140,24 @@ TEST(Sandbox, AnUnboundedAllocationIsStoppedByTheAddressSpaceLimit) {
 }
 
 // The compile cache's key covers the prebuilt runtime: the same source and command against a
-// rebuilt runtime (another SHA-256) is another program, so a cached binary is not reused.
-TEST(Compile, TheCacheKeyChangesWithTheRuntime) {
+// rebuilt runtime (another SHA-256) is another program, so a cached binary is not reused. A text
+// keyed as a whole source and the same text keyed as a structure are two keys, and no two lists of
+// fields hash the same bytes.
+TEST(Compile, TheCacheKeyChangesWithTheRuntimeAndKeyKindsAreApart) {
+  using helios::solve::compile_key;
+  using helios::solve::KeyKind;
   const std::string source = "int main() {}\n", command = "g++ -O2 shoot.cpp", version = "g++ 12";
   const std::string a(64, 'a'), b(64, 'b');
-  EXPECT_EQ(helios::solve::compile_key(source, command, version, a),
-            helios::solve::compile_key(source, command, version, a));
-  EXPECT_NE(helios::solve::compile_key(source, command, version, a),
-            helios::solve::compile_key(source, command, version, b));
-  EXPECT_NE(helios::solve::compile_key(source, command, version, a),
-            helios::solve::compile_key(source + " ", command, version, a));
+  EXPECT_EQ(compile_key(KeyKind::Structure, source, command, version, a),
+            compile_key(KeyKind::Structure, source, command, version, a));
+  EXPECT_NE(compile_key(KeyKind::Structure, source, command, version, a),
+            compile_key(KeyKind::Structure, source, command, version, b));
+  EXPECT_NE(compile_key(KeyKind::Structure, source, command, version, a),
+            compile_key(KeyKind::Structure, source + " ", command, version, a));
+  EXPECT_NE(compile_key(KeyKind::Source, source, command, version, a),
+            compile_key(KeyKind::Structure, source, command, version, a));
+  EXPECT_NE(compile_key(KeyKind::Source, "x\ny", "z", version, a),
+            compile_key(KeyKind::Source, "x", "y\nz", version, a));
 }
 
 // A compile against the runtime found beside this executable records a command that rebuilds the
@@ -182,6 +193,70 @@ TEST(Compile, ConcurrentCompilesOfOneStructureCompileOnce) {
   ASSERT_TRUE(first.ok && second.ok);
   EXPECT_NE(first.cached, second.cached) << "both compiled, or neither";
   EXPECT_EQ(first.binary, second.binary);
+  fs::remove_all(dir);
+}
+
+// A text that is another source's structure (its numbers masked, so it cannot compile) is keyed as
+// a whole source: it is never served the program compiled under that structure.
+TEST(Compile, AMaskedTextIsNotServedTheProgramOfItsStructure) {
+  const fs::path dir = fresh_dir("key-kinds");
+  helios::solve::SolveOptions o;
+  o.cache_dir = dir.string();
+  o.sandbox = false;
+  const std::string source = helios::codegen::generate(
+      helios::pmp::derive_from_spec(helios::spec::parse_problem_text(
+          helios::io::read_text(HELIOS_SOURCE_DIR "/scenarios/S01/problem.txt"), "S01")),
+      {}).source;
+  const auto compiled = helios::solve::compile_cached(source, o);
+  ASSERT_TRUE(compiled.ok && compiled.parameters.readable);
+  const auto masked = helios::solve::compile_cached(compiled.parameters.structure, o);
+  EXPECT_FALSE(masked.parameters.readable);
+  EXPECT_NE(masked.structure_sha256, compiled.structure_sha256);
+  EXPECT_FALSE(masked.cached);
+  EXPECT_FALSE(masked.ok);
+  fs::remove_all(dir);
+}
+
+// A cache entry is used only when it is this user's alone and whole: a program that does not
+// match its stored hash, a compile.log planted as a link, a program others may write are
+// compiled anew (the link not followed); an entry folder that is a link is refused.
+TEST(Compile, ACacheEntryIsUsedOnlyWhenPrivateAndWhole) {
+  const fs::path dir = fresh_dir("entries");
+  helios::solve::SolveOptions o;
+  o.cache_dir = (dir / "cache").string();
+  o.sandbox = false;
+  const std::string source = "#include \"helios_runtime.hpp\"\nint main() {}\n";
+  const auto first = helios::solve::compile_cached(source, o);
+  ASSERT_TRUE(first.ok);
+  EXPECT_EQ(first.binary_sha256.size(), 64u);
+  const fs::path entry = fs::path(first.binary).parent_path();
+  const auto again = [&] { return helios::solve::compile_cached(source, o); };
+  EXPECT_TRUE(again().cached);
+  {  // another program in its place: not the hash stored
+    std::ofstream(entry / "shoot", std::ios::binary | std::ios::trunc) << "#!/bin/sh\necho planted\n";
+    const auto c = again();
+    EXPECT_FALSE(c.cached);
+    EXPECT_EQ(c.program, first.program);
+  }
+  {  // compile.log a link to a secret
+    std::ofstream(dir / "secret") << "SECRET-TEXT";
+    fs::remove(entry / "compile.log");
+    fs::create_symlink(dir / "secret", entry / "compile.log");
+    const auto c = again();
+    EXPECT_FALSE(c.cached);
+    EXPECT_EQ(c.diagnostics.find("SECRET-TEXT"), std::string::npos);
+    EXPECT_FALSE(fs::is_symlink(entry / "compile.log"));
+  }
+  {  // a program others may write
+    fs::permissions(entry / "shoot", fs::perms::group_write, fs::perm_options::add);
+    EXPECT_FALSE(again().cached);
+    EXPECT_TRUE(again().cached);
+  }
+  {  // the entry folder a link to a copy of itself
+    fs::rename(entry, dir / "copy");
+    fs::create_directory_symlink(dir / "copy", entry);
+    EXPECT_THROW(again(), std::runtime_error);
+  }
   fs::remove_all(dir);
 }
 

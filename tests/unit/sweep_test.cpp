@@ -69,47 +69,14 @@ TEST(SweepCells, ChainsAlongTofColdFirst) {
   EXPECT_EQ(cells[8].warm_from, "d9780_t350");
 }
 
-TEST(SweepCells, ProblemTextsAndFragment) {
-  EXPECT_EQ(cell_problem("at MJD2000 @DEPARTURE_MJD2000@, @TOF_DAYS@ days", "t", 9700.5, 300),
-            "at MJD2000 9700.5, 300 days");
-  EXPECT_THROW(cell_problem("no placeholders", "t", 1, 2), input_error);
-  const fs::path dir = fs::temp_directory_path() / ("helios-sweep-test-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  const SweepGrid g = read_sweep(kSweep, "s");
-  const std::string tmpl = "@DEPARTURE_MJD2000@ @TOF_DAYS@\n";
-  const std::string mk = write_sweep_cells(g, tmpl, "t", dir.string());
-  EXPECT_EQ(helios::io::read_text((dir / "d9740_t350" / "problem.txt").string()), "9740 350\n");
-  EXPECT_NE(mk.find("SWEEP_WARM_d9740_t350 := d9740_t300\n"), std::string::npos) << mk;
-  EXPECT_NE(mk.find((dir / "d9740_t350/solution.json").string() + ": " + (dir / "d9740_t300/solution.json").string()),
-            std::string::npos);
-  // An unchanged text is not rewritten (make would redo a finished cell).
-  const auto before = fs::last_write_time(dir / "d9700_t300" / "problem.txt");
-  write_sweep_cells(g, tmpl, "t", dir.string());
-  EXPECT_EQ(fs::last_write_time(dir / "d9700_t300" / "problem.txt"), before);
-  // sweep.csv: a converged cell, an unconverged one, the others missing.
-  helios::io::write_text_atomic(
-      (dir / "d9700_t300" / "solution.json").string(),
-      R"({"status": "converged", "propellant_kg": 123.5, "max_residual": 1e-12, "start": "cold"})");
-  helios::io::write_text_atomic((dir / "d9700_t350" / "solution.json").string(),
-                                R"({"status": "not_converged", "start": "cold-after-warm-failed"})");
-  const std::string csv = sweep_csv(g, sweep_rows(g, dir.string()));
-  EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "departure_mjd2000,tof_days,cell,status,propellant_kg,max_residual,start,answer_from,extremals_compared,"
-            "t_min_days,boundary_saturated");
-  EXPECT_NE(csv.find("\n9700,300,d9700_t300,converged,123.5,1.000e-12,cold,own,1,,\n"), std::string::npos) << csv;
-  EXPECT_NE(csv.find("\n9700,350,d9700_t350,not_converged,,,cold-after-warm-failed,,,,\n"), std::string::npos) << csv;
-  EXPECT_NE(csv.find("\n9780,400,d9780_t400,missing,,,,,,,\n"), std::string::npos) << csv;
-  // A converged solution without the plotted key is refused.
-  helios::io::write_text_atomic((dir / "d9700_t300" / "solution.json").string(), R"({"status": "converged"})");
-  EXPECT_THROW(sweep_rows(g, dir.string()), input_error);
-  fs::remove_all(dir);
-}
-
 // A sweep's folder under the test's temporary directory, removed at the end.
 struct SweepDir {
   fs::path path = fs::temp_directory_path() / ("helios-sweep-test-" + std::to_string(::getpid()) + "-" +
                                                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  SweepDir() { fs::remove_all(path); fs::create_directories(path); }
+  SweepDir() {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
   ~SweepDir() { fs::remove_all(path); }
   void write(const std::string& file, const std::string& text) const {
     fs::create_directories((path / file).parent_path());
@@ -125,6 +92,144 @@ const std::string kTemplate =
     "The spacecraft departs at MJD2000 @DEPARTURE_MJD2000@ from Earth. The time of flight is @TOF_DAYS@ days.\n"
     "At the final time the spacecraft rendezvouses with Mars.\n"
     "Minimize the fuel consumption.\n";
+
+// A solution.json of schemas/solution.schema.json with `status` and the keys of `extra` (a
+// converged one flies `tof` days from `departure`).
+std::string solution(const std::string& status, json extra = json::object()) {
+  json s = {{"schema", "helios/solution"},
+            {"schema_version", 1},
+            {"producer", {{"tool", "helios-solve"}, {"version", "0"}, {"backend", "builtin"}}},
+            {"problem", {{"id", "P99"}}},
+            {"status", status},
+            {"compile", {{"ok", true}, {"cached", true}, {"source_sha256", "0"}, {"command", "g++"}}},
+            {"seed", 1},
+            {"iterations", 0},
+            {"function_evaluations", 0},
+            {"timings", {{"compile_s", 0}, {"run_s", 0}, {"total_s", 0}}}};
+  s.update(extra);
+  return s.dump();
+}
+std::string converged(double departure, double tof, json extra = json::object()) {
+  json s = {{"departure_mjd2000", departure}, {"tof_days", tof}, {"max_residual", 0}, {"x", json::array()},
+            {"residuals", json::array()},     {"epsilon", 0}};
+  s.update(extra);
+  return solution("converged", s);
+}
+// A search record of `starts` starts and `extremals` extremals.
+json search(int starts, int extremals, bool saturated) {
+  json list = json::array();
+  for (int k = 0; k < extremals; ++k)
+    list.push_back({{"id", k},
+                    {"objective", 1},
+                    {"revolutions", 1},
+                    {"switches", 0},
+                    {"reached", 1},
+                    {"first_start", 1},
+                    {"from", "start"},
+                    {"max_residual", 0},
+                    {"polished", false},
+                    {"method", "single"}});
+  return {{"method", "seeded"},     {"threads", 1},
+          {"starts", starts},       {"converged_at_eps_start", 1},
+          {"continued", 1},         {"converged_at_eps_0", 1},
+          {"seconds", 0},           {"cut_by_time", false},
+          {"saturated", saturated}, {"extremals_at_eps_start", json::array()},
+          {"extremals", list}};
+}
+
+TEST(SweepCells, ProblemTextsAndFragment) {
+  EXPECT_EQ(cell_problem("at MJD2000 @DEPARTURE_MJD2000@, @TOF_DAYS@ days", "t", 9700.5, 300),
+            "at MJD2000 9700.5, 300 days");
+  EXPECT_THROW(cell_problem("no placeholders", "t", 1, 2), input_error);
+  const fs::path dir = fs::temp_directory_path() / ("helios-sweep-test-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const SweepGrid g = read_sweep(kSweep, "s");
+  const std::string tmpl = kTemplate;
+  const std::string mk = write_sweep_cells(g, tmpl, "t", dir.string());
+  EXPECT_EQ(helios::io::read_text((dir / "d9740_t350" / "problem.txt").string()),
+            cell_problem(kTemplate, "t", 9740, 350));
+  EXPECT_NE(cell_problem(kTemplate, "t", 9740, 350).find("MJD2000 9740 from Earth. The time of flight is 350 days."),
+            std::string::npos);
+  EXPECT_NE(mk.find("SWEEP_WARM_d9740_t350 := d9740_t300\n"), std::string::npos) << mk;
+  EXPECT_NE(mk.find((dir / "d9740_t350/solution.json").string() + ": " + (dir / "d9740_t300/solution.json").string()),
+            std::string::npos);
+  // An unchanged text is not rewritten (make would redo a finished cell).
+  const auto before = fs::last_write_time(dir / "d9700_t300" / "problem.txt");
+  write_sweep_cells(g, tmpl, "t", dir.string());
+  EXPECT_EQ(fs::last_write_time(dir / "d9700_t300" / "problem.txt"), before);
+  // sweep.csv: a converged cell, an unconverged one, the others missing.
+  helios::io::write_text_atomic(
+      (dir / "d9700_t300" / "solution.json").string(),
+      converged(9700, 300, {{"propellant_kg", 123.5}, {"max_residual", 1e-12}, {"start", "cold"}}));
+  helios::io::write_text_atomic((dir / "d9700_t350" / "solution.json").string(),
+                                solution("not_converged", {{"start", "cold-after-warm-failed"}}));
+  const std::string csv = sweep_csv(g, sweep_rows(g, dir.string()));
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "departure_mjd2000,tof_days,cell,status,propellant_kg,max_residual,start,answer_from,extremals_compared,"
+            "t_min_days,boundary_saturated");
+  EXPECT_NE(csv.find("\n9700,300,d9700_t300,converged,123.5,1.000e-12,cold,own,1,,\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n9700,350,d9700_t350,not_converged,,,cold-after-warm-failed,,,,\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n9780,400,d9780_t400,missing,,,,,,,\n"), std::string::npos) << csv;
+  // A converged solution without the plotted key is refused.
+  helios::io::write_text_atomic((dir / "d9700_t300" / "solution.json").string(), converged(9700, 300));
+  EXPECT_THROW(sweep_rows(g, dir.string()), input_error);
+  fs::remove_all(dir);
+}
+
+// Issue 46: a cell whose text states another epoch or time of flight than its grid values (a
+// placeholder read in weeks, glued to a digit, only in a comment, in a bound) flies another problem
+// than its label: the sweep is refused before any cell is written, naming the cell and the values.
+TEST(SweepCells, ACellThatStatesAnotherProblemThanItsLabelIsRefused) {
+  const SweepDir dir;
+  const SweepGrid g = read_sweep(kSweep, "s");
+  const auto with = [](const std::string& from, const std::string& to) {
+    std::string t = kTemplate;
+    return t.replace(t.find(from), from.size(), to);
+  };
+  const std::string tof = "The time of flight is @TOF_DAYS@ days.";
+  for (const auto& [text, stated] : std::vector<std::pair<std::string, std::string>>{
+           {with(tof, "The time of flight is @TOF_DAYS@ weeks."), "time of flight of 2100 d"},
+           {with(tof, "The time of flight is 1@TOF_DAYS@ days."), "time of flight of 1300 d"},
+           {with(tof, "The time of flight is 350 days.") + "# @TOF_DAYS@\n", "time of flight of 350 d"},
+           {with(tof, "The time of flight is free, between @TOF_DAYS@ days and 500 days."), "free time of flight"},
+           {with("MJD2000 @DEPARTURE_MJD2000@", "MJD2000 1@DEPARTURE_MJD2000@"), "departure MJD2000 19700"}}) {
+    try {
+      write_sweep_cells(g, text, "P99/problem.txt", dir.path.string());
+      ADD_FAILURE() << text << " accepted";
+    } catch (const input_error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("P99/problem.txt: the sweep's cell d9700_t300 states"), std::string::npos) << what;
+      EXPECT_NE(what.find(stated), std::string::npos) << what;
+      EXPECT_NE(what.find("not its grid values, departure MJD2000 9700 and 300 d"), std::string::npos) << what;
+    }
+    EXPECT_TRUE(fs::is_empty(dir.path)) << text;
+  }
+}
+
+// --sweep writes a row only for a solution of its cell's problem: schema-valid, and a converged one
+// at the cell's departure epoch and time of flight.
+TEST(SweepRows, ASolutionOfAnotherProblemIsRefused) {
+  const SweepDir dir;
+  const SweepGrid g = read_sweep(kSweep, "s");
+  write_sweep_cells(g, kTemplate, "t", dir.path.string());
+  dir.write("d9700_t300/solution.json", converged(9700, 300, {{"propellant_kg", 1}}));
+  EXPECT_EQ(sweep_rows(g, dir.path.string())[0].status, "converged");
+  for (const auto& [text, why] : std::vector<std::pair<std::string, std::string>>{
+           {converged(9700, 2100, {{"propellant_kg", 1}}), "time of flight of 2100 d"},
+           {converged(19700, 300, {{"propellant_kg", 1}}), "departure MJD2000 19700"},
+           {solution("dancing"), "solution schema violation"},
+           {R"({"status": "converged", "propellant_kg": 1})", "field /schema is missing"}}) {
+    dir.write("d9700_t300/solution.json", text);
+    try {
+      sweep_rows(g, dir.path.string());
+      ADD_FAILURE() << text << " accepted";
+    } catch (const input_error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("d9700_t300/solution.json"), std::string::npos) << what;
+      EXPECT_NE(what.find(why), std::string::npos) << what;
+    }
+  }
+}
 
 TEST(SweepBoundary, WindowFromTheGridOrStated) {
   json j = kSweep;
@@ -191,13 +296,13 @@ TEST(SweepBoundary, CellsBelowItAreInfeasibleAndNotSolved) {
   EXPECT_TRUE(fs::exists(dir.path / "b9740" / "settings.json"));
   // While a boundary is missing, no cell.
   EXPECT_TRUE(feasible_cells(g, dir.path.string()).empty());
-  EXPECT_EQ(write_sweep_cells(g, kTemplate, "t", dir.path.string()).find("SWEEP_CELLS :=\n") != std::string::npos, true);
+  EXPECT_EQ(write_sweep_cells(g, kTemplate, "t", dir.path.string()).find("SWEEP_CELLS :=\n") != std::string::npos,
+            true);
   // t_min 320 d at 9700: its 300-day cell is infeasible, the row starts cold at 350; 9740 failed
   // (every cell solved); 9780's t_min is a grid value: that cell is feasible.
-  dir.write("b9700/solution.json",
-            R"({"status": "converged", "tof_days": 320, "search": {"saturated": true, "starts": 128, "extremals": [{}, {}]}})");
-  dir.write("b9740/solution.json", R"({"status": "not_converged"})");
-  dir.write("b9780/solution.json", R"({"status": "converged", "tof_days": 300.0000000001})");
+  dir.write("b9700/solution.json", converged(9700, 320, {{"search", search(128, 2, true)}}));
+  dir.write("b9740/solution.json", solution("not_converged"));
+  dir.write("b9780/solution.json", converged(9780, 300.0000000001));
   const auto cells = feasible_cells(g, dir.path.string());
   ASSERT_EQ(cells.size(), 8u);
   EXPECT_EQ(cells[0].name, "d9700_t350");
@@ -223,17 +328,26 @@ TEST(SweepBoundary, CellsBelowItAreInfeasibleAndNotSolved) {
 TEST(SweepCrosscheck, ImprovesUntilNoCellDoesAndResumes) {
   const SweepDir dir;
   const SweepGrid g = read_sweep(json::parse(R"({"departure_mjd2000": {"values": [1]},
-      "tof_days": {"values": [10, 20, 30]}, "boundary": false})"), "s");
+      "tof_days": {"values": [10, 20, 30]}, "boundary": false})"),
+                                 "s");
   for (const char* cell : {"d1_t10", "d1_t20", "d1_t30"}) dir.write(std::string(cell) + "/shoot.cpp", "");
-  dir.write("d1_t10/solution.json", R"({"status": "converged", "propellant_kg": 100})");
-  dir.write("d1_t20/solution.json", R"({"status": "converged", "propellant_kg": 200})");
-  dir.write("d1_t30/solution.json", R"({"status": "not_converged"})");
+  dir.write("d1_t10/solution.json", converged(1, 10, {{"propellant_kg", 100}}));
+  dir.write("d1_t20/solution.json", converged(1, 20, {{"propellant_kg", 200}}));
+  dir.write("d1_t30/solution.json", solution("not_converged"));
+  // It flies its own cell (the shoot.cpp's folder d1_t<tof>) with its neighbour's answer's propellant
+  // plus 10 kg.
+  dir.write("answer.json",
+            converged(1, 0,
+                      {{"tof_days", "TOF"},
+                       {"propellant_kg", "PROPELLANT"},
+                       {"warm_start", {{"from", "FROM"}, {"neighbour_status", "converged"}, {"used", true}}}}));
   dir.write("solver.sh",
             "#!/bin/sh\n"
+            "cell=$(basename \"$(dirname \"$1\")\")\n"
             "while [ $# -gt 0 ]; do case $1 in --warm-start) from=$2; shift;; -o) out=$2; shift;; esac; shift; done\n"
             "m=$(sed -n 's/.*\"propellant_kg\": *\\([0-9.]*\\).*/\\1/p' \"$from\")\n"
-            "printf '{\"status\": \"converged\", \"propellant_kg\": %s, \"warm_start\": {\"from\": \"%s\"}}' "
-            "$((m + 10)) \"$from\" >\"$out\"\n");
+            "sed -e \"s/\\\"TOF\\\"/${cell#*_t}/\" -e \"s/\\\"PROPELLANT\\\"/$((m + 10))/\" -e \"s|FROM|$from|\" \\\n"
+            "  \"$(dirname \"$0\")/answer.json\" >\"$out\"\n");
   fs::permissions(dir.path / "solver.sh", fs::perms::owner_all);
   CrosscheckOptions o;
   o.solver = (dir.path / "solver.sh").string();

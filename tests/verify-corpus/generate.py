@@ -87,6 +87,13 @@ LPOS, LVEL = [LRX, LRY, LRZ], [LVX, LVY, LVZ]
 AXES = "xyz"
 
 
+def fixed_state_target(state, units):
+    """The spec's target of a state given in normalized units (km, km/s)."""
+    speed = units["length_km"] / units["time_s"]
+    return {"kind": "fixed_state", "position_km": [x * units["length_km"] for x in state[:3]],
+            "velocity_km_s": [x * speed for x in state[3:]]}
+
+
 def named_states(with_mass, length, time):
     out = []
     for k in AXES:
@@ -147,6 +154,8 @@ def s05h(s01):
             params.append({"name": f"{prefix}_{k}", "meaning": f"{k} of the {prefix} state", "unit": "normalized",
                            "value": v})
     d["parameters"] = params
+    for c, vals in zip(d["constraints"], (dep, arr)):
+        c["target"] = fixed_state_target(vals, d["units"])
     d["terms"] = [{"name": "two_body", "kind": "force", "parameters": ["mu"]},
                   {"name": "j2", "kind": "force", "parameters": ["J2", "R_E"]},
                   {"name": "thrust", "kind": "force", "parameters": ["Tmax", "c"]},
@@ -173,9 +182,11 @@ def s06h(s05):
         if p["name"].startswith("arrival_"):
             p["source"] = "coast:arrival:tf"
             p["meaning"] = p["meaning"].replace("arrival state", "coasting target at tf")
-    for k, v in zip(["rx", "ry", "rz", "vx", "vy", "vz"], [-1.2, 0.6, 0.3, -0.4, -0.7, 0.2]):
+    target0 = [-1.2, 0.6, 0.3, -0.4, -0.7, 0.2]
+    for k, v in zip(["rx", "ry", "rz", "vx", "vy", "vz"], target0):
         d["parameters"].append({"name": f"target0_{k}", "meaning": f"{k} of the coasting target at t0",
                                 "unit": "normalized", "value": v})
+    d["constraints"][1]["target"] = fixed_state_target(target0, d["units"]) | {"kind": "coasting"}
     tx, ty, tz, tvx, tvy, tvz = sp.symbols("tgt_rx tgt_ry tgt_rz tgt_vx tgt_vy tgt_vz")
     d["coast_dynamics"] = {"states": ["tgt_rx", "tgt_ry", "tgt_rz", "tgt_vx", "tgt_vy", "tgt_vz"],
                            "rhs": [g(e) for e in [tvx, tvy, tvz] + j2_gravity(tx, ty, tz)]}
@@ -214,6 +225,7 @@ def free_tf_parts(d, body, window, tf_var):
                   "tf_expression": f"{lo}+{hi - lo}*{tf_var}"}
     d["event_values"] = [{"name": "H_tf", "kind": "hamiltonian", "at": "tf", "meaning": "H at tf under the optimal control"}]
     rates = []
+    find(d["constraints"], "id", "arrival")["target"] = {"kind": "body", "body": body, "ephemeris": "jpl_lp"}
     for p in d["parameters"]:
         if p["name"].startswith("arrival_"):
             p["source"] = f"ephemeris:{body}:tf"
@@ -278,9 +290,11 @@ def s11h():
         "initial_values": [{"state": s["name"], "value": f"departure_{s['name']}"} for s in states],
         "constraints": [
             {"id": "departure", "kind": "initial_state", "at": "t0",
+             "target": {"kind": "body", "body": "Earth", "ephemeris": "jpl_lp"},
              "psi": [f"{s['name']}-departure_{s['name']}" for s in states],
              "multipliers": [f"nu_departure_{i + 1}" for i in range(6)]},
             {"id": "arrival", "kind": "rendezvous", "at": "tf",
+             "target": {"kind": "body", "body": "Mars", "ephemeris": "jpl_lp"},
              "psi": [f"{s['name']}-arrival_{s['name']}" for s in states],
              "multipliers": [f"nu_arrival_{i + 1}" for i in range(6)]}],
         "shooting": {
@@ -337,6 +351,107 @@ def set_costates(d, model, form):
     H, f, xs, ls = model
     for x, l in zip(xs, ls):
         costate(d, str(l))["rhs"] = form(-sp.diff(H, x))
+
+
+# --------------------------------------------------------------------------------------------
+# psi against the constraints' targets (builtin derivations in base/: S14's orbit, the same orbit
+# as equations of the state, a departure anywhere on an orbit)
+
+TARGET_BASES = {"S14": "scenarios/S14/problem.txt", "GEOX": "tests/fixtures/problems/geo_by_equations.txt",
+                "OR2OR": "tests/fixtures/problems/gto_anywhere_to_geo.txt"}
+
+
+def replace_everywhere(d, old, new, where=("constraints", "initial_values", "shooting")):
+    """Replaces `old` by `new` in every string of the sections `where`."""
+    def walk(x):
+        if isinstance(x, dict):
+            return {k: walk(v) for k, v in x.items()}
+        if isinstance(x, list):
+            return [walk(v) for v in x]
+        return x.replace(old, new) if isinstance(x, str) else x
+    for key in where:
+        d[key] = walk(d[key])
+
+
+def target_cases(case):
+    case("S14-builtin", "S14", "builtin: a fixed departure, the GEO orbit as a target (its mirror told apart)")
+    case("GEOX-builtin", "GEOX", "builtin: GEO written as five equations of the final state")
+    case("OR2OR-builtin", "OR2OR", "builtin: a departure anywhere on the GTO, the GEO orbit as a target")
+
+    def orbit_rows_equivalent(d):
+        """|r| - a as |r|^2 - a^2, |v|^2 - mu/a as a |v|^2 - mu, h.(n x N) negated, the side condition over |r|."""
+        arrival = find(d["constraints"], "id", "arrival")
+        arrival["psi"][0] = "rx^2+ry^2+rz^2-a_arrival^2"
+        arrival["psi"][2] = "a_arrival*(vx^2+vy^2+vz^2)-mu"
+        arrival["psi"][4] = "rx*vz-rz*vx"
+        arrival["must_be_positive"][0]["expression"] = "(rx*vy-ry*vx)/sqrt(rx^2+ry^2+rz^2)"
+        eq(d, "psi_arrival_1")["expression"] = "rx_tf^2+ry_tf^2+rz_tf^2-a_arrival^2"
+        eq(d, "psi_arrival_3")["expression"] = "a_arrival*(vx_tf^2+vy_tf^2+vz_tf^2)-mu"
+        eq(d, "psi_arrival_5")["expression"] = "rx_tf*vz_tf-rz_tf*vx_tf"
+        for e in d["shooting"]["equations"]:
+            e["expression"] = (e["expression"].replace("(rx_tf^2+ry_tf^2+rz_tf^2)^(-1/2)*nu_arrival_1", "2*nu_arrival_1")
+                               .replace("2*nu_arrival_3", "2*a_arrival*nu_arrival_3")
+                               .replace("nu_arrival_5", "(-nu_arrival_5)"))
+    case("S14-orbit-rows-equivalent", "S14", "GEO's rows squared, scaled and negated; h.n over |r|",
+         edit=orbit_rows_equivalent)
+
+    def departure_literal(d):
+        """The departure's rows and initial values with the numbers written out."""
+        for p in d["parameters"]:
+            if p["name"].startswith("departure_"):
+                replace_everywhere(d, p["name"], "(" + repr(p["value"]) + ")")
+    case("S14-departure-literal", "S14", "the departure state written as numbers, not parameters",
+         edit=departure_literal)
+
+    def radius_times(d):
+        """The LLM's S14 (issue 46): psi asks for |r| = 1.1 a; the shooting row follows it."""
+        find(d["constraints"], "id", "arrival")["psi"][0] = "-1.1*a_arrival+sqrt(rx^2+ry^2+rz^2)"
+        eq(d, "psi_arrival_1")["expression"] = "-1.1*a_arrival+sqrt(rx_tf^2+ry_tf^2+rz_tf^2)"
+    case("S14-orbit-radius-shifted", "S14", "psi asks for |r| = 1.1 a (46,381.5 km), the target 42,165 km",
+         ["target:arrival"], radius_times)
+
+    def departure_shifted(d):
+        """rx(t0) 0.1 Earth radius (638 km) off the stated departure, in psi and the initial value alike."""
+        find(d["constraints"], "id", "departure")["psi"][0] = "-departure_rx-0.1+rx"
+        find(d["initial_values"], "state", "rx")["value"] = "departure_rx+0.1"
+    case("S14-departure-shifted", "S14", "the departure row and its initial value 638 km off the stated position",
+         ["target:departure"], departure_shifted)
+    case("S14-initial-value-shifted", "S14", "the initial value of rx 638 km off what psi fixes",
+         ["initial_values"], lambda d: find(d["initial_values"], "state", "rx").update(value="departure_rx+0.1"))
+
+    def side_flipped(d):
+        side = find(d["constraints"], "id", "arrival")["must_be_positive"][0]
+        side["expression"] = "-(" + side["expression"] + ")"
+    case("S14-side-condition-flipped", "S14", "h.n > 0 written h.n < 0: the retrograde GEO",
+         ["target:arrival"], side_flipped)
+    case("S14-side-condition-dropped", "S14", "no side condition: the rows hold on the retrograde GEO too",
+         ["target:arrival"], lambda d: find(d["constraints"], "id", "arrival").pop("must_be_positive"))
+    def plane_row_dropped(d):
+        """h_y = 0 dropped with its multiplier: the rest of the shooting system consistent without it."""
+        arrival = find(d["constraints"], "id", "arrival")
+        arrival["psi"].pop(4)
+        arrival["multipliers"].pop(4)
+        drop_eq(d, "psi_arrival_5")
+        d["shooting"]["variables"] = [v for v in d["shooting"]["variables"] if v["name"] != "nu_arrival_5"]
+        for e in d["shooting"]["equations"]:
+            e["expression"] = re.sub(r"[+-]nu_arrival_5\*[a-z]+_tf", "", e["expression"])
+    case("S14-plane-row-dropped", "S14", "h_y = 0 dropped (with its multiplier): an inclined circle would pass",
+         ["target:arrival"], plane_row_dropped)
+
+    def equation_value(d):
+        """|r| = 42165 km met at 44,652 km (7 Earth radii) in psi and the shooting row."""
+        arrival = find(d["constraints"], "id", "arrival")
+        arrival["psi"][0] = arrival["psi"][0].replace("-6.6108645831847141494", "-7")
+        e = eq(d, "psi_arrival_1")
+        e["expression"] = e["expression"].replace("-6.6108645831847141494", "-7")
+    case("GEOX-equation-value-changed", "GEOX", "the row of |r| = 42165 km asks for 7 Earth radii (44,652 km)",
+         ["target:arrival"], equation_value)
+
+    def departure_orbit_shifted(d):
+        """The departure orbit's semi-latus rectum 1% off, in psi, the initial values and the shooting."""
+        replace_everywhere(d, "p_departure", "(1.01*p_departure)")
+    case("OR2OR-departure-orbit-shifted", "OR2OR", "the departure orbit's p 1% larger than the stated GTO's",
+         ["target:departure"], departure_orbit_shifted)
 
 
 # --------------------------------------------------------------------------------------------
@@ -495,13 +610,19 @@ def main():
     S01F = s01f(s01)
     for name, doc in (("S05h", S05), ("S06h", S06), ("S11h", S11), ("S01f", S01F)):
         write(seed_dir / f"{name}.json", doc)
+    for name, problem in TARGET_BASES.items():
+        if bin_dir:
+            spec = subprocess.run([str(bin_dir / "helios-parse"), str(ROOT / problem)], check=True,
+                                  capture_output=True, text=True).stdout
+            subprocess.run([str(bin_dir / "helios-derive"), "-", "-o", str(HERE / "base" / f"{name}.json")],
+                           input=spec, check=True, text=True)
     for name in EVENT_BASES:
         if bin_dir:
             subprocess.run([str(bin_dir / "helios-derive"), str(HERE / "base" / f"{name}.spec.json"), "-o",
                             str(HERE / "base" / f"{name}.json")], check=True)
     # Every case is a patch against one of these files, as committed.
     bases = {name: f"seed/{name}.json" for name in ("S01", "S05h", "S06h", "S11h", "S01f")}
-    bases.update({name: f"base/{name}.json" for name in builtin + EVENT_BASES})
+    bases.update({name: f"base/{name}.json" for name in builtin + EVENT_BASES + list(TARGET_BASES)})
     seeds = {name: json.loads((HERE / path).read_text()) for name, path in bases.items()}
 
     cases = []
@@ -798,6 +919,7 @@ def main():
     case("S12-flip-l_vz", "S12", "S01 + SRP: sign of l_vz' flipped", ["costate_ode:l_vz"], lambda d: flip(d, "l_vz"))
 
     event_cases(case)
+    target_cases(case)
 
     write(HERE / "manifest.json", {"description": "helios-verify accuracy corpus: expected verdict and the exact "
                                                   "set of failing checks of every case (generate.py)",

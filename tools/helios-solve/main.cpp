@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
        {"trajectory", "", "FILE", "trajectory CSV to write (t, r, v, m, lambda, u, H, S)", "trajectory.csv"},
        {"plots", "", "PREFIX", "write PREFIXtrajectory.png and PREFIXthrottle_mass.png; empty: no plots", ""},
        {"cache-dir", "", "DIR", "compiled programs by content hash", "runs/.cache"},
-       {"time-limit", "", "SECONDS", "wall-clock limit of the run", "600"},
+       {"time-limit", "", "SECONDS", "wall-clock limit of the run, a safety net (the search stops on its own rules)",
+        "3600"},
        {"memory-limit", "", "MB", "address-space limit of the run", "4096"},
        {"warm-start", "", "FILE",
         "a neighbour's solution.json: its shooting variables are the first guess (a sweep's cell)", ""},
@@ -33,7 +34,8 @@ int main(int argc, char** argv) {
       "(no network, read-only /usr; the only writable place is a private folder beside the\n"
       "trajectory, removed after the run), and writes solution.json. What the program prints goes\n"
       "to stderr as progress, never to stdout.\n"
-      "A failed compile or run is recorded in the artifact's status; the tool still exits 0.\n"
+      "A failed compile or run is recorded in the artifact's status; the tool still exits 0. A problem\n"
+      "shown infeasible (its bound below the minimum time the search found) exits 5, the artifact written.\n"
       "The run is a global search (many starts, the distinct extremals compared, the best kept); its\n"
       "progress goes to stderr, one line per stage or every few seconds (--quiet: none).\n"
       "With --compile-only it writes a compile report (schemas/compile.schema.json: ok, errors,\n"
@@ -49,8 +51,7 @@ int main(int argc, char** argv) {
     o.cache_dir = helios::cli::folder_option(args, "cache-dir");
     o.warm_start_path = args.get("warm-start");
     o.warm_only = args.has("warm-only");
-    if (o.warm_only && o.warm_start_path.empty())
-      throw helios::input_error("--warm-only: needs --warm-start");
+    if (o.warm_only && o.warm_start_path.empty()) throw helios::input_error("--warm-only: needs --warm-start");
     o.backend = helios::cli::backend_option(args, {"builtin", "llm"});
     o.time_limit_s = helios::cli::positive_option(args, "time-limit");
     o.memory_limit_mb = helios::cli::positive_option(args, "memory-limit");
@@ -61,7 +62,8 @@ int main(int argc, char** argv) {
       helios::io::write_artifact("compile", helios::solve::compile_report(o), args.output);
       return 0;
     }
-    helios::io::write_artifact("solution", helios::solve::solve(o), args.output);
-    return 0;
+    const helios::io::json solution = helios::solve::solve(o);
+    helios::io::write_artifact("solution", solution, args.output);
+    return solution.value("status", "") == "infeasible" ? int{helios::kExitInfeasible} : int{helios::kExitOk};
   });
 }

@@ -4,8 +4,8 @@
 #include "helios/io/cli.hpp"
 #include "helios/io/error.hpp"
 #include "helios/io/schema.hpp"
-#include "helios/verify/verify.hpp"
 #include "helios/symbolic/expr.hpp"
+#include "helios/verify/verify.hpp"
 
 int main(int argc, char** argv) {
   helios::symbolic::fix_expression_order(argv);
@@ -20,8 +20,9 @@ int main(int argc, char** argv) {
        helios::cli::memory_limit_option("the symbolic work", "2048")},
       {"DERIVATION"},
       "Trusts only the problem statement of the derivation (states, controls, parameters, dynamics,\n"
-      "costs, psi) and recomputes H, the state and costate ODEs, the direction and throttle laws,\n"
-      "transversality, the shooting counts and the normalization with GiNaC. Each equality is tested\n"
+      "costs, the constraints' targets) and recomputes H, the state and costate ODEs, the direction\n"
+      "and throttle laws, transversality, the shooting counts and the normalization with GiNaC; psi\n"
+      "must vanish, with full rank, at random states of each target. Each equality is tested\n"
       "at N random points (relative tolerance 1e-9) and, where GiNaC can show it, exactly. Every check\n"
       "carries a feedback sentence for the next refinement round. Exit 4 when the verdict is fail.",
       "helios-verify runs/builtin/S01/derivation.json -o runs/builtin/S01/verify.json"};

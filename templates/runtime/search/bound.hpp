@@ -76,9 +76,11 @@ class BoundRoute : public Route {
     if (opened.status != Status::kConverged) return how + ": no transfer found there either";
     const Extremal& best = opened.search.extremals[opened.search.returned];
     rec.minimum_time_days = best.tf_days;
-    rec.minimum_time_settled = true;
-    rec.minimum_time_how = how + ", the search there returned it by " + best.route;
-    if (best.tf_days > rec.bound_days * (1 + kInfeasibleMargin))
+    // Settled where the starts there saturated, at the problem's thrust or at the time scale's.
+    rec.minimum_time_settled = opened.search.saturated || opened.search.time_scale.saturated;
+    rec.minimum_time_how = how + ", the search there returned it by " + best.route +
+                           (rec.minimum_time_settled ? ", its starts saturated" : ", its starts not saturated");
+    if (helios::solve::beyond_bound(best.tf_days, rec.bound_days))
       return "minimum time " + days_text(best.tf_days) + ", " + how;
     // Within the stated window: the problem's own extremal, its final time as a fraction of the window.
     c.knobs.reset_base();
@@ -107,8 +109,10 @@ class BoundRoute : public Route {
       const Result there = Search(c.fine, c.guess, c.admissible, c.knobs, true, std::move(routes)).solve();
       c.count(there.evaluations);
       if (there.search.start_extremals.empty()) continue;
-      return from_longer(c, there.search, longer,
-                         "the final time lengthened to " + days_text((longer - kProblem.t0) * day, 6));
+      return from_longer(
+          c, there.search, longer,
+          "the final time lengthened to " + days_text((longer - kProblem.t0) * day, 6) +
+              (there.search.saturated ? ", where the starts saturated" : ", where the starts did not saturate"));
     }
     return "no start converged at any final time up to the burnout: no minimum time found";
   }
@@ -132,9 +136,9 @@ class BoundRoute : public Route {
     if (shortest.empty()) return how + ": no minimum time reached from the solutions there";
     const double t_min = shortest[l0] * longer;  // the held system's final time, a fraction of `longer`
     rec.minimum_time_days = (t_min - kProblem.t0) * kProblem.time_unit_days;
-    rec.minimum_time_settled = true;
+    rec.minimum_time_settled = there.saturated;
     rec.minimum_time_how = how + ", then continued down to the shortest final time that converges";
-    if (rec.minimum_time_days > rec.bound_days * (1 + kInfeasibleMargin))
+    if (helios::solve::beyond_bound(rec.minimum_time_days, rec.bound_days))
       return "minimum time " + days_text(rec.minimum_time_days) + " (" + how + ")";
     // Shorter than the stated time: the fuel extremal continued up from the minimum time to it.
     c.knobs.reset_base();

@@ -16,8 +16,8 @@ namespace {
 
 // A transfer of at most this many revolutions is "few": the search's starts are reliable there.
 constexpr double kFewRevolutions = 2.5;
-// A minimum time beyond the stated bound by less than this (relative) is not a proof of infeasibility.
-constexpr double kInfeasibleMargin = 1e-6;
+// Starts that saturate settle a problem only where at least this many of them converged.
+constexpr int kMinConverged = 16;
 
 // Whether an extremal may be returned: polished, in the final time's window, and on the stated
 // side of every target (not on a mirror the rows also admit: Shape::off_side).
@@ -93,7 +93,7 @@ inline Choice choose_with_bounds(const SearchRecord& rec) {
 // the search found (a settled search for it) exceeds the stated bound.
 inline bool proven_infeasible(const SearchRecord& rec) {
   return best_index(rec) < 0 && rec.minimum_time_settled && std::isfinite(rec.minimum_time_days) &&
-         std::isfinite(rec.bound_days) && rec.minimum_time_days > rec.bound_days * (1 + kInfeasibleMargin);
+         std::isfinite(rec.bound_days) && helios::solve::beyond_bound(rec.minimum_time_days, rec.bound_days);
 }
 
 // How a search ended: its status and, where it returns nothing, why.
@@ -142,11 +142,7 @@ Verdict verdict(const SearchRecord& rec, DaysText&& days_text, ObjectiveText&& o
         ex.begin(), ex.end(), [](const Extremal& a, const Extremal& b) { return a.shape.cost < b.shape.cost; });
     v.detail = "every extremal the search reached (" + std::to_string(ex.size()) +
                ") ends outside the final time's window; the shortest takes " + objective_text(shortest->shape.cost);
-    if (std::isfinite(rec.minimum_time_days) && std::isfinite(rec.bound_days) &&
-        rec.minimum_time_days > rec.bound_days && !rec.minimum_time_settled)
-      v.detail +=
-          ", beyond the bound, but the search for the minimum time did not settle, so infeasibility is not shown";
-    else if (std::isfinite(shortest->tf_days) && std::isfinite(rec.bound_days) && shortest->tf_days < rec.bound_days)
+    if (std::isfinite(shortest->tf_days) && std::isfinite(rec.bound_days) && shortest->tf_days < rec.bound_days)
       v.detail +=
           ", before the window opens: the minimum time is below the window (widen it, or minimize the fuel at a fixed "
           "time of flight in it)";
@@ -156,6 +152,11 @@ Verdict verdict(const SearchRecord& rec, DaysText&& days_text, ObjectiveText&& o
   } else {
     v.detail = what_failed;
   }
+  if (std::isfinite(rec.minimum_time_days) && std::isfinite(rec.bound_days) &&
+      helios::solve::beyond_bound(rec.minimum_time_days, rec.bound_days))
+    v.detail += "; the minimum time found, " + days_text(rec.minimum_time_days) +
+                ", is beyond the bound, but the search for it did not settle (" + rec.minimum_time_how +
+                "), so it does not show the problem infeasible";
   return v;
 }
 

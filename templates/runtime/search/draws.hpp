@@ -27,11 +27,12 @@ namespace {
 
 // The streams of draws: the starts of the problem itself (0), the events-off draws of a problem
 // with events (1), the starts of a minimum-time problem's companion (2), the guess whose departure
-// the time scale reads (3).
+// the time scale reads (3), the starts of a minimum-fuel problem's minimum-time problem (4).
 constexpr std::uint64_t kStartStream = 0;
 constexpr std::uint64_t kEventlessStream = 1;
 constexpr std::uint64_t kCompanionStream = 2;
 constexpr std::uint64_t kScaleStream = 3;
+constexpr std::uint64_t kMinimumTimeStream = 4;
 
 // The generator of start k (of a stream): SplitMix64 of (seed, k, stream), so a start's guess does
 // not depend on which thread runs it or on how many starts came before.
@@ -98,7 +99,6 @@ class Progress {
 // this many draws. Without search_starts, the starts of one route stop at kDefaultStartCap.
 constexpr int kSearchBatch = 8;
 constexpr int kMinDraws = 128;
-constexpr int kMinConverged = 16;
 constexpr int kDefaultStartCap = 1024;
 // While no route has reached an extremal, the starts go on past saturation up to this many.
 constexpr int kMoreStarts = 4 * kMinDraws;

@@ -95,6 +95,7 @@ class TimeScaleRoute : public Route {
     step.revolutions = best.shape.revolutions;
     c.rec().thrust_continuation.push_back(step);
     scale.raised_tf_days = best.tf_days;
+    scale.saturated = c.scale_search.search.saturated;
     scale.raised_revolutions = best.shape.revolutions;
     scale.estimate_days = scale.factor * best.tf_days;
     // Revolutions at the departure's period: an orbit raised on the way turns slower, so this errs

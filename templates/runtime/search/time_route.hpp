@@ -184,7 +184,7 @@ class TimeRoute : public Route {
       TimeRouteArrival a;
       std::vector<double> z;
       int evaluations = 0;
-      const bool reached = minimum_time_from_fuel_solution(c.fine, c.knobs, c.rec().start_extremals[k].x,
+      const bool reached = minimum_time_from_fuel_solution(c.coarse, c.knobs, c.rec().start_extremals[k].x,
                                                            c.coarse.eps_start, z, a, evaluations);
       c.count(evaluations);
       if (reached) fewest = std::min(fewest, minimum_time_revolutions(c.coarse, c.knobs, z));
@@ -192,6 +192,7 @@ class TimeRoute : public Route {
     }
     if (c.coarse.search_thrust_continuation && c.knobs.thrust_scalable() && !(fewest <= kFewRevolutions))
       by_raised_thrust(c);
+    if (kProblem.final_coast_keeps_target) minimum_time_starts(c);
     int arrived = 0;
     double t_min = INFINITY;
     for (const auto& p : c.rec().time_route_paths) {
@@ -211,6 +212,52 @@ class TimeRoute : public Route {
 
  private:
   static constexpr std::size_t kTimeRouteSources = 3;
+
+  // Where the minimum time bounds the answer (minimum time plus a coast), the problem's own starts
+  // give the minimum-time extremals of their families only, and the one the final time comes down
+  // to need not be the shortest (GTO to GEO at 60 N in 1.5 t_min: the starts reach only the family
+  // of two revolutions, which comes down to 21.54 h; the shortest, 14.80 h, is one revolution).
+  // So the minimum-time problem itself is searched: starts on the held-multiplier system (lambda0
+  // held at 0, the final time free in its slot, drawn log-uniformly between a tenth of the
+  // problem's and the problem's), drawn until saturated; each distinct minimum-time extremal is
+  // taken up to the problem's final time.
+  void minimum_time_starts(SearchContext& c) {
+    SearchRecord& rec = c.rec();
+    const int l0 = lambda0_variable();
+    const double held = 0;
+    std::vector<StartExtremal> found;
+    int drawn = 0, converged = 0;
+    bool cut = false;
+    draw_until_saturated(
+        c.coarse, c.threads, kMinimumTimeStream, found, drawn, converged, cut, start_cap(c.coarse), c.started,
+        [&](int, std::mt19937_64& rng) {
+          StartRun run;
+          run.x.assign(kProblem.num_vars, 0.0);
+          c.guess(rng, run.x.data());
+          run.x[l0] = std::pow(10.0, std::uniform_real_distribution<double>(-1.0, 0.0)(rng));
+          Shooter shooter(c.coarse, held_multiplier_function(c.knobs, l0, held));
+          int info = 0;
+          run.ok = shooter.solve(run.x, 0.0, c.coarse.accept_residual, info, run.res) && run.x[l0] > 0;
+          c.knobs.reset_final_time();
+          if (run.ok) {
+            run.shape.revolutions = minimum_time_revolutions(c.coarse, c.knobs, run.x);
+            run.shape.cost = run.x[l0];
+          }
+          c.count(shooter.evaluations);
+          return run;
+        },
+        [&](const StartRun& run, int k) { c.pool.enter_start(found, run, k); },
+        [&](int k) { c.progress.tick(std::to_string(k) + " starts of the minimum-time problem"); });
+    rec.cut_by_time = rec.cut_by_time || cut;
+    c.progress.stage(std::to_string(drawn) + " starts of the minimum-time problem: " + std::to_string(converged) +
+                     " converged, " + std::to_string(found.size()) + " distinct");
+    for (const int k : lowest_cost(found, kTimeRouteSources)) {
+      if (c.out_of_time()) break;
+      TimeRouteArrival a;
+      std::vector<double> z = found[k].x;
+      path(c, "the minimum-time start " + std::to_string(found[k].first_start), &z, a);
+    }
+  }
 
   // The minimum time at a raised thrust: the fuel problem searched there (search_at_raised_thrust:
   // its final time scaled inversely, so it winds fewer times), its lowest-cost extremals at eps_start
@@ -273,7 +320,10 @@ class TimeRoute : public Route {
         if (std::fabs(p.tf_min_days - path.tf_min_days) <= 1e-7 * path.tf_min_days) path.reached_before = true;
       if (!path.reached_before) {
         int evaluations = 0;
-        fuel_path_from_minimum_time(c.fine, c.knobs, *z, c.admissible, a, evaluations);
+        // At the search's tolerance (its arrival is polished with the others) where the minimum-time
+        // extremal winds few times; over many revolutions only the integrator's own resolves the path.
+        fuel_path_from_minimum_time(path.revolutions <= kScaleRevolutions ? c.coarse : c.fine, c.knobs, *z,
+                                    c.admissible, a, evaluations);
         c.count(evaluations);
       }
     }

@@ -121,9 +121,8 @@ std::string problem_block(Context& c) {
     if (!p.runtime_evaluated())
       o << "HELIOS_PARAMETER(" << p.name << ", " << number(p.value) << ");  // "
         << comment_text(p.meaning + " [" + p.unit_text + "]") << "\n";
-  o << "// A coast keeps the final constraint: it is an orbit with the position on it free, and the only\n"
-    << "// force but the thrust is the central body's (a transfer that arrives early may coast to tf).\n"
-    << "constexpr bool kFinalCoastKeepsTarget = " << (final_coast_keeps_target(c) ? "true" : "false") << ";\n";
+  o << "constexpr bool kFinalCoastKeepsTarget = " << (final_coast_keeps_target(c) ? "true" : "false")
+    << ";  // a coast keeps the final constraint (an orbit, two-body forces)\n";
   o << "}  // namespace problem\n\n"
     << "// The problem's shape as the runtime library reads it (helios_runtime.hpp's ProblemShape).\n"
     << "namespace helios_rt {\n"

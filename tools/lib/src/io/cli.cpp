@@ -138,7 +138,8 @@ std::string help_text(const ToolInfo& info) {
   }
   out << "  -h, --help          print this help and exit\n"
       << "      --version       print the version and exit\n\n"
-      << "exit codes: 0 ok, 1 other failure (solver, I/O), 2 usage, 3 invalid input, 4 check failed\n"
+      << "exit codes: 0 ok, 1 other failure (solver, I/O), 2 usage, 3 invalid input, 4 check failed,\n"
+      << "5 the problem is infeasible (helios-solve: solution.json written, with the minimum time that shows it)\n"
       << "e.g.: " << info.example << "\n";
   return out.str();
 }

@@ -123,8 +123,8 @@ void search_coverage(std::ostringstream& o, const json& sr) {
   if (sr.contains("minimum_fuel_companion")) {
     const json& c = sr.at("minimum_fuel_companion");
     o << "Minimum-fuel companion: final time held at " << numeric(c.value("held_tf_days", json())) << " d, "
-      << numeric(c.value("converged", json())) << " of " << numeric(c.value("starts", json()))
-      << " starts converged, " << c.value("solutions", json::array()).size()
+      << numeric(c.value("converged", json())) << " of " << numeric(c.value("starts", json())) << " starts converged, "
+      << c.value("solutions", json::array()).size()
       << " distinct solutions, each continued down in the held time and released.\n\n";
   }
 }
@@ -460,7 +460,8 @@ void Writer::boundaries(std::ostringstream& o) {
 std::string Writer::side_conditions(const json& owner, const std::string& where) {
   const json& sides = owner.value("must_be_positive", json::array());
   if (sides.empty()) return "";
-  std::string out = "The rows also hold on the target's mirror; the solver returns no extremal where one of these fails:\n";
+  std::string out =
+      "The rows also hold on the target's mirror; the solver returns no extremal where one of these fails:\n";
   for (std::size_t i = 0; i < sides.size(); ++i)
     out +=
         display("g_{" + std::to_string(i + 1) + "}", sides[i].at("expression"), where + "/must_be_positive", " > 0") +
@@ -531,12 +532,13 @@ void Writer::solution(std::ostringstream& o) const {
   if (!in_.solution) return;
   const json& s = *in_.solution;
   o << "## Solution (solution.json)\n\n| quantity | value |\n|---|---|\n";
-  for (const char* key : {"status", "tof_days", "departure_mjd2000", "initial_mass_kg", "final_mass_kg",
-                          "propellant_kg", "delta_v_m_s", "epsilon", "max_residual", "hamiltonian_drift", "iterations",
-                          "function_evaluations", "restarts", "seed", "method"})
+  for (const char* key : {"status", "status_detail", "tof_days", "departure_mjd2000", "initial_mass_kg",
+                          "final_mass_kg", "propellant_kg", "delta_v_m_s", "epsilon", "max_residual",
+                          "hamiltonian_drift", "iterations", "function_evaluations", "restarts", "seed", "method"})
     if (s.contains(key)) o << "| " << code(key) << " | " << value(s.at(key)) << " |\n";
   if (s.contains("timings"))
-    for (const auto& [k, v] : s.at("timings").items()) o << "| " << code("timings/" + k) << " | " << numeric(v) << " |\n";
+    for (const auto& [k, v] : s.at("timings").items())
+      o << "| " << code("timings/" + k) << " | " << numeric(v) << " |\n";
   o << "\n";
   if (s.contains("switches") && !s.at("switches").empty()) {
     o << "### Switches\n\n| t (d) | throttle after |\n|---|---|\n";
@@ -570,11 +572,26 @@ void Writer::solution(std::ostringstream& o) const {
       return std::string();
     };
     for (const auto& e : sr.value("extremals", json::array()))
-      o << "| " << numeric(e.value("id", json())) << (e.value("id", -1) == sr.value("returned", -2) ? " (returned)" : "")
-        << " | " << numeric(e.value("objective", json())) << " | " << named(e) << " | "
+      o << "| " << numeric(e.value("id", json()))
+        << (e.value("id", -1) == sr.value("returned", -2) ? " (returned)" : "") << " | "
+        << numeric(e.value("objective", json())) << " | " << named(e) << " | "
         << numeric(e.value("revolutions", json())) << " | " << numeric(e.value("switches", json())) << " | "
         << numeric(e.value("reached", json())) << " starts | " << numeric(e.value("max_residual", json())) << " |\n";
     o << "\n";
+    if (sr.contains("minimum_time")) {
+      const json& m = sr.at("minimum_time");
+      o << "The minimum time found: " << numeric(m.value("tf_days", json())) << " d, against the stated bound of "
+        << numeric(m.value("bound_days", json())) << " d (" << markdown_text(m.value("how", "")) << "; "
+        << (m.value("settled", false) ? "settled" : "not settled") << ").\n\n";
+    }
+    if (sr.contains("routes")) {
+      o << "| route | ran | what it did, or why not | extremals added | evaluations |\n|---|---|---|---|---|\n";
+      for (const auto& r : sr.at("routes"))
+        o << "| " << markdown_text(r.value("name", "")) << " | " << (r.value("ran", false) ? "yes" : "no") << " | "
+          << markdown_text(r.value("outcome", "")) << " | " << numeric(r.value("extremals_added", json())) << " | "
+          << numeric(r.value("evaluations", json())) << " |\n";
+      o << "\n";
+    }
     search_coverage(o, sr);
   }
   if (s.contains("files")) {

@@ -1,11 +1,16 @@
 // The compile step: g++ against the prebuilt runtime, into a cache keyed by the SHA-256 of the
-// source's structure (its numbers masked), command, compiler and runtime.
+// source's structure (its numbers masked) or of the whole source, command, compiler and runtime;
+// an entry is used only when it is this user's alone and its program matches its stored hash.
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -26,6 +31,8 @@ using io::json;
 
 // The cached compile.log holds a compile's diagnostics (at most 64 KiB of them); more is not ours.
 constexpr std::size_t kMaxCompileLog = std::size_t{1} << 20;
+// A compiled program is a few MiB; a cached file above this is not one of ours.
+constexpr std::size_t kMaxProgram = std::size_t{512} << 20;
 
 // How often the compiler's diagnostics say `kind` ("warning:", "error:").
 int count_of(const std::string& diagnostics, const std::string& kind) {
@@ -70,11 +77,70 @@ class CacheLock {
   int fd_;
 };
 
+// A cache entry's folder, made private (0700) when missing; a link, a file, another user's folder
+// or one others may write is refused: what is in it is not this user's alone.
+void private_folder(const fs::path& dir) {
+  struct stat st;
+  if (::lstat(dir.c_str(), &st) != 0 && errno == ENOENT && ::mkdir(dir.c_str(), 0700) != 0 && errno != EEXIST)
+    throw std::runtime_error(dir.string() + ": cannot create the compile cache entry: " + std::strerror(errno));
+  if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != ::geteuid() || (st.st_mode & 022) != 0)
+    throw std::runtime_error(dir.string() +
+                             ": the compile cache entry is not a private folder of this user (a link, a file, another "
+                             "user's or writable by others); remove it or use another --cache-dir");
+}
+
+// A file of a cache entry, read without following a link and only when it is a regular file of
+// this user with one link that nobody else may write, of at most `limit` bytes; else nothing.
+std::optional<std::string> private_file(const fs::path& path, std::size_t limit) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+  if (fd < 0) return std::nullopt;
+  struct stat st;
+  std::optional<std::string> out;
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_nlink == 1 && st.st_uid == ::geteuid() &&
+      (st.st_mode & 022) == 0 && static_cast<std::size_t>(st.st_size) <= limit) {
+    out.emplace();
+    char buf[65536];
+    for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) != 0;) {
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0 || out->size() + static_cast<std::size_t>(n) > limit) {
+        out.reset();
+        break;
+      }
+      out->append(buf, static_cast<std::size_t>(n));
+    }
+  }
+  ::close(fd);
+  return out;
+}
+
+// The entry in `dir` when it is whole: its program, the program's stored SHA-256 and its
+// compile.log, each a private file, and the program matching the hash.
+bool read_entry(const fs::path& dir, CompileResult& c) {
+  const auto program = private_file(dir / "shoot", kMaxProgram);
+  const auto stored = private_file(dir / "shoot.sha256", 65);
+  const auto log = private_file(dir / "compile.log", kMaxCompileLog);
+  if (!program || !stored || !log) return false;
+  const std::string hash = io::sha256_hex(*program);
+  if (*stored != hash + "\n") return false;
+  c.program = *program;
+  c.binary_sha256 = hash;
+  c.diagnostics = *log;
+  return true;
+}
+
+const char* key_kind_name(KeyKind kind) {
+  return kind == KeyKind::Structure ? "structure" : "source";
+}
+
 }  // namespace
 
-std::string compile_key(const std::string& source, const std::string& command, const std::string& compiler_version,
-                        const std::string& runtime_sha256) {
-  return io::sha256_hex(source + "\n" + command + "\n" + compiler_version + "\n" + runtime_sha256);
+std::string compile_key(KeyKind kind, const std::string& text, const std::string& command,
+                        const std::string& compiler_version, const std::string& runtime_sha256) {
+  // Each field after its length: no two lists of fields make the same bytes.
+  std::string bytes = std::string("helios compile cache 2\n") + key_kind_name(kind) + "\n";
+  for (const std::string* field : {&text, &command, &compiler_version, &runtime_sha256})
+    bytes += std::to_string(field->size()) + ":" + *field + "\n";
+  return io::sha256_hex(bytes);
 }
 
 CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
@@ -91,28 +157,29 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
       compiler + flag_text + " -I" + runtime.include_dir + " shoot.cpp -o shoot " + runtime.library + " -lcminpack";
   // The key covers the source, the command, the compiler's identity and the runtime's bytes; the
   // cache's is the same over the source's structure, its numbers masked, which the program reads
-  // at run time from the parameters file.
+  // at run time from the parameters file, or over the whole source when nothing is masked.
   const std::string compiler_version = io::first_line(io::capture({compiler, "--version"}));
   c.parameters = program_parameters(source);
-  c.sha256 = compile_key(source, c.command, compiler_version, runtime.sha256);
-  c.structure_sha256 = compile_key(c.parameters.structure, c.command, compiler_version, runtime.sha256);
+  c.sha256 = compile_key(KeyKind::Source, source, c.command, compiler_version, runtime.sha256);
+  c.structure_sha256 = c.parameters.readable ? compile_key(KeyKind::Structure, c.parameters.structure, c.command,
+                                                           compiler_version, runtime.sha256)
+                                             : c.sha256;
   // Absolute, as the sandbox binds the folder at its absolute path.
   const fs::path dir = fs::absolute(fs::path(o.cache_dir) / c.structure_sha256).lexically_normal();
   c.binary = (dir / "shoot").string();
   const auto from_cache = [&] {
     c.ok = c.cached = true;
-    // The log holds at most the 64 KiB of diagnostics a compile keeps.
-    c.diagnostics = io::read_text((dir / "compile.log").string(), kMaxCompileLog);
     c.warnings = count_of(c.diagnostics, "warning:");
     c.seconds = io::seconds_since(start);
     return c;
   };
-  if (fs::exists(c.binary)) return from_cache();
-  fs::create_directories(dir);
+  fs::create_directories(dir.parent_path());
+  private_folder(dir);
+  if (read_entry(dir, c)) return from_cache();
   // One compile per structure at a time: a second solve of the same structure (a sweep's next row
   // under make -j) waits for the first one's compile and takes it from the cache.
   const CacheLock lock((dir / "compile.lock").string());
-  if (fs::exists(c.binary)) return from_cache();
+  if (read_entry(dir, c)) return from_cache();
   const std::string src = (dir / "shoot.cpp").string();
   io::write_text_atomic(src, source);
   const std::string tmp_bin = (dir / (".shoot.tmp." + std::to_string(::getpid()))).string();
@@ -135,13 +202,45 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
                                     : "signal " + std::to_string(run.signal) + " (CPU, memory or file-size limit)") +
                      "\n";
   c.warnings = count_of(c.diagnostics, "warning:");
-  c.ok = run.exit_code == 0 && !run.timed_out && fs::exists(tmp_bin);
+  std::optional<std::string> program;
+  if (run.exit_code == 0 && !run.timed_out && ::chmod(tmp_bin.c_str(), 0700) == 0)
+    program = private_file(tmp_bin, kMaxProgram);
+  c.ok = program.has_value();
   if (c.ok) {
+    // The log and the hash first: a reader that meets the new hash beside the old program finds
+    // them different and waits for this lock.
+    c.program = std::move(*program);
+    c.binary_sha256 = io::sha256_hex(c.program);
     io::write_text_atomic((dir / "compile.log").string(), c.diagnostics);
+    io::write_text_atomic((dir / "shoot.sha256").string(), c.binary_sha256 + "\n");
     fs::rename(tmp_bin, c.binary);
   }
   c.seconds = io::seconds_since(start);
   return c;
+}
+
+void install_program(const CompileResult& c, const std::string& path) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0700);
+  if (fd < 0) throw std::runtime_error(path + ": cannot create the program to run: " + std::strerror(errno));
+  std::size_t done = 0;
+  while (done < c.program.size()) {
+    const ssize_t n = ::write(fd, c.program.data() + done, c.program.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int error = errno;
+      ::close(fd);
+      throw std::runtime_error(path + ": cannot write the program to run: " + std::strerror(error));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::close(fd) != 0) throw std::runtime_error(path + ": cannot write the program to run: " + std::strerror(errno));
+}
+
+json cache_record(const CompileResult& c) {
+  json record = {{"cache_key", c.parameters.readable ? "structure" : "source"}};
+  if (!c.parameters.readable) record["cache_key_detail"] = c.parameters.whole_source_because;
+  if (c.ok) record["binary_sha256"] = c.binary_sha256;
+  return record;
 }
 
 json compile_report(const SolveOptions& o) {
@@ -153,6 +252,7 @@ json compile_report(const SolveOptions& o) {
   doc["cached"] = c.cached;
   doc["source_sha256"] = c.sha256;
   doc["structure_sha256"] = c.structure_sha256;
+  doc.update(cache_record(c));
   doc["command"] = c.command;
   doc["warnings"] = c.warnings;
   doc["errors"] = count_of(c.diagnostics, "error:");

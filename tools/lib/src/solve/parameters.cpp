@@ -1,10 +1,15 @@
-// A program's numbers (its HELIOS_PARAMETER lines): the structure the compile cache keys on, and
-// the parameters file helios-solve writes for the program.
+// A program's numbers (its HELIOS_PARAMETER lines): the structure the compile cache keys on, when
+// nothing else in the program can read them before main, and the parameters file helios-solve
+// writes for the program.
 #include <cmath>
 #include <cstdlib>
+#include <regex>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "helios/solve/solve.hpp"
+#include "program_text.hpp"
 
 namespace helios::solve {
 namespace {
@@ -76,32 +81,54 @@ bool parameter_line(const std::string& line, std::string& name, json& values, st
 }  // namespace
 
 ProgramParameters program_parameters(const std::string& source) {
-  ProgramParameters unreadable;
-  unreadable.structure = source;
+  const auto whole_source = [&](const std::string& why) {
+    ProgramParameters p;
+    p.structure = source;
+    p.whole_source_because = why;
+    return p;
+  };
+  const detail::ProgramText text = detail::read_program_text(source);
+  if (!text.unreadable.empty()) return whole_source(text.unreadable);
+  // The runtime's header, a system header, a pragma: no macro can change the rest of the text.
+  static const std::regex allowed(R"(#include "helios_runtime\.hpp"|#\s*include\s*<[A-Za-z0-9_./+-]+>|#\s*pragma\s.*)");
+  for (const auto& d : text.directives)
+    if (!std::regex_match(d, allowed))
+      return whole_source("the preprocessor line '" + d.substr(0, 60) + "' may change what the compiler reads");
   ProgramParameters p;
   p.readable = true;
-  bool directive = false;  // a preprocessor line other than the runtime's #include so far
+  std::set<std::size_t> parameter_lines;
   std::size_t from = 0;
-  while (from < source.size()) {
+  for (std::size_t line = 1; from <= source.size(); ++line) {
     const std::size_t nl = source.find('\n', from);
     const std::size_t to = nl == std::string::npos ? source.size() : nl;
-    const std::string line = source.substr(from, to - from);
-    const std::size_t first = line.find_first_not_of(" \t");
-    const std::string text = first == std::string::npos ? "" : line.substr(first);
-    if (text.rfind("#", 0) == 0 && text != "#include \"helios_runtime.hpp\"") directive = true;
+    const std::string text_line = source.substr(from, to - from);
     std::string name, masked;
     json values;
-    if (text.rfind("//", 0) == 0 || line.find("HELIOS_PARAMETER") == std::string::npos) {
-      p.structure += line;
-    } else if (!directive && parameter_line(line, name, values, masked) && !p.values.contains(name)) {
+    if (text_line.rfind("HELIOS_PARAMETER", 0) == 0 && text.line_starts_in_code[line - 1]) {
+      if (!parameter_line(text_line, name, values, masked))
+        return whole_source("line " + std::to_string(line) +
+                            ": a parameter line not of the form HELIOS_PARAMETER(name, number);");
+      if (p.values.contains(name))
+        return whole_source("line " + std::to_string(line) + ": the parameter " + name + " again");
       p.values[name] = values;
       p.structure += masked;
+      parameter_lines.insert(line);
     } else {
-      return unreadable;
+      p.structure += text_line;
     }
-    if (nl != std::string::npos) p.structure += '\n';
+    if (nl == std::string::npos) break;
+    p.structure += '\n';
     from = to + 1;
   }
+  std::vector<detail::Token> code;
+  for (const auto& t : text.tokens) {
+    if (parameter_lines.count(t.line)) continue;
+    if (t.text == "HELIOS_PARAMETER" || t.text == "HELIOS_PARAMETER_ARRAY")
+      return whole_source("line " + std::to_string(t.line) + ": " + t.text + " outside a parameter line");
+    code.push_back(t);
+  }
+  if (const std::string why = detail::code_before_main(code); !why.empty())
+    return whole_source(why + " (it could read a parameter before the parameters file replaces it)");
   return p;
 }
 

@@ -8,9 +8,9 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstring>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <regex>
 #include <string>
@@ -36,8 +36,8 @@ void check_settings(const json& settings, const std::string& source) {
     }
   }
   // The schema's own words for this one (an anyOf) would not say what is allowed.
-  if (const auto it = settings.find("node_spacing_days"); it != settings.end() && it->is_number() &&
-                                                           it->get<double>() > 0 && it->get<double>() < 1)
+  if (const auto it = settings.find("node_spacing_days");
+      it != settings.end() && it->is_number() && it->get<double>() > 0 && it->get<double>() < 1)
     throw input_error(source + ": field /node_spacing_days: " + io::limit_text(it->get<double>()) +
                       " is below 1 day (0 turns the multiple-shooting polish off)");
   io::validate("settings", settings, source);
@@ -89,6 +89,7 @@ json record_before_run(const SolveOptions& o, const json& settings, const Compil
                     {"command", c.command},
                     {"warnings", c.warnings},
                     {"diagnostics", c.diagnostics.substr(0, 8000)}};
+  doc["compile"].update(cache_record(c));
   doc["sandbox"] = o.sandbox ? "bubblewrap" : "none";
   doc["seed"] = settings.value("seed", 1);
   doc["iterations"] = 0;
@@ -100,10 +101,9 @@ json record_before_run(const SolveOptions& o, const json& settings, const Compil
 // Why a run left no outcome: the wall-clock kill, or its exit code and signal, and the processes
 // it left behind.
 std::string run_failure(const RunResult& run, double time_limit_s) {
-  std::string detail = run.timed_out
-                           ? "killed after " + io::limit_text(time_limit_s) + " s wall clock"
-                           : "exit code " + std::to_string(run.exit_code) + ", signal " + std::to_string(run.signal) +
-                                 ": " + io::printable_line(run.error_line);
+  std::string detail = run.timed_out ? "killed after " + io::limit_text(time_limit_s) + " s wall clock"
+                                     : "exit code " + std::to_string(run.exit_code) + ", signal " +
+                                           std::to_string(run.signal) + ": " + io::printable_line(run.error_line);
   if (run.leftover_processes > 0)
     detail += "; killed " + std::to_string(run.leftover_processes) + " leftover processes";
   return detail;
@@ -207,9 +207,10 @@ json solve(const SolveOptions& o) {
   json warm_record;
   const json warm = o.warm_start_path.empty() ? json(nullptr) : warm_start_of(o.warm_start_path, warm_record);
   if (o.warm_only && warm.is_null())
-    throw input_error(o.warm_start_path + ": field /status: " +
-                      (warm_record.is_null() ? std::string("no warm start") : warm_record.value("neighbour_status", "")) +
-                      ": --warm-only needs a converged neighbour");
+    throw input_error(
+        o.warm_start_path + ": field /status: " +
+        (warm_record.is_null() ? std::string("no warm start") : warm_record.value("neighbour_status", "")) +
+        ": --warm-only needs a converged neighbour");
   const CompileResult c = compile_cached(source, o);
   json doc = record_before_run(o, settings, c);
   if (!warm_record.is_null()) doc["warm_start"] = warm_record;
@@ -228,13 +229,11 @@ json solve(const SolveOptions& o) {
     if (o.warm_only) program_settings["warm_start"]["only"] = true;
   }
   io::write_json_atomic(files.settings, program_settings);
-  std::vector<std::string> program = {fs::absolute(c.binary).lexically_normal().string(),
-                                      "--settings",
-                                      files.settings,
-                                      "--outcome",
-                                      files.outcome,
-                                      "--trajectory",
-                                      files.trajectory};
+  // The program checked against its stored hash, copied where only this run can change it.
+  const std::string binary = (fs::path(files.path) / "shoot").string();
+  install_program(c, binary);
+  std::vector<std::string> program = {binary,        "--settings",   files.settings,  "--outcome",
+                                      files.outcome, "--trajectory", files.trajectory};
   // This source's numbers: the cached program may have been compiled from another problem's.
   if (c.parameters.readable) {
     io::write_json_atomic(files.parameters, parameters_document(c.parameters.values));

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "helios/io/error.hpp"
+#include "helios/solve/verdict.hpp"
 #include "helios/spec/parse.hpp"
 #include "helios/sweep/sweep.hpp"
 
@@ -19,9 +20,6 @@ namespace fs = std::filesystem;
 using io::json;
 
 namespace {
-
-// A cell is below the boundary when its time of flight is shorter than t_min by more than this.
-constexpr double kBoundaryToleranceDays = 1e-6;
 
 // The sentences of a problem text as [begin, end) spans: from the first character after a
 // sentence's end ('.' then white space or the end of the text) to its own '.', skipping comment
@@ -106,12 +104,16 @@ std::string boundary_problem(const SweepGrid& grid, const std::string& template_
   for (std::size_t at = 0; (at = text.find(kDeparturePlaceholder, at)) != std::string::npos;)
     text.replace(at, std::string(kDeparturePlaceholder).size(), number_text(departure_mjd2000));
 
-  // The boundary must be the cells' problem but for its objective and time of flight.
-  const json cell = spec::parse_problem_text(
-      cell_problem(template_text, template_source, departure_mjd2000, grid.boundary_tof_max_days), template_source);
+  // The boundary must be its row's cells' problem (the first one's, which must state its own
+  // values) but for its objective and time of flight, at the row's epoch.
+  const double first_tof = grid.tofs_days.front();
+  const json cell = spec::parse_problem_text(cell_problem(template_text, template_source, departure_mjd2000, first_tof),
+                                             template_source);
+  check_cell_problem(cell, template_source, cell_name(departure_mjd2000, first_tof), departure_mjd2000, first_tof);
   if (cell.at("objective").value("kind", "") == "minimum_time")
     throw input_error(where + "the template's objective is already minimum time; set \"boundary\": false");
   const json boundary = spec::parse_problem_text(text, template_source + " (boundary form)");
+  check_cell_problem(boundary, template_source, boundary_name(departure_mjd2000), departure_mjd2000, std::nullopt);
   if (boundary.at("objective").value("kind", "") != "minimum_time" ||
       boundary.at("time").value("final_time", "") != "free" ||
       without_objective_and_time(boundary) != without_objective_and_time(cell))
@@ -130,7 +132,8 @@ json boundary_settings(const json& sweep_settings) {
 std::string write_sweep_boundary(const SweepGrid& grid, const std::string& template_text,
                                  const std::string& template_source, const json& sweep_settings,
                                  const std::string& dir) {
-  std::string fragment = "# Written by helios-score --sweep-boundary from " + template_source + "'s sweep: do not edit.\n";
+  std::string fragment =
+      "# Written by helios-score --sweep-boundary from " + template_source + "'s sweep: do not edit.\n";
   fragment += "SWEEP_BOUNDARY :=";
   if (grid.boundary) {
     const std::string settings = boundary_settings(sweep_settings).dump(2) + "\n";
@@ -153,7 +156,7 @@ Boundary read_boundary(const SweepGrid& grid, const std::string& dir, double dep
     b.status = "missing";
     return b;
   }
-  const json s = io::read_json(path.string());
+  const json s = checked_solution(path.string(), boundary_name(departure_mjd2000), departure_mjd2000, std::nullopt);
   b.status = s.value("status", "unknown");
   if (b.status != "converged") return b;
   if (!s.contains("tof_days") || !s.at("tof_days").is_number())
@@ -170,7 +173,7 @@ Boundary read_boundary(const SweepGrid& grid, const std::string& dir, double dep
 }
 
 bool below_boundary(const Boundary& b, double tof_days) {
-  return b.status == "converged" && tof_days < b.t_min_days - kBoundaryToleranceDays;
+  return b.status == "converged" && solve::beyond_bound(b.t_min_days, tof_days);
 }
 
 }  // namespace helios::sweep

@@ -87,8 +87,14 @@ struct Try {
 class Crosscheck {
  public:
   Crosscheck(const SweepGrid& grid, const std::string& dir, const CrosscheckOptions& o)
-      : grid_(grid), dir_(dir), o_(o), nd_(grid.departures_mjd2000.size()), nt_(grid.tofs_days.size()),
-        names_(nd_ * nt_), solvable_(nd_ * nt_, false), answers_(nd_ * nt_) {}
+      : grid_(grid),
+        dir_(dir),
+        o_(o),
+        nd_(grid.departures_mjd2000.size()),
+        nt_(grid.tofs_days.size()),
+        names_(nd_ * nt_),
+        solvable_(nd_ * nt_, false),
+        answers_(nd_ * nt_) {}
 
   json run() {
     std::set<std::size_t> offered = first_answers();
@@ -179,7 +185,7 @@ class Crosscheck {
       throw std::runtime_error("cross-check: cannot start a solve (fork failed)");
     }
     for (std::size_t c = 0; c < codes.size(); ++c)
-      if (codes[c] != 0)
+      if (codes[c] != kExitOk && codes[c] != kExitInfeasible)
         throw std::runtime_error("cross-check: helios-solve exited with " + std::to_string(codes[c]) + " on " +
                                  names_[tries[commanded[c]].cell] + " from " + names_[tries[commanded[c]].from]);
     runs_ += static_cast<int>(commands.size());
@@ -216,10 +222,8 @@ class Crosscheck {
     for (std::size_t k = 0; k < names_.size(); ++k) {
       if (!solvable_[k]) continue;
       const Answer& a = answers_[k];
-      cells[names_[k]] = {{"answer", a.file},
-                          {"answer_from", a.from},
-                          {"extremals_compared", a.extremals.size()},
-                          {"tried", a.tried}};
+      cells[names_[k]] = {
+          {"answer", a.file}, {"answer_from", a.from}, {"extremals_compared", a.extremals.size()}, {"tried", a.tried}};
       if (std::isfinite(a.objective)) cells[names_[k]][grid_.plot] = a.objective;
     }
     return {{"schema", "helios/sweep-crosscheck"},

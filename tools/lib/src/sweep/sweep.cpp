@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "helios/io/error.hpp"
+#include "helios/io/schema.hpp"
 #include "helios/solve/solve.hpp"
+#include "helios/spec/parse.hpp"
 
 namespace helios::sweep {
 
@@ -117,6 +119,27 @@ std::string axis_range(const std::vector<double>& values) {
   return "[" + number_text(values.front() - pad) + ":" + number_text(values.back() + pad) + "]";
 }
 
+// What a problem or a solution flies, in words: "departure MJD2000 9700 and a time of flight of 300 d".
+std::string flown(std::optional<double> departure_mjd2000, std::optional<double> tof_days) {
+  return "departure MJD2000 " + (departure_mjd2000 ? number_text(*departure_mjd2000) : std::string("none")) + " and " +
+         (tof_days ? "a time of flight of " + number_text(*tof_days) + " d" : std::string("a free time of flight"));
+}
+
+// The same number to rounding (a time of flight through the normalized units).
+bool same(std::optional<double> a, std::optional<double> b) {
+  return a.has_value() == b.has_value() && (!a || std::fabs(*a - *b) <= 1e-9 * std::max(1.0, std::fabs(*b)));
+}
+
+std::optional<double> number_of(const json& j, const char* key) {
+  return j.is_object() && j.contains(key) && j.at(key).is_number() ? std::optional<double>(j.at(key).get<double>())
+                                                                   : std::nullopt;
+}
+
+std::string grid_values(double departure_mjd2000, std::optional<double> tof_days) {
+  return "departure MJD2000 " + number_text(departure_mjd2000) +
+         (tof_days ? " and " + number_text(*tof_days) + " d" : std::string(" and a free time of flight"));
+}
+
 std::string replace_all(std::string text, const std::string& what, const std::string& with) {
   for (std::size_t at = 0; (at = text.find(what, at)) != std::string::npos; at += with.size())
     text.replace(at, what.size(), with);
@@ -137,7 +160,7 @@ std::string number_text(double value) {
 
 SweepGrid read_sweep(const json& sweep, const std::string& source, const std::string& grid) {
   if (!sweep.is_object()) throw input_error(source + ": a sweep must be a JSON object");
-  static const std::vector<std::string> known = {"template", "departure_mjd2000", "tof_days", "plot",
+  static const std::vector<std::string> known = {"template", "departure_mjd2000", "tof_days",   "plot",
                                                  "bench",    "boundary",          "description"};
   for (auto it = sweep.begin(); it != sweep.end(); ++it)
     if (std::find(known.begin(), known.end(), it.key()) == known.end())
@@ -189,6 +212,34 @@ std::string cell_problem(const std::string& template_text, const std::string& te
                      number_text(tof_days));
 }
 
+void check_cell_problem(const json& spec, const std::string& template_source, const std::string& name,
+                        double departure_mjd2000, std::optional<double> tof_days) {
+  const json& time = spec.at("time");
+  const std::optional<double> epoch = number_of(time, "epoch_mjd2000");
+  const bool fixed = time.value("final_time", "") == "fixed";
+  const std::optional<double> tof = number_of(fixed ? time : json(), "tof_days");  // none when free
+  if (same(epoch, departure_mjd2000) && same(tof, tof_days)) return;
+  throw input_error(template_source + ": the sweep's cell " + name + " states " + flown(epoch, tof) +
+                    ", not its grid values, " + grid_values(departure_mjd2000, tof_days) + ": write " +
+                    kDeparturePlaceholder + " and " + kTofPlaceholder +
+                    " days where the text states the departure epoch and the time of flight");
+}
+
+json checked_solution(const std::string& path, const std::string& name, double departure_mjd2000,
+                      std::optional<double> tof_days) {
+  const json s = io::read_artifact("solution", path);
+  if (s.at("status") != "converged") return s;
+  // The runtime records the epoch when the problem has one other than MJD2000 0.
+  const std::optional<double> epoch = s.contains("departure_mjd2000") || departure_mjd2000 != 0
+                                          ? number_of(s, "departure_mjd2000")
+                                          : std::optional<double>(0.0);
+  const std::optional<double> tof = number_of(s, "tof_days");
+  if (same(epoch, departure_mjd2000) && (!tof_days || same(tof, tof_days))) return s;
+  throw input_error(path + ": the sweep's cell " + name + " has a solution that flies " + flown(epoch, tof) +
+                    ", not its grid values, " + grid_values(departure_mjd2000, tof_days) +
+                    ": solve the cell again from its own problem");
+}
+
 std::vector<SweepCell> sweep_cells(const SweepGrid& grid) {
   std::vector<SweepCell> cells;
   for (const double d : grid.departures_mjd2000) {
@@ -229,9 +280,16 @@ std::string write_sweep_cells(const SweepGrid& grid, const std::string& template
   mk << "SWEEP_CELLS :=";
   for (const auto& c : cells) mk << ' ' << c.name;
   mk << "\n";
+  // Every cell's text states its grid values, or no cell is written.
+  std::vector<std::string> texts;
   for (const auto& c : cells) {
-    const std::string text = cell_problem(template_text, template_source, c.departure_mjd2000, c.tof_days);
-    io::write_text_if_changed((fs::path(dir) / c.name / "problem.txt").string(), text);
+    texts.push_back(cell_problem(template_text, template_source, c.departure_mjd2000, c.tof_days));
+    check_cell_problem(spec::parse_problem_text(texts.back(), template_source + " (the sweep's cell " + c.name + ")"),
+                       template_source, c.name, c.departure_mjd2000, c.tof_days);
+  }
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const SweepCell& c = cells[k];
+    io::write_text_if_changed((fs::path(dir) / c.name / "problem.txt").string(), texts[k]);
     mk << "SWEEP_WARM_" << c.name << " :=" << (c.warm_from.empty() ? "" : " " + c.warm_from) << "\n";
     if (!c.warm_from.empty()) {
       mk << (fs::path(dir) / c.name / "solution.json").string() << ": "
@@ -253,14 +311,15 @@ std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const std::string& dir, 
       rows.push_back(row);
       continue;
     }
-    const json* checked = crosscheck.is_object() && crosscheck.contains("cells") && crosscheck.at("cells").contains(c.name)
-                              ? &crosscheck.at("cells").at(c.name)
-                              : nullptr;
-    const fs::path path = checked ? fs::path(dir) / checked->at("answer").get<std::string>()
-                                  : fs::path(dir) / c.name / "solution.json";
+    const json* checked =
+        crosscheck.is_object() && crosscheck.contains("cells") && crosscheck.at("cells").contains(c.name)
+            ? &crosscheck.at("cells").at(c.name)
+            : nullptr;
+    const fs::path path =
+        checked ? fs::path(dir) / checked->at("answer").get<std::string>() : fs::path(dir) / c.name / "solution.json";
     std::error_code ec;
     if (fs::exists(path, ec)) {
-      const json s = io::read_json(path.string());
+      const json s = checked_solution(path.string(), c.name, c.departure_mjd2000, c.tof_days);
       row.status = s.value("status", "unknown");
       row.start = s.value("start", "");
       if (row.status == "converged") {
@@ -328,8 +387,10 @@ void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, cons
                     << number_text(z) << "\n";
     last = r.cell.departure_mjd2000;
     data << at << (std::isfinite(r.objective) ? number_text(r.objective) : "NaN") << "\n";
-    if (r.status == "infeasible") infeasible_cells << at << number_text(z) << "\n";
-    else if (!std::isfinite(r.objective)) failed_cells << at << number_text(z) << "\n";
+    if (r.status == "infeasible")
+      infeasible_cells << at << number_text(z) << "\n";
+    else if (!std::isfinite(r.objective))
+      failed_cells << at << number_text(z) << "\n";
   }
   if (best >= 0)
     best_cell << number_text(rows[best].cell.departure_mjd2000) << ' ' << number_text(rows[best].cell.tof_days) << ' '
@@ -340,7 +401,8 @@ void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, cons
     io::write_text_atomic(file, points.str().empty() ? "NaN NaN NaN\n" : points.str());
     return file;
   };
-  const std::string grid_file = points_file(".grid", data), infeasible_file = points_file(".infeasible", infeasible_cells),
+  const std::string grid_file = points_file(".grid", data),
+                    infeasible_file = points_file(".infeasible", infeasible_cells),
                     failed_file = points_file(".failed", failed_cells), best_file = points_file(".best", best_cell),
                     boundary_file = points_file(".boundary", boundary_line), tmp_png = temps.create_beside(png_path);
   const std::string unit = grid.plot == "tof_days"        ? "time of flight [days]"
@@ -363,8 +425,8 @@ void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, cons
      << "ARG5 using 1:2:3 with points nocontours pt 2 ps 2 lw 2 lc rgb 'black' title 'failed', "
      << "ARG6 using 1:2:3 with points nocontours pt 6 ps 3 lw 2 lc rgb 'black' title 'best', "
      << "ARG6 using 1:2:3 with points nocontours pt 3 ps 3 lw 3 lc rgb 'white' notitle\n";
-  const std::string out = solve::run_gnuplot(
-      gp.str(), {tmp_png, title, grid_file, infeasible_file, failed_file, best_file, boundary_file});
+  const std::string out =
+      solve::run_gnuplot(gp.str(), {tmp_png, title, grid_file, infeasible_file, failed_file, best_file, boundary_file});
   std::error_code ec;
   if (fs::file_size(tmp_png, ec) == 0)
     throw std::runtime_error("gnuplot did not draw " + png_path + " (is gnuplot installed?): " + out.substr(0, 300));

@@ -42,8 +42,8 @@ class Family {
   // recomputed `expected` at every sample point, or exactly; `diagnose` adds a term by term
   // comparison to the feedback, `forbidden` names symbols the given one must not depend on.
   Check equality(const std::string& id, const std::string& category, const std::string& label,
-                 const std::string& expected_name, const Expected& expected, const std::string& given_text, bool diagnose,
-                 const std::vector<std::string>& forbidden = {}) const;
+                 const std::string& expected_name, const Expected& expected, const std::string& given_text,
+                 bool diagnose, const std::vector<std::string>& forbidden = {}) const;
 
   // ----- the shooting equations as written
 
@@ -111,6 +111,8 @@ std::unique_ptr<Family> control_family(const Context& ctx);
 std::unique_ptr<Family> boundary_family(const Context& ctx);
 std::unique_ptr<Family> event_family(const Context& ctx);
 std::unique_ptr<Family> shape_family(const Context& ctx);
+// The constraints' psi against their targets, and the initial values against psi (targets.cpp).
+std::unique_ptr<Family> target_family(const Context& ctx);
 // The dynamics and running cost as the sums of their listed terms (terms.cpp).
 std::unique_ptr<Family> terms_family(const Context& ctx);
 

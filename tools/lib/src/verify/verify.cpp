@@ -44,7 +44,7 @@ json verify_derivation(const json& derivation, const VerifyOptions& options) {
   const detail::Context ctx(derivation, options);
   std::vector<Check> checks;
   for (auto* make : {&detail::control_family, &detail::boundary_family, &detail::event_family, &detail::shape_family,
-                     &detail::terms_family})
+                     &detail::target_family, &detail::terms_family})
     for (auto& c : make(ctx)->run()) checks.push_back(std::move(c));
   return report(ctx.doc, options, checks);
 }

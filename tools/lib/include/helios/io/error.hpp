@@ -11,6 +11,7 @@ enum ExitCode : int {
   kExitUsage = 2,         // bad command line
   kExitInvalidInput = 3,  // unreadable, malformed or schema-violating input; impossible physics
   kExitCheckFailed = 4,   // a check the tool exists to make did not pass
+  kExitInfeasible = 5,    // helios-solve: the artifact is written and says the problem is infeasible
 };
 
 // Bad command line (unknown option, missing argument).

@@ -51,18 +51,23 @@ io::json run_settings(const SolveOptions& o);
 io::json warm_start_of(const std::string& path, io::json& record);
 
 // A program's numbers: its HELIOS_PARAMETER and HELIOS_PARAMETER_ARRAY lines (the PROBLEM block,
-// templates/runtime/helios_runtime.hpp), each at the start of its line as
+// templates/runtime/helios_runtime.hpp), each at the start of its line, outside comments, as
 // `HELIOS_PARAMETER(name, number);` or `HELIOS_PARAMETER_ARRAY(name, number, ...);` with an
 // optional `  // comment`. `structure` is the source with each of their numbers replaced by `#`
 // (nothing else), `values` the parameters file's values ({name: number or [numbers]}, each the
-// double its literal denotes). When the source names HELIOS_PARAMETER anywhere else outside a
-// comment line, has a parameter line of another form, or a preprocessor line other than the
-// runtime's #include before its last parameter line, its numbers are not readable: `readable` is
-// false, `structure` the whole source and `values` empty (the program runs on its literals).
+// double its literal denotes). The numbers are not readable (`readable` false, `structure` the whole
+// source, `values` empty: the program runs on its literals, compiled on its own) when the source
+// names HELIOS_PARAMETER in code outside a parameter line, has a parameter line of another form, a
+// preprocessor line other than an #include of the runtime's or a system header or a #pragma, text
+// the reader cannot read for sure (a line splice, a universal character name), or a declaration at
+// namespace or class scope that could run code before main, where it could read a parameter before
+// the parameters file replaces it; `whole_source_because` says which (tools/lib/src/solve/README.md,
+// "The compile cache").
 struct ProgramParameters {
   bool readable = false;
   std::string structure;
   io::json values = io::json::object();
+  std::string whole_source_because;
 };
 ProgramParameters program_parameters(const std::string& source);
 
@@ -72,8 +77,10 @@ io::json parameters_document(const io::json& values);
 struct CompileResult {
   bool ok = false, cached = false;
   // sha256: the key of the source itself (solution.json's source_sha256); structure_sha256: the
-  // key of its structure (ProgramParameters), under which the program is cached.
-  std::string binary, sha256, structure_sha256, command, diagnostics;
+  // key the program is cached under, its structure's (ProgramParameters) when its numbers are
+  // readable, else the source's own. binary: the cached program; program: its bytes, which match
+  // binary_sha256, the SHA-256 stored beside it.
+  std::string binary, sha256, structure_sha256, command, diagnostics, program, binary_sha256;
   ProgramParameters parameters;
   int warnings = 0;
   double seconds = 0;
@@ -81,15 +88,28 @@ struct CompileResult {
 
 // Compiles `source` with o.compiler -O2 into o.cache_dir/<structure_sha256>/shoot unless already
 // there (a program of the same structure, compiled from another problem's numbers, which the
-// parameters file replaces at run time). The
+// parameters file replaces at run time). The cache entry is used only when its folder and files
+// are this user's, not links, and writable by nobody else, and the program's bytes match their
+// stored SHA-256; a folder that is not private is an error (std::runtime_error), an entry that is
+// not whole is compiled anew (tools/lib/src/solve/README.md, "The compile cache"). The
 // compiler runs under the run's limits (run_limited: o.time_limit_s wall clock, o.memory_limit_mb
 // of address space, CPU, file size, processes): a source that makes it loop or grow fails the
 // compile, with the reason last in its diagnostics.
 CompileResult compile_cached(const std::string& source, const SolveOptions& o);
-// The cache key of a compile: the SHA-256 of the source, the command, the compiler's --version line
-// and the runtime's SHA-256 (runtime_files), so a rebuilt runtime invalidates cached programs.
-std::string compile_key(const std::string& source, const std::string& command, const std::string& compiler_version,
-                        const std::string& runtime_sha256);
+// What a key hashes: the whole source, or its structure (its numbers masked). Apart, so that a
+// source can never be served a program cached under another source's structure.
+enum class KeyKind { Source, Structure };
+// The cache key of a compile: the SHA-256 of the kind, then the text, the command, the compiler's
+// --version line and the runtime's SHA-256 (runtime_files), each after its length, so a rebuilt
+// runtime invalidates cached programs.
+std::string compile_key(KeyKind kind, const std::string& text, const std::string& command,
+                        const std::string& compiler_version, const std::string& runtime_sha256);
+// Writes the checked program of `c` to `path` (a new file of mode 0700 in the run's private folder),
+// which is what runs: the cache may change after the check, the private copy not.
+void install_program(const CompileResult& c, const std::string& path);
+// The compile record's cache fields: cache_key ("structure" or "source"), why the whole source
+// (cache_key_detail), and the program's binary_sha256.
+io::json cache_record(const CompileResult& c);
 
 struct RunResult {
   int exit_code = -1;

@@ -5,6 +5,7 @@
 // outcome (sweep.csv, porkchop.png).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,19 @@ std::string number_text(double value);
 // A cell's problem text: the template with both placeholders replaced (each must occur).
 std::string cell_problem(const std::string& template_text, const std::string& template_source, double departure_mjd2000,
                          double tof_days);
+
+// What a cell (or a boundary, tof_days empty: a free time of flight) must fly: its spec (a cell's
+// problem text as parsed) states the departure epoch and the time of flight of its grid values,
+// else an input_error "<template_source>: the sweep's cell <name> states ..., not its grid values,
+// ..." (a placeholder read in other units, glued to a digit, in a comment or in a bound).
+void check_cell_problem(const io::json& spec, const std::string& template_source, const std::string& name,
+                        double departure_mjd2000, std::optional<double> tof_days);
+
+// The same for a solution.json of a cell (or a boundary) at `path`: valid against its schema, and
+// a converged one at the grid's departure epoch and time of flight, else an input_error naming the
+// path, the cell and the values. Returns the solution.
+io::json checked_solution(const std::string& path, const std::string& name, double departure_mjd2000,
+                          std::optional<double> tof_days);
 
 // ---- The feasibility boundary --------------------------------------------------------------
 // A departure's boundary folder: b<epoch> (e.g. b9700).
@@ -104,7 +118,8 @@ std::vector<SweepCell> feasible_cells(const SweepGrid& grid, const std::string& 
 // Writes <dir>/<cell>/problem.txt for every feasible cell (only where the text changed, so a
 // finished cell is not remade) and returns the make fragment: SWEEP_CELLS and each warm cell's
 // dependency on its neighbour's solution.json (SWEEP_WARM_<cell>). While a boundary is missing it
-// names no cell (make remakes the fragment once the boundaries are solved).
+// names no cell (make remakes the fragment once the boundaries are solved). Each cell's text is
+// parsed first and must state its grid values (check_cell_problem): else nothing is written.
 std::string write_sweep_cells(const SweepGrid& grid, const std::string& template_text,
                               const std::string& template_source, const std::string& dir);
 
@@ -128,7 +143,7 @@ struct CrosscheckOptions {
 io::json crosscheck(const SweepGrid& grid, const std::string& dir, const CrosscheckOptions& o);
 
 // One cell's outcome: "infeasible" below its row's boundary, else from its answer (crosscheck.json's
-// when there is one, else <dir>/<cell>/solution.json): its status ("missing" without one), how it
+// when there is one, else <dir>/<cell>/solution.json, checked_solution): its status ("missing" without one), how it
 // started, where the answer came from and how many extremals were compared, and where it converged
 // the plotted objective in its unit and max_residual (else NaN).
 struct SweepRow {
@@ -142,8 +157,7 @@ struct SweepRow {
 
 // The cells' outcomes in chain order; a converged solution without the plotted key is an input_error.
 // `crosscheck`: crosscheck.json's document, or null.
-std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const std::string& dir,
-                                 const io::json& crosscheck = nullptr);
+std::vector<SweepRow> sweep_rows(const SweepGrid& grid, const std::string& dir, const io::json& crosscheck = nullptr);
 
 // sweep.csv: one row per cell (departure_mjd2000, tof_days, cell, status, the plotted objective in
 // its unit, max_residual, start, answer_from, extremals_compared, and the row's boundary:

@@ -1,9 +1,10 @@
 #pragma once
 // The verifier behind helios-verify ("stricter than the paper's SymPy step"): it takes from a
 // derivation only its problem statement (states, controls, parameters, dynamics state_rhs,
-// running_cost, endpoint_cost and the constraints' psi), recomputes H, the state and costate
-// ODEs, the control law conditions, transversality and the shooting system's shape with GiNaC,
-// and compares them with what the derivation claims. Every equality is tested at random points
+// running_cost, endpoint_cost, the constraints' psi and targets), checks psi against the targets
+// (tools/lib/src/verify/README.md), recomputes H, the state and costate ODEs, the control law
+// conditions, transversality and the shooting system's shape with GiNaC, and compares them with
+// what the derivation claims. Every equality is tested at random points
 // (|a - b| <= 1e-9 (1 + max(|a|, |b|))) and, as a bonus, exactly; the verdict is deterministic
 // for a given seed.
 #include "helios/io/json_io.hpp"
