@@ -110,6 +110,7 @@ class Shooter {
   bool solve(std::vector<double>& x, double eps, double accept, int& info, double& max_res) {
     eps_ = eps;
     failed_ = false;
+    reached_.clear();
     const int n = static_cast<int>(x.size());
     size_ = n;
     std::vector<double> F(n), wa(static_cast<std::size_t>(n * (3 * n + 13)) / 2 + 1);
@@ -139,6 +140,10 @@ class Shooter {
       if (info == 5) info = 4;
     }
     if (failed_) info = -1;
+    if (!reached_.empty()) {  // stopped at a point that met stop_below: hybrd's x is its last iterate
+      x = reached_;
+      info = 1;
+    }
     // hybrd1 returns the x of the smallest residual it saw; evaluate there for the record.
     if (!evaluate(x.data(), F.data())) {
       max_res = INFINITY;
@@ -192,6 +197,11 @@ class Shooter {
     return ok;
   }
 
+  // A solve stops at the first point whose max|F| is at most `residual` (0: hybrd's own tests
+  // only): where the integration is looser than the tolerance hybrd works to, the iterations past
+  // that point only chase the integration's noise.
+  void stop_below(double residual) { stop_below_ = residual; }
+
   int evaluations = 0;
   int last_step_evaluations = 0;
   std::vector<double> last_F;
@@ -215,8 +225,18 @@ class Shooter {
     if (!me->evaluate(x, F)) {
       // A failed integration is a large residual, so hybrd backs off instead of stopping.
       for (int i = 0; i < n; ++i) F[i] = 1e6;
+      return 0;
     }
-    return 0;
+    return iflag == 1 && me->met_stop(x, F) ? -1 : 0;
+  }
+
+  // Whether F at x meets stop_below; x is kept as the solve's answer where it does.
+  bool met_stop(const double* x, const double* F) {
+    if (!(stop_below_ > 0)) return false;
+    for (int i = 0; i < size_; ++i)
+      if (!(std::fabs(F[i]) <= stop_below_)) return false;
+    reached_.assign(x, x + size_);
+    return true;
   }
 
   // hybrj's function: F (iflag 1) or the exact Jacobian J (iflag 2) at x.
@@ -229,9 +249,11 @@ class Shooter {
     }
     if (iflag == 1) {
       c.residual_evaluations.fetch_add(1, std::memory_order_relaxed);
-      if (!me->evaluate(x, F))
+      if (!me->evaluate(x, F)) {
         for (int i = 0; i < n; ++i) F[i] = 1e6;  // as in callback: hybrj backs off
-      return 0;
+        return 0;
+      }
+      return me->met_stop(x, F) ? -1 : 0;
     }
     c.exact_jacobian_evaluations.fetch_add(1, std::memory_order_relaxed);
     std::vector<double> F_at(static_cast<std::size_t>(n));
@@ -258,6 +280,8 @@ class Shooter {
   int size_ = kProblem.num_vars;
   double eps_ = 1;
   bool failed_ = false;
+  double stop_below_ = 0;
+  std::vector<double> reached_;
   long long jacobian_calls_ = 0;  // iflag-2 calls since the last iflag-1 call
 };
 
@@ -301,8 +325,8 @@ struct ParameterSteps {
 // hold as well, and `stop(x)` ends the path after a step. Every step is recorded as `what`.
 // Returns the last p reached, where x is the solution and the parameter is left.
 template <class Set, class Accept, class Stop>
-double follow_parameter(const Settings& s, Shooter& shooter, std::vector<double>& x, double eps, Set&& set,
-                        double from, double to, double d, ParameterSteps steps, const char* what,
+double follow_parameter(const Settings& s, Shooter& shooter, std::vector<double>& x, double eps, Set&& set, double from,
+                        double to, double d, ParameterSteps steps, const char* what,
                         std::vector<ContinuationStep>& record, Accept&& accept, Stop&& stop) {
   const double direction = to >= from ? 1.0 : -1.0;
   double p = from, step = steps.first;

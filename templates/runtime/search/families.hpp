@@ -173,6 +173,9 @@ class FamiliesRoute : public Route {
         probe.how = "an extremal at eps_start of that count";
         probe.found = continue_if_promising(c, name(), static_cast<int>(i), probe.how);
       }
+    // The revolutions are swept about the departure's angular momentum: a member that would sweep
+    // fewer than none flies against its departure's motion, which no thrust of a transfer reverses.
+    if (probe.how.empty() && probe.revolutions < 0) probe.how = "none: it would sweep fewer than no revolutions";
     if (probe.how.empty()) probe.found = turn(c, of, direction, probe.how);
     c.progress.stage("family of extremal " + std::to_string(of) + ": " +
                      (direction < 0 ? "one fewer, " : "one more, ") + number_text(probe.revolutions, 3) +

@@ -86,9 +86,11 @@ class StartsRoute : public Route {
     Settings loose = c.coarse;
     loose.rtol = std::max(loose.rtol, kLooseStart);
     loose.atol = std::max(loose.atol, kLooseStart);
+    const double rough_accept = std::max(loose.accept_residual, 1e3 * kLooseStart);
     Shooter rough(loose);
+    rough.stop_below(rough_accept);
     int info = 0;
-    run.ok = rough.solve(run.x, loose.eps_start, std::max(loose.accept_residual, 1e3 * kLooseStart), info, run.res);
+    run.ok = rough.solve(run.x, loose.eps_start, rough_accept, info, run.res);
     c.count(rough.evaluations);
     if (!run.ok) return run;
     Shooter shooter(c.coarse, kContinuationStart);
