@@ -132,12 +132,12 @@ line_of() {
   assert_stderr_contains "unit 'km' is not a time unit"
 }
 
-@test "parse_events: a table header in another order -> exit 3 quoting the header" {
-  write_tour header.txt 's/^| body | a \[AU\] | e | i \[deg\]/| body | e | a [AU] | i [deg]/'
-  grep -q '^| body | e | a' header.txt
+@test "parse_events: a table header with a column it does not know -> exit 3 quoting the header" {
+  write_tour header.txt 's/^| body | a \[AU\] | e | i \[deg\]/| body | a [AU] | ecc | i [deg]/'
+  grep -q '^| body | a \[AU\] | ecc' header.txt
   run -3 --separate-stderr "$BIN/helios-parse" header.txt
   assert_one_error_line parse
-  assert_stderr_contains "cannot use table row \"| body | e | a [AU]" "column 2 is 'e'"
+  assert_stderr_contains "cannot use table row \"| body | a [AU] | ecc" "column 3 is 'ecc'"
 }
 
 @test "parse_events: a flyby with a stay -> exit 3" {

@@ -298,14 +298,20 @@ TEST(ParseEvents, ElementsTableErrors) {
       "|\n";
   const std::string row = "| Nikko | 2.2375176 | 0.1052183 | 5.70117 | 71.94548 | 2.08462 | 287.3844555 | 56800 |\n";
   const std::string events = kDeparture + "The spacecraft flies by Nikko between day 100 and day 200.\n";
-  // Columns in another order.
-  std::string swapped = header;
+  // Columns in another order are read by their names; a name it does not know is refused.
+  std::string swapped = header, swapped_row = row;
   swapped.replace(swapped.find("| e | i [deg] |"), 15, "| i [deg] | e |");
-  EXPECT_EQ(error_of(tour(swapped + row + events)),
-            "problem.txt:4: cannot use table row \"" + swapped.substr(0, swapped.size() - 1) +
-                "\": column 3 is 'i [deg]': the header reads | body | a [AU] | e | i [deg] | node [deg] | argument "
-                "of perihelion [deg] | mean anomaly [deg] | epoch [MJD] | (a in AU or km, angles in deg or rad, 'true "
-                "anomaly' instead of 'mean anomaly', epoch in MJD or MJD2000)");
+  swapped_row.replace(swapped_row.find("| 0.1052183 | 5.70117 |"), 23, "| 5.70117 | 0.1052183 |");
+  EXPECT_EQ(valid(tour(swapped + swapped_row + events))["constraints"],
+            valid(tour(header + row + events))["constraints"]);
+  std::string unknown = header;
+  unknown.replace(unknown.find("| e |"), 5, "| ecc |");
+  EXPECT_EQ(error_of(tour(unknown + row + events)),
+            "problem.txt:4: cannot use table row \"" + unknown.substr(0, unknown.size() - 1) +
+                "\": column 3 is 'ecc': the header reads e.g. | body | a [AU] | e | i [deg] | node [deg] | argument "
+                "of perihelion [deg] | mean anomaly [deg] | epoch [MJD] | (columns in any order; a in AU or km, "
+                "angles in deg or rad, 'true anomaly' instead of 'mean anomaly', epoch in MJD or MJD2000; units in "
+                "[ ] or ( ))");
   expect_error(tour(row + events), "problem.txt:4: cannot use table row \"| Nikko");
   expect_error(tour(row + events), "needs its header line just above it");
   std::string short_row = row;
@@ -663,9 +669,10 @@ TEST(ParseFacts, AmbiguityIsAnErrorNamingTheCandidates) {
   has(err(sc + " Minimize fuel and minimize time."), "it states two objectives");
   has(err(sc + " Tmax = 0.6 N."), "the maximum thrust is given twice");
   has(err("Tmax = 0.5 N, Isp = 2000 s, m0 = -1000 kg."), "the initial mass must be positive, got -1000 kg");
-  has(err(sc + " The maximum time of flight is 500 days."), "'maximum' makes 'time of flight' a bound, not a value");
-  has(err(sc + " The time of flight is up to 500 days."),
-      "'up to 500 days' is an upper bound on the time of flight, not its value (a bounded time of flight reads");
+  // A bound on the time of flight makes it free, between its bounds: beside a fixed one it is a second.
+  has(err(sc + " The maximum time of flight is 500 days."), "the time of flight is given twice");
+  has(err(sc + " The time of flight is up to 500 days."), "the time of flight is given twice");
+  has(err(sc + " The maximum isp is 2000 s."), "'maximum' makes 'isp' a bound, not a value");
   has(err(sc + " The thrust is 3 furlongs."),
       "'furlongs' after 3 is no unit HELIOS knows and no fact word; did you mean \"The spacecraft has a maximum "
       "thrust of 3 N.\"?");
@@ -1108,8 +1115,8 @@ namespace {
 
 // S14 with its final sentence replaced.
 std::string with_final_orbit(const std::string& sentence) {
-  return replaced(scenario("S14"), "At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km.",
-                  sentence);
+  return replaced(scenario("S14"),
+                  "At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km.", sentence);
 }
 
 json final_target(const std::string& sentence) {
@@ -1160,9 +1167,10 @@ TEST(ParseStateConditions, ReadsEquationsOfTheFinalStateInTheirUnits) {
       {"expression": "(x*vx+y*vy+z*vz)", "equals": 0.0, "unit": "km^2/s"},
       {"expression": "vz", "equals": 0.01, "unit": "km/s"}]})json"));
   // a period between two letters is a dot product, not the end of the sentence
-  EXPECT_EQ(parse(with_final_orbit("At the final time r.v = 0 and r = 42165 km."))["constraints"][1]["target"]
-                ["conditions"][0]["expression"],
-            "(x*vx+y*vy+z*vz)");
+  EXPECT_EQ(
+      parse(with_final_orbit(
+          "At the final time r.v = 0 and r = 42165 km."))["constraints"][1]["target"]["conditions"][0]["expression"],
+      "(x*vx+y*vy+z*vz)");
   EXPECT_EQ(helios::spec::parse_unit("km^3/s^2").factor, 1.0);
   EXPECT_EQ(helios::spec::unit_text(helios::spec::parse_unit("kg*m/s^2").dimension), "kg*km/s^2");
   EXPECT_DOUBLE_EQ(helios::spec::parse_unit("kg*m/s^2").factor, 1e-3);
@@ -1193,7 +1201,8 @@ TEST(ParseOrbitTarget, RefusesWhatItCannotPlaceWithTheForms) {
   std::string e = error_of(with_final_orbit(
       "At the final time the spacecraft is on the circular orbit of radius 42165 km with argument of perigee 30 deg."));
   has(e, "an argument of periapsis but no eccentricity above 0");
-  e = error_of(with_final_orbit("At the final time the spacecraft is on the circular orbit of radius 42165 km near Mars."));
+  e = error_of(
+      with_final_orbit("At the final time the spacecraft is on the circular orbit of radius 42165 km near Mars."));
   has(e, "cannot place 'near Mars' in the target orbit");
   has(e, "the circular equatorial orbit of radius 42165 km");
   has(error_of(with_final_orbit("At the final time the spacecraft is on the orbit.")), "names none of its elements");
@@ -1252,9 +1261,10 @@ TEST(ParseOrbitTarget, ReadsADepartureOrbitWithEveryElement) {
                               "node 40 deg and any node.")),
       "gives its node and says it is free");
   // a target's unstated elements are free already
-  EXPECT_FALSE(final_target("At the final time the spacecraft is on a circular orbit of 7500 km radius inclined 28.5 deg "
-                            "with any node.")
-                   .contains("free"));
+  EXPECT_FALSE(
+      final_target("At the final time the spacecraft is on a circular orbit of 7500 km radius inclined 28.5 deg "
+                   "with any node.")
+          .contains("free"));
 }
 
 // An orbit on the way: an interior event with its window, the window before or after the orbit,
@@ -1269,24 +1279,27 @@ TEST(ParseOrbitTarget, ReadsAnOrbitOnTheWayWithItsWindow) {
       if (c["at"] == "interior") out.push_back(c);
     return out;
   };
-  const json one = interior("The spacecraft passes through the circular orbit of radius 30000 km between day 0.1 and "
-                            "day 0.5.");
+  const json one = interior(
+      "The spacecraft passes through the circular orbit of radius 30000 km between day 0.1 and "
+      "day 0.5.");
   ASSERT_EQ(one.size(), 1u);
   EXPECT_EQ(one[0], json::parse(R"({"id": "orbit", "kind": "orbit_insertion", "at": "interior",
                                     "target": {"kind": "orbital_elements", "semi_major_axis_km": 30000.0,
                                                "eccentricity": 0.0},
                                     "window_days": [0.1, 0.5]})"));
-  const json two = interior("Between day 0.1 and day 0.5, the spacecraft reaches an equatorial orbit. The spacecraft "
-                            "must pass through an orbit with eccentricity 0.2 and inclination 3 deg between day 0.6 "
-                            "and day 0.9.");
+  const json two = interior(
+      "Between day 0.1 and day 0.5, the spacecraft reaches an equatorial orbit. The spacecraft "
+      "must pass through an orbit with eccentricity 0.2 and inclination 3 deg between day 0.6 "
+      "and day 0.9.");
   ASSERT_EQ(two.size(), 2u);
   EXPECT_EQ(two[0]["id"], "orbit");
   EXPECT_EQ(two[0]["target"], json::parse(R"({"kind": "orbital_elements", "inclination_deg": 0.0})"));
   EXPECT_EQ(two[1]["id"], "orbit_2");
   EXPECT_EQ(two[1]["window_days"], json::parse("[0.6, 0.9]"));
-  helios::io::validate("spec", parse(replaced(s14, "The time of flight is free, at most 2 days.",
-                                              "The time of flight is free, at most 2 days. The spacecraft crosses an "
-                                              "equatorial orbit between day 0.1 and day 0.5.")),
+  helios::io::validate("spec",
+                       parse(replaced(s14, "The time of flight is free, at most 2 days.",
+                                      "The time of flight is free, at most 2 days. The spacecraft crosses an "
+                                      "equatorial orbit between day 0.1 and day 0.5.")),
                        "test");
   // "geostationary" on the way is the orbit it names, as at the end: the spec is the schema's.
   const json geo = interior("The spacecraft passes through geostationary orbit between day 0.1 and day 0.5.");
@@ -1313,7 +1326,13 @@ TEST(ParseOrbitTarget, ReadsAnOrbitOnTheWayWithItsWindow) {
 // Objectives on the final state and an engine at full throttle throughout.
 TEST(ParseOrbitTarget, ReadsAFinalStateObjectiveAndAFullThrottleEngine) {
   const std::string s14 = scenario("S14");
-  const std::string fixed = replaced(s14, "The time of flight is free, at most 2 days.", "The time of flight is 1 day.");
+  const std::string radius_fixed =
+      replaced(s14, "The time of flight is free, at most 2 days.", "The time of flight is 1 day.");
+  // On the circular orbit of radius 42165 km the final radius is a constant: nothing to maximize.
+  has(error_of(replaced(radius_fixed, "Minimize the time of flight.", "Maximize the final radius.")),
+      "fixes the final radius, so maximizing it maximizes a constant");
+  const std::string fixed =
+      replaced(radius_fixed, "the circular equatorial orbit of radius 42165 km", "a circular equatorial orbit");
   for (const auto& [sentence, kind] : std::vector<std::pair<std::string, std::string>>{
            {"Maximize the final radius.", "maximum_final_radius"},
            {"Maximise the final orbital energy.", "maximum_final_energy"}}) {
@@ -1326,6 +1345,158 @@ TEST(ParseOrbitTarget, ReadsAFinalStateObjectiveAndAFullThrottleEngine) {
   EXPECT_EQ(full["spacecraft"]["full_throttle"], true);
   has(error_of(replaced(s14, "Minimize the time of flight.", "Maximize the final radius.\nMinimize the fuel.")),
       "objective");
+}
+
+// The sentences issue 47 quotes as reasonable, read to the spec they state.
+TEST(ParseEverydayWords, OrbitsAsPeopleWriteThem) {
+  const json geo = json::parse(R"({"kind": "orbital_elements", "semi_major_axis_km": 42165, "eccentricity": 0,
+                                   "inclination_deg": 0})");
+  for (const char* sentence :
+       {"The spacecraft must end on a circular equatorial orbit with a radius of 42165 km.",
+        "The final orbit is circular and equatorial with radius 42165 km.",
+        "At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km (any longitude).",
+        "At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km; where on that "
+        "orbit it arrives is free.",
+        "The spacecraft must end on a circular equatorial orbit of radius 42,165 km."})
+    EXPECT_EQ(final_target(sentence), geo) << sentence;
+  const json altitude =
+      final_target("The spacecraft must end on a circular equatorial orbit at an altitude of 35786 km.");
+  EXPECT_EQ(altitude["semi_major_axis_km"], 35786 + 6378.137);  // above the Earth's equatorial radius
+}
+
+TEST(ParseEverydayWords, TimesOfFlightWithoutOrWithABound) {
+  const std::string s14 = scenario("S14");
+  const std::string bound = "The time of flight is free, at most 2 days.";
+  // A minimum time with no upper bound: 95 % of m0 g0 Isp / T, said in the notes.
+  const double burn_days = 1500 * 9.80665 * 1994.7500254 / 60 / 86400;
+  for (const std::string& text : {replaced(s14, bound, ""), replaced(s14, bound, "The time of flight is free.")}) {
+    const json spec = parse(text);
+    helios::io::validate("spec", spec, "test");
+    EXPECT_EQ(spec["time"]["final_time"], "free");
+    EXPECT_EQ(spec["time"]["tof_min_days"], 0.0);
+    EXPECT_TRUE(IsClose(spec["time"]["tof_max_days"], 0.95 * burn_days, 0, 1e-12));
+    ASSERT_EQ(spec["notes"].size(), 1u);
+    has(spec["notes"][0], "95 % of the 5.660247493 days the engine at full thrust (60 N at 1994.750025 s)");
+  }
+  for (const char* sentence : {"The time of flight is at most 2 days.", "The transfer takes no more than 2 days."}) {
+    const json spec = parse(replaced(s14, bound, sentence));
+    EXPECT_EQ(spec["time"], parse(s14)["time"]) << sentence;
+    EXPECT_FALSE(spec.contains("notes"));
+  }
+  const std::string s02 = scenario("S02");
+  EXPECT_EQ(parse(replaced(s02, "The time of flight is free, between 50 days and 600 days.",
+                           "The time of flight is free between 50 and 600 days."))["time"],
+            parse(s02)["time"]);
+  EXPECT_EQ(parse(replaced(s02, "Minimize the time of flight.",
+                           "The spacecraft should arrive as early as possible."))["objective"]["kind"],
+            "minimum_time");
+  const json weeks = parse(replaced(s01_text(), "348.795 days", "six weeks"));
+  EXPECT_EQ(weeks["time"]["tof_days"], 42.0);
+}
+
+TEST(ParseEverydayWords, DepartureWindowsAndDatesInCalendarForms) {
+  const std::string s02 =
+      replaced(replaced(scenario("S02"), "The spacecraft departs at MJD2000 400 from Earth.",
+                        "The spacecraft departs from Earth."),
+               "The time of flight is free, between 50 days and 600 days.", "The time of flight is 300 days.");
+  const std::string objective = "Minimize the time of flight.";
+  const auto window = [&](const std::string& sentence) {
+    return parse(replaced(s02, objective, "Minimize the fuel consumption.\n" + sentence))["time"];
+  };
+  const json year = window("The departure date is free between 2030-01-01 and 2030-12-31.");
+  EXPECT_EQ(year["epoch_mjd2000"], 10958.0);  // 2030-01-01
+  EXPECT_EQ(year["t0_window_days"], json::array({0.0, 364.0}));
+  EXPECT_EQ(year["departure"], "free");
+  const json within = window("The departure date is free within 182 days of 2030-07-02.");
+  EXPECT_EQ(within["epoch_mjd2000"], 11140.0);  // 2030-07-02
+  EXPECT_EQ(within["t0_window_days"], json::array({-182.0, 182.0}));
+  const json after = parse(replaced(scenario("S02"), "The spacecraft departs at MJD2000 400 from Earth.",
+                                    "The spacecraft departs from Earth 400 days after 1 January 2000."));
+  EXPECT_EQ(after["time"], parse(scenario("S02"))["time"]);
+  // t = 0 needs no unit, as LANGUAGE.md says
+  EXPECT_EQ(parse(replaced(s01_text(), "at t = 0 days from", "at t = 0 from")), parse(s01_text()));
+}
+
+TEST(ParseEverydayWords, ElementsTablesListsAndTheCentralBodysConstants) {
+  const std::string s08 = scenario("S08");
+  const std::string header =
+      "| body | a [AU] | e | i [deg] | node [deg] | argument of perihelion [deg] | mean anomaly [deg] | epoch [MJD] |";
+  EXPECT_EQ(
+      parse(replaced(s08, header,
+                     "| Body | a (AU) | e | i (deg) | Ω (deg) | ω (deg) | M (deg) | Epoch (MJD) |"))["constraints"],
+      parse(s08)["constraints"]);
+  const std::string s10 = scenario("S10");
+  const std::string elements =
+      "with a = 1.52363312 AU, e = 0.09327933, i = 1.84785414 deg, node = 49.48935357 deg, argument of perihelion = "
+      "286.67090811 deg and true anomaly = 328.88755274 deg at MJD 60389.";
+  EXPECT_EQ(parse(replaced(s10, elements,
+                           "with a = 1.52363312 AU, e = 0.09327933, i = 1.84785414°, Omega = 49.48935357°, w = "
+                           "286.67090811° and nu = 328.88755274° at MJD 60389."))["constraints"],
+            parse(s10)["constraints"]);
+  const std::string s05 = scenario("S05");
+  const std::string central =
+      "The central body is the Earth with gravitational parameter 398600.4418 km^3/s^2, equatorial radius 6378.137 km "
+      "and J2 coefficient 1.08262668e-3.";
+  EXPECT_EQ(parse(replaced(s05, central,
+                           "The central body is the Earth (mu = 398600.4418 km^3/s^2, R = 6378.137 km, J2 = "
+                           "1.08262668e-3).")),
+            parse(s05));
+  EXPECT_EQ(parse(replaced(s05, "The dynamics include the J2 perturbation of the central body.",
+                           "The J2 perturbation of the Earth is modelled.")),
+            parse(s05));
+}
+
+// The problems issue 47 found accepted: each is refused at its sentence, saying what cannot be.
+TEST(ParseWhatCannotBe, PlacesInsideTheCentralBody) {
+  has(error_of(with_final_orbit("At the final time the spacecraft is on the circular orbit of radius 3000 km.")),
+      "problem.txt:7: cannot use sentence \"At the final time the spacecraft is on the circular orbit of radius 3000 "
+      "km\": the final orbit's radius is 3000 km from the centre of the Earth, 3378.137 km below its surface");
+  // written in km, it was not meant in km: no "write 3000000 km"
+  EXPECT_EQ(error_of(with_final_orbit("At the final time the spacecraft is on the circular orbit of radius 3000 km."))
+                .find("if it was meant in km"),
+            std::string::npos);
+  has(error_of(with_final_orbit("At the final time the spacecraft is on the circular orbit of radius 42165 m.")),
+      "if it was meant in km, write 42165 km");
+  has(error_of(with_final_orbit("At the final time the spacecraft is on an orbit with semi-major axis 26,571 km and "
+                                "eccentricity 0.85.")),
+      "the final orbit's periapsis (a = 26571 km, e = 0.85) is 3985.65 km from the centre of the Earth, 2392.487 km "
+      "below its surface");
+  has(error_of(replaced(scenario("S14"), "position [-46500, 0, 0] km", "position [-4650, 0, 0] km")),
+      "problem.txt:6: cannot use sentence \"The spacecraft departs at t = 0 days from position [-4650, 0, 0] km");
+  has(error_of(replaced(scenario("S14"), "position [-46500, 0, 0] km", "position [-4650, 0, 0] km")),
+      "the initial position is 4650 km from the centre of the Earth, 1728.137 km below its surface (equatorial "
+      "radius 6378.137 km): a radius counts from the centre (an altitude");
+  // an orbit about the Earth is no orbit about the Sun
+  has(error_of(replaced(s01_text(),
+                        "At the final time the spacecraft rendezvouses with position [-172682023, 176959469, 7948912] "
+                        "km and velocity [-16.427384, -14.860506, 9.21486e-2] km/s.",
+                        "At the final time the spacecraft is on the circular orbit of radius 42164 km about the "
+                        "Earth.")),
+      "the orbit is about Earth, but the central body is Sun");
+}
+
+TEST(ParseWhatCannotBe, ConstantsFarFromTheBodysAndConstantObjectives) {
+  const std::string s14 = scenario("S14");
+  has(error_of(replaced(s14, "398600.47 km^3/s^2", "398600.47 m^3/s^2")),
+      "problem.txt:4: cannot use sentence \"The central body is the Earth with gravitational parameter 398600.47 "
+      "m^3/s^2\": the gravitational parameter of the Earth is known: 398600.4418 km^3/s^2, and 0.00039860047 "
+      "km^3/s^2 is 999999929.3 times less");
+  // on purpose: a scaled Earth takes the text's constants
+  const json scaled = parse(replaced(replaced(s14, "the Earth with gravitational parameter 398600.47 km^3/s^2",
+                                              "a scaled Earth with gravitational parameter 398600.47 m^3/s^2"),
+                                     "The time of flight is free, at most 2 days.", "The time of flight is free."));
+  EXPECT_FALSE(scaled["central_body"].contains("radius_km"));
+  has(error_of(replaced(s14, "The time of flight is free, at most 2 days.", "The time of flight is 2 days.")),
+      "problem.txt:9: cannot use sentence \"Minimize the time of flight\": the time of flight is fixed (2 d), so "
+      "minimizing it minimizes a constant");
+  has(error_of(replaced(replaced(s14, "The time of flight is free, at most 2 days.", "The time of flight is 2 days."),
+                        "Minimize the time of flight.", "Maximize the final radius.")),
+      "fixes the final radius, so maximizing it maximizes a constant");
+  // a window in dates with no calendar epoch anywhere
+  has(error_of(replaced(s14, "The time of flight is free, at most 2 days.",
+                        "The time of flight is free, at most 400 days.\nThe spacecraft passes through the circular "
+                        "orbit of radius 30000 km between MJD2000 100 and MJD2000 101.")),
+      "its window is given as dates, but the text gives no calendar epoch");
 }
 
 }  // namespace

@@ -57,6 +57,7 @@ void Builder::apply_facts(const detail::SentenceFacts& f) {
   if (!f.objective.empty()) {
     once("the objective");
     objective = {{"kind", f.objective}};
+    objective_where = here;
   }
 }
 
@@ -66,6 +67,7 @@ void Builder::set_central_value(const char* key, double v, bool stated) {
     throw sentence_error("state the central body before its J2 coefficient or radius");
   if (stated) throw sentence_error(std::string("the central body's ") + key + " is given twice");
   central_body[key] = v;
+  constant_where[key] = here;
 }
 
 void Builder::set_engine(detail::Field field, double v) {
@@ -101,9 +103,13 @@ void Builder::apply_fact(const detail::Fact& fact) {
       set_engine(fact.field, v);
       break;
     case Field::Tof:
-      once(fact.field);
-      time["tof_days"] = v;
-      time["final_time"] = "fixed";
+      fixed_time_of_flight(v);
+      break;
+    case Field::TofMin:
+      bound_time_of_flight(v, std::nullopt);
+      break;
+    case Field::TofMax:
+      bound_time_of_flight(std::nullopt, v);
       break;
     case Field::T0:
       once(fact.field);
@@ -149,6 +155,14 @@ void Builder::apply_fact(const detail::Fact& fact) {
       break;
     case Field::Lightness:  // the ratio of the sail's acceleration to the Sun's gravity, here at 1 AU
       sail(v * astro::MU_SUN_KM3_S2 / (astro::AU_KM * astro::AU_KM) * 1e6, 1.0);
+      break;
+    case Field::DepartureWindow:
+      once("the departure window");
+      if (!fact.absolute[0] || !fact.absolute[1])
+        throw sentence_error(
+            "a departure window reads in dates ('between 2030-01-01 and 2030-03-01'): days count "
+            "from the departure, which the window makes free");
+      departure_window_dates(fact.value[0], fact.value[1]);
       break;
     case Field::Window:
     case Field::Stay:

@@ -21,7 +21,8 @@ json parse_target(const std::string& phrase) {
     const std::size_t base = m[2].matched ? 2 : 10;
     return {{"kind", m[1].matched ? "coasting" : "fixed_state"},
             {"position_km", vector3(m, base, Dimension::Length)},
-            {"velocity_km_s", vector3(m, base + 4, Dimension::Speed)}};
+            {"velocity_km_s", vector3(m, base + 4, Dimension::Speed)},
+            {"length_unit", m[base + 3].str()}};
   }
   if (phrase.find('[') == std::string::npos) {
     try {
@@ -36,76 +37,9 @@ json parse_target(const std::string& phrase) {
       "... with velocity ...' or a body's name");
 }
 
-void Builder::on_arrive(const std::smatch& m) {
-  once("the final rendezvous");
-  const std::string phrase = m[1].matched ? m[1].str() : m[2].str();
-  arrival = Endpoint{here, parse_target(phrase), "rendezvous", std::nullopt};
-}
-
-void Builder::on_arrive_flyby(const std::smatch& m) {
-  once("the final rendezvous");
-  arrival = Endpoint{here, parse_target(m[1].str()), "flyby", std::nullopt};
-  if (m[2].matched) {
-    const double v = quantity(m, 2, Dimension::Speed);
-    if (!(v > 0)) throw sentence_error("the relative speed bound must be positive");
-    arrival->max_speed = v;
-  }
-}
-
-void Builder::on_event(const std::smatch& m) {
-  const std::string verb = lowercase(m[1].str());
-  event(verb.find("rendezvous") != std::string::npos ? "rendezvous"
-        : verb.find("fl") != std::string::npos       ? "flyby"
-                                                     : "gravity_assist",
-        m[2].str());
-}
-
 EpochRef Builder::epoch_ref(const std::string& scale, const std::string& value) {
   if (lowercase(scale) == "day") return {number(value), false};
   return {mjd2000_of(scale, value), true};
-}
-
-// "<verb> NAME between day N and day N[ in an unpowered gravity assist][, CLAUSE[ and CLAUSE]]".
-void Builder::event(const std::string& kind, const std::string& rest) {
-  static const std::regex window_re =
-      re(R"((.+?) between (day|MJD2000|MJD) ()" + kNum + R"() and (day|MJD2000|MJD) ()" + kNum + R"()(.*))");
-  std::smatch m;
-  if (!std::regex_match(rest, m, window_re)) {
-    if (rest.find(" between ") != std::string::npos)
-      throw sentence_error(
-          "the window must read 'between day N and day N' (days after the epoch) or 'between "
-          "MJD2000 N and MJD2000 N'");
-    // "The spacecraft must rendezvous with Mars.": with no window, the rendezvous that ends the flight
-    if (kind == "rendezvous" && rest.find_first_of("[,;") == std::string::npos) {
-      once("the final rendezvous");
-      arrival = Endpoint{here, {{"ref", body_name(rest)}}, "rendezvous", std::nullopt};
-      windowless_rendezvous = here;
-      return;
-    }
-    throw sentence_error(
-        "an event on the way needs its window ('... between day N and day N'); a rendezvous at "
-        "the end reads 'At the final time the spacecraft rendezvouses with NAME'");
-  }
-  Event e;
-  e.where = here;
-  e.kind = kind;
-  e.body = body_name(m[1].str());
-  e.lo = epoch_ref(m[2].str(), m[3].str());
-  e.hi = epoch_ref(m[4].str(), m[5].str());
-  std::string tail = m[6].str();
-  if (kind == "gravity_assist") {
-    static const std::regex ga_re = re(R"(\s*(?:in|as|for) an? (?:unpowered )?gravity assist(.*))");
-    std::smatch g;
-    if (std::regex_match(tail, g, ga_re)) tail = g[1].str();
-  }
-  if (!trimmed(tail).empty()) {
-    static const std::regex lead = re(R"(\s*(?:[;,]\s*(?:and\s+)?|and\s+)(.+))");
-    std::smatch l;
-    if (!std::regex_match(tail, l, lead))
-      throw sentence_error("cannot read '" + trimmed(tail) + "' after the window: " + clause_forms(kind));
-    for (const auto& part : clauses_of(l[1].str())) event_clause(e, part);
-  }
-  add_event(std::move(e));
 }
 
 // An event stated whole: a gravity assist takes the known mu of its body unless it states one.
@@ -118,6 +52,11 @@ void Builder::add_event(Event e) {
                            " has a gravitational parameter of Q km^3/s^2'");
     e.mu = *mu;
   }
+  const auto surface = surface_radius(e.body);
+  if (e.rmin && surface && !(*e.rmin > *surface))
+    throw sentence_error("the lowest periapsis radius at " + e.body + ", " + io::short_number(*e.rmin) +
+                         " km, is not above its surface (radius " + io::short_number(*surface) +
+                         " km): a periapsis radius counts from the body's centre");
   if (e.drop) e.drop_where = here;
   events.push_back(e);
 }
@@ -127,63 +66,6 @@ std::string Builder::clause_forms(const std::string& kind) {
   if (kind == "flyby") return "a flyby matches the position only and takes 'the relative speed must be at most Q'";
   return "a gravity assist takes 'NAME has a gravitational parameter of Q' and 'the periapsis radius must be at "
          "least Q'";
-}
-
-// The body a clause names ("at NAME", "NAME has ...") must be the event's.
-void Builder::same_body(const Event& e, const std::string& phrase) {
-  const std::string named = body_name(phrase);
-  if (lowercase(named) != lowercase(e.body) && lowercase(named) != "it")
-    throw sentence_error("the clause names " + named + " but the event is at " + e.body);
-}
-
-void Builder::event_clause(Event& e, const std::string& part) {
-  static const std::regex stay_re = re(R"(stays(?: there| at (.+?))? for )" + kQuantity);
-  static const std::regex no_stay_re = re(R"(does not stay(?: there)?)");
-  static const std::regex lander_re = re(R"((?:leaves|drops|releases) (?:a|an) (?:lander|probe|payload|package) of )" +
-                                         kQuantity + R"((?: there| at (.+))?)");
-  static const std::regex mu_re = re(R"((.+?) has a gravitational parameter of )" + kQuantity);
-  static const std::regex rmin_re = re(
-      R"((?:(?:the )?(?:periapsis|pericenter|pericentre|closest approach) radius (?:must be|is) at least |(?:the )?(?:minimum|lowest) (?:periapsis|pericenter|pericentre) radius is ))" +
-      kQuantity);
-  static const std::regex speed_re =
-      re(R"((?:(?:the )?relative speed (?:must be|is) at most |with a relative speed of at most ))" + kQuantity);
-  std::smatch m;
-  const auto set = [&](std::optional<double>& slot, double value, const std::string& what) {
-    if (slot) throw sentence_error(what + " at " + e.body + " is given twice");
-    slot = value;
-  };
-  if (e.kind == "rendezvous" && std::regex_match(part, m, stay_re)) {
-    if (m[1].matched) same_body(e, m[1].str());
-    const double stay = quantity(m, 2, Dimension::Time);
-    if (stay < 0) throw sentence_error("the stay must not be negative, got " + m[2].str() + " " + m[3].str());
-    set(e.stay, stay, "the stay");
-  } else if (e.kind == "rendezvous" && std::regex_match(part, m, no_stay_re)) {
-    set(e.stay, 0.0, "the stay");
-  } else if (e.kind == "rendezvous" && std::regex_match(part, m, lander_re)) {
-    if (m[3].matched) same_body(e, m[3].str());
-    const double drop = quantity(m, 1, Dimension::Mass);
-    if (!(drop > 0)) throw sentence_error("the lander's mass must be positive, got " + m[1].str() + " " + m[2].str());
-    set(e.drop, drop, "the lander");
-  } else if (e.kind == "gravity_assist" && std::regex_match(part, m, mu_re)) {
-    same_body(e, m[1].str());
-    const double mu = quantity(m, 2, Dimension::GravParam);
-    if (!(mu > 0)) throw sentence_error("the gravitational parameter must be positive");
-    set(e.mu, mu, "the gravitational parameter");
-  } else if (e.kind == "flyby" && std::regex_match(part, m, speed_re)) {
-    const double v = quantity(m, 1, Dimension::Speed);
-    if (!(v > 0)) throw sentence_error("the relative speed bound must be positive");
-    set(e.max_speed, v, "the relative speed bound");
-  } else if (e.kind == "gravity_assist" && std::regex_match(part, m, rmin_re)) {
-    const double r = quantity(m, 1, Dimension::Length);
-    if (!(r > 0)) throw sentence_error("the periapsis radius must be positive");
-    set(e.rmin, r, "the lowest periapsis radius");
-  } else {
-    throw sentence_error("cannot read '" + part + "': " + clause_forms(e.kind));
-  }
-}
-
-void Builder::on_drop(const std::smatch& m) {
-  lander(quantity(m, 1, Dimension::Mass), body_name(m[3].str()));
 }
 
 // The one interior rendezvous with NAME stated before ("" = the one rendezvous, whatever its body).
@@ -213,15 +95,6 @@ Event& Builder::rendezvous_of(const std::string& name) {
   return *found.front();
 }
 
-// "It leaves a lander of Q at NAME": the one rendezvous with NAME stated before.
-void Builder::lander(double kg, const std::string& name) {
-  if (!(kg > 0)) throw sentence_error("the lander's mass must be positive");
-  Event* found = &rendezvous_of(name);
-  if (found->drop) throw sentence_error("the lander at " + name + " is given twice");
-  found->drop = kg;
-  found->drop_where = here;
-}
-
 // A target's {"ref": NAME} as the body given by its orbit, else a planet with an ephemeris.
 json Builder::resolve(const json& target, const Where& w) {
   if (!target.contains("ref")) return target;
@@ -242,8 +115,8 @@ json Builder::resolve(const json& target, const Where& w) {
               "Venus, Jupiter)");
 }
 
-// Checks that need the whole text: names, epochs, windows, landers.
-void Builder::finish_events() {
+// The targets once the whole text is read: names looked up, orbits resolved, epochs checked.
+void Builder::resolve_targets() {
   const std::string central = central_body.value("name", "");
   for (const auto& o : orbits) {
     static const std::regex the = re(R"((?:the )?(.+))");
@@ -260,18 +133,22 @@ void Builder::finish_events() {
                 " moves with time, so the text needs a calendar epoch: depart 'at MJD2000 N' (or 'at MJD N') or "
                 "state 'The departure epoch is free between Q before and Q after MJD2000 N'");
   };
-  departure->target = geostationary(resolve(departure->target, departure->where), departure->where);
+  departure->target = resolve_orbit(resolve(departure->target, departure->where), departure->where);
   needs_epoch(departure->target, departure->where);
   for (auto& e : events) {
-    e.target = e.kind == "orbit_insertion" ? geostationary(e.target, e.where) : resolve(json{{"ref", e.body}}, e.where);
+    e.target = e.kind == "orbit_insertion" ? resolve_orbit(e.target, e.where) : resolve(json{{"ref", e.body}}, e.where);
     needs_epoch(e.target, e.where);
   }
-  arrival->target = geostationary(resolve(arrival->target, arrival->where), arrival->where);
+  arrival->target = resolve_orbit(resolve(arrival->target, arrival->where), arrival->where);
   needs_epoch(arrival->target, arrival->where);
   for (const auto& o : orbits)
     if (!o.used)
       fail(o.where, "no sentence sends the spacecraft to " + o.name + ": remove its orbit or state the event");
+}
 
+// Checks that need the whole text: a free departure, windows, landers.
+void Builder::finish_events() {
+  const bool has_epoch = time.contains("epoch_mjd2000");
   const bool free_dep = time.value("departure", "") == "free";
   if (free_dep && departure_at_t)
     fail(departure->where,
@@ -290,6 +167,11 @@ void Builder::finish_events() {
   const double end = (free_dep ? time["t0_window_days"][1].get<double>() : 0.0) + tof;
   const Event* previous = nullptr;
   for (auto& e : events) {
+    if ((e.lo.absolute || e.hi.absolute) && !has_epoch)
+      fail(e.where,
+           "its window is given as dates, but the text gives no calendar epoch to count the flight from: "
+           "state the departure's ('The spacecraft departs at MJD2000 N ...') or give the window in days "
+           "after the departure ('between day N and day N')");
     e.window_lo = e.lo.absolute ? e.lo.value - epoch : e.lo.value;
     e.window_hi = e.hi.absolute ? e.hi.value - epoch : e.hi.value;
     const std::string window = "day " + io::short_number(e.window_lo) + " to day " + io::short_number(e.window_hi);
@@ -351,9 +233,16 @@ void Builder::check_event_ids(const std::vector<std::string>& ids) const {
   }
 }
 
+// A target as the spec keeps it: without the unit its length was written in, kept for messages.
+json spec_target(json target) {
+  target.erase("length_unit");
+  return target;
+}
+
 json Builder::constraints() {
   json out = json::array();
-  out.push_back({{"id", "departure"}, {"kind", "initial_state"}, {"at", "t0"}, {"target", departure->target}});
+  out.push_back(
+      {{"id", "departure"}, {"kind", "initial_state"}, {"at", "t0"}, {"target", spec_target(departure->target)}});
   std::map<std::string, int> visits;
   std::vector<std::string> ids;
   for (const auto& e : events) {
@@ -370,7 +259,7 @@ json Builder::constraints() {
     json c = {{"id", id},
               {"kind", e.kind},
               {"at", "interior"},
-              {"target", e.target},
+              {"target", spec_target(e.target)},
               {"window_days", json::array({e.window_lo, e.window_hi})}};
     if (e.stay) c["stay_days"] = *e.stay;
     if (e.drop) c["mass_drop_kg"] = *e.drop;
@@ -379,7 +268,7 @@ json Builder::constraints() {
     if (e.max_speed) c["max_relative_speed_km_s"] = *e.max_speed;
     out.push_back(c);
   }
-  json last = {{"id", "arrival"}, {"kind", arrival->kind}, {"at", "tf"}, {"target", arrival->target}};
+  json last = {{"id", "arrival"}, {"kind", arrival->kind}, {"at", "tf"}, {"target", spec_target(arrival->target)}};
   if (arrival->max_speed) last["max_relative_speed_km_s"] = *arrival->max_speed;
   out.push_back(last);
   return out;

@@ -22,6 +22,9 @@ const FactInfo& fact_info(Field f) {
     add({Field::FinalMass, "the final mass", "/spacecraft/final_mass_kg", D::Mass,
          "The spacecraft has a final mass of {}.", Check::Positive});
     add({Field::Tof, "the time of flight", "/time/tof_days", D::Time, "The time of flight is {}.", Check::Positive});
+    add({Field::TofMin, "the shortest time of flight", "/time/tof_min_days", D::Time, "", Check::NonNegative});
+    add({Field::TofMax, "the longest time of flight", "/time/tof_max_days", D::Time,
+         "The time of flight is free, at most {}.", Check::Positive});
     add({Field::T0, "the departure time", "/time/t0_days", D::Time, "", Check::None});
     add({Field::Tf, "the arrival time", "", D::Time, "", Check::None});
     add({Field::Epoch, "the departure epoch", "/time/epoch_mjd2000", D::Time, "", Check::None});
@@ -32,6 +35,7 @@ const FactInfo& fact_info(Field f) {
     add({Field::Rf, "the final position", "", D::Length, "", Check::None});
     add({Field::Vf, "the final velocity", "", D::Speed, "", Check::None});
     add({Field::Window, "the event's window", "", D::Time, "", Check::None});
+    add({Field::DepartureWindow, "the departure window", "", D::Time, "", Check::None});
     add({Field::Stay, "the stay", "", D::Time, "", Check::NonNegative});
     add({Field::Drop, "the lander's mass", "", D::Mass, "", Check::Positive});
     add({Field::Rmin, "the lowest periapsis radius", "", D::Length, "", Check::Positive});

@@ -14,17 +14,19 @@
 
 namespace helios::spec::detail {
 
-// The facts a sentence may state. Tf is the arrival time: on the problem's clock ("arrives at t = Q")
-// or a date ("arrives on 2030-12-27", absolute).
-// Window, Stay, Drop and Rmin belong to an event on the way (its window, a stay, a lander, a lowest
-// periapsis); J2 and Radius to the central body; CharAccel and Lightness to a solar sail; A to
-// ElementsEpoch to a body's orbital elements (a in km, angles in deg).
+// The facts a sentence may state. TofMin and TofMax bound a free time of flight. Tf is the arrival time: on the
+// problem's clock ("arrives at t = Q") or a date ("arrives on 2030-12-27", absolute). DepartureWindow is when the
+// spacecraft may depart. Window, Stay, Drop and Rmin belong to an event on the way (its window, a stay, a lander, a
+// lowest periapsis); J2 and Radius to the central body; CharAccel and Lightness to a solar sail; A to ElementsEpoch to
+// a body's orbital elements (a in km, angles in deg).
 enum class Field {
   Thrust,
   Isp,
   InitialMass,
   FinalMass,
   Tof,
+  TofMin,
+  TofMax,
   T0,
   Tf,
   Epoch,
@@ -34,6 +36,7 @@ enum class Field {
   Rf,
   Vf,
   Window,
+  DepartureWindow,
   Stay,
   Drop,
   Rmin,

@@ -55,6 +55,79 @@ std::optional<double> known_radius(const std::string& body) {
   return std::nullopt;
 }
 
+std::optional<double> surface_radius(const std::string& body) {
+  constexpr double kSunRadiusKm = 695700.0;  // IAU 2015 nominal solar radius
+  if (lowercase(body) == "sun") return kSunRadiusKm;
+  return known_radius(body);
+}
+
+namespace {
+
+// The value of a number word ("six", "twenty"), or -1.
+int number_word(const std::string& word) {
+  static const std::map<std::string, int> values = {
+      {"zero", 0},      {"one", 1},       {"two", 2},       {"three", 3},    {"four", 4},      {"five", 5},
+      {"six", 6},       {"seven", 7},     {"eight", 8},     {"nine", 9},     {"ten", 10},      {"eleven", 11},
+      {"twelve", 12},   {"thirteen", 13}, {"fourteen", 14}, {"fifteen", 15}, {"sixteen", 16},  {"seventeen", 17},
+      {"eighteen", 18}, {"nineteen", 19}, {"twenty", 20},   {"thirty", 30},  {"forty", 40},    {"fifty", 50},
+      {"sixty", 60},    {"seventy", 70},  {"eighty", 80},   {"ninety", 90},  {"hundred", 100}, {"thousand", 1000}};
+  const auto it = values.find(lowercase(word));
+  return it == values.end() ? -1 : it->second;
+}
+
+bool is_unit(const std::string& word) {
+  for (Dimension d : {Dimension::Length, Dimension::Speed, Dimension::Force, Dimension::Time, Dimension::Mass,
+                      Dimension::GravParam, Dimension::Acceleration, Dimension::Angle}) {
+    try {
+      to_spec_unit(d, word);
+      return true;
+    } catch (const std::invalid_argument&) {
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+std::string with_digits(const std::string& sentence) {
+  struct Word {
+    std::size_t begin, end;
+    std::string text;
+  };
+  std::vector<Word> words;
+  static const std::regex letters("[A-Za-z]+");
+  for (std::sregex_iterator it(sentence.begin(), sentence.end(), letters), end; it != end; ++it)
+    words.push_back(
+        {static_cast<std::size_t>(it->position()), static_cast<std::size_t>(it->position() + it->length()), it->str()});
+  // Words joined by a space or a hyphen only.
+  const auto joined = [&](std::size_t k) {
+    const std::string between = sentence.substr(words[k - 1].end, words[k].begin - words[k - 1].end);
+    return between == " " || between == "-";
+  };
+  std::string out = sentence;
+  for (std::size_t u = words.size(); u-- > 1;) {
+    if (!is_unit(words[u].text) || number_word(words[u - 1].text) < 0 || !joined(u)) continue;
+    std::size_t first = u - 1;  // back over number words, and "and" between two of them
+    while (first > 0 && joined(first) &&
+           (number_word(words[first - 1].text) >= 0 || (lowercase(words[first - 1].text) == "and" && first > 1 &&
+                                                        joined(first - 1) && number_word(words[first - 2].text) >= 0)))
+      --first;
+    long total = 0, current = 0;
+    for (std::size_t k = first; k < u; ++k) {
+      const int v = number_word(words[k].text);
+      if (v == 100)
+        current = std::max(current, 1L) * 100;
+      else if (v == 1000)
+        total += std::max(current, 1L) * 1000, current = 0;
+      else if (v > 0)
+        current += v;
+    }
+    out.replace(words[first].begin, words[u - 1].end - words[first].begin, std::to_string(total + current));
+    u = first + 1;
+  }
+  return out;
+}
+
 // Splits "a, b, c" at the commas outside parentheses.
 std::vector<std::string> top_level_items(const std::string& list) {
   std::vector<std::string> items(1);

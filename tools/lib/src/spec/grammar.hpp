@@ -1,14 +1,13 @@
 #pragma once
 // The reader of the controlled English (internal to tools/lib/src/spec): the Builder that gathers a
-// problem text's sentences into a spec, and the pieces its sentence forms share. Each concept's
-// sentences are handled in their own file:
-//   rules.cpp        the rule table: which sentence form a sentence is, and its handler
-//   spacecraft.cpp   the central body, the spacecraft, the dynamics' perturbations, the objective
-//   time.cpp         the time of flight, the departure, its epoch and window
-//   events.cpp       the final condition, events on the way (rendezvous, flyby, gravity assist,
-//                    stays, landers) and the constraints they become
-//   orbit_target.cpp a final condition that is an orbit (its elements, the position on it free)
-//   tables.cpp       bodies given by their orbital elements: orbit sentences and elements tables
+// problem text's sentences into a spec, and the pieces its sentence forms share. Each sentence form
+// is a file of forms/ (form.hpp); what several forms and the facts in other words share is here:
+//   form_registry.cpp the forms in their order, the one that reads a sentence, their examples' problems
+//   spacecraft.cpp   the central body and its constants, the propulsion
+//   time.cpp         the departure's epoch and window
+//   events.cpp       targets, events on the way, the checks of the whole text and the constraints
+//   orbit_target.cpp an orbit given by some of its elements (a departure, a final or interior target)
+//   tables.cpp       bodies given by their orbital elements, elements tables
 //   apply_facts.cpp  facts stated in other words (facts.cpp), applied to the spec
 //   grammar.cpp      numbers with units, vectors, names and clause lists
 //   parse.cpp        reading the text item by item, and the spec assembled from it
@@ -51,8 +50,13 @@ json vector3(const std::smatch& m, std::size_t idx, Dimension d);
 std::regex re(const std::string& pattern);
 // Known gravitational parameters [km^3/s^2] for a central body named without one.
 std::optional<double> known_mu(const std::string& body);
-// Known equatorial radii [km].
+// Known equatorial radii [km], which a central body named without one takes.
 std::optional<double> known_radius(const std::string& body);
+// The radius below which nothing can fly [km]: the known equatorial radius, and the Sun's.
+std::optional<double> surface_radius(const std::string& body);
+// The sentence with the numbers written in words before a unit as digits: "six weeks" is "6 weeks",
+// "three hundred days" "300 days" (grammar.cpp).
+std::string with_digits(const std::string& sentence);
 // Splits "a, b, c" at the commas outside parentheses.
 std::vector<std::string> top_level_items(const std::string& list);
 std::string trimmed(const std::string& s);
@@ -68,10 +72,14 @@ double mjd2000_of(const std::string& scale, const std::string& value);
 // A state, a coasting target or a body's name as {"ref": NAME} (events.cpp).
 json parse_target(const std::string& phrase);
 // An orbit given by some of its elements, as a target of kind orbital_elements (orbit_target.cpp);
-// "geostationary" is kept as a flag until the central body is known (Builder::geostationary).
+// "geostationary", "altitude_km" and "about" (the body named) are kept until the central body is
+// known (Builder::resolve_orbit).
 json parse_orbit_target(const std::string& phrase);
 // Orbital elements {a [AU], e, i, raan, argp [deg], mean or true [deg]} as the spec's (tables.cpp).
 json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v);
+// Which element a name in an orbit sentence or a table header stands for: a, e, i, raan, argp, mean
+// or true (the anomaly), or "" if none (tables.cpp).
+std::string element_field(const std::string& name);
 
 // Where an item of the text stands, for errors found after the whole text was read.
 struct Where {
@@ -114,11 +122,13 @@ struct Endpoint {
   std::optional<double> max_speed;
 };
 
-// Columns of an elements table: unit factors of a and the angles, which anomaly, which epoch scale.
+// Columns of an elements table, in the order written: what each holds ("body", "a", "e", "i", "raan",
+// "argp", "mean" or "true", "epoch") and its factor to the spec's unit (a in AU, angles in deg); the
+// epoch's scale (MJD or MJD2000).
 struct TableColumns {
-  double a_factor = 1;
-  std::array<double, 4> angle_factor{};  // i, node, argp, anomaly
-  std::string anomaly, epoch_scale;
+  std::vector<std::string> fields;
+  std::vector<double> factors;
+  std::string epoch_scale;
 };
 
 inline constexpr const char* kTableHeader =
@@ -128,7 +138,8 @@ struct Builder {
   explicit Builder(std::string src) : source(std::move(src)) {}
 
   std::string source;
-  Where here;  // the item being read
+  Where here;            // the item being read
+  std::string sentence;  // the sentence being read, its numbers in words as digits
   json problem, central_body, spacecraft = json::object(), objective, time = json::object(),
                               perturbations = json::array();
   std::optional<Endpoint> departure, arrival;
@@ -139,6 +150,7 @@ struct Builder {
   std::optional<Where> table_intro;  // a sentence announcing a table, waiting for its header
   std::string table_about;
   Where free_departure_where;
+  std::optional<std::pair<double, double>> window_dates;  // a departure window between two dates [MJD2000]
   bool departure_at_t = false;
   std::optional<Where> windowless_rendezvous;  // "The spacecraft rendezvouses with Mars.", read as the final one
   // "arrives at t = Q" [days] or "arrives on DATE" [MJD2000], made a time of flight at the end
@@ -156,12 +168,20 @@ struct Builder {
   std::optional<double> pending_mu;  // a gravitational parameter stated before the central body
   std::optional<std::pair<std::string, Where>> constants_body;  // the body whose mu, radius or J2 a sentence gave
   bool radius_stated = false;                                   // else the radius is the known one
-
-  // A sentence of the controlled English: the first rule whose pattern matches it whole applies.
-  struct SentenceRule {
-    std::regex pattern;
-    void (Builder::*apply)(const std::smatch&);
+  // The central body named "scaled", "normalized", ...: its constants are the text's on purpose, none
+  // is taken from the body's known ones or checked against them.
+  bool central_on_purpose = false;
+  std::map<std::string, Where> constant_where;  // where the central body's mu_km3_s2, radius_km, j2 were stated
+  std::optional<Where> objective_where;
+  std::optional<Where> tof_where;  // the sentence that gave the time of flight or its bounds
+  json notes = json::array();      // what the parser derived rather than read (the spec's notes)
+  // A radius a sentence states that must lie above the central body's surface (a third body's orbit).
+  struct StatedRadius {
+    double km;
+    std::string what;
+    Where where;
   };
+  std::vector<StatedRadius> stated_radii;
 
   // ---- reading the text (parse.cpp) ----
   void once(const std::string& what);
@@ -170,74 +190,59 @@ struct Builder {
   void check_value(detail::Field f, double v, const std::string& written) const;
   [[noreturn]] void fail(const Where& w, const std::string& why) const;
   void read(const Sentence& item);
-  void on_problem(const std::smatch& m);
 
-  // ---- the rule table (rules.cpp) ----
+  // ---- a sentence: the form that reads it, else the facts in other words (form_registry.cpp) ----
   void handle(const std::string& s);
 
-  // ---- central body, spacecraft, perturbations, objective (spacecraft.cpp) ----
-  void on_central(const std::smatch& m);
+  // ---- what cannot be: a place inside the central body, a constant far from a body's known one,
+  // an objective the other facts make constant (plausibility.cpp) ----
+  void check_physics() const;
+  void check_constants() const;
+  void check_objective() const;
+
+  // ---- the central body and its constants, the propulsion (spacecraft.cpp) ----
+  // The central body, and its constants "gravitational parameter Q", "equatorial radius Q", "J2
+  // coefficient N" in any order (also "mu = Q", "R = Q", "J2 = N").
   void central(const std::string& name, const std::string& list);
+  void central_constant(const std::string& part);
   void set_mu(double mu);
-  void on_has(const std::smatch& m);
-  void spacecraft_clauses(const std::string& list);
-  void on_sail(const std::smatch& m);
   void sail(double ac_mm_s2, double ref_au);
-  void on_j2(const std::smatch&);
-  void on_accel(const std::smatch& m);
-  static json user_acceleration(const std::string& name, const std::string& list, const std::string& unit);
-  // ---- a third body perturbing the spacecraft (third_body.cpp) ----
-  void on_third_body(const std::smatch& m);
-  void on_initial_mass(const std::smatch&);
-  void on_fuel(const std::smatch&);
-  void on_time(const std::smatch&);
-  void on_final_state_objective(const std::smatch& m);
-  void on_full_throttle(const std::smatch&);
 
-  // ---- time of flight, departure and epochs (time.cpp) ----
-  void on_tof(const std::smatch& m);
-  void on_free_tof(const std::smatch& m);
-  void on_depart_from(const std::smatch& m);
-  void on_depart(const std::smatch& m);
-  void depart(const std::string& at, const std::string& target);
-  void depart_from_orbit(const std::string& at, const std::string& orbit);
-  void on_depart_orbit(const std::smatch& m);
+  // ---- the time of flight, the departure's epoch and window (time.cpp) ----
+  void fixed_time_of_flight(double days);
+  // A free time of flight, with the bounds a sentence gives (each once); the others are filled in once
+  // the whole text is read (finish_time).
+  void bound_time_of_flight(std::optional<double> lo, std::optional<double> hi);
+  // The free time of flight's bounds the text leaves open: 0, and for a minimum time an upper bound
+  // from the physics, said in the spec's notes.
+  void finish_time();
+  std::optional<double> departure_period_days() const;
   void set_epoch(double mjd2000);
-  void epoch(const std::string& phrase);
-  void on_free_dep(const std::smatch& m);
-  void on_free_dep_within(const std::smatch& m);
   void free_departure(double lo, double hi, double mjd2000);
+  // A departure window between two dates [MJD2000], made the epoch's window once the text is read.
+  void departure_window_dates(double lo, double hi);
+  void finish_departure_window();
 
-  // ---- the final condition, events on the way, constraints (events.cpp) ----
-  void on_arrive(const std::smatch& m);
-  void on_arrive_flyby(const std::smatch& m);
-  // ---- a final condition that is an orbit (orbit_target.cpp) ----
-  void on_arrive_orbit(const std::smatch& m);
-  void on_orbit_on_the_way(const std::smatch& m);
-  void on_final_conditions(const std::smatch& m);
-  json geostationary(json target, const Where& w) const;
-  void on_event(const std::smatch& m);
+  // ---- targets, events on the way, the checks of the whole text, constraints (events.cpp) ----
+  // "day N" (days after the epoch), "MJD N" or "MJD2000 N" (absolute).
   static EpochRef epoch_ref(const std::string& scale, const std::string& value);
-  void event(const std::string& kind, const std::string& rest);
+  // The clauses an event of `kind` takes, for its errors.
   static std::string clause_forms(const std::string& kind);
-  static void same_body(const Event& e, const std::string& phrase);
-  void event_clause(Event& e, const std::string& part);
+  // An event stated whole: a gravity assist takes the known mu of its body unless it states one.
   void add_event(Event e);
   Event& rendezvous_of(const std::string& name);
-  void on_drop(const std::smatch& m);
-  void lander(double kg, const std::string& name);
   json resolve(const json& target, const Where& w);
+  void resolve_targets();
   void finish_events();
   json constraints();
   void check_event_ids(const std::vector<std::string>& ids) const;
+  // An orbit target's elements once the central body is known (orbit_target.cpp).
+  json resolve_orbit(json target, const Where& w) const;
 
   // ---- bodies given by their orbits, elements tables (tables.cpp) ----
-  void on_orbit(const std::smatch& m);
-  void orbit_sentence(const std::smatch& m);
   void define_orbit(const std::string& written, const std::string& about, json elements);
   static std::string element_label(const std::string& field);
   static double element_unit(const std::string& field, const std::string& unit);
-  void on_intro(const std::smatch& m);
   static std::vector<std::string> cells_of(const std::string& row);
   static bool is_table_header(const std::string& row);
   void table_line(const std::string& row);

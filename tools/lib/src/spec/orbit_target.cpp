@@ -1,16 +1,15 @@
-// An endpoint that is an orbit, not a point: "At the final time the spacecraft is on the circular
-// equatorial orbit of radius 42165 km", "The spacecraft transfers into geostationary orbit", "...
-// an orbit with semi-major axis 24500 km, eccentricity 0.72 and inclination 7 deg". The elements
-// named are met; the others and the position on the orbit stay free. A departure ("The spacecraft
-// departs from the circular orbit of radius 7000 km inclined 28.5 deg with node 40 deg") names
-// every element that fixes its orbit: only the position on it is free.
+// An orbit given by some of its elements, in words: "the circular equatorial orbit of radius 42,165 km
+// (any longitude)", "geostationary orbit", "a circular polar orbit at an altitude of 800 km", "an orbit
+// with semi-major axis 24500 km, eccentricity 0.72 and inclination 7 deg". The elements named are met;
+// the others and the position on the orbit stay free. What needs the central body (geostationary, an
+// altitude, the body an orbit is about) is kept with the target until the whole text is read
+// (Builder::resolve_orbit).
 #include <algorithm>
 #include <cmath>
 #include <set>
 
 #include "grammar.hpp"
 #include "helios/astro/constants.hpp"
-#include "helios/spec/state_conditions.hpp"
 
 namespace helios::spec::grammar {
 namespace {
@@ -18,8 +17,8 @@ namespace {
 // The forms an orbit is read in, for a phrase that cannot be placed.
 const char* const kOrbitForms =
     "an orbit reads e.g. 'the circular equatorial orbit of radius 42165 km', 'geostationary orbit', 'a circular "
-    "orbit of 7500 km radius inclined 28.5 deg' or 'an orbit with semi-major axis 24500 km, eccentricity 0.72, "
-    "inclination 7 deg, node 30 deg and argument of periapsis 90 deg'";
+    "orbit at an altitude of 800 km inclined 28.5 deg' or 'an orbit with semi-major axis 24500 km, eccentricity "
+    "0.72, inclination 7 deg, node 30 deg and argument of periapsis 90 deg'";
 
 // The Earth's sidereal day [s]: the period of a geostationary orbit.
 constexpr double kSiderealDayS = 86164.0905;
@@ -39,203 +38,206 @@ std::regex words(const std::string& pattern) {
   return std::regex(R"((?:^|\b)(?:)" + pattern + R"()(?=[^A-Za-z0-9_]|$))", std::regex::icase);
 }
 
-}  // namespace
+const std::string kNodeWords = "(?:right ascension of the ascending node|ascending node|RAAN|node)";
+const std::string kArgpWords = "(?:argument of (?:periapsis|perigee|pericenter|pericentre|perihelion)|argp)";
 
-json parse_orbit_target(const std::string& phrase) {
+// An orbit phrase read element by element: each reader takes the words it knows out of `rest`.
+struct OrbitPhrase {
   json t = {{"kind", "orbital_elements"}};
-  std::string rest = phrase;
-  const auto set = [&](const char* key, double value, const std::string& written) {
-    if (t.contains(key) && t[key].get<double>() != value)
-      throw sentence_error("the orbit's " + std::string(key) + " is given twice ('" + written + "')");
-    t[key] = value;
-  };
-  const auto length = [](const std::smatch& m, std::size_t i) { return quantity(m, i, Dimension::Length); };
-  const auto angle = [](const std::smatch& m, std::size_t i) {
-    return m[i + 1].str() == "°" ? number(m[i].str()) : quantity(m, i, Dimension::Angle);
-  };
-  const std::string q = kQuantity;
-  const std::string deg = "(" + kNum + R"()\s*(deg|degrees?|°))";
-  take_all(rest, words("geostationary|GEO"), [&](const std::smatch&) { t["geostationary"] = true; });
-  take_all(rest, words("circular"), [&](const std::smatch& m) { set("eccentricity", 0, m.str()); });
-  take_all(rest, words("equatorial"), [&](const std::smatch& m) { set("inclination_deg", 0, m.str()); });
-  take_all(rest, words("polar"), [&](const std::smatch& m) { set("inclination_deg", 90, m.str()); });
-  // The radius of a circular orbit makes it circular.
-  const auto radius = [&](const std::smatch& m, std::size_t i) {
-    set("semi_major_axis_km", length(m, i), m.str());
-    set("eccentricity", 0, m.str());
-  };
-  take_all(rest, words("(?:of |with )?(?:a )?radius (?:of )?" + q), [&](const std::smatch& m) { radius(m, 1); });
-  take_all(rest, words("(?:of )?" + q + " radius"), [&](const std::smatch& m) { radius(m, 1); });
-  take_all(rest, words("(?:a )?semi-?major axis (?:of |= ?)?" + q),
-           [&](const std::smatch& m) { set("semi_major_axis_km", length(m, 1), m.str()); });
-  take_all(rest, words("(?:an )?eccentricity (?:of |= ?)?(" + kNum + ")"),
-           [&](const std::smatch& m) { set("eccentricity", number(m[1].str()), m.str()); });
-  take_all(rest, words("(?:an )?inclination (?:of |= ?)?" + deg + "|inclined (?:at |by )?" + deg),
-           [&](const std::smatch& m) {
-             const std::size_t i = m[1].matched ? 1 : 3;
-             set("inclination_deg", angle(m, i), m.str());
-           });
-  take_all(rest,
-           words("(?:a |an )?(?:right ascension of the ascending node|ascending node|RAAN|node) (?:of |= ?)?" + deg),
-           [&](const std::smatch& m) { set("raan_deg", angle(m, 1), m.str()); });
-  take_all(rest,
-           words("(?:an )?(?:argument of (?:periapsis|perigee|pericenter|pericentre|perihelion)|argp) (?:of |= ?)?" +
-                 deg),
-           [&](const std::smatch& m) { set("argp_deg", angle(m, 1), m.str()); });
-  // What leaves the rest free, said in words: the node and the argument of periapsis are kept as
-  // "free" (a departure orbit states them or says so; a target's unstated elements are free).
-  const std::string node_words = "(?:right ascension of the ascending node|ascending node|RAAN|node)";
-  const std::string argp_words = "(?:argument of (?:periapsis|perigee|pericenter|pericentre|perihelion)|argp)";
   std::set<std::string> free;
-  take_all(rest, words("(?:with |at )?any " + node_words + "|(?:with )?(?:the )?" + node_words + " free"),
-           [&](const std::smatch&) { free.insert("raan"); });
-  take_all(rest, words("(?:with |at )?any " + argp_words + "|(?:with )?(?:the )?" + argp_words + " free"),
-           [&](const std::smatch&) { free.insert("argp"); });
-  take_all(rest, words("(?:with |at )?any (?:true |mean )?(?:anomaly|longitude|position(?: on it)?)"),
-           [](const std::smatch&) {});
-  take_all(rest, words("(?:with )?(?:the )?(?:true |mean )?(?:anomaly|longitude) free"), [](const std::smatch&) {});
-  // What is left must be the words around the elements.
-  static const std::regex filler = words("the|a|an|orbit|of|with|and|about|around|the central body|earth|,|;");
-  std::string left = std::regex_replace(rest, filler, " ");
-  left = trimmed(std::regex_replace(left, std::regex(R"([\s,;]+)"), " "));
-  if (!left.empty()) throw sentence_error("cannot place '" + left + "' in the target orbit; " + kOrbitForms);
-  if (t.size() == 1) throw sentence_error("the orbit names none of its elements; " + std::string(kOrbitForms));
-  if (t.contains("raan_deg") && !t.contains("inclination_deg"))
-    throw sentence_error("the orbit gives its node but not its inclination; " + std::string(kOrbitForms));
-  if (t.contains("eccentricity") && !(t["eccentricity"].get<double>() < 1))
-    throw sentence_error("the orbit's eccentricity must be below 1 (a closed orbit)");
-  if (t.contains("argp_deg") && !(t.value("eccentricity", 0.0) > 0))
-    throw sentence_error("the orbit gives an argument of periapsis but no eccentricity above 0; " +
-                         std::string(kOrbitForms));
-  if (free.count("raan") && t.contains("raan_deg"))
-    throw sentence_error("the orbit gives its node and says it is free: say one");
-  if (free.count("argp") && t.contains("argp_deg"))
-    throw sentence_error("the orbit gives its argument of periapsis and says it is free: say one");
-  json ordered = {{"kind", "orbital_elements"}};  // the elements in one order, however they were written
-  for (const char* key :
-       {"geostationary", "semi_major_axis_km", "eccentricity", "inclination_deg", "raan_deg", "argp_deg"})
+  std::string rest;
+
+  void set(const char* key, double value, const std::string& written) {
+    if (t.contains(key) && t[key].get<double>() != value)
+      throw sentence_error("the orbit's " + std::string(key) + " is given twice ('" + trimmed(written) + "')");
+    t[key] = value;
+  }
+
+  // "circular", "equatorial", "polar", "geostationary".
+  void shape() {
+    take_all(rest, words("geostationary|GEO"), [&](const std::smatch&) { t["geostationary"] = true; });
+    take_all(rest, words("circular"), [&](const std::smatch& m) { set("eccentricity", 0, m.str()); });
+    take_all(rest, words("equatorial"), [&](const std::smatch& m) { set("inclination_deg", 0, m.str()); });
+    take_all(rest, words("polar"), [&](const std::smatch& m) { set("inclination_deg", 90, m.str()); });
+  }
+
+  // The radius or the altitude of a circular orbit (either makes it circular), the semi-major axis.
+  void size() {
+    const std::string q = kQuantity;
+    const auto radius = [&](const std::smatch& m) {
+      set("semi_major_axis_km", quantity(m, 1, Dimension::Length), m.str());
+      set("eccentricity", 0, m.str());
+      t["length_unit"] = m[2].str();
+    };
+    take_all(rest, words("(?:of |with )?(?:a )?radius (?:of )?" + q), radius);
+    take_all(rest, words("(?:of )?" + q + " (?:in )?radius"), radius);
+    // An altitude counts from the central body's surface: above its equatorial radius.
+    const auto altitude = [&](const std::smatch& m) {
+      const double h = quantity(m, 1, Dimension::Length);
+      if (!(h > 0)) throw sentence_error("the orbit's altitude must be above the surface, got " + trimmed(m.str()));
+      set("altitude_km", h, m.str());
+      set("eccentricity", 0, m.str());
+    };
+    take_all(rest, words("(?:at |with )?(?:an )?altitude (?:of )?" + q), altitude);
+    take_all(rest, words("(?:at |of )?(?:an? )?" + q + " (?:in )?altitude"), altitude);
+    take_all(rest, words(q + R"( above (?:the )?(?:([A-Za-z][A-Za-z0-9_]*)(?:'s)? )?surface)"),
+             [&](const std::smatch& m) {
+               altitude(m);
+               if (m[3].matched && lowercase(m[3].str()) != "central") t["about"] = m[3].str();
+             });
+    take_all(rest, words("(?:a )?semi-?major axis (?:of |= ?)?" + q), [&](const std::smatch& m) {
+      set("semi_major_axis_km", quantity(m, 1, Dimension::Length), m.str());
+      t["length_unit"] = m[2].str();
+    });
+  }
+
+  void angles() {
+    const std::string deg = "(" + kNum + R"()\s*(deg|degrees?|°))";
+    const auto angle = [](const std::smatch& m, std::size_t i) {
+      return m[i + 1].str() == "°" ? number(m[i].str()) : quantity(m, i, Dimension::Angle);
+    };
+    take_all(rest, words("(?:an )?eccentricity (?:of |= ?)?(" + kNum + ")"),
+             [&](const std::smatch& m) { set("eccentricity", number(m[1].str()), m.str()); });
+    take_all(rest, words("(?:an )?inclination (?:of |= ?)?" + deg + "|inclined (?:at |by )?" + deg),
+             [&](const std::smatch& m) { set("inclination_deg", angle(m, m[1].matched ? 1 : 3), m.str()); });
+    take_all(rest, words("(?:a |an )?" + kNodeWords + " (?:of |= ?)?" + deg),
+             [&](const std::smatch& m) { set("raan_deg", angle(m, 1), m.str()); });
+    take_all(rest, words("(?:an )?" + kArgpWords + " (?:of |= ?)?" + deg),
+             [&](const std::smatch& m) { set("argp_deg", angle(m, 1), m.str()); });
+  }
+
+  // What leaves the rest free, said in words: the node and the argument of periapsis are kept as
+  // "free" (a departure orbit states them or says so; a target's unstated elements are free), and
+  // the position on the orbit, which is always free.
+  void free_words() {
+    take_all(rest, words("(?:with |at )?any " + kNodeWords + "|(?:with )?(?:the )?" + kNodeWords + " free"),
+             [&](const std::smatch&) { free.insert("raan"); });
+    take_all(rest, words("(?:with |at )?any " + kArgpWords + "|(?:with )?(?:the )?" + kArgpWords + " free"),
+             [&](const std::smatch&) { free.insert("argp"); });
+    const std::string position = "(?:true |mean )?(?:anomaly|longitude|position|point|place)";
+    const std::string on_it = "(?: on (?:it|that orbit|this orbit|the orbit))?";
+    for (const std::string& said : std::vector<std::string>{
+             "(?:with |at )?any " + position + on_it, "(?:with )?(?:its |the )?" + position + on_it + " (?:is )?free",
+             "where on (?:it|that orbit|this orbit|the orbit) (?:it arrives|it ends|the spacecraft arrives) is free",
+             "anywhere (?:along|on) (?:it|that orbit|this orbit|the orbit)"})
+      take_all(rest, words(said), [](const std::smatch&) {});
+  }
+
+  // The body an orbit is about ("about the Earth", "a Mars orbit"): kept to be checked against the
+  // central body.
+  void body() {
+    take_all(rest, words("(?:about|around) (?:the )?(?!central body)([A-Za-z][A-Za-z0-9_]*)"),
+             [&](const std::smatch& m) { about(m[1].str()); });
+    take_all(rest, words("(Sun|Earth|Moon|Mars|Venus|Jupiter)(?:'s)?(?= orbit)"),
+             [&](const std::smatch& m) { about(m[1].str()); });
+  }
+
+  void about(const std::string& name) {
+    if (t.contains("about") && lowercase(t["about"].get<std::string>()) != lowercase(name))
+      throw sentence_error("the orbit is about " + t["about"].get<std::string>() + " and " + name + ": which one?");
+    t["about"] = name;
+  }
+
+  void check() const {
+    // What is left must be the words around the elements.
+    static const std::regex filler = words("the|a|an|orbit|of|with|and|about|around|the central body|,|;|\\(|\\)");
+    const std::string left =
+        trimmed(std::regex_replace(std::regex_replace(rest, filler, " "), std::regex(R"([\s,;()]+)"), " "));
+    if (!left.empty()) throw sentence_error("cannot place '" + left + "' in the target orbit; " + kOrbitForms);
+    if (t.size() == (t.contains("about") ? 2u : 1u))
+      throw sentence_error("the orbit names none of its elements; " + std::string(kOrbitForms));
+    if (t.contains("raan_deg") && !t.contains("inclination_deg"))
+      throw sentence_error("the orbit gives its node but not its inclination; " + std::string(kOrbitForms));
+    if (t.contains("eccentricity") && !(t["eccentricity"].get<double>() >= 0 && t["eccentricity"].get<double>() < 1))
+      throw sentence_error("the orbit's eccentricity must be below 1 (a closed orbit) and not negative");
+    if (t.contains("argp_deg") && !(t.value("eccentricity", 0.0) > 0))
+      throw sentence_error("the orbit gives an argument of periapsis but no eccentricity above 0; " +
+                           std::string(kOrbitForms));
+    if (free.count("raan") && t.contains("raan_deg"))
+      throw sentence_error("the orbit gives its node and says it is free: say one");
+    if (free.count("argp") && t.contains("argp_deg"))
+      throw sentence_error("the orbit gives its argument of periapsis and says it is free: say one");
+  }
+};
+
+// "42,165" as "42165": thousands separators, which the quantities of an orbit may have.
+std::string without_thousands(const std::string& text) {
+  static const std::regex grouped(R"((^|[^\d.,])([1-9]\d{0,2}(?:,\d{3})+)(?![\d,]))");
+  std::string out;
+  auto from = text.cbegin();
+  for (std::sregex_iterator it(text.begin(), text.end(), grouped), end; it != end; ++it) {
+    const auto& m = *it;
+    out.append(from, m[2].first);
+    std::string digits = m[2].str();
+    digits.erase(std::remove(digits.begin(), digits.end(), ','), digits.end());
+    out += digits;
+    from = m[2].second;
+  }
+  return out.append(from, text.cend());
+}
+
+// The elements in one order, however they were written.
+json in_order(const json& t) {
+  json ordered = {{"kind", "orbital_elements"}};
+  for (const char* key : {"geostationary", "semi_major_axis_km", "altitude_km", "eccentricity", "inclination_deg",
+                          "raan_deg", "argp_deg", "about", "free", "length_unit"})
     if (t.contains(key)) ordered[key] = t[key];
-  if (!free.empty()) ordered["free"] = free;
   return ordered;
 }
 
-void Builder::on_depart_orbit(const std::smatch& m) {
-  depart_from_orbit("", m[1].str());
+}  // namespace
+
+json parse_orbit_target(const std::string& phrase) {
+  OrbitPhrase o;
+  o.rest = without_thousands(phrase);
+  o.shape();
+  o.size();
+  o.angles();
+  o.free_words();
+  o.body();
+  o.check();
+  if (!o.free.empty()) o.t["free"] = o.free;
+  return in_order(o.t);
 }
 
-void Builder::depart_from_orbit(const std::string& at, const std::string& orbit) {
-  json target = parse_orbit_target(orbit);
-  const auto need = [&](bool given, const std::string& what) {
-    if (!given)
-      throw sentence_error("a departure orbit needs its " + what +
-                           ": only the position on it may be free (e.g. 'departs from the circular orbit of radius "
-                           "7000 km inclined 28.5 deg with node 40 deg')");
-  };
-  if (!target.contains("geostationary")) {
-    const double e = target.value("eccentricity", -1.0), i = target.value("inclination_deg", -1.0);
-    need(target.contains("semi_major_axis_km"), "semi-major axis (or its radius, if circular)");
-    need(e >= 0, "eccentricity (or the word 'circular')");
-    need(i >= 0, "inclination (or the word 'equatorial')");
-    const auto free = [&](const char* element) {
-      const json list = target.value("free", json::array());
-      return std::find(list.begin(), list.end(), element) != list.end();
-    };
-    need(i == 0 || i == 180 || target.contains("raan_deg") || free("raan"), "node (or 'with any node')");
-    need(e == 0 || target.contains("argp_deg") || free("argp"), "argument of periapsis (or 'with any argument of perigee')");
+// The orbit's elements once the central body is known: "geostationary" (circular and equatorial about
+// the Earth, the radius of a sidereal day's period, a = (mu T^2 / (4 pi^2))^(1/3)), an altitude above
+// the central body's radius, and the body it is about, which must be the central one.
+json Builder::resolve_orbit(json target, const Where& w) const {
+  if (target.value("kind", "") != "orbital_elements") return target;
+  const std::string central = central_body.value("name", std::string("the central body"));
+  if (target.contains("about")) {
+    const std::string about = target["about"];
+    target.erase("about");
+    if (lowercase(about) != lowercase(central))
+      fail(w, "the orbit is about " + about + ", but the central body is " + central +
+                  ": HELIOS reaches orbits about the central body (state that body as the central one, or the orbit "
+                  "about " +
+                  central + ")");
   }
-  once("the departure");
-  if (!at.empty()) epoch(at);
-  departure = Endpoint{here, target, "initial_state", std::nullopt};
-}
-
-void Builder::on_arrive_orbit(const std::smatch& m) {
-  once("the final rendezvous");
-  json target = parse_orbit_target(m[1].matched ? m[1].str() : m[2].str());
-  target.erase("free");  // a target's unstated elements are free already
-  arrival = Endpoint{here, target, "orbit_insertion", std::nullopt};
-}
-
-// "The spacecraft passes through the circular orbit of radius 30000 km between day 2 and day 4"
-// (or "Between day 2 and day 4 the spacecraft reaches ..."): an orbit on the way, met at a free
-// epoch inside the window anywhere along it; the state goes on unchanged.
-void Builder::on_orbit_on_the_way(const std::smatch& m) {
-  const bool before = m[1].matched, after = m[6].matched;
-  if (before == after)
-    throw sentence_error(before ? "the sentence gives two windows"
-                                : "an orbit on the way needs its window ('... between day N and day N'); an orbit "
-                                  "that ends the flight reads 'At the final time the spacecraft is on ...'");
-  const std::size_t w = before ? 1 : 6;
-  Event e;
-  e.where = here;
-  e.kind = "orbit_insertion";
-  e.target = parse_orbit_target(m[5].str());
-  e.target.erase("free");  // a target's unstated elements are free already
-  e.lo = epoch_ref(m[w].str(), m[w + 1].str());
-  e.hi = epoch_ref(m[w + 2].str(), m[w + 3].str());
-  events.push_back(e);
-}
-
-// "At the final time r·v = 0 and |r| = 42165 km.": equations of the final state
-// (state_conditions.hpp), split at the commas, semicolons and "and"s outside parentheses; more
-// sentences of this form add to the same constraint.
-void Builder::on_final_conditions(const std::smatch& m) {
-  const std::string list = m[1].str();
-  std::vector<std::string> items;
-  std::string current;
-  int depth = 0;
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const char c = list[i];
-    depth += c == '(' ? 1 : c == ')' ? -1 : 0;
-    const bool comma = depth == 0 && (c == ',' || c == ';');
-    const bool word_and = depth == 0 && list.compare(i, 5, " and ") == 0;
-    if (comma || word_and) {
-      items.push_back(trimmed(current));
-      current.clear();
-      i += word_and ? 4 : 0;
-      continue;
-    }
-    current += c;
+  if (target.contains("altitude_km")) {
+    if (!central_body.contains("radius_km"))
+      fail(w, "an altitude counts from the surface of " + central +
+                  ", whose radius is not known: state it ('The central body is ... with equatorial radius Q.') or "
+                  "give the orbit's radius");
+    target["semi_major_axis_km"] = target["altitude_km"].get<double>() + central_body["radius_km"].get<double>();
+    target.erase("altitude_km");
   }
-  items.push_back(trimmed(current));
-  json conditions = json::array();
-  for (const std::string& item : items) {
-    if (item.empty()) continue;
-    const auto eq = item.find('=');
-    if (eq == std::string::npos || item.find('=', eq + 1) != std::string::npos)
-      throw sentence_error("'" + item + "' is not one equation 'expression = value' (e.g. 'r·v = 0', '|r| = 42165 km')");
-    try {
-      conditions.push_back(state_condition(item.substr(0, eq), item.substr(eq + 1)));
-    } catch (const std::invalid_argument& e) {
-      throw sentence_error(e.what());
-    }
-  }
-  if (arrival && arrival->kind == "state_conditions") {
-    for (auto& c : conditions) arrival->target["conditions"].push_back(c);
-    return;
-  }
-  once("the final rendezvous");
-  arrival = Endpoint{here, {{"kind", "expressions"}, {"conditions", conditions}}, "state_conditions", std::nullopt};
-}
-
-// "geostationary": circular and equatorial about the Earth, with the radius of a sidereal day's
-// period, a = (mu T^2 / (4 pi^2))^(1/3).
-json Builder::geostationary(json target, const Where& w) const {
-  if (!target.contains("geostationary")) return target;
+  if (!target.contains("geostationary")) return in_order(target);
   target.erase("geostationary");
-  if (lowercase(central_body.value("name", "")) != "earth")
-    fail(w, "a geostationary orbit is about the Earth; about " + central_body.value("name", std::string("this body")) +
+  if (lowercase(central) != "earth")
+    fail(w, "a geostationary orbit is about the Earth; about " + central +
                 " state the orbit's radius ('the circular equatorial orbit of radius Q km')");
   const double mu = central_body.at("mu_km3_s2").get<double>();
   const double a = std::cbrt(mu * kSiderealDayS * kSiderealDayS / (4 * M_PI * M_PI));
-  for (const auto& [key, value] : {std::pair<const char*, double>{"semi_major_axis_km", a},
-                                   {"eccentricity", 0.0},
-                                   {"inclination_deg", 0.0}})
+  for (const auto& [key, value] :
+       {std::pair<const char*, double>{"semi_major_axis_km", a}, {"eccentricity", 0.0}, {"inclination_deg", 0.0}})
     if (target.contains(key) && std::abs(target[key].get<double>() - value) > 1e-9 * std::max(1.0, value))
       fail(w, std::string("a geostationary orbit has its own ") + key + ": remove the one stated");
   target["semi_major_axis_km"] = a;
   target["eccentricity"] = 0.0;
   target["inclination_deg"] = 0.0;
-  return target;
+  return in_order(target);
 }
 
 }  // namespace helios::spec::grammar

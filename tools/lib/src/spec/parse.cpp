@@ -44,16 +44,14 @@ void Builder::read(const Sentence& item) {
       table_line(item.text);
     } else {
       table.reset();
-      handle(item.text);
+      // numbers in words as digits, but for the problem's title, which is kept as written
+      static const std::regex title = re("Problem .*");
+      sentence = std::regex_match(item.text, title) ? item.text : with_digits(item.text);
+      handle(sentence);
     }
   } catch (const sentence_error& e) {
     fail(here, e.what());
   }
-}
-
-void Builder::on_problem(const std::smatch& m) {
-  once("the problem name");
-  problem = {{"id", m[1].str()}, {"title", m[2].str()}};
 }
 
 }  // namespace helios::spec::grammar
@@ -61,6 +59,60 @@ void Builder::on_problem(const std::smatch& m) {
 namespace helios::spec {
 
 using grammar::json;
+
+namespace {
+
+[[noreturn]] void missing(const std::string& source, const std::string& what, const std::string& example) {
+  throw input_error(source + ": the problem text never states " + what + " (add a sentence such as \"" + example +
+                    "\")");
+}
+
+// Every fact a problem needs is stated, once the whole text is read; a minimum time without a time of
+// flight has it free.
+void check_complete(grammar::Builder& b, const std::string& source) {
+  if (b.table_intro)
+    b.fail(*b.table_intro, "no table follows it (its header reads " + std::string(grammar::kTableHeader) + ")");
+  b.finish_facts();
+  if (b.central_body.is_null() && b.constants_body)  // "The Sun's gravitational parameter is Q." names it
+    b.central(b.constants_body->first, "");
+  if (b.problem.is_null()) missing(source, "its name", "Problem S01: Earth to Mars.");
+  if (b.central_body.is_null()) missing(source, "the central body", "The central body is the Sun.");
+  if (b.propulsion == "low_thrust") {
+    // Minimizing the initial mass needs the final mass instead of the initial one.
+    const bool find_m0 = b.objective.is_object() && b.objective.value("kind", "") == "minimum_initial_mass";
+    using detail::Field;
+    for (const auto& [field, example] : std::vector<std::pair<Field, std::string>>{
+             {Field::Thrust, "0.5 N"},
+             {Field::Isp, "2000 s"},
+             {find_m0 ? Field::FinalMass : Field::InitialMass, find_m0 ? "1500 kg" : "1000 kg"}})
+      if (!b.spacecraft.contains(detail::spec_key(field)))
+        missing(source, "the spacecraft's " + detail::spec_key(field), detail::controlled_form(field, example));
+    const std::string extra = find_m0 ? "initial_mass_kg" : "final_mass_kg";
+    if (b.spacecraft.contains(extra))
+      throw input_error(source + ": the spacecraft's " + extra + " is stated, but the objective " +
+                        (find_m0 ? "finds the initial mass from the final one" : "takes the initial mass") +
+                        ": state only the " + (find_m0 ? "final" : "initial") + " mass");
+  }
+  if (b.propulsion == "solar_sail" && b.seen.count("the spacecraft's engine"))
+    throw input_error(source + ": the spacecraft is a solar sail, so it has no thrust, specific impulse or mass");
+  if (!b.seen.count("the departure"))
+    missing(source, "the departure", "The spacecraft departs at MJD2000 400 from Earth.");
+  const bool minimum_time = b.objective.is_object() && b.objective.value("kind", "") == "minimum_time";
+  if (!b.time.contains("final_time") && !minimum_time)
+    missing(source, detail::field_name(detail::Field::Tof),
+            detail::controlled_form(detail::Field::Tof, "348.795 days"));
+  for (const auto& p : b.perturbations)
+    if (p["kind"] == "j2" && (!b.central_body.contains("j2") || !b.central_body.contains("radius_km")))
+      throw input_error(source +
+                        ": the J2 perturbation needs the central body's J2 coefficient and radius (\"The central "
+                        "body is the Earth with J2 coefficient 1.08262668e-3 and equatorial radius 6378.137 km.\")");
+  if (!b.seen.count("the final rendezvous"))
+    missing(source, "the final condition", "At the final time the spacecraft rendezvouses with Mars.");
+  if (b.objective.is_null()) missing(source, "the objective", "Minimize the fuel consumption.");
+  if (!b.time.contains("final_time")) b.time["final_time"] = "free";  // a minimum time, its bounds to come
+}
+
+}  // namespace
 
 json parse_problem_text(const std::string& text, const std::string& source) {
   detail::check_text(text, source);
@@ -71,47 +123,14 @@ json parse_problem_text(const std::string& text, const std::string& source) {
                         std::to_string(kMaxSentenceChars) + " characters, the limit of a line or sentence");
     b.read(item);
   }
-  if (b.table_intro)
-    b.fail(*b.table_intro, "no table follows it (its header reads " + std::string(grammar::kTableHeader) + ")");
-  const auto missing = [&](const std::string& what, const std::string& example) {
-    throw input_error(source + ": the problem text never states " + what + " (add a sentence such as \"" + example +
-                      "\")");
-  };
-  b.finish_facts();
-  if (b.central_body.is_null() && b.constants_body)  // "The Sun's gravitational parameter is Q." names it
-    b.central(b.constants_body->first, "");
-  if (b.problem.is_null()) missing("its name", "Problem S01: Earth to Mars.");
-  if (b.central_body.is_null()) missing("the central body", "The central body is the Sun.");
-  if (b.propulsion == "low_thrust") {
-    // Minimizing the initial mass needs the final mass instead of the initial one.
-    const bool find_m0 = b.objective.is_object() && b.objective.value("kind", "") == "minimum_initial_mass";
-    using detail::Field;
-    for (const auto& [field, example] : std::vector<std::pair<Field, std::string>>{
-             {Field::Thrust, "0.5 N"},
-             {Field::Isp, "2000 s"},
-             {find_m0 ? Field::FinalMass : Field::InitialMass, find_m0 ? "1500 kg" : "1000 kg"}})
-      if (!b.spacecraft.contains(detail::spec_key(field)))
-        missing("the spacecraft's " + detail::spec_key(field), detail::controlled_form(field, example));
-    const std::string extra = find_m0 ? "initial_mass_kg" : "final_mass_kg";
-    if (b.spacecraft.contains(extra))
-      throw input_error(source + ": the spacecraft's " + extra + " is stated, but the objective " +
-                        (find_m0 ? "finds the initial mass from the final one" : "takes the initial mass") +
-                        ": state only the " + (find_m0 ? "final" : "initial") + " mass");
-  }
-  if (b.propulsion == "solar_sail" && b.seen.count("the spacecraft's engine"))
-    throw input_error(source + ": the spacecraft is a solar sail, so it has no thrust, specific impulse or mass");
-  if (!b.seen.count("the departure")) missing("the departure", "The spacecraft departs at MJD2000 400 from Earth.");
-  if (!b.time.contains("final_time"))
-    missing(detail::field_name(detail::Field::Tof), detail::controlled_form(detail::Field::Tof, "348.795 days"));
-  for (const auto& p : b.perturbations)
-    if (p["kind"] == "j2" && (!b.central_body.contains("j2") || !b.central_body.contains("radius_km")))
-      throw input_error(source +
-                        ": the J2 perturbation needs the central body's J2 coefficient and radius (\"The central "
-                        "body is the Earth with J2 coefficient 1.08262668e-3 and equatorial radius 6378.137 km.\")");
-  if (!b.seen.count("the final rendezvous"))
-    missing("the final condition", "At the final time the spacecraft rendezvouses with Mars.");
-  if (b.objective.is_null()) missing("the objective", "Minimize the fuel consumption.");
+  check_complete(b, source);
+  b.finish_departure_window();
+  b.resolve_targets();
+  b.finish_time();
   b.finish_events();
+  b.check_constants();
+  b.check_physics();
+  b.check_objective();
   if (!b.time.contains("t0_days")) b.time["t0_days"] = 0.0;
   json doc = io::artifact_header("spec", "helios-parse", "builtin");
   b.problem["source_file"] = source;
@@ -132,6 +151,7 @@ json parse_problem_text(const std::string& text, const std::string& source) {
     if (b.time.contains(k)) time[k] = b.time[k];
   doc["time"] = time;
   doc["constraints"] = b.constraints();
+  if (!b.notes.empty()) doc["notes"] = b.notes;
   return doc;
 }
 

@@ -1,4 +1,5 @@
-// Bodies given by their orbital elements: the orbit sentence and the elements table.
+// Bodies given by their orbital elements: the elements as the spec keeps them, the orbits defined,
+// and the elements table (its lines are items of their own, read here).
 #include "grammar.hpp"
 
 #include <algorithm>
@@ -7,11 +8,13 @@
 
 namespace helios::spec::grammar {
 
-namespace {
-
 // Which element a name in an orbit sentence or a table header stands for: a, e, i, raan, argp,
-// mean or true (the anomaly), or "" if none.
-std::string element_field(const std::string& name) {
+// mean or true (the anomaly), or "" if none. Omega (Ω) is the node, omega (ω, w) the argument.
+std::string element_field(const std::string& written) {
+  const std::string name = trimmed(written);
+  static const std::map<std::string, std::string> symbols = {
+      {"Omega", "raan"}, {"\xCE\xA9", "raan"}, {"omega", "argp"}, {"\xCF\x89", "argp"}, {"\xCE\xBD", "true"}};
+  if (symbols.count(name)) return symbols.at(name);
   static const std::map<std::string, std::string> fields = {{"a", "a"},
                                                             {"semi-major axis", "a"},
                                                             {"semimajor axis", "a"},
@@ -21,20 +24,23 @@ std::string element_field(const std::string& name) {
                                                             {"inclination", "i"},
                                                             {"node", "raan"},
                                                             {"raan", "raan"},
+                                                            {"om", "raan"},
                                                             {"ascending node", "raan"},
                                                             {"longitude of the ascending node", "raan"},
                                                             {"right ascension of the ascending node", "raan"},
+                                                            {"w", "argp"},
+                                                            {"argp", "argp"},
                                                             {"argument of perihelion", "argp"},
                                                             {"argument of periapsis", "argp"},
                                                             {"argument of pericenter", "argp"},
                                                             {"argument of pericentre", "argp"},
+                                                            {"m", "mean"},
                                                             {"mean anomaly", "mean"},
+                                                            {"nu", "true"},
                                                             {"true anomaly", "true"}};
-  const auto it = fields.find(lowercase(trimmed(name)));
+  const auto it = fields.find(lowercase(name));
   return it == fields.end() ? "" : it->second;
 }
-
-}  // namespace
 
 // Classical elements in the spec's units, checked for an ellipse.
 json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v) {
@@ -49,37 +55,6 @@ json elements_json(double epoch_mjd2000, const std::map<std::string, double>& v)
           {"raan_deg", v.at("raan")},
           {"argp_deg", v.at("argp")},
           {mean ? "mean_anomaly_deg" : "true_anomaly_deg", mean ? v.at("mean") : v.at("true")}};
-}
-
-void Builder::on_orbit(const std::smatch& m) {
-  orbit_sentence(m);
-}
-
-// "NAME moves on a Keplerian orbit about the Sun with a = Q, e = N, ... at MJD N".
-void Builder::orbit_sentence(const std::smatch& m) {
-  const std::string name = body_name(m[1].str());
-  if (!m[4].matched)
-    throw sentence_error("the elements of " + name +
-                         " need their epoch: end the sentence with 'at MJD N' or "
-                         "'at MJD2000 N'");
-  static const std::regex clause = re(R"((.+?)\s*=\s*()" + kNum + R"()(?:\s*()" + kUnit + "))?");
-  std::map<std::string, double> v;
-  for (const auto& part : clauses_of(m[3].str())) {
-    std::smatch c;
-    const std::string field = std::regex_match(part, c, clause) ? element_field(c[1].str()) : "";
-    if (field.empty())
-      throw sentence_error("cannot read '" + part +
-                           "': expected 'a = Q', 'e = N', 'i = Q', 'node = Q', 'argument of perihelion = Q' and "
-                           "'mean anomaly = Q' or 'true anomaly = Q'");
-    if (v.count(field) || (field == "mean" && v.count("true")) || (field == "true" && v.count("mean")))
-      throw sentence_error("'" + part + "' repeats an element of " + name);
-    v[field] = number(c[2].str()) * element_unit(field, c[3].matched ? c[3].str() : "");
-  }
-  for (const char* f : {"a", "e", "i", "raan", "argp"})
-    if (!v.count(f)) throw sentence_error("the orbit of " + name + " lacks its " + element_label(f));
-  if (!v.count("mean") && !v.count("true"))
-    throw sentence_error("the orbit of " + name + " lacks its anomaly ('mean anomaly = Q' or 'true anomaly = Q')");
-  define_orbit(name, m[2].str(), elements_json(mjd2000_of(m[4].str(), m[5].str()), v));
 }
 
 void Builder::define_orbit(const std::string& written, const std::string& about, json elements) {
@@ -101,7 +76,8 @@ std::string Builder::element_label(const std::string& field) {
 }
 
 // Factor to the spec unit of an element: a in AU, angles in deg, e a pure number.
-double Builder::element_unit(const std::string& field, const std::string& unit) {
+double Builder::element_unit(const std::string& field, const std::string& written) {
+  const std::string unit = written == "\xC2\xB0" ? "deg" : written;  // °
   if (field == "e") {
     if (!unit.empty()) throw sentence_error("the eccentricity is a pure number, not in '" + unit + "'");
     return 1.0;
@@ -111,11 +87,6 @@ double Builder::element_unit(const std::string& field, const std::string& unit) 
                                                            : "angles need a unit (deg or rad)"));
   if (field == "a") return unit_factor(Dimension::Length, unit) / helios::astro::AU_KM;
   return unit_factor(Dimension::Angle, unit);
-}
-
-void Builder::on_intro(const std::smatch& m) {
-  table_intro = here;
-  table_about = m[1].str();
 }
 
 std::vector<std::string> Builder::cells_of(const std::string& row) {
@@ -133,9 +104,31 @@ std::vector<std::string> Builder::cells_of(const std::string& row) {
   return cells;
 }
 
+namespace {
+
+// A header cell's name and unit: "a [AU]", "i (deg)", "e".
+std::pair<std::string, std::string> name_and_unit(const std::string& cell) {
+  static const std::regex cell_re(R"(([^\[(]*?)\s*(?:[\[(]\s*([^\])]*?)\s*[\])])?)");
+  std::smatch m;
+  if (!std::regex_match(cell, m, cell_re)) return {cell, ""};
+  return {trimmed(m[1].str()), m[2].str()};
+}
+
+bool is_body_column(const std::string& cell) {
+  const std::string name = lowercase(name_and_unit(cell).first);
+  return name == "body" || name == "name" || name == "asteroid" || name == "object" || name == "target";
+}
+
+}  // namespace
+
 bool Builder::is_table_header(const std::string& row) {
-  static const std::regex first = re(R"(\|\s*(?:body|name)\s*\|.*)");
-  return std::regex_match(row, first);
+  if (row.empty() || row.front() != '|') return false;
+  try {
+    const auto cells = cells_of(row);
+    return std::any_of(cells.begin(), cells.end(), is_body_column);
+  } catch (const sentence_error&) {
+    return false;
+  }
 }
 
 void Builder::table_line(const std::string& row) {
@@ -156,52 +149,65 @@ void Builder::table_line(const std::string& row) {
     return;
   }
   table_separator_allowed = false;
-  if (cells.size() != 8)
-    throw sentence_error("the row has " + std::to_string(cells.size()) + " cells where the header has 8");
+  const TableColumns& t = *table;
+  if (cells.size() != t.fields.size())
+    throw sentence_error("the row has " + std::to_string(cells.size()) + " cells where the header has " +
+                         std::to_string(t.fields.size()));
   static const std::regex num_re("\\s*" + kNum + "\\s*");
-  for (std::size_t k = 1; k < cells.size(); ++k)
+  std::map<std::string, double> v;
+  std::string body, epoch;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    if (t.fields[k] == "body") {
+      body = cells[k];
+      continue;
+    }
     if (!std::regex_match(cells[k], num_re))
       throw sentence_error("cell " + std::to_string(k + 1) + " '" + cells[k] + "' is not a number");
-  const TableColumns& t = *table;
-  std::map<std::string, double> v = {
-      {"a", number(cells[1]) * t.a_factor},           {"e", number(cells[2])},
-      {"i", number(cells[3]) * t.angle_factor[0]},    {"raan", number(cells[4]) * t.angle_factor[1]},
-      {"argp", number(cells[5]) * t.angle_factor[2]}, {t.anomaly, number(cells[6]) * t.angle_factor[3]}};
-  define_orbit(cells[0], table_about, elements_json(mjd2000_of(t.epoch_scale, cells[7]), v));
+    if (t.fields[k] == "epoch")
+      epoch = cells[k];
+    else
+      v[t.fields[k]] = number(cells[k]) * t.factors[k];
+  }
+  define_orbit(body, table_about, elements_json(mjd2000_of(t.epoch_scale, epoch), v));
 }
 
+// The columns by name, in any order: the body, the six elements (one anomaly, mean or true) with their
+// units in brackets or parentheses, and the epoch in MJD or MJD2000.
 TableColumns Builder::table_header(const std::vector<std::string>& cells) {
-  const std::string layout = std::string("the header reads ") + kTableHeader +
-                             " (a in AU or km, angles in deg or rad, 'true anomaly' instead of 'mean anomaly', "
-                             "epoch in MJD or MJD2000)";
-  if (cells.size() != 8)
-    throw sentence_error("the header has " + std::to_string(cells.size()) + " columns, not 8: " + layout);
-  static const std::regex cell_re(R"(([^\[]*?)\s*(?:\[\s*([^\]]*?)\s*\])?)");
-  static const std::array<std::string, 8> expected = {"body", "a", "e", "i", "raan", "argp", "anomaly", "epoch"};
+  const std::string layout = std::string("the header reads e.g. ") + kTableHeader +
+                             " (columns in any order; a in AU or km, angles in deg or rad, 'true anomaly' instead of "
+                             "'mean anomaly', epoch in MJD or MJD2000; units in [ ] or ( ))";
   TableColumns t;
-  for (std::size_t k = 1; k < 8; ++k) {
-    std::smatch m;
-    std::regex_match(cells[k], m, cell_re);
-    const std::string key = lowercase(m[1].str()), unit = m[2].str();
-    std::string field = key == "epoch" ? "epoch" : element_field(key);
-    if (field == "mean" || field == "true") {
-      t.anomaly = field;
-      field = "anomaly";
-    }
-    if (field != expected[k])
-      throw sentence_error("column " + std::to_string(k + 1) + " is '" + cells[k] + "': " + layout);
-    if (field == "epoch") {
-      if (lowercase(unit) != "mjd" && lowercase(unit) != "mjd2000")
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const auto [name, unit] = name_and_unit(cells[k]);
+    const std::string key = lowercase(name);
+    std::string field = is_body_column(cells[k]) ? "body" : element_field(name);
+    double factor = 1;
+    if (key == "epoch" || key == "mjd" || key == "mjd2000") {
+      field = "epoch";
+      t.epoch_scale = key == "epoch" ? unit : name;
+      if (lowercase(t.epoch_scale) != "mjd" && lowercase(t.epoch_scale) != "mjd2000")
         throw sentence_error("the epoch column must say [MJD] or [MJD2000], got '" + cells[k] + "'");
-      t.epoch_scale = unit;
-    } else if (field == "a") {
-      t.a_factor = element_unit("a", unit);
-    } else if (field == "e") {
-      element_unit("e", unit);
-    } else {
-      t.angle_factor[k - 3] = element_unit(field, unit);
+    } else if (field.empty()) {
+      throw sentence_error("column " + std::to_string(k + 1) + " is '" + cells[k] + "': " + layout);
+    } else if (field != "body") {
+      factor = element_unit(field, unit);
     }
+    const auto anomaly = [](const std::string& f) { return f == "mean" || f == "true"; };
+    for (const auto& seen : t.fields)
+      if (seen == field || (anomaly(seen) && anomaly(field)))
+        throw sentence_error("the header gives " + (anomaly(field) ? std::string("the anomaly") : "'" + field + "'") +
+                             " twice: " + layout);
+    t.fields.push_back(field);
+    t.factors.push_back(factor);
   }
+  std::string missing;
+  for (const char* f : {"body", "a", "e", "i", "raan", "argp", "epoch"})
+    if (std::find(t.fields.begin(), t.fields.end(), f) == t.fields.end())
+      missing += std::string(missing.empty() ? "" : ", ") + f;
+  if (std::none_of(t.fields.begin(), t.fields.end(), [](const std::string& f) { return f == "mean" || f == "true"; }))
+    missing += std::string(missing.empty() ? "" : ", ") + "an anomaly";
+  if (!missing.empty()) throw sentence_error("the header lacks " + missing + ": " + layout);
   return t;
 }
 

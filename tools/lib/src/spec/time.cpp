@@ -1,58 +1,107 @@
-// Sentences about time: the time of flight (fixed or free), the departure, its epoch and its window.
-#include "grammar.hpp"
-
+// The time of flight (fixed, or free between bounds, an open upper bound derived for a minimum time),
+// the departure's calendar epoch and its window, set by the sentences of forms/ and the facts in
+// other words.
 #include <cmath>
 
+#include "grammar.hpp"
+#include "helios/astro/constants.hpp"
+#include "helios/astro/ephemeris.hpp"
+
 namespace helios::spec::grammar {
+namespace {
 
-void Builder::on_tof(const std::smatch& m) {
+// A minimum time the text leaves unbounded is searched up to this fraction of the time the engine at
+// full thrust takes to burn the whole initial mass (beyond it, less than 5 % of the mass is left) ...
+constexpr double kBurnFraction = 0.95;
+// ... or, with no mass flow (a solar sail), up to this many periods of the departure orbit.
+constexpr double kSailPeriods = 10;
+
+std::string days(double d) {
+  return io::short_number(d) + " days";
+}
+
+}  // namespace
+
+void Builder::fixed_time_of_flight(double days) {
   once(detail::Field::Tof);
-  const double tof = quantity(m, 1, Dimension::Time);
-  check_value(detail::Field::Tof, tof, m[1].str() + " " + m[2].str());
-  time["tof_days"] = tof;
+  if (time.value("final_time", "") == "free") throw sentence_error("the time of flight is given twice");
+  time["tof_days"] = days;
   time["final_time"] = "fixed";
+  tof_where = here;
 }
 
-void Builder::on_free_tof(const std::smatch& m) {
-  once(detail::Field::Tof);
-  const double lo = m[1].matched ? 0.0 : quantity(m, 3, Dimension::Time);
-  const double hi = m[1].matched ? quantity(m, 1, Dimension::Time) : quantity(m, 5, Dimension::Time);
-  if (!(lo >= 0 && hi > lo)) throw sentence_error("the time-of-flight window must satisfy 0 <= min < max");
-  time["final_time"] = "free";
-  time["tof_min_days"] = lo;
-  time["tof_max_days"] = hi;
-}
-
-void Builder::on_depart_from(const std::smatch& m) {
-  depart(m[2].str(), m[1].str());
-}
-
-void Builder::on_depart(const std::smatch& m) {
-  depart(m[1].matched ? m[1].str() : "", m[2].str());
-}
-
-void Builder::depart(const std::string& at, const std::string& target_text) {
-  static const std::regex orbit_word = re(R"(.*\borbit\b.*)");
-  if (std::regex_match(target_text, orbit_word)) return depart_from_orbit(at, target_text);
-  json target;
-  try {
-    target = parse_target(target_text);
-  } catch (const sentence_error& form) {
-    // "departs from Earth on 2001-02-04": the facts in other words read what the form does not
-    detail::SentenceFacts facts;
-    try {
-      facts = detail::read_facts(here.text, body_names());
-    } catch (const detail::facts_error& e) {
-      // a body named, then words the form does not take: the facts' reason is the one to give
-      static const std::regex named_then_more = re(R"([A-Za-z][A-Za-z0-9_]* (?:on|at|in) .+)");
-      if (std::regex_match(target_text, named_then_more)) throw sentence_error(e.what());
-      throw form;
-    }
-    return apply_facts(facts);
+void Builder::bound_time_of_flight(std::optional<double> lo, std::optional<double> hi) {
+  if (time.value("final_time", "") == "fixed") throw sentence_error("the time of flight is given twice");
+  for (const auto& [bound, key] : {std::pair{lo, "tof_min_days"}, std::pair{hi, "tof_max_days"}}) {
+    if (!bound) continue;
+    if (time.contains(key)) throw sentence_error("the time of flight is given twice");
+    time[key] = *bound;
   }
-  once("the departure");
-  if (!at.empty()) epoch(at);
-  departure = Endpoint{here, target, "initial_state", std::nullopt};
+  if (lo && !(*lo >= 0)) throw sentence_error("the shortest time of flight must not be negative");
+  if (hi && !(*hi > 0)) throw sentence_error("the longest time of flight must be positive");
+  if (time.contains("tof_min_days") && time.contains("tof_max_days") &&
+      !(time["tof_max_days"].get<double>() > time["tof_min_days"].get<double>()))
+    throw sentence_error("the time-of-flight window must satisfy 0 <= min < max");
+  time["final_time"] = "free";
+  tof_where = here;
+}
+
+// The period of the orbit the spacecraft departs on [days]: of its initial state, of the body it
+// leaves, or of the orbit it departs from; none when that is not a closed orbit.
+std::optional<double> Builder::departure_period_days() const {
+  const double mu = central_body["mu_km3_s2"].get<double>();
+  const json& t = departure->target;
+  double a = 0;
+  if (t.contains("semi_major_axis_km")) a = t["semi_major_axis_km"].get<double>();
+  if (t.value("kind", "") == "orbit") a = t["elements"]["a_AU"].get<double>() * astro::AU_KM;
+  std::optional<std::array<double, 6>> state;
+  if (t.contains("position_km"))
+    state = std::array<double, 6>{t["position_km"][0],   t["position_km"][1],   t["position_km"][2],
+                                  t["velocity_km_s"][0], t["velocity_km_s"][1], t["velocity_km_s"][2]};
+  if (t.value("kind", "") == "body")
+    state = astro::jpl_lp_state(astro::planet_from_name(t["body"]), time["epoch_mjd2000"].get<double>());
+  if (state) {  // vis-viva: a = -mu / (2 energy), a closed orbit's energy negative
+    const auto& s = *state;
+    const double energy = (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]) / 2 - mu / std::hypot(s[0], s[1], s[2]);
+    a = energy < 0 ? -mu / (2 * energy) : 0;
+  }
+  if (!(a > 0)) return std::nullopt;
+  return 2 * astro::PI * std::sqrt(a * a * a / mu) / astro::DAY_S;
+}
+
+void Builder::finish_time() {
+  if (time.value("final_time", "") != "free") return;
+  if (!time.contains("tof_min_days")) time["tof_min_days"] = 0.0;
+  if (time.contains("tof_max_days")) return;
+  const Where w = tof_where.value_or(objective_where.value_or(here));
+  if (objective.value("kind", "") != "minimum_time")
+    fail(w, "the time of flight is free with no upper bound, which only a minimum time leaves open (the " +
+                objective.value("kind", std::string("objective")) +
+                " would take the flight as long as it may): bound it ('The time of flight is free, at most Q.')");
+  double bound = 0;
+  std::string why;
+  if (propulsion == "low_thrust") {
+    const double m0 = spacecraft["initial_mass_kg"].get<double>(), thrust = spacecraft["thrust_N"].get<double>(),
+                 isp = spacecraft["isp_s"].get<double>();
+    const double burn = m0 * astro::G0_M_S2 * isp / thrust / astro::DAY_S;
+    bound = kBurnFraction * burn;
+    why = "95 % of the " + days(burn) + " the engine at full thrust (" + io::short_number(thrust) + " N at " +
+          io::short_number(isp) + " s) takes to burn the whole initial mass (" + io::short_number(m0) + " kg)";
+  } else if (const auto period = departure_period_days()) {
+    bound = kSailPeriods * *period;
+    why = io::short_number(kSailPeriods) + " periods of the departure orbit (" + days(*period) +
+          "; a sail burns no mass to bound it)";
+  } else {
+    fail(w,
+         "the time of flight is free with no upper bound, and the departure is on no closed orbit to bound it "
+         "by: bound it ('The time of flight is free, at most Q.')");
+  }
+  if (!(bound > time["tof_min_days"].get<double>()))
+    fail(w, "the shortest time of flight, " + days(time["tof_min_days"].get<double>()) + ", is beyond " + days(bound) +
+                ", " + why + ": bound the time of flight ('The time of flight is free, at most Q.')");
+  time["tof_max_days"] = bound;
+  notes.push_back("The text bounds no time of flight: HELIOS searches the minimum time up to " + days(bound) + ", " +
+                  why + ".");
 }
 
 void Builder::set_epoch(double mjd2000) {
@@ -68,36 +117,27 @@ void Builder::set_epoch(double mjd2000) {
   if (!time.contains("epoch_mjd2000")) time["epoch_mjd2000"] = mjd2000;
 }
 
-void Builder::epoch(const std::string& phrase) {
-  std::smatch m;
-  static const std::regex t_re = re(R"(t\s*=\s*)" + kQuantity);
-  static const std::regex mjd_re = re("(MJD2000|MJD) (" + kNum + ")");
-  if (std::regex_match(phrase, m, t_re)) {
-    once(detail::Field::T0);
-    time["t0_days"] = quantity(m, 1, Dimension::Time);
-    departure_at_t = true;
-  } else if (std::regex_match(phrase, m, mjd_re)) {
-    set_epoch(mjd2000_of(m[1].str(), m[2].str()));
-  } else {
-    throw sentence_error("departure time '" + phrase + "' must read 't = VALUE UNIT', 'MJD VALUE' or 'MJD2000 VALUE'");
-  }
-}
-
-void Builder::on_free_dep(const std::smatch& m) {
-  once("the departure window");
-  const double a = quantity(m, 1, Dimension::Time), b = quantity(m, 4, Dimension::Time);
-  if (a < 0 || b < 0) throw sentence_error("say 'N days before' or 'N days after' with N >= 0");
-  const double lo = lowercase(m[3].str()) == "before" ? -a : a;
-  const double hi = lowercase(m[6].str()) == "before" ? -b : b;
+void Builder::departure_window_dates(double lo, double hi) {
   if (!(hi > lo)) throw sentence_error("the departure window is empty: its start must come before its end");
-  free_departure(lo, hi, mjd2000_of(m[7].str(), m[8].str()));
+  window_dates = {lo, hi};
+  free_departure_where = here;
 }
 
-void Builder::on_free_dep_within(const std::smatch& m) {
-  once("the departure window");
-  const double a = quantity(m, 1, Dimension::Time);
-  if (!(a > 0)) throw sentence_error("the departure window's half-width must be positive");
-  free_departure(-a, a, mjd2000_of(m[3].str(), m[4].str()));
+// The window between two dates about the departure epoch the text states, else about its start.
+void Builder::finish_departure_window() {
+  if (!window_dates) return;
+  const auto [lo, hi] = *window_dates;
+  if (time.contains("epoch_mjd2000")) {
+    const double epoch = time["epoch_mjd2000"].get<double>();
+    if (epoch < lo || epoch > hi)
+      fail(free_departure_where, "the departure epoch MJD2000 " + io::short_number(epoch) +
+                                     " lies outside the departure window (MJD2000 " + io::short_number(lo) + " to " +
+                                     io::short_number(hi) + "): state one epoch inside it, or none");
+  }
+  const double epoch = time.value("epoch_mjd2000", lo);
+  Where stated = free_departure_where;
+  free_departure(lo - epoch, hi - epoch, epoch);
+  free_departure_where = stated;
 }
 
 void Builder::free_departure(double lo, double hi, double mjd2000) {

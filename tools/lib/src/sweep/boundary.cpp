@@ -110,8 +110,6 @@ std::string boundary_problem(const SweepGrid& grid, const std::string& template_
   const json cell = spec::parse_problem_text(cell_problem(template_text, template_source, departure_mjd2000, first_tof),
                                              template_source);
   check_cell_problem(cell, template_source, cell_name(departure_mjd2000, first_tof), departure_mjd2000, first_tof);
-  if (cell.at("objective").value("kind", "") == "minimum_time")
-    throw input_error(where + "the template's objective is already minimum time; set \"boundary\": false");
   const json boundary = spec::parse_problem_text(text, template_source + " (boundary form)");
   check_cell_problem(boundary, template_source, boundary_name(departure_mjd2000), departure_mjd2000, std::nullopt);
   if (boundary.at("objective").value("kind", "") != "minimum_time" ||

@@ -70,7 +70,8 @@ std::string boundary_name(double departure_mjd2000);
 // of flight placeholder replaced by a free time of flight in the grid's boundary window and the
 // objective sentence by "Minimize the time of flight." Both texts are parsed and must state the same
 // problem but for the objective and the time of flight, else an input_error names the template.
-// A template whose objective is already minimum time has no boundary (input_error).
+// A template whose objective is already minimum time has no boundary: the parser refuses its cells,
+// which minimize a fixed time of flight (input_error).
 std::string boundary_problem(const SweepGrid& grid, const std::string& template_text,
                              const std::string& template_source, double departure_mjd2000);
 

@@ -5,9 +5,10 @@
 #include <optional>
 #include <regex>
 
-#include "grammar.hpp"
+#include "../form.hpp"
+#include "../grammar.hpp"
 
-namespace helios::spec::grammar {
+namespace helios::spec::grammar::forms {
 namespace {
 
 const char* kExample =
@@ -22,20 +23,21 @@ std::optional<double> labelled(const std::string& clause, const std::string& lab
   return quantity(m, 1, d);
 }
 
-}  // namespace
-
-void Builder::on_third_body(const std::smatch& m) {
+void read(Builder& b, const std::smatch& m) {
   const std::string name = m[1].str(), clause = m[2].str();
-  if (central_body.is_object() && central_body.contains("name") && lowercase(central_body.at("name").get<std::string>()) == lowercase(name))
+  if (b.central_body.is_object() && b.central_body.contains("name") &&
+      lowercase(b.central_body.at("name").get<std::string>()) == lowercase(name))
     throw sentence_error(name + " is the central body; a third body is another one, " + kExample);
-  once("the third body " + name);
+  b.once("the third body " + name);
   const auto mu = labelled(clause, R"(\bmu3?|gravitational parameter)", Dimension::GravParam);
   const auto radius = labelled(clause, R"(orbit of radius|\bradius)", Dimension::Length);
   if (!mu || !radius) {
     const std::string mu_text = "its gravitational parameter mu", radius_text = "the radius of its circular orbit";
     throw sentence_error("the third body " + name + " needs " +
-                         (!mu && !radius ? mu_text + " and " + radius_text : !mu ? mu_text : radius_text) + ", " +
-                         kExample);
+                         (!mu && !radius ? mu_text + " and " + radius_text
+                          : !mu          ? mu_text
+                                         : radius_text) +
+                         ", " + kExample);
   }
   if (!(*mu > 0) || !(*radius > 0))
     throw sentence_error("the third body " + name + ": its mu and orbit radius must be positive");
@@ -45,7 +47,27 @@ void Builder::on_third_body(const std::smatch& m) {
                                                         {"phase_deg", R"(\bphase|argument of latitude)"}};
   for (const auto& [key, labels] : angles)
     if (const auto v = labelled(clause, labels, Dimension::Angle)) body[key] = *v;
-  perturbations.push_back(body);
+  b.perturbations.push_back(body);
+  b.stated_radii.push_back({*radius, "the orbit of " + name, b.here});
 }
 
-}  // namespace helios::spec::grammar
+}  // namespace
+
+std::vector<Form> third_body() {
+  return {{"a third body",
+           60,
+           R"((?:The )?([A-Z][A-Za-z0-9]*) perturbs the spacecraft\b(.*))",
+           read,
+           {{"The Moon perturbs the spacecraft as a point mass of mu = 4902.8 km^3/s^2 on a circular orbit of radius "
+             "384400 km, inclination 5.1 deg.",
+             "earth",
+             R"~({"/dynamics/perturbations": [{"kind": "third_body", "name": "Moon", "mu_km3_s2": 4902.8,
+                 "orbit_radius_km": 384400, "inclination_deg": 5.1}]})~"},
+            {"The Moon perturbs the spacecraft as a point mass of mu = 4902.8 km^3/s^2 on a circular orbit of radius "
+             "384400 m.",
+             "earth", R"~({"error": "the orbit of Moon is 384.4 km from the centre of the Earth"})~"},
+            {"The Moon perturbs the spacecraft as a point mass of mu = 4902.8 km^3/s^2.", "earth",
+             R"~({"error": "the third body Moon needs the radius of its circular orbit"})~"}}}};
+}
+
+}  // namespace helios::spec::grammar::forms
