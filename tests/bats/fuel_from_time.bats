@@ -65,3 +65,16 @@ setup() {
       and ((.search.minimum_time_and_coast.propellant_kg - 60 / 19561.815336588908 * $t * 86400) | fabs) < 1e-6'
   assert_jq "$sol" '.propellant_kg <= .search.minimum_time_and_coast.propellant_kg'
 }
+
+@test "fuel from time: the same search record, bit for bit, on one thread and on two" {
+  # the minimum-time starts solve a system that writes the program's one final time: two threads
+  # sharing it once gave other evaluation counts (and could give other extremals) run to run
+  local n filter='[.x[].value, .max_residual, (.search | del(.seconds, .threads))]'
+  for n in 1 2; do
+    jq --argjson n "$n" '.threads = $n' "$WORK/settings.json" >"$WORK/settings-$n.json"
+    "$BIN/helios-solve" "$WORK/shoot.cpp" --settings "$WORK/settings-$n.json" --cache-dir "$BATS_FILE_TMPDIR/cache" \
+      --plots "" -o "$WORK/solution-$n.json" 2>/dev/null
+  done
+  [[ $(jq -c "$filter" "$WORK/solution-1.json") == "$(jq -c "$filter" "$WORK/solution-2.json")" ]]
+  [[ $(jq -c "$filter" "$WORK/solution-1.json") == "$(jq -c "$filter" "$WORK/solution.json")" ]]
+}
