@@ -1362,6 +1362,14 @@ TEST(ParseEverydayWords, OrbitsAsPeopleWriteThem) {
   const json altitude =
       final_target("The spacecraft must end on a circular equatorial orbit at an altitude of 35786 km.");
   EXPECT_EQ(altitude["semi_major_axis_km"], 35786 + 6378.137);  // above the Earth's equatorial radius
+  // a radius and an altitude that agree say one thing twice; two that do not are refused, never one kept
+  EXPECT_EQ(final_target("The spacecraft must end on a circular equatorial orbit of radius 42164.137 km at an "
+                         "altitude of 35786 km.")["semi_major_axis_km"],
+            35786 + 6378.137);
+  has(error_of(with_final_orbit(
+          "At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km at an altitude of "
+          "400 km.")),
+      "the orbit's radius 42165 km and its altitude 400 km (a radius of 6778.137 km) disagree");
 }
 
 TEST(ParseEverydayWords, TimesOfFlightWithoutOrWithABound) {

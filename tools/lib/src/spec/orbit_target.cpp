@@ -10,6 +10,7 @@
 
 #include "grammar.hpp"
 #include "helios/astro/constants.hpp"
+#include "helios/io/json_io.hpp"
 
 namespace helios::spec::grammar {
 namespace {
@@ -220,7 +221,14 @@ json Builder::resolve_orbit(json target, const Where& w) const {
       fail(w, "an altitude counts from the surface of " + central +
                   ", whose radius is not known: state it ('The central body is ... with equatorial radius Q.') or "
                   "give the orbit's radius");
-    target["semi_major_axis_km"] = target["altitude_km"].get<double>() + central_body["radius_km"].get<double>();
+    const double altitude = target["altitude_km"].get<double>(), body_radius = central_body["radius_km"].get<double>();
+    // A radius and an altitude both stated say one thing twice, or two things: never keep one silently.
+    if (target.contains("semi_major_axis_km") && std::abs(target["semi_major_axis_km"].get<double>() -
+                                                          (altitude + body_radius)) > 1e-9 * (altitude + body_radius))
+      fail(w, "the orbit's radius " + io::short_number(target["semi_major_axis_km"].get<double>()) +
+                  " km and its altitude " + io::short_number(altitude) + " km (a radius of " +
+                  io::short_number(altitude + body_radius) + " km) disagree: state one of them");
+    target["semi_major_axis_km"] = altitude + body_radius;
     target.erase("altitude_km");
   }
   if (!target.contains("geostationary")) return in_order(target);
