@@ -112,6 +112,11 @@ s01_edited parse-unit-power-beyond-int 's/0.5 N/0.5 N^99999999999/' 'p.txt:4: ca
 case_dir parse-geostationary-on-the-way; sed 's/^The time of flight is free, at most 2 days./&\nThe spacecraft passes through geostationary orbit between day 0.1 and day 0.5./' \
   "$ROOT/scenarios/S14/problem.txt" >p.txt
 expect 0 '' parse p.txt
+# A final orbit given a radius and an altitude that disagree: refused, neither kept silently.
+case_dir parse-radius-and-altitude-disagree
+sed 's/^At the final time the spacecraft is on .*/At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km at an altitude of 400 km./' \
+  "$ROOT/scenarios/S14/problem.txt" >p.txt
+expect 3 'radius 42165 km and its altitude 400 km .* disagree' parse p.txt
 
 # User-written accelerations (parsed as text here; helios-derive reads them).
 for a in 'unbalanced:(x+' 'deep:'"$(printf '(%.0s' $(seq 300))"'x'"$(printf ')%.0s' $(seq 300))" 'unknown-symbol:q*x' \
