@@ -203,10 +203,11 @@ TEST(Compile, AMaskedTextIsNotServedTheProgramOfItsStructure) {
   helios::solve::SolveOptions o;
   o.cache_dir = dir.string();
   o.sandbox = false;
-  const std::string source = helios::codegen::generate(
-      helios::pmp::derive_from_spec(helios::spec::parse_problem_text(
-          helios::io::read_text(HELIOS_SOURCE_DIR "/scenarios/S01/problem.txt"), "S01")),
-      {}).source;
+  const std::string source =
+      helios::codegen::generate(helios::pmp::derive_from_spec(helios::spec::parse_problem_text(
+                                    helios::io::read_text(HELIOS_SOURCE_DIR "/scenarios/S01/problem.txt"), "S01")),
+                                {})
+          .source;
   const auto compiled = helios::solve::compile_cached(source, o);
   ASSERT_TRUE(compiled.ok && compiled.parameters.readable);
   const auto masked = helios::solve::compile_cached(compiled.parameters.structure, o);
