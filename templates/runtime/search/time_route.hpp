@@ -94,8 +94,8 @@ inline bool minimum_time_from_fuel_solution(const Settings& s, ProgramKnobs& tf,
   const double from = held;
   held = follow_parameter(
       s, time, z, eps, [&](double v) { held = v; }, from, 0.0, -1e-7 * std::max(from, 1e-3),
-      {0.25 * from, 1e-4 * from, from}, kLambda0Held, out.steps, [&](const std::vector<double>& y) { return y[l0] > 0; },
-      [](const std::vector<double>&) { return false; });
+      {0.25 * from, 1e-4 * from, from}, kLambda0Held, out.steps,
+      [&](const std::vector<double>& y) { return y[l0] > 0; }, [](const std::vector<double>&) { return false; });
   int info = 0;
   double res = 0;
   const bool ok = held == 0 && time.solve(z, 0.0, s.accept_residual, info, res) && z[l0] > 0;
