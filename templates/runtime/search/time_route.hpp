@@ -16,7 +16,8 @@
 // are the minimum-time extremals and at a > 0 minimum-fuel extremals at the final time they reach.
 // The route, for a fuel problem whose targets do not move on the calendar:
 //   1. from a minimum-fuel solution at eps_start, the final time is continued down (lambda0 free)
-//      until no shorter one converges, and the minimum-time extremal is solved there (a = 0);
+//      while its steps converge, then a is brought down to 0 (the final time free): the
+//      minimum-time extremal;
 //   2. from it, a is continued up from 0 at eps_start while coasting arcs open, then the final time
 //      itself (lambda0 free) up to the problem's;
 //   3. there eps is continued to 0: an extremal of the problem.
