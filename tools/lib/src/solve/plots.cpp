@@ -298,6 +298,7 @@ json plot_trajectory(const std::string& csv_path, const std::string& prefix, con
       begin_block("arrows");
       const double len = kArrowShare * 2 * xy_extent / L, spacing = thrusting / kArrows;
       double so_far = 0, next_at = spacing / 2;
+      Vec last_arrow = {NAN, NAN, NAN};
       for (std::size_t i = 0; i + 1 < table.rows.size(); ++i) {
         const auto& row = table.rows[i];
         if (row[cu] <= 0.5) continue;
@@ -305,6 +306,10 @@ json plot_trajectory(const std::string& csv_path, const std::string& prefix, con
         if (so_far < next_at) continue;
         while (next_at <= so_far) next_at += spacing;
         const Vec p = pos(row), a = {row[cax], row[cay], row[caz]};
+        // No arrow over the one before (short thrust arcs): at least most of an arrow's length apart.
+        const Vec gap = {p[0] / L - last_arrow[0], p[1] / L - last_arrow[1], p[2] / L - last_arrow[2]};
+        if (norm(gap) < 0.7 * len) continue;
+        last_arrow = {p[0] / L, p[1] / L, p[2] / L};
         const double an = std::max(norm(a), 1e-300);
         data << p[0] / L << ' ' << p[1] / L << ' ' << p[2] / L << ' ' << len * a[0] / an << ' ' << len * a[1] / an
              << ' ' << len * a[2] / an << '\n';
