@@ -295,6 +295,11 @@ KNOWN_PROBLEMS := $(sort $(patsubst $(SCENARIOS_DIR)/%/problem.txt,%,$(wildcard 
 KNOWN_SWEEPS := $(sort $(patsubst $(SCENARIOS_DIR)/%/sweep.json,%,$(wildcard $(SCENARIOS_DIR)/*/sweep.json)))
 KNOWN_SCENARIOS := $(filter-out $(KNOWN_SWEEPS),$(KNOWN_PROBLEMS))
 ifneq ($(filter run,$(or $(MAKECMDGOALS),run)),)
+  ifneq ($(problem),)
+    ifeq ($(wildcard $(problem_path)/problem.txt),)
+      $(error problem=$(value problem): $(problem_path)/problem.txt is missing$(if $(filter /%,$(problem_path)),, (a relative path starts at $(CURDIR))))
+    endif
+  endif
   ifneq ($(filter $(scenario),$(KNOWN_SWEEPS)),)
     $(error $(SCENARIOS_DIR)/$(scenario) is a sweep (it has a sweep.json): use make sweep sweep=$(scenario))
   endif

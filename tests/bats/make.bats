@@ -83,7 +83,9 @@ mk() {
   # no problem.txt, two names for one problem, and a path that is not plain: one line each
   mkdir -p elsewhere/Empty
   run -2 --separate-stderr mk problem="$BATS_TEST_TMPDIR/elsewhere/Empty"
-  assert_stderr_contains "scenario=Empty is not a scenario of $BATS_TEST_TMPDIR/elsewhere/: use one of P4"
+  assert_stderr_contains "problem=$BATS_TEST_TMPDIR/elsewhere/Empty: $BATS_TEST_TMPDIR/elsewhere/Empty/problem.txt is missing"
+  run -2 --separate-stderr mk problem=elsewhere/P4
+  assert_stderr_contains "problem=elsewhere/P4: elsewhere/P4/problem.txt is missing (a relative path starts at $ROOT)"
   run -2 --separate-stderr mk problem="$BATS_TEST_TMPDIR/elsewhere/P4" scenario=S01
   assert_stderr_contains "problem=$BATS_TEST_TMPDIR/elsewhere/P4 and scenario=S01 both name the problem: give one of them"
   run -2 --separate-stderr mk problem='$(shell id>X)/P4'
