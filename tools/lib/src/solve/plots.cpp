@@ -409,7 +409,7 @@ json plot_trajectory(const std::string& csv_path, const std::string& prefix, con
 
   // The control and the mass against time.
   s += "reset\nset terminal pngcairo size 1000,600 noenhanced\nset output ARG4\nset grid\nset xlabel ARG9\n";
-  s += "set key outside bottom center horizontal\n";
+  s += "set key outside bottom center horizontal\nset bmargin 6\n";  // room for the time label above the key
   if (engine) {
     const std::string thrust = ctx.thrust_N > 0 ? "thrust [N]" : "throttle u";
     const double top = ctx.thrust_N > 0 ? ctx.thrust_N : 1.0;
