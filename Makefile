@@ -403,6 +403,7 @@ HELIOS: a low-thrust problem in words -> a solved, checked, scored trajectory (R
 
 Targets:
   make [scenario=S01]          one scenario's chain into runs/<backend>/<scenario>/ (the default goal)
+  make problem=PATH            the same for any folder with a problem.txt (settings.json, reference.json optional)
   make all                     every scenario (-j works)
   make scoreboard              runs/<backend>/scoreboard.md, and the tables over every run in runs/scoreboard.md
   make sweep sweep=P01         a launch-window sweep (SWEEP_GRID=bench, SWEEP_START=cold)
