@@ -20,9 +20,24 @@ endif
 endef
 $(eval $(call one_spelling,scenario,SCENARIO))
 $(eval $(call one_spelling,sweep,SWEEP))
+# problem=PATH: any folder holding a problem.txt (settings.json and reference.json optional), anywhere;
+# it is scenario=<its name> of SCENARIOS_DIR=<the folder it is in>, its run in $(RUNS_ROOT)/<backend>/<its name>.
+problem ?=
+ifneq ($(value problem),)
+  problem_path := $(patsubst %/,%,$(value problem))
+  ifneq ($(origin scenario),undefined)
+    $(error problem=$(value problem) and scenario=$(value scenario) both name the problem: give one of them)
+  endif
+  ifneq ($(origin SCENARIOS_DIR),undefined)
+    $(error problem=$(value problem) and SCENARIOS_DIR=$(value SCENARIOS_DIR) both name the folder: give one of them)
+  endif
+  override scenario := $(notdir $(problem_path))
+  override SCENARIOS_DIR := $(or $(patsubst %/,%,$(dir $(problem_path))),.)
+endif
 scenario ?= S01
-# Where the scenarios are (tests point it at a private folder), each a folder of problem.txt,
-# settings.json and reference.json (a sweep's: problem.txt, settings.json, sweep.json).
+# Where the scenarios are (tests point it at a private folder), each a folder of problem.txt and,
+# optional, settings.json (the solver's defaults without it) and reference.json (scored without
+# it: "no reference"); a sweep's: problem.txt, settings.json, sweep.json.
 SCENARIOS_DIR ?= scenarios
 BACKEND ?= builtin
 # advisory: a failed verification is recorded and scored but does not stop the chain; strict: it stops.
@@ -65,14 +80,15 @@ unplain = $(call without,$(subst $(space),?,$(subst $(tab),?,$(subst $(newline),
 check_text = $(if $(or $(call unplain,$(2),$(3)),$(if $(5)$(2),,empty)),\
   $(error $(1)='$(2)' is not $(4): use only $(if $(filter .,$(3)),A-Z a-z 0-9 _ - . / +,$(if $(filter a,$(3)),A-Z a-z 0-9 _ -,digits))))
 check_plain = $(call check_text,$(1),$(value $(1)),$(2),$(3),$(4))
+$(call check_plain,problem,$(PATH_CHARS),a plain folder,optional)
 $(call check_plain,SCENARIOS_DIR,$(PATH_CHARS),a plain folder)
 $(call check_plain,RUNS_ROOT,$(PATH_CHARS),a plain folder)
 $(call check_plain,scenario,$(NAME_CHARS),a scenario name)
 $(call check_plain,RUN_TAG,$(NAME_CHARS),a plain name,optional)
 $(foreach v,SOLVE_TIME_LIMIT DERIVE_ROUNDS GEN_ROUNDS,$(call check_plain,$(v),$(DIGITS),a count))
 # A folder of SCENARIOS_DIR (but a hidden one) is a scenario's name; the first one that is not plain.
-UNPLAIN_SCENARIO := $(shell find -L '$(SCENARIOS_DIR)' -mindepth 1 -maxdepth 1 \( -type d -o -name 'S[0-9]*' \) \
-  ! -name '.*' ! -regex '.*/[A-Za-z0-9_-]+' -printf '%P' -quit 2>/dev/null | LC_ALL=C tr -c '[:print:]' '?')
+UNPLAIN_SCENARIO := $(if $(problem),,$(shell find -L '$(SCENARIOS_DIR)' -mindepth 1 -maxdepth 1 \( -type d -o -name 'S[0-9]*' \) \
+  ! -name '.*' ! -regex '.*/[A-Za-z0-9_-]+' -printf '%P' -quit 2>/dev/null | LC_ALL=C tr -c '[:print:]' '?'))
 ifneq ($(UNPLAIN_SCENARIO),)
   $(error $(SCENARIOS_DIR)/$(UNPLAIN_SCENARIO) is not a scenario name: rename the folder to A-Z a-z 0-9 _ - only)
 endif
@@ -216,9 +232,17 @@ $(call each_run,shoot.cpp): $(RUNS)/%/shoot.cpp: $(RUNS)/%/shoot.r$(GEN_ROUNDS).
 endif
 
 # trajectory.csv and the plots are written before solution.json, which marks the stage done.
-$(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp $(SCENARIOS_DIR)/%/settings.json $(call TOOL_STAMP,solve)
-	$(LAUNCH) '$(BIN)/helios-solve' --backend $(BACKEND) '$<' --settings '$(SCENARIOS_DIR)/$*/settings.json' --cache-dir '$(CACHE)' \
-	  --time-limit $(SOLVE_TIME_LIMIT) --trajectory '$(@D)/trajectory.csv' --plots '$(@D)/' -o '$@' $(SOLVED)
+# settings.json and reference.json are optional: a prerequisite where the folder has one
+# (secondary expansion looks when the rule is used); without settings the solver's defaults, without
+# a reference a score that says "no reference".
+.SECONDEXPANSION:
+optional_input = $(wildcard $(SCENARIOS_DIR)/$(1)/$(2))
+$(RUNS)/%/solution.json: $(RUNS)/%/shoot.cpp $(RUNS)/%/spec.json $$(call optional_input,$$*,settings.json) \
+                         $(call TOOL_STAMP,solve)
+	$(LAUNCH) '$(BIN)/helios-solve' --backend $(BACKEND) '$<' \
+	  $(if $(call optional_input,$*,settings.json),--settings '$(SCENARIOS_DIR)/$*/settings.json') --spec '$(@D)/spec.json' \
+	  --cache-dir '$(CACHE)' --time-limit $(SOLVE_TIME_LIMIT) --trajectory '$(@D)/trajectory.csv' --plots '$(@D)/' \
+	  -o '$@' $(SOLVED)
 
 # The converged trajectory as a CCSDS OEM 2.0 (tools/lib/src/oem/README.md).
 # trajectory.csv is written before solution.json and only for a converged solution, so it is no
@@ -236,10 +260,11 @@ $(RUNS)/%/report.md: $(SCENARIOS_DIR)/%/problem.txt $(RUNS)/%/spec.json $(RUNS)/
 	'$(BIN)/helios-score' --report --problem '$<' --spec '$(@D)/spec.json' --derivation '$(@D)/derivation.json' \
 	  --verify '$(@D)/verify.json' --solution '$(@D)/solution.json' -o '$@'
 
-$(RUNS)/%/score.json: $(SCENARIOS_DIR)/%/reference.json $(RUNS)/%/spec.json $(RUNS)/%/derivation.json \
-                      $(RUNS)/%/verify.json $(RUNS)/%/solution.json $(call TOOL_STAMP,score)
-	'$(BIN)/helios-score' --reference '$<' --spec '$(@D)/spec.json' --derivation '$(@D)/derivation.json' \
-	  --verify '$(@D)/verify.json' --solution '$(@D)/solution.json' -o '$@'
+$(RUNS)/%/score.json: $(RUNS)/%/spec.json $(RUNS)/%/derivation.json $(RUNS)/%/verify.json $(RUNS)/%/solution.json \
+                      $$(call optional_input,$$*,reference.json) $(call TOOL_STAMP,score)
+	'$(BIN)/helios-score' $(if $(call optional_input,$*,reference.json),--reference '$(SCENARIOS_DIR)/$*/reference.json',--no-reference '$*') \
+	  --spec '$(@D)/spec.json' --derivation '$(@D)/derivation.json' --verify '$(@D)/verify.json' \
+	  --solution '$(@D)/solution.json' -o '$@'
 
 # ---- launch-window sweeps (tools/lib/src/sweep/README.md) ------------------------------------
 # make sweep sweep=P01 [SWEEP_GRID=bench] [LAUNCH="srun -n1 -c1"] [-j N]: first each departure's
@@ -263,19 +288,24 @@ SWEEP_JOBS ?= 2
 $(call check_plain,sweep,$(NAME_CHARS),a sweep name,optional)
 $(call check_plain,SWEEP_GRID,$(NAME_CHARS),a grid name,optional)
 $(call check_plain,SWEEP_JOBS,$(DIGITS),a count)
-ifneq ($(filter P%,$(scenario)),)
-  $(error scenario=$(scenario) is a sweep template: use make sweep sweep=$(scenario))
-endif
-# A scenario is a folder of SCENARIOS_DIR with a problem.txt; make scenario=X (the goal run, make's
-# default) of any other X says so with the list, rather than make's "No rule to make target".
-KNOWN_SCENARIOS := $(sort $(patsubst $(SCENARIOS_DIR)/%/problem.txt,%,$(wildcard $(SCENARIOS_DIR)/*/problem.txt)))
+# A scenario is a folder of SCENARIOS_DIR with a problem.txt, a sweep one with a sweep.json (whatever
+# their names); make scenario=X (the goal run, make's default) of any other X says so with the list,
+# rather than make's "No rule to make target".
+KNOWN_PROBLEMS := $(sort $(patsubst $(SCENARIOS_DIR)/%/problem.txt,%,$(wildcard $(SCENARIOS_DIR)/*/problem.txt)))
+KNOWN_SWEEPS := $(sort $(patsubst $(SCENARIOS_DIR)/%/sweep.json,%,$(wildcard $(SCENARIOS_DIR)/*/sweep.json)))
+KNOWN_SCENARIOS := $(filter-out $(KNOWN_SWEEPS),$(KNOWN_PROBLEMS))
 ifneq ($(filter run,$(or $(MAKECMDGOALS),run)),)
-  ifeq ($(filter $(scenario),$(KNOWN_SCENARIOS)),)
-    $(error scenario=$(scenario) is not a scenario of $(SCENARIOS_DIR)/: use one of $(filter-out P%,$(KNOWN_SCENARIOS))$(if $(filter P%,$(KNOWN_SCENARIOS)), (sweeps, make sweep sweep=P..: $(filter P%,$(KNOWN_SCENARIOS)))))
+  ifneq ($(problem),)
+    ifeq ($(wildcard $(problem_path)/problem.txt),)
+      $(error problem=$(value problem): $(problem_path)/problem.txt is missing$(if $(filter /%,$(problem_path)),, (a relative path starts at $(CURDIR))))
+    endif
   endif
-  # The solve reads settings.json and the score reference.json: a folder without one is named here.
-  $(foreach f,settings.json reference.json,$(if $(wildcard $(SCENARIOS_DIR)/$(scenario)/$(f)),,\
-    $(error $(SCENARIOS_DIR)/$(scenario)/$(f) is missing: a scenario is a folder of problem.txt, settings.json and reference.json (scenarios/S01/ has examples))))
+  ifneq ($(filter $(scenario),$(KNOWN_SWEEPS)),)
+    $(error $(SCENARIOS_DIR)/$(scenario) is a sweep (it has a sweep.json): use make sweep sweep=$(scenario))
+  endif
+  ifeq ($(filter $(scenario),$(KNOWN_SCENARIOS)),)
+    $(error scenario=$(scenario) is not a scenario of $(SCENARIOS_DIR)/: use one of $(KNOWN_SCENARIOS)$(if $(KNOWN_SWEEPS), (sweeps, make sweep sweep=..: $(KNOWN_SWEEPS))))
+  endif
 endif
 ifneq ($(sweep),)
 ifneq ($(BACKEND),builtin)
@@ -373,6 +403,7 @@ HELIOS: a low-thrust problem in words -> a solved, checked, scored trajectory (R
 
 Targets:
   make [scenario=S01]          one scenario's chain into runs/<backend>/<scenario>/ (the default goal)
+  make problem=PATH            the same for any folder with a problem.txt (settings.json, reference.json optional)
   make all                     every scenario (-j works)
   make scoreboard              runs/<backend>/scoreboard.md, and the tables over every run in runs/scoreboard.md
   make sweep sweep=P01         a launch-window sweep (SWEEP_GRID=bench, SWEEP_START=cold)
@@ -384,7 +415,7 @@ Targets:
   make help                    this text
 
 Variables (scenario and sweep may also be spelled SCENARIO and SWEEP):
-  scenario=S01                 one of: $(filter-out P%,$(KNOWN_SCENARIOS))
+  scenario=S01                 one of: $(KNOWN_SCENARIOS); or problem=PATH, any folder with a problem.txt
   BACKEND=builtin|llm          who parses, derives and writes the program ($(BACKEND))
   VERIFY_MODE=advisory|strict  strict: a failed verification stops the chain ($(VERIFY_MODE))
   LAUNCH=                      a prefix of the solve step, e.g. LAUNCH="srun -n1 -c1"

@@ -31,6 +31,8 @@ checks=(
   "bc:cmd/bc"
   # Bats runs its files two at a time (bats --jobs needs GNU parallel).
   "parallel:cmd/parallel"
+  # make test checks the C++ sources' layout against .clang-format (tests/bats/layout.bats).
+  "clang-format:cmd/clang-format"
   # make test compiles every report's LaTeX with pdflatex (amsmath: texlive-latex-base, amssymb: texlive-base).
   "texlive-latex-base:cmd/pdflatex"
 )

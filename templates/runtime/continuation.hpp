@@ -326,7 +326,7 @@ class EventContinuation {
     // kappa meets the cost's own curvature).
     std::vector<double> previous, tangent;  // the solution before x on the path (none before the first kappa)
     double log_previous = 0, log_current = 0, current = 0;
-    bool on_path = false;  // x solves at log_current (before the first kappa it holds p = 0)
+    bool on_path = false;     // x solves at log_current (before the first kappa it holds p = 0)
     bool tangent_ok = false;  // `tangent` is the path's at x (kappa = current)
     const auto path_tangent = [&] {
       std::vector<double> G, J, dG(N, 0.0);
@@ -343,8 +343,9 @@ class EventContinuation {
       bool solved = false;
       if (on_path && (tangent_ok || (value > 0 && !previous.empty()))) {
         for (int i = 0; i < N; ++i)
-          trial[i] += tangent_ok ? tangent[i] * (value - current)
-                                 : (x_[i] - previous[i]) * (std::log(value) - log_current) / (log_current - log_previous);
+          trial[i] += tangent_ok
+                          ? tangent[i] * (value - current)
+                          : (x_[i] - previous[i]) * (std::log(value) - log_current) / (log_current - log_previous);
         solved = solve(shooter, trial, "parameters", value);
         if (!solved) trial = x_;  // the path bends: from the last solution itself
       }

@@ -135,8 +135,8 @@ inline double objective_in_named_unit(double objective) {
 
 // The Shape of a converged x at eps (the first three states are the position). At eps = 0 its
 // cost is the objective: the propellant summed over the arcs (a dropped lander is not
-// propellant), the flight time, or the final state's Mayer term. The companion problem of a minimum-time one (fuel_weight > 0)
-// costs its propellant.
+// propellant), the flight time, or the final state's Mayer term. The companion problem of a minimum-time one
+// (fuel_weight > 0) costs its propellant.
 inline Shape shape_of(const Settings& s, const std::vector<double>& x, double eps, double fuel_weight = 0) {
   Shape out;
   RecordedPath path;

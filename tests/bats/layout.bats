@@ -74,3 +74,20 @@ tools/lib/a.hpp:1: no such path: tools/lib/b.hpp
 tools/lib/a.hpp:1: no document named design.md in the tree
 tools/lib/a.hpp:3: README.md has no section \"Results\"" ]] || { echo "$output" >&2; false; }
 }
+
+# The C++ sources as .clang-format lays them out, with Debian 12's clang-format 14 (another
+# version breaks some lines elsewhere; tools/install-deps.sh installs this one). Under CI a missing
+# clang-format is a failure, elsewhere the test is skipped.
+@test "layout: every C++ source is laid out as .clang-format says" {
+  if ! command -v clang-format >/dev/null; then
+    [[ -z ${CI:-} ]] || { echo "no clang-format under CI: tools/install-deps.sh installs it" >&2; false; }
+    skip "no clang-format (tools/install-deps.sh installs it)"
+  fi
+  [[ $(clang-format --version) == *" version 14."* ]] || skip "the layout is clang-format 14's; this is $(clang-format --version)"
+  local files
+  mapfile -t files < <(cd "$ROOT" && find tools templates tests \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' \) | sort)
+  ((${#files[@]} >= 200))
+  cd "$ROOT"
+  run clang-format --dry-run -Werror "${files[@]}"
+  [[ $status -eq 0 ]] || { echo "$output" | grep -E '^[^ ].*: error:' | cut -d: -f1 | sort -u | sed 's/^/not laid out: /' >&2; false; }
+}

@@ -47,12 +47,51 @@ mk() {
     { echo "$output" >&2; false; }
   run -2 --separate-stderr mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=S01
   assert_stderr_contains "scenario=S01 is not a scenario of $BATS_TEST_TMPDIR/mine/: use one of X01"
-  # a folder without its settings is named, not make's "No rule to make target"
+  # a folder without settings.json solves with the solver's defaults, one without reference.json
+  # is scored without a reference
   mkdir -p mine/X02
-  cp "$S01"/{problem.txt,reference.json} mine/X02/
-  run -2 --separate-stderr mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=X02
+  cp "$S01"/problem.txt mine/X02/
+  run -0 --separate-stderr mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=X02
+  [[ $output == *"helios-solve' --backend builtin '$BATS_TEST_TMPDIR/runs/builtin/X02/shoot.cpp'"* ]] ||
+    { echo "$output" >&2; false; }
+  [[ $output == *"--spec '$BATS_TEST_TMPDIR/runs/builtin/X02/spec.json'"* ]] || { echo "$output" >&2; false; }
+  [[ $output != *"--settings"* && $output != *"--reference"* ]] || { echo "$output" >&2; false; }
+  [[ $output == *"helios-score' --no-reference 'X02'"* ]] || { echo "$output" >&2; false; }
+  cp "$S01"/settings.json mine/X02/
+  run -0 mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" scenario=X02
+  [[ $output == *"--settings '$BATS_TEST_TMPDIR/mine/X02/settings.json'"* ]] || { echo "$output" >&2; false; }
+}
+
+@test "make: problem=PATH runs any folder with a problem.txt, a P name too; a sweep is told by its sweep.json" {
+  mkdir -p elsewhere/P4
+  cp "$S01"/problem.txt elsewhere/P4/
+  run -0 --separate-stderr mk problem="$BATS_TEST_TMPDIR/elsewhere/P4"
+  [[ $output == *"helios-parse' --backend builtin '$BATS_TEST_TMPDIR/elsewhere/P4/problem.txt' -o '$BATS_TEST_TMPDIR/runs/builtin/P4/spec.json'"* ]] ||
+    { echo "$output" >&2; false; }
+  [[ $output == *"--no-reference 'P4'"* && $output == *"/runs/builtin/P4/report.md"* ]] || { echo "$output" >&2; false; }
+  # a trailing slash, and the same folder named by SCENARIOS_DIR and scenario
+  run -0 mk problem="$BATS_TEST_TMPDIR/elsewhere/P4/"
+  [[ $output == *"'$BATS_TEST_TMPDIR/elsewhere/P4/problem.txt'"* ]] || { echo "$output" >&2; false; }
+  run -0 mk SCENARIOS_DIR="$BATS_TEST_TMPDIR/elsewhere" scenario=P4
+  [[ $output == *"'$BATS_TEST_TMPDIR/elsewhere/P4/problem.txt'"* ]] || { echo "$output" >&2; false; }
+  # a folder with a sweep.json is a sweep, whatever its name
+  mkdir -p elsewhere/Q7
+  cp "$ROOT"/scenarios/P01/{problem.txt,settings.json,sweep.json} elsewhere/Q7/
+  run -2 --separate-stderr mk problem="$BATS_TEST_TMPDIR/elsewhere/Q7"
   [[ ${#stderr_lines[@]} -eq 1 ]] || { echo "$stderr" >&2; false; }
-  assert_stderr_contains "$BATS_TEST_TMPDIR/mine/X02/settings.json is missing: a scenario is a folder of problem.txt, settings.json and reference.json"
+  assert_stderr_contains "$BATS_TEST_TMPDIR/elsewhere/Q7 is a sweep (it has a sweep.json): use make sweep sweep=Q7"
+  # no problem.txt, two names for one problem, and a path that is not plain: one line each
+  mkdir -p elsewhere/Empty
+  run -2 --separate-stderr mk problem="$BATS_TEST_TMPDIR/elsewhere/Empty"
+  assert_stderr_contains "problem=$BATS_TEST_TMPDIR/elsewhere/Empty: $BATS_TEST_TMPDIR/elsewhere/Empty/problem.txt is missing"
+  run -2 --separate-stderr mk problem=elsewhere/P4
+  assert_stderr_contains "problem=elsewhere/P4: elsewhere/P4/problem.txt is missing (a relative path starts at $ROOT)"
+  run -2 --separate-stderr mk problem="$BATS_TEST_TMPDIR/elsewhere/P4" scenario=S01
+  assert_stderr_contains "problem=$BATS_TEST_TMPDIR/elsewhere/P4 and scenario=S01 both name the problem: give one of them"
+  run -2 --separate-stderr mk problem='$(shell id>X)/P4'
+  [[ ${#stderr_lines[@]} -eq 1 ]] || { echo "$stderr" >&2; false; }
+  assert_stderr_contains "problem='\$(shell id>X)/P4' is not a plain folder"
+  [[ ! -e X && ! -e $ROOT/X ]]
 }
 
 @test "make: a scenario folder named like shell code is refused in one line and its code never runs" {

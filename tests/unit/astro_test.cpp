@@ -1,3 +1,4 @@
+#include "helios/astro/calendar.hpp"
 #include "helios/astro/constants.hpp"
 #include "helios/astro/ephemeris.hpp"
 #include "helios/astro/kepler.hpp"
@@ -9,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "helios/oem/oem.hpp"
 #include "test_helpers.hpp"
 
 namespace {
@@ -281,4 +283,39 @@ TEST(AstroEphemeris, PlanetFromName) {
   }
   EXPECT_THROW(planet_from_name(""), std::invalid_argument);
   EXPECT_THROW(planet_from_name("Earth "), std::invalid_argument);
+}
+
+// The calendar date of an MJD2000 epoch (TDB): the project's MJD2000 starts at 2000-01-01T00:00
+// (MJD - 51544, as the parser's dates and the OEM's epochs), so J2000.0 (noon) is MJD2000 0.5.
+TEST(Calendar, Mjd2000ZeroIsMidnightAndJ2000IsNoon) {
+  using helios::astro::iso_date_tdb;
+  EXPECT_EQ(iso_date_tdb(0.0), "2000-01-01T00:00:00");
+  EXPECT_EQ(iso_date_tdb(helios::astro::JD_J2000 - helios::astro::JD_OF_MJD2000), "2000-01-01T12:00:00");
+  EXPECT_EQ(iso_date_tdb(-0.25), "1999-12-31T18:00:00");
+  EXPECT_EQ(iso_date_tdb(366.0), "2001-01-01T00:00:00");    // 2000 is a leap year
+  EXPECT_EQ(iso_date_tdb(8456.0), "2023-02-25T00:00:00");   // MJD 60000
+  EXPECT_EQ(iso_date_tdb(10336.6), "2028-04-19T14:24:00");  // S07's epoch
+  EXPECT_EQ(iso_date_tdb(-36525.0), "1899-12-31T00:00:00");
+  EXPECT_EQ(iso_date_tdb(73050.0), "2200-01-02T00:00:00");
+  EXPECT_EQ(iso_date_tdb(400.999999), "2001-02-05T00:00:00");  // rounded to the second
+  EXPECT_THROW(iso_date_tdb(std::nan("")), std::invalid_argument);
+  EXPECT_THROW(iso_date_tdb(3e6), std::invalid_argument);
+}
+
+// The same instant as the OEM's epoch over four centuries: a quarter second past a whole second
+// (clear of both rounding edges), which the date rounds down to and the OEM prints with its fraction.
+TEST(Calendar, AgreesWithTheOemEpochs) {
+  for (double mjd2000 = -36525.0; mjd2000 < 109575.0; mjd2000 += 97.123456789) {
+    const double quarter_past = (std::round(mjd2000 * 86400.0) + 0.25) / 86400.0;
+    const std::string oem = helios::oem::oem_epoch(quarter_past);
+    EXPECT_EQ(helios::astro::iso_date_tdb(quarter_past), oem.substr(0, 19)) << mjd2000;
+    EXPECT_EQ(oem.substr(19, 2), ".2") << oem;  // a quarter second, to the double's resolution
+  }
+}
+
+TEST(Calendar, DurationsInHoursBelowThreeDays) {
+  using helios::astro::duration_text;
+  EXPECT_EQ(duration_text(14.800364354648908 / 24), "14.80 h");
+  EXPECT_EQ(duration_text(2.9), "69.60 h");
+  EXPECT_EQ(duration_text(348.795, 1), "348.8 days");
 }

@@ -181,8 +181,9 @@ TEST(DerivationDocument, RuntimeEvaluatedParametersHaveTheirRole) {
   const Document doc(derivation_of("S10"));
   ASSERT_FALSE(doc.runtime_evaluated.empty());
   for (const auto& p : doc.parameter_quantities)
-    EXPECT_EQ(p.role == helios::derivation::Role::RuntimeEvaluated,
-              std::find(doc.runtime_evaluated.begin(), doc.runtime_evaluated.end(), p.name) != doc.runtime_evaluated.end())
+    EXPECT_EQ(
+        p.role == helios::derivation::Role::RuntimeEvaluated,
+        std::find(doc.runtime_evaluated.begin(), doc.runtime_evaluated.end(), p.name) != doc.runtime_evaluated.end())
         << p.name;
 }
 

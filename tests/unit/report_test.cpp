@@ -226,9 +226,10 @@ TEST(Report, TheExtremalsTableGivesTheObjectiveInItsUnit) {
   in.spec = spec_of("S01");
   in.derivation = helios::pmp::derive_from_spec(in.spec);
   in.solution = json{{"status", "converged"},
-                     {"search", {{"returned", 1},
-                                 {"extremals", json::array({{{"id", 0}, {"objective", -1.52}, {"final_radius_km", 2.25e8}},
-                                                            {{"id", 1}, {"objective", 0.1}, {"propellant_kg", 150.5}}})}}}};
+                     {"search",
+                      {{"returned", 1},
+                       {"extremals", json::array({{{"id", 0}, {"objective", -1.52}, {"final_radius_km", 2.25e8}},
+                                                  {{"id", 1}, {"objective", 0.1}, {"propellant_kg", 150.5}}})}}}};
   const std::string md = helios::report::report_markdown(in);
   EXPECT_NE(md.find("| extremal | objective | in named units |"), std::string::npos);
   EXPECT_NE(md.find("| 0 | -1.52 | 225000000 km |"), std::string::npos) << md.substr(md.find("| extremal |"), 400);
@@ -250,10 +251,13 @@ TEST(Report, HostileArtifactStringsAreTextAndNumbersAreNumbers) {
                      {"homotopy", json::array({{{"eps", evil}, {"converged", true}, {"evaluations", "7 $x$"}}})},
                      {"files", {{"plot", "../x.png"}, {evil, "t.png"}}}};
   const std::string md = helios::report::report_markdown(in);
-  const std::string text = "3 \\$\\\\input{/etc/hostname}\\$ \\<script\\>x\\</script\\> \\`c\\` \\[a\\](http://e) \\| \\# h";
+  const std::string text =
+      "3 \\$\\\\input{/etc/hostname}\\$ \\<script\\>x\\</script\\> \\`c\\` \\[a\\](http://e) \\| \\# h";
   EXPECT_NE(md.find("| " + text + " |"), std::string::npos);
-  EXPECT_NE(md.find("| `timings/3 $\\input{/etc/hostname}$ <script>x</script> 'c' [a](http://e) \\| # h` | *(not a number)* |"),
-            std::string::npos);
+  EXPECT_NE(
+      md.find(
+          "| `timings/3 $\\input{/etc/hostname}$ <script>x</script> 'c' [a](http://e) \\| # h` | *(not a number)* |"),
+      std::string::npos);
   EXPECT_NE(md.find("| *(not a number)* | yes | *(not a number)* |  |"), std::string::npos);
   EXPECT_NE(md.find("plot: `../x.png`"), std::string::npos);
   EXPECT_NE(md.find("![" + text + "](t.png)"), std::string::npos);

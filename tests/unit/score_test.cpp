@@ -109,6 +109,34 @@ TEST(Score, PerfectRunScoresFullMarks) {
   for (const json& d : s["dimensions"]["d1_parse"]["details"]) EXPECT_EQ(d["verdict"], "pass") << d.dump();
 }
 
+// A problem of one's own has no reference: what needs one says "no reference" with no points of
+// none, the rest is scored, and nothing fails.
+TEST(Score, WithoutAReferenceTheReferenceItemsSayNoReference) {
+  ScoreInputs in = perfect_inputs();
+  in.reference = nullptr;
+  in.scenario = "P4";
+  const json s = helios::score::score_run(in);
+  EXPECT_EQ(s["scenario"], "P4");
+  EXPECT_TRUE(s["reference"].is_null());
+  EXPECT_EQ(s["max_total"], 44);
+  EXPECT_DOUBLE_EQ(s["total"].get<double>(), 44.0);
+  for (const char* dim : {"d1_parse", "d5_accuracy"}) {
+    EXPECT_EQ(s["dimensions"][dim]["max"], 0) << dim;
+    EXPECT_EQ(s["dimensions"][dim]["details"][0]["verdict"], "no_reference") << dim;
+    EXPECT_NE(s["dimensions"][dim]["details"][0]["note"].get<std::string>().find("no reference"), std::string::npos);
+  }
+  EXPECT_DOUBLE_EQ(points(s, "d2_derive"), 14.0);
+  EXPECT_DOUBLE_EQ(points(s, "d4_converge"), 10.0);
+  EXPECT_EQ(s["measured"]["shooting_variables"], 8);
+  EXPECT_TRUE(s["measured"]["reference_final_mass_kg"].is_null());
+  EXPECT_FALSE(s.contains("warnings"));  // the spec's id S01 is no mismatch without a reference
+  in.solution = solution_doc(603.935);
+  (*in.solution)["status"] = "not_converged";
+  EXPECT_DOUBLE_EQ(helios::score::score_run(in)["total"].get<double>(), 34.0);
+  in.scenario = "";
+  EXPECT_THROW(helios::score::score_run(in), std::exception);
+}
+
 TEST(Score, WrongThrustLosesOneFactShare) {
   ScoreInputs in = perfect_inputs();
   (*in.spec)["spacecraft"]["thrust_N"] = 0.6;

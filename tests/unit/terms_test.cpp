@@ -36,7 +36,8 @@ json derive_text(const std::string& text) {
 const json& derivation(const std::string& scenario) {
   static std::map<std::string, json> cache;
   if (!cache.count(scenario))
-    cache[scenario] = scenario == "S01J" ? derive_text(problem_text("S01") + kJupiter) : derive_text(problem_text(scenario));
+    cache[scenario] =
+        scenario == "S01J" ? derive_text(problem_text("S01") + kJupiter) : derive_text(problem_text(scenario));
   return cache[scenario];
 }
 
@@ -58,7 +59,9 @@ std::string feedback(const json& d, const std::string& id) {
   return check(r, id)["verdict"] == "fail" ? check(r, id)["feedback"].get<std::string>() : "";
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 json& term(json& d, const std::string& name) {
   for (auto& t : d["terms"])

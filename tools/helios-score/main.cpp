@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -35,6 +36,22 @@ int score_run(const Args& args) {
   score::ScoreInputs in;
   in.reference_source = args.get("reference") == "-" ? "<stdin>" : args.get("reference");
   in.reference = helios::io::read_json(args.get("reference"));
+  in.spec = optional_artifact(args, "spec");
+  in.derivation = optional_artifact(args, "derivation");
+  in.verify = optional_artifact(args, "verify");
+  in.solution = optional_artifact(args, "solution");
+  helios::io::write_artifact("score", score::score_run(in), args.output);
+  return 0;
+}
+
+// A run of a problem without a reference (a user's own folder): scored on what needs none.
+int score_unreferenced(const Args& args) {
+  score::ScoreInputs in;
+  in.reference = nullptr;
+  in.scenario = args.get("no-reference");
+  static const std::regex name("[A-Za-z0-9_-]{1,64}");
+  if (!std::regex_match(in.scenario, name))
+    throw helios::usage_error("--no-reference " + in.scenario + ": a scenario name is A-Z a-z 0-9 _ - only");
   in.spec = optional_artifact(args, "spec");
   in.derivation = optional_artifact(args, "derivation");
   in.verify = optional_artifact(args, "verify");
@@ -130,6 +147,7 @@ int sweep(const Args& args) {
 const std::vector<helios::cli::Mode>& jobs() {
   static const std::vector<helios::cli::Mode> modes = {
       {"", {"reference"}, {"spec", "derivation", "verify", "solution"}, score_run},
+      {"no-reference", {}, {"spec", "derivation", "verify", "solution"}, score_unreferenced},
       {"report", {"problem", "spec", "derivation"}, {"verify", "solution"}, report},
       {"oem", {"spec", "solution", "trajectory"}, {}, oem},
       {"scoreboard",
@@ -148,7 +166,9 @@ const std::vector<helios::cli::Mode>& jobs() {
        }},
       {"sweep-cells", {"cells"}, {"grid"}, sweep_cells},
       {"sweep-boundary", {"cells", "settings"}, {"grid"}, sweep_boundary},
-      {"sweep-crosscheck", {"cells", "settings", "cache-dir", "solver"}, {"grid", "launch", "jobs", "time-limit"},
+      {"sweep-crosscheck",
+       {"cells", "settings", "cache-dir", "solver"},
+       {"grid", "launch", "jobs", "time-limit"},
        sweep_crosscheck},
       {"sweep", {"cells"}, {"grid", "porkchop", "crosscheck"}, sweep},
   };
@@ -162,7 +182,7 @@ int main(int argc, char** argv) {
   const helios::cli::ToolInfo info{
       "helios-score",
       "score a run against its scenario reference, render a scoreboard, or export a trajectory as a CCSDS OEM",
-      "--reference REF.json [--spec F] [--derivation F] [--verify F] [--solution F] [options]\n"
+      "--reference REF.json|--no-reference NAME [--spec F] [--derivation F] [--verify F] [--solution F] [options]\n"
       "       helios-score --scoreboard DIR [options]\n"
       "       helios-score --oem --spec F --solution F --trajectory F.csv [options]\n"
       "       helios-score --report --problem F.txt --spec F --derivation F [--verify F] [--solution F] [options]\n"
@@ -173,6 +193,8 @@ int main(int argc, char** argv) {
       "       helios-score --sweep SWEEP.json --cells DIR [--crosscheck F] [--grid bench] [--porkchop F.png]\n"
       "                    -o DIR/sweep.csv",
       {{"reference", "", "FILE", "scenarios/SNN/reference.json to score against", ""},
+       {"no-reference", "", "NAME",
+        "score the run of scenario NAME without a reference: d1's facts and d5 say \"no reference\" (max 0)", ""},
        {"spec", "", "FILE", "spec.json of the run (omitted: d1 scores 0)", ""},
        {"derivation", "", "FILE", "derivation.json of the run (omitted: no shooting-variable points)", ""},
        {"verify", "", "FILE", "verify.json of the run (omitted: no verification points)", ""},
@@ -185,8 +207,8 @@ int main(int argc, char** argv) {
        {"problem", "", "FILE", "problem.txt of the run (with --report)", ""},
        {"sweep-boundary", "", "FILE", "write each departure's minimum-time problem under --cells and its make fragment",
         ""},
-       {"sweep-cells", "", "FILE", "write a sweep's feasible cells' problem texts under --cells and their make fragment",
-        ""},
+       {"sweep-cells", "", "FILE",
+        "write a sweep's feasible cells' problem texts under --cells and their make fragment", ""},
        {"sweep-crosscheck", "", "FILE", "re-solve each cell warm from its converged neighbours, keep the best", ""},
        {"settings", "", "FILE", "the sweep's solver settings (with --sweep-boundary, --sweep-crosscheck)", ""},
        {"cache-dir", "", "DIR", "compiled programs (with --sweep-crosscheck)", ""},
@@ -205,7 +227,10 @@ int main(int argc, char** argv) {
       "expected shooting-variable count), d3 compile 20, d4 converge 20 (10 for status converged,\n"
       "10 for max_residual below the reference's), d5 accuracy 10 (full within tolerance_kg of the\n"
       "reference m_f, linearly down to 0 at 100 x tolerance_kg; converged runs only). Any stage\n"
-      "input may be omitted; its dimensions then score 0. With --scoreboard, writes one table row\n"
+      "input may be omitted; its dimensions then score 0. With --no-reference NAME (a problem of\n"
+      "one's own), d1's facts, d2's variable count, d4's residual and d5 need a reference and say\n"
+      "\"no reference\" with a maximum of 0: max_total is what was scored (44). With --scoreboard, writes one table "
+      "row\n"
       "per scenario folder plus a totals row. With --tables, writes the per-scenario comparison of\n"
       "backends and models, the token consumption (from *.transcript.json) and the compile-repair\n"
       "loop effect (compile.r1.json before, the final compile after) over every run folder of ROOT.\n"

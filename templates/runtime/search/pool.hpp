@@ -27,6 +27,21 @@ inline bool same_extremal(const std::vector<double>& xa, const Shape& a, const s
   return dx <= 1e-6 * size || std::fabs(a.cost - b.cost) <= 1e-9 * std::max(1e-3, std::fabs(a.cost));
 }
 
+// The solution in `list` that x, a looser solve's, lies next to (every shooting variable within
+// 1e-4 of the larger of 1 and the largest |x_i|), or null. Distinct extremals of one problem lie
+// orders of magnitude further apart; a start that lands there is that extremal reached again.
+template <class List>
+const typename List::value_type* near_twin(const List& list, const std::vector<double>& x) {
+  double size = 1;
+  for (const double v : x) size = std::max(size, std::fabs(v));
+  for (const auto& e : list) {
+    double dx = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) dx = std::max(dx, std::fabs(e.x[i] - x[i]));
+    if (dx <= 1e-4 * size) return &e;
+  }
+  return nullptr;
+}
+
 // Adds a converged solution to the distinct ones (`list` of StartExtremal or Extremal); returns
 // its index.
 template <class List>

@@ -93,6 +93,15 @@ class StartsRoute : public Route {
     run.ok = rough.solve(run.x, loose.eps_start, rough_accept, info, run.res);
     c.count(rough.evaluations);
     if (!run.ok) return run;
+    // Where it lands next to an extremal the starts before this batch reached (the list is read
+    // only while a batch runs, so this does not depend on the thread count), it is that extremal
+    // again: counted as its twin, without solving it again or taking its shape.
+    if (const StartExtremal* twin = near_twin(c.rec().start_extremals, run.x)) {
+      run.x = twin->x;
+      run.shape = twin->shape;
+      run.res = twin->max_residual;
+      return run;
+    }
     Shooter shooter(c.coarse, kContinuationStart);
     run.ok =
         shooter.solve(run.x, c.coarse.eps_start, c.coarse.accept_residual, info, run.res) && c.admissible(run.x.data());

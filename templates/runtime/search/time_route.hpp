@@ -16,7 +16,8 @@
 // are the minimum-time extremals and at a > 0 minimum-fuel extremals at the final time they reach.
 // The route, for a fuel problem whose targets do not move on the calendar:
 //   1. from a minimum-fuel solution at eps_start, the final time is continued down (lambda0 free)
-//      until no shorter one converges, and the minimum-time extremal is solved there (a = 0);
+//      while its steps converge, then a is brought down to 0 (the final time free): the
+//      minimum-time extremal;
 //   2. from it, a is continued up from 0 at eps_start while coasting arcs open, then the final time
 //      itself (lambda0 free) up to the problem's;
 //   3. there eps is continued to 0: an extremal of the problem.
@@ -72,6 +73,10 @@ struct TimeRouteArrival : PathArrival {
 
 // Step 1 from the fuel solution x (at eps_start, the problem's final time): the minimum-time
 // extremal as held-multiplier variables z (s in lambda0's slot); false where it was not reached.
+// The final time comes down while its steps converge; near t_min it stops being a parameter
+// (s(lambda0) is flat where the thrust stays full, a fold in the final time), so from where its
+// steps first fail lambda0 itself is held and brought down to 0, the final time free: at 0 the
+// path is at the minimum-time extremal.
 inline bool minimum_time_from_fuel_solution(const Settings& s, ProgramKnobs& tf, std::vector<double> x, double eps,
                                             std::vector<double>& z, TimeRouteArrival& out, int& evaluations) {
   const int l0 = lambda0_variable();
@@ -79,17 +84,22 @@ inline bool minimum_time_from_fuel_solution(const Settings& s, ProgramKnobs& tf,
   const double day = 1 / kProblem.time_unit_days, own_days = tf.final_time_unit() / day;
   const double reached = day * follow_parameter(
                                    s, fuel, x, eps, [&](double days) { tf.set_final_time(days * day); }, own_days, 0.0,
-                                   -1e-7 * own_days, {0.05 * own_days, 1e-4 * own_days, 0.2 * own_days}, kFinalTimeDown,
+                                   -1e-7 * own_days, {0.05 * own_days, 0.01 * own_days, 0.2 * own_days}, kFinalTimeDown,
                                    out.steps, [&](const std::vector<double>& y) { return y[l0] >= 0; },
                                    [](const std::vector<double>&) { return false; });
   evaluations += fuel.evaluations;
-  const double held = 0;
+  double held = x[l0];
   Shooter time(s, held_multiplier_function(tf, l0, held), kContinuationStart);
   z = x;
   z[l0] = reached / tf.final_time_unit();
+  const double from = held;
+  held = follow_parameter(
+      s, time, z, eps, [&](double v) { held = v; }, from, 0.0, -1e-7 * std::max(from, 1e-3),
+      {0.25 * from, 1e-4 * from, from}, kLambda0Held, out.steps,
+      [&](const std::vector<double>& y) { return y[l0] > 0; }, [](const std::vector<double>&) { return false; });
   int info = 0;
   double res = 0;
-  const bool ok = time.solve(z, 0.0, s.accept_residual, info, res) && z[l0] > 0;
+  const bool ok = held == 0 && time.solve(z, 0.0, s.accept_residual, info, res) && z[l0] > 0;
   out.steps.push_back(
       {kMinimumTime, z[l0] * tf.final_time_unit() * kProblem.time_unit_days, ok, res, time.last_step_evaluations});
   evaluations += time.evaluations;

@@ -8,7 +8,9 @@
 
 namespace helios::codegen::detail {
 
-std::string Body::cpp(const GiNaC::ex& e) { return print(e); }
+std::string Body::cpp(const GiNaC::ex& e) {
+  return print(e);
+}
 
 std::string Body::print(const GiNaC::ex& e) {
   GiNaC::ex chosen = e;
@@ -61,10 +63,7 @@ std::string Body::unused_parameters(const std::vector<std::string>& parameters) 
   std::vector<std::string> y = c_.states;
   y.insert(y.end(), c_.costates.begin(), c_.costates.end());
   const std::map<std::string, std::vector<std::string>> used_through = {
-      {"t", {"t"}},
-      {"y", y},
-      {"control", c_.controls},
-      {"mult", {c_.multiplier, c_.homotopy}}};
+      {"t", {"t"}}, {"y", y}, {"control", c_.controls}, {"mult", {c_.multiplier, c_.homotopy}}};
   std::string out;
   for (const auto& p : parameters) {
     const auto& names = used_through.at(p);

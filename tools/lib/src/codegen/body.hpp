@@ -65,7 +65,7 @@ class Body {
   std::ostringstream code_;
   std::vector<Segment> segments_;
   std::set<std::string> used_;
-  GiNaC::exmap relative_;                                              // from -> to + name
+  GiNaC::exmap relative_;                                                         // from -> to + name
   std::vector<std::pair<std::string, std::vector<std::string>>> relative_parts_;  // name -> {from, to}
 };
 

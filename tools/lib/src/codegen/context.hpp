@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "helios/derivation/names.hpp"
 #include "helios/derivation/document.hpp"
+#include "helios/derivation/names.hpp"
 #include "helios/io/json_io.hpp"
 #include "helios/symbolic/expr.hpp"
 

@@ -182,8 +182,7 @@ std::string generated_jacobians(Context& c) {
   return "// ----- module JACOBIAN (generated from the derivation: GiNaC derivatives) -----------------\n"
          "namespace helios_rt {\n\n" +
          dynamics_jacobian_function(c) + direction_jacobian_function(c) +
-         (c.control_law.throttle ? throttle_jacobian_function(c) : std::string()) +
-         "}  // namespace helios_rt\n";
+         (c.control_law.throttle ? throttle_jacobian_function(c) : std::string()) + "}  // namespace helios_rt\n";
 }
 
 }  // namespace helios::codegen::detail

@@ -3,8 +3,8 @@
 #include "context.hpp"
 #include "plans.hpp"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -60,11 +60,7 @@ const derivation::Expression& costate_expression(const derivation::CostateMapEnt
 class ShootingFunction {
  public:
   explicit ShootingFunction(Context& c)
-      : c_(c),
-        eqs_(c.shooting.equations),
-        vars_(c.shooting.variables),
-        events_(c.interior_events),
-        body_(c, "T") {}
+      : c_(c), eqs_(c.shooting.equations), vars_(c.shooting.variables), events_(c.interior_events), body_(c, "T") {}
 
   // The function template shooting_residual on the scalar T (with `legs` when the problem has
   // events), shooting_function (or shooting_legs) on double, and with `jacobian` shooting_jacobian
@@ -175,7 +171,8 @@ void ShootingFunction::alone_row(int& row, const std::string& name, bool alone_w
     if (eqs_[i].name != name) continue;
     const bool alone = alone_wanted && eqs_[i].alone_expression;
     body_.code() << "    F[" << row++ << "] = " << equation_code(i, alone) << ";  // "
-                 << comment_text(eqs_[i].meaning + (alone ? " (alone: " + eqs_[i].alone_expression->text + " = 0)" : ""))
+                 << comment_text(eqs_[i].meaning +
+                                 (alone ? " (alone: " + eqs_[i].alone_expression->text + " = 0)" : ""))
                  << "\n";
     return;
   }
@@ -199,8 +196,7 @@ void ShootingFunction::unpack_y(const std::string& label) {
 void ShootingFunction::side_conditions(const std::vector<derivation::SideCondition>& sides, const GiNaC::exmap& at) {
   for (const auto& side : sides)
     body_.code() << "  side_condition(prop, " << side_condition_count_++ << ", "
-                 << body_.cpp(c_.parsed(side.expression).subs(at))
-                 << ", " << cpp_string(side.meaning) << ");\n";
+                 << body_.cpp(c_.parsed(side.expression).subs(at)) << ", " << cpp_string(side.meaning) << ");\n";
 }
 
 // The shooting variables x[] as locals, each with its meaning.
@@ -234,8 +230,8 @@ bool ShootingFunction::window_map(const derivation::Times& times) const {
 void ShootingFunction::epochs() {
   const derivation::Times& times = c_.times;
   auto& o = body_.code();
-  o << "  const T t0 = " << (times.t0_expression ? body_.cpp(c_.parsed(*times.t0_expression)) : std::string("problem::kT0"))
-    << ";\n";
+  o << "  const T t0 = "
+    << (times.t0_expression ? body_.cpp(c_.parsed(*times.t0_expression)) : std::string("problem::kT0")) << ";\n";
   if (times.tf_expression && window_map(times))
     o << "  const T tf = problem::kTfMin + (problem::kTf - problem::kTfMin) * "
       << body_.cpp(c_.symbols.get(names::fraction("tf"))) << ";  // times.tf_expression\n";
@@ -341,8 +337,7 @@ void ShootingFunction::event(std::size_t k) {
 // print shorter in them. Cartesian states only.
 void ShootingFunction::relative_to_target(const std::string& id) {
   static const std::vector<std::string> cartesian = {"rx", "ry", "rz", "vx", "vy", "vz"};
-  if (c_.states.size() < cartesian.size() || !std::equal(cartesian.begin(), cartesian.end(), c_.states.begin()))
-    return;
+  if (c_.states.size() < cartesian.size() || !std::equal(cartesian.begin(), cartesian.end(), c_.states.begin())) return;
   for (const char* kind : {"ephemeris", "coast"})
     for (const auto& [key, components] : runtime_parameters(c_, kind)) {
       if (key.substr(key.find(':') + 1) != id) continue;
@@ -408,8 +403,7 @@ void ShootingFunction::jump(std::size_t k) {
 // The last leg to tf, the values there (<name>_tf), the last leg alone's rows (the final
 // constraint's own equations, its epoch held at its guess) and the rows of the whole problem.
 void ShootingFunction::end() {
-  const std::string from =
-      events_.empty() ? "t0" : names::event_departure_time(events_.back().id);
+  const std::string from = events_.empty() ? "t0" : names::event_departure_time(events_.back().id);
   body_.code() << "  propagate(prop, " << from << ", tf, y, mult);\n";
   unpack_y("tf");
   GiNaC::exmap final_states;  // a constraint's rows at tf are in the states' own symbols

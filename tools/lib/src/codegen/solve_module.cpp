@@ -39,8 +39,8 @@ std::string solve_module(Context& c) {
       o << "  x[" << i << "] = " << number(lo) << " + positive(rng) * " << number(hi - lo) << ";\n";
       continue;
     }
-    o << "  x[" << i << "] = " << (positive ? "positive(rng)" : "symmetric(rng)") << " * "
-      << number(vars[i].scale) << ";\n";
+    o << "  x[" << i << "] = " << (positive ? "positive(rng)" : "symmetric(rng)") << " * " << number(vars[i].scale)
+      << ";\n";
   }
   if (sphere.empty()) throw std::invalid_argument("field /shooting/equations: no normalization equation");
   std::string indices;
@@ -53,7 +53,7 @@ std::string solve_module(Context& c) {
     << "  const auto admissible = [](const double* x) { return x[" << index_of(c.variables, mult) << "] > 0; };\n"
     << "  const auto solve = [&](const Settings& s) { return "
     << (!c.interior_events.empty() ? "events_homotopy_solve(s, kLegPlan, kEventPlan, initial_guess, admissible)"
-                             : "homotopy_solve(s, initial_guess, admissible)")
+                                   : "homotopy_solve(s, initial_guess, admissible)")
     << "; };\n";
   // Bounds psi <= 0, in the order of their rows (bound_row's index).
   std::string bounds;
@@ -62,8 +62,7 @@ std::string solve_module(Context& c) {
     const std::string& nu = e.inequality->multiplier;
     const int k = index_of(c.variables, nu);
     if (k < 0) throw std::invalid_argument("field /shooting/equations: bound multiplier " + nu + " is not a variable");
-    bounds +=
-        "      {" + cpp_string(e.name) + ", " + cpp_string(e.meaning) + ", " + std::to_string(k) + "},\n";
+    bounds += "      {" + cpp_string(e.name) + ", " + cpp_string(e.meaning) + ", " + std::to_string(k) + "},\n";
   }
   if (bounds.empty())
     o << "  return solve(settings);\n";

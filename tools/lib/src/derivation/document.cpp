@@ -28,7 +28,9 @@ const json& object(const json& obj, const std::string& key, const std::string& w
   return v;
 }
 
-std::string at(const std::string& where, std::size_t i) { return where + "/" + std::to_string(i); }
+std::string at(const std::string& where, std::size_t i) {
+  return where + "/" + std::to_string(i);
+}
 
 Expression expression(const json& obj, const std::string& key, const std::string& where) {
   return {io::require_string(obj, key, where), where + "/" + key};
@@ -45,7 +47,9 @@ std::optional<std::string> optional_string(const json& obj, const std::string& k
 }
 
 // The member `key` of `obj`, null when absent.
-json optional_json(const json& obj, const std::string& key) { return obj.contains(key) ? obj.at(key) : json(); }
+json optional_json(const json& obj, const std::string& key) {
+  return obj.contains(key) ? obj.at(key) : json();
+}
 
 std::vector<Expression> expressions(const json& obj, const std::string& key, const std::string& where) {
   std::vector<Expression> out;
@@ -229,9 +233,9 @@ void Document::read_sections() {
     const json& el = object(body_list[i], "elements", where);
     const std::string w = where + "/elements";
     bodies.push_back({io::require_string(body_list[i], "name", where), io::require_number(body_list[i], "epoch", where),
-                      io::require_number(el, "a", w), io::require_number(el, "e", w), io::require_number(el, "i_rad", w),
-                      io::require_number(el, "raan_rad", w), io::require_number(el, "argp_rad", w),
-                      io::require_number(el, "mean_anomaly_rad", w)});
+                      io::require_number(el, "a", w), io::require_number(el, "e", w),
+                      io::require_number(el, "i_rad", w), io::require_number(el, "raan_rad", w),
+                      io::require_number(el, "argp_rad", w), io::require_number(el, "mean_anomaly_rad", w)});
   }
   times = read_times(d);
   const json& dyn = object(d, "dynamics", "");
@@ -270,17 +274,16 @@ void Document::read_laws() {
   if (law.contains("throttle")) {
     const json& u = object(law, "throttle", "/control_law");
     const std::string w = "/control_law/throttle";
-    control_law.throttle =
-        ThrottleLaw{io::require_string(u, "control", w), numbers(u, "bounds", w, true),
-                    expression(u, "switching_function", w), expression(u, "dH_du_at_lower", w),
-                    expression(u, "dH_du_at_upper", w), expression(u, "interior", w),
-                    optional_expression(u, "d2H_du2", w)};
+    control_law.throttle = ThrottleLaw{io::require_string(u, "control", w),    numbers(u, "bounds", w, true),
+                                       expression(u, "switching_function", w), expression(u, "dH_du_at_lower", w),
+                                       expression(u, "dH_du_at_upper", w),     expression(u, "interior", w),
+                                       optional_expression(u, "d2H_du2", w)};
   }
   if (law.contains("sail")) {
     const json& n = object(law, "sail", "/control_law");
     const std::string w = "/control_law/sail";
-    control_law.sail =
-        SailLaw{strings(n, "controls", w), read_definitions(n, w), expression(n, "cone_angle", w), expressions(n, "law", w)};
+    control_law.sail = SailLaw{strings(n, "controls", w), read_definitions(n, w), expression(n, "cone_angle", w),
+                               expressions(n, "law", w)};
   }
 }
 
@@ -307,6 +310,8 @@ void Document::read_shooting() {
     shooting.equations.push_back(read_equation(eqs[i], at("/shooting/equations", i)));
 }
 
-GiNaC::ex Document::parse(const Expression& e) const { return symbols.parse(e.text, file + ": field " + e.pointer); }
+GiNaC::ex Document::parse(const Expression& e) const {
+  return symbols.parse(e.text, file + ": field " + e.pointer);
+}
 
 }  // namespace helios::derivation

@@ -37,7 +37,8 @@ Term read_term(const json& entry, const std::string& at) {
   if (!entry.is_object()) throw helios::input_error(at + ": not an object");
   const auto text = [&](const std::string& key) {
     if (!entry.contains(key)) return std::string();
-    if (!entry[key].is_string()) throw helios::input_error(at + "." + key + ": " + entry[key].dump() + " is not a string");
+    if (!entry[key].is_string())
+      throw helios::input_error(at + "." + key + ": " + entry[key].dump() + " is not a string");
     return entry[key].get<std::string>();
   };
   Term t;
@@ -62,8 +63,8 @@ Term read_term(const json& entry, const std::string& at) {
 }  // namespace
 
 const std::vector<std::string>& force_term_names() {
-  static const std::vector<std::string> names = {"two_body",    "j2",          "solar_sail", "thrust",
-                                                 "full_thrust", "user_acceleration", "third_body"};
+  static const std::vector<std::string> names = {
+      "two_body", "j2", "solar_sail", "thrust", "full_thrust", "user_acceleration", "third_body"};
   return names;
 }
 

@@ -115,8 +115,7 @@ std::string read_bounded(int fd, std::size_t limit, const std::string& name) {
       throw input_error(name + ": read error: " + std::strerror(errno));
     }
     out.append(buf, static_cast<std::size_t>(n));
-    if (out.size() > limit)
-      throw input_error(name + ": larger than the limit of " + std::to_string(limit) + " bytes");
+    if (out.size() > limit) throw input_error(name + ": larger than the limit of " + std::to_string(limit) + " bytes");
   }
 }
 

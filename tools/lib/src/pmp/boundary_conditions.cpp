@@ -67,10 +67,9 @@ void initial_constraint(Derivation& d, EndpointConditions& c, TimeConditions& ti
     for (const auto& e : k.psi) dpsi.push_back(e.diff(S.get(q.name)));
     d.shooting.variables.push_back({q.name, q.meaning + ", a free parameter of psi at t0", "initial_state",
                                     "uniform in its range", std::make_pair(q.lo, q.hi)});
-    d.shooting.equations.push_back({names::stationarity_row(k.id, q.name), nu_dot(dpsi).expand(),
-                                    "dPhi/d" + q.name + " = nu^T dpsi/d" + q.name + " = 0 with nu = -lambda(t0): " +
-                                        q.name + " is free",
-                                    k.id});
+    d.shooting.equations.push_back(
+        {names::stationarity_row(k.id, q.name), nu_dot(dpsi).expand(),
+         "dPhi/d" + q.name + " = nu^T dpsi/d" + q.name + " = 0 with nu = -lambda(t0): " + q.name + " is free", k.id});
   }
   if (!p.free_departure) return;
   time.departure = -S.get(names::hamiltonian("t0")) + nu_dot(k.psi_t);
@@ -135,8 +134,8 @@ void final_constraint(Derivation& d, EndpointConditions& c, TimeConditions& time
       nus.append(S.get(c.multipliers[j]));
       continue;
     }
-    d.shooting.variables.push_back(multiplier_variable(
-        c.multipliers[j], "multiplier of " + k.id + ": " + k.psi_names[j], k.psi_inequality[j]));
+    d.shooting.variables.push_back(
+        multiplier_variable(c.multipliers[j], "multiplier of " + k.id + ": " + k.psi_names[j], k.psi_inequality[j]));
   }
   std::map<std::string, ex> free_end;  // lambda_s(tf) - lambda0 dphi/dx_s: the row without psi
   const GiNaC::lst touched_rows = final_transversality(d, c, at_tf, free_end);

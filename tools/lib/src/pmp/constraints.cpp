@@ -278,10 +278,10 @@ EndpointConstraint state_conditions(Problem& p, EndpointConstraint k) {
   const auto norm = [](const std::vector<ex>& a) { return GiNaC::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); };
   // f is a power law in the units (expression_dimension checks it), so f of the normalized state
   // is f of the state in km, s and kg divided by its unit in normalized units.
-  GiNaC::exmap to_model = {{vars.get("x"), r[0]},   {vars.get("y"), r[1]},   {vars.get("z"), r[2]},
-                           {vars.get("r"), norm(r)}, {vars.get("vx"), v[0]},  {vars.get("vy"), v[1]},
-                           {vars.get("vz"), v[2]},  {vars.get("v"), norm(v)}, {vars.get("hx"), h[0]},
-                           {vars.get("hy"), h[1]},  {vars.get("hz"), h[2]},  {vars.get("h"), norm(h)},
+  GiNaC::exmap to_model = {{vars.get("x"), r[0]},        {vars.get("y"), r[1]},    {vars.get("z"), r[2]},
+                           {vars.get("r"), norm(r)},     {vars.get("vx"), v[0]},   {vars.get("vy"), v[1]},
+                           {vars.get("vz"), v[2]},       {vars.get("v"), norm(v)}, {vars.get("hx"), h[0]},
+                           {vars.get("hy"), h[1]},       {vars.get("hz"), h[2]},   {vars.get("h"), norm(h)},
                            {vars.get("mu"), S.get("mu")}};
   if (p.has_state("m")) to_model[vars.get("m")] = S.get("m");
   const json& conditions = k.target.at("conditions");
@@ -330,7 +330,8 @@ EndpointConstraint orbit_departure(Problem& p, EndpointConstraint k) {
   const auto angle = [&](const std::string& name, const char* element) {
     return std::find(free.begin(), free.end(), element) != free.end() ? ex(p.symbols.get(name)) : ex(0);
   };
-  const std::vector<ex> x = orbit_point(p, k.id, k.target, {p.symbols.get(theta), angle(node, "raan"), angle(argp, "argp")});
+  const std::vector<ex> x =
+      orbit_point(p, k.id, k.target, {p.symbols.get(theta), angle(node, "raan"), angle(argp, "argp")});
   for (std::size_t j = 0; j < kPositionVelocity.size(); ++j) {
     const std::string& n = kPositionVelocity[j];
     k.psi.push_back(p.symbols.get(n) - x[j]);
@@ -344,8 +345,10 @@ EndpointConstraint orbit_departure(Problem& p, EndpointConstraint k) {
   }
   k.psi_inequality.assign(k.psi.size(), false);
   k.psi_t.assign(k.psi.size(), 0);
-  k.free_parameters.push_back({theta, "true anomaly on the departure orbit " + k.id + " (rad; from the node where the "
-                                      "orbit is circular, from the x axis where it is also equatorial)",
+  k.free_parameters.push_back({theta,
+                               "true anomaly on the departure orbit " + k.id +
+                                   " (rad; from the node where the "
+                                   "orbit is circular, from the x axis where it is also equatorial)",
                                0, 2 * M_PI});
   // The node and the argument of periapsis the departure leaves free (orbit_point turns P and Q by them).
   if (!angle(node, "raan").is_zero())
@@ -362,7 +365,8 @@ InteriorEvent orbit_on_the_way(Problem& p, InteriorEvent e, const std::vector<ex
   if (e.target.at("kind") != "orbital_elements")
     throw std::invalid_argument(where + ": an orbit on the way needs a target of kind orbital_elements");
   if (e.target.contains("free"))
-    throw std::invalid_argument(where + ": target/free is for a departure orbit (a target's unstated elements are free)");
+    throw std::invalid_argument(where +
+                                ": target/free is for a departure orbit (a target's unstated elements are free)");
   require_known_start(p, where, "an orbit on the way");
   GiNaC::exmap arriving;
   for (std::size_t j = 0; j < p.states.size(); ++j) arriving[p.symbols.get(p.states[j].name)] = xm[j];
@@ -372,7 +376,8 @@ InteriorEvent orbit_on_the_way(Problem& p, InteriorEvent e, const std::vector<ex
     e.c_names.push_back(rows.names[j]);
     e.c_inequality.push_back(false);
   }
-  for (const auto& side : rows.must_be_positive) e.must_be_positive.push_back({side.expression.subs(arriving), side.meaning});
+  for (const auto& side : rows.must_be_positive)
+    e.must_be_positive.push_back({side.expression.subs(arriving), side.meaning});
   window_rows(p, e);
   e.map = xm;
   return e;
@@ -452,7 +457,8 @@ EndpointConstraint endpoint_constraint(Problem& p, const json& c) {
   k.target = c.at("target");
   const std::string where = "constraint '" + k.id + "'";
   if (k.kind == "orbit_insertion" && k.target.contains("free"))
-    throw std::invalid_argument(where + ": target/free is for a departure orbit (a target's unstated elements are free)");
+    throw std::invalid_argument(where +
+                                ": target/free is for a departure orbit (a target's unstated elements are free)");
   if (k.kind == "orbit_insertion") return orbit_insertion(p, std::move(k));
   if (k.kind == "state_conditions") return state_conditions(p, std::move(k));
   if (k.kind == "initial_state" && k.target.at("kind") == "orbital_elements") {

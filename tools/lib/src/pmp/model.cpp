@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "constraints.hpp"
-#include "terms/term.hpp"
 #include "helios/astro/constants.hpp"
+#include "terms/term.hpp"
 
 namespace helios::pmp {
 namespace {
@@ -146,9 +146,8 @@ void register_symbols(Problem& p) {
 void dynamics(Problem& p, const terms::ForceList& forces) {
   auto& S = p.symbols;
   const bool has_mass = p.has_state("m");
-  const terms::Frame x = {{S.get("rx"), S.get("ry"), S.get("rz")},
-                          {S.get("vx"), S.get("vy"), S.get("vz")},
-                          has_mass ? S.get("m") : ex(1)};
+  const terms::Frame x = {
+      {S.get("rx"), S.get("ry"), S.get("rz")}, {S.get("vx"), S.get("vy"), S.get("vz")}, has_mass ? S.get("m") : ex(1)};
   std::vector<ex> accel = {0, 0, 0}, field = {0, 0, 0};
   ex mass_rate = 0;
   for (const auto& term : forces) {
@@ -175,8 +174,9 @@ void objective(Problem& p) {
     if (p.propulsion == "solar_sail")
       throw std::invalid_argument("field /objective/kind: a solar sail uses no fuel; minimize the time instead");
     if (full_throttle)
-      throw std::invalid_argument("field /objective/kind: an engine at full throttle throughout burns a fixed "
-                                  "amount of fuel; minimize the time or maximize the final radius instead");
+      throw std::invalid_argument(
+          "field /objective/kind: an engine at full throttle throughout burns a fixed "
+          "amount of fuel; minimize the time or maximize the final radius instead");
     cost = p.objective == "minimum_fuel" ? terms::fuel_cost() : terms::initial_mass_cost();
   } else if (p.objective == "minimum_time") {
     cost = terms::time_cost();

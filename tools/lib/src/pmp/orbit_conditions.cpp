@@ -77,8 +77,8 @@ struct OrbitElements {
   // The node and the inclination of a given plane (0 where undefined), the node first: the
   // parameters' order is the derivation's.
   std::pair<ex, ex> plane() const {
-    const ex node = node_deg || (*i_deg != 0 && *i_deg != 180) ? angle("raan", "ascending node", node_deg.value_or(0))
-                                                                : ex(0);
+    const ex node =
+        node_deg || (*i_deg != 0 && *i_deg != 180) ? angle("raan", "ascending node", node_deg.value_or(0)) : ex(0);
     return {node, *i_deg == 0 ? ex(0) : angle("inc", "inclination", *i_deg)};
   }
 
@@ -200,7 +200,8 @@ std::vector<ex> orbit_point(Problem& p, const std::string& id, const io::json& t
   if (node_free)  // turned about z by the node
     for (std::vector<ex>* axis : {&P, &Q}) {
       const std::vector<ex> a = *axis;
-      *axis = {cos(angles.node) * a[0] - sin(angles.node) * a[1], sin(angles.node) * a[0] + cos(angles.node) * a[1], a[2]};
+      *axis = {cos(angles.node) * a[0] - sin(angles.node) * a[1], sin(angles.node) * a[0] + cos(angles.node) * a[1],
+               a[2]};
     }
   const ex& theta = angles.theta;
   const ex radius = semi_latus / (1 + e * cos(theta));

@@ -8,8 +8,10 @@
 #include <optional>
 #include <regex>
 #include <sstream>
+#include <stdexcept>
 #include <vector>
 
+#include "helios/astro/calendar.hpp"
 #include "helios/derivation/reader.hpp"
 #include "helios/symbolic/latex.hpp"
 
@@ -82,6 +84,15 @@ std::string unit_of_key(const std::string& key) {
   return "";
 }
 
+// " (YYYY-MM-DDThh:mm:ss TDB)" of an MJD2000 epoch; "" outside the calendar's years.
+std::string calendar_note(double mjd2000) {
+  try {
+    return " (" + astro::iso_date_tdb(mjd2000) + " TDB)";
+  } catch (const std::invalid_argument&) {
+    return "";
+  }
+}
+
 void spec_rows(const json& v, const std::string& pointer, const std::string& key, std::ostringstream& out) {
   if (v.is_object()) {
     for (const auto& [k, x] : v.items()) spec_rows(x, pointer + "/" + k, k, out);
@@ -91,7 +102,10 @@ void spec_rows(const json& v, const std::string& pointer, const std::string& key
     for (std::size_t i = 0; i < v.size(); ++i) spec_rows(v[i], pointer + "/" + std::to_string(i), key, out);
     return;
   }
-  out << "| " << code(pointer) << " | " << value(v) << " | " << unit_of_key(key) << " |\n";
+  // An epoch also as its calendar date (TDB): MJD2000 numbers mean little to most readers.
+  const bool epoch = v.is_number() && unit_of_key(key) == "MJD2000";
+  out << "| " << code(pointer) << " | " << value(v) << (epoch ? calendar_note(v.get<double>()) : "") << " | "
+      << unit_of_key(key) << " |\n";
 }
 
 // A fence for a code block holding `text`: longer than any run of backticks in it.
@@ -532,18 +546,30 @@ void Writer::solution(std::ostringstream& o) const {
   if (!in_.solution) return;
   const json& s = *in_.solution;
   o << "## Solution (solution.json)\n\n| quantity | value |\n|---|---|\n";
-  for (const char* key : {"status", "status_detail", "tof_days", "departure_mjd2000", "initial_mass_kg",
-                          "final_mass_kg", "propellant_kg", "delta_v_m_s", "epsilon", "max_residual",
-                          "hamiltonian_drift", "iterations", "function_evaluations", "restarts", "seed", "method"})
+  const auto row = [&](const char* key) {
     if (s.contains(key)) o << "| " << code(key) << " | " << value(s.at(key)) << " |\n";
+  };
+  for (const char* key : {"status", "status_detail", "tof_days", "tof_hours", "departure_mjd2000", "departure_date_tdb",
+                          "arrival_mjd2000", "arrival_date_tdb"})
+    row(key);
+  for (const char* key : {"initial_mass_kg", "final_mass_kg", "propellant_kg", "delta_v_m_s", "epsilon", "max_residual",
+                          "hamiltonian_drift", "iterations", "function_evaluations", "restarts", "seed", "method"})
+    row(key);
   if (s.contains("timings"))
     for (const auto& [k, v] : s.at("timings").items())
       o << "| " << code("timings/" + k) << " | " << numeric(v) << " |\n";
   o << "\n";
   if (s.contains("switches") && !s.at("switches").empty()) {
-    o << "### Switches\n\n| t (d) | throttle after |\n|---|---|\n";
-    for (const auto& w : s.at("switches"))
-      o << "| " << numeric(w.value("t_days", json())) << " | " << numeric(w.value("throttle_after", json())) << " |\n";
+    // In hours beside days for a flight that is counted in hours (solution.json's tof_hours).
+    const bool hours = s.contains("tof_hours");
+    o << "### Switches\n\n| t (d) |" << (hours ? " t (h) |" : "") << " throttle after |\n|---|" << (hours ? "---|" : "")
+      << "---|\n";
+    for (const auto& w : s.at("switches")) {
+      const json t = w.value("t_days", json());
+      o << "| " << numeric(t) << " | ";
+      if (hours) o << (t.is_number() ? numeric(json(t.get<double>() * 24)) : numeric(t)) << " | ";
+      o << numeric(w.value("throttle_after", json())) << " |\n";
+    }
     o << "\n";
   }
   if (s.contains("homotopy")) {

@@ -29,6 +29,10 @@ json detail(const std::string& id, const std::string& verdict, double points, do
   return json{{"id", id}, {"verdict", verdict}, {"points", points}, {"max", max}, {"note", note}};
 }
 
+json opt_number(const std::optional<double>& v) {
+  return v ? json(*v) : json(nullptr);
+}
+
 json dimension(double points, double max, json details) {
   return json{{"points", std::clamp(points, 0.0, max)}, {"max", max}, {"details", std::move(details)}};
 }
@@ -195,6 +199,12 @@ json score_derive(const json& reference, const std::optional<json>& derivation, 
   }
 
   // Shooting-variable count.
+  if (reference.is_null()) {
+    const json* vars = field(derivation, "/shooting/variables");
+    if (vars && vars->is_array()) shooting_variables = static_cast<long>(vars->size());
+    details.push_back(detail("shooting_variables", "no_reference", 0, 0, "no reference: the count is not compared"));
+    return dimension(points, kDeriveVerifyMax, details);
+  }
   const long expected = reference["expected_shooting_variables"].get<long>();
   if (!derivation) {
     details.push_back(detail("shooting_variables", "missing", 0, kDeriveVariablesMax, "no derivation.json"));
@@ -248,6 +258,12 @@ json score_converge(const json& reference, const std::optional<json>& solution) 
   const bool converged = string_at(solution, "/status") == "converged";
   details.push_back(detail("status", converged ? "pass" : "fail", converged ? kConvergeStatusMax : 0,
                            kConvergeStatusMax, status_note(solution)));
+  if (reference.is_null()) {
+    json d = detail("residual", "no_reference", 0, 0, "no reference: max_residual is not compared with one");
+    d["found"] = opt_number(number_at(solution, "/max_residual"));
+    details.push_back(d);
+    return dimension(converged ? kConvergeStatusMax : 0, kConvergeStatusMax, details);
+  }
   const double limit = reference["result"]["max_residual"].get<double>();
   const auto residual = number_at(solution, "/max_residual");
   const bool small = residual && *residual < limit;
@@ -316,10 +332,6 @@ json score_accuracy(const json& reference, const std::optional<json>& solution) 
   return dimension(points, kAccuracyMax, details);
 }
 
-json opt_number(const std::optional<double>& v) {
-  return v ? json(*v) : json(nullptr);
-}
-
 std::string cell_points(const json& dim) {
   std::string s = fmt(dim.value("points", 0.0), "%.2f");
   while (s.back() == '0') s.pop_back();
@@ -342,10 +354,17 @@ void check_reference(const json& r, const std::string& source) {
                         r["expected_parse"][i]["id"].dump());
 }
 
+// The dimensions a reference scores (d1's facts, d5's accuracy) without one: no points of none.
+json no_reference(const std::string& id, const std::string& note) {
+  return dimension(0, 0, json::array({detail(id, "no_reference", 0, 0, "no reference: " + note)}));
+}
+
 json score_run(const ScoreInputs& in) {
-  check_reference(in.reference, in.reference_source);
+  const bool has_reference = !in.reference.is_null();
+  if (has_reference) check_reference(in.reference, in.reference_source);
   const json& ref = in.reference;
-  const std::string scenario = ref["scenario"].get<std::string>();
+  const std::string scenario = has_reference ? ref["scenario"].get<std::string>() : in.scenario;
+  if (scenario.empty()) throw input_error("a score without a reference needs the scenario's name");
 
   // The run's backend comes from the latest stage that ran, its model from the latest stage a
   // model wrote (helios-solve and helios-verify record none).
@@ -359,7 +378,8 @@ json score_run(const ScoreInputs& in) {
   json out = io::artifact_header("score", "helios-score", backend);
   if (!model.empty()) out["producer"]["model"] = model;
   out["scenario"] = scenario;
-  out["reference"] = {{"provenance", ref["provenance"]}, {"citation", ref["citation"]}};
+  out["reference"] =
+      has_reference ? json{{"provenance", ref["provenance"]}, {"citation", ref["citation"]}} : json(nullptr);
   out["inputs"] = {{"spec", in.spec.has_value()},
                    {"derivation", in.derivation.has_value()},
                    {"verify", in.verify.has_value()},
@@ -370,7 +390,7 @@ json score_run(const ScoreInputs& in) {
       {"spec", &in.spec}, {"derivation", &in.derivation}, {"solution", &in.solution}};
   for (const auto& [name, doc] : named) {
     const std::string id = string_at(*doc, "/problem/id");
-    if (!id.empty() && id != scenario)
+    if (has_reference && !id.empty() && id != scenario)
       warnings.push_back(std::string(name) + ".json is problem \"" + id + "\" but the reference is scenario \"" +
                          scenario + "\"");
   }
@@ -383,28 +403,39 @@ json score_run(const ScoreInputs& in) {
 
   std::optional<long> shooting_variables;
   json dims = json::object();
-  dims["d1_parse"] = score_parse(ref, in.spec);
+  dims["d1_parse"] = has_reference ? score_parse(ref, in.spec)
+                                   : no_reference("facts", "the spec's facts are not compared with expected ones");
   dims["d2_derive"] = score_derive(ref, in.derivation, in.verify, shooting_variables);
   dims["d3_compile"] = score_compile(in.solution);
   dims["d4_converge"] = score_converge(ref, in.solution);
-  dims["d5_accuracy"] = score_accuracy(ref, in.solution);
-  double total = 0;
-  for (auto it = dims.begin(); it != dims.end(); ++it) total += it.value()["points"].get<double>();
+  dims["d5_accuracy"] =
+      has_reference ? score_accuracy(ref, in.solution) : no_reference("accuracy", "no published result to compare");
+  double total = 0, max_total = 0;
+  for (auto it = dims.begin(); it != dims.end(); ++it) {
+    total += it.value()["points"].get<double>();
+    max_total += it.value()["max"].get<double>();
+  }
   out["dimensions"] = dims;
   out["total"] = std::clamp(total, 0.0, 100.0);
-  out["max_total"] = 100;
+  out["max_total"] = std::lround(max_total);
 
   const auto mf = number_at(in.solution, "/final_mass_kg");
-  const auto ref_mf = number_at(ref, "/result/final_mass_kg");
+  const auto ref_mf = number_at(ref, "/result/final_mass_kg");  // none without a reference
   const std::string status = string_at(in.solution, "/status");
   out["measured"] = {{"final_mass_kg", opt_number(mf)},
                      {"reference_final_mass_kg", opt_number(ref_mf)},
                      {"error_kg", mf && ref_mf ? json(std::fabs(*mf - *ref_mf)) : json(nullptr)},
                      {"max_residual", opt_number(number_at(in.solution, "/max_residual"))},
-                     {"reference_max_residual", ref["result"]["max_residual"]},
                      {"shooting_variables", shooting_variables ? json(*shooting_variables) : json(nullptr)},
-                     {"reference_shooting_variables", ref["expected_shooting_variables"]},
                      {"status", status.empty() ? json(nullptr) : json(status)}};
+  if (!has_reference) {
+    if (const auto tof = number_at(in.solution, "/tof_days")) out["measured"]["tof_days"] = *tof;
+    if (!warnings.empty()) out["warnings"] = warnings;
+    io::validate("score", out, "output score");
+    return out;
+  }
+  out["measured"]["reference_max_residual"] = ref["result"]["max_residual"];
+  out["measured"]["reference_shooting_variables"] = ref["expected_shooting_variables"];
   if (const auto ref_m0 = number_at(ref, "/result/initial_mass_kg")) {
     const auto m0 = number_at(in.solution, "/initial_mass_kg");
     out["measured"]["initial_mass_kg"] = opt_number(m0);

@@ -168,9 +168,9 @@ std::vector<std::string> sandboxed(const std::vector<std::string>& argv, const s
         "(tools/install-deps.sh, Debian package bubblewrap) or pass --no-sandbox");
   // The fresh /tmp comes before every bind: a bind under /tmp (a build tree, cache or run folder
   // there) mounted first would be hidden by it.
-  std::vector<std::string> out = {bwrap,    "--unshare-all", "--die-with-parent", "--new-session", "--clearenv",
-                                  "--setenv", "PATH",        "/usr/bin",          "--proc",        "/proc",
-                                  "--dev",    "/dev",        "--tmpfs",           "/tmp",          "--ro-bind",
+  std::vector<std::string> out = {bwrap,      "--unshare-all", "--die-with-parent", "--new-session", "--clearenv",
+                                  "--setenv", "PATH",          "/usr/bin",          "--proc",        "/proc",
+                                  "--dev",    "/dev",          "--tmpfs",           "/tmp",          "--ro-bind",
                                   "/usr",     "/usr"};
   // The top-level links into /usr of a merged-/usr system stay links; a real folder is bound.
   for (const char* top : {"/lib", "/lib64", "/lib32", "/bin", "/sbin"}) {
@@ -181,8 +181,7 @@ std::vector<std::string> sandboxed(const std::vector<std::string>& argv, const s
       out.insert(out.end(), {"--ro-bind", top, top});
   }
   for (const auto& folder : read_only) out.insert(out.end(), {"--ro-bind", folder, folder});
-  out.insert(out.end(),
-             {"--ro-bind", argv.at(0), argv.at(0), "--bind", workdir, workdir, "--chdir", workdir, "--"});
+  out.insert(out.end(), {"--ro-bind", argv.at(0), argv.at(0), "--bind", workdir, workdir, "--chdir", workdir, "--"});
   out.insert(out.end(), argv.begin(), argv.end());
   return out;
 }

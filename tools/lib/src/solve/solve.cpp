@@ -9,13 +9,16 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <regex>
 #include <string>
 #include <vector>
 
+#include "helios/astro/calendar.hpp"
 #include "helios/io/error.hpp"
 #include "helios/io/process.hpp"
 #include "helios/io/schema.hpp"
@@ -75,6 +78,9 @@ namespace {
 // (templates/runtime/main.hpp) carries every other key of schemas/solution.schema.json.
 const std::vector<std::string> kSolveKeys = {"schema",   "schema_version", "producer", "compile",   "sandbox",
                                              "settings", "timings",        "files",    "warm_start"};
+// And the user's units it adds beside the outcome's own keys (add_user_units).
+const std::vector<std::string> kUserUnitKeys = {"tof_hours", "departure_date_tdb", "arrival_mjd2000",
+                                                "arrival_date_tdb"};
 
 // solution.json before the run: the compile, and the keys the program's outcome replaces (the
 // problem, the status, the seed and the counts) as they are for a program that did not run.
@@ -116,7 +122,8 @@ json read_outcome(const std::string& path) {
   static const std::vector<std::string> known = io::schema_properties("solution");
   for (auto it = outcome.begin(); it != outcome.end(); ++it)
     if (std::find(known.begin(), known.end(), it.key()) == known.end() ||
-        std::find(kSolveKeys.begin(), kSolveKeys.end(), it.key()) != kSolveKeys.end())
+        std::find(kSolveKeys.begin(), kSolveKeys.end(), it.key()) != kSolveKeys.end() ||
+        std::find(kUserUnitKeys.begin(), kUserUnitKeys.end(), it.key()) != kUserUnitKeys.end())
       throw std::runtime_error(path + ": field /" + it.key() + " is not a key of the program's outcome");
   return outcome;
 }
@@ -200,9 +207,66 @@ json warm_start_of(const std::string& path, json& record) {
   return {{"variables", names}, {"x", values}};
 }
 
+std::string add_user_units(json& doc) {
+  std::string line;
+  if (const auto tof = doc.find("tof_days"); tof != doc.end() && tof->is_number()) {
+    const double days = tof->get<double>();
+    if (std::fabs(days) < astro::kHoursBelowDays) doc["tof_hours"] = days * 24;
+    line = "time of flight " + astro::duration_text(days, 4);
+    if (const auto dep = doc.find("departure_mjd2000"); dep != doc.end() && dep->is_number()) {
+      const double departure = dep->get<double>(), arrival = departure + days;
+      doc["departure_date_tdb"] = astro::iso_date_tdb(departure);
+      doc["arrival_mjd2000"] = arrival;
+      doc["arrival_date_tdb"] = astro::iso_date_tdb(arrival);
+      line += ", departure " + doc["departure_date_tdb"].get<std::string>() + " TDB (MJD2000 " +
+              io::short_number(departure) + "), arrival " + doc["arrival_date_tdb"].get<std::string>() +
+              " TDB (MJD2000 " + io::short_number(arrival) + ")";
+    }
+  }
+  return line;
+}
+
+namespace {
+
+// What the problem asks, in its own units: the departure (or its window) as calendar dates and the
+// flight's bounds in hours or days; "" without a spec.
+std::string problem_line(const json& spec) {
+  const json& t = spec.value("time", json::object());
+  if (!t.is_object()) return "";
+  std::string line = "problem " + spec.value("problem", json::object()).value("id", std::string("?")) + ":";
+  const bool has_epoch = t.contains("epoch_mjd2000") && t.at("epoch_mjd2000").is_number();
+  const double epoch = has_epoch ? t.at("epoch_mjd2000").get<double>() : 0;
+  const json& window = t.value("t0_window_days", json());
+  if (has_epoch && window.is_array() && window.size() == 2 && window[0].is_number() && window[1].is_number())
+    line += " departure free between " + astro::iso_date_tdb(epoch + window[0].get<double>()) + " and " +
+            astro::iso_date_tdb(epoch + window[1].get<double>()) + " TDB;";
+  else if (has_epoch)
+    line += " departure " + astro::iso_date_tdb(epoch + t.value("t0_days", 0.0)) + " TDB;";
+  if (t.contains("tof_days") && t.at("tof_days").is_number())
+    line += " time of flight " + astro::duration_text(t.at("tof_days").get<double>());
+  else if (t.contains("tof_max_days") && t.at("tof_max_days").is_number())
+    line += " time of flight free, at most " + astro::duration_text(t.at("tof_max_days").get<double>());
+  else
+    line += " time of flight free";
+  return line;
+}
+
+// The folder of the run's private folder when no trajectory is kept: the system's temporary one.
+fs::path scratch_dir() {
+  std::error_code ec;
+  const fs::path tmp = fs::temp_directory_path(ec);
+  return ec ? fs::path("/tmp") : tmp;
+}
+
+}  // namespace
+
 json solve(const SolveOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const std::string source = io::read_text(o.source_path);
+  std::optional<json> spec;
+  if (!o.spec_path.empty()) spec = io::read_artifact("spec", o.spec_path);
+  if (o.progress && spec)
+    if (const std::string line = problem_line(*spec); !line.empty()) o.progress(line);
   const json settings = run_settings(o);
   json warm_record;
   const json warm = o.warm_start_path.empty() ? json(nullptr) : warm_start_of(o.warm_start_path, warm_record);
@@ -219,8 +283,11 @@ json solve(const SolveOptions& o) {
   if (o.progress)
     o.progress(c.cached ? "compiled program from the cache" : "compiled in " + io::limit_text(c.seconds) + " s");
 
-  const fs::path out_dir = fs::path(o.trajectory_path).parent_path();
-  remove_stale_run_folders(out_dir);
+  // The private folder beside the trajectory (its rename into place stays on one file system), or
+  // in the temporary folder when none is kept: never in the working directory unless told.
+  const bool keep_trajectory = !o.trajectory_path.empty();
+  const fs::path out_dir = keep_trajectory ? fs::path(o.trajectory_path).parent_path() : scratch_dir();
+  if (keep_trajectory) remove_stale_run_folders(out_dir);
   const RunFolder files(out_dir);
   // The program reads the warm start beside its settings; solution.json's settings stay the user's.
   json program_settings = settings;
@@ -262,11 +329,17 @@ json solve(const SolveOptions& o) {
     doc["status_detail"] = "the program's trajectory is missing or not a regular file";
   }
   if (doc.at("status") == "converged") {
-    doc["files"] = {{"trajectory", fs::path(o.trajectory_path).filename().string()}};
+    doc["files"] = json::object();
+    if (keep_trajectory) doc["files"]["trajectory"] = fs::path(o.trajectory_path).filename().string();
     // Plotted from the run's own copy: the trajectory's path may be a stream (/dev/null, a FIFO).
     if (!o.plot_prefix.empty())
-      doc["files"].update(plot_trajectory(files.trajectory, o.plot_prefix, doc["problem"]["id"].get<std::string>()));
-    io::move_into_place(files.trajectory, o.trajectory_path);
+      doc["files"].update(plot_trajectory(files.trajectory, o.plot_prefix, doc["problem"]["id"].get<std::string>(),
+                                          spec ? &*spec : nullptr));
+    if (keep_trajectory) io::move_into_place(files.trajectory, o.trajectory_path);
+  }
+  if (doc.contains("tof_days")) {
+    const std::string line = add_user_units(doc);
+    if (o.progress && !line.empty()) o.progress(doc.at("status").get<std::string>() + ": " + line);
   }
   doc["timings"]["total_s"] = io::seconds_since(start);
   return doc;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "helios/astro/calendar.hpp"
 #include "helios/io/error.hpp"
 #include "helios/io/schema.hpp"
 #include "helios/solve/solve.hpp"
@@ -117,6 +118,24 @@ void read_boundary_window(const json& sweep, const std::string& source, SweepGri
 std::string axis_range(const std::vector<double>& values) {
   const double pad = values.front() == values.back() ? 1 : 0;
   return "[" + number_text(values.front() - pad) + ":" + number_text(values.back() + pad) + "]";
+}
+
+// The departure axis' tics as calendar dates (TDB) over their MJD2000 day: about six, on whole
+// days, across the grid's departures. The labels are made here (digits and dashes), not taken
+// from an input.
+std::string departure_tics(const std::vector<double>& values) {
+  const double lo = values.front(), hi = values.back();
+  const int n = lo == hi ? 1 : 6;
+  std::string tics;
+  double previous = std::numeric_limits<double>::quiet_NaN();
+  for (int k = 0; k < n; ++k) {
+    const double at = std::round(n == 1 ? lo : lo + (hi - lo) * k / (n - 1));
+    if (at == previous) continue;
+    previous = at;
+    tics += (tics.empty() ? "" : ", ") + std::string("\"") + astro::iso_date_tdb(at).substr(0, 10) + "\\n" +
+            number_text(at) + "\" " + number_text(at);
+  }
+  return "(" + tics + ")";
 }
 
 // What a problem or a solution flies, in words: "departure MJD2000 9700 and a time of flight of 300 d".
@@ -414,7 +433,9 @@ void porkchop_png(const SweepGrid& grid, const std::vector<SweepRow>& rows, cons
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1000,800 noenhanced\nset output ARG1\n"
      << "set title ARG2.': " << unit << "'\n"
-     << "set xlabel 'departure [MJD2000]'\nset ylabel 'time of flight [days]'\nset cblabel '" << unit << "'\n"
+     << "set xlabel 'departure [calendar date TDB, MJD2000]' offset 0,-1\nset xtics "
+     << departure_tics(grid.departures_mjd2000) << "\nset ylabel 'time of flight [days]'\nset cblabel '" << unit
+     << "'\n"
      << "set view map\nset pm3d at b interpolate 8,8\nset contour base\nset cntrparam levels auto 10\nunset clabel\n"
      << "set bmargin 7\nset key at screen 0.5,0.05 center center horizontal maxrows 2 box\n"
      << "set palette defined (0 '#2b6cb0', 0.5 '#f6e05e', 1 '#e53e3e')\nset datafile missing 'NaN'\n"

@@ -168,8 +168,8 @@ class BoundaryFamily : public Family {
         continue;
       }
       find_equation(c, expected,
-                    "missing stationarity condition " + short_print(expected) + " = 0 (dPhi/d" + q +
-                        " = nu^T dpsi/d" + q + " with lambda(t0) = -nu^T dpsi/dx: " + q +
+                    "missing stationarity condition " + short_print(expected) + " = 0 (dPhi/d" + q + " = nu^T dpsi/d" +
+                        q + " with lambda(t0) = -nu^T dpsi/dx: " + q +
                         " is a free parameter of psi at t0); add it to shooting.equations as " +
                         names::stationarity_row(k.id, q) + ".");
       checks.push_back(c);

@@ -240,7 +240,8 @@ void Context::read_statement() {
             declare(name, Kind::Free);
             k.free_params.push_back(name);
           }
-      k.psi.push_back(statement(c.psi[j].text, "constraints[" + k.id + "].psi[" + std::to_string(j) + "]").subs(to_state));
+      k.psi.push_back(
+          statement(c.psi[j].text, "constraints[" + k.id + "].psi[" + std::to_string(j) + "]").subs(to_state));
     }
     k.multipliers = c.multipliers;
     k.multipliers_unknown = k.at == "tf" && !k.multipliers.empty() &&

@@ -478,17 +478,16 @@ class ControlFamily : public Family {
                               t->switching_function.text, true, no_u_a_eps));
     checks.push_back(equality("throttle_dH_du_at_lower", "control", "control_law.throttle.dH_du_at_lower",
                               "dH/d" + ctx.throttle + " at " + ctx.throttle + " = 0" + a_note,
-                              {Hu_star.subs(u == 0), Hu_c, throttle_point(0, false)}, t->dH_du_at_lower.text,
-                              true, no_u_a));
+                              {Hu_star.subs(u == 0), Hu_c, throttle_point(0, false)}, t->dH_du_at_lower.text, true,
+                              no_u_a));
     checks.push_back(equality("throttle_dH_du_at_upper", "control", "control_law.throttle.dH_du_at_upper",
                               "dH/d" + ctx.throttle + " at " + ctx.throttle + " = 1" + a_note,
-                              {Hu_star.subs(u == 1), Hu_c, throttle_point(1, false)}, t->dH_du_at_upper.text,
-                              true, no_u_a));
+                              {Hu_star.subs(u == 1), Hu_c, throttle_point(1, false)}, t->dH_du_at_upper.text, true,
+                              no_u_a));
     if (t->d2H_du2)
-      checks.push_back(equality("throttle_d2H_du2", "control", "control_law.throttle.d2H_du2",
-                                "d2H/d" + ctx.throttle + "2" + a_note,
-                                {Huu.subs(astar), Huu_c, throttle_point(std::nan(""), false)}, t->d2H_du2->text,
-                                true, ctx.directions));
+      checks.push_back(equality(
+          "throttle_d2H_du2", "control", "control_law.throttle.d2H_du2", "d2H/d" + ctx.throttle + "2" + a_note,
+          {Huu.subs(astar), Huu_c, throttle_point(std::nan(""), false)}, t->d2H_du2->text, true, ctx.directions));
   }
 
   // Convexity: dH/du = 0 must be a minimum (lambda0 > 0, eps > 0 at every sample point).
@@ -533,10 +532,9 @@ class ControlFamily : public Family {
       c.exact = exact_equal(Hu_star.subs(u == interior), 0);
       c.pass = worst <= kTol || c.exact;
       if (!c.pass)
-        c.fail("control_law.throttle.interior = " + t->interior.text +
-               " does not solve dH/d" + ctx.throttle + " = " + print(tidy(Hu_star)) +
-               " = 0: at a sample point it gives " + ctx.throttle + " = " + num(wu) + " where dH/d" + ctx.throttle +
-               " = " + num(wv) + ".");
+        c.fail("control_law.throttle.interior = " + t->interior.text + " does not solve dH/d" + ctx.throttle + " = " +
+               print(tidy(Hu_star)) + " = 0: at a sample point it gives " + ctx.throttle + " = " + num(wu) +
+               " where dH/d" + ctx.throttle + " = " + num(wv) + ".");
     }
     checks.push_back(c);
   }

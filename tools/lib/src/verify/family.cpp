@@ -60,9 +60,9 @@ Check Family::equality(const std::string& id, const std::string& category, const
     const std::string t = term_diagnosis(expected.symbolic, given);
     if (!t.empty()) diag.push_back(t);
   }
-  c.fail(label + ": expected " + expected_name + " = " + print(tidy(expected.symbolic)) + ", got " +
-         given_text + (diag.empty() ? "" : "; " + join(diag, "; ")) + " (relative difference " +
-         num(worst) + " at a sample point: " + num(we) + " expected, " + num(wg) + " given).");
+  c.fail(label + ": expected " + expected_name + " = " + print(tidy(expected.symbolic)) + ", got " + given_text +
+         (diag.empty() ? "" : "; " + join(diag, "; ")) + " (relative difference " + num(worst) +
+         " at a sample point: " + num(we) + " expected, " + num(wg) + " given).");
   return c;
 }
 

@@ -139,9 +139,9 @@ std::optional<ex> central_mu(const Context& ctx, const std::vector<Term>& all) {
 
 // One force term's contribution to the velocities' (and the mass's) rates.
 std::optional<Contribution> TermFamily::force(const Term& t, const std::vector<Term>& all, Check& c) const {
-  static const std::map<std::string, std::size_t> counts = {{"two_body", 1},   {"j2", 2},
-                                                            {"solar_sail", 2}, {"thrust", 2},       {"full_thrust", 2},
-                                                            {"user_acceleration", 0}, {"third_body", 6}};
+  static const std::map<std::string, std::size_t> counts = {
+      {"two_body", 1},          {"j2", 2},        {"solar_sail", 2}, {"thrust", 2}, {"full_thrust", 2},
+      {"user_acceleration", 0}, {"third_body", 6}};
   const auto q = parameters_of(t, counts.at(t.name), c);
   if (!q) return std::nullopt;
   Contribution out{t.name + (t.body.empty() ? "" : " (" + t.body + ")") + (t.label.empty() ? "" : " (" + t.label + ")"),
@@ -187,11 +187,13 @@ std::optional<Contribution> TermFamily::force(const Term& t, const std::vector<T
     }
     ex nr = 0;
     for (int k = 0; k < 3; ++k) nr += ctx.sym(ctx.sails[k]) * r_[k];
-    for (const auto& n : ctx.sails) a.push_back((*q)[0] * GiNaC::pow((*q)[1], 2) * nr * nr * ctx.sym(n) / GiNaC::pow(r, 4));
+    for (const auto& n : ctx.sails)
+      a.push_back((*q)[0] * GiNaC::pow((*q)[1], 2) * nr * nr * ctx.sym(n) / GiNaC::pow(r, 4));
   } else {  // user_acceleration: its components as listed
     try {
       for (std::size_t k = 0; k < 3; ++k)
-        a.push_back(ctx.statement(t.acceleration[k], "terms (" + t.label + ").acceleration[" + std::to_string(k) + "]"));
+        a.push_back(
+            ctx.statement(t.acceleration[k], "terms (" + t.label + ").acceleration[" + std::to_string(k) + "]"));
     } catch (const std::exception& e) {
       c.fail("term user_acceleration (" + t.label + "): " + e.what() + ".");
       return std::nullopt;
@@ -252,10 +254,11 @@ void TermFamily::diagnose(Check& c, std::size_t state, const std::vector<ex>& ex
   }
   c.fail(where + " is not the sum of its listed terms (" + join(in, ", ") + "): it differs by " +
          short_print(tidy(difference)) +
-         (!unlisted.empty() ? " (it depends on " + join(unlisted, ", ") + ", parameters of no listed term: a term not listed)"
-          : blamed.empty()  ? std::string(" (a term not listed, or one of another form)")
-                         : " (it depends on the parameters of " + join(blamed, ", ") +
-                               ": a parameter or the form of that term is not the listed one)") +
+         (!unlisted.empty()
+              ? " (it depends on " + join(unlisted, ", ") + ", parameters of no listed term: a term not listed)"
+          : blamed.empty() ? std::string(" (a term not listed, or one of another form)")
+                           : " (it depends on the parameters of " + join(blamed, ", ") +
+                                 ": a parameter or the form of that term is not the listed one)") +
          ".");
 }
 
@@ -328,9 +331,7 @@ Check TermFamily::cost(const std::optional<std::vector<Term>>& terms) {
     if (!q || !read_frame(c)) return c;
     const ex r = GiNaC::sqrt(r_[0] * r_[0] + r_[1] * r_[1] + r_[2] * r_[2]);
     running = 0;
-    endpoint = t.name == "final_radius"
-                   ? -r
-                   : -((v_[0] * v_[0] + v_[1] * v_[1] + v_[2] * v_[2]) / 2 - (*q)[0] / r);
+    endpoint = t.name == "final_radius" ? -r : -((v_[0] * v_[0] + v_[1] * v_[1] + v_[2] * v_[2]) / 2 - (*q)[0] / r);
   } else if (!t.parameters.empty()) {
     return c.fail("the cost term time has no parameters; it lists " + join(t.parameters, ", ") + "."), c;
   }
@@ -355,6 +356,8 @@ std::vector<Check> TermFamily::run() {
 
 }  // namespace
 
-std::unique_ptr<Family> terms_family(const Context& ctx) { return std::make_unique<TermFamily>(ctx); }
+std::unique_ptr<Family> terms_family(const Context& ctx) {
+  return std::make_unique<TermFamily>(ctx);
+}
 
 }  // namespace helios::verify::detail

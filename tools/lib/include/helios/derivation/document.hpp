@@ -48,7 +48,6 @@ struct Ode {
   Expression rhs;
 };
 
-
 // control_law.throttle: the switching function, dH/du at the bounds, the interior law.
 struct ThrottleLaw {
   std::string control;

@@ -53,8 +53,8 @@ enum class Role { Constant, ExhaustVelocity, RuntimeEvaluated };
 struct Quantity {
   std::string name, meaning, unit_text;
   Unit unit;
-  double value = 0;    // a parameter's normalized value (0 for a state)
-  std::string source;  // a parameter the runtime evaluates: its source ("ephemeris:Mars:tf"), else ""
+  double value = 0;            // a parameter's normalized value (0 for a state)
+  std::string source;          // a parameter the runtime evaluates: its source ("ephemeris:Mars:tf"), else ""
   Role role = Role::Constant;  // a parameter's (a state's is Constant)
   bool runtime_evaluated() const { return role == Role::RuntimeEvaluated; }
 };

@@ -12,11 +12,11 @@
 namespace helios::derivation {
 
 struct Term {
-  std::string name, kind;               // kind: force | cost
-  std::vector<std::string> parameters;  // the derivation's parameters it uses, in its own order
-  std::string label;                    // user_acceleration: its name in the spec
+  std::string name, kind;                 // kind: force | cost
+  std::vector<std::string> parameters;    // the derivation's parameters it uses, in its own order
+  std::string label;                      // user_acceleration: its name in the spec
   std::vector<std::string> acceleration;  // user_acceleration: its normalized components
-  std::string body;                     // third_body: the body's name
+  std::string body;                       // third_body: the body's name
 };
 
 // The names of the known terms, forces then costs.

@@ -92,9 +92,9 @@ struct InteriorEvent {
   double window_lo = 0, window_hi = 0, duration = 0;
   std::vector<GiNaC::ex> c;
   std::vector<std::string> c_names;
-  std::vector<bool> c_inequality;            // true: the row is a bound c_j <= 0 (active only in pass 2)
-  std::vector<GiNaC::ex> map;                // g, one per state
-  std::vector<std::string> free_parameters;  // Category C parameters inside psi (found by stationarity)
+  std::vector<bool> c_inequality;               // true: the row is a bound c_j <= 0 (active only in pass 2)
+  std::vector<GiNaC::ex> map;                   // g, one per state
+  std::vector<std::string> free_parameters;     // Category C parameters inside psi (found by stationarity)
   std::vector<SideCondition> must_be_positive;  // in the state just before the event
   io::json target;
 };

@@ -26,7 +26,8 @@ constexpr double kAccuracyZeroAt = 100.0;
 // The already-read documents of one run. A stage that did not run (or whose artifact is
 // missing) is std::nullopt and scores 0 on the dimensions that need it.
 struct ScoreInputs {
-  io::json reference;
+  io::json reference;    // null: no reference (d1's facts and d5 say "no reference", their maxima 0)
+  std::string scenario;  // the scenario's name when there is no reference (a reference names its own)
   std::string reference_source = "reference.json";  // names the file in errors
   std::optional<io::json> spec;
   std::optional<io::json> derivation;

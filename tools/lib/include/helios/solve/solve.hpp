@@ -12,7 +12,9 @@ struct SolveOptions {
   std::string source_path;      // shoot.cpp
   std::string settings_path;    // solver settings JSON (seed, tolerances, limits); may be empty
   std::string cache_dir;        // compiled programs, by content hash
-  std::string trajectory_path;  // trajectory.csv to write
+  std::string trajectory_path;  // trajectory.csv to write; empty: none kept (the run's folder is a temporary one)
+  std::string spec_path;        // the problem's spec.json (optional): the plots' central body, orbits and
+                                // thrust, and the progress lines' dates
   std::string plot_prefix;      // writes <prefix>trajectory.png and <prefix>throttle_mass.png (engine) or
                                 // <prefix>cone_angle.png (sail); empty: no plots
   std::string backend = "builtin";
@@ -144,10 +146,20 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
 // or macros they hold. Returns what gnuplot printed.
 std::string run_gnuplot(const std::string& script, const std::vector<std::string>& args);
 
-// Draws the 3-D trajectory coloured by the control, and the control panel versus time, with
-// gnuplot: throttle + mass (throttle_mass.png) for an engine, the cone angle (cone_angle.png) for
-// a sail. Returns the file names by role ({"trajectory_plot": .., "<panel>_plot": ..}).
-io::json plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title);
+// Draws the trajectory coloured by the control, with equal axes (seen from +z where the transfer is
+// near the x-y plane, else in 3-D), the central body to scale, the osculating orbits at departure
+// and arrival (the target's where the spec says the arrival is on it), the thrust direction along
+// the thrusting arcs; and the control panel versus time from departure in hours (a flight under
+// three days) or days: thrust + mass (throttle_mass.png) for an engine, the cone angle
+// (cone_angle.png) for a sail. `spec` (may be null) names the body, its radius and mu, the thrust,
+// the epoch and the endpoints. Returns the file names by role ({"trajectory_plot": .., "<panel>_plot": ..}).
+io::json plot_trajectory(const std::string& csv_path, const std::string& prefix, const std::string& title,
+                         const io::json* spec = nullptr);
+
+// Adds the user's units beside the solution's SI/named keys: tof_hours for a flight under
+// astro::kHoursBelowDays, and with departure_mjd2000 the departure's and the arrival's calendar
+// dates (departure_date_tdb, arrival_mjd2000, arrival_date_tdb). Returns the line that says them.
+std::string add_user_units(io::json& solution);
 
 // Compiles only (into the cache) and returns the compile artifact: ok, diagnostics, error count.
 io::json compile_report(const SolveOptions& options);

@@ -16,8 +16,7 @@ class FinalStateCost : public CostTerm {
   ex running_cost(Problem&) const override { return 0; }
   ex endpoint_cost(Problem& p) const override {
     auto& S = p.symbols;
-    const ex rx = S.get("rx"), ry = S.get("ry"), rz = S.get("rz"), vx = S.get("vx"), vy = S.get("vy"),
-             vz = S.get("vz");
+    const ex rx = S.get("rx"), ry = S.get("ry"), rz = S.get("rz"), vx = S.get("vx"), vy = S.get("vy"), vz = S.get("vz");
     const ex r = GiNaC::sqrt(rx * rx + ry * ry + rz * rz);
     if (!energy_) return -r;
     return -((vx * vx + vy * vy + vz * vz) / 2 - S.get("mu") / r);
@@ -29,7 +28,11 @@ class FinalStateCost : public CostTerm {
 
 }  // namespace
 
-std::unique_ptr<CostTerm> final_radius_cost() { return std::make_unique<FinalStateCost>(false); }
-std::unique_ptr<CostTerm> final_energy_cost() { return std::make_unique<FinalStateCost>(true); }
+std::unique_ptr<CostTerm> final_radius_cost() {
+  return std::make_unique<FinalStateCost>(false);
+}
+std::unique_ptr<CostTerm> final_energy_cost() {
+  return std::make_unique<FinalStateCost>(true);
+}
 
 }  // namespace helios::pmp::terms

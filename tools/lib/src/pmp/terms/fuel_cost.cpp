@@ -19,6 +19,8 @@ class FuelCost : public CostTerm {
 
 }  // namespace
 
-std::unique_ptr<CostTerm> fuel_cost() { return std::make_unique<FuelCost>(); }
+std::unique_ptr<CostTerm> fuel_cost() {
+  return std::make_unique<FuelCost>();
+}
 
 }  // namespace helios::pmp::terms

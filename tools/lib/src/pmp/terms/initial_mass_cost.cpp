@@ -17,6 +17,8 @@ class InitialMassCost : public CostTerm {
 
 }  // namespace
 
-std::unique_ptr<CostTerm> initial_mass_cost() { return std::make_unique<InitialMassCost>(); }
+std::unique_ptr<CostTerm> initial_mass_cost() {
+  return std::make_unique<InitialMassCost>();
+}
 
 }  // namespace helios::pmp::terms

@@ -34,6 +34,8 @@ class J2 : public ForceTerm {
 
 }  // namespace
 
-std::unique_ptr<ForceTerm> j2(const json& central, const Units& U) { return std::make_unique<J2>(central, U); }
+std::unique_ptr<ForceTerm> j2(const json& central, const Units& U) {
+  return std::make_unique<J2>(central, U);
+}
 
 }  // namespace helios::pmp::terms

@@ -32,8 +32,7 @@ class SolarSail : public ForceTerm {
     const ex cos_cone = (n[0] * r[0] + n[1] * r[1] + n[2] * r[2]) / rn;
     const ex k = S.get("ac") * GiNaC::pow(S.get("rref") / rn, 2);
     p.sail = {k, {r[0] / rn, r[1] / rn, r[2] / rn}, {"vx", "vy", "vz"}};
-    return {k * GiNaC::pow(cos_cone, 2) * n[0], k * GiNaC::pow(cos_cone, 2) * n[1],
-            k * GiNaC::pow(cos_cone, 2) * n[2]};
+    return {k * GiNaC::pow(cos_cone, 2) * n[0], k * GiNaC::pow(cos_cone, 2) * n[1], k * GiNaC::pow(cos_cone, 2) * n[2]};
   }
 
  private:

@@ -82,8 +82,12 @@ TermListing listing(const std::string& name, const std::string& kind, const std:
                     const json& details = json::object());
 
 // The unit of an acceleration and of a gravitational parameter in the units U.
-inline std::string acceleration_unit(const Units& U) { return U.length_name + "/" + U.time_name + "^2"; }
-inline std::string mu_unit(const Units& U) { return U.length_name + "^3/" + U.time_name + "^2"; }
+inline std::string acceleration_unit(const Units& U) {
+  return U.length_name + "/" + U.time_name + "^2";
+}
+inline std::string mu_unit(const Units& U) {
+  return U.length_name + "^3/" + U.time_name + "^2";
+}
 // A gravitational parameter [km^3/s^2] in the units U.
 inline double normalized_mu(double mu_km3_s2, const Units& U) {
   return mu_km3_s2 * U.time_s * U.time_s / (U.length_km * U.length_km * U.length_km);

@@ -13,6 +13,8 @@ class TimeCost : public CostTerm {
 
 }  // namespace
 
-std::unique_ptr<CostTerm> time_cost() { return std::make_unique<TimeCost>(); }
+std::unique_ptr<CostTerm> time_cost() {
+  return std::make_unique<TimeCost>();
+}
 
 }  // namespace helios::pmp::terms
