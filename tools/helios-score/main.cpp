@@ -32,16 +32,21 @@ std::optional<helios::io::json> optional_artifact(const Args& args, const char* 
   return helios::io::read_artifact(kind, args.get(kind));
 }
 
-int score_run(const Args& args) {
-  score::ScoreInputs in;
-  in.reference_source = args.get("reference") == "-" ? "<stdin>" : args.get("reference");
-  in.reference = helios::io::read_json(args.get("reference"));
+// Scores `in` with the run's artifacts the arguments name, into -o's file.
+int score_artifacts(const Args& args, score::ScoreInputs& in) {
   in.spec = optional_artifact(args, "spec");
   in.derivation = optional_artifact(args, "derivation");
   in.verify = optional_artifact(args, "verify");
   in.solution = optional_artifact(args, "solution");
   helios::io::write_artifact("score", score::score_run(in), args.output);
   return 0;
+}
+
+int score_run(const Args& args) {
+  score::ScoreInputs in;
+  in.reference_source = args.get("reference") == "-" ? "<stdin>" : args.get("reference");
+  in.reference = helios::io::read_json(args.get("reference"));
+  return score_artifacts(args, in);
 }
 
 // A run of a problem without a reference (a user's own folder): scored on what needs none.
@@ -52,12 +57,7 @@ int score_unreferenced(const Args& args) {
   static const std::regex name("[A-Za-z0-9_-]{1,64}");
   if (!std::regex_match(in.scenario, name))
     throw helios::usage_error("--no-reference " + in.scenario + ": a scenario name is A-Z a-z 0-9 _ - only");
-  in.spec = optional_artifact(args, "spec");
-  in.derivation = optional_artifact(args, "derivation");
-  in.verify = optional_artifact(args, "verify");
-  in.solution = optional_artifact(args, "solution");
-  helios::io::write_artifact("score", score::score_run(in), args.output);
-  return 0;
+  return score_artifacts(args, in);
 }
 
 int report(const Args& args) {

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "helios/astro/calendar.hpp"
 #include "helios/io/error.hpp"
 
 namespace helios::oem {
@@ -17,8 +18,6 @@ namespace {
 using io::json;
 
 constexpr long long kMicrosecondsPerDay = 86400LL * 1000000LL;
-// Days from 2000-01-01 back to 0000-03-01 (the proleptic Gregorian era start of civil_from_days).
-constexpr long long kDaysFrom0000March1To2000 = 730425;
 // A stay is the step of trajectory.csv that equals its length to within this many days (1 ms):
 // an ordinary step is at most a 500th of the flight.
 constexpr double kStayToleranceDays = 1e-8;
@@ -27,19 +26,6 @@ std::string fmt(const char* format, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, format, v);
   return buf;
-}
-
-// Year, month, day of a day count since 2000-01-01 (H. Hinnant's civil_from_days).
-void civil_from_days(long long days, long long& y, int& m, int& d) {
-  const long long z = days + kDaysFrom0000March1To2000;
-  const long long era = (z >= 0 ? z : z - 146096) / 146097;
-  const long long doe = z - era * 146097;
-  const long long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
-  const long long doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-  const long long mp = (5 * doy + 2) / 153;
-  d = static_cast<int>(doy - (153 * mp + 2) / 5 + 1);
-  m = static_cast<int>(mp < 10 ? mp + 3 : mp - 9);
-  y = yoe + era * 400 + (m <= 2 ? 1 : 0);
 }
 
 long long floor_div(long long a, long long b) {
@@ -176,7 +162,7 @@ std::string oem_epoch(double mjd2000) {
   long long rest = us - days * kMicrosecondsPerDay;
   long long year = 0;
   int month = 0, day = 0;
-  civil_from_days(days, year, month, day);
+  astro::civil_from_days_since_2000(days, year, month, day);
   if (year < 1 || year > 9999)
     throw std::invalid_argument("epoch MJD2000 " + fmt("%.17g", mjd2000) + " is outside the years 0001-9999");
   const long long hour = rest / 3600000000LL;
