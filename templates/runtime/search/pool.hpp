@@ -16,15 +16,21 @@ namespace {
 
 // Two converged solutions are one extremal when their structure agrees (revolutions, switches)
 // and their shooting variables or their cost do.
-inline bool same_extremal(const std::vector<double>& xa, const Shape& a, const std::vector<double>& xb,
-                          const Shape& b) {
-  if (a.switches != b.switches || std::fabs(a.revolutions - b.revolutions) > 1e-3) return false;
+// Whether every shooting variable of xb lies within `relative` of xa's, relative to the larger of
+// 1 and xa's largest |x_i|.
+inline bool variables_within(const std::vector<double>& xa, const std::vector<double>& xb, double relative) {
   double dx = 0, size = 1;
   for (std::size_t i = 0; i < xa.size(); ++i) {
     dx = std::max(dx, std::fabs(xa[i] - xb[i]));
     size = std::max(size, std::fabs(xa[i]));
   }
-  return dx <= 1e-6 * size || std::fabs(a.cost - b.cost) <= 1e-9 * std::max(1e-3, std::fabs(a.cost));
+  return dx <= relative * size;
+}
+
+inline bool same_extremal(const std::vector<double>& xa, const Shape& a, const std::vector<double>& xb,
+                          const Shape& b) {
+  if (a.switches != b.switches || std::fabs(a.revolutions - b.revolutions) > 1e-3) return false;
+  return variables_within(xa, xb, 1e-6) || std::fabs(a.cost - b.cost) <= 1e-9 * std::max(1e-3, std::fabs(a.cost));
 }
 
 // The solution in `list` that x, a looser solve's, lies next to (every shooting variable within
@@ -32,13 +38,8 @@ inline bool same_extremal(const std::vector<double>& xa, const Shape& a, const s
 // orders of magnitude further apart; a start that lands there is that extremal reached again.
 template <class List>
 const typename List::value_type* near_twin(const List& list, const std::vector<double>& x) {
-  double size = 1;
-  for (const double v : x) size = std::max(size, std::fabs(v));
-  for (const auto& e : list) {
-    double dx = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) dx = std::max(dx, std::fabs(e.x[i] - x[i]));
-    if (dx <= 1e-4 * size) return &e;
-  }
+  for (const auto& e : list)
+    if (variables_within(x, e.x, 1e-4)) return &e;
   return nullptr;
 }
 
