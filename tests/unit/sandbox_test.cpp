@@ -2,6 +2,7 @@
 // process left behind (process group + child subreaper).
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -129,6 +130,43 @@ TEST(Sandbox, AProgramThatExitsButLeavesADaemonHasItKilled) {
   in >> pid;
   ASSERT_GT(pid, 0);
   EXPECT_NE(::kill(pid, 0), 0);
+  fs::remove_all(dir);
+}
+
+TEST(RunFolders, AnEndedRunsFolderGoesARunningOnesStaysAndAZombieHasEnded) {
+  const fs::path dir = fresh_dir("stale");
+  // A zombie: a child that has exited and is not yet reaped, as a killed helios-solve stays under
+  // an init that reaps slowly; kill(pid, 0) still finds it.
+  const pid_t zombie = ::fork();
+  ASSERT_GE(zombie, 0);
+  if (zombie == 0) _exit(0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const pid_t running = ::fork();
+  ASSERT_GE(running, 0);
+  if (running == 0) {
+    ::pause();
+    _exit(0);
+  }
+  const auto folder = [&](pid_t pid) {
+    const fs::path p = dir / (".run." + std::to_string(pid) + ".Ab3xYz");
+    fs::create_directories(p);
+    std::ofstream(p / "outcome.json.part") << "{";
+    return p;
+  };
+  const fs::path of_zombie = folder(zombie), of_running = folder(running), mine = folder(::getpid());
+  const fs::path not_a_run_folder = dir / (".run." + std::to_string(zombie) + ".toolongname");
+  fs::create_directories(not_a_run_folder);
+  ASSERT_EQ(::kill(zombie, 0), 0);
+  helios::solve::remove_stale_run_folders(dir.string());
+  EXPECT_FALSE(fs::exists(of_zombie));
+  EXPECT_TRUE(fs::exists(of_running));
+  EXPECT_TRUE(fs::exists(mine));
+  EXPECT_TRUE(fs::exists(not_a_run_folder));
+  ::kill(running, SIGKILL);
+  ::waitpid(running, nullptr, 0);
+  ::waitpid(zombie, nullptr, 0);
+  helios::solve::remove_stale_run_folders(dir.string());
+  EXPECT_FALSE(fs::exists(of_running));
   fs::remove_all(dir);
 }
 

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <regex>
 #include <string>
@@ -128,18 +129,19 @@ json read_outcome(const std::string& path) {
   return outcome;
 }
 
-// Removes the private folders of earlier runs in `dir` whose helios-solve is gone (a SIGKILL
-// leaves them): .run.<pid>.<random>, with whatever the program left in them.
-void remove_stale_run_folders(const fs::path& dir) {
-  static const std::regex run_folder(R"(\.run\.([0-9]{1,9})\.[A-Za-z0-9]{6})");
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir.empty() ? fs::path(".") : dir, ec)) {
-    std::smatch m;
-    const std::string name = entry.path().filename().string();
-    if (!std::regex_match(name, m, run_folder) || !entry.is_directory(ec) || entry.is_symlink(ec)) continue;
-    const pid_t pid = static_cast<pid_t>(std::stol(m[1].str()));
-    if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
-  }
+// Whether process `pid` still runs. A zombie does not: a killed helios-solve whose parent died too
+// stays one until an init that reaps slowly (some containers' never does) collects it, and kill(pid,
+// 0) still finds it.
+bool process_running(pid_t pid) {
+  if (::kill(pid, 0) != 0 && errno == ESRCH) return false;
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return !fs::exists("/proc/self/stat");  // without /proc, kill's answer
+  // "pid (comm) S ...": the state follows the last ')', as comm may hold one.
+  const auto close = line.rfind(')');
+  if (close == std::string::npos || close + 2 >= line.size()) return true;
+  const char state = line[close + 2];
+  return state != 'Z' && state != 'X';
 }
 
 // The outcome merged into `doc` and checked against solution.json's schema; "" when usable, else
@@ -184,6 +186,19 @@ struct RunFolder {
 };
 
 }  // namespace
+
+// A SIGKILL, or a SIGTERM to helios-solve, leaves its folder with whatever the program wrote.
+void remove_stale_run_folders(const std::string& dir) {
+  static const std::regex run_folder(R"(\.run\.([0-9]{1,9})\.[A-Za-z0-9]{6})");
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir.empty() ? "." : dir, ec)) {
+    std::smatch m;
+    const std::string name = entry.path().filename().string();
+    if (!std::regex_match(name, m, run_folder) || !entry.is_directory(ec) || entry.is_symlink(ec)) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(m[1].str()));
+    if (pid != ::getpid() && !process_running(pid)) fs::remove_all(entry.path(), ec);
+  }
+}
 
 json warm_start_of(const std::string& path, json& record) {
   const json neighbour = io::read_json(path);
@@ -287,7 +302,7 @@ json solve(const SolveOptions& o) {
   // in the temporary folder when none is kept: never in the working directory unless told.
   const bool keep_trajectory = !o.trajectory_path.empty();
   const fs::path out_dir = keep_trajectory ? fs::path(o.trajectory_path).parent_path() : scratch_dir();
-  if (keep_trajectory) remove_stale_run_folders(out_dir);
+  if (keep_trajectory) remove_stale_run_folders(out_dir.string());
   const RunFolder files(out_dir);
   // The program reads the warm start beside its settings; solution.json's settings stay the user's.
   json program_settings = settings;

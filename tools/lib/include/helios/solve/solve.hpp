@@ -161,6 +161,10 @@ io::json plot_trajectory(const std::string& csv_path, const std::string& prefix,
 // dates (departure_date_tdb, arrival_mjd2000, arrival_date_tdb). Returns the line that says them.
 std::string add_user_units(io::json& solution);
 
+// Removes the private run folders (.run.<pid>.<6 characters>) in `dir` left by runs whose process
+// has ended (killed before its folder went), a zombie counted as ended; a running one's stay.
+void remove_stale_run_folders(const std::string& dir);
+
 // Compiles only (into the cache) and returns the compile artifact: ok, diagnostics, error count.
 io::json compile_report(const SolveOptions& options);
 
