@@ -267,6 +267,7 @@ Result two_pass_solve(const Settings& given, const std::vector<Bound>& bounds, c
   bool consistent = false;
   std::vector<char> final_set = s.active_bounds;
   if (r.status == Status::kConverged) {
+    s.window_edges = r.window_edges;
     first = bound_values(s, r.x, bounds.size());
     std::vector<Extremal>& extremals = r.search.extremals;
     const std::vector<std::size_t> order = pass_one_starts(s, r);
@@ -281,6 +282,8 @@ Result two_pass_solve(const Settings& given, const std::vector<Bound>& bounds, c
       Result from = r;
       from.x = o.x;
       from.x_start = o.x_start;
+      from.window_edges = s.window_edges = o.window_edges;  // an extremal at a window's edge stays there
+      from.edge_transversality = o.edge_transversality;
       log.from = static_cast<int>(i) == r.search.returned ? "" : "from extremal " + std::to_string(i) + ", ";
       std::vector<std::string> changes;
       if (!active_set_passes(s, bounds, from, false, solve, admissible, log, changes)) continue;
@@ -298,6 +301,7 @@ Result two_pass_solve(const Settings& given, const std::vector<Bound>& bounds, c
     if (!consistent && !out_of_time(s)) {
       log.from = "cold: ";
       best = r;
+      s.window_edges = r.window_edges;
       steps.clear();
       consistent = active_set_passes(s, bounds, best, true, solve, admissible, log, steps);
       final_set = s.active_bounds;
@@ -315,6 +319,7 @@ Result two_pass_solve(const Settings& given, const std::vector<Bound>& bounds, c
     }
   }
   s.active_bounds = final_set;
+  s.window_edges = r.window_edges;
   record_passes(s, bounds, first, log, steps, r);
   return r;
 }

@@ -9,6 +9,11 @@ namespace helios_rt {
 Propagator::Propagator(const Settings& s) : settings_(s), stepper_(std::make_unique<Dop853>(ny())) {}
 Propagator::~Propagator() = default;
 
+double Propagator::held_fraction(int k) const {
+  const std::vector<double>& edges = settings_.window_edges;
+  return static_cast<std::size_t>(k) < edges.size() ? edges[k] : NAN;
+}
+
 bool Propagator::bound_active(int k) const {
   const std::vector<char>& active = settings_.active_bounds;
   return static_cast<std::size_t>(k) < active.size() && active[k] != 0;

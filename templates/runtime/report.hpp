@@ -210,6 +210,7 @@ inline nlohmann::ordered_json extremals_record(const std::vector<Extremal>& list
                                     {"polished", e.polished},
                                     {"method", e.method}};
     if (e.outside_window) entry["outside_window"] = true;
+    if (!e.window_edges.empty()) entry["at_window_edge"] = true;
     if (std::isfinite(e.tf_days)) entry["tf_days"] = e.tf_days;
     if (!e.route.empty()) entry["route"] = e.route;
     if (!e.shape.off_side.empty()) entry["off_side"] = e.shape.off_side;
@@ -404,6 +405,18 @@ inline void solution_record(const Settings& s, const Result& r, const std::strin
   for (int i = 0; i < kProblem.num_vars; ++i) x.push_back({{"name", kProblem.variable_names[i]}, {"value", r.x[i]}});
   out["residuals"] = F;
   out["x"] = x;
+  if (!r.window_edges.empty()) {  // the edge route's (search/edge.hpp): its row replaced by frac - held
+    nlohmann::ordered_json edges = nlohmann::ordered_json::array();
+    for (const TimeWindow& w : time_windows())
+      if (!std::isnan(r.window_edges[w.variable]))
+        edges.push_back(
+            {{"variable", kProblem.variable_names[w.variable]},
+             {"held_at", r.window_edges[w.variable]},
+             {"released_row", kProblem.equation_names[w.row]},
+             {"released_row_value", std::isfinite(r.edge_transversality) ? nlohmann::ordered_json(r.edge_transversality)
+                                                                         : nlohmann::ordered_json()}});
+    out["window_edges"] = edges;
+  }
   if (!r.nodes.empty()) {  // multiple shooting (nodes.hpp)
     nlohmann::ordered_json nodes = nlohmann::ordered_json::array(), continuity = nlohmann::ordered_json::array(),
                            times = nlohmann::ordered_json::array();
@@ -517,6 +530,7 @@ int run(int argc, char** argv) {
   // What follows evaluates the shooting function at the solution: with the active set it ended on.
   Settings at_solution = s;
   for (const BoundReport& b : solved.bounds) at_solution.active_bounds.push_back(b.active ? 1 : 0);
+  at_solution.window_edges = solved.window_edges;
   Result r = solved;
   polish_by_nodes(at_solution, r);
   write_atomic(outcome_path, outcome_record(at_solution, r, trajectory_path).dump(2) + "\n");

@@ -89,6 +89,16 @@ Dual bound_row(Propagator& prop, int k, const Dual& psi, const Dual& inactive) {
   return prop.bound_active(k) ? psi : inactive;
 }
 
+double window_row(Propagator& prop, int k, double frac, double transversality) {
+  const double held = prop.held_fraction(k);
+  return std::isnan(held) ? transversality : frac - held;
+}
+
+Dual window_row(Propagator& prop, int k, const Dual& frac, const Dual& transversality) {
+  const double held = prop.held_fraction(k);
+  return std::isnan(held) ? transversality : frac - held;
+}
+
 void side_condition(Propagator& prop, int k, double g, const char* meaning) {
   if (static_cast<std::size_t>(k) >= prop.side_values.size()) prop.side_values.resize(k + 1);
   prop.side_values[k] = {g, meaning};

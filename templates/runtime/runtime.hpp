@@ -51,6 +51,7 @@
 #include "search/thrust.hpp"
 #include "search/scale.hpp"
 #include "search/time_route.hpp"
+#include "search/edge.hpp"
 #include "search/bound.hpp"
 #include "search/attempts.hpp"
 #include "search/warm.hpp"

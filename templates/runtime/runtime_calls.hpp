@@ -173,6 +173,8 @@ class Propagator {
   // (Settings::active_bounds), and psi of each bound at the last evaluation (bound_row).
   bool bound_active(int k) const;
   std::vector<double> bound_values;
+  // The window fraction shooting variable k is held at (Settings::window_edges), NaN where free.
+  double held_fraction(int k) const;
   // The conditions g > 0 the rows leave to the runtime (the derivation's must_be_positive: the
   // rows also hold on the target's mirror), each g and its meaning at the last evaluation
   // (side_condition).
@@ -241,6 +243,10 @@ void dual_jacobian(int n, const double* x, double* F, double* J,
 // expression (its multiplier).
 double bound_row(Propagator& prop, int k, double psi, double inactive);
 Dual bound_row(Propagator& prop, int k, const Dual& psi, const Dual& inactive);
+// The row of a time window's transversality condition (its fraction is shooting variable k): the
+// condition itself, or frac - held where the propagator's settings hold that window at an edge.
+double window_row(Propagator& prop, int k, double frac, double transversality);
+Dual window_row(Propagator& prop, int k, const Dual& frac, const Dual& transversality);
 // Records side condition k, g > 0 (its value and meaning), on the propagator.
 void side_condition(Propagator& prop, int k, double g, const char* meaning);
 void side_condition(Propagator& prop, int k, const Dual& g, const char* meaning);

@@ -140,6 +140,10 @@ struct Settings {
   // inactive). Each propagator reads it from its settings (Propagator::bound_active), so every
   // thread of a search sees the set of the solve it belongs to.
   std::vector<char> active_bounds;
+  // Not a settings file's: the time windows held at an edge (search/edge.hpp), per shooting
+  // variable: NaN (or past the end) where the variable is free, else the window fraction its
+  // transversality row is replaced by (window_row: the row becomes x_k - held).
+  std::vector<double> window_edges;
 };
 
 struct Sample {
@@ -302,6 +306,10 @@ struct Extremal {
   // verdict read it), NaN where it is fixed.
   double tf_days = NAN;
   std::string route;  // the route of the search that reached it first (search/pipeline.hpp)
+  // The window edges it is an extremal at (Settings::window_edges; empty: none held), and there the
+  // released transversality row's value, which the edge's cost gradient is (search/edge.hpp).
+  std::vector<double> window_edges;
+  double edge_transversality = NAN;
   bool bounded_tried = false;
   double bounded_objective = NAN;
   int bounded_passes = 0;
@@ -403,6 +411,9 @@ struct Result {
   std::string method = "single shooting";
   int passes = 1;
   std::vector<BoundReport> bounds;
+  // The window edges the solution is held at, and its released transversality row (Extremal's).
+  std::vector<double> window_edges;
+  double edge_transversality = NAN;
   std::vector<LegStep> legs;
   std::string detail;
   int info = 0;

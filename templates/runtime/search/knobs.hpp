@@ -26,6 +26,29 @@ inline FreeFinalTime free_final_time() {
   return f;
 }
 
+// The free times whose shooting variable is a fraction of a window (t0_frac: the departure's,
+// tf_frac: the final time's) with their transversality rows, by the derivation's names.
+struct TimeWindow {
+  int variable = -1, row = -1;
+  const char* time = "";  // "t0" or "tf"
+};
+inline const std::vector<TimeWindow>& time_windows() {
+  static const std::vector<TimeWindow> windows = [] {
+    std::vector<TimeWindow> out;
+    for (const char* time : {"t0", "tf"}) {
+      TimeWindow w;
+      w.time = time;
+      for (int i = 0; i < kProblem.num_vars; ++i) {
+        if (std::string(kProblem.variable_names[i]) == std::string(time) + "_frac") w.variable = i;
+        if (std::string(kProblem.equation_names[i]) == std::string("transversality_") + time) w.row = i;
+      }
+      if (w.variable >= 0 && w.row >= 0) out.push_back(w);
+    }
+    return out;
+  }();
+  return windows;
+}
+
 // The index of the shooting variable lambda0 (-1: none).
 inline int lambda0_variable() {
   for (int i = 0; i < kProblem.num_vars; ++i)

@@ -28,10 +28,11 @@ inline std::vector<std::unique_ptr<Route>> transfer_routes() {
 }
 
 // The routes of a problem without interior events: the transfer routes, then the minimum-time
-// route and the bound (whose search past the window runs the transfer routes).
+// route, the windows' edges and the bound (whose search past the window runs the transfer routes).
 inline std::vector<std::unique_ptr<Route>> eventless_routes() {
   std::vector<std::unique_ptr<Route>> routes = transfer_routes();
   routes.push_back(std::make_unique<TimeRoute>());
+  routes.push_back(std::make_unique<EdgeRoute>());
   routes.push_back(std::make_unique<BoundRoute>());
   return routes;
 }
@@ -64,6 +65,7 @@ Result events_homotopy_solve(const Settings& fine, const LegPlan& legs, const Ev
   ProgramKnobs knobs;
   std::vector<std::unique_ptr<Route>> routes;
   routes.push_back(std::make_unique<AttemptsRoute>(legs, events));
+  routes.push_back(std::make_unique<EdgeRoute>());
   Result r = Search(fine, initial_guess, admissible, knobs, false, std::move(routes)).solve();
   if (r.status != Status::kConverged) r.method = r.search.method;
   if (!fine.warm_start.empty())

@@ -68,12 +68,15 @@ inline double free_final_time_days(const std::vector<double>& x) {
   return (kProblem.tf_min + (kProblem.tf - kProblem.tf_min) * x[at] - kProblem.t0) * kProblem.time_unit_days;
 }
 
-// Whether x's free final time (if any) lies in its window: tf_frac in [0, 1]. Nothing in the
-// shooting system keeps it there, so an extremal can end outside (a minimum time below the
-// window's start, or beyond its end); it stays in the record and is never returned.
+// Whether x's free departure and final time (where free) lie in their windows: t0_frac and
+// tf_frac in [0, 1]. Nothing in the shooting system keeps them there, so an extremal can depart or
+// end outside (a minimum time below the window's start, a cheapest departure past the window's
+// end); it stays in the record and is never returned (the edge route, edge.hpp, solves the
+// problem at the edge it crossed).
 inline bool within_window(const std::vector<double>& x) {
-  static const int at = free_final_time().variable;
-  return at < 0 || (x[at] >= -1e-9 && x[at] <= 1 + 1e-9);
+  for (const TimeWindow& w : time_windows())
+    if (!(x[w.variable] >= -1e-9 && x[w.variable] <= 1 + 1e-9)) return false;
+  return true;
 }
 
 class Pool {
@@ -122,7 +125,9 @@ class Pool {
         e.polished = false;
         continue;
       }
-      Shooter shooter(fine, kContinuationStart);
+      Settings at_edges = fine;  // an extremal at a window's edge is one there
+      at_edges.window_edges = e.window_edges;
+      Shooter shooter(at_edges, kContinuationStart);
       std::vector<double> x = e.x;
       int info = 0;
       double res = 0;
@@ -135,10 +140,10 @@ class Pool {
         e.F = shooter.last_F;
         e.max_residual = res;
         e.info = info;
-      } else if (!by_nodes(fine, e)) {
+      } else if (!by_nodes(at_edges, e)) {
         continue;
       }
-      e.shape = shape_of(fine, e.x, 0.0);
+      e.shape = shape_of(at_edges, e.x, 0.0);
       mark(e);
     }
   }

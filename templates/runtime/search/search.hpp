@@ -88,6 +88,8 @@ class Search {
     r_.x = e.x;
     r_.x_start = e.x_start;
     r_.F = e.F;
+    r_.window_edges = e.window_edges;
+    r_.edge_transversality = e.edge_transversality;
     r_.eps = 0;
     r_.max_residual = e.max_residual;
     r_.homotopy = e.homotopy;

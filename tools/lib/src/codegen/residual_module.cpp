@@ -159,6 +159,12 @@ std::string ShootingFunction::text(bool jacobian) {
 
 std::string ShootingFunction::equation_code(std::size_t i, bool alone) {
   const std::string code = body_.cpp(c_.parsed(alone ? *eqs_[i].alone_expression : eqs_[i].expression));
+  // A time window's transversality row, which the runtime may hold at the window's edge.
+  for (const char* time : {"t0", "tf"})
+    for (std::size_t k = 0; k < vars_.size(); ++k)
+      if (eqs_[i].name == names::transversality_row(time) && vars_[k].name == names::fraction(time))
+        return "window_row(prop, " + std::to_string(k) + ", " + body_.cpp(c_.symbols.get(vars_[k].name)) + ", " + code +
+               ")";
   if (!eqs_[i].inequality) return code;
   int bound = 0;
   for (std::size_t j = 0; j < i; ++j) bound += eqs_[j].inequality ? 1 : 0;
