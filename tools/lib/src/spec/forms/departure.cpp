@@ -1,6 +1,7 @@
 // The departure: "The spacecraft departs [at t = Q | at MJD N | at MJD2000 N] from TARGET." (or "...
 // departs from TARGET at ..."), TARGET a state, a coasting target, a body's name or an orbit; and
-// "At the initial time the spacecraft is on ORBIT.". A departure orbit names every element that fixes
+// "At the initial time the spacecraft is on ORBIT." (also "The spacecraft starts on ORBIT.", "The
+// initial orbit is ORBIT-WORDS."). A departure orbit names every element that fixes
 // it (or says it is free): only the position on it is found by the minimum principle.
 #include <algorithm>
 
@@ -93,42 +94,69 @@ void at_then_from(Builder& b, const std::smatch& m) {
 }  // namespace
 
 std::vector<Form> departure() {
-  return {{"the departure on an orbit",
-           90,
-           R"(At the initial time the spacecraft is (?:on|in) (.+\borbit\b.*))",
-           on_orbit_at_t0,
-           {{"At the initial time the spacecraft is on the circular orbit of radius 7000 km inclined 28.5 deg with any "
-             "node.",
-             "earth -departure",
-             R"~({"/departure/target": {"kind": "orbital_elements", "semi_major_axis_km": 7000, "eccentricity": 0,
+  // an orbit phrase, with no window (an orbit on the way has one: orbit_on_the_way.cpp)
+  const std::string orbit = R"(((?!.*\bbetween (?:day|MJD))(?:.+ )?orbit\b.*?))";
+  return {
+      {"the departure orbit the spacecraft starts on",
+       91,
+       "(?:At the initial time,? )?the spacecraft (?:starts|starts out|begins|is initially|is parked|waits)"
+       " (?:on|in|from) " +
+           orbit,
+       on_orbit_at_t0,
+       {{"The spacecraft starts on a circular equatorial orbit of radius 7000 km.", "earth -departure",
+         R"~({"/departure/target": {"kind": "orbital_elements", "semi_major_axis_km": 7000, "eccentricity": 0,
+                 "inclination_deg": 0}})~"},
+        {"The spacecraft is initially in a circular orbit at an altitude of 700 km inclined 51.6 deg with any node.",
+         "earth -departure",
+         R"~({"/departure/target": {"kind": "orbital_elements", "semi_major_axis_km": 7078.137, "eccentricity": 0,
+                 "inclination_deg": 51.6, "free": ["raan"]}})~"},
+        {"The spacecraft starts on a circular orbit of radius 3000 km.", "earth -departure",
+         R"~({"error": "a departure orbit needs its inclination (or the word 'equatorial')"})~"}}},
+      {"the departure orbit described",
+       92,
+       R"((?:The )?(?:initial|departure|starting|parking) orbit(?: is|\s*:)\s*(.+))",
+       on_orbit_at_t0,
+       {{"The initial orbit is circular and equatorial with radius 8000 km.", "earth -departure",
+         R"~({"/departure/target": {"kind": "orbital_elements", "semi_major_axis_km": 8000, "eccentricity": 0,
+                 "inclination_deg": 0}})~"},
+        {"Parking orbit: circular, equatorial, at an altitude of 400 km.", "earth -departure",
+         R"~({"/departure/target/semi_major_axis_km": 6778.137})~"}}},
+      {"the departure on an orbit",
+       90,
+       R"(At the initial time the spacecraft is (?:on|in) (.+\borbit\b.*))",
+       on_orbit_at_t0,
+       {{"At the initial time the spacecraft is on the circular orbit of radius 7000 km inclined 28.5 deg with any "
+         "node.",
+         "earth -departure",
+         R"~({"/departure/target": {"kind": "orbital_elements", "semi_major_axis_km": 7000, "eccentricity": 0,
                  "inclination_deg": 28.5, "free": ["raan"]}})~"},
-            {"At the initial time the spacecraft is on the circular orbit of radius 7000 km inclined 28.5 deg.",
-             "earth -departure", R"~({"error": "a departure orbit needs its node (or 'with any node')"})~"}}},
-          {"the departure, its target first",
-           100,
-           R"(The spacecraft departs from (.+) at ((?:t\s*=|MJD2000 |MJD ).+))",
-           from_then_at,
-           {{"The spacecraft departs from Earth at MJD 51944.", "planets -departure",
-             R"~({"/time/epoch_mjd2000": 400, "/departure/target": {"kind": "body", "body": "Earth",
+        {"At the initial time the spacecraft is on the circular orbit of radius 7000 km inclined 28.5 deg.",
+         "earth -departure", R"~({"error": "a departure orbit needs its node (or 'with any node')"})~"}}},
+      {"the departure, its target first",
+       100,
+       R"(The spacecraft departs from (.+) at ((?:t\s*=|MJD2000 |MJD ).+))",
+       from_then_at,
+       {{"The spacecraft departs from Earth at MJD 51944.", "planets -departure",
+         R"~({"/time/epoch_mjd2000": 400, "/departure/target": {"kind": "body", "body": "Earth",
                  "ephemeris": "jpl_lp"}})~"}}},
-          {"the departure",
-           110,
-           R"(The spacecraft departs(?: at (.+?))? from (.+))",
-           at_then_from,
-           {{"The spacecraft departs at t = 0 days from position [-140699693, -51614428, 980] km with velocity "
-             "[9.774596, -28.07828, 4.337725e-4] km/s.",
-             "sun -departure",
-             R"~({"/time/t0_days": 0, "/departure/target": {"kind": "fixed_state",
+      {"the departure",
+       110,
+       R"(The spacecraft departs(?: at (.+?))? from (.+))",
+       at_then_from,
+       {{"The spacecraft departs at t = 0 days from position [-140699693, -51614428, 980] km with velocity "
+         "[9.774596, -28.07828, 4.337725e-4] km/s.",
+         "sun -departure",
+         R"~({"/time/t0_days": 0, "/departure/target": {"kind": "fixed_state",
                  "position_km": [-140699693, -51614428, 980], "velocity_km_s": [9.774596, -28.07828, 4.337725e-4]}})~"},
-            {"The spacecraft departs at t = 0 from position [-140699693, -51614428, 980] km with velocity [9.774596, "
-             "-28.07828, 4.337725e-4] km/s.",
-             "sun -departure", R"~({"/time/t0_days": 0})~"},
-            {"The spacecraft departs at MJD2000 400 from Earth.", "planets -departure",
-             R"~({"/time/epoch_mjd2000": 400, "/departure/target/body": "Earth"})~"},
-            {"The spacecraft departs from Earth on 2001-02-04.", "planets -departure",
-             R"~({"/time/epoch_mjd2000": 400, "/departure/target/body": "Earth"})~"},
-            {"The spacecraft departs at noon from Earth.", "planets -departure",
-             R"~({"error": "departure time 'noon' must read 't = VALUE UNIT', 'MJD VALUE' or 'MJD2000 VALUE'"})~"}}}};
+        {"The spacecraft departs at t = 0 from position [-140699693, -51614428, 980] km with velocity [9.774596, "
+         "-28.07828, 4.337725e-4] km/s.",
+         "sun -departure", R"~({"/time/t0_days": 0})~"},
+        {"The spacecraft departs at MJD2000 400 from Earth.", "planets -departure",
+         R"~({"/time/epoch_mjd2000": 400, "/departure/target/body": "Earth"})~"},
+        {"The spacecraft departs from Earth on 2001-02-04.", "planets -departure",
+         R"~({"/time/epoch_mjd2000": 400, "/departure/target/body": "Earth"})~"},
+        {"The spacecraft departs at noon from Earth.", "planets -departure",
+         R"~({"error": "departure time 'noon' must read 't = VALUE UNIT', 'MJD VALUE' or 'MJD2000 VALUE'"})~"}}}};
 }
 
 }  // namespace helios::spec::grammar::forms
