@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "helios/codegen/generate.hpp"
 #include "helios/derivation/terms.hpp"
@@ -210,3 +211,112 @@ TEST(Terms, TheTemplateIsChosenByTheTerms) {
 }
 
 }  // namespace
+
+// An engine of constant mass (issue 48): S14's GTO to GEO made planar, the mass constant at 1500 kg.
+std::string constant_mass_text(const std::string& engine, const std::string& objective) {
+  return "Problem T48: planar GTO to GEO at constant mass.\n"
+         "The central body is the Earth with gravitational parameter 398600.47 km^3/s^2.\n" +
+         engine +
+         "\nThe spacecraft's mass is constant at 1500 kg.\n"
+         "The spacecraft departs at t = 0 days from position [-46500, 0, 0] km with velocity [0, "
+         "-1.4529784332509441, 0] km/s.\n"
+         "At the final time the spacecraft is on the circular equatorial orbit of radius 42165 km.\n" +
+         objective + "\n";
+}
+
+const char* kFreeTime = "The time of flight is free, at most 2 days.\nMinimize the time of flight.";
+const char* kFixedFuel = "The time of flight is 0.9 days.\nMinimize the fuel consumption.";
+
+std::vector<std::string> names_of(const json& list, const char* key) {
+  std::vector<std::string> out;
+  for (const auto& e : list) out.push_back(e[key].get<std::string>());
+  return out;
+}
+
+TEST(Terms, AConstantMassHasNoMassStateAndTheL1Cost) {
+  const std::string thrust = "The spacecraft has a maximum thrust of 60 N.";
+  const std::string with_isp = "The spacecraft has a maximum thrust of 60 N and a specific impulse of 2000 s.";
+  const json spec = helios::spec::parse_problem_text(constant_mass_text(thrust, kFreeTime), "p.txt");
+  EXPECT_EQ(spec["spacecraft"]["mass_model"], "constant");
+  EXPECT_FALSE(spec["spacecraft"].contains("isp_s"));
+  const auto listing = [](const json& d) {
+    std::string out;
+    const auto terms = helios::derivation::read_terms(d, "d");
+    for (const auto& t : *terms) {
+      out += (out.empty() ? "" : " ") + t.name + "(";
+      for (std::size_t i = 0; i < t.parameters.size(); ++i) out += (i ? "," : "") + t.parameters[i];
+      out += ")";
+    }
+    return out;
+  };
+  const json time = derive_text(constant_mass_text(thrust, kFreeTime));
+  const json fuel = derive_text(constant_mass_text(with_isp, kFixedFuel));
+  const json delta_v = derive_text(constant_mass_text(thrust, kFixedFuel));
+  EXPECT_EQ(listing(time), "two_body(mu) constant_mass_thrust(Tmax,mass) time()");
+  EXPECT_EQ(listing(fuel), "two_body(mu) constant_mass_thrust(Tmax,mass,c) fuel(Tmax,c)");
+  EXPECT_EQ(listing(delta_v), "two_body(mu) constant_mass_thrust(Tmax,mass) delta_v(Tmax,mass)");
+  for (const json* d : {&time, &fuel, &delta_v}) {
+    // No mass state, no mass costate: six states, and the acceleration Tmax u a / mass.
+    EXPECT_EQ(names_of((*d)["states"], "name"), (std::vector<std::string>{"rx", "ry", "rz", "vx", "vy", "vz"}));
+    EXPECT_EQ((*d)["costate_odes"].size(), 6u);
+    EXPECT_EQ((*d)["dynamics"]["state_rhs"][3], "-(rx^2+ry^2+rz^2)^(-3/2)*mu*rx+Tmax*ax*mass^(-1)*u");
+    const json r = verify(*d);
+    EXPECT_EQ(r["verdict"], "pass") << r["feedback"];
+  }
+  // Minimum time: dH/du = -Tmax/mass |lambda_v|, full thrust throughout.
+  EXPECT_EQ(time["control_law"]["throttle"]["switching_function"], "-Tmax*mass^(-1)*sqrt(l_vx^2+l_vy^2+l_vz^2)");
+  // Minimum fuel: the L1 cost, priced by c where a specific impulse is given, else by the mass (delta-v).
+  EXPECT_EQ(fuel["dynamics"]["running_cost"], "-Tmax*c^(-1)*eps*u+Tmax*c^(-1)*eps*u^2+Tmax*c^(-1)*u");
+  EXPECT_EQ(delta_v["dynamics"]["running_cost"], "-Tmax*eps*mass^(-1)*u+Tmax*eps*mass^(-1)*u^2+Tmax*mass^(-1)*u");
+  EXPECT_EQ(fuel["control_law"]["throttle"]["switching_function"],
+            "-Tmax*mass^(-1)*sqrt(l_vx^2+l_vy^2+l_vz^2)+Tmax*c^(-1)*lambda0");
+  EXPECT_EQ(delta_v["control_law"]["throttle"]["switching_function"],
+            "-Tmax*mass^(-1)*sqrt(l_vx^2+l_vy^2+l_vz^2)+Tmax*lambda0*mass^(-1)");
+  EXPECT_EQ(delta_v["homotopy"]["start"], 1.0);
+  for (const json* d : {&time, &fuel, &delta_v}) EXPECT_NO_THROW(helios::io::validate("derivation", *d, "terms_test"));
+}
+
+TEST(Terms, AConstantMassDerivationMutatedFailsTheRowItBreaks) {
+  const json d = derive_text(constant_mass_text("The spacecraft has a maximum thrust of 60 N.",
+                                                "The time of flight is 0.9 days.\nMinimize the fuel consumption."));
+  json m = d;  // the switching function without the L1 price
+  m["control_law"]["throttle"]["switching_function"] = "-Tmax*mass^(-1)*sqrt(l_vx^2+l_vy^2+l_vz^2)";
+  json r = verify(m);
+  EXPECT_EQ(check(r, "throttle_switching")["verdict"], "fail");
+  m = d;  // a mass flow no constant mass has
+  for (auto& q : m["parameters"])
+    if (q["name"] == "mass") q["value"] = 2.0;
+  EXPECT_TRUE(contains(feedback(m, "dynamics_terms"), "its mass mass = 2 is not 1")) << feedback(m, "dynamics_terms");
+  m = d;  // the thrust along the wrong direction
+  m["dynamics"]["state_rhs"][4] = "-(rx^2+ry^2+rz^2)^(-3/2)*mu*ry+Tmax*ax*mass^(-1)*u";
+  EXPECT_TRUE(contains(feedback(m, "dynamics_terms"), "dynamics.state_rhs[vy]")) << feedback(m, "dynamics_terms");
+  m = d;  // a delta-v cost without its smoothing
+  m["dynamics"]["running_cost"] = "Tmax*mass^(-1)*u";
+  EXPECT_TRUE(contains(feedback(m, "cost_terms"), "is not the cost term delta_v")) << feedback(m, "cost_terms");
+  m = d;  // a constant-mass thrust listed with a mass state's name
+  term(m, "constant_mass_thrust")["name"] = "thrust";
+  EXPECT_TRUE(contains(feedback(m, "dynamics_terms"),
+                       "term thrust needs a throttle, three direction controls and a "
+                       "mass state"))
+      << feedback(m, "dynamics_terms");
+}
+
+TEST(Terms, AConstantMassIsRefusedWhereItContradictsTheText) {
+  const auto refusal = [](const std::string& text) {
+    try {
+      helios::spec::parse_problem_text(text, "p.txt");
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string engine = "The spacecraft has a maximum thrust of 60 N and a specific impulse of 2000 s.";
+  EXPECT_TRUE(contains(refusal(constant_mass_text(engine, "Minimize the initial mass.")), "minimize the fuel"))
+      << refusal(constant_mass_text(engine, "Minimize the initial mass."));
+  const std::string twice = refusal(constant_mass_text(engine + "\nNeglect the propellant mass.", kFreeTime));
+  EXPECT_TRUE(contains(twice, "the spacecraft's mass model is given twice")) << twice;
+  // Without the constant mass the specific impulse is still required.
+  std::string text = constant_mass_text("The spacecraft has a maximum thrust of 60 N.", kFreeTime);
+  text.replace(text.find("The spacecraft's mass is constant at"), 36, "The spacecraft has an initial mass of");
+  EXPECT_TRUE(contains(refusal(text), "isp_s")) << refusal(text);
+}

@@ -63,13 +63,21 @@ Term read_term(const json& entry, const std::string& at) {
 }  // namespace
 
 const std::vector<std::string>& force_term_names() {
-  static const std::vector<std::string> names = {
-      "two_body", "j2", "solar_sail", "thrust", "full_thrust", "user_acceleration", "third_body"};
+  static const std::vector<std::string> names = {"two_body",
+                                                 "j2",
+                                                 "solar_sail",
+                                                 "thrust",
+                                                 "full_thrust",
+                                                 "constant_mass_thrust",
+                                                 "constant_mass_full_thrust",
+                                                 "user_acceleration",
+                                                 "third_body"};
   return names;
 }
 
 const std::vector<std::string>& cost_term_names() {
-  static const std::vector<std::string> names = {"fuel", "time", "initial_mass", "final_radius", "final_energy"};
+  static const std::vector<std::string> names = {"fuel",         "delta_v",      "time",
+                                                 "initial_mass", "final_radius", "final_energy"};
   return names;
 }
 

@@ -3,6 +3,7 @@
 // built in constraints.cpp.
 #include "helios/pmp/model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -177,7 +178,17 @@ void objective(Problem& p) {
       throw std::invalid_argument(
           "field /objective/kind: an engine at full throttle throughout burns a fixed "
           "amount of fuel; minimize the time or maximize the final radius instead");
-    cost = p.objective == "minimum_fuel" ? terms::fuel_cost() : terms::initial_mass_cost();
+    if (!p.has_state("m") && p.objective == "minimum_initial_mass")
+      throw std::invalid_argument(
+          "field /objective/kind: an engine of constant mass burns no propellant that a larger initial mass would "
+          "carry; minimize the fuel or the time instead");
+    // An engine of constant mass: the L1 cost Tmax/c u (the propellant it would burn) where it has an
+    // exhaust velocity, else Tmax/m u (the delta-v).
+    const bool priced = p.has_state("m") || std::any_of(p.parameters.begin(), p.parameters.end(),
+                                                        [](const Named& q) { return q.name == "c"; });
+    cost = p.objective == "minimum_initial_mass" ? terms::initial_mass_cost()
+           : priced                              ? terms::fuel_cost()
+                                                 : terms::delta_v_cost();
   } else if (p.objective == "minimum_time") {
     cost = terms::time_cost();
   } else if (p.objective == "maximum_final_radius" || p.objective == "maximum_final_energy") {

@@ -98,6 +98,7 @@ const std::map<std::string, std::string>& extras() {
        "Nikko moves on a Keplerian orbit about the Sun with a = 2.2375176 AU, e = 0.1052183, i = 5.70117 deg, node "
        "= 71.94548 deg, argument of perihelion = 2.08462 deg and mean anomaly = 287.3844555 deg at MJD 56800."},
       {"visit", "The spacecraft rendezvouses with Nikko between day 100 and day 200."},
+      {"sail", "The spacecraft is an ideal flat solar sail with a characteristic acceleration of 1.0 mm/s^2 at 1 AU."},
       {"min_time", "The time of flight is free, between 100 days and 1000 days.\nMinimize the time of flight."},
       {"final_mass",
        "The spacecraft has a maximum thrust of 0.5 N, a specific impulse of 2000 s and a final mass of 800 kg."},

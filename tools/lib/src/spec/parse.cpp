@@ -77,6 +77,20 @@ void check_complete(grammar::Builder& b, const std::string& source) {
     b.central(b.constants_body->first, "");
   if (b.problem.is_null()) missing(source, "its name", "Problem S01: Earth to Mars.");
   if (b.central_body.is_null()) missing(source, "the central body", "The central body is the Sun.");
+  // A constant mass (no mass state): the mass is the initial one throughout and the specific impulse
+  // optional (it prices the minimum fuel in kg; without it the cost is the delta-v).
+  const bool constant_mass = b.spacecraft.value("mass_model", "") == "constant";
+  if (constant_mass) {
+    const std::string where = source + ": the spacecraft's mass is constant";
+    if (b.propulsion == "solar_sail")
+      throw input_error(where + ", but a solar sail has no engine and no mass: drop the sentence on the mass");
+    if (b.spacecraft.contains("final_mass_kg"))
+      throw input_error(where + ", so a constant mass has no final mass of its own: state the mass ('The " +
+                        "spacecraft's mass is constant at 1500 kg.')");
+    if (b.objective.is_object() && b.objective.value("kind", "") == "minimum_initial_mass")
+      throw input_error(where + ", so it burns no propellant that a larger initial mass would carry: minimize the " +
+                        "fuel (the propellant with a specific impulse, else the delta-v) or the time instead");
+  }
   if (b.propulsion == "low_thrust") {
     // Minimizing the initial mass needs the final mass instead of the initial one.
     const bool find_m0 = b.objective.is_object() && b.objective.value("kind", "") == "minimum_initial_mass";
@@ -85,7 +99,7 @@ void check_complete(grammar::Builder& b, const std::string& source) {
              {Field::Thrust, "0.5 N"},
              {Field::Isp, "2000 s"},
              {find_m0 ? Field::FinalMass : Field::InitialMass, find_m0 ? "1500 kg" : "1000 kg"}})
-      if (!b.spacecraft.contains(detail::spec_key(field)))
+      if (!(constant_mass && field == Field::Isp) && !b.spacecraft.contains(detail::spec_key(field)))
         missing(source, "the spacecraft's " + detail::spec_key(field), detail::controlled_form(field, example));
     const std::string extra = find_m0 ? "initial_mass_kg" : "final_mass_kg";
     if (b.spacecraft.contains(extra))
@@ -137,7 +151,7 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   doc["problem"] = b.problem;
   doc["central_body"] = b.central_body;
   json spacecraft = json::object();  // in one order, however the text states the facts
-  for (const char* k : {"thrust_N", "isp_s", "initial_mass_kg", "final_mass_kg"})
+  for (const char* k : {"thrust_N", "isp_s", "initial_mass_kg", "final_mass_kg", "mass_model"})
     if (b.spacecraft.contains(k)) spacecraft[k] = b.spacecraft[k];
   for (const auto& [k, v] : b.spacecraft.items())
     if (!spacecraft.contains(k)) spacecraft[k] = v;

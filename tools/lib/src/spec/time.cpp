@@ -80,7 +80,7 @@ void Builder::finish_time() {
                 " would take the flight as long as it may): bound it ('The time of flight is free, at most Q.')");
   double bound = 0;
   std::string why;
-  if (propulsion == "low_thrust") {
+  if (propulsion == "low_thrust" && spacecraft.value("mass_model", "") != "constant") {
     const double m0 = spacecraft["initial_mass_kg"].get<double>(), thrust = spacecraft["thrust_N"].get<double>(),
                  isp = spacecraft["isp_s"].get<double>();
     const double burn = m0 * astro::G0_M_S2 * isp / thrust / astro::DAY_S;
@@ -90,7 +90,8 @@ void Builder::finish_time() {
   } else if (const auto period = departure_period_days()) {
     bound = kSailPeriods * *period;
     why = io::short_number(kSailPeriods) + " periods of the departure orbit (" + days(*period) +
-          "; a sail burns no mass to bound it)";
+          (propulsion == "solar_sail" ? "; a sail burns no mass to bound it)"
+                                      : "; an engine of constant mass never runs out to bound it)");
   } else {
     fail(w,
          "the time of flight is free with no upper bound, and the departure is on no closed orbit to bound it "

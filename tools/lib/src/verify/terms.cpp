@@ -2,10 +2,10 @@
 // "terms"), each term recomputed here from its parameters in the verifier's own way: gravity
 // terms as the gradient of their potential (two_body mu/|r|; j2 -J2 mu R^2/(2 r^3) (3 z^2/r^2 - 1);
 // third_body mu3 (1/|r3 - r| - r.r3/|r3|^3) with r3 rotated from the orbit's plane), the thruster
-// Tmax u a/m with the mass flow -Tmax u/c, the sail ac (rref/r)^2 (n.rhat)^2 n, a user acceleration
-// as listed. Checks: dynamics_terms (state_rhs equals the kinematics plus the forces' sum) and
-// cost_terms (running_cost equals the cost term). A failure names the term: one missing, one with
-// the wrong sign, one whose parameters are not the derivation's, or a part no term accounts for.
+// Tmax u a/m with the mass flow -Tmax u/c (of constant mass: Tmax u a/mass, no mass flow), the sail ac (rref/r)^2
+// (n.rhat)^2 n, a user acceleration as listed. Checks: dynamics_terms (state_rhs equals the kinematics plus the forces'
+// sum) and cost_terms (running_cost equals the cost term). A failure names the term: one missing, one with the wrong
+// sign, one whose parameters are not the derivation's, or a part no term accounts for.
 #include <cmath>
 #include <map>
 #include <optional>
@@ -139,10 +139,19 @@ std::optional<ex> central_mu(const Context& ctx, const std::vector<Term>& all) {
 
 // One force term's contribution to the velocities' (and the mass's) rates.
 std::optional<Contribution> TermFamily::force(const Term& t, const std::vector<Term>& all, Check& c) const {
-  static const std::map<std::string, std::size_t> counts = {
-      {"two_body", 1},          {"j2", 2},        {"solar_sail", 2}, {"thrust", 2}, {"full_thrust", 2},
-      {"user_acceleration", 0}, {"third_body", 6}};
-  const auto q = parameters_of(t, counts.at(t.name), c);
+  static const std::map<std::string, std::size_t> counts = {{"two_body", 1},
+                                                            {"j2", 2},
+                                                            {"solar_sail", 2},
+                                                            {"thrust", 2},
+                                                            {"full_thrust", 2},
+                                                            {"user_acceleration", 0},
+                                                            {"third_body", 6},
+                                                            {"constant_mass_thrust", 2},
+                                                            {"constant_mass_full_thrust", 2}};
+  // An engine of constant mass lists Tmax and its mass, and the exhaust velocity where a specific
+  // impulse prices its propellant (used by the cost alone).
+  const bool constant_mass = t.name.rfind("constant_mass_", 0) == 0;
+  const auto q = parameters_of(t, constant_mass && t.parameters.size() == 3 ? 3 : counts.at(t.name), c);
   if (!q) return std::nullopt;
   Contribution out{t.name + (t.body.empty() ? "" : " (" + t.body + ")") + (t.label.empty() ? "" : " (" + t.label + ")"),
                    std::vector<ex>(ctx.states.size(), 0), *q};
@@ -180,6 +189,18 @@ std::optional<Contribution> TermFamily::force(const Term& t, const std::vector<T
     }
     for (const auto& d : ctx.directions) a.push_back((*q)[0] * ctx.sym(d) / m_);
     out.rate[static_cast<std::size_t>(mass_)] = -(*q)[0] / (*q)[1];
+  } else if (constant_mass) {  // Tmax u a / mass, no mass state and no mass flow
+    const bool full = t.name == "constant_mass_full_thrust";
+    if (ctx.throttle.empty() != full || ctx.directions.size() != 3 || mass_ >= 0) {
+      c.fail("term " + t.name + " needs three direction controls, " + (full ? "no throttle" : "a throttle") +
+             " and no mass state (its mass is the parameter " + t.parameters[1] + ").");
+      return std::nullopt;
+    }
+    if (rel_diff(value_of(ctx, (*q)[1]), 1.0) > kTol)
+      c.fail("term " + t.name + ": its mass " + t.parameters[1] + " = " + num(value_of(ctx, (*q)[1])) +
+             " is not 1, the mass unit (the constant mass sets it).");
+    const ex u = full ? ex(1) : ctx.sym(ctx.throttle);
+    for (const auto& d : ctx.directions) a.push_back((*q)[0] * u * ctx.sym(d) / (*q)[1]);
   } else if (t.name == "solar_sail") {
     if (ctx.sails.size() != 3) {
       c.fail("term solar_sail needs three sail_normal controls.");
@@ -278,8 +299,8 @@ bool TermFamily::depends(const ex& difference, const ex& expected, const ex& q) 
 // "<check>: the derivation lists no terms" when it has no listing.
 const char* kNoTerms =
     "the derivation lists no terms (field terms): list each term of the dynamics (two_body, j2, solar_sail, thrust, "
-    "full_thrust, user_acceleration, third_body) and of the cost (fuel, time, initial_mass, final_radius, "
-    "final_energy) by name with the parameters it uses.";
+    "full_thrust, constant_mass_thrust, constant_mass_full_thrust, user_acceleration, third_body) and of the cost "
+    "(fuel, delta_v, time, initial_mass, final_radius, final_energy) by name with the parameters it uses.";
 
 Check TermFamily::dynamics(const std::optional<std::vector<Term>>& terms) {
   Check c = start("dynamics_terms", "state_odes", "random_points");
@@ -306,6 +327,7 @@ Check TermFamily::dynamics(const std::optional<std::vector<Term>>& terms) {
 }
 
 // The running and endpoint costs against the one cost term: fuel or initial_mass L = Tmax/c (u -
+// eps u (1 - u)), delta_v (an engine of constant mass without an exhaust velocity) L = Tmax/mass (u -
 // eps u (1 - u)), time L = 1; final_radius phi = -|r|, final_energy phi = -(|v|^2/2 - mu/|r|)
 // (maximized), with L = 0. The other term's endpoint cost is 0.
 Check TermFamily::cost(const std::optional<std::vector<Term>>& terms) {
@@ -316,11 +338,11 @@ Check TermFamily::cost(const std::optional<std::vector<Term>>& terms) {
     if (t.kind == "cost") costs.push_back(&t);
   if (costs.size() != 1)
     return c.fail("the derivation lists " + std::to_string(costs.size()) +
-                  " cost terms; the cost is one of fuel, time, initial_mass, final_radius, final_energy."),
+                  " cost terms; the cost is one of fuel, delta_v, time, initial_mass, final_radius, final_energy."),
            c;
   const Term& t = *costs[0];
   ex running = 1, endpoint = 0;
-  if (t.name == "fuel" || t.name == "initial_mass") {
+  if (t.name == "fuel" || t.name == "delta_v" || t.name == "initial_mass") {
     const auto q = parameters_of(t, 2, c);
     if (!q) return c;
     if (ctx.throttle.empty()) return c.fail("the cost term " + t.name + " needs a throttle control."), c;

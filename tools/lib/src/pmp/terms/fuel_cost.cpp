@@ -1,6 +1,8 @@
 // The fuel cost: the mass flow Tmax u / c with the quadratic homotopy term, L = Tmax/c (u - eps
 // u (1 - u)): eps = 1 is an energy-like problem, eps = 0 the bang-bang fuel-optimal one
-// (Bertrand & Epenoy; Jiang, Baoyin & Li 2012).
+// (Bertrand & Epenoy; Jiang, Baoyin & Li 2012). An engine of constant mass has the same L1 cost
+// (Tmax/c: the propellant it would burn); without an exhaust velocity its cost is the delta-v,
+// L = Tmax/mass (u - eps u (1 - u)) (delta_v).
 #include "term.hpp"
 
 namespace helios::pmp::terms {
@@ -8,19 +10,29 @@ namespace {
 
 class FuelCost : public CostTerm {
  public:
-  std::string name() const override { return "fuel"; }
-  std::vector<std::string> parameters() const override { return {"Tmax", "c"}; }
+  // `per`: the parameter the thrust is divided by (c: the propellant's mass flow, mass: the
+  // acceleration, whose integral is the delta-v).
+  explicit FuelCost(std::string per) : per_(std::move(per)) {}
+  std::string name() const override { return per_ == "c" ? "fuel" : "delta_v"; }
+  std::vector<std::string> parameters() const override { return {"Tmax", per_}; }
   ex running_cost(Problem& p) const override {
     auto& S = p.symbols;
-    const ex TM = S.get("Tmax"), C = S.get("c"), u = S.get("u"), eps = S.get("eps");
+    const ex TM = S.get("Tmax"), C = S.get(per_), u = S.get("u"), eps = S.get("eps");
     return TM / C * (u - eps * u * (1 - u));
   }
+
+ private:
+  std::string per_;
 };
 
 }  // namespace
 
 std::unique_ptr<CostTerm> fuel_cost() {
-  return std::make_unique<FuelCost>();
+  return std::make_unique<FuelCost>("c");
+}
+
+std::unique_ptr<CostTerm> delta_v_cost() {
+  return std::make_unique<FuelCost>("mass");
 }
 
 }  // namespace helios::pmp::terms

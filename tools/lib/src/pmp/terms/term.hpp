@@ -72,6 +72,7 @@ std::unique_ptr<ForceTerm> third_body(const json& perturbation, const json& cent
 
 // The cost terms.
 std::unique_ptr<CostTerm> fuel_cost();
+std::unique_ptr<CostTerm> delta_v_cost();  // an engine of constant mass without an exhaust velocity
 std::unique_ptr<CostTerm> time_cost();
 std::unique_ptr<CostTerm> initial_mass_cost();
 std::unique_ptr<CostTerm> final_radius_cost();

@@ -1,6 +1,9 @@
 // A thruster of maximum thrust Tmax and exhaust velocity c: a = Tmax u a_hat / m with the
 // throttle u in [0, 1] and the unit direction a_hat, and the mass flow dm/dt = -Tmax u / c. An
 // engine at full throttle throughout (full_thrust) has u = 1: its direction is its only control.
+// An engine of constant mass (the spec's mass_model "constant": constant_mass_thrust) has no mass
+// state: m is a parameter (1, the mass unit), and c, where a specific impulse is given, only
+// prices the propellant of the minimum-fuel cost (fuel_cost.cpp).
 #include <stdexcept>
 
 #include "helios/astro/constants.hpp"
@@ -13,20 +16,29 @@ class Thrust : public ForceTerm {
  public:
   Thrust(const json& sc, const Units& U, std::string mass_unit)
       : full_(sc.value("full_throttle", false)),
+        constant_mass_(sc.value("mass_model", "variable") == "constant"),
         thrust_(sc.at("thrust_N").get<double>() / U.force_N()),
-        exhaust_(sc.at("isp_s").get<double>() * helios::astro::G0_M_S2 * 1e-3 / U.speed_km_s()),
+        exhaust_(sc.contains("isp_s") ? sc.at("isp_s").get<double>() * helios::astro::G0_M_S2 * 1e-3 / U.speed_km_s()
+                                      : 0.0),
         mass_unit_(std::move(mass_unit)),
         L_(U.length_name),
         T_(U.time_name) {
+    if (!constant_mass_ && !sc.contains("isp_s"))
+      throw std::invalid_argument("field /spacecraft/isp_s is missing (an engine whose mass varies needs it)");
     // The schema asks for positive values; a zero here is an underflow in normalized units.
-    if (!(thrust_ > 0) || !(exhaust_ > 0))
+    if (!(thrust_ > 0) || (sc.contains("isp_s") && !(exhaust_ > 0)))
       throw std::domain_error("field /spacecraft: the " +
                               std::string(thrust_ > 0 ? "exhaust velocity" : "maximum thrust") +
                               " is 0 in normalized units: the spacecraft's magnitudes (thrust, Isp, mass) are beyond "
                               "the range of double precision");
   }
-  std::string name() const override { return full_ ? "full_thrust" : "thrust"; }
-  std::vector<Named> states() const override { return {{"m", "mass", mass_unit_}}; }
+  std::string name() const override {
+    return std::string(constant_mass_ ? "constant_mass_" : "") + (full_ ? "full_thrust" : "thrust");
+  }
+  std::vector<Named> states() const override {
+    if (constant_mass_) return {};
+    return {{"m", "mass", mass_unit_}};
+  }
   std::vector<Control> controls() const override {
     std::vector<Control> out = {{"ax", "thrust direction x (unit vector)", "direction"},
                                 {"ay", "thrust direction y (unit vector)", "direction"},
@@ -34,21 +46,29 @@ class Thrust : public ForceTerm {
     if (!full_) out.insert(out.begin(), {"u", "throttle T/Tmax in [0, 1]", "throttle"});
     return out;
   }
+  // Tmax and c; with a constant mass Tmax, the mass and c where a specific impulse is given.
   std::vector<Named> parameters() const override {
-    return {{"Tmax", "maximum thrust", mass_unit_ + "*" + L_ + "/" + T_ + "^2", thrust_},
-            {"c", "exhaust velocity Isp*g0", L_ + "/" + T_, exhaust_}};
+    const Named tmax = {"Tmax", "maximum thrust", mass_unit_ + "*" + L_ + "/" + T_ + "^2", thrust_};
+    const Named c = {"c", "exhaust velocity Isp*g0", L_ + "/" + T_, exhaust_};
+    if (!constant_mass_) return {tmax, c};
+    std::vector<Named> out = {tmax, {"mass", "constant mass of the spacecraft", mass_unit_, 1.0}};
+    if (exhaust_ > 0) out.push_back(c);
+    return out;
   }
   std::vector<ex> acceleration(Problem& p, const Frame& x) const override {
     auto& S = p.symbols;
-    const ex u = throttle(p), TM = S.get("Tmax");
-    return {TM * u * S.get("ax") / x.mass, TM * u * S.get("ay") / x.mass, TM * u * S.get("az") / x.mass};
+    const ex u = throttle(p), TM = S.get("Tmax"), m = constant_mass_ ? ex(S.get("mass")) : x.mass;
+    return {TM * u * S.get("ax") / m, TM * u * S.get("ay") / m, TM * u * S.get("az") / m};
   }
-  ex mass_rate(Problem& p) const override { return -p.symbols.get("Tmax") * throttle(p) / p.symbols.get("c"); }
+  ex mass_rate(Problem& p) const override {
+    if (constant_mass_) return 0;
+    return -p.symbols.get("Tmax") * throttle(p) / p.symbols.get("c");
+  }
 
  private:
   ex throttle(Problem& p) const { return full_ ? ex(1) : ex(p.symbols.get("u")); }
 
-  bool full_;
+  bool full_, constant_mass_;
   double thrust_, exhaust_;
   std::string mass_unit_, L_, T_;
 };
