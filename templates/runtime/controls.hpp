@@ -13,12 +13,22 @@ inline int ny() {
   return 2 * kProblem.num_states;
 }
 
-// The mass flow at full throttle, Tmax/c in normalized units (the mass equation's -dm/dt at u = 1),
-// where the problem has a throttle and a mass whose flow depends on nothing but the throttle; else
-// 0. The companion problem of a minimum-time one prices its throttle by it (fuel_weight). Measured
+// Whether the spacecraft's mass is constant (no mass state): the program then gives the rate of its
+// L1 cost (ProblemShape::throttle_cost_rate).
+inline bool constant_mass() {
+  return kProblem.throttle_cost_rate != nullptr;
+}
+
+// The rate of the L1 (minimum-fuel) cost at full throttle, normalized: with a mass state the mass
+// flow Tmax/c (the mass equation's -dm/dt at u = 1), where the problem has a throttle and a mass
+// whose flow depends on nothing but the throttle, else 0 (the routes that need it say they do not
+// apply); with a constant mass the program's rate, Tmax/c (the propellant it would burn) or Tmax/m
+// (the delta-v), read from the parameters so it follows the thrust a route moves. The companion
+// problem of a minimum-time one prices its throttle by it (fuel_weight). A mass flow is measured
 // once at the program's own thrust and followed in proportion to the maximum thrust where the
 // search moves it (search/knobs.hpp): the flow is Tmax/c.
-inline double full_mass_flow() {
+inline double full_throttle_cost_rate() {
+  if (constant_mass()) return kProblem.throttle_cost_rate();
   static const double* const thrust = scalar_parameter("Tmax");
   static const double own_thrust = thrust ? *thrust : 1.0;
   static const double flow = [] {
@@ -41,13 +51,27 @@ inline double full_mass_flow() {
   return thrust && own_thrust > 0 ? flow * (*thrust / own_thrust) : flow;
 }
 
+// The time full throttle takes to burn the whole initial mass (normalized; the initial mass is the
+// mass unit): infinite for an engine of constant mass, and where the throttle has no mass flow of
+// its own.
+inline double burnout_time() {
+  const double flow = constant_mass() ? 0.0 : full_throttle_cost_rate();
+  return flow > 0 ? 1 / flow : INFINITY;
+}
+
+// The minimum-fuel cost of an engine of constant mass is the delta-v (no exhaust velocity prices it
+// in propellant).
+inline bool cost_is_delta_v() {
+  return constant_mass() && !(kProblem.exhaust_velocity_m_s > 0);
+}
+
 // dH/du at u = 0 and u = 1 (the SWITCH module's throttle_slopes), with the companion's price of
 // the throttle: w lambda0 (Tmax/c)(1 - eps + 2 eps u) more (w = mult.fuel_weight, 0 in the
 // problem itself).
 inline void slopes(const double* y, const Multipliers& mult, double& s0, double& s1) {
   kModules.throttle_slopes(y, mult, s0, s1);
   if (mult.fuel_weight != 0) {
-    const double price = mult.fuel_weight * mult.lambda0 * full_mass_flow();
+    const double price = mult.fuel_weight * mult.lambda0 * full_throttle_cost_rate();
     s0 += price * (1 - mult.eps);
     s1 += price * (1 + mult.eps);
   }
@@ -58,7 +82,7 @@ inline void slopes(const double* y, const Multipliers& mult, double& s0, double&
 inline void slopes_jacobian(const double* y, const Multipliers& mult, double* d0, double* d1) {
   kModules.throttle_slopes_jacobian(y, mult, d0, d1);
   if (mult.fuel_weight != 0) {
-    const double price = mult.fuel_weight * full_mass_flow();
+    const double price = mult.fuel_weight * full_throttle_cost_rate();
     d0[ny()] += price * (1 - mult.eps);
     d1[ny()] += price * (1 + mult.eps);
   }

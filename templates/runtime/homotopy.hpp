@@ -91,9 +91,10 @@ inline RecordedPath recorded_path(const Settings& s, const std::vector<double>& 
   return path;
 }
 
-// The objective is the propellant (minimum fuel, minimum initial mass).
+// The objective is the propellant (minimum fuel, minimum initial mass), or for an engine of
+// constant mass its L1 cost: the propellant it would burn, or the delta-v (cost_is_delta_v).
 inline bool objective_is_propellant() {
-  return kProblem.objective == Objective::propellant && kProblem.mass_index >= 0;
+  return kProblem.objective == Objective::propellant && (kProblem.mass_index >= 0 || constant_mass());
 }
 
 // The objective is a Mayer term on the final state (the final radius or energy, maximized).
@@ -108,6 +109,13 @@ inline double final_state_cost(const double* y) {
   return -((y[3] * y[3] + y[4] * y[4] + y[5] * y[5]) / 2 - kProblem.mu / r);
 }
 
+// The named unit of a fuel cost (kg of propellant, or m/s of delta-v for an engine of constant mass
+// without an exhaust velocity) where `fuel`, else of a time (days), per normalized unit.
+inline double fuel_cost_unit(bool fuel) {
+  if (!fuel) return kProblem.time_unit_days;
+  return cost_is_delta_v() ? kProblem.speed_unit_km_s * 1e3 : kProblem.mass_unit_kg;
+}
+
 // The key of the objective in named units in solution.json.
 inline const char* objective_key() {
   switch (kProblem.objective) {
@@ -116,7 +124,7 @@ inline const char* objective_key() {
     case Objective::final_energy:
       return "final_energy_km2_s2";
     default:
-      return objective_is_propellant() ? "propellant_kg" : "tof_days";
+      return !objective_is_propellant() ? "tof_days" : cost_is_delta_v() ? "delta_v_m_s" : "propellant_kg";
   }
 }
 
@@ -129,7 +137,7 @@ inline double objective_in_named_unit(double objective) {
     case Objective::final_energy:
       return -objective * kProblem.speed_unit_km_s * kProblem.speed_unit_km_s;
     default:
-      return objective * (objective_is_propellant() ? kProblem.mass_unit_kg : kProblem.time_unit_days);
+      return objective * fuel_cost_unit(objective_is_propellant());
   }
 }
 
@@ -162,13 +170,18 @@ inline Shape shape_of(const Settings& s, const std::vector<double>& x, double ep
     swept += std::atan2((cx * h[0] + cy * h[1] + cz * h[2]) / hn, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
     if (propellant_objective) {
       if (samples[i].arc != samples[i - 1].arc) continue;
-      propellant += a[kProblem.mass_index] - b[kProblem.mass_index];
+      if (kProblem.mass_index >= 0) propellant += a[kProblem.mass_index] - b[kProblem.mass_index];
       if (kProblem.throttle_index >= 0) {
         const double dt = samples[i].t - samples[i - 1].t;
         const double ua = samples[i - 1].control[kProblem.throttle_index],
                      ub = samples[i].control[kProblem.throttle_index];
         smoothed += 0.5 * dt * (ua - eps * ua * (1 - ua) + ub - eps * ub * (1 - ub));
         burned += 0.5 * dt * (ua + ub);
+        // No mass state (a constant mass): the L1 cost, the throttle's integral at its rate. A sample
+        // holds the mode of the step that follows it (a switch's sample the new one), so at eps = 0
+        // the left sums are exact; with eps > 0 the throttle is continuous and the trapezoid is.
+        if (kProblem.mass_index < 0)
+          propellant += full_throttle_cost_rate() * (eps == 0 ? dt * ua : 0.5 * dt * (ua + ub));
       }
     }
   }

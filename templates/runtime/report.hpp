@@ -91,7 +91,8 @@ inline void write_atomic(const std::string& path, const std::string& text) {
 
 // What the re-propagated solution says: its switches, the largest drift of H over an arc, the
 // states and times at its ends, and (with a mass state) the propellant and delta-v summed over the
-// arcs.
+// arcs; with a constant mass the L1 cost (normalized: the propellant it would burn or the delta-v,
+// cost_is_delta_v) and the delta-v.
 struct TrajectorySummary {
   std::vector<Switch> switches;
   double hamiltonian_drift = 0;
@@ -114,6 +115,14 @@ inline TrajectorySummary trajectory(const Settings& s, const Result& r, const st
   // H is constant on each arc (the dynamics are autonomous); it may jump at interior events.
   std::map<int, std::pair<double, double>> h_range;
   std::map<int, std::pair<double, double>> arc_mass;  // first and last mass of each arc
+  double throttle_integral = 0;                       // a constant mass: the integral of the throttle over the arcs
+  for (std::size_t i = 1; i < samples.size() && kProblem.throttle_index >= 0; ++i) {
+    // A sample holds the mode of the step that follows it: the left sums are exact at eps = 0.
+    const Sample &a = samples[i - 1], &b = samples[i];
+    if (a.arc != b.arc) continue;
+    const double ua = a.control[kProblem.throttle_index], ub = b.control[kProblem.throttle_index];
+    throttle_integral += (b.t - a.t) * (r.eps == 0 ? ua : 0.5 * (ua + ub));
+  }
   for (const auto& p : samples) {
     if (kProblem.mass_index >= 0) {
       auto& [first, last] = arc_mass.try_emplace(p.arc, p.y[kProblem.mass_index], 0.0).first->second;
@@ -142,6 +151,13 @@ inline TrajectorySummary trajectory(const Settings& s, const Result& r, const st
   for (const auto& [arc, mass] : arc_mass) {
     out.delta_v_m_s += kProblem.exhaust_velocity_m_s * std::log(mass.first / mass.second);
     out.propellant += mass.first - mass.second;
+  }
+  if (constant_mass()) {
+    // The L1 cost; the delta-v is the integral of Tmax u / m: the cost times c/m where the cost is
+    // the propellant (m is the mass unit), else the cost itself.
+    out.propellant = full_throttle_cost_rate() * throttle_integral;
+    out.delta_v_m_s = cost_is_delta_v() ? out.propellant * kProblem.speed_unit_km_s * 1e3
+                                        : out.propellant * kProblem.exhaust_velocity_m_s;
   }
   out.t0 = first.t;
   out.tf = last.t;
@@ -181,7 +197,7 @@ inline nlohmann::ordered_json start_extremals_record(const std::vector<StartExtr
                                     {"pruned", e.pruned}};
     if (std::isfinite(e.shape.cost)) {  // the smoothed problem's cost
       if (propellant)
-        entry["cost_kg"] = e.shape.cost * kProblem.mass_unit_kg;
+        entry[cost_is_delta_v() ? "cost_m_s" : "cost_kg"] = e.shape.cost * fuel_cost_unit(true);
       else if (objective_is_final_state())
         objective_in_units(entry, e.shape.cost);
       else
@@ -394,6 +410,11 @@ inline void solution_record(const Settings& s, const Result& r, const std::strin
     out["initial_mass_kg"] = path.initial_state[kProblem.mass_index] * kProblem.mass_unit_kg;
     out["final_mass_kg"] = path.final_state[kProblem.mass_index] * kProblem.mass_unit_kg;
     out["propellant_kg"] = path.propellant * kProblem.mass_unit_kg;  // a mass drop is not propellant
+    out["delta_v_m_s"] = path.delta_v_m_s;
+  } else if (constant_mass()) {  // the mass throughout; the propellant where an exhaust velocity prices it
+    out["initial_mass_kg"] = kProblem.mass_unit_kg;
+    out["final_mass_kg"] = kProblem.mass_unit_kg;
+    if (!cost_is_delta_v()) out["propellant_kg"] = path.propellant * kProblem.mass_unit_kg;
     out["delta_v_m_s"] = path.delta_v_m_s;
   }
   if (objective_is_final_state()) objective_in_units(out, final_state_cost(path.final_state.data()));

@@ -64,6 +64,10 @@ struct ProblemShape {
   // position on it free, two-body dynamics): a transfer that arrives early may coast to the final
   // time (search/time_route.hpp's minimum time plus a coast). A program that does not say so: false.
   bool final_coast_keeps_target = false;
+  // An engine of constant mass (no mass state): the rate of its L1 cost at full throttle from the
+  // program's parameters, Tmax/c (the objective the propellant in kg) or Tmax/m (the delta-v in
+  // m/s, where no exhaust velocity is given). A program with a mass state or none: nullptr.
+  double (*throttle_cost_rate)() = nullptr;
 };
 extern const ProblemShape kProblem;  // the program defines it (module_interface.hpp)
 

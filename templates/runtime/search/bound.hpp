@@ -35,8 +35,8 @@ class BoundRoute : public Route {
       if (!(opened_end() > kProblem.tf * (1 + 1e-9))) return "the window already ends where the engine burns out";
       return "";
     }
-    if (!objective_is_propellant() || full_mass_flow() <= 0 || lambda0_variable() < 0)
-      return "not a minimum-fuel problem with an engine that burns mass";
+    if (!objective_is_propellant() || full_throttle_cost_rate() <= 0 || lambda0_variable() < 0)
+      return "not a minimum-fuel problem with a throttle whose fuel cost has a rate of its own";
     return "";
   }
 
@@ -53,8 +53,8 @@ class BoundRoute : public Route {
 
   // The longest flight's end for a minimum-time problem (absolute, normalized).
   static double opened_end() {
-    const double flow = full_mass_flow();
-    return kProblem.t0 + (flow > 0 ? 0.95 / flow : 16 * (kProblem.tf - kProblem.t0));
+    const double flow = full_throttle_cost_rate();
+    return kProblem.t0 + (flow > 0 && !constant_mass() ? 0.95 / flow : 16 * (kProblem.tf - kProblem.t0));
   }
 
   std::string open_window(SearchContext& c) {
@@ -90,7 +90,7 @@ class BoundRoute : public Route {
   std::string lengthen_final_time(SearchContext& c) {
     SearchRecord& rec = c.rec();
     const double own = c.knobs.final_time_unit(), day = kProblem.time_unit_days;
-    const double burnout = kProblem.t0 + 0.95 / full_mass_flow();
+    const double burnout = kProblem.t0 + 0.95 * burnout_time();
     rec.bound_days = (own - kProblem.t0) * day;
     for (int k = 1; k <= kMaxOpenings && !c.out_of_time(); ++k) {
       const double longer = kProblem.t0 + (own - kProblem.t0) * std::exp2(k);

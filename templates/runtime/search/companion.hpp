@@ -30,10 +30,11 @@ namespace helios_rt {
 namespace {
 
 // Whether the problem has a minimum-fuel companion: the objective is the time, the final time is
-// free, and the throttle burns mass at a rate of its own (full_mass_flow).
+// free, and the throttle has a fuel cost at a rate of its own (full_throttle_cost_rate: the mass it
+// burns, or the L1 cost of an engine of constant mass).
 inline bool has_fuel_companion() {
   const FreeFinalTime f = free_final_time();
-  return kProblem.objective == Objective::time && f.variable >= 0 && f.row >= 0 && full_mass_flow() > 0;
+  return kProblem.objective == Objective::time && f.variable >= 0 && f.row >= 0 && full_throttle_cost_rate() > 0;
 }
 
 // The final time the companion is held at first, as a fraction of its window: the window's end,
@@ -43,7 +44,7 @@ inline bool has_fuel_companion() {
 // the time scale estimates (`estimate`, normalized; NaN: none), where a flight comfortably longer
 // than the minimum converges easily.
 inline double companion_hold(double estimate) {
-  const double burnout = 1 / full_mass_flow();  // the initial mass is the mass unit
+  const double burnout = burnout_time();  // infinite for an engine of constant mass
   const double window = kProblem.tf - kProblem.tf_min;
   if (!(window > 0)) return 1;
   double end = std::min(kProblem.tf, kProblem.t0 + 0.95 * burnout);
@@ -142,7 +143,10 @@ class CompanionRoute : public Route {
   const char* name() const override { return "minimum-fuel companion"; }
   std::string skip(const SearchContext& c) const override {
     if (!c.coarse.search_fuel_companion) return "search_fuel_companion is off";
-    if (!has_fuel_companion()) return "not a minimum-time problem with a throttle that burns mass at a free final time";
+    if (!has_fuel_companion())
+      return kProblem.objective == Objective::time && kProblem.throttle_index >= 0 && full_throttle_cost_rate() <= 0
+                 ? "the throttle has no fuel cost at a rate of its own (its mass flow depends on the state)"
+                 : "not a minimum-time problem with a throttle that burns mass at a free final time";
     if (c.many_revolutions_expected())
       return "the time scale expects " + number_text(c.rec().time_scale.revolutions, 3) +
              " revolutions: the thrust route reaches them";

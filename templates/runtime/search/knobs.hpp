@@ -70,7 +70,7 @@ class ProgramKnobs {
     if (thrust_) thrust0_ = *thrust_;
     if (tf_) tf0_ = own_tf_ = *tf_;
     if (tf_min_) tf_min0_ = *tf_min_;
-    full_mass_flow();  // measured at the problem's own thrust, before any route moves it
+    full_throttle_cost_rate();  // measured at the problem's own thrust, before any route moves it
   }
   ~ProgramKnobs() { reset_base(); }
   ProgramKnobs(const ProgramKnobs&) = delete;

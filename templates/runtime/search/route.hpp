@@ -41,7 +41,7 @@ inline std::string days_text(double days, int digits = 9) {
 // An objective in named units for the progress lines and the record.
 inline std::string objective_text(double objective) {
   const double v = objective_in_named_unit(objective);
-  if (objective_is_propellant()) return number_text(v) + " kg of propellant";
+  if (objective_is_propellant()) return number_text(v) + (cost_is_delta_v() ? " m/s of delta-v" : " kg of propellant");
   if (kProblem.objective == Objective::final_radius) return "a final radius of " + number_text(v, 9) + " km";
   if (kProblem.objective == Objective::final_energy) return "a final energy of " + number_text(v, 9) + " km^2/s^2";
   return days_text(v);

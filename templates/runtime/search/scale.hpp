@@ -49,9 +49,7 @@ inline double departure_period(SearchContext& c) {
 
 // The longest flight the window allows: its end, but no later than full thrust burns the mass.
 inline double longest_flight() {
-  const double flow = full_mass_flow();
-  const double end = kProblem.tf - kProblem.t0;
-  return flow > 0 ? std::min(end, 0.95 / flow) : end;
+  return std::min(kProblem.tf - kProblem.t0, 0.95 * burnout_time());
 }
 
 class TimeScaleRoute : public Route {

@@ -39,8 +39,9 @@ constexpr const char* kFinalTimeUp = "minimum fuel, the final time up [days]";
 // (no epoch, no body on an orbit, no coasting target: a final time moved elsewhere would meet them
 // elsewhere).
 inline bool has_time_route() {
-  return kProblem.objective == Objective::propellant && free_final_time().variable < 0 && full_mass_flow() > 0 &&
-         lambda0_variable() >= 0 && scalar_parameter("kTf") != nullptr && targets_fixed_in_time();
+  return kProblem.objective == Objective::propellant && free_final_time().variable < 0 &&
+         full_throttle_cost_rate() > 0 && lambda0_variable() >= 0 && scalar_parameter("kTf") != nullptr &&
+         targets_fixed_in_time();
 }
 
 // The held-multiplier system: the shooting function with lambda0 held at `held` and, in lambda0's
@@ -214,7 +215,7 @@ class TimeRoute : public Route {
     if (kProblem.final_coast_keeps_target && std::isfinite(t_min)) {
       // The minimum-time transfer burns throughout; completed by a coast on the target it is a
       // feasible transfer at the problem's final time, which no returned extremal may cost more than.
-      c.rec().coast_bound = full_mass_flow() * t_min / kProblem.time_unit_days;
+      c.rec().coast_bound = full_throttle_cost_rate() * t_min / kProblem.time_unit_days;
       line += "; the minimum time " + days_text(t_min) + " and a coast cost " + objective_text(c.rec().coast_bound);
     }
     return line;

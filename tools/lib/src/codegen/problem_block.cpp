@@ -34,7 +34,8 @@ std::string runtime_objective(const std::string& objective) {
 bool final_coast_keeps_target(const Context& c) {
   if (!c.terms) return false;
   for (const auto& t : *c.terms)
-    if (t.kind == "force" && t.name != "two_body" && t.name != "thrust") return false;
+    if (t.kind == "force" && t.name != "two_body" && t.name != "thrust" && t.name != "constant_mass_thrust")
+      return false;
   bool orbit = false;
   for (const auto& k : c.constraints) {
     if (k.at != "tf") continue;
@@ -42,6 +43,22 @@ bool final_coast_keeps_target(const Context& c) {
     orbit = true;
   }
   return orbit && c.interior_events.empty();
+}
+
+// An engine of constant mass (a constant_mass_thrust or constant_mass_full_thrust term, listing
+// Tmax, the mass and, where a specific impulse prices the propellant, the exhaust velocity): the rate
+// of its L1 cost at full throttle, Tmax/c or Tmax/mass, as C++ over the parameters; "" for any other.
+std::string throttle_cost_rate(const Context& c) {
+  if (!c.terms) return "";
+  for (const auto& t : *c.terms) {
+    if (t.kind != "force" || t.name.rfind("constant_mass_", 0) != 0) continue;
+    if (t.parameters.size() != 2 && t.parameters.size() != 3)
+      throw std::invalid_argument("field /terms: the term " + t.name +
+                                  " lists Tmax, the mass and (optional) the exhaust velocity, got " +
+                                  std::to_string(t.parameters.size()) + " parameters");
+    return "problem::" + t.parameters[0] + " / problem::" + t.parameters.back();
+  }
+  return "";
 }
 
 }  // namespace
@@ -121,6 +138,11 @@ std::string problem_block(Context& c) {
     if (!p.runtime_evaluated())
       o << "HELIOS_PARAMETER(" << p.name << ", " << number(p.value) << ");  // "
         << comment_text(p.meaning + " [" + p.unit_text + "]") << "\n";
+  const std::string rate = throttle_cost_rate(c);
+  if (!rate.empty())
+    o << "// An engine of constant mass: the rate of its L1 cost at full throttle (the propellant it would\n"
+      << "// burn, or the delta-v without an exhaust velocity), read when called: it follows the thrust.\n"
+      << "inline double ThrottleCostRate() { return " << rate << "; }\n";
   o << "constexpr bool kFinalCoastKeepsTarget = " << (final_coast_keeps_target(c) ? "true" : "false")
     << ";  // a coast keeps the final constraint (an orbit, two-body forces)\n";
   o << "}  // namespace problem\n\n"
@@ -137,7 +159,7 @@ std::string problem_block(Context& c) {
     << "                               problem::kStateToPhysical, problem::kControlNames, problem::kVariableNames,\n"
     << "                               problem::kEquationNames, "
     << (bodies.empty() ? "nullptr, 0" : "problem::kOrbitBodies, " + std::to_string(bodies.size()))
-    << ", problem::kFinalCoastKeepsTarget};\n"
+    << ", problem::kFinalCoastKeepsTarget" << (rate.empty() ? "" : ", problem::ThrottleCostRate") << "};\n"
     << "}  // namespace helios_rt\n";
   return o.str();
 }

@@ -591,6 +591,7 @@ void Writer::solution(std::ostringstream& o) const {
     // The objective in the unit the extremal's record names: propellant, flight time or final state.
     const auto named = [&](const json& e) {
       for (const auto& [key, unit] : {std::pair<const char*, const char*>{"propellant_kg", " kg"},
+                                      {"delta_v_m_s", " m/s"},
                                       {"tof_days", " d"},
                                       {"final_radius_km", " km"},
                                       {"final_energy_km2_s2", " km^2/s^2"}})

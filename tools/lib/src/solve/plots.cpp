@@ -79,6 +79,7 @@ Table read_table(const std::string& csv_path) {
 struct Context {
   std::string body = "central body";
   double mu_km3_s2 = 0, radius_km = 0, thrust_N = 0;
+  double constant_mass_kg = 0;  // an engine of constant mass (no mass column): its mass
   bool has_epoch = false;
   double epoch_mjd2000 = 0;
   std::string start_label = "initial orbit", end_label = "final orbit (osculating)";
@@ -97,8 +98,10 @@ Context context_of(const json* spec) {
     c.mu_km3_s2 = cb.value("mu_km3_s2", 0.0);
     c.radius_km = cb.value("radius_km", 0.0);
   }
-  if (const json& sc = spec->value("spacecraft", json::object()); sc.is_object())
+  if (const json& sc = spec->value("spacecraft", json::object()); sc.is_object()) {
     c.thrust_N = sc.value("thrust_N", 0.0);
+    if (sc.value("mass_model", "") == "constant") c.constant_mass_kg = sc.value("initial_mass_kg", 0.0);
+  }
   if (const json& t = spec->value("time", json::object()); t.is_object() && t.contains("epoch_mjd2000")) {
     c.has_epoch = t.at("epoch_mjd2000").is_number();
     if (c.has_epoch) c.epoch_mjd2000 = t.at("epoch_mjd2000").get<double>();
@@ -197,7 +200,8 @@ json plot_trajectory(const std::string& csv_path, const std::string& prefix, con
   const int cu = table.column("u"), cm = table.column("m_kg");
   const int cax = table.column("ax"), cay = table.column("ay"), caz = table.column("az");
   const int cnx = table.column("nx"), cny = table.column("ny"), cnz = table.column("nz");
-  const bool engine = cu >= 0 && cm >= 0;
+  // An engine: a throttle and the mass, its column or the constant mass the spec states.
+  const bool engine = cu >= 0 && (cm >= 0 || ctx.constant_mass_kg > 0);
   const auto& first = table.rows.front();
   const auto& last = table.rows.back();
   const auto pos = [&](const std::vector<double>& row) { return Vec{row[cx], row[cy], row[cz]}; };
@@ -271,7 +275,7 @@ json plot_trajectory(const std::string& csv_path, const std::string& prefix, con
   for (const auto& row : table.rows)
     data << (row[0] - t0) * time_scale << ' '
          << (engine ? row[cu] * (ctx.thrust_N > 0 ? ctx.thrust_N : 1.0) : colour(row)) << ' '
-         << (engine ? row[cm] : 0.0) << '\n';
+         << (engine ? (cm >= 0 ? row[cm] : ctx.constant_mass_kg) : 0.0) << '\n';
   const auto orbit_block = [&](const std::string& role, const std::vector<Vec>& orbit) {
     if (orbit.empty()) return;
     begin_block(role);
