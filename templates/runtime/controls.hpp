@@ -23,12 +23,13 @@ inline bool constant_mass() {
 // flow Tmax/c (the mass equation's -dm/dt at u = 1), where the problem has a throttle and a mass
 // whose flow depends on nothing but the throttle, else 0 (the routes that need it say they do not
 // apply); with a constant mass the program's rate, Tmax/c (the propellant it would burn) or Tmax/m
-// (the delta-v), read from the parameters so it follows the thrust a route moves. The companion
+// (the delta-v), read from the parameters so it follows the thrust a route moves (0 at full
+// throttle throughout: no throttle to price). The companion
 // problem of a minimum-time one prices its throttle by it (fuel_weight). A mass flow is measured
 // once at the program's own thrust and followed in proportion to the maximum thrust where the
 // search moves it (search/knobs.hpp): the flow is Tmax/c.
 inline double full_throttle_cost_rate() {
-  if (constant_mass()) return kProblem.throttle_cost_rate();
+  if (constant_mass()) return kProblem.throttle_index >= 0 ? kProblem.throttle_cost_rate() : 0.0;
   static const double* const thrust = scalar_parameter("Tmax");
   static const double own_thrust = thrust ? *thrust : 1.0;
   static const double flow = [] {

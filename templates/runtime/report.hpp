@@ -115,12 +115,14 @@ inline TrajectorySummary trajectory(const Settings& s, const Result& r, const st
   // H is constant on each arc (the dynamics are autonomous); it may jump at interior events.
   std::map<int, std::pair<double, double>> h_range;
   std::map<int, std::pair<double, double>> arc_mass;  // first and last mass of each arc
-  double throttle_integral = 0;                       // a constant mass: the integral of the throttle over the arcs
-  for (std::size_t i = 1; i < samples.size() && kProblem.throttle_index >= 0; ++i) {
-    // A sample holds the mode of the step that follows it: the left sums are exact at eps = 0.
+  // A constant mass: the integral of the throttle over the arcs (u = 1 without a throttle). A
+  // sample holds the mode of the step that follows it: the left sums are exact at eps = 0.
+  double throttle_integral = 0;
+  for (std::size_t i = 1; i < samples.size(); ++i) {
     const Sample &a = samples[i - 1], &b = samples[i];
     if (a.arc != b.arc) continue;
-    const double ua = a.control[kProblem.throttle_index], ub = b.control[kProblem.throttle_index];
+    const int u = kProblem.throttle_index;
+    const double ua = u >= 0 ? a.control[u] : 1.0, ub = u >= 0 ? b.control[u] : 1.0;
     throttle_integral += (b.t - a.t) * (r.eps == 0 ? ua : 0.5 * (ua + ub));
   }
   for (const auto& p : samples) {
@@ -155,7 +157,7 @@ inline TrajectorySummary trajectory(const Settings& s, const Result& r, const st
   if (constant_mass()) {
     // The L1 cost; the delta-v is the integral of Tmax u / m: the cost times c/m where the cost is
     // the propellant (m is the mass unit), else the cost itself.
-    out.propellant = full_throttle_cost_rate() * throttle_integral;
+    out.propellant = kProblem.throttle_cost_rate() * throttle_integral;
     out.delta_v_m_s = cost_is_delta_v() ? out.propellant * kProblem.speed_unit_km_s * 1e3
                                         : out.propellant * kProblem.exhaust_velocity_m_s;
   }

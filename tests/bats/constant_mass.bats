@@ -94,6 +94,13 @@ EOF
   # the companion priced the throttle by the L1 rate: it ran, nothing turned off silently
   assert_jq "$sol" '.search.routes[] | select(.name == "minimum-fuel companion") | .ran'
   jq '.tof_days' "$sol" >"$WORK/t_min_days"
+  # at full throttle throughout (constant_mass_full_thrust): the same transfer, nothing to price
+  gto "$WORK/full" "The spacecraft has a maximum thrust of 60 N and a specific impulse of 1994.7500254 s." \
+    "The time of flight is free, at most 2 days." $'The engine thrusts at full throttle throughout.\nMinimize the time of flight.'
+  chain "$WORK/full"
+  assert_jq "$WORK/full/derivation.json" '[.terms[].name] == ["two_body", "constant_mass_full_thrust", "time"]'
+  within "$(jq '.tof_hours' "$WORK/full/solution.json")" "$(jq '.tof_hours' "$sol")" 1e-9
+  within "$(jq '.propellant_kg' "$WORK/full/solution.json")" "$(jq '.propellant_kg' "$sol")" 1e-9
 }
 
 @test "constant mass: minimum fuel at 1.5 t_min converges and beats the minimum time with a coast" {
