@@ -70,6 +70,7 @@ Atom atom(const std::string& word) {
   if (word.size() == 1) return {word, {}};
   if (word == "Tmax") return {"T", {"\\max"}};
   if (word == "tf") return {"t", {"f"}};
+  if (word == "mass") return {"m", {}};  // an engine of constant mass: its mass parameter
   std::size_t digits = word.size();
   while (digits > 0 && std::isdigit(static_cast<unsigned char>(word[digits - 1]))) --digits;
   if (digits > 0 && digits < word.size()) {
@@ -81,7 +82,8 @@ Atom atom(const std::string& word) {
 }
 
 bool is_atom_word(const std::string& word) {
-  return greek().count(word) || is_component(word) || word.size() == 1 || word == "Tmax" || word == "tf";
+  return greek().count(word) || is_component(word) || word.size() == 1 || word == "Tmax" || word == "tf" ||
+         word == "mass";
 }
 
 std::string joined(const std::vector<std::string>& parts, const std::string& separator) {
