@@ -173,6 +173,7 @@ inline nlohmann::ordered_json continuation_step_record(const ContinuationStep& c
       {"stage", c.stage}, {"value", c.value}, {"converged", c.converged}, {"evaluations", c.evaluations}};
   if (std::isfinite(c.max_residual)) step["max_residual"] = c.max_residual;
   if (std::isfinite(c.revolutions)) step["revolutions"] = c.revolutions;
+  if (std::isfinite(c.tf_days)) step["tf_days"] = c.tf_days;
   return step;
 }
 

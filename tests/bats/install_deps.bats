@@ -75,8 +75,7 @@ assert_one_deps_error() {
   local cmd
   for cmd in env make find seq; do ln -s "$(command -v "$cmd")" "$FAKE/$cmd"; done
   FAKE_APT_INSTALL=lock PATH="$FAKE" run -2 --separate-stderr \
-    env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
-    make --no-print-directory -C "$ROOT" scenario=S01 RUNS_ROOT="$BATS_TEST_TMPDIR/runs"
+    unnested_make scenario=S01 RUNS_ROOT="$BATS_TEST_TMPDIR/runs"
   [[ ${stderr_lines[-2]} == "install-deps: error: apt-get install failed (exit 100)"* ]] || { echo "$stderr" >&2; false; }
   [[ ${stderr_lines[-1]} == "make: *** ["*": deps] Error 1" ]] || { echo "$stderr" >&2; false; }
   [[ -z $output && ! -e $BATS_TEST_TMPDIR/runs ]]

@@ -56,8 +56,7 @@ teardown() {
 
 # make on the private runs tree, isolated from an enclosing make and from tool rebuilds.
 lmake() {
-  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
-    make --no-print-directory -C "$ROOT" -o build/tools.stamp RUNS_ROOT="$RUNS_ROOT" CACHE="$LLM_CACHE" "$@"
+  isolated_make "$RUNS_ROOT" "$LLM_CACHE" "$@"
 }
 
 # script FILE JSON: a script for fake-llm whose content_file paths are relative to $FX.
@@ -167,8 +166,7 @@ script() {
   start_fake "$(script resume.json '{"replies": [
     {"content_file": "derive_good.txt", "match": "## Round 2"},
     {"content_file": "codegen_good.txt", "match": "four modules"}]}')" requests.jsonl
-  run -0 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES make --no-print-directory -C "$ROOT" \
-    -o build/tools.stamp RUNS_ROOT="$copy" CACHE="$LLM_CACHE" scenario=S01 BACKEND=llm
+  run -0 isolated_make "$copy" "$LLM_CACHE" scenario=S01 BACKEND=llm
   [[ $output != *"helios-parse"* && $output != *"helios-derive' --backend llm --round 1 "* ]] || { echo "$output" >&2; false; }
   [[ $output == *"helios-derive' --backend llm --round 2"* ]]
   [[ $(cd "$copy/llm/S01" && stat -c '%n %.9Y' spec.json derivation.r1.json verify.r1.json) == "$before" ]]
@@ -181,8 +179,7 @@ script() {
   export HELIOS_LLM_REPLAY="$RUNS_ROOT/llm"
   export HELIOS_LLM_BASE_URL="http://127.0.0.1:9/v1"
   unset HELIOS_LLM_MODEL HELIOS_LLM_API_KEY
-  run -0 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES make --no-print-directory -C "$ROOT" \
-    -o build/tools.stamp RUNS_ROOT="$copy" CACHE="$LLM_CACHE" scenario=S01 BACKEND=llm
+  run -0 isolated_make "$copy" "$LLM_CACHE" scenario=S01 BACKEND=llm
   local f
   for f in spec.json derivation.r1.json derivation.r2.json derivation.r3.json shoot.r1.cpp shoot.r2.cpp; do
     cmp "$RUN/$f" "$copy/llm/S01/$f"
@@ -213,8 +210,7 @@ script() {
   local copy="$BATS_TEST_TMPDIR/runs"
   start_fake "$(script strict.json '{"replies": [{"content_file": "spec.txt"}, {"content_file": "derive_bad.txt"},
     {"content_file": "derive_bad.txt"}, {"content_file": "derive_bad.txt"}]}')" requests.jsonl
-  run -2 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES make --no-print-directory -C "$ROOT" \
-    -o build/tools.stamp RUNS_ROOT="$copy" CACHE="$LLM_CACHE" scenario=S01 BACKEND=llm VERIFY_MODE=strict
+  run -2 isolated_make "$copy" "$LLM_CACHE" scenario=S01 BACKEND=llm VERIFY_MODE=strict
   [[ $output == *"helios-verify: error: verdict fail"* ]] || { echo "$output" >&2; false; }
   ls "$copy/llm/S01"/derivation.r{1,2,3}.transcript.json
   [[ ! -e $copy/llm/S01/verify.json && ! -e $copy/llm/S01/shoot.r1.cpp ]]
@@ -339,8 +335,7 @@ script() {
   local copy="$BATS_TEST_TMPDIR/runs"
   start_fake "$(script forever.json '{"replies": [{"content_file": "derive_good.txt"},
     {"content_file": "codegen_forever.txt"}]}')" requests.jsonl
-  run -0 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES make --no-print-directory -C "$ROOT" \
-    -o build/tools.stamp RUNS_ROOT="$copy" CACHE="$BATS_TEST_TMPDIR/cache" scenario=S01 BACKEND=llm \
+  run -0 isolated_make "$copy" "$BATS_TEST_TMPDIR/cache" scenario=S01 BACKEND=llm \
     PARSE_BACKEND=builtin SOLVE_TIME_LIMIT=2
   local sol="$copy/llm/S01/solution.json"
   assert_jq "$sol" '.status == "timeout" and .compile.ok == true'

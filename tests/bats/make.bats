@@ -11,8 +11,7 @@ setup() {
 
 # mk ARGS...: make -n in the repository, isolated from an enclosing make.
 mk() {
-  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
-    make --no-print-directory -C "$ROOT" -n RUNS_ROOT="$BATS_TEST_TMPDIR/runs" "$@"
+  unnested_make -n RUNS_ROOT="$BATS_TEST_TMPDIR/runs" "$@"
 }
 
 @test "make: SCENARIO= and scenario= are one variable; two different values are refused" {
@@ -100,8 +99,8 @@ mk() {
   cp "$S01"/{problem.txt,settings.json,reference.json} "mine/$name/"
   cp "$S01"/{problem.txt,settings.json,reference.json} mine/X01/
   # make for real (the recipes would run), the tools as they are.
-  run -2 --separate-stderr env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES make --no-print-directory \
-    -C "$ROOT" -o build/tools.stamp SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" RUNS_ROOT="$BATS_TEST_TMPDIR/runs" all
+  run -2 --separate-stderr unnested_make -o build/tools.stamp SCENARIOS_DIR="$BATS_TEST_TMPDIR/mine" \
+    RUNS_ROOT="$BATS_TEST_TMPDIR/runs" all
   [[ ${#stderr_lines[@]} -eq 1 ]] || { echo "$stderr" >&2; false; }
   assert_stderr_contains "$BATS_TEST_TMPDIR/mine/$name is not a scenario name: rename the folder to A-Z a-z 0-9 _ - only"
   [[ ! -e $ROOT/X && ! -e X && ! -e $BATS_TEST_TMPDIR/runs ]]
@@ -144,14 +143,13 @@ mk() {
   assert_stderr_contains "PARSE_BACKEND=magic is not a backend of this build"
   [[ ! -e X && ! -e $ROOT/X ]]
   # An environment variable is checked by its text too, before make would expand it.
-  RUNS_ROOT='r$(shell id>X)' run -2 --separate-stderr env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
-    make --no-print-directory -C "$ROOT" -n
+  RUNS_ROOT='r$(shell id>X)' run -2 --separate-stderr unnested_make -n
   assert_stderr_contains "RUNS_ROOT='r\$(shell id>X)' is not a plain folder"
   [[ ! -e X && ! -e $ROOT/X ]]
 }
 
 @test "make help: lists the main targets and variables" {
-  run -0 --separate-stderr env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -C "$ROOT" help
+  run -0 --separate-stderr unnested_make help
   local word
   for word in "make [scenario=S01]" "make test" "make all" "make scoreboard" "make sweep sweep=P01" "make bench" \
     "make test-sanitized" "make fuzz" "BACKEND=builtin|llm" "VERIFY_MODE" "LAUNCH=" "RUNS_ROOT" "SCENARIOS_DIR" "SCENARIO"; do

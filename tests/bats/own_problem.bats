@@ -18,10 +18,9 @@ setup() {
   common_setup
 }
 
-# own_make ARGS...: make in the repository, isolated from an enclosing make, the tools as built.
+# own_make ARGS...: make into the test's runs tree (isolated_make).
 own_make() {
-  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
-    make --no-print-directory -C "$ROOT" -o build/tools.stamp RUNS_ROOT="$BATS_TEST_TMPDIR/runs" CACHE="$OWN_CACHE" "$@"
+  isolated_make "$BATS_TEST_TMPDIR/runs" "$OWN_CACHE" "$@"
 }
 
 # chain DIR PROBLEM.txt -> DIR/spec.json, derivation.json, shoot.cpp

@@ -38,9 +38,7 @@ setup() {
 
 # make_t01 ARGS...: make for T01 in the private folders, isolated from an enclosing make (`make bats`).
 make_t01() {
-  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
-    make --no-print-directory -C "$ROOT" scenario=T01 SCENARIOS_DIR="$PIPE_SCENARIOS" RUNS_ROOT="$PIPE_RUNS" \
-    CACHE="$MAKE_CACHE" "$@"
+  unnested_make scenario=T01 SCENARIOS_DIR="$PIPE_SCENARIOS" RUNS_ROOT="$PIPE_RUNS" CACHE="$MAKE_CACHE" "$@"
 }
 
 # pmake ARGS...: make_t01 with the tools taken as built.

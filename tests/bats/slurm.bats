@@ -88,9 +88,7 @@ setup() {
 smake() {
   local runs="$1"
   shift
-  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
-    make --no-print-directory -C "$ROOT" -o build/tools.stamp scenario=S01 RUNS_ROOT="$runs" \
-    CACHE="$SHARED_CACHE" "$@"
+  isolated_make "$runs" "$SHARED_CACHE" scenario=S01 "$@"
 }
 
 slurm_make() {

@@ -166,7 +166,7 @@ JSON
 @test "sweep: a killed sweep resumes with no cell redone and no partial artifact" {
   local runs="$BATS_TEST_TMPDIR/runs" dir="$BATS_TEST_TMPDIR/runs/builtin/P01"
   export SWEEP_CACHE="$BATS_TEST_TMPDIR/cache"  # its own cache: the compiles make the sweep slow enough to kill
-  export -f sweep_make
+  export -f sweep_make isolated_make unnested_make
   setsid bash -c 'sweep_make "$1" >"$2" 2>&1' _ "$runs" "$BATS_TEST_TMPDIR/first.log" &
   local pid=$! i n=0
   for ((i = 0; i < 1200; i++)); do

@@ -264,13 +264,23 @@ converged_and_verified() {
   assert_jq "$1/score.json" '.total == 100'
 }
 
+# unnested_make ARGS...: make in the repository, isolated from an enclosing make (`make bats`).
+unnested_make() {
+  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES make --no-print-directory -C "$ROOT" "$@"
+}
+
+# isolated_make RUNS_ROOT CACHE ARGS...: unnested_make into a private runs tree and compile cache,
+# the tools taken as built (no rebuild).
+isolated_make() {
+  local runs="$1" cache="$2"
+  shift 2
+  unnested_make -o build/tools.stamp RUNS_ROOT="$runs" CACHE="$cache" "$@"
+}
+
 # sweep_make RUNS_ROOT [VAR=VALUE...]: make sweep sweep=P01 (its 3 x 3 CI grid) into RUNS_ROOT with
-# -j2, isolated from an enclosing make and from tool rebuilds; the compile cache is SWEEP_CACHE,
-# else SHARED_CACHE (sweep.bats, slurm.bats).
+# -j2; the compile cache is SWEEP_CACHE, else SHARED_CACHE (sweep.bats, slurm.bats).
 sweep_make() {
   local runs="$1"
   shift
-  env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u MAKEOVERRIDES \
-    make --no-print-directory -C "$ROOT" -o build/tools.stamp sweep sweep=P01 RUNS_ROOT="$runs" \
-    CACHE="${SWEEP_CACHE:-$SHARED_CACHE}" -j2 "$@"
+  isolated_make "$runs" "${SWEEP_CACHE:-$SHARED_CACHE}" sweep sweep=P01 -j2 "$@"
 }

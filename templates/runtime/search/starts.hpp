@@ -14,8 +14,11 @@ namespace helios_rt {
 
 namespace {
 
-// The integrator's tolerance a start is first solved at.
-constexpr double kLooseStart = 1e-8;
+// The integrator's tolerance a start is first solved at, and the residual that solve stops at (well
+// above what that integration resolves; the solve at the search's tolerance goes on from there).
+// 1e-6 against 1e-8: every objective of S01-S14 the same to 1e-11, 10-37 % less CPU.
+constexpr double kLooseStart = 1e-6;
+constexpr double kLooseAccept = 1e-5;
 
 class StartsRoute : public Route {
  public:
@@ -86,7 +89,7 @@ class StartsRoute : public Route {
     Settings loose = c.coarse;
     loose.rtol = std::max(loose.rtol, kLooseStart);
     loose.atol = std::max(loose.atol, kLooseStart);
-    const double rough_accept = std::max(loose.accept_residual, 1e3 * kLooseStart);
+    const double rough_accept = std::max(loose.accept_residual, kLooseAccept);
     Shooter rough(loose);
     rough.stop_below(rough_accept);
     int info = 0;

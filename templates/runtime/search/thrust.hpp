@@ -58,88 +58,179 @@ inline bool stays_on_branch(double predicted, double reached, double dsigma) {
   return std::log(reached / predicted) <= 0.005 + 0.1 * dsigma * dsigma;
 }
 
-// From the solution x (eps = 0) at `sigma0` down to sigma = 0: at each step a tangent predictor
-// (dx/dsigma = -J^-1 dF/dsigma) and hybrd from it; a step that fails is retried from predictions
-// perturbed at random (relative scales 1e-3 to 1e-1, kThrustRetries of them) before it is halved,
-// so that where the branch being followed turns back (a fold: below some thrust the extremal of
-// that shape no longer exists) the continuation goes on on a neighbouring one, never a worse one
-// (stays_on_branch); it stops when the step falls below 1e-3 in sigma, or after kMaxThrustSolves
-// solves. The revolutions of every solution reached are recorded (a jump shows a change of
-// branch). The knobs are set to sigma0 first and left at the last sigma reached (the caller
-// restores them). `along` is the system followed: the shooting function itself by default, or
-// another with the same variables (time_route.hpp's minimum-time system), whose own parameters
-// `along.set` moves with sigma, whose revolutions `along.revolutions` tells and whose flight time
-// times thrust `along.time_thrust` gives. `tick(thrust_N, revolutions)` reports progress.
+// A continuation in the thrust's scale sigma (ThrustFollower::follow): at each step a tangent
+// predictor (dx/dsigma = -J^-1 dF/dsigma) and hybrd from it; a step that fails is retried from
+// predictions perturbed at random (relative scales 1e-3 to 1e-1, kThrustRetries of them) before it
+// is halved, so that where the branch being followed turns back (a fold: below some thrust the
+// extremal of that shape no longer exists) the continuation goes on on a neighbouring one, never a
+// worse one (stays_on_branch); it stops when the step falls below 1e-3 in sigma, or after
+// kMaxThrustSolves solves in all. The revolutions of every solution reached are recorded (a jump
+// shows a change of branch).
+template <class Admissible, class Tick>
+class ThrustFollower {
+ public:
+  ThrustFollower(const Settings& s, ProgramKnobs& knobs, Admissible& admissible, Tick& tick, const ThrustPath& along)
+      : s_(s),
+        knobs_(knobs),
+        admissible_(admissible),
+        tick_(tick),
+        along_(along),
+        shooter_(s, along.function, kContinuationStart),
+        rng_(s.seed) {}
+
+  // x at `sigma` followed toward `to` (either way); sigma is left at the last scale reached. With
+  // `to_next_branch`, it stops at the first step that lands on a cheaper branch (its flight time
+  // times the thrust's scale 0.2 % or more below the tangent's prediction, which a step along a
+  // branch meets to second order) and returns true. It gives up where a step's flight time times
+  // the thrust's scale exceeds `give_up_above`.
+  bool follow(std::vector<double>& x, double& sigma, double to, const char* stage, std::vector<ContinuationStep>& steps,
+              bool to_next_branch = false, double give_up_above = INFINITY) {
+    const double direction = to >= sigma ? 1.0 : -1.0;
+    double step = std::min(0.25, std::fabs(to - sigma));
+    set(sigma);
+    bool predicted = predict(x, sigma);
+    while (direction * (to - sigma) > 0 && solves_ < kMaxThrustSolves && !out_of_time(s_)) {
+      const double next = direction > 0 ? std::min(to, sigma + step) : std::max(to, sigma - step);
+      set(next);
+      std::vector<double> trial;
+      bool ok = false;
+      double prediction = NAN, reached = NAN;  // the flight time times the thrust's scale predicted, reached
+      for (int attempt = 0; attempt <= kThrustRetries && !ok && !out_of_time(s_); ++attempt) {
+        trial = x;
+        if (predicted) {
+          for (std::size_t i = 0; i < x.size(); ++i) trial[i] += tangent_[i] * (next - sigma);
+          prediction = along_.time_thrust(trial, next);
+        }
+        if (attempt > 0) {
+          const double scale = std::pow(10.0, -3.0 + 2.0 * (attempt - 1) / std::max(1, kThrustRetries - 1));
+          for (double& v : trial) v *= 1 + scale * unit_(rng_);
+        }
+        int info = 0;
+        double res = 0;
+        ++solves_;
+        // Every step at the acceptance of intermediate steps; the search polishes the arrival.
+        ok = shooter_.solve(trial, 0.0, s_.accept_residual, info, res) && admissible_(trial.data());
+        if (ok) {
+          reached = along_.time_thrust(trial, next);
+          ok = stays_on_branch(prediction, reached, next - sigma);
+        }
+        ContinuationStep record{stage, knobs_.thrust_N(next), ok, res, shooter_.last_step_evaluations};
+        if (ok) {
+          record.revolutions = revolutions_of(trial);
+          record.tf_days = reached * std::exp(-next) * kProblem.time_unit_days;
+          info_ = info;
+          max_residual_ = res;
+          tick_(record.value, record.revolutions);
+        }
+        steps.push_back(record);
+      }
+      if (!ok) {
+        set(sigma);
+        step *= 0.5;
+        if (step < 1e-3) break;
+        continue;
+      }
+      x = trial;
+      sigma = next;
+      step = std::min(step * 1.5, 0.5);
+      if (to_next_branch && std::log(reached / prediction) < -0.002) return true;
+      if (reached > give_up_above) return false;
+      if (direction * (to - sigma) > 0) predicted = predict(x, sigma);
+    }
+    return false;
+  }
+
+  int evaluations() const { return shooter_.evaluations; }
+  const std::vector<double>& last_F() const { return shooter_.last_F; }
+  int info() const { return info_; }
+  double max_residual() const { return max_residual_; }
+  void set(double sigma) {
+    knobs_.scale_thrust(sigma);
+    if (along_.set) along_.set(sigma);
+  }
+
+ private:
+  static constexpr int kThrustRetries = 8;
+  double revolutions_of(const std::vector<double>& x) const {
+    return along_.revolutions ? along_.revolutions(x) : shape_of(s_, x, 0.0).revolutions;
+  }
+  // dx/dsigma at the current point, dF/dsigma by a difference over 1e-7.
+  bool predict(const std::vector<double>& x, double sigma) {
+    return parameter_tangent(
+        shooter_, x, 0.0, [this](double v) { set(v); }, sigma, 1e-7, tangent_);
+  }
+
+  const Settings& s_;
+  ProgramKnobs& knobs_;
+  Admissible& admissible_;
+  Tick& tick_;
+  const ThrustPath& along_;
+  Shooter shooter_;
+  std::mt19937_64 rng_;
+  std::uniform_real_distribution<double> unit_{-1.0, 1.0};
+  std::vector<double> tangent_;
+  int solves_ = 0, info_ = 0;
+  double max_residual_ = INFINITY;
+};
+
+// How far below and above the problem's thrust the neighbouring branches are looked for
+// (ThrustFollower's to_next_branch), and the record's stages of those paths.
+constexpr double kNextBranchScale = 1.2;
+constexpr const char* kNextBranchStage = "the next branch: maximum thrust [N] below and back";
+constexpr const char* kPreviousBranchStage = "the branch before: maximum thrust [N] above and back";
+
+// From the solution x (eps = 0) at `sigma0` down to sigma = 0 (ThrustFollower). Along a path the
+// branches of a many-revolution transfer cross: each, followed down, first improves (its flight
+// time times the thrust falls) and then worsens until it folds, where the path goes on on the
+// branch of about one revolution more (GTO to GEO: 858.6 N h at 7.37 N on one, 849.4 N h at 7.17 N
+// on the next). So the path may arrive on the worsening stretch of a branch while the next one is
+// already cheaper there: from the arrival the path goes on down (at most to the thrust over
+// kNextBranchScale, and not once it has worsened 2 % on its own branch) until it reaches the next
+// branch, which is followed back up to sigma = 0 unless it rises 0.5 % above the arrival on the way
+// (a branch followed up worsens steeply toward its end: GTO to GEO at 0.5 N, 849.9 N h at 0.409 N,
+// 856.0 at 0.430, 872.5 at 0.464); and likewise above the problem's thrust, where the path may have
+// left a branch of fewer revolutions that is still cheaper at the problem's thrust (at many
+// revolutions a step spans several branches). The cheapest arrival is the path's. The knobs are set
+// to sigma0 first and left at the last sigma reached (the caller restores them). `along` is the
+// system followed: the shooting function itself by default, or another with the same variables
+// (time_route.hpp's minimum-time system), whose own parameters `along.set` moves with sigma, whose
+// revolutions `along.revolutions` tells and whose flight time times thrust `along.time_thrust`
+// gives. `tick(thrust_N, revolutions)` reports progress.
 template <class Admissible, class Tick>
 PathArrival continue_thrust_down(const Settings& s, ProgramKnobs& knobs, std::vector<double> x, double sigma0,
                                  Admissible& admissible, int& evaluations, Tick&& tick, const ThrustPath& along = {}) {
-  constexpr int kThrustRetries = 8;
   PathArrival out;
-  Shooter shooter(s, along.function, kContinuationStart);
-  std::mt19937_64 rng(s.seed);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  double sigma = sigma0, step = std::min(0.25, sigma0);
-  std::vector<double> tangent;
-  const auto set = [&](double v) {
-    knobs.scale_thrust(v);
-    if (along.set) along.set(v);
-  };
-  set(sigma);
-  // dx/dsigma at the current point, dF/dsigma by a difference over 1e-7.
-  const auto predict = [&] { return parameter_tangent(shooter, x, 0.0, set, sigma, 1e-7, tangent); };
-  bool predicted = predict();
-  int solves = 0;
-  while (sigma > 0 && solves < kMaxThrustSolves && !out_of_time(s)) {
-    const double next = std::max(0.0, sigma - step);
-    set(next);
-    std::vector<double> trial;
-    bool ok = false;
-    double prediction = NAN;  // the flight time times the thrust's scale the tangent predicts
-    for (int attempt = 0; attempt <= kThrustRetries && !ok && !out_of_time(s); ++attempt) {
-      trial = x;
-      if (predicted) {
-        for (std::size_t i = 0; i < x.size(); ++i) trial[i] += tangent[i] * (next - sigma);
-        prediction = along.time_thrust(trial, next);
-      }
-      if (attempt > 0) {
-        const double scale = std::pow(10.0, -3.0 + 2.0 * (attempt - 1) / std::max(1, kThrustRetries - 1));
-        for (double& v : trial) v *= 1 + scale * unit(rng);
-      }
-      int info = 0;
-      double res = 0;
-      ++solves;
-      // Every step at the acceptance of intermediate steps; the search polishes the arrival.
-      ok = shooter.solve(trial, 0.0, s.accept_residual, info, res) && admissible(trial.data()) &&
-           stays_on_branch(prediction, along.time_thrust(trial, next), next - sigma);
-      ContinuationStep record{"maximum thrust [N], the final time's window scaled inversely", knobs.thrust_N(next), ok,
-                              res, shooter.last_step_evaluations};
-      if (ok) {
-        record.revolutions = along.revolutions ? along.revolutions(trial) : shape_of(s, trial, 0.0).revolutions;
-        out.info = info;
-        out.max_residual = res;
-        tick(record.value, record.revolutions);
-      }
-      out.steps.push_back(record);
-    }
-    if (!ok) {
-      set(sigma);
-      step *= 0.5;
-      if (step < 1e-3) break;
-      continue;
-    }
-    x = trial;
-    sigma = next;
-    step = std::min(step * 1.5, 0.5);
-    if (sigma > 0) predicted = predict();
-  }
-  evaluations += shooter.evaluations;
+  ThrustFollower<Admissible, Tick> follower(s, knobs, admissible, tick, along);
+  double sigma = sigma0;
+  follower.follow(x, sigma, 0.0, "maximum thrust [N], the final time's window scaled inversely", out.steps);
   out.reached = knobs.thrust_N(sigma);
   out.reached_time = along.time_thrust(x, sigma) * std::exp(-sigma);
   if (sigma == 0) {
     out.arrived = true;
     out.x = x;
-    out.F = shooter.last_F;
+    out.F = follower.last_F();
+    out.info = follower.info();
+    out.max_residual = follower.max_residual();
+    // The neighbouring branches: past the problem's thrust onto a cheaper one, and back; below it
+    // first (the next branch, of more revolutions), then above it (the one before).
+    const std::vector<double> arrival = x;
+    for (const auto& [bound, stage] :
+         {std::pair<double, const char*>{-std::log(kNextBranchScale), kNextBranchStage},
+          std::pair<double, const char*>{std::log(kNextBranchScale), kPreviousBranchStage}}) {
+      std::vector<double> next = arrival;
+      double at = 0;
+      if (!follower.follow(next, at, bound, stage, out.steps, true, 1.02 * along.time_thrust(arrival, 0))) continue;
+      follower.follow(next, at, 0.0, stage, out.steps, false, 1.005 * along.time_thrust(arrival, 0));
+      if (at == 0 && along.time_thrust(next, 0) < along.time_thrust(out.x, 0)) {
+        out.x = next;
+        out.F = follower.last_F();
+        out.info = follower.info();
+        out.max_residual = follower.max_residual();
+      }
+    }
+    follower.set(0.0);
   }
+  evaluations += follower.evaluations();
   return out;
 }
 
