@@ -248,7 +248,7 @@ struct ContinuationStep {
   double max_residual;
   int evaluations;
   double revolutions = NAN;  // of the solution reached, where the continuation follows them
-  double tf_days = NAN;       // its flight time, where the continuation follows the thrust
+  double tf_days = NAN;      // its flight time, where the continuation follows the thrust
 };
 
 // Where a continuation path arrived (search/companion.hpp, search/thrust.hpp): the problem's own

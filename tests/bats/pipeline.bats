@@ -63,7 +63,7 @@ tree_copy() {
 # $ROOT: the make rebuilds and stamps the copy's tools; every other path is the host's.
 make_on_copy() {
   bwrap --dev-bind / / --bind "$COPY" "$ROOT" --chdir "$BATS_TEST_TMPDIR" \
-    bash -c "$(declare -p MAKE_CACHE); $(declare -f make_t01); make_t01 \"\$@\"" make_on_copy "$@"
+    bash -c "$(declare -p MAKE_CACHE); $(declare -f make_t01 unnested_make); make_t01 \"\$@\"" make_on_copy "$@"
 }
 
 # Builds T01 unless it is complete and up to date.
@@ -233,7 +233,7 @@ assert_not_ran() {
   mkdir -p "$slow_bin"
   printf '#!/bin/sh\n[ "$1" = --version ] || sleep 30\nexec /usr/bin/g++ "$@"\n' >"$slow_bin/g++"
   chmod +x "$slow_bin/g++"
-  PATH="$slow_bin:$PATH" setsid bash -c "$(declare -p MAKE_CACHE); $(declare -f make_t01 pmake); pmake" \
+  PATH="$slow_bin:$PATH" setsid bash -c "$(declare -p MAKE_CACHE); $(declare -f make_t01 pmake unnested_make); pmake" \
     >"$BATS_TEST_TMPDIR/make.log" 2>&1 3>&- &
   local pid=$!
   # setsid execs the bash that runs make as the leader of a new process group; never signal any other group.
