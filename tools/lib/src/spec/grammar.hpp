@@ -38,6 +38,9 @@ struct sentence_error : std::runtime_error {
 inline const std::string kNum = R"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)";
 inline const std::string kUnit = R"([A-Za-z][A-Za-z0-9^/]*)";
 inline const std::string kQuantity = "(" + kNum + R"()\s*()" + kUnit + ")";
+// An orbit phrase with no window, one capture group ("a circular orbit of radius 7000 km"): an
+// orbit on the way has a window ("between day N and day N", orbit_on_the_way.cpp).
+inline const std::string kOrbitPhrase = R"(((?!.*\bbetween (?:day|MJD))(?:.+ )?orbit\b.*?))";
 inline const std::string kVector =
     R"(\[\s*()" + kNum + R"()\s*,\s*()" + kNum + R"()\s*,\s*()" + kNum + R"()\s*\]\s*()" + kUnit + ")";
 

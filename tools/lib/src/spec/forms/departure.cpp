@@ -94,14 +94,12 @@ void at_then_from(Builder& b, const std::smatch& m) {
 }  // namespace
 
 std::vector<Form> departure() {
-  // an orbit phrase, with no window (an orbit on the way has one: orbit_on_the_way.cpp)
-  const std::string orbit = R"(((?!.*\bbetween (?:day|MJD))(?:.+ )?orbit\b.*?))";
   return {
       {"the departure orbit the spacecraft starts on",
        91,
        "(?:At the initial time,? )?the spacecraft (?:starts|starts out|begins|is initially|is parked|waits)"
        " (?:on|in|from) " +
-           orbit,
+           kOrbitPhrase,
        on_orbit_at_t0,
        {{"The spacecraft starts on a circular equatorial orbit of radius 7000 km.", "earth -departure",
          R"~({"/departure/target": {"kind": "orbital_elements", "semi_major_axis_km": 7000, "eccentricity": 0,

@@ -34,8 +34,6 @@ void read_described(Builder& b, const std::smatch& m) {
 }  // namespace
 
 std::vector<Form> final_orbit() {
-  // an orbit phrase, with no window: an orbit on the way has one (orbit_on_the_way.cpp)
-  const std::string orbit = R"(((?!.*\bbetween (?:day|MJD))(?:.+ )?orbit\b.*?))";
   return {
       {"the final orbit",
        140,
@@ -62,7 +60,7 @@ std::vector<Form> final_orbit() {
        141,
        "(?:At the final time,? )?the spacecraft (?:must |should |has to |is to |will )?(?:end|ends|finish|finishes|"
        "arrive|arrives|reach|reaches|be|get|gets)(?: up)? (?:on|in|into|at )?" +
-           orbit,
+           kOrbitPhrase,
        read_windowless,
        {{"The spacecraft must end on a circular equatorial orbit with a radius of 42165 km.", "earth -arrival",
          R"~({"/arrival/target": {"kind": "orbital_elements", "semi_major_axis_km": 42165, "eccentricity": 0,
@@ -85,7 +83,7 @@ std::vector<Form> final_orbit() {
          R"~({"/arrival/target": {"kind": "orbital_elements", "semi_major_axis_km": 10000, "eccentricity": 0}})~"}}},
       {"the final orbit the transfer ends on",
        143,
-       "The (?:transfer|trajectory|flight|mission) (?:ends|must end|finishes|must finish) (?:on|in) " + orbit,
+       "The (?:transfer|trajectory|flight|mission) (?:ends|must end|finishes|must finish) (?:on|in) " + kOrbitPhrase,
        read_described,
        {{"The transfer ends on an equatorial circular orbit 35,786 km above the Earth's surface.", "earth -arrival",
          R"~({"/arrival/target": {"kind": "orbital_elements", "semi_major_axis_km": 42164.137, "eccentricity": 0,
