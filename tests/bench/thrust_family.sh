@@ -7,8 +7,8 @@
 # family must not get worse by more than 0.1 % toward the lower thrust unless the record shows
 # why), the revolutions, max|F| (multiple shooting's where the polish kept it) and the
 # single-shooting max|F| of the same point, the wall time, the t_f T of the branches the returned
-# path reached at that thrust ("branches": its own / the next one's / the one's before, thrust.hpp:
-# past the thrust onto a cheaper branch, below and above, and back; "-" where none) and how the
+# path reached at that thrust ("branches": its own / the next one's, thrust.hpp: past the thrust
+# onto a cheaper branch below it, and back; "-" where none) and how the
 # returned extremal was reached (the search itself, or the thrust continuation from the thrust it
 # started at).
 # usage: tests/bench/thrust_family.sh [THRUST_N...]   (run from the repository root; needs `make tools`)
@@ -41,8 +41,7 @@ for thrust in "${thrusts[@]}"; do
        (if $k >= 0 then .search.extremals[$k].revolutions else 0 end), (.max_residual // 0),
        (.multiple_shooting.single_shooting_max_residual // .max_residual // 0), $wall,
        ([("maximum thrust [N], the final time'"'"'s window scaled inversely",
-          "the next branch: maximum thrust [N] below and back",
-          "the branch before: maximum thrust [N] above and back") as $stage
+          "the next branch: maximum thrust [N] below and back") as $stage
          | [.continuation[]? | select(.stage == $stage and .converged and ((.value - ($T | tonumber)) | fabs) < 1e-9)
              | .tf_days * 24 * ($T | tonumber)] | last // null | if . == null then "-" else (. * 100 | round / 100 | tostring) end]
         | join("/")),

@@ -33,7 +33,7 @@ namespace {
 // free, and the throttle has a fuel cost at a rate of its own (full_throttle_cost_rate: the mass it
 // burns, or the L1 cost of an engine of constant mass).
 inline bool has_fuel_companion() {
-  const FreeFinalTime f = free_final_time();
+  const TimeWindow f = free_final_time();
   return kProblem.objective == Objective::time && f.variable >= 0 && f.row >= 0 && full_throttle_cost_rate() > 0;
 }
 
@@ -68,7 +68,7 @@ inline std::vector<double> without_held(const std::vector<double>& x, int at) {
 // held at `hold` (a window fraction): the problem's rows but the final time's, with the throttle
 // priced as fuel. (Holding it by a row x[tf_frac] - hold of the full system would let hybrid
 // steps move it; without it the companion is exactly the minimum-fuel shooting system.)
-inline Function companion_function(const FreeFinalTime& f, const double& hold) {
+inline Function companion_function(const TimeWindow& f, const double& hold) {
   return [f, &hold](const double* z, double eps, Propagator& prop, double* F, double* J) {
     const int N = kProblem.num_vars;
     std::vector<double> x = with_held(std::vector<double>(z, z + N - 1), f.variable, hold);
@@ -103,7 +103,7 @@ struct CompanionArrival : PathArrival {
 template <class Admissible>
 CompanionArrival companion_to_minimum_time(const Settings& s, const std::vector<double>& x, double hold,
                                            double eps_companion, Admissible& admissible, int& evaluations) {
-  const FreeFinalTime f = free_final_time();
+  const TimeWindow f = free_final_time();
   CompanionArrival out;
   double held = hold;
   Shooter companion(s, companion_function(f, held), kContinuationStart);
@@ -155,7 +155,7 @@ class CompanionRoute : public Route {
 
   std::string run(SearchContext& c) override {
     SearchRecord& rec = c.rec();
-    const FreeFinalTime f = free_final_time();
+    const TimeWindow f = free_final_time();
     const double hold = companion_hold(c.estimated_time()), eps = 1;
     std::vector<StartExtremal>& list = rec.companion_solutions;
     bool cut = false;

@@ -108,20 +108,13 @@ class EdgeRoute : public Route {
     if (inside_cost < cost - 1e-12 * std::max(1.0, std::fabs(cost)))
       return where + ": not a minimum along the window (a little inside costs " + objective_text(inside_cost) +
              ", the edge " + objective_text(cost) + ")";
-    Extremal entry;
-    entry.x = x;
-    entry.F.assign(x.size(), 0.0);
-    Propagator at_edge(held);
-    shooting_function(x.data(), 0.0, at_edge, entry.F.data());
-    for (const double f : entry.F) entry.max_residual = std::max(entry.max_residual, std::fabs(f));
+    Extremal entry =
+        solved_extremal(held, x, "single shooting, " + where + " from extremal " + std::to_string(i), std::move(steps));
     std::vector<double> released(x.size());
     Propagator free(c.coarse);
     shooting_function(x.data(), 0.0, free, released.data());
     entry.edge_transversality = released[w.row];
     entry.window_edges = held.window_edges;
-    entry.shape = shape_of(held, x, 0.0);
-    entry.method = "single shooting, " + where + " from extremal " + std::to_string(i);
-    entry.continuation = std::move(steps);
     const int k = c.pool.enter("window edge", std::move(entry));
     ++reached;
     return where + ": extremal " + std::to_string(k) + ", " + objective_text(cost) + " (a little inside " +

@@ -213,16 +213,9 @@ class FamiliesRoute : public Route {
         turn_one_revolution(c.coarse, x, 0.0, direction, c.coarse.final_residual, c.admissible, steps, evaluations);
     c.count(evaluations);
     if (!ok) return -1;
-    Extremal entry;
-    entry.x = x;
-    entry.F.assign(x.size(), 0.0);
-    Propagator prop(c.coarse);
-    shooting_function(x.data(), 0.0, prop, entry.F.data());
-    for (const double f : entry.F) entry.max_residual = std::max(entry.max_residual, std::fabs(f));
-    entry.shape = shape_of(c.coarse, x, 0.0);
-    entry.method = "single shooting, transfer angle from extremal " + std::to_string(of);
-    entry.continuation = std::move(steps);
-    return c.pool.enter(name(), std::move(entry));
+    return c.pool.enter(
+        name(), solved_extremal(c.coarse, x, "single shooting, transfer angle from extremal " + std::to_string(of),
+                                std::move(steps)));
   }
 };
 

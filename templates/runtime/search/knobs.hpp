@@ -12,22 +12,9 @@ namespace helios_rt {
 
 namespace {
 
-// A free final time's shooting variable (tf_frac: tf = tf_min + (tf_max - tf_min) tf_frac) and
-// row (transversality_tf: H(tf) + dPhi/dtf = 0), by the derivation's names; -1 where there are none.
-struct FreeFinalTime {
-  int variable = -1, row = -1;
-};
-inline FreeFinalTime free_final_time() {
-  FreeFinalTime f;
-  for (int i = 0; i < kProblem.num_vars; ++i) {
-    if (std::string(kProblem.variable_names[i]) == "tf_frac") f.variable = i;
-    if (std::string(kProblem.equation_names[i]) == "transversality_tf") f.row = i;
-  }
-  return f;
-}
-
 // The free times whose shooting variable is a fraction of a window (t0_frac: the departure's,
-// tf_frac: the final time's) with their transversality rows, by the derivation's names.
+// tf_frac: the final time's, tf = tf_min + (tf_max - tf_min) tf_frac) with their transversality
+// rows (transversality_t0, transversality_tf: H(tf) + dPhi/dtf = 0), by the derivation's names.
 struct TimeWindow {
   int variable = -1, row = -1;
   const char* time = "";  // "t0" or "tf"
@@ -47,6 +34,13 @@ inline const std::vector<TimeWindow>& time_windows() {
     return out;
   }();
   return windows;
+}
+
+// The free final time's window (variable and row -1 where the final time is not free).
+inline TimeWindow free_final_time() {
+  for (const TimeWindow& w : time_windows())
+    if (w.time == std::string("tf")) return w;
+  return {};
 }
 
 // The index of the shooting variable lambda0 (-1: none).

@@ -47,6 +47,23 @@ inline std::string objective_text(double objective) {
   return days_text(v);
 }
 
+// A solution x at eps = 0 of the problem the settings s pose (its window edges held where s holds
+// them) as the pool takes it: its residuals and shape evaluated there, how it was reached, the
+// path's steps.
+inline Extremal solved_extremal(const Settings& s, const std::vector<double>& x, std::string method,
+                                std::vector<ContinuationStep> steps) {
+  Extremal entry;
+  entry.x = x;
+  entry.F.assign(x.size(), 0.0);
+  Propagator prop(s);
+  shooting_function(x.data(), 0.0, prop, entry.F.data());
+  for (const double f : entry.F) entry.max_residual = std::max(entry.max_residual, std::fabs(f));
+  entry.shape = shape_of(s, x, 0.0);
+  entry.method = std::move(method);
+  entry.continuation = std::move(steps);
+  return entry;
+}
+
 // The extremal a path arrived at (a.x solved at eps = 0) as the pool takes it: its residuals and
 // shape, how it was reached, and the path's steps.
 inline Extremal arrival_extremal(const Settings& s, const PathArrival& a, std::string method) {

@@ -173,11 +173,10 @@ class ThrustFollower {
   double max_residual_ = INFINITY;
 };
 
-// How far below and above the problem's thrust the neighbouring branches are looked for
-// (ThrustFollower's to_next_branch), and the record's stages of those paths.
+// How far below the problem's thrust the next branch is looked for (ThrustFollower's
+// to_next_branch), and the record's stage of that path.
 constexpr double kNextBranchScale = 1.2;
 constexpr const char* kNextBranchStage = "the next branch: maximum thrust [N] below and back";
-constexpr const char* kPreviousBranchStage = "the branch before: maximum thrust [N] above and back";
 
 // From the solution x (eps = 0) at `sigma0` down to sigma = 0 (ThrustFollower). Along a path the
 // branches of a many-revolution transfer cross: each, followed down, first improves (its flight
@@ -188,45 +187,40 @@ constexpr const char* kPreviousBranchStage = "the branch before: maximum thrust 
 // kNextBranchScale, and not once it has worsened 2 % on its own branch) until it reaches the next
 // branch, which is followed back up to sigma = 0 unless it rises 0.5 % above the arrival on the way
 // (a branch followed up worsens steeply toward its end: GTO to GEO at 0.5 N, 849.9 N h at 0.409 N,
-// 856.0 at 0.430, 872.5 at 0.464); and likewise above the problem's thrust, where the path may have
-// left a branch of fewer revolutions that is still cheaper at the problem's thrust (at many
-// revolutions a step spans several branches). The cheapest arrival is the path's. The knobs are set
-// to sigma0 first and left at the last sigma reached (the caller restores them). `along` is the
-// system followed: the shooting function itself by default, or another with the same variables
-// (time_route.hpp's minimum-time system), whose own parameters `along.set` moves with sigma, whose
-// revolutions `along.revolutions` tells and whose flight time times thrust `along.time_thrust`
-// gives. `tick(thrust_N, revolutions)` reports progress.
+// 856.0 at 0.430, 872.5 at 0.464). The cheapest arrival is the path's. The branches of fewer
+// revolutions are not looked for above the problem's thrust: the path left each of them at its
+// fold, above the problem's thrust, so none reaches it (a probe up the thrust from every arrival of
+// the GTO to GEO family, 20 N to 0.5 N, found none). The knobs are set to sigma0 first and left at
+// the last sigma reached (the caller restores them). `along` is the system followed: the shooting
+// function itself by default, or another with the same variables (time_route.hpp's minimum-time
+// system), whose own parameters `along.set` moves with sigma, whose revolutions `along.revolutions`
+// tells and whose flight time times thrust `along.time_thrust` gives. `tick(thrust_N, revolutions)`
+// reports progress.
 template <class Admissible, class Tick>
 PathArrival continue_thrust_down(const Settings& s, ProgramKnobs& knobs, std::vector<double> x, double sigma0,
                                  Admissible& admissible, int& evaluations, Tick&& tick, const ThrustPath& along = {}) {
   PathArrival out;
   ThrustFollower<Admissible, Tick> follower(s, knobs, admissible, tick, along);
+  const auto arrive_at = [&](const std::vector<double>& at) {
+    out.x = at;
+    out.F = follower.last_F();
+    out.info = follower.info();
+    out.max_residual = follower.max_residual();
+  };
   double sigma = sigma0;
   follower.follow(x, sigma, 0.0, "maximum thrust [N], the final time's window scaled inversely", out.steps);
   out.reached = knobs.thrust_N(sigma);
   out.reached_time = along.time_thrust(x, sigma) * std::exp(-sigma);
   if (sigma == 0) {
     out.arrived = true;
-    out.x = x;
-    out.F = follower.last_F();
-    out.info = follower.info();
-    out.max_residual = follower.max_residual();
-    // The neighbouring branches: past the problem's thrust onto a cheaper one, and back; below it
-    // first (the next branch, of more revolutions), then above it (the one before).
-    const std::vector<double> arrival = x;
-    for (const auto& [bound, stage] :
-         {std::pair<double, const char*>{-std::log(kNextBranchScale), kNextBranchStage},
-          std::pair<double, const char*>{std::log(kNextBranchScale), kPreviousBranchStage}}) {
-      std::vector<double> next = arrival;
-      double at = 0;
-      if (!follower.follow(next, at, bound, stage, out.steps, true, 1.02 * along.time_thrust(arrival, 0))) continue;
-      follower.follow(next, at, 0.0, stage, out.steps, false, 1.005 * along.time_thrust(arrival, 0));
-      if (at == 0 && along.time_thrust(next, 0) < along.time_thrust(out.x, 0)) {
-        out.x = next;
-        out.F = follower.last_F();
-        out.info = follower.info();
-        out.max_residual = follower.max_residual();
-      }
+    arrive_at(x);
+    // The next branch: past the problem's thrust onto a cheaper one, and back.
+    const double arrival = along.time_thrust(x, 0);
+    std::vector<double> next = x;
+    double at = 0;
+    if (follower.follow(next, at, -std::log(kNextBranchScale), kNextBranchStage, out.steps, true, 1.02 * arrival)) {
+      follower.follow(next, at, 0.0, kNextBranchStage, out.steps, false, 1.005 * arrival);
+      if (at == 0 && along.time_thrust(next, 0) < arrival) arrive_at(next);
     }
     follower.set(0.0);
   }
