@@ -121,7 +121,7 @@ class BoundRoute : public Route {
       TimeRouteArrival a;
       std::vector<double> z;
       int evaluations = 0;
-      const bool reached = minimum_time_from_fuel_solution(c.fine, c.knobs, there.start_extremals[k].x,
+      const bool reached = minimum_time_from_fuel_solution(c.fine, c.fine, c.knobs, there.start_extremals[k].x,
                                                            c.coarse.eps_start, z, a, evaluations);
       c.count(evaluations);
       rec.time_route.insert(rec.time_route.end(), a.steps.begin(), a.steps.end());
@@ -139,7 +139,7 @@ class BoundRoute : public Route {
     shortest[l0] = t_min / c.knobs.final_time_unit();
     TimeRouteArrival a;
     int evaluations = 0;
-    fuel_path_from_minimum_time(c.fine, c.knobs, shortest, c.admissible, a, evaluations);
+    fuel_path_from_minimum_time(c.fine, c.fine, c.knobs, shortest, c.admissible, a, evaluations);
     c.count(evaluations);
     rec.time_route.insert(rec.time_route.end(), a.steps.begin(), a.steps.end());
     if (!a.arrived)

@@ -197,11 +197,16 @@ class FamiliesRoute : public Route {
       StartRun run;
       run.x = rec.start_extremals[parent].x;
       how = "transfer angle from the extremal at eps_start " + std::to_string(parent);
-      const bool ok = turn_one_revolution(c.coarse, run.x, c.coarse.eps_start, direction, c.coarse.accept_residual,
-                                          c.admissible, steps, evaluations);
-      c.count(evaluations);
+      // A path to a start: on the looser integration, its arrival solved again at the search's.
+      const Settings loose = loose_settings(c.coarse);
+      bool ok = turn_one_revolution(loose, run.x, loose.eps_start, direction, loose.accept_residual, c.admissible,
+                                    steps, evaluations);
+      Shooter shooter(c.coarse, kContinuationStart);
+      int info = 0;
+      ok = ok && shooter.solve(run.x, c.coarse.eps_start, c.coarse.accept_residual, info, run.res) &&
+           c.admissible(run.x.data());
+      c.count(evaluations + shooter.evaluations);
       if (!ok) return -1;
-      run.res = steps.back().max_residual;
       run.shape = shape_of(c.coarse, run.x, c.coarse.eps_start);
       const int k = c.pool.enter_start(rec.start_extremals, run, -1, how);
       if (rec.start_extremals[k].continued) return rec.start_extremals[k].arrived;

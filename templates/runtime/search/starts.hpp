@@ -14,12 +14,6 @@ namespace helios_rt {
 
 namespace {
 
-// The integrator's tolerance a start is first solved at, and the residual that solve stops at (well
-// above what that integration resolves; the solve at the search's tolerance goes on from there).
-// 1e-6 against 1e-8: every objective of S01-S14 the same to 1e-11, 10-37 % less CPU.
-constexpr double kLooseStart = 1e-6;
-constexpr double kLooseAccept = 1e-5;
-
 class StartsRoute : public Route {
  public:
   const char* name() const override { return "starts"; }
@@ -84,16 +78,13 @@ class StartsRoute : public Route {
     run.x.assign(kProblem.num_vars, 0.0);
     c.guess(rng, run.x.data());
     draw_final_time(c, rng, run.x);
-    // Most starts fail: each is first solved on a looser integration (kLooseStart), and only one
-    // that converges there is solved again at the search's tolerance, from where it arrived.
-    Settings loose = c.coarse;
-    loose.rtol = std::max(loose.rtol, kLooseStart);
-    loose.atol = std::max(loose.atol, kLooseStart);
-    const double rough_accept = std::max(loose.accept_residual, kLooseAccept);
+    // Most starts fail: each is first solved on the looser integration (loose_settings), and only
+    // one that converges there is solved again at the search's tolerance, from where it arrived.
+    const Settings loose = loose_settings(c.coarse);
     Shooter rough(loose);
-    rough.stop_below(rough_accept);
+    rough.stop_below(loose.accept_residual);
     int info = 0;
-    run.ok = rough.solve(run.x, loose.eps_start, rough_accept, info, run.res);
+    run.ok = rough.solve(run.x, loose.eps_start, loose.accept_residual, info, run.res);
     c.count(rough.evaluations);
     if (!run.ok) return run;
     // Where it lands next to an extremal the starts before this batch reached (the list is read

@@ -77,33 +77,36 @@ struct TimeRouteArrival : PathArrival {
 // The final time comes down while its steps converge; near t_min it stops being a parameter
 // (s(lambda0) is flat where the thrust stays full, a fold in the final time), so from where its
 // steps first fail lambda0 itself is held and brought down to 0, the final time free: at 0 the
-// path is at the minimum-time extremal.
-inline bool minimum_time_from_fuel_solution(const Settings& s, ProgramKnobs& tf, std::vector<double> x, double eps,
-                                            std::vector<double>& z, TimeRouteArrival& out, int& evaluations) {
+// path is at the minimum-time extremal. The continuations run at `along` (loose_settings where
+// the path winds few times), the minimum-time extremal is solved at s.
+inline bool minimum_time_from_fuel_solution(const Settings& s, const Settings& along, ProgramKnobs& tf,
+                                            std::vector<double> x, double eps, std::vector<double>& z,
+                                            TimeRouteArrival& out, int& evaluations) {
   const int l0 = lambda0_variable();
-  Shooter fuel(s, kContinuationStart);
+  Shooter fuel(along, kContinuationStart);
   const double day = 1 / kProblem.time_unit_days, own_days = tf.final_time_unit() / day;
   const double reached = day * follow_parameter(
-                                   s, fuel, x, eps, [&](double days) { tf.set_final_time(days * day); }, own_days, 0.0,
-                                   -1e-7 * own_days, {0.05 * own_days, 0.01 * own_days, 0.2 * own_days}, kFinalTimeDown,
-                                   out.steps, [&](const std::vector<double>& y) { return y[l0] >= 0; },
+                                   along, fuel, x, eps, [&](double days) { tf.set_final_time(days * day); }, own_days,
+                                   0.0, -1e-7 * own_days, {0.05 * own_days, 0.01 * own_days, 0.2 * own_days},
+                                   kFinalTimeDown, out.steps, [&](const std::vector<double>& y) { return y[l0] >= 0; },
                                    [](const std::vector<double>&) { return false; });
   evaluations += fuel.evaluations;
   double held = x[l0];
-  Shooter time(s, held_multiplier_function(tf, l0, held), kContinuationStart);
+  Shooter time(along, held_multiplier_function(tf, l0, held), kContinuationStart);
   z = x;
   z[l0] = reached / tf.final_time_unit();
   const double from = held;
   held = follow_parameter(
-      s, time, z, eps, [&](double v) { held = v; }, from, 0.0, -1e-7 * std::max(from, 1e-3),
+      along, time, z, eps, [&](double v) { held = v; }, from, 0.0, -1e-7 * std::max(from, 1e-3),
       {0.25 * from, 1e-4 * from, from}, kLambda0Held, out.steps,
       [&](const std::vector<double>& y) { return y[l0] > 0; }, [](const std::vector<double>&) { return false; });
   int info = 0;
   double res = 0;
-  const bool ok = held == 0 && time.solve(z, 0.0, s.accept_residual, info, res) && z[l0] > 0;
+  Shooter minimum(s, held_multiplier_function(tf, l0, held), kContinuationStart);
+  const bool ok = held == 0 && minimum.solve(z, 0.0, s.accept_residual, info, res) && z[l0] > 0;
   out.steps.push_back(
-      {kMinimumTime, z[l0] * tf.final_time_unit() * kProblem.time_unit_days, ok, res, time.last_step_evaluations});
-  evaluations += time.evaluations;
+      {kMinimumTime, z[l0] * tf.final_time_unit() * kProblem.time_unit_days, ok, res, minimum.last_step_evaluations});
+  evaluations += time.evaluations + minimum.evaluations;
   if (ok) out.tf_min = z[l0] * tf.final_time_unit();
   tf.set_final_time(tf.final_time_unit());
   return ok;
@@ -125,34 +128,36 @@ inline double minimum_time_revolutions(const Settings& s, ProgramKnobs& tf, cons
 // up from 0 until coasting has lengthened the flight by kOpening of what separates it from the
 // problem's final time (s(a) is flat while the thrust stays full, then rises, and may fold back: a
 // is a parameter only near the start); then the final time itself, lambda0 free, up to the
-// problem's; there eps is continued down to 0 (homotopy_to_zero).
+// problem's; there eps is continued down to 0 (homotopy_to_zero). The continuations at eps_start
+// run at `along`, eps's at s.
 template <class Admissible>
-void fuel_path_from_minimum_time(const Settings& s, ProgramKnobs& tf, std::vector<double> z, Admissible& admissible,
-                                 TimeRouteArrival& out, int& evaluations) {
+void fuel_path_from_minimum_time(const Settings& s, const Settings& along, ProgramKnobs& tf, std::vector<double> z,
+                                 Admissible& admissible, TimeRouteArrival& out, int& evaluations) {
   constexpr double kOpening = 0.02;
   const int l0 = lambda0_variable();
   const double eps = s.eps_start, opened = z[l0] + kOpening * (1 - z[l0]);
   double held = 0;
-  Shooter opening(s, held_multiplier_function(tf, l0, held), kContinuationStart);
+  Shooter opening(along, held_multiplier_function(tf, l0, held), kContinuationStart);
   const double a = follow_parameter(
-      s, opening, z, eps, [&](double v) { held = v; }, 0.0, 0.999, 1e-7, {1e-3, 1e-7, 0.05}, kLambda0Held, out.steps,
-      [&](const std::vector<double>& y) { return y[l0] > 0; },
+      along, opening, z, eps, [&](double v) { held = v; }, 0.0, 0.999, 1e-7, {1e-3, 1e-7, 0.05}, kLambda0Held,
+      out.steps, [&](const std::vector<double>& y) { return y[l0] > 0; },
       [&](const std::vector<double>& y) { return y[l0] >= opened; });
   evaluations += opening.evaluations;
   if (!(z[l0] >= opened) || z[l0] > 1) {
     tf.set_final_time(tf.final_time_unit());
     return;
   }
-  Shooter itself(s, kContinuationStart);
+  Shooter up(along, kContinuationStart);
   std::vector<double> x = z;
   x[l0] = a;
   const double day = 1 / kProblem.time_unit_days, own_days = tf.final_time_unit() / day, from_days = z[l0] * own_days;
   tf.set_final_time(from_days * day);
   const double reached_days = follow_parameter(
-      s, itself, x, eps, [&](double days) { tf.set_final_time(days * day); }, from_days, own_days, 1e-7 * own_days,
+      along, up, x, eps, [&](double days) { tf.set_final_time(days * day); }, from_days, own_days, 1e-7 * own_days,
       {0.02 * own_days, 1e-5 * own_days, 0.2 * own_days}, kFinalTimeUp, out.steps,
       [&](const std::vector<double>& y) { return y[l0] > 0; }, [](const std::vector<double>&) { return false; });
   tf.set_final_time(tf.final_time_unit());
+  Shooter itself(s, kContinuationStart);
   if (reached_days == own_days) {
     Result path;
     double res = 0;
@@ -166,7 +171,7 @@ void fuel_path_from_minimum_time(const Settings& s, ProgramKnobs& tf, std::vecto
       out.info = path.info;
     }
   }
-  evaluations += itself.evaluations;
+  evaluations += up.evaluations + itself.evaluations;
 }
 
 // The route (see the top of this file), at the integrator's own tolerance, one path at a time:
@@ -195,8 +200,9 @@ class TimeRoute : public Route {
       TimeRouteArrival a;
       std::vector<double> z;
       int evaluations = 0;
-      const bool reached = minimum_time_from_fuel_solution(c.coarse, c.knobs, c.rec().start_extremals[k].x,
-                                                           c.coarse.eps_start, z, a, evaluations);
+      const bool reached =
+          minimum_time_from_fuel_solution(c.coarse, loose_settings(c.coarse), c.knobs, c.rec().start_extremals[k].x,
+                                          c.coarse.eps_start, z, a, evaluations);
       c.count(evaluations);
       if (reached) fewest = std::min(fewest, minimum_time_revolutions(c.coarse, c.knobs, z));
       path(c, "the extremal at eps_start " + std::to_string(k), reached ? &z : nullptr, a);
@@ -299,7 +305,7 @@ class TimeRoute : public Route {
       TimeRouteArrival a;
       std::vector<double> z;
       int evaluations = 0;
-      bool reached = minimum_time_from_fuel_solution(c.fine, c.knobs, raised.search.start_extremals[k].x,
+      bool reached = minimum_time_from_fuel_solution(c.fine, c.fine, c.knobs, raised.search.start_extremals[k].x,
                                                      c.coarse.eps_start, z, a, evaluations);
       const bool repeated =
           reached && std::any_of(seen.begin(), seen.end(), [&](double f) { return std::fabs(f - z[l0]) <= 1e-7 * f; });
@@ -332,9 +338,11 @@ class TimeRoute : public Route {
         if (std::fabs(p.tf_min_days - path.tf_min_days) <= 1e-7 * path.tf_min_days) path.reached_before = true;
       if (!path.reached_before) {
         int evaluations = 0;
-        // At the search's tolerance (its arrival is polished with the others) where the minimum-time
-        // extremal winds few times; over many revolutions only the integrator's own resolves the path.
-        fuel_path_from_minimum_time(path.revolutions <= kScaleRevolutions ? c.coarse : c.fine, c.knobs, *z,
+        // Where the minimum-time extremal winds few times, its path to eps = 0 on the looser
+        // integration and eps continued at the search's tolerance (its arrival is polished with the
+        // others); over many revolutions only the integrator's own resolves the path.
+        const bool few = path.revolutions <= kScaleRevolutions;
+        fuel_path_from_minimum_time(few ? c.coarse : c.fine, few ? loose_settings(c.coarse) : c.fine, c.knobs, *z,
                                     c.admissible, a, evaluations);
         c.count(evaluations);
       }
