@@ -4,12 +4,15 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "helios/derivation/document.hpp"
 #include "helios/derivation/names.hpp"
 #include "helios/io/error.hpp"
 #include "helios/pmp/derive.hpp"
 #include "helios/spec/parse.hpp"
+#include "helios/sweep/sweep.hpp"
 
 namespace {
 
@@ -239,6 +242,52 @@ TEST(DerivationDocument, AMissingOrMistypedFieldNamesItsPointer) {
   d = derivation_of("S09");
   d["events"][0]["costate_map"][1]["variable"] = 7;
   EXPECT_EQ(document_error(d), "x.json: field /events/0/costate_map/1/variable must be a string, got 7");
+}
+
+// A field only helios-derive writes (a reason, a scale, an initial guess) is optional to read, but
+// of its type when given: its error names the field and the value like any other.
+TEST(DerivationDocument, AMistypedOptionalFieldOfASharedSectionNamesItsPointer) {
+  json d = derivation_of("S01");
+  d["control_law"]["direction"]["reason"] = 3;
+  EXPECT_EQ(document_error(d), "x.json: field /control_law/direction/reason must be a string, got 3");
+  d = derivation_of("S01");
+  d["control_law"]["direction"]["dH_da"][0] = false;
+  EXPECT_EQ(document_error(d), "x.json: field /control_law/direction/dH_da/0 must be a string, got false");
+  d = derivation_of("S01");
+  d["shooting"]["variables"][1]["init"] = json::array();
+  EXPECT_EQ(document_error(d), "x.json: field /shooting/variables/1/init must be a string, got []");
+  d = derivation_of("S01");
+  d["control_law"]["throttle"].erase("smoothing");
+  d["control_law"]["direction"].erase("reason");
+  d["shooting"]["variables"][1].erase("init");
+  EXPECT_EQ(document_error(d), "");
+}
+
+// The derivation of every scenario: S01..S14, and the sweep P01 at its first cell.
+std::vector<std::pair<std::string, json>> every_derivation() {
+  std::vector<std::pair<std::string, json>> out;
+  for (int k = 1; k <= 14; ++k) {
+    const std::string s = std::string(k < 10 ? "S0" : "S") + std::to_string(k);
+    out.emplace_back(s, derivation_of(s));
+  }
+  const std::string path = std::string(HELIOS_SOURCE_DIR) + "/scenarios/P01/problem.txt";
+  const std::string text = helios::sweep::cell_problem(helios::io::read_text(path), path, 9700, 350);
+  out.emplace_back("P01", helios::pmp::derive_from_spec(helios::spec::parse_problem_text(text, path)));
+  return out;
+}
+
+// The sections helios-derive and the readers share (sections.hpp) are one model: written by
+// helios-derive, read into a Document and written again, each is the same JSON to the byte.
+TEST(DerivationSections, WriteReadWriteGivesTheSameJson) {
+  namespace sections = helios::derivation::sections;
+  for (const auto& [scenario, d] : every_derivation()) {
+    const Document doc(d, scenario);
+    EXPECT_EQ(sections::to_json(doc.control_law).dump(), d.at("control_law").dump()) << scenario;
+    EXPECT_EQ(sections::to_json(doc.initial_values).dump(), d.at("initial_values").dump()) << scenario;
+    EXPECT_EQ(sections::to_json(doc.event_value_list).dump(), d.value("event_values", json::array()).dump())
+        << scenario;
+    EXPECT_EQ(sections::to_json(doc.shooting).dump(), d.at("shooting").dump()) << scenario;
+  }
 }
 
 // The grammar of names.hpp, spelled out once here as the artifacts have it.

@@ -295,7 +295,7 @@ void ShootingFunction::start() {
   for (const auto& iv : c_.initial_values) {
     const int k = index_of(c_.states, iv.state);
     if (k < 0) throw std::invalid_argument("field /initial_values: unknown state " + json(iv.state).dump());
-    o << "  y[" << k << "] = " << body_.cpp(c_.symbols.parse(iv.expression.text, "field /initial_values/" + iv.state))
+    o << "  y[" << k << "] = " << body_.cpp(c_.symbols.parse(iv.value.text, "field /initial_values/" + iv.state))
       << ";\n";
   }
   for (std::size_t i = 0; i < c_.costates.size(); ++i) {

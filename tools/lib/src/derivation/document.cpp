@@ -1,9 +1,12 @@
-// The typed derivation document: each section read strictly from the artifact's JSON.
+// The typed derivation document: each section read strictly from the artifact's JSON, and the
+// JSON of the sections helios-derive and the readers share (sections.hpp).
 #include "helios/derivation/document.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "helios/io/error.hpp"
+#include "helios/symbolic/expr.hpp"
 
 namespace helios::derivation {
 namespace {
@@ -51,9 +54,10 @@ json optional_json(const json& obj, const std::string& key) {
   return obj.contains(key) ? obj.at(key) : json();
 }
 
-std::vector<Expression> expressions(const json& obj, const std::string& key, const std::string& where) {
+std::vector<Expression> expressions(const json& obj, const std::string& key, const std::string& where,
+                                    bool required = true) {
   std::vector<Expression> out;
-  const json& list = array(obj, key, where);
+  const json& list = array(obj, key, where, required);
   for (std::size_t i = 0; i < list.size(); ++i) {
     if (!list[i].is_string())
       throw std::invalid_argument("field " + at(where + "/" + key, i) + " must be a string, got " + list[i].dump());
@@ -79,18 +83,14 @@ std::vector<double> numbers(const json& obj, const std::string& key, const std::
   return out;
 }
 
+// An optional string member: "" when absent.
+std::string optional_text(const json& obj, const std::string& key, const std::string& where) {
+  return optional_string(obj, key, where).value_or("");
+}
+
 std::optional<double> optional_number(const json& obj, const std::string& key, const std::string& where) {
   if (!obj.contains(key)) return std::nullopt;
   return io::require_number(obj, key, where);
-}
-
-std::vector<Definition> read_definitions(const json& law, const std::string& where) {
-  std::vector<Definition> out;
-  const json& defs = array(law, "definitions", where, false);
-  for (std::size_t i = 0; i < defs.size(); ++i)
-    out.push_back({io::require_string(defs[i], "name", at(where + "/definitions", i)),
-                   expression(defs[i], "expression", at(where + "/definitions", i))});
-  return out;
 }
 
 Times read_times(const json& d) {
@@ -179,13 +179,24 @@ Event read_event(const json& e, const std::string& where) {
   return out;
 }
 
+// ---- the shared sections (sections.hpp): read as Expression, written from either form --------
+
+std::vector<Definition> read_definitions(const json& law, const std::string& where) {
+  std::vector<Definition> out;
+  const json& defs = array(law, "definitions", where, false);
+  for (std::size_t i = 0; i < defs.size(); ++i)
+    out.push_back({io::require_string(defs[i], "name", at(where + "/definitions", i)),
+                   expression(defs[i], "expression", at(where + "/definitions", i))});
+  return out;
+}
+
 ShootingEquation read_equation(const json& e, const std::string& where) {
   ShootingEquation out;
   out.name = io::require_string(e, "name", where);
   out.expression = expression(e, "expression", where);
   out.meaning = io::require_string(e, "meaning", where);
   out.scale = io::require_number(e, "scale", where);
-  out.source = optional_string(e, "source", where).value_or("");
+  out.source = optional_text(e, "source", where);
   out.alone_expression = optional_expression(e, "alone_expression", where);
   if (e.contains("inequality")) {
     const json& q = object(e, "inequality", where);
@@ -201,21 +212,243 @@ ShootingEquation read_equation(const json& e, const std::string& where) {
   return out;
 }
 
+const std::string& text(const Expression& e) {
+  return e.text;
+}
+
+std::string text(const GiNaC::ex& e) {
+  return symbolic::to_text(e);
+}
+
+template <class E>
+json texts(const std::vector<E>& v) {
+  json out = json::array();
+  for (const auto& e : v) out.push_back(text(e));
+  return out;
+}
+
+// A number as helios-derive writes a bound or a window's edge: a whole one as an integer.
+json number(double v) {
+  return v == std::floor(v) && std::fabs(v) < 1e15 ? json(static_cast<long long>(v)) : json(v);
+}
+
+// Sets out[key] = value unless value is empty (an optional member not given).
+void put(json& out, const std::string& key, const std::string& value) {
+  if (!value.empty()) out[key] = value;
+}
+
+// What a direction and a sail law begin with: the controls, and the definitions where there are any.
+template <class E>
+json unit_vector_law(const std::vector<std::string>& controls,
+                     const std::vector<sections::Definition<E>>& definitions) {
+  json out = {{"controls", controls}};
+  if (definitions.empty()) return out;
+  json& list = out["definitions"] = json::array();
+  for (const auto& def : definitions) list.push_back({{"name", def.name}, {"expression", text(def.expression)}});
+  return out;
+}
+
+template <class E>
+json direction_json(const sections::DirectionLaw<E>& a) {
+  json out = unit_vector_law(a.controls, a.definitions);
+  out["law"] = texts(a.law);
+  if (!a.dH_da.empty()) out["dH_da"] = texts(a.dH_da);
+  put(out, "reason", a.reason);
+  return out;
+}
+
+template <class E>
+json sail_json(const sections::SailLaw<E>& n) {
+  json out = unit_vector_law(n.controls, n.definitions);
+  out["cone_angle"] = text(n.cone_angle);
+  out["law"] = texts(n.law);
+  put(out, "stationarity", n.stationarity);
+  put(out, "admissible", n.admissible);
+  put(out, "reason", n.reason);
+  return out;
+}
+
+template <class E>
+json throttle_json(const sections::ThrottleLaw<E>& u) {
+  json bounds = json::array();
+  for (double b : u.bounds) bounds.push_back(number(b));
+  json out = {{"control", u.control},
+              {"bounds", bounds},
+              {"switching_function", text(u.switching_function)},
+              {"dH_du_at_lower", text(u.dH_du_at_lower)},
+              {"dH_du_at_upper", text(u.dH_du_at_upper)}};
+  if (u.d2H_du2) out["d2H_du2"] = text(*u.d2H_du2);
+  out["interior"] = text(u.interior);
+  put(out, "smoothing", u.smoothing);
+  put(out, "law", u.law);
+  return out;
+}
+
+json variable_json(const ShootingVariable& v) {
+  json out = {{"name", v.name}, {"meaning", v.meaning}};
+  put(out, "role", v.role);
+  out["scale"] = v.scale;
+  if (!v.range.empty()) out["range"] = v.range;
+  put(out, "init", v.init);
+  return out;
+}
+
+template <class E>
+json equation_json(const sections::ShootingEquation<E>& q) {
+  json out = {{"name", q.name},
+              {"expression", text(q.expression)},
+              {"meaning", q.meaning},
+              {"scale", q.scale},
+              {"source", q.source}};
+  if (q.inequality) {
+    const auto& b = *q.inequality;
+    json& bound = out["inequality"] = {
+        {"sense", b.sense}, {"multiplier", b.multiplier}, {"inactive_expression", text(b.inactive_expression)}};
+    if (!b.rule.is_null()) bound["rule"] = b.rule;
+    if (b.held_when_active)
+      bound["held_when_active"] = {{"variable", b.held_when_active->variable},
+                                   {"value", number(b.held_when_active->value)}};
+  }
+  if (q.alone_expression) out["alone_expression"] = text(*q.alone_expression);
+  return out;
+}
+
 }  // namespace
 
-const ShootingEquation* Shooting::equation(const std::string& name) const {
-  for (const auto& e : equations)
-    if (e.name == name) return &e;
-  return nullptr;
+namespace sections {
+
+ControlLaw<Expression> read_control_law(const json& d) {
+  const json& law = object(d, "control_law", "");
+  ControlLaw<Expression> out;
+  for (const auto& [key, value] : law.items())
+    if (key != "direction" && key != "throttle" && key != "sail") out.other.push_back(key);
+  if (law.contains("direction")) {
+    const json& a = object(law, "direction", "/control_law");
+    const std::string w = "/control_law/direction";
+    out.direction =
+        DirectionLaw<Expression>{strings(a, "controls", w), read_definitions(a, w), expressions(a, "law", w),
+                                 expressions(a, "dH_da", w, false), optional_text(a, "reason", w)};
+  }
+  if (law.contains("throttle")) {
+    const json& u = object(law, "throttle", "/control_law");
+    const std::string w = "/control_law/throttle";
+    ThrottleLaw<Expression> t;
+    t.control = io::require_string(u, "control", w);
+    t.bounds = numbers(u, "bounds", w, true);
+    t.switching_function = expression(u, "switching_function", w);
+    t.dH_du_at_lower = expression(u, "dH_du_at_lower", w);
+    t.dH_du_at_upper = expression(u, "dH_du_at_upper", w);
+    t.interior = expression(u, "interior", w);
+    t.d2H_du2 = optional_expression(u, "d2H_du2", w);
+    t.smoothing = optional_text(u, "smoothing", w);
+    t.law = optional_text(u, "law", w);
+    out.throttle = std::move(t);
+  }
+  if (law.contains("sail")) {
+    const json& n = object(law, "sail", "/control_law");
+    const std::string w = "/control_law/sail";
+    out.sail = SailLaw<Expression>{strings(n, "controls", w),           read_definitions(n, w),
+                                   expression(n, "cone_angle", w),      expressions(n, "law", w),
+                                   optional_text(n, "stationarity", w), optional_text(n, "admissible", w),
+                                   optional_text(n, "reason", w)};
+  }
+  return out;
 }
+
+std::vector<InitialValue<Expression>> read_initial_values(const json& d) {
+  std::vector<InitialValue<Expression>> out;
+  const json& initial = array(d, "initial_values", "");
+  for (std::size_t i = 0; i < initial.size(); ++i)
+    out.push_back({io::require_string(initial[i], "state", at("/initial_values", i)),
+                   expression(initial[i], "value", at("/initial_values", i))});
+  return out;
+}
+
+std::vector<EventValue> read_event_values(const json& d) {
+  std::vector<EventValue> out;
+  const json& values = array(d, "event_values", "", false);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const std::string where = at("/event_values", i);
+    out.push_back({io::require_string(values[i], "name", where), io::require_string(values[i], "meaning", where),
+                   optional_string(values[i], "kind", where), optional_string(values[i], "at", where)});
+  }
+  return out;
+}
+
+Shooting<Expression> read_shooting(const json& d) {
+  Shooting<Expression> out;
+  const json& sh = object(d, "shooting", "");
+  const json& vars = array(sh, "variables", "/shooting");
+  for (std::size_t i = 0; i < vars.size(); ++i) {
+    const std::string where = at("/shooting/variables", i);
+    ShootingVariable v;
+    v.name = io::require_string(vars[i], "name", where);
+    v.meaning = io::require_string(vars[i], "meaning", where);
+    v.scale = io::require_number(vars[i], "scale", where);
+    v.role = optional_text(vars[i], "role", where);
+    v.range = numbers(vars[i], "range", where, false);
+    v.init = optional_text(vars[i], "init", where);
+    out.variables.push_back(std::move(v));
+  }
+  const json& eqs = array(sh, "equations", "/shooting");
+  for (std::size_t i = 0; i < eqs.size(); ++i)
+    out.equations.push_back(read_equation(eqs[i], at("/shooting/equations", i)));
+  return out;
+}
+
+template <class E>
+json to_json(const ControlLaw<E>& law) {
+  json out = json::object();
+  if (law.direction) out["direction"] = direction_json(*law.direction);
+  if (law.sail) out["sail"] = sail_json(*law.sail);
+  if (law.throttle) out["throttle"] = throttle_json(*law.throttle);
+  return out;
+}
+
+template <class E>
+json to_json(const std::vector<InitialValue<E>>& values) {
+  json out = json::array();
+  for (const auto& v : values) out.push_back({{"state", v.state}, {"value", text(v.value)}});
+  return out;
+}
+
+json to_json(const std::vector<EventValue>& values) {
+  json out = json::array();
+  for (const auto& v : values) {
+    json value = {{"name", v.name}};
+    if (v.kind) value["kind"] = *v.kind;
+    if (v.at) value["at"] = *v.at;
+    value["meaning"] = v.meaning;
+    out.push_back(value);
+  }
+  return out;
+}
+
+template <class E>
+json to_json(const Shooting<E>& shooting) {
+  json variables = json::array(), equations = json::array();
+  for (const auto& v : shooting.variables) variables.push_back(variable_json(v));
+  for (const auto& q : shooting.equations) equations.push_back(equation_json(q));
+  return {{"variables", variables}, {"equations", equations}};
+}
+
+// helios-derive writes the GiNaC form, a reader (and the round-trip tests) the Expression form.
+template json to_json(const ControlLaw<GiNaC::ex>&);
+template json to_json(const ControlLaw<Expression>&);
+template json to_json(const std::vector<InitialValue<GiNaC::ex>>&);
+template json to_json(const std::vector<InitialValue<Expression>>&);
+template json to_json(const Shooting<GiNaC::ex>&);
+template json to_json(const Shooting<Expression>&);
+
+}  // namespace sections
 
 Document::Document(const json& derivation, const std::string& file, bool parse_units)
     : Reader(derivation, file, parse_units), file(file) {
   try {
     read_sections();
-    read_laws();
+    control_law = sections::read_control_law(d);
     read_events();
-    read_shooting();
+    shooting = sections::read_shooting(d);
     terms = read_terms(d, file);
   } catch (const std::invalid_argument& e) {  // "field <pointer> ..."
     throw input_error(file + ": " + e.what());
@@ -245,69 +478,17 @@ void Document::read_sections() {
   state_odes = read_odes(d, "state_odes", "state");
   costate_odes = read_odes(d, "costate_odes", "costate");
   constraints = read_constraints(d);
-  const json& initial = array(d, "initial_values", "");
-  for (std::size_t i = 0; i < initial.size(); ++i)
-    initial_values.push_back({io::require_string(initial[i], "state", at("/initial_values", i)),
-                              expression(initial[i], "value", at("/initial_values", i))});
-  const json& values = array(d, "event_values", "", false);
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    const std::string where = at("/event_values", i);
-    event_value_list.push_back({io::require_string(values[i], "name", where),
-                                io::require_string(values[i], "meaning", where),
-                                optional_string(values[i], "kind", where), optional_string(values[i], "at", where)});
-  }
+  initial_values = sections::read_initial_values(d);
+  event_value_list = sections::read_event_values(d);
   if (d.contains("coast_dynamics")) {
     const json& c = object(d, "coast_dynamics", "");
     coast_dynamics = CoastDynamics{strings(c, "states", "/coast_dynamics"), expressions(c, "rhs", "/coast_dynamics")};
   }
 }
 
-void Document::read_laws() {
-  const json& law = object(d, "control_law", "");
-  for (const auto& [key, value] : law.items())
-    if (key != "direction" && key != "throttle" && key != "sail") control_law.other.push_back(key);
-  if (law.contains("direction")) {
-    const json& a = object(law, "direction", "/control_law");
-    const std::string w = "/control_law/direction";
-    control_law.direction = DirectionLaw{strings(a, "controls", w), read_definitions(a, w), expressions(a, "law", w)};
-  }
-  if (law.contains("throttle")) {
-    const json& u = object(law, "throttle", "/control_law");
-    const std::string w = "/control_law/throttle";
-    control_law.throttle = ThrottleLaw{io::require_string(u, "control", w),    numbers(u, "bounds", w, true),
-                                       expression(u, "switching_function", w), expression(u, "dH_du_at_lower", w),
-                                       expression(u, "dH_du_at_upper", w),     expression(u, "interior", w),
-                                       optional_expression(u, "d2H_du2", w)};
-  }
-  if (law.contains("sail")) {
-    const json& n = object(law, "sail", "/control_law");
-    const std::string w = "/control_law/sail";
-    control_law.sail = SailLaw{strings(n, "controls", w), read_definitions(n, w), expression(n, "cone_angle", w),
-                               expressions(n, "law", w)};
-  }
-}
-
 void Document::read_events() {
   const json& list = array(d, "events", "", false);
   for (std::size_t i = 0; i < list.size(); ++i) interior_events.push_back(read_event(list[i], at("/events", i)));
-}
-
-void Document::read_shooting() {
-  const json& sh = object(d, "shooting", "");
-  const json& vars = array(sh, "variables", "/shooting");
-  for (std::size_t i = 0; i < vars.size(); ++i) {
-    const std::string where = at("/shooting/variables", i);
-    ShootingVariable v;
-    v.name = io::require_string(vars[i], "name", where);
-    v.meaning = io::require_string(vars[i], "meaning", where);
-    v.scale = io::require_number(vars[i], "scale", where);
-    v.role = optional_string(vars[i], "role", where).value_or("");
-    v.range = numbers(vars[i], "range", where, false);
-    shooting.variables.push_back(std::move(v));
-  }
-  const json& eqs = array(sh, "equations", "/shooting");
-  for (std::size_t i = 0; i < eqs.size(); ++i)
-    shooting.equations.push_back(read_equation(eqs[i], at("/shooting/equations", i)));
 }
 
 GiNaC::ex Document::parse(const Expression& e) const {

@@ -65,8 +65,8 @@ void initial_constraint(Derivation& d, EndpointConditions& c, TimeConditions& ti
   for (const auto& q : k.free_parameters) {
     std::vector<ex> dpsi;
     for (const auto& e : k.psi) dpsi.push_back(e.diff(S.get(q.name)));
-    d.shooting.variables.push_back({q.name, q.meaning + ", a free parameter of psi at t0", "initial_state",
-                                    "uniform in its range", std::make_pair(q.lo, q.hi)});
+    d.shooting.variables.push_back(
+        {q.name, q.meaning + ", a free parameter of psi at t0", "initial_state", "uniform in its range", {q.lo, q.hi}});
     d.shooting.equations.push_back(
         {names::stationarity_row(k.id, q.name), nu_dot(dpsi).expand(),
          "dPhi/d" + q.name + " = nu^T dpsi/d" + q.name + " = 0 with nu = -lambda(t0): " + q.name + " is free", k.id});
@@ -142,7 +142,7 @@ void final_constraint(Derivation& d, EndpointConditions& c, TimeConditions& time
   for (std::size_t j = 0; j < k.psi.size(); ++j) {
     ShootingEquation eq = constraint_equation(names::constraint_row(k.id, j + 1), k.psi[j].subs(at_tf),
                                               k.kind + " at tf with " + k.id + ": " + k.psi_names[j], k.id,
-                                              c.multipliers[j], k.psi_inequality[j]);
+                                              S.get(c.multipliers[j]), k.psi_inequality[j]);
     // A state free at t0 is held at its guess while the last leg is solved alone, so the row
     // fixing it at tf gives way to that leg's free-end condition.
     if (p.free_initial_mass && !k.psi_inequality[j] && k.psi[j].has(S.get("m"))) eq.alone_expression = free_end.at("m");
@@ -234,9 +234,11 @@ void initial_costates(Derivation& d) {
       // cost is the fuel) its transversality is lambda_m(t0) = -dPhi/dm(t0) = 0.
       const std::string m0 = names::at_t0(s.name);
       const double most = p.final_mass + value_of(p, "Tmax") / value_of(p, "c") * (p.tf - p.t0);
-      d.shooting.variables.push_back({m0, "initial mass (free: minimized)", "initial_state",
+      d.shooting.variables.push_back({m0,
+                                      "initial mass (free: minimized)",
+                                      "initial_state",
                                       "uniform in (final mass, final mass + Tmax (tf - t0)/c)",
-                                      std::make_pair(p.final_mass, most)});
+                                      {p.final_mass, most}});
       d.initial_values.push_back({s.name, S.get(m0)});
       d.shooting.variables.push_back(costate);
       d.shooting.equations.push_back({names::transversality_row(names::at_t0(s.name)), lambda_t0,

@@ -38,6 +38,6 @@ ShootingVariable multiplier_variable(const std::string& name, const std::string&
 // The equation psi_j = 0 of a constraint row; a bound psi_j <= 0 is handled in two passes: while
 // inactive its multiplier is 0 (the equation is then `multiplier` = 0), when active psi_j = 0.
 ShootingEquation constraint_equation(const std::string& name, const GiNaC::ex& expression, const std::string& meaning,
-                                     const std::string& source, const std::string& multiplier, bool inequality);
+                                     const std::string& source, const GiNaC::symbol& multiplier, bool inequality);
 
 }  // namespace helios::pmp

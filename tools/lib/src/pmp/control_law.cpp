@@ -28,7 +28,8 @@ std::vector<symbol> controls_of_kind(Problem& p, const std::string& kind, std::v
 // Minimizes H over a unit vector a that enters H linearly: H = g.a + ..., so a* = -g/|g|.
 // When g = k * (block of costates) with one scalar factor k, a* = -block/|block| (primer
 // vector); that needs k > 0 on the admissible set, which helios-verify checks numerically (G2).
-DirectionLaw direction_law(Problem& p, const ex& H) {
+// `b` is the vector a* points against: the block of costates, or g.
+DirectionLaw direction_law(Problem& p, const ex& H, std::vector<ex>& b) {
   DirectionLaw d;
   const std::vector<symbol> a = controls_of_kind(p, "direction", d.controls);
   if (a.empty()) return d;
@@ -37,12 +38,12 @@ DirectionLaw direction_law(Problem& p, const ex& H) {
     for (const auto& ak : a)
       if (!g.diff(ak).is_zero())
         throw std::invalid_argument("H is not linear in the thrust direction " + aj.get_name());
-    d.gradient.push_back(g);
+    d.dH_da.push_back(g);
   }
   std::vector<ex> block;
   ex common;
   bool simple = true;
-  for (const auto& g : d.gradient) {
+  for (const auto& g : d.dH_da) {
     int hits = 0;
     for (const auto& s : p.states) {
       const ex lam = p.symbols.get(names::costate(s.name));
@@ -56,28 +57,32 @@ DirectionLaw direction_law(Problem& p, const ex& H) {
     if (hits != 1) simple = false;
   }
   const bool primer = simple && block.size() == a.size();
-  d.b = primer ? block : d.gradient;
+  b = primer ? block : d.dH_da;
+  std::string costate_block;  // e.g. "l_vx, l_vy, l_vz"
   if (primer)
-    for (std::size_t i = 0; i < block.size(); ++i) d.costate_block += (i ? ", " : "") + to_text(block[i]);
+    for (std::size_t i = 0; i < block.size(); ++i) costate_block += (i ? ", " : "") + to_text(block[i]);
+  d.reason = primer ? "H is linear in the unit vector a with dH/da = k*(" + costate_block +
+                          "), k > 0: a* = -lambda/|lambda| (primer vector) minimizes it"
+                    : "H is linear in the unit vector a, so a* = -g/|g| with g = dH/da minimizes it";
   ex norm2 = 0;
-  for (const auto& b : d.b) norm2 += b * b;
-  for (const auto& b : d.b) d.law.push_back(-b / GiNaC::sqrt(norm2));
+  for (const auto& bj : b) norm2 += bj * bj;
+  for (const auto& bj : b) d.law.push_back(-bj / GiNaC::sqrt(norm2));
   return d;
 }
 
 // Substitutes a* into H and simplifies b.(-b/|b|) to -|b|.
-ex substitute_direction(const ex& H, const DirectionLaw& d, Problem& p) {
-  if (d.controls.empty()) return H;
+ex substitute_direction(const ex& H, const std::vector<std::string>& controls, const std::vector<ex>& b, Problem& p) {
+  if (controls.empty()) return H;
   const symbol norm("helios_direction_norm");
   GiNaC::exmap to_law;
   ex norm2 = 0;
-  for (std::size_t j = 0; j < d.controls.size(); ++j) {
-    to_law[p.symbols.get(d.controls[j])] = -d.b[j] / norm;
-    norm2 += d.b[j] * d.b[j];
+  for (std::size_t j = 0; j < controls.size(); ++j) {
+    to_law[p.symbols.get(controls[j])] = -b[j] / norm;
+    norm2 += b[j] * b[j];
   }
   ex Hs = H.subs(to_law).expand();
   // b.b = norm^2: replace the first component's square, so the sum cancels.
-  Hs = Hs.subs(GiNaC::pow(d.b[0], 2) == GiNaC::pow(norm, 2) - (norm2 - GiNaC::pow(d.b[0], 2)).expand(),
+  Hs = Hs.subs(GiNaC::pow(b[0], 2) == GiNaC::pow(norm, 2) - (norm2 - GiNaC::pow(b[0], 2)).expand(),
                GiNaC::subs_options::algebraic)
            .expand();
   return Hs.subs(norm == GiNaC::sqrt(norm2.expand()));
@@ -150,6 +155,11 @@ SailLaw sail_law(Problem& p, const ex& H) {
     if (std::fabs(lhs - rhs) > 1e-10 * (1 + std::fabs(rhs)))
       throw std::logic_error("sail law: H does not have the form k (n.rhat)^2 (lambda_v.n) in the sail normal");
   }
+  s.admissible = "|n| = 1, n.rhat >= 0 (the sail cannot push toward the Sun)";
+  s.reason =
+      "n = cos(alpha) rhat + sin(alpha) s: H is linear in the unit vector s normal to rhat, so s* = "
+      "-lambda_v_perp/|lambda_v_perp|; then dH/dalpha = 0 is a quadratic in tan(alpha) whose non-negative root "
+      "minimizes H on [0, pi/2]";
   return s;
 }
 
@@ -162,12 +172,15 @@ ThrottleLaw throttle_law(Problem& p, const Control& throttle, const ex& Hstar) {
   if (!dHdu.diff(u, 2).is_zero()) throw std::invalid_argument("H is not quadratic in the throttle " + throttle.name);
   ThrottleLaw t;
   t.control = throttle.name;
-  t.at_lower = dHdu.subs(u == 0).expand();
-  t.at_upper = dHdu.subs(u == 1).expand();
-  t.switching = t.at_lower.subs(eps == 0).expand();
-  t.second = dHdu.diff(u).expand();
-  const ex span = (t.at_lower - t.at_upper).expand();
-  t.interior = span.is_zero() ? ex(0) : (t.at_lower / span).expand();
+  t.dH_du_at_lower = dHdu.subs(u == 0).expand();
+  t.dH_du_at_upper = dHdu.subs(u == 1).expand();
+  t.switching_function = t.dH_du_at_lower.subs(eps == 0).expand();
+  t.d2H_du2 = dHdu.diff(u).expand();
+  const ex span = (t.dH_du_at_lower - t.dH_du_at_upper).expand();
+  t.interior = span.is_zero() ? ex(0) : (t.dH_du_at_lower / span).expand();
+  t.law =
+      "u = 0 where dH_du_at_lower >= 0, u = 1 where dH_du_at_upper <= 0, otherwise u = interior (dH/du = 0); "
+      "at eps = 0: u = 1 if switching_function < 0 else 0 (bang-bang)";
   return t;
 }
 
@@ -176,8 +189,10 @@ ThrottleLaw throttle_law(Problem& p, const Control& throttle, const ex& Hstar) {
 // The direction first (independent of the throttle), then a sail's normal, then the throttle.
 ControlLaw control_law(Problem& p, const ex& H) {
   ControlLaw law;
-  law.direction = direction_law(p, H);
-  const ex Hstar = substitute_direction(H, law.direction, p);
+  std::vector<ex> b;
+  DirectionLaw direction = direction_law(p, H, b);
+  const ex Hstar = substitute_direction(H, direction.controls, b, p);
+  if (!direction.controls.empty()) law.direction = std::move(direction);
   const auto of_kind = [&](const std::string& kind) {
     return std::find_if(p.controls.begin(), p.controls.end(), [&](const Control& c) { return c.kind == kind; });
   };

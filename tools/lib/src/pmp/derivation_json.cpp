@@ -28,53 +28,6 @@ json named_list(const std::vector<Named>& v, bool with_value) {
   return out;
 }
 
-json direction_json(const DirectionLaw& d) {
-  return {{"controls", d.controls},
-          {"law", texts(d.law)},
-          {"dH_da", texts(d.gradient)},
-          {"reason", d.costate_block.empty()
-                         ? "H is linear in the unit vector a, so a* = -g/|g| with g = dH/da minimizes it"
-                         : "H is linear in the unit vector a with dH/da = k*(" + d.costate_block +
-                               "), k > 0: a* = -lambda/|lambda| (primer vector) minimizes it"}};
-}
-
-json sail_json(const SailLaw& s) {
-  json definitions = json::array();
-  for (const auto& [name, e] : s.definitions) definitions.push_back({{"name", name}, {"expression", to_text(e)}});
-  return {{"controls", s.controls},
-          {"definitions", definitions},
-          {"cone_angle", to_text(s.cone_angle)},
-          {"law", texts(s.law)},
-          {"stationarity", s.stationarity},
-          {"admissible", "|n| = 1, n.rhat >= 0 (the sail cannot push toward the Sun)"},
-          {"reason",
-           "n = cos(alpha) rhat + sin(alpha) s: H is linear in the unit vector s normal to rhat, so s* = "
-           "-lambda_v_perp/|lambda_v_perp|; then dH/dalpha = 0 is a quadratic in tan(alpha) whose non-negative root "
-           "minimizes H on [0, pi/2]"}};
-}
-
-json throttle_json(const ThrottleLaw& t, bool smoothed) {
-  return {{"control", t.control},
-          {"bounds", json::array({0, 1})},
-          {"switching_function", to_text(t.switching)},
-          {"dH_du_at_lower", to_text(t.at_lower)},
-          {"dH_du_at_upper", to_text(t.at_upper)},
-          {"d2H_du2", to_text(t.second)},
-          {"interior", to_text(t.interior)},
-          {"smoothing", smoothed ? "quadratic" : "none"},
-          {"law",
-           "u = 0 where dH_du_at_lower >= 0, u = 1 where dH_du_at_upper <= 0, otherwise u = interior (dH/du = 0); "
-           "at eps = 0: u = 1 if switching_function < 0 else 0 (bang-bang)"}};
-}
-
-json control_law_json(const ControlLaw& law, bool smoothed) {
-  json control = json::object();
-  if (!law.direction.controls.empty()) control["direction"] = direction_json(law.direction);
-  if (law.sail) control["sail"] = sail_json(*law.sail);
-  if (law.throttle) control["throttle"] = throttle_json(*law.throttle, smoothed);
-  return control;
-}
-
 // The conditions g > 0 a constraint's rows leave to the runtime (model.hpp's SideCondition).
 json side_conditions_json(const std::vector<SideCondition>& sides) {
   json out = json::array();
@@ -134,36 +87,6 @@ json event_json(const Problem& p, const EventConditions& c) {
   out["conditions"] = conditions;
   out["state_map"] = state_map;
   out["costate_map"] = costate_map;
-  return out;
-}
-
-json variable_json(const ShootingVariable& v) {
-  json out = {{"name", v.name}, {"meaning", v.meaning}};
-  if (!v.role.empty()) out["role"] = v.role;
-  out["scale"] = 1.0;
-  if (v.range) out["range"] = {v.range->first, v.range->second};
-  out["init"] = v.init;
-  return out;
-}
-
-json equation_json(const ShootingEquation& q) {
-  json out = {{"name", q.name},
-              {"expression", to_text(q.expression)},
-              {"meaning", q.meaning},
-              {"scale", 1.0},
-              {"source", q.source}};
-  if (q.inequality) {
-    out["inequality"] = {{"sense", "expression <= 0"},
-                         {"multiplier", q.multiplier},
-                         {"inactive_expression", q.multiplier},
-                         {"rule",
-                          "pass 1: inactive (multiplier = 0); if the expression is > 0 at the solution, "
-                          "pass 2 makes it active (expression = 0) and requires multiplier >= 0"}};
-    if (q.held_when_active)
-      out["inequality"]["held_when_active"] = {{"variable", q.held_when_active->variable},
-                                               {"value", q.held_when_active->value}};
-  }
-  if (q.alone_expression) out["alone_expression"] = to_text(*q.alone_expression);
   return out;
 }
 
@@ -233,13 +156,7 @@ void problem_sections(const Derivation& d, json& doc) {
   const bool coasting = std::any_of(p.parameters.begin(), p.parameters.end(),
                                     [](const Named& q) { return q.source.rfind("coast:", 0) == 0; });
   if (coasting) doc["coast_dynamics"] = {{"states", {"rx", "ry", "rz", "vx", "vy", "vz"}}, {"rhs", texts(p.coast_f)}};
-  if (!d.hamiltonian_values.empty()) {
-    json values = json::array();
-    for (const auto& h : d.hamiltonian_values)
-      values.push_back(
-          {{"name", names::hamiltonian(h.at)}, {"kind", "hamiltonian"}, {"at", h.at}, {"meaning", h.meaning}});
-    doc["event_values"] = values;
-  }
+  if (!d.hamiltonian_values.empty()) doc["event_values"] = derivation::sections::to_json(d.hamiltonian_values);
   if (!p.orbit_bodies.empty()) doc["bodies"] = bodies_json(p.orbit_bodies);
 }
 
@@ -274,17 +191,12 @@ json derivation_json(const Derivation& d) {
   }
   doc["state_odes"] = state_odes;
   doc["costate_odes"] = costate_odes;
-  doc["control_law"] = control_law_json(d.control, d.smoothed);
-  json initial_values = json::array();
-  for (const auto& v : d.initial_values) initial_values.push_back({{"state", v.state}, {"value", to_text(v.value)}});
-  doc["initial_values"] = initial_values;
+  doc["control_law"] = derivation::sections::to_json(d.control);
+  doc["initial_values"] = derivation::sections::to_json(d.initial_values);
   json constraints = json::array();
   for (const auto& c : d.constraints) constraints.push_back(constraint_json(c));
   doc["constraints"] = constraints;
-  json variables = json::array(), equations = json::array();
-  for (const auto& v : d.shooting.variables) variables.push_back(variable_json(v));
-  for (const auto& q : d.shooting.equations) equations.push_back(equation_json(q));
-  doc["shooting"] = {{"variables", variables}, {"equations", equations}};
+  doc["shooting"] = derivation::sections::to_json(d.shooting);
   check_expression_sizes(doc);
   return doc;
 }

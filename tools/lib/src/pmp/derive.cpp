@@ -27,12 +27,12 @@ ShootingVariable multiplier_variable(const std::string& name, const std::string&
 }
 
 ShootingEquation constraint_equation(const std::string& name, const ex& expression, const std::string& meaning,
-                                     const std::string& source, const std::string& multiplier, bool inequality) {
+                                     const std::string& source, const GiNaC::symbol& multiplier, bool inequality) {
   ShootingEquation eq{name, expression, meaning + (inequality ? ", active: = 0" : " = 0"), source};
-  if (inequality) {
-    eq.inequality = true;
-    eq.multiplier = multiplier;
-  }
+  if (inequality)
+    eq.inequality = Inequality{"expression <= 0", multiplier.get_name(), multiplier,
+                               "pass 1: inactive (multiplier = 0); if the expression is > 0 at the solution, "
+                               "pass 2 makes it active (expression = 0) and requires multiplier >= 0"};
   return eq;
 }
 
@@ -52,10 +52,11 @@ void canonical_system(Derivation& d) {
 }
 
 // The values of H the conditions of free times refer to (H_t0, H_<id>_m/_p, H_tf).
-std::vector<HamiltonianValue> hamiltonian_values(const Problem& p) {
-  std::vector<HamiltonianValue> values;
+std::vector<EventValue> hamiltonian_values(const Problem& p) {
+  std::vector<EventValue> values;
   const auto at = [&](const std::string& where, const std::string& meaning) {
-    values.push_back({where, "H " + meaning + " with the optimal control (the runtime evaluates it)"});
+    values.push_back({names::hamiltonian(where),
+                      "H " + meaning + " with the optimal control (the runtime evaluates it)", "hamiltonian", where});
   };
   if (p.free_departure) at("t0", "at t0");
   for (const auto& e : p.events) {
@@ -73,6 +74,7 @@ Derivation derive_conditions(const Problem& problem) {
   d.problem = problem;  // the symbol table grows while deriving
   canonical_system(d);
   d.control = control_law(d.problem, d.hamiltonian);
+  if (d.control.throttle) d.control.throttle->smoothing = d.smoothed ? "quadratic" : "none";
   d.shooting.variables.push_back(
       {"lambda0", "cost multiplier lambda0 (>= 0)", "", "uniform in (0, 1), then the whole vector normalized"});
   endpoint_conditions(d);

@@ -69,12 +69,13 @@ void event_rows(const InteriorEvent& e, const EventSymbols& y, EventConditions& 
     c.multipliers.push_back(y.nu[j].get_name());
     ShootingEquation eq =
         constraint_equation(names::constraint_row(e.id, j + 1), e.c[j], e.kind + " at " + e.id + ": " + e.c_names[j],
-                            e.id, y.nu[j].get_name(), e.c_inequality[j]);
+                            e.id, y.nu[j], e.c_inequality[j]);
     // A leg alone holds its epoch: at a guess inside the window while the window's bound is
     // inactive, at the bound's edge while it is active (the bound's row is then its multiplier).
     if (e.c[j].has(y.epoch)) {
       eq.alone_expression = y.nu[j];
-      eq.held_when_active = HeldWhenActive{y.frac, e.c[j].diff(y.epoch).is_equal(-1) ? 0 : 1};
+      if (eq.inequality)
+        eq.inequality->held_when_active = Inequality::Held{y.frac, e.c[j].diff(y.epoch).is_equal(-1) ? 0.0 : 1.0};
     }
     shooting.equations.push_back(eq);
   }

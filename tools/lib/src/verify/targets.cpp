@@ -684,7 +684,7 @@ class TargetFamily : public Family {
         if (!ctx.slots.count(v.state) || std::find(ctx.states.begin(), ctx.states.end(), v.state) == ctx.states.end())
           throw std::invalid_argument("initial_values names '" + v.state + "', which is not a state");
         start.emplace_back(ctx.slot(v.state),
-                           ctx.compile(ctx.statement(v.expression.text, "initial_values[" + v.state + "]")));
+                           ctx.compile(ctx.statement(v.value.text, "initial_values[" + v.state + "]")));
       }
     } catch (const std::exception& e) {
       c.max_rel = 2;

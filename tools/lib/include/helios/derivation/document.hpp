@@ -16,15 +16,11 @@
 #include <vector>
 
 #include "helios/derivation/reader.hpp"
+#include "helios/derivation/sections.hpp"
 #include "helios/derivation/terms.hpp"
 #include "helios/io/json_io.hpp"
 
 namespace helios::derivation {
-
-// An expression of the artifact: its text and its JSON pointer (e.g. /costate_odes/3/rhs).
-struct Expression {
-  std::string text, pointer;
-};
 
 // times: the initial time, the final one (fixed or an expression of a shooting variable), and a
 // sliding departure's t0 as an expression of one.
@@ -46,42 +42,6 @@ struct Dynamics {
 struct Ode {
   std::string name;
   Expression rhs;
-};
-
-// control_law.throttle: the switching function, dH/du at the bounds, the interior law.
-struct ThrottleLaw {
-  std::string control;
-  std::vector<double> bounds;
-  Expression switching_function, dH_du_at_lower, dH_du_at_upper, interior;
-  std::optional<Expression> d2H_du2;
-};
-
-// A named intermediate expression of the sail law.
-struct Definition {
-  std::string name;
-  Expression expression;
-};
-
-// control_law.direction: the controls it is for, named intermediate expressions and a* by control.
-struct DirectionLaw {
-  std::vector<std::string> controls;
-  std::vector<Definition> definitions;
-  std::vector<Expression> law;
-};
-
-// control_law.sail: n* by control, its definitions and its cone angle.
-struct SailLaw {
-  std::vector<std::string> controls;
-  std::vector<Definition> definitions;
-  Expression cone_angle;
-  std::vector<Expression> law;
-};
-
-struct ControlLaw {
-  std::optional<DirectionLaw> direction;
-  std::optional<ThrottleLaw> throttle;
-  std::optional<SailLaw> sail;
-  std::vector<std::string> other;  // members of another name: laws of controls no reader knows
 };
 
 // A condition g > 0 the rows leave to the runtime (must_be_positive): they also hold on the
@@ -128,50 +88,10 @@ struct Event {
   io::json target;  // null when absent
 };
 
-// A value the runtime evaluates at an event (H just before or after, H at tf, ...).
-struct EventValue {
-  std::string name, meaning;
-  std::optional<std::string> kind, at;
-};
-
 // coast_dynamics: a coasting target's states and their uncontrolled dynamics.
 struct CoastDynamics {
   std::vector<std::string> states;
   std::vector<Expression> rhs;
-};
-
-// An inequality row of the shooting system: psi <= 0 with its multiplier; inactive, the row is
-// the multiplier = 0.
-struct Inequality {
-  std::string sense, multiplier;
-  Expression inactive_expression;
-  io::json rule;  // as written, null when absent
-  // Active, the bound holds a variable (an event's time fraction) at a value (the window's edge).
-  struct Held {
-    std::string variable;
-    double value = 0;
-  };
-  std::optional<Held> held_when_active;
-};
-
-struct ShootingVariable {
-  std::string name, meaning, role;  // role: "" when not given
-  double scale = 1;
-  std::vector<double> range;  // empty when not given
-};
-
-struct ShootingEquation {
-  std::string name, meaning, source;
-  Expression expression;
-  double scale = 1;
-  std::optional<Expression> alone_expression;
-  std::optional<Inequality> inequality;
-};
-
-struct Shooting {
-  std::vector<ShootingVariable> variables;
-  std::vector<ShootingEquation> equations;
-  const ShootingEquation* equation(const std::string& name) const;  // null when none is so named
 };
 
 // A body on a Keplerian orbit about the central body (bodies[]): normalized a and epoch, angles in rad.
@@ -194,7 +114,7 @@ class Document : public Reader {
   Dynamics dynamics;
   Expression hamiltonian;
   std::vector<Ode> state_odes, costate_odes;
-  std::vector<StateMapEntry> initial_values;  // a state's value at t0, where a constraint fixes it
+  std::vector<InitialValue> initial_values;  // a state's value at t0, where a constraint fixes it
   ControlLaw control_law;
   std::vector<Constraint> constraints;
   std::vector<Event> interior_events;
@@ -208,9 +128,7 @@ class Document : public Reader {
 
  private:
   void read_sections();
-  void read_laws();
   void read_events();
-  void read_shooting();
 };
 
 }  // namespace helios::derivation
