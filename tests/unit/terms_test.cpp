@@ -374,6 +374,22 @@ TEST(SolarElectric, TheSentenceIsDerivedAsOneTermWithRolesAndVerified) {
                                                        {"c", "exhaust_velocity"},
                                                        {"Pmax", "thrust_scale"},
                                                        {"Pw", "thrust_scale"}}));
+  // The thrust continuation multiplies every thrust_scale parameter by one factor: T(r), and so the
+  // mass flow, must scale by it exactly, on either side of the cap.
+  helios::symbolic::SymbolTable table;
+  for (const auto& s : d["states"]) table.get(s["name"]);
+  for (const auto& c : d["controls"]) table.get(c["name"]);
+  helios::symbolic::Values own, scaled;
+  for (const auto& q : d["parameters"]) {
+    own[table.get(q["name"]).get_name()] = q["value"];
+    scaled[q["name"]] = q["value"].get<double>() * (q.value("role", "") == "thrust_scale" ? 3.0 : 1.0);
+  }
+  const GiNaC::ex flow = table.parse(d["state_odes"][6]["rhs"].get<std::string>(), "S15");
+  for (const double dist : {0.8, 1.38, 2.0}) {
+    for (auto* v : {&own, &scaled}) (*v)["rx"] = dist, (*v)["ry"] = 0, (*v)["rz"] = 0, (*v)["m"] = 1, (*v)["u"] = 1;
+    EXPECT_NEAR(helios::symbolic::evaluate(flow, table, scaled) / helios::symbolic::evaluate(flow, table, own), 3.0,
+                1e-12);
+  }
   // The constant engine's roles: Tmax scales the thrust, c is the exhaust velocity.
   for (const auto& q : derivation("S01")["parameters"])
     EXPECT_EQ(q.value("role", ""), q["name"] == "Tmax" ? "thrust_scale" : q["name"] == "c" ? "exhaust_velocity" : "");
