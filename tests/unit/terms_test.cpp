@@ -527,6 +527,15 @@ TEST(SolarElectric, WhatItCannotFlyIsRefusedNamingTheField) {
   EXPECT_TRUE(contains(refusal_of(text), "needs the Sun as the central body")) << refusal_of(text);
   text = s01_with(std::string(kS15Engine) + "\nThe spacecraft has a maximum thrust of 0.5 N.");
   EXPECT_TRUE(contains(refusal_of(text), "the thrust follows from the power")) << refusal_of(text);
+  // A spec (written by hand or a model) with both a thrust and the arrays is refused, not half read.
+  json spec = helios::spec::parse_problem_text(problem_text("S15"), "p.txt");
+  spec["spacecraft"]["thrust_N"] = 0.5;
+  try {
+    helios::pmp::derive_from_spec(spec);
+    ADD_FAILURE() << "a thrust beside the arrays was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_TRUE(contains(e.what(), "field /spacecraft/thrust_N")) << e.what();
+  }
   text = s01_with(kS15Engine);
   text.replace(text.find("an efficiency of 0.6"), 20, "an efficiency of 1.6");
   EXPECT_TRUE(contains(refusal_of(text), "efficiency must be in (0, 1]")) << refusal_of(text);

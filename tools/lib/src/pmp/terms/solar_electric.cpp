@@ -33,6 +33,9 @@ class SolarElectric : public ForceTerm {
       throw std::invalid_argument(
           "field /spacecraft: a solar-electric engine of constant mass or at full throttle throughout is not "
           "supported");
+    if (sc.contains("thrust_N"))
+      throw std::invalid_argument(
+          "field /spacecraft/thrust_N: a solar-electric engine's thrust follows from its power; drop thrust_N");
     if (!sc.contains("isp_s"))
       throw std::invalid_argument("field /spacecraft/isp_s is missing (a solar-electric engine needs it)");
     // Power in the normalized units: mass * length^2 / time^3.
