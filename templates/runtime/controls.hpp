@@ -28,9 +28,38 @@ inline bool constant_mass() {
 // problem of a minimum-time one prices its throttle by it (fuel_weight). A mass flow is measured
 // once at the program's own thrust and followed in proportion to the maximum thrust where the
 // search moves it (search/knobs.hpp): the flow is Tmax/c.
+// The program's thrust-scale parameters (ProblemShape::thrust_scale; Tmax where it lists none).
+inline const std::vector<double*>& thrust_scale_parameters() {
+  static const std::vector<double*> out = [] {
+    std::vector<double*> found;
+    if (kProblem.thrust_scale) {
+      for (const char* const* n = kProblem.thrust_scale; *n; ++n)
+        if (double* q = scalar_parameter(*n)) found.push_back(q);
+    } else if (double* q = scalar_parameter("Tmax")) {
+      found.push_back(q);
+    }
+    return found;
+  }();
+  return out;
+}
+
+// Why the routes that take the full-throttle mass flow for a constant do not apply ("" where they do).
+inline const char* varying_flow_reason() {
+  return kProblem.mass_flow_varies ? "the mass flow follows the Sun's distance (a solar-electric engine), and the "
+                                     "route takes it for a constant"
+                                   : "";
+}
+
 inline double full_throttle_cost_rate() {
   if (constant_mass()) return kProblem.throttle_index >= 0 ? kProblem.throttle_cost_rate() : 0.0;
-  static const double* const thrust = scalar_parameter("Tmax");
+  // A flow that follows the position has no rate of its own: 0, and the routes say why (varying_flow_reason).
+  if (kProblem.mass_flow_varies) return 0.0;
+  // Followed through one thrust-scale parameter with a value (they move together).
+  static const double* const thrust = [] {
+    for (double* q : thrust_scale_parameters())
+      if (*q != 0) return static_cast<const double*>(q);
+    return static_cast<const double*>(nullptr);
+  }();
   static const double own_thrust = thrust ? *thrust : 1.0;
   static const double flow = [] {
     const int m = kProblem.mass_index, u = kProblem.throttle_index;

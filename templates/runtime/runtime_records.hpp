@@ -68,6 +68,13 @@ struct ProblemShape {
   // program's parameters, Tmax/c (the objective the propellant in kg) or Tmax/m (the delta-v in
   // m/s, where no exhaust velocity is given). A program with a mass state or none: nullptr.
   double (*throttle_cost_rate)() = nullptr;
+  // The parameters the thrust is proportional to, jointly (the derivation's role thrust_scale: Tmax,
+  // or a solar-electric engine's powers), nullptr-terminated: the thrust continuation multiplies
+  // them all. A program that lists none: the parameter named Tmax, where it has one.
+  const char* const* thrust_scale = nullptr;
+  // The full-throttle mass flow follows the position (a solar-electric engine, whose thrust follows
+  // the Sun's distance): the routes that assume a constant flow skip, saying so.
+  bool mass_flow_varies = false;
 };
 extern const ProblemShape kProblem;  // the program defines it (module_interface.hpp)
 

@@ -4,7 +4,9 @@
 // verified.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "helios/io/schema.hpp"
 #include "helios/pmp/derive.hpp"
 #include "helios/spec/parse.hpp"
+#include "helios/symbolic/expr.hpp"
 #include "helios/verify/verify.hpp"
 
 namespace {
@@ -319,4 +322,253 @@ TEST(Terms, AConstantMassIsRefusedWhereItContradictsTheText) {
   std::string text = constant_mass_text("The spacecraft has a maximum thrust of 60 N.", kFreeTime);
   text.replace(text.find("The spacecraft's mass is constant at"), 36, "The spacecraft has an initial mass of");
   EXPECT_TRUE(contains(refusal(text), "isp_s")) << refusal(text);
+}
+
+// ---- A solar-electric engine (issue 48): T(r) = 2 eta P_in(r)/c, the costates carry dT/dr -----------
+
+const char* kS01Engine =
+    "The spacecraft has a maximum thrust of 0.5 N, a specific impulse of 2000 s and an initial mass of 1000 kg.";
+const char* kS15Engine =
+    "The spacecraft is solar-electric: its arrays give 20 kW at 1 AU, the bus uses 0.5 kW, the engine takes at most "
+    "10 kW with an efficiency of 0.6 and a specific impulse of 2000 s.\nThe spacecraft has an initial mass of 1000 kg.";
+
+// S01's text with its engine sentence replaced by `engine`.
+std::string s01_with(const std::string& engine) {
+  std::string text = problem_text("S01");
+  text.replace(text.find(kS01Engine), std::string(kS01Engine).size(), engine);
+  return text;
+}
+
+std::string refusal_of(const std::string& text) {
+  try {
+    derive_text(text);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(SolarElectric, TheSentenceIsDerivedAsOneTermWithRolesAndVerified) {
+  const json spec = helios::spec::parse_problem_text(problem_text("S15"), "problem.txt");
+  EXPECT_EQ(spec["spacecraft"],
+            json::parse(R"({"array_power_1AU_W": 20000, "bus_power_W": 500, "max_engine_power_W": 10000,
+                           "engine_efficiency": 0.6, "isp_s": 2000, "initial_mass_kg": 1000})"));
+  const json& d = derivation("S15");
+  EXPECT_NO_THROW(helios::io::validate("derivation", d, "terms_test"));
+  std::string listed;
+  const auto terms = helios::derivation::read_terms(d, "S15");
+  for (const auto& t : *terms) {
+    listed += (listed.empty() ? "" : " ") + t.name + "(";
+    for (std::size_t i = 0; i < t.parameters.size(); ++i) listed += (i ? "," : "") + t.parameters[i];
+    listed += ")";
+  }
+  EXPECT_EQ(listed, "two_body(mu) solar_electric_thrust(P0,Pbus,eta,c,Pmax,Pw) fuel(P0,Pbus,eta,c,Pmax,Pw)");
+  std::map<std::string, std::string> roles;
+  for (const auto& q : d["parameters"])
+    if (q.contains("role") || q["name"].get<std::string>().find('_') == std::string::npos)
+      roles[q["name"]] = q.value("role", "");  // the engine's and mu (not the targets' states)
+  EXPECT_EQ(roles, (std::map<std::string, std::string>{{"mu", ""},
+                                                       {"P0", "thrust_scale"},
+                                                       {"Pbus", "thrust_scale"},
+                                                       {"eta", ""},
+                                                       {"c", "exhaust_velocity"},
+                                                       {"Pmax", "thrust_scale"},
+                                                       {"Pw", "thrust_scale"}}));
+  // The thrust continuation multiplies every thrust_scale parameter by one factor: T(r), and so the
+  // mass flow, must scale by it exactly, on either side of the cap.
+  helios::symbolic::SymbolTable table;
+  for (const auto& s : d["states"]) table.get(s["name"]);
+  for (const auto& c : d["controls"]) table.get(c["name"]);
+  helios::symbolic::Values own, scaled;
+  for (const auto& q : d["parameters"]) {
+    own[table.get(q["name"]).get_name()] = q["value"];
+    scaled[q["name"]] = q["value"].get<double>() * (q.value("role", "") == "thrust_scale" ? 3.0 : 1.0);
+  }
+  const GiNaC::ex flow = table.parse(d["state_odes"][6]["rhs"].get<std::string>(), "S15");
+  for (const double dist : {0.8, 1.38, 2.0}) {
+    for (auto* v : {&own, &scaled}) (*v)["rx"] = dist, (*v)["ry"] = 0, (*v)["rz"] = 0, (*v)["m"] = 1, (*v)["u"] = 1;
+    EXPECT_NEAR(helios::symbolic::evaluate(flow, table, scaled) / helios::symbolic::evaluate(flow, table, own), 3.0,
+                1e-12);
+  }
+  // The constant engine's roles: Tmax scales the thrust, c is the exhaust velocity.
+  for (const auto& q : derivation("S01")["parameters"])
+    EXPECT_EQ(q.value("role", ""), q["name"] == "Tmax" ? "thrust_scale" : q["name"] == "c" ? "exhaust_velocity" : "");
+  const json r = verify(d);
+  EXPECT_EQ(r["verdict"], "pass") << r.dump(1);
+  EXPECT_EQ(check(r, "dynamics_terms")["verdict"], "pass");
+  EXPECT_EQ(check(r, "cost_terms")["verdict"], "pass");
+}
+
+// Every row of the SEP derivation against numbers computed here: the dynamics against T(r) in SI
+// (newtons from watts), the costate rates against central differences of H, the switching function
+// against a central difference of H along the throttle with the direction's law.
+TEST(SolarElectric, EveryDerivationRowAgreesWithFiniteDifferences) {
+  const json& d = derivation("S15");
+  helios::symbolic::SymbolTable table;
+  std::vector<std::string> states, costates;
+  for (const auto& s : d["states"]) {
+    states.push_back(s["name"]);
+    costates.push_back(s["costate"]);
+  }
+  for (const auto& n : states) table.get(n);
+  for (const auto& n : costates) table.get(n);
+  for (const auto& c : d["controls"]) table.get(c["name"]);
+  helios::symbolic::Values values;
+  for (const auto& q : d["parameters"]) values[table.get(q["name"]).get_name()] = q["value"];
+  for (const char* n : {"lambda0", "eps", "t"}) table.get(n);
+  const auto parse = [&](const json& text) { return table.parse(text.get<std::string>(), "S15"); };
+  const GiNaC::ex H = parse(d["hamiltonian"]);
+  const double AU_m = 149597870.691e3, year_s = 365.25 * 86400, mass_kg = 1000, g0 = 9.80665, isp = 2000;
+  const double accel_unit = AU_m / (year_s * year_s);
+  std::mt19937_64 rng(48);
+  std::uniform_real_distribution<double> uni(-1, 1);
+  // Distances through the cap's crossing (P0/r^2 - Pbus = Pmax at r = sqrt(20/10.5) = 1.380 AU).
+  for (const double dist : {0.7, 1.0, 1.3, 1.375, 1.380, 1.385, 1.45, 1.65, 2.2}) {
+    SCOPED_TRACE(dist);
+    helios::symbolic::Values at = values;
+    double dir[3] = {uni(rng), uni(rng), uni(rng)};
+    const double n = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    at["rx"] = dist * dir[0] / n;
+    at["ry"] = dist * dir[1] / n;
+    at["rz"] = dist * dir[2] / n;
+    for (const char* v : {"vx", "vy", "vz"}) at[v] = 6 * uni(rng);
+    at["m"] = 0.7 + 0.2 * uni(rng);
+    for (const auto& c : costates) at[c] = uni(rng);
+    at["lambda0"] = 0.5;
+    at["eps"] = 0.3;
+    at["t"] = 0;
+    at["u"] = 0.6;
+    at["ax"] = 0.6, at["ay"] = 0.8, at["az"] = 0;
+    // T(r) in newtons from the watts of the problem text, the cap a smooth minimum of width 1% of Pmax.
+    const double available = 20000 / (dist * dist) - 500, pmax = 10000, width = 100;
+    const double input = (available + pmax - std::sqrt((available - pmax) * (available - pmax) + width * width)) / 2;
+    const double thrust_N = 2 * 0.6 * input / (g0 * isp);
+    const double thrust_accel = thrust_N / (mass_kg * at["m"]) / accel_unit;  // normalized
+    const double mdot = -thrust_N / (g0 * isp) / mass_kg * year_s;            // normalized
+    const auto rhs = [&](std::size_t i) {
+      return helios::symbolic::evaluate(parse(d["state_odes"][i]["rhs"]), table, at);
+    };
+    helios::symbolic::Values coast = at;
+    coast["u"] = 0;
+    const double gravity_vx = helios::symbolic::evaluate(parse(d["state_odes"][3]["rhs"]), table, coast);
+    EXPECT_NEAR((rhs(3) - gravity_vx) / (0.6 * 0.6 * thrust_accel), 1.0, 1e-9);
+    EXPECT_NEAR(rhs(6) / (0.6 * mdot), 1.0, 1e-9);
+    // Costate rates: -dH/dx by central differences.
+    for (std::size_t i = 0; i < states.size(); ++i) {
+      SCOPED_TRACE(states[i]);
+      const double h = 1e-5 * std::max(1.0, std::fabs(at[states[i]]));
+      helios::symbolic::Values plus = at, minus = at;
+      plus[states[i]] += h;
+      minus[states[i]] -= h;
+      const double fd =
+          -(helios::symbolic::evaluate(H, table, plus) - helios::symbolic::evaluate(H, table, minus)) / (2 * h);
+      const double row = helios::symbolic::evaluate(parse(d["costate_odes"][i]["rhs"]), table, at);
+      EXPECT_NEAR(row, fd, 1e-6 * (1 + std::fabs(fd)));
+    }
+    // The switching function: dH/du at eps = 0 along the direction's law.
+    helios::symbolic::Values law = at;
+    law["eps"] = 0;
+    for (std::size_t k = 0; k < 3; ++k)
+      law[d["control_law"]["direction"]["controls"][k].get<std::string>()] =
+          helios::symbolic::evaluate(parse(d["control_law"]["direction"]["law"][k]), table, at);
+    helios::symbolic::Values up = law, down = law;
+    up["u"] = 0.5 + 1e-4;
+    down["u"] = 0.5 - 1e-4;
+    const double fd = (helios::symbolic::evaluate(H, table, up) - helios::symbolic::evaluate(H, table, down)) / 2e-4;
+    const double sw = helios::symbolic::evaluate(parse(d["control_law"]["throttle"]["switching_function"]), table, at);
+    EXPECT_NEAR(sw, fd, 1e-7 * (1 + std::fabs(fd)));
+  }
+}
+
+// A costate row without the dT/dr part (the thrust held at its value), a wrong coefficient in the
+// thrust, a cap of another width: each fails verify, naming the row or the term.
+TEST(SolarElectric, VerifyFailsAMutatedDTdrRowOrThrust) {
+  const json& d = derivation("S15");
+  helios::symbolic::SymbolTable table;
+  for (const auto& s : d["states"]) table.get(s["name"]), table.get(s["costate"]);
+  for (const auto& c : d["controls"]) table.get(c["name"]);
+  for (const auto& q : d["parameters"]) table.get(q["name"]);
+  for (const char* n : {"lambda0", "eps", "t"}) table.get(n);
+  const GiNaC::ex H = table.parse(d["hamiltonian"].get<std::string>(), "S15");
+  // P0 enters only as P0/r^2: with r^2 frozen into rho2 the derivative in rx drops dT/dr.
+  const GiNaC::symbol rho2("rho2");
+  const GiNaC::ex rx = table.get("rx"), ry = table.get("ry"), rz = table.get("rz");
+  const GiNaC::ex r2 = rx * rx + ry * ry + rz * rz;
+  const GiNaC::ex frozen = H.subs(table.get("P0") == table.get("P0") * r2 / rho2);
+  const GiNaC::ex without = (-frozen.diff(GiNaC::ex_to<GiNaC::symbol>(rx))).subs(rho2 == r2);
+  ASSERT_FALSE((without - table.parse(d["costate_odes"][0]["rhs"].get<std::string>(), "S15")).expand().is_zero());
+  json m = d;
+  m["costate_odes"][0]["rhs"] = helios::symbolic::to_text(without);
+  json r = verify(m);
+  EXPECT_EQ(r["verdict"], "fail");
+  EXPECT_EQ(check(r, "costate_ode:l_rx")["verdict"], "fail") << check(r, "costate_ode:l_rx").dump();
+  // The thrust's coefficient 2 eta written as eta in the dynamics and the cost alike: the derivation is
+  // consistent with itself, but not the solar-electric term verify recomputes.
+  m = d;
+  for (auto& row : m["dynamics"]["state_rhs"]) {
+    std::string s = row;
+    for (std::size_t at = s.find("eta"); at != std::string::npos; at = s.find("eta", at + 8))
+      s.replace(at, 3, "(eta/2)");
+    row = s;
+  }
+  EXPECT_TRUE(contains(feedback(m, "dynamics_terms"), "solar_electric_thrust")) << feedback(m, "dynamics_terms");
+  m = d;  // a cap of another width
+  for (auto& q : m["parameters"])
+    if (q["name"] == "Pw") q["value"] = 2 * q["value"].get<double>();
+  EXPECT_TRUE(contains(feedback(m, "dynamics_terms"), "is not 1% of its maximum input power"))
+      << feedback(m, "dynamics_terms");
+}
+
+TEST(SolarElectric, WhatItCannotFlyIsRefusedNamingTheField) {
+  const std::string earth = refusal_of(s01_with(kS15Engine) + "");
+  EXPECT_EQ(earth, "accepted");
+  std::string text = s01_with(kS15Engine);
+  text.replace(text.find("The central body is the Sun"), 27, "The central body is the Earth");
+  EXPECT_TRUE(contains(refusal_of(text), "needs the Sun as the central body")) << refusal_of(text);
+  text = s01_with(std::string(kS15Engine) + "\nThe spacecraft has a maximum thrust of 0.5 N.");
+  EXPECT_TRUE(contains(refusal_of(text), "the thrust follows from the power")) << refusal_of(text);
+  // A spec (written by hand or a model) with both a thrust and the arrays is refused, not half read.
+  json spec = helios::spec::parse_problem_text(problem_text("S15"), "p.txt");
+  spec["spacecraft"]["thrust_N"] = 0.5;
+  try {
+    helios::pmp::derive_from_spec(spec);
+    ADD_FAILURE() << "a thrust beside the arrays was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_TRUE(contains(e.what(), "field /spacecraft/thrust_N")) << e.what();
+  }
+  text = s01_with(kS15Engine);
+  text.replace(text.find("an efficiency of 0.6"), 20, "an efficiency of 1.6");
+  EXPECT_TRUE(contains(refusal_of(text), "efficiency must be in (0, 1]")) << refusal_of(text);
+  text = s01_with(kS15Engine);
+  text.replace(text.find("20 kW"), 5, "20 kN");
+  EXPECT_TRUE(contains(refusal_of(text), "kN")) << refusal_of(text);
+}
+
+// In the 1-AU limit (arrays so large that the cap always binds, Pmax = T c / (2 eta)), the
+// derivation is S01's with T(r) = Tmax up to the smooth cap's Pw^2/(4 (Pa - Pmax)) < 1e-6 Tmax.
+TEST(SolarElectric, WithTheCapAlwaysBindingTheThrustIsTheConstantEngines) {
+  const json sep = derive_text(s01_with(
+      "The spacecraft is solar-electric: its arrays give 1000 MW at 1 AU, the engine takes at most 9806.65 W with an "
+      "efficiency of 0.5 and a specific impulse of 2000 s.\nThe spacecraft has an initial mass of 1000 kg."));
+  const json& s01 = derivation("S01");
+  double tmax = 0, c_sep = 0, c_s01 = 0;
+  for (const auto& q : s01["parameters"]) {
+    if (q["name"] == "Tmax") tmax = q["value"];
+    if (q["name"] == "c") c_s01 = q["value"];
+  }
+  for (const auto& q : sep["parameters"])
+    if (q["name"] == "c") c_sep = q["value"];
+  EXPECT_DOUBLE_EQ(c_sep, c_s01);
+  helios::symbolic::SymbolTable table;
+  for (const auto& s : sep["states"]) table.get(s["name"]);
+  for (const auto& c : sep["controls"]) table.get(c["name"]);
+  helios::symbolic::Values at;
+  for (const auto& q : sep["parameters"]) at[table.get(q["name"]).get_name()] = q["value"];
+  for (const char* n : {"lambda0", "eps", "t"}) table.get(n);
+  for (const double dist : {0.9, 1.0, 1.7}) {
+    at["rx"] = dist, at["ry"] = 0, at["rz"] = 0, at["m"] = 1, at["u"] = 1;
+    const double flow =
+        -helios::symbolic::evaluate(table.parse(sep["state_odes"][6]["rhs"].get<std::string>(), "sep"), table, at);
+    EXPECT_NEAR(flow * c_sep / tmax, 1.0, 1e-6);
+  }
 }

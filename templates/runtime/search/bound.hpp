@@ -35,6 +35,7 @@ class BoundRoute : public Route {
       if (!(opened_end() > kProblem.tf * (1 + 1e-9))) return "the window already ends where the engine burns out";
       return "";
     }
+    if (objective_is_propellant() && *varying_flow_reason()) return varying_flow_reason();
     if (!objective_is_propellant() || full_throttle_cost_rate() <= 0 || lambda0_variable() < 0)
       return "not a minimum-fuel problem with a throttle whose fuel cost has a rate of its own";
     return "";

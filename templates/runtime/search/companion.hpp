@@ -143,6 +143,8 @@ class CompanionRoute : public Route {
   const char* name() const override { return "minimum-fuel companion"; }
   std::string skip(const SearchContext& c) const override {
     if (!c.coarse.search_fuel_companion) return "search_fuel_companion is off";
+    if (!has_fuel_companion() && kProblem.objective == Objective::time && *varying_flow_reason())
+      return varying_flow_reason();
     if (!has_fuel_companion())
       return kProblem.objective == Objective::time && kProblem.throttle_index >= 0 && full_throttle_cost_rate() <= 0
                  ? "the throttle has no fuel cost at a rate of its own (its mass flow depends on the state)"

@@ -60,8 +60,9 @@ inline bool targets_fixed_in_time() {
 class ProgramKnobs {
  public:
   ProgramKnobs()
-      : thrust_(scalar_parameter("Tmax")), tf_(scalar_parameter("kTf")), tf_min_(scalar_parameter("kTfMin")) {
-    if (thrust_) thrust0_ = *thrust_;
+      : thrust_(thrust_scale_parameters()), tf_(scalar_parameter("kTf")), tf_min_(scalar_parameter("kTfMin")) {
+    for (double* q : thrust_) thrust0_.push_back(*q);
+    own_thrust_ = reference_thrust();
     if (tf_) tf0_ = own_tf_ = *tf_;
     if (tf_min_) tf_min0_ = *tf_min_;
     full_throttle_cost_rate();  // measured at the problem's own thrust, before any route moves it
@@ -71,7 +72,7 @@ class ProgramKnobs {
   ProgramKnobs& operator=(const ProgramKnobs&) = delete;
 
   // Whether the program has a maximum thrust to scale with its final time (or window).
-  bool thrust_scalable() const { return thrust_ && tf_ && (tf_min_ || free_final_time().variable < 0); }
+  bool thrust_scalable() const { return !thrust_.empty() && tf_ && (tf_min_ || free_final_time().variable < 0); }
   // Whether the program's final time is a parameter.
   bool final_time_movable() const { return tf_ != nullptr; }
 
@@ -79,15 +80,15 @@ class ProgramKnobs {
   // thrust takes a time nearly inversely proportional to the thrust.
   void scale_thrust(double sigma) {
     sigma_ = sigma;
-    *thrust_ = thrust0_ * std::exp(sigma);
+    for (std::size_t k = 0; k < thrust_.size(); ++k) *thrust_[k] = thrust0_[k] * std::exp(sigma);
     *tf_ = tf0_ * std::exp(-sigma);
     if (tf_min_) *tf_min_ = tf_min0_ * std::exp(-sigma);
   }
   double sigma() const { return sigma_; }
-  // The maximum thrust at sigma in newtons.
+  // The maximum thrust at sigma in newtons (a solar-electric engine's at one length unit, 1 AU).
   double thrust_N(double sigma) const {
     const double time_unit_s = kProblem.time_unit_days * 86400.0;
-    return thrust0_ * std::exp(sigma) * kProblem.mass_unit_kg * kProblem.length_unit_km * 1e3 /
+    return own_thrust_ * std::exp(sigma) * kProblem.mass_unit_kg * kProblem.length_unit_km * 1e3 /
            (time_unit_s * time_unit_s);
   }
   double own_thrust_N() const { return thrust_N(0); }
@@ -118,14 +119,33 @@ class ProgramKnobs {
   // The problem's own thrust, and its final time (or window) at the base.
   void restore() {
     sigma_ = 0;
-    if (thrust_) *thrust_ = thrust0_;
+    for (std::size_t k = 0; k < thrust_.size(); ++k) *thrust_[k] = thrust0_[k];
     if (tf_) *tf_ = tf0_;
     if (tf_min_) *tf_min_ = tf_min0_;
   }
 
  private:
-  double *thrust_ = nullptr, *tf_ = nullptr, *tf_min_ = nullptr;
-  double thrust0_ = 0, tf0_ = 0, own_tf_ = 0, tf_min0_ = 0, sigma_ = 0;
+  // The program's own thrust (normalized): Tmax, or where the thrust follows the position the full
+  // throttle's mass flow at (1, 0, 0) times the exhaust velocity (the thrust at one length unit).
+  static double reference_thrust() {
+    if (const double* tmax = scalar_parameter("Tmax")) return *tmax;
+    const int m = kProblem.mass_index, u = kProblem.throttle_index;
+    const double c = kProblem.exhaust_velocity_m_s / (kProblem.speed_unit_km_s * 1e3);
+    if (m < 0 || u < 0 || !(c > 0)) return 0;
+    std::array<double, kMaxNY> y{}, dy{};
+    std::array<double, kMaxControls> control{};
+    y[0] = 1;
+    y[4] = 1;
+    y[m] = 1;
+    control[u] = 1;
+    dynamics(0.0, y.data(), control.data(), Multipliers{0.0, 0.0}, dy.data());
+    return -dy[m] * c;
+  }
+
+  std::vector<double*> thrust_;
+  std::vector<double> thrust0_;
+  double *tf_ = nullptr, *tf_min_ = nullptr;
+  double own_thrust_ = 0, tf0_ = 0, own_tf_ = 0, tf_min0_ = 0, sigma_ = 0;
 };
 
 }  // namespace

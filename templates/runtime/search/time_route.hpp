@@ -184,6 +184,7 @@ class TimeRoute : public Route {
  public:
   const char* name() const override { return "minimum-time route"; }
   std::string skip(const SearchContext& c) const override {
+    if (kProblem.objective == Objective::propellant && *varying_flow_reason()) return varying_flow_reason();
     if (!has_time_route()) return "not a minimum-fuel problem at a fixed final time with targets fixed in time";
     if (c.nested) return "inside a search at a raised thrust";
     const std::string& when = c.coarse.search_fuel_from_time;

@@ -34,7 +34,8 @@ std::string runtime_objective(const std::string& objective) {
 bool final_coast_keeps_target(const Context& c) {
   if (!c.terms) return false;
   for (const auto& t : *c.terms)
-    if (t.kind == "force" && t.name != "two_body" && t.name != "thrust" && t.name != "constant_mass_thrust")
+    if (t.kind == "force" && t.name != "two_body" && t.name != "thrust" && t.name != "constant_mass_thrust" &&
+        t.name != "solar_electric_thrust")
       return false;
   bool orbit = false;
   for (const auto& k : c.constraints) {
@@ -143,6 +144,18 @@ std::string problem_block(Context& c) {
     o << "// An engine of constant mass: the rate of its L1 cost at full throttle (the propellant it would\n"
       << "// burn, or the delta-v without an exhaust velocity), read when called: it follows the thrust.\n"
       << "inline double ThrottleCostRate() { return " << rate << "; }\n";
+  // The parameters of role thrust_scale (the thrust continuation multiplies them) and whether the
+  // full-throttle mass flow follows the position (a solar-electric engine: T(r)).
+  std::vector<std::string> scale;
+  for (const auto& p : c.parameter_quantities)
+    if (p.role == derivation::Role::ThrustScale) scale.push_back(p.name);
+  bool flow_varies = false;
+  if (c.terms)
+    for (const auto& t : *c.terms) flow_varies = flow_varies || t.name == "solar_electric_thrust";
+  o << "// The parameters the thrust is proportional to (role thrust_scale), and whether the mass flow\n"
+    << "// follows the position (a solar-electric engine).\n"
+    << "const char* const kThrustScale[] = {" << (scale.empty() ? "" : quoted_list(scale) + ", ") << "nullptr};\n"
+    << "constexpr bool kMassFlowVaries = " << (flow_varies ? "true" : "false") << ";\n";
   o << "constexpr bool kFinalCoastKeepsTarget = " << (final_coast_keeps_target(c) ? "true" : "false")
     << ";  // a coast keeps the final constraint (an orbit, two-body forces)\n";
   o << "}  // namespace problem\n\n"
@@ -159,7 +172,9 @@ std::string problem_block(Context& c) {
     << "                               problem::kStateToPhysical, problem::kControlNames, problem::kVariableNames,\n"
     << "                               problem::kEquationNames, "
     << (bodies.empty() ? "nullptr, 0" : "problem::kOrbitBodies, " + std::to_string(bodies.size()))
-    << ", problem::kFinalCoastKeepsTarget" << (rate.empty() ? "" : ", problem::ThrottleCostRate") << "};\n"
+    << ", problem::kFinalCoastKeepsTarget, " << (rate.empty() ? "nullptr" : "problem::ThrottleCostRate")
+    << ",\n                               " << (scale.empty() ? "nullptr" : "problem::kThrustScale")
+    << ", problem::kMassFlowVaries};\n"
     << "}  // namespace helios_rt\n";
   return o.str();
 }

@@ -43,10 +43,18 @@ Quantity quantity(const json& q, const Units* units, const std::string& file, co
   if (units) out.unit = units->parse(q.contains("unit") ? out.unit_text : "1", file + ": field " + where + "/unit");
   out.value = value_required ? io::require_number(q, "value", where) : q.value("value", 0.0);
   out.source = q.contains("source") && q.at("source").is_string() ? q.at("source").get<std::string>() : "";
+  // The role a parameter states ("role"); a derivation that states none (a model's, written before
+  // roles) is read by the meaning pmp once wrote ("exhaust velocity ...").
+  const std::string role = q.contains("role") && q.at("role").is_string() ? q.at("role").get<std::string>() : "";
+  if (!role.empty() && role != "thrust_scale" && role != "exhaust_velocity")
+    throw input_error(file + ": field " + where + "/role: '" + role + "' is no role (thrust_scale, exhaust_velocity)");
   if (!out.source.empty())
     out.role = Role::RuntimeEvaluated;
-  else if (value_required && out.meaning.rfind("exhaust velocity", 0) == 0)
+  else if (role == "exhaust_velocity" ||
+           (value_required && role.empty() && out.meaning.rfind("exhaust velocity", 0) == 0))
     out.role = Role::ExhaustVelocity;
+  else if (role == "thrust_scale")
+    out.role = Role::ThrustScale;
   return out;
 }
 

@@ -70,6 +70,7 @@ const std::vector<std::string>& force_term_names() {
                                                  "full_thrust",
                                                  "constant_mass_thrust",
                                                  "constant_mass_full_thrust",
+                                                 "solar_electric_thrust",
                                                  "user_acceleration",
                                                  "third_body"};
   return names;

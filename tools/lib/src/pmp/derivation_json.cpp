@@ -23,6 +23,7 @@ json named_list(const std::vector<Named>& v, bool with_value) {
     json e = {{"name", n.name}, {"meaning", n.meaning}, {"unit", n.unit}};
     if (with_value) e["value"] = n.value;
     if (!n.source.empty()) e["source"] = n.source;
+    if (!n.role.empty()) e["role"] = n.role;
     out.push_back(e);
   }
   return out;

@@ -91,6 +91,8 @@ terms::ForceList force_terms(const Problem& p, const json& spec, bool j2) {
   if (j2) forces.push_back(terms::j2(central, p.units));
   if (p.propulsion == "solar_sail")
     forces.push_back(terms::solar_sail(sc, p.units));
+  else if (sc.contains("array_power_1AU_W"))
+    forces.push_back(terms::solar_electric_thrust(sc, p.units, mass_unit));
   else
     forces.push_back(terms::thrust(sc, p.units, mass_unit));
   const json perturbations = spec.at("dynamics").value("perturbations", json::array());
@@ -178,6 +180,10 @@ void objective(Problem& p) {
       throw std::invalid_argument(
           "field /objective/kind: an engine at full throttle throughout burns a fixed "
           "amount of fuel; minimize the time or maximize the final radius instead");
+    if (p.objective == "minimum_initial_mass" && !p.thrust_parameters.empty() && p.thrust_parameters[0] != "Tmax")
+      throw std::invalid_argument(
+          "field /objective/kind: minimum_initial_mass with a solar-electric engine is not supported (its guess "
+          "of m0 assumes a constant mass flow); minimize the fuel instead");
     if (!p.has_state("m") && p.objective == "minimum_initial_mass")
       throw std::invalid_argument(
           "field /objective/kind: an engine of constant mass burns no propellant that a larger initial mass would "

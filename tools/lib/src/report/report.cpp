@@ -73,6 +73,7 @@ std::string unit_of_key(const std::string& key) {
                                                                             {"_km", "km"},
                                                                             {"_kg", "kg"},
                                                                             {"_N", "N"},
+                                                                            {"_W", "W"},
                                                                             {"_s", "s"},
                                                                             {"_deg", "deg"},
                                                                             {"_rad", "rad"},

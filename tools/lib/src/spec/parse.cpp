@@ -91,6 +91,21 @@ void check_complete(grammar::Builder& b, const std::string& source) {
       throw input_error(where + ", so it burns no propellant that a larger initial mass would carry: minimize the " +
                         "fuel (the propellant with a specific impulse, else the delta-v) or the time instead");
   }
+  // A solar-electric engine: the thrust follows from the power, about the Sun.
+  const bool solar_electric = b.spacecraft.contains("array_power_1AU_W");
+  if (solar_electric) {
+    const std::string where = source + ": the spacecraft is solar-electric";
+    const std::string body = b.central_body.value("name", "");
+    if (body != "Sun" && body != "sun")
+      throw input_error(where +
+                        ", so it needs the Sun as the central body (its power falls as 1/r^2 with r in AU), "
+                        "not " +
+                        body);
+    if (b.spacecraft.contains("thrust_N"))
+      throw input_error(where + ", so the thrust follows from the power: drop the maximum thrust (" +
+                        io::short_number(b.spacecraft["thrust_N"].get<double>()) + " N)");
+    if (constant_mass) throw input_error(where + ": a solar-electric engine of constant mass is not supported");
+  }
   if (b.propulsion == "low_thrust") {
     // Minimizing the initial mass needs the final mass instead of the initial one.
     const bool find_m0 = b.objective.is_object() && b.objective.value("kind", "") == "minimum_initial_mass";
@@ -99,7 +114,8 @@ void check_complete(grammar::Builder& b, const std::string& source) {
              {Field::Thrust, "0.5 N"},
              {Field::Isp, "2000 s"},
              {find_m0 ? Field::FinalMass : Field::InitialMass, find_m0 ? "1500 kg" : "1000 kg"}})
-      if (!(constant_mass && field == Field::Isp) && !b.spacecraft.contains(detail::spec_key(field)))
+      if (!(constant_mass && field == Field::Isp) && !(solar_electric && field == Field::Thrust) &&
+          !b.spacecraft.contains(detail::spec_key(field)))
         missing(source, "the spacecraft's " + detail::spec_key(field), detail::controlled_form(field, example));
     const std::string extra = find_m0 ? "initial_mass_kg" : "final_mass_kg";
     if (b.spacecraft.contains(extra))
@@ -151,7 +167,8 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   doc["problem"] = b.problem;
   doc["central_body"] = b.central_body;
   json spacecraft = json::object();  // in one order, however the text states the facts
-  for (const char* k : {"thrust_N", "isp_s", "initial_mass_kg", "final_mass_kg", "mass_model"})
+  for (const char* k : {"thrust_N", "array_power_1AU_W", "bus_power_W", "max_engine_power_W", "engine_efficiency",
+                        "isp_s", "initial_mass_kg", "final_mass_kg", "mass_model"})
     if (b.spacecraft.contains(k)) spacecraft[k] = b.spacecraft[k];
   for (const auto& [k, v] : b.spacecraft.items())
     if (!spacecraft.contains(k)) spacecraft[k] = v;

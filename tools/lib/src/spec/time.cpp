@@ -80,6 +80,10 @@ void Builder::finish_time() {
                 " would take the flight as long as it may): bound it ('The time of flight is free, at most Q.')");
   double bound = 0;
   std::string why;
+  if (spacecraft.contains("array_power_1AU_W"))
+    fail(w,
+         "the time of flight is free with no upper bound, and a solar-electric engine burns at a rate that follows "
+         "its path: bound it ('The time of flight is free, at most Q.')");
   if (propulsion == "low_thrust" && spacecraft.value("mass_model", "") != "constant") {
     const double m0 = spacecraft["initial_mass_kg"].get<double>(), thrust = spacecraft["thrust_N"].get<double>(),
                  isp = spacecraft["isp_s"].get<double>();

@@ -39,6 +39,9 @@ Measure mass(double kg) {
 Measure force(double n) {
   return {n, {1, -2, 1}};
 }
+Measure power(double w) {
+  return {w, {2, -3, 1}};
+}
 Measure angle(double rad) {
   return {rad, {}, true};
 }
@@ -49,7 +52,7 @@ constexpr double kWeekDays = 7.0;
 // Symbols taking a prefix: metre, second, gram, newton.
 const std::map<std::string, Measure>& prefixable() {
   static const std::map<std::string, Measure> t = {
-      {"m", length(1.0)}, {"s", duration(1.0)}, {"g", mass(1e-3)}, {"N", force(1.0)}};
+      {"m", length(1.0)}, {"s", duration(1.0)}, {"g", mass(1e-3)}, {"N", force(1.0)}, {"W", power(1.0)}};
   return t;
 }
 
@@ -79,6 +82,8 @@ const std::map<std::string, Measure>& words() {
     add({"newton", "newtons"}, force(1.0));
     add({"millinewton", "millinewtons"}, force(1e-3));
     add({"kilonewton", "kilonewtons"}, force(1e3));
+    add({"watt", "watts"}, power(1.0));
+    add({"kilowatt", "kilowatts"}, power(1e3));
     add({"metre", "metres", "meter", "meters"}, length(1.0));
     add({"kilometre", "kilometres", "kilometer", "kilometers"}, length(1e3));
     add({"second", "seconds", "sec", "secs"}, duration(1.0));
@@ -174,6 +179,7 @@ const SpecUnit& spec_of(Dimension d) {
       {Dimension::GravParam, {"km^3/s^2", "km^3/s^2, m^3/s^2", {1e9, {3, -2, 0}}}},
       {Dimension::Acceleration, {"mm/s^2", "mm/s^2, m/s^2, km/s^2", {1e-3, {1, -2, 0}}}},
       {Dimension::Angle, {"deg", "deg, rad", angle(DEG_TO_RAD)}},
+      {Dimension::Power, {"W", "W, kW, MW", power(1.0)}},
   };
   return t.at(d);
 }
@@ -197,6 +203,8 @@ std::string dimension_name(Dimension d) {
       return "gravitational parameter";
     case Dimension::Angle:
       return "angle";
+    case Dimension::Power:
+      return "power";
   }
   return "?";
 }

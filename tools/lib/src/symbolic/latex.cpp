@@ -71,6 +71,9 @@ Atom atom(const std::string& word) {
   if (word == "Tmax") return {"T", {"\\max"}};
   if (word == "tf") return {"t", {"f"}};
   if (word == "mass") return {"m", {}};  // an engine of constant mass: its mass parameter
+  if (word == "Pmax") return {"P", {"\\max"}};  // a solar-electric engine's powers
+  if (word == "Pbus") return {"P", {"\\mathrm{bus}"}};
+  if (word == "Pw") return {"P", {"w"}};
   std::size_t digits = word.size();
   while (digits > 0 && std::isdigit(static_cast<unsigned char>(word[digits - 1]))) --digits;
   if (digits > 0 && digits < word.size()) {
@@ -83,7 +86,7 @@ Atom atom(const std::string& word) {
 
 bool is_atom_word(const std::string& word) {
   return greek().count(word) || is_component(word) || word.size() == 1 || word == "Tmax" || word == "tf" ||
-         word == "mass";
+         word == "mass" || word == "Pmax" || word == "Pbus" || word == "Pw";
 }
 
 std::string joined(const std::vector<std::string>& parts, const std::string& separator) {
@@ -585,7 +588,12 @@ ex shortest_form(const ex& coefficient) {
   // collect_common_factors then groups it further, both in GiNaC's term order, which follows
   // memory addresses (S05's costate rows came out grouped differently from run to run).
   const ex e = coefficient.expand();
-  std::vector<ex> forms = {e, GiNaC::collect_common_factors(e)};
+  std::vector<ex> forms = {e};
+  try {
+    forms.push_back(GiNaC::collect_common_factors(e));
+  } catch (const std::exception&) {
+    // Not a form GiNaC groups (a non-integer power inside): the others stand.
+  }
   if (term_count(e) <= 24) {
     try {
       forms.push_back(with_expanded_factors(GiNaC::factor(e)));
@@ -644,9 +652,17 @@ ex Typesetter::compact(const ex& stored) {
       best_length = length;
     }
   };
-  keep_if_shorter(substitute_differences(best));
-  keep_if_shorter(substitute_expanded_norms(best));
-  keep_if_shorter(collected(best));
+  // A form GiNaC cannot take (collect's degrees of a power with a non-integer exponent inside a
+  // sum, as a solar-electric engine's smooth cap has) leaves the others standing.
+  const auto try_form = [&](const auto& form) {
+    try {
+      keep_if_shorter(form());
+    } catch (const std::exception&) {
+    }
+  };
+  try_form([&] { return substitute_differences(best); });
+  try_form([&] { return substitute_expanded_norms(best); });
+  try_form([&] { return collected(best); });
   for (const auto& n : norms_)
     if (best.has(n.symbol)) used_.insert(n.symbol.get_name());
   for (const auto& d : differences_)

@@ -3,9 +3,10 @@
 // terms as the gradient of their potential (two_body mu/|r|; j2 -J2 mu R^2/(2 r^3) (3 z^2/r^2 - 1);
 // third_body mu3 (1/|r3 - r| - r.r3/|r3|^3) with r3 rotated from the orbit's plane), the thruster
 // Tmax u a/m with the mass flow -Tmax u/c (of constant mass: Tmax u a/mass, no mass flow), the sail ac (rref/r)^2
-// (n.rhat)^2 n, a user acceleration as listed. Checks: dynamics_terms (state_rhs equals the kinematics plus the forces'
-// sum) and cost_terms (running_cost equals the cost term). A failure names the term: one missing, one with the wrong
-// sign, one whose parameters are not the derivation's, or a part no term accounts for.
+// (n.rhat)^2 n, a solar-electric engine T(r) u a/m with -T(r) u/c and T(r) = 2 eta P_in(r)/c of its own (the
+// fuel's flow T(r)/c), a user acceleration as listed. Checks: dynamics_terms (state_rhs equals the kinematics plus the
+// forces' sum) and cost_terms (running_cost equals the cost term). A failure names the term: one missing, one with the
+// wrong sign, one whose parameters are not the derivation's, or a part no term accounts for.
 #include <cmath>
 #include <map>
 #include <optional>
@@ -44,6 +45,7 @@ class TermFamily : public Family {
   std::optional<Contribution> force(const Term& t, const std::vector<Term>& all, Check& c) const;
   std::vector<ex> gradient(const ex& potential) const;
   std::vector<ex> third_body(const std::vector<ex>& q, Check& c, const std::string& body) const;
+  ex solar_electric_thrust(const std::vector<ex>& q) const;
   double mismatch(const ex& given, const ex& expected, Check& c) const;
   bool depends(const ex& difference, const ex& expected, const ex& q) const;
   void diagnose(Check& c, std::size_t state, const std::vector<ex>& expected,
@@ -124,6 +126,21 @@ std::vector<ex> TermFamily::third_body(const std::vector<ex>& q, Check& c, const
   return gradient(mu3 * (1 / GiNaC::sqrt(d2) - rr3 / GiNaC::pow(a, 3)));
 }
 
+// A solar-electric engine's full thrust, written here from the physics, not taken from pmp: the
+// arrays' power falls as the inverse square of the Sun's distance d (in AU, the length unit), the
+// bus takes its share, the engine at most Pmax (the smooth minimum of width Pw, written as Pmax less
+// a soft positive part), and the jet power eta P_in is T c / 2. q = P0, Pbus, eta, c[, Pmax, Pw].
+ex TermFamily::solar_electric_thrust(const std::vector<ex>& q) const {
+  const ex d = GiNaC::sqrt(r_[0] * r_[0] + r_[1] * r_[1] + r_[2] * r_[2]);
+  const ex available = q[0] * GiNaC::pow(d, -2) - q[1];
+  ex input = available;
+  if (q.size() == 6) {
+    const ex excess = q[4] - available;  // the power the engine cannot take, where negative
+    input = q[4] - (excess + GiNaC::sqrt(excess * excess + q[5] * q[5])) / 2;
+  }
+  return 2 * q[2] * input / q[3];
+}
+
 // The value of a parameter of the derivation (a constant).
 double value_of(const Context& ctx, const ex& symbol_) {
   return ctx.values[static_cast<std::size_t>(ctx.slot(GiNaC::ex_to<symbol>(symbol_).get_name()))];
@@ -147,11 +164,18 @@ std::optional<Contribution> TermFamily::force(const Term& t, const std::vector<T
                                                             {"user_acceleration", 0},
                                                             {"third_body", 6},
                                                             {"constant_mass_thrust", 2},
-                                                            {"constant_mass_full_thrust", 2}};
+                                                            {"constant_mass_full_thrust", 2},
+                                                            {"solar_electric_thrust", 4}};
   // An engine of constant mass lists Tmax and its mass, and the exhaust velocity where a specific
   // impulse prices its propellant (used by the cost alone).
   const bool constant_mass = t.name.rfind("constant_mass_", 0) == 0;
-  const auto q = parameters_of(t, constant_mass && t.parameters.size() == 3 ? 3 : counts.at(t.name), c);
+  // A solar-electric engine lists P0, Pbus, eta, c and, with a cap, Pmax and the cap's width Pw.
+  const bool sep = t.name == "solar_electric_thrust";
+  const auto q = parameters_of(t,
+                               (constant_mass && t.parameters.size() == 3) || (sep && t.parameters.size() == 6)
+                                   ? t.parameters.size()
+                                   : counts.at(t.name),
+                               c);
   if (!q) return std::nullopt;
   Contribution out{t.name + (t.body.empty() ? "" : " (" + t.body + ")") + (t.label.empty() ? "" : " (" + t.label + ")"),
                    std::vector<ex>(ctx.states.size(), 0), *q};
@@ -201,6 +225,17 @@ std::optional<Contribution> TermFamily::force(const Term& t, const std::vector<T
              " is not 1, the mass unit (the constant mass sets it).");
     const ex u = full ? ex(1) : ctx.sym(ctx.throttle);
     for (const auto& d : ctx.directions) a.push_back((*q)[0] * u * ctx.sym(d) / (*q)[1]);
+  } else if (sep) {  // T(r) u a / m and -T(r) u / c, T(r) recomputed here (solar_electric_thrust below)
+    if (ctx.throttle.empty() || ctx.directions.size() != 3 || mass_ < 0) {
+      c.fail("term solar_electric_thrust needs a throttle, three direction controls and a mass state.");
+      return std::nullopt;
+    }
+    if (q->size() == 6 && rel_diff(value_of(ctx, (*q)[5]), 0.01 * value_of(ctx, (*q)[4])) > kTol)
+      c.fail("term solar_electric_thrust: its cap width " + t.parameters[5] + " = " + num(value_of(ctx, (*q)[5])) +
+             " is not 1% of its maximum input power " + t.parameters[4] + ".");
+    const ex u = ctx.sym(ctx.throttle), T = solar_electric_thrust(*q);
+    for (const auto& d : ctx.directions) a.push_back(T * u * ctx.sym(d) / m_);
+    out.rate[static_cast<std::size_t>(mass_)] = -T * u / (*q)[3];
   } else if (t.name == "solar_sail") {
     if (ctx.sails.size() != 3) {
       c.fail("term solar_sail needs three sail_normal controls.");
@@ -299,7 +334,8 @@ bool TermFamily::depends(const ex& difference, const ex& expected, const ex& q) 
 // "<check>: the derivation lists no terms" when it has no listing.
 const char* kNoTerms =
     "the derivation lists no terms (field terms): list each term of the dynamics (two_body, j2, solar_sail, thrust, "
-    "full_thrust, constant_mass_thrust, constant_mass_full_thrust, user_acceleration, third_body) and of the cost "
+    "full_thrust, constant_mass_thrust, constant_mass_full_thrust, solar_electric_thrust, user_acceleration, "
+    "third_body) and of the cost "
     "(fuel, delta_v, time, initial_mass, final_radius, final_energy) by name with the parameters it uses.";
 
 Check TermFamily::dynamics(const std::optional<std::vector<Term>>& terms) {
@@ -343,11 +379,14 @@ Check TermFamily::cost(const std::optional<std::vector<Term>>& terms) {
   const Term& t = *costs[0];
   ex running = 1, endpoint = 0;
   if (t.name == "fuel" || t.name == "delta_v" || t.name == "initial_mass") {
-    const auto q = parameters_of(t, 2, c);
+    // With a solar-electric engine the fuel's flow is T(r)/c, listed with the engine's parameters.
+    const bool sep = t.name != "delta_v" && (t.parameters.size() == 4 || t.parameters.size() == 6);
+    const auto q = parameters_of(t, sep ? t.parameters.size() : 2, c);
     if (!q) return c;
     if (ctx.throttle.empty()) return c.fail("the cost term " + t.name + " needs a throttle control."), c;
+    if (sep && !read_frame(c)) return c;
     const ex u = ctx.sym(ctx.throttle), eps = ctx.sym(ctx.eps);
-    running = (*q)[0] / (*q)[1] * (u - eps * u * (1 - u));
+    running = (sep ? solar_electric_thrust(*q) / (*q)[3] : (*q)[0] / (*q)[1]) * (u - eps * u * (1 - u));
   } else if (t.name == "final_radius" || t.name == "final_energy") {
     const auto q = parameters_of(t, t.name == "final_energy" ? 1 : 0, c);
     if (!q || !read_frame(c)) return c;

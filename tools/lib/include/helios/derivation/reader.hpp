@@ -43,10 +43,11 @@ struct Units {
 };
 
 // What a parameter is to the tools that read it: the runtime evaluates it (it has a source), it is
-// the exhaust velocity (the report's and the runtime's propellant), or a constant of the problem.
-// The artifact does not state the role: the reader tells it here, once, from the source and from
-// the meaning ("exhaust velocity ...", the words pmp writes; tools/lib/src/derivation/README.md).
-enum class Role { Constant, ExhaustVelocity, RuntimeEvaluated };
+// the exhaust velocity (the report's and the runtime's propellant), it scales the thrust (with the
+// others of that role: the thrust continuation multiplies them), or a constant of the problem.
+// The artifact states the role (a parameter's "role"); a derivation without one is read from the
+// source and the meaning ("exhaust velocity ...", the words pmp wrote before roles).
+enum class Role { Constant, ExhaustVelocity, RuntimeEvaluated, ThrustScale };
 
 // A state or parameter: its name, meaning, unit as written ("" when not given: dimensionless) and as
 // parsed, and (a parameter) value.

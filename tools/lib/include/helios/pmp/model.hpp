@@ -28,14 +28,24 @@ struct Units {
 };
 
 struct Named {
-  Named(std::string n, std::string m, std::string u, double v = 0, std::string src = "")
-      : name(std::move(n)), meaning(std::move(m)), unit(std::move(u)), value(v), source(std::move(src)) {}
+  Named(std::string n, std::string m, std::string u, double v = 0, std::string src = "", std::string r = "")
+      : name(std::move(n)),
+        meaning(std::move(m)),
+        unit(std::move(u)),
+        value(v),
+        source(std::move(src)),
+        role(std::move(r)) {}
   std::string name, meaning, unit;
   double value = 0;  // normalized; for parameters only
   // Parameters: "" (a constant) or evaluated by the runtime at the event: "ephemeris:<body>:<event>"
   // (JPL low-precision state), "ephemeris_rate:<body>:<event>" (its time derivative),
   // "coast:<constraint>:<event>" (a coasting target's state, propagated from its state at t0).
   std::string source;
+  // What the tools downstream ask a parameter for, by role rather than by name: "thrust_scale"
+  // (the thrust is proportional to it, jointly with the others of that role: Tmax, or a
+  // solar-electric engine's powers; the runtime's thrust continuation multiplies them all),
+  // "exhaust_velocity" (c = g0 Isp), or "" (a constant of the problem).
+  std::string role;
 };
 
 struct Control {
@@ -125,6 +135,10 @@ struct Problem {
   std::vector<TermListing> terms;          // the forces, then the costs, whose sums are f and L
   std::vector<GiNaC::ex> f;                // state rhs, one per state (may contain the time symbol t)
   SailModel sail;                          // when propulsion is solar_sail
+  // The engine's thrust at full throttle (Tmax, or a solar-electric engine's T(r)) and the
+  // parameters it uses, recorded by the thrust term for the fuel cost.
+  GiNaC::ex max_thrust;
+  std::vector<std::string> thrust_parameters;
   std::vector<GiNaC::ex> coast_f;          // unpowered r, v dynamics in the gravity field (coasting targets)
   GiNaC::ex running_cost;                  // L (with the homotopy parameter eps)
   GiNaC::ex endpoint_cost;                 // phi (Mayer term), in states at tf

@@ -1,8 +1,11 @@
-// The fuel cost: the mass flow Tmax u / c with the quadratic homotopy term, L = Tmax/c (u - eps
+// The fuel cost: the mass flow T u / c (T the engine's full thrust: Tmax, or a solar-electric
+// engine's T(r)), for a constant engine the mass flow Tmax u / c with the quadratic homotopy term, L = Tmax/c (u - eps
 // u (1 - u)): eps = 1 is an energy-like problem, eps = 0 the bang-bang fuel-optimal one
 // (Bertrand & Epenoy; Jiang, Baoyin & Li 2012). An engine of constant mass has the same L1 cost
 // (Tmax/c: the propellant it would burn); without an exhaust velocity its cost is the delta-v,
 // L = Tmax/mass (u - eps u (1 - u)) (delta_v).
+#include <algorithm>
+
 #include "term.hpp"
 
 namespace helios::pmp::terms {
@@ -14,15 +17,23 @@ class FuelCost : public CostTerm {
   // acceleration, whose integral is the delta-v).
   explicit FuelCost(std::string per) : per_(std::move(per)) {}
   std::string name() const override { return per_ == "c" ? "fuel" : "delta_v"; }
-  std::vector<std::string> parameters() const override { return {"Tmax", per_}; }
+  // The engine's thrust parameters (Tmax, or a solar-electric engine's, which list c already) and per.
+  std::vector<std::string> parameters(const Problem& p) const {
+    std::vector<std::string> out = p.thrust_parameters;
+    if (std::find(out.begin(), out.end(), per_) == out.end()) out.push_back(per_);
+    return out;
+  }
+  std::vector<std::string> parameters() const override { return parameters_; }
   ex running_cost(Problem& p) const override {
     auto& S = p.symbols;
-    const ex TM = S.get("Tmax"), C = S.get(per_), u = S.get("u"), eps = S.get("eps");
+    parameters_ = parameters(p);
+    const ex TM = p.max_thrust, C = S.get(per_), u = S.get("u"), eps = S.get("eps");
     return TM / C * (u - eps * u * (1 - u));
   }
 
  private:
   std::string per_;
+  mutable std::vector<std::string> parameters_ = {"Tmax", per_};
 };
 
 }  // namespace

@@ -67,6 +67,7 @@ std::unique_ptr<ForceTerm> two_body(const json& central, const Units& U);
 std::unique_ptr<ForceTerm> j2(const json& central, const Units& U);
 std::unique_ptr<ForceTerm> solar_sail(const json& spacecraft, const Units& U);
 std::unique_ptr<ForceTerm> thrust(const json& spacecraft, const Units& U, const std::string& mass_unit);
+std::unique_ptr<ForceTerm> solar_electric_thrust(const json& spacecraft, const Units& U, const std::string& mass_unit);
 std::unique_ptr<ForceTerm> user_acceleration(const json& perturbation);
 std::unique_ptr<ForceTerm> third_body(const json& perturbation, const json& central, const Units& U);
 

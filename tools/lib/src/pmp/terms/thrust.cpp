@@ -48,8 +48,8 @@ class Thrust : public ForceTerm {
   }
   // Tmax and c; with a constant mass Tmax, the mass and c where a specific impulse is given.
   std::vector<Named> parameters() const override {
-    const Named tmax = {"Tmax", "maximum thrust", mass_unit_ + "*" + L_ + "/" + T_ + "^2", thrust_};
-    const Named c = {"c", "exhaust velocity Isp*g0", L_ + "/" + T_, exhaust_};
+    const Named tmax = {"Tmax", "maximum thrust", mass_unit_ + "*" + L_ + "/" + T_ + "^2", thrust_, "", "thrust_scale"};
+    const Named c = {"c", "exhaust velocity Isp*g0", L_ + "/" + T_, exhaust_, "", "exhaust_velocity"};
     if (!constant_mass_) return {tmax, c};
     std::vector<Named> out = {tmax, {"mass", "constant mass of the spacecraft", mass_unit_, 1.0}};
     if (exhaust_ > 0) out.push_back(c);
@@ -58,6 +58,8 @@ class Thrust : public ForceTerm {
   std::vector<ex> acceleration(Problem& p, const Frame& x) const override {
     auto& S = p.symbols;
     const ex u = throttle(p), TM = S.get("Tmax"), m = constant_mass_ ? ex(S.get("mass")) : x.mass;
+    p.max_thrust = TM;
+    p.thrust_parameters = {"Tmax"};
     return {TM * u * S.get("ax") / m, TM * u * S.get("ay") / m, TM * u * S.get("az") / m};
   }
   ex mass_rate(Problem& p) const override {

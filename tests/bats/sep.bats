@@ -1,0 +1,100 @@
+#!/usr/bin/env bats
+# A solar-electric engine (issue 48): "The spacecraft is solar-electric: its arrays give P at 1 AU, ..."
+# parses, derives with T(r) = 2 eta P_in(r)/(g0 Isp) and its dT/dr in the costates, verifies, and
+# solves S15 (S01 flown by it) from a cold start with the default settings; the thrust the trajectory
+# burns at the arrival is the power law's; in the 1-AU limit (the cap binding throughout) the engine is
+# S01's constant one and the final mass S01's.
+
+load test_helper
+
+setup_file() {
+  require_tool parse derive verify gen solve
+  export WORK="$BATS_FILE_TMPDIR/work" CACHE="$BATS_FILE_TMPDIR/cache"
+  mkdir -p "$WORK"
+}
+
+setup() {
+  common_setup
+}
+
+# sep_chain DIR: DIR/problem.txt -> DIR/solution.json and DIR/trajectory.csv, default settings.
+sep_chain() {
+  "$BIN/helios-parse" "$1/problem.txt" -o "$1/spec.json"
+  "$BIN/helios-derive" "$1/spec.json" -o "$1/derivation.json"
+  "$BIN/helios-verify" "$1/derivation.json" -o "$1/verify.json"
+  "$BIN/helios-gen" "$1/derivation.json" -o "$1/shoot.cpp"
+  "$BIN/helios-solve" "$1/shoot.cpp" --cache-dir "$CACHE" --plots "" --trajectory "$1/trajectory.csv" \
+    -o "$1/solution.json" 2>"$1/stderr"
+}
+
+# within GOT WANT REL: |GOT - WANT| <= REL |WANT|
+within() {
+  awk -v g="$1" -v w="$2" -v r="$3" 'BEGIN { d = g - w; if (d < 0) d = -d; a = w < 0 ? -w : w; exit !(d <= r * a) }' || {
+    echo "got $1, want $2 to $3 relative" >&2
+    return 1
+  }
+}
+
+@test "sep: S15 converges cold with default settings, verified, its arrival thrust the power law's, its mass consistent" {
+  mkdir -p "$WORK/s15"
+  cp "$ROOT/scenarios/S15/problem.txt" "$WORK/s15/"
+  sep_chain "$WORK/s15"
+  local dir="$WORK/s15" sol="$WORK/s15/solution.json"
+  assert_jq "$dir/verify.json" '.verdict == "pass"'
+  assert_jq "$dir/spec.json" '.spacecraft | has("thrust_N") | not'
+  assert_jq "$dir/derivation.json" '[.terms[].name] == ["two_body", "solar_electric_thrust", "fuel"]'
+  assert_jq "$dir/derivation.json" '[.parameters[] | select(.role == "thrust_scale") | .name] == ["P0", "Pbus", "Pmax", "Pw"]'
+  assert_jq "$sol" '.status == "converged" and .start == "cold" and .epsilon == 0 and .max_residual < 1e-10'
+  # the route that takes the mass flow for a constant skips, saying why (no silent 0)
+  assert_jq "$sol" '.search.routes[] | select(.name == "minimum-time route") | (.ran | not) and (.outcome | test("mass flow follows the Sun.s distance"))'
+  # the mass: the propellant is what the mass lost, and the trajectory ends at the final mass
+  assert_jq "$sol" '(.initial_mass_kg - .final_mass_kg - .propellant_kg) | fabs < 1e-9'
+  local m_end
+  m_end=$(tail -1 "$dir/trajectory.csv" | cut -d, -f8)
+  within "$m_end" "$(jq '.final_mass_kg' "$sol")" 1e-9
+  # the thrust the last burn's samples burn: -dm/dt g0 Isp, against 2 eta P_in(r)/(g0 Isp) at their
+  # mid-point (P_in the smooth cap of width 100 W, as derived; the hard minimum differs by 1e-4 here)
+  awk -F, -v AU=149597870.691 '
+    NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+    { t[NR] = $1; m[NR] = $col["m_kg"]; u[NR] = $col["u"]; x[NR] = $col["rx_km"]; y[NR] = $col["ry_km"]; z[NR] = $col["rz_km"]; n = NR }
+    END {
+      for (k = n; k > 2 && !(u[k] == 1 && u[k - 1] == 1 && t[k] > t[k - 1]); k--) ;
+      if (k <= 2) { print "no burn in the trajectory"; exit 1 }
+      c = 9.80665 * 2000
+      measured = -(m[k] - m[k - 1]) / ((t[k] - t[k - 1]) * 86400) * c
+      r = sqrt(((x[k] + x[k - 1]) / 2) ^ 2 + ((y[k] + y[k - 1]) / 2) ^ 2 + ((z[k] + z[k - 1]) / 2) ^ 2) / AU
+      pa = 20000 / (r * r) - 500; pmax = 10000; w = 100
+      pin = (pa + pmax - sqrt((pa - pmax) ^ 2 + w * w)) / 2
+      hard = pa < pmax ? pa : pmax
+      want = 2 * 0.6 * pin / c
+      printf "day %.3f r %.6f AU: measured %.9g N, power law %.9g N (hard minimum %.9g N)\n", t[k], r, measured, want, 2 * 0.6 * hard / c
+      d = measured - want; if (d < 0) d = -d
+      exit !(d < 1e-5 * want)
+    }' "$dir/trajectory.csv" >"$dir/thrust.txt" || { cat "$dir/thrust.txt" >&2; return 1; }
+  cat "$dir/thrust.txt"
+}
+
+@test "sep: in the 1-AU limit (the cap always binding at S01's thrust) the final mass is S01's" {
+  mkdir -p "$WORK/limit" "$WORK/s01"
+  cp "$S01/problem.txt" "$WORK/s01/"
+  sed 's/^The spacecraft has a maximum thrust of 0.5 N, a specific impulse of 2000 s and an initial mass of 1000 kg.$/The spacecraft is solar-electric: its arrays give 1000 MW at 1 AU, the engine takes at most 9806.65 W with an efficiency of 0.5 and a specific impulse of 2000 s.\nThe spacecraft has an initial mass of 1000 kg./' \
+    "$S01/problem.txt" >"$WORK/limit/problem.txt"
+  grep -q 'solar-electric' "$WORK/limit/problem.txt"
+  sep_chain "$WORK/s01"
+  sep_chain "$WORK/limit"
+  assert_jq "$WORK/limit/verify.json" '.verdict == "pass"'
+  assert_jq "$WORK/limit/solution.json" '.status == "converged" and .epsilon == 0 and .max_residual < 1e-10'
+  echo "S01 $(jq '.final_mass_kg' "$WORK/s01/solution.json") kg, SEP limit $(jq '.final_mass_kg' "$WORK/limit/solution.json") kg"
+  # the smooth cap is Pw^2/(4 (Pa - Pmax)) < 1e-6 of Pmax below it: the same extremal to 1e-6
+  within "$(jq '.final_mass_kg' "$WORK/limit/solution.json")" "$(jq '.final_mass_kg' "$WORK/s01/solution.json")" 1e-6
+}
+
+@test "sep: a wrong sentence is refused in one line naming the field and the value" {
+  mkdir -p bad
+  sed 's/an efficiency of 0.6/an efficiency of 1.6/' "$ROOT/scenarios/S15/problem.txt" >bad/problem.txt
+  run --separate-stderr "$BIN/helios-parse" bad/problem.txt -o bad/spec.json
+  [ "$status" -ne 0 ]
+  [[ $stderr == *"efficiency must be in (0, 1]"*"1.6"* ]]
+  [[ $(printf '%s\n' "$stderr" | wc -l) -eq 1 ]]
+  [[ ! -e bad/spec.json ]]
+}

@@ -1,0 +1,110 @@
+// A solar-electric engine about the Sun: the arrays give P0 at 1 AU and P0/r^2 at r AU (the
+// length unit is the AU), the bus takes Pbus of it, and the engine takes the rest up to its
+// maximum input power Pmax; at a constant efficiency eta and exhaust velocity c = g0 Isp its
+// thrust is T(r) = 2 eta P_in(r) / c and its mass flow T(r) u / c:
+//   a = T(r) u a_hat / m,  dm/dt = -T(r) u / c,  P_in = min(P0/r^2 - Pbus, Pmax).
+// The cap is a smooth saturation, P_in = (Pa + Pmax - sqrt((Pa - Pmax)^2 + Pw^2)) / 2 with the
+// width Pw = 1% of Pmax (kSmoothWidth): the input power is C-infinity in r, so the costate rates
+// (which carry dT/dr) and the shooting function stay smooth for hybrj and the eps homotopy; it is
+// Pw/2 below the hard minimum where Pa = Pmax and within Pw^2 / (4 |Pa - Pmax|) of it elsewhere.
+// Without a maximum input power the engine takes all the arrays give (no cap). The thrust depends
+// on the position, so H's r-derivatives (the costate rates), the switching function and the throttle
+// law carry T(r) and dT/dr: the derivation finds them from H, nothing here is written for them.
+#include <cmath>
+#include <stdexcept>
+
+#include "helios/astro/constants.hpp"
+#include "term.hpp"
+
+namespace helios::pmp::terms {
+namespace {
+
+constexpr double kSmoothWidth = 0.01;  // of Pmax
+
+class SolarElectric : public ForceTerm {
+ public:
+  SolarElectric(const json& sc, const Units& U, std::string mass_unit)
+      : mass_unit_(std::move(mass_unit)), L_(U.length_name), T_(U.time_name) {
+    if (U.length_name != "AU")
+      throw std::invalid_argument(
+          "field /spacecraft/array_power_1AU_W: a solar-electric engine needs the Sun as the central body (its "
+          "power falls as 1/r^2 with r in AU)");
+    if (sc.value("mass_model", "variable") == "constant" || sc.value("full_throttle", false))
+      throw std::invalid_argument(
+          "field /spacecraft: a solar-electric engine of constant mass or at full throttle throughout is not "
+          "supported");
+    if (sc.contains("thrust_N"))
+      throw std::invalid_argument(
+          "field /spacecraft/thrust_N: a solar-electric engine's thrust follows from its power; drop thrust_N");
+    if (!sc.contains("isp_s"))
+      throw std::invalid_argument("field /spacecraft/isp_s is missing (a solar-electric engine needs it)");
+    // Power in the normalized units: mass * length^2 / time^3.
+    const double power_unit_W = U.mass_kg * std::pow(U.length_km * 1e3, 2) / std::pow(U.time_s, 3);
+    p0_ = sc.at("array_power_1AU_W").get<double>() / power_unit_W;
+    bus_ = sc.value("bus_power_W", 0.0) / power_unit_W;
+    cap_ = sc.contains("max_engine_power_W");
+    if (cap_) pmax_ = sc.at("max_engine_power_W").get<double>() / power_unit_W;
+    eta_ = sc.at("engine_efficiency").get<double>();
+    exhaust_ = sc.at("isp_s").get<double>() * helios::astro::G0_M_S2 * 1e-3 / U.speed_km_s();
+    if (!(eta_ > 0 && eta_ <= 1))
+      throw std::invalid_argument("field /spacecraft/engine_efficiency: " + std::to_string(eta_) + " is not in (0, 1]");
+    if (!(bus_ < p0_))
+      throw std::invalid_argument("field /spacecraft/bus_power_W: the bus takes all the arrays give at 1 AU");
+    if (!(p0_ > 0) || !(exhaust_ > 0) || (cap_ && !(pmax_ > 0)))
+      throw std::domain_error(
+          "field /spacecraft: a power or the exhaust velocity is 0 in normalized units: the spacecraft's magnitudes "
+          "are beyond the range of double precision");
+  }
+  std::string name() const override { return "solar_electric_thrust"; }
+  std::vector<Named> states() const override { return {{"m", "mass", mass_unit_}}; }
+  std::vector<Control> controls() const override {
+    return {{"u", "throttle T/T(r) in [0, 1] (T(r) the thrust the power at r allows)", "throttle"},
+            {"ax", "thrust direction x (unit vector)", "direction"},
+            {"ay", "thrust direction y (unit vector)", "direction"},
+            {"az", "thrust direction z (unit vector)", "direction"}};
+  }
+  // P0, Pbus, eta, c, and with a cap Pmax and the cap's width Pw.
+  std::vector<Named> parameters() const override {
+    const std::string power = mass_unit_ + "*" + L_ + "^2/" + T_ + "^3";
+    std::vector<Named> out = {{"P0", "solar array power at 1 AU", power, p0_, "", "thrust_scale"},
+                              {"Pbus", "bus power taken from the arrays", power, bus_, "", "thrust_scale"},
+                              {"eta", "engine efficiency (jet power / input power)", "1", eta_},
+                              {"c", "exhaust velocity Isp*g0", L_ + "/" + T_, exhaust_, "", "exhaust_velocity"}};
+    if (cap_) {
+      out.push_back({"Pmax", "maximum engine input power", power, pmax_, "", "thrust_scale"});
+      out.push_back(
+          {"Pw", "width of the smooth power cap (1% of Pmax)", power, kSmoothWidth * pmax_, "", "thrust_scale"});
+    }
+    return out;
+  }
+  std::vector<ex> acceleration(Problem& p, const Frame& x) const override {
+    auto& S = p.symbols;
+    const ex r2 = x.r[0] * x.r[0] + x.r[1] * x.r[1] + x.r[2] * x.r[2];
+    const ex available = S.get("P0") / r2 - S.get("Pbus");
+    ex input = available;
+    if (cap_) {
+      const ex Pmax = S.get("Pmax"), Pw = S.get("Pw");
+      input = (available + Pmax - GiNaC::sqrt(GiNaC::pow(available - Pmax, 2) + Pw * Pw)) / 2;
+    }
+    p.max_thrust = 2 * S.get("eta") * input / S.get("c");
+    p.thrust_parameters.clear();
+    for (const auto& q : parameters()) p.thrust_parameters.push_back(q.name);
+    const ex u = S.get("u");
+    return {p.max_thrust * u * S.get("ax") / x.mass, p.max_thrust * u * S.get("ay") / x.mass,
+            p.max_thrust * u * S.get("az") / x.mass};
+  }
+  ex mass_rate(Problem& p) const override { return -p.max_thrust * p.symbols.get("u") / p.symbols.get("c"); }
+
+ private:
+  std::string mass_unit_, L_, T_;
+  double p0_ = 0, bus_ = 0, pmax_ = 0, eta_ = 0, exhaust_ = 0;
+  bool cap_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<ForceTerm> solar_electric_thrust(const json& spacecraft, const Units& U, const std::string& mass_unit) {
+  return std::make_unique<SolarElectric>(spacecraft, U, mass_unit);
+}
+
+}  // namespace helios::pmp::terms

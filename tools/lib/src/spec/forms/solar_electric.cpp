@@ -1,0 +1,126 @@
+// "The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, the bus uses 0.5 kW, the engine
+// takes at most 5 kW with an efficiency of 0.6 and a specific impulse of 3000 s.": a solar-electric
+// engine about the Sun (pmp/terms/solar_electric.cpp): the arrays' power at 1 AU
+// (array_power_1AU_W), optionally the bus's share (bus_power_W) and the engine's maximum input power
+// (max_engine_power_W), its efficiency (engine_efficiency) and specific impulse; clauses in any
+// order, an initial mass among them too. The thrust follows from the power: no maximum thrust.
+#include "../form.hpp"
+#include "../grammar.hpp"
+
+namespace helios::spec::grammar::forms {
+namespace {
+
+const std::string kExpected =
+    "expected 'its arrays give Q at 1 AU', 'the bus uses Q', 'the engine takes at most Q', 'an efficiency of N' or "
+    "'a specific impulse of Q'";
+
+// The power of clause m's group idx (number) and idx + 1 (unit), in W, positive.
+double power(const std::smatch& m, std::size_t idx, const std::string& what) {
+  const double w = quantity(m, idx, Dimension::Power);
+  if (!(w > 0)) throw sentence_error(what + " must be positive, got " + m[idx].str() + " " + m[idx + 1].str());
+  return w;
+}
+
+void read(Builder& b, const std::smatch& match) {
+  b.once("the solar-electric engine");
+  ++b.seen["the spacecraft's engine"];
+  const std::string list = match[1].str();
+  static const std::regex split(R"(\s*(?:,\s*and\s+|,\s*|;\s*|\s+and\s+|\s+with\s+)\s*)");
+  static const std::regex array =
+      re(R"((?:(?:its|the) )?(?:solar )?(?:arrays?|panels?) (?:give|gives|provide|provides|deliver|delivers|produce|)"
+         R"(produces|generate|generates|supply|supplies) )" +
+         kQuantity + R"( at 1 AU)");
+  static const std::regex array_power =
+      re(R"((?:an? )?(?:solar |solar array |array )power of )" + kQuantity + R"( at 1 AU)");
+  static const std::regex bus = re(R"((?:(?:the|its) )?bus (?:uses|takes|needs|consumes|draws) )" + kQuantity + "|" +
+                                   R"((?:an? )?bus (?:power|load|margin) of )" + kQuantity);
+  static const std::regex cap =
+      re(R"((?:(?:the|its) )?(?:engine|thruster) (?:takes|uses|draws|accepts|consumes) (?:at most|up to) )" +
+         kQuantity + "|" + R"((?:an? )?maximum (?:engine |input )?power of )" + kQuantity);
+  static const std::regex efficiency =
+      re(R"((?:an? )?(?:engine |thruster |total )?efficiency of ()" + kNum + R"()\s*(%)?)");
+  static const std::regex isp = re(R"((?:an? )?(?:specific impulse|Isp) of )" + kQuantity);
+  static const std::regex mass = re(R"((?:an? )?initial mass of )" + kQuantity);
+  const std::vector<std::string> parts(std::sregex_token_iterator(list.begin(), list.end(), split, -1), {});
+  for (const std::string& part : parts) {
+    std::smatch m;
+    if (part.empty()) continue;
+    if (std::regex_match(part, m, array) || std::regex_match(part, m, array_power)) {
+      b.spacecraft["array_power_1AU_W"] = power(m, 1, "the arrays' power at 1 AU");
+    } else if (std::regex_match(part, m, bus)) {
+      const std::size_t at = m[1].matched ? 1 : 3;
+      const double w = quantity(m, at, Dimension::Power);
+      if (!(w >= 0))
+        throw sentence_error("the bus power must not be negative, got " + m[at].str() + " " + m[at + 1].str());
+      b.spacecraft["bus_power_W"] = w;
+    } else if (std::regex_match(part, m, cap)) {
+      b.spacecraft["max_engine_power_W"] = power(m, m[1].matched ? 1 : 3, "the engine's maximum input power");
+    } else if (std::regex_match(part, m, efficiency)) {
+      const double eta = number(m[1].str()) / (m[2].matched ? 100.0 : 1.0);
+      if (!(eta > 0 && eta <= 1))
+        throw sentence_error("the engine efficiency must be in (0, 1] (or (0, 100] %), got " + m[1].str() +
+                             (m[2].matched ? " %" : ""));
+      b.spacecraft["engine_efficiency"] = eta;
+    } else if (std::regex_match(part, m, isp) || std::regex_match(part, m, mass)) {
+      const bool is_isp = std::regex_match(part, isp);
+      const detail::Field field = is_isp ? detail::Field::Isp : detail::Field::InitialMass;
+      b.once(field);
+      const double value = quantity(m, 1, *detail::fact_info(field).dim);
+      b.check_value(field, value, m[1].str() + " " + m[2].str());
+      b.spacecraft[detail::spec_key(field)] = value;
+    } else {
+      throw sentence_error("cannot read '" + part + "' of the solar-electric engine: " + kExpected);
+    }
+  }
+  if (!b.spacecraft.contains("array_power_1AU_W"))
+    throw sentence_error("a solar-electric engine needs its arrays' power at 1 AU ('its arrays give 10 kW at 1 AU')");
+  if (!b.spacecraft.contains("engine_efficiency"))
+    throw sentence_error("a solar-electric engine needs its efficiency ('an efficiency of 0.6')");
+  const double p0 = b.spacecraft["array_power_1AU_W"].get<double>();
+  if (b.spacecraft.value("bus_power_W", 0.0) >= p0)
+    throw sentence_error("the bus power " + io::short_number(b.spacecraft["bus_power_W"].get<double>()) +
+                         " W takes all the arrays give at 1 AU (" + io::short_number(p0) + " W)");
+}
+
+}  // namespace
+
+std::vector<Form> solar_electric() {
+  return {
+      {"a solar-electric engine",
+       79,
+       R"((?:The spacecraft (?:is|has|uses|flies)|The spacecraft's (?:engine|propulsion) is) (?:an? )?)"
+       R"(solar[- ]electric(?: propulsion| engine| spacecraft| propulsion system)?(?:\s*[:;,]\s*|\s+with\s+)(.+))",
+       read,
+       {{"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, the bus uses 0.5 kW, the engine takes at "
+         "most 5 kW with an efficiency of 0.6 and a specific impulse of 3000 s and an initial mass of 1000 kg.",
+         "sun -engine",
+         R"~({"/spacecraft": {"array_power_1AU_W": 10000, "bus_power_W": 500, "max_engine_power_W": 5000,
+              "engine_efficiency": 0.6, "isp_s": 3000, "initial_mass_kg": 1000}})~"},
+        {"The spacecraft uses solar electric propulsion with a solar array power of 12 kW at 1 AU, an efficiency of "
+         "65 %, an Isp of 2500 s and an initial mass of 1 t.",
+         "sun -engine",
+         R"~({"/spacecraft": {"array_power_1AU_W": 12000, "engine_efficiency": 0.65, "isp_s": 2500,
+              "initial_mass_kg": 1000}})~"},
+        {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, an efficiency of 1.5 and a specific "
+         "impulse of 3000 s.",
+         "sun -engine ", R"~({"error": "the engine efficiency must be in (0, 1] (or (0, 100] %), got 1.5"})~"},
+        {"The spacecraft is solar-electric: its arrays give -10 kW at 1 AU, an efficiency of 0.6 and a specific "
+         "impulse of 3000 s.",
+         "sun -engine ", R"~({"error": "the arrays' power at 1 AU must be positive, got -10 kW"})~"},
+        {"The spacecraft is solar-electric: its arrays give 10 kN at 1 AU, an efficiency of 0.6 and a specific "
+         "impulse of 3000 s.",
+         "sun -engine ", R"~({"error": "kN"})~"},
+        {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, the bus uses 12 kW, an efficiency of 0.6 "
+         "and a specific impulse of 3000 s.",
+         "sun -engine ", R"~({"error": "takes all the arrays give at 1 AU"})~"},
+        {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, a tank of 3 kg and an efficiency of 0.6.",
+         "sun -engine ", R"~({"error": "cannot read 'a tank of 3 kg' of the solar-electric engine"})~"},
+        {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU and a specific impulse of 3000 s and an "
+         "initial mass of 1000 kg.",
+         "sun -engine", R"~({"error": "needs its efficiency"})~"},
+        {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, an efficiency of 0.6 and a specific "
+         "impulse of 3000 s and an initial mass of 1000 kg.",
+         "earth -engine", R"~({"error": "needs the Sun as the central body"})~"}}}};
+}
+
+}  // namespace helios::spec::grammar::forms
