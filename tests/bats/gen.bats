@@ -46,7 +46,8 @@ syntax_check() {
   [[ $(grep -o 'templates/runtime/[a-z0-9_]*\.hpp' shoot.cpp | sort -u) == templates/runtime/main.hpp ]]
   run -1 grep -nE 'HELIOS shooting runtime, [a-z]+ \(templates/runtime/[a-z0-9_]+\.hpp\): [a-z]' shoot.cpp
   run -1 grep -nE 'class (Propagator|Dop853|Shooter|MultiStart)|dop853_coeffs|hybrd1?\(|nlohmann|#include <' shoot.cpp
-  (($(wc -l <shoot.cpp) < 400))
+  # The problem and its modules are about 400 lines; the runtime alone is thousands.
+  (($(wc -l <shoot.cpp) < 500))
 }
 
 @test "gen: --backend other than builtin -> exit 2" {

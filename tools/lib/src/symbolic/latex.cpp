@@ -70,7 +70,7 @@ Atom atom(const std::string& word) {
   if (word.size() == 1) return {word, {}};
   if (word == "Tmax") return {"T", {"\\max"}};
   if (word == "tf") return {"t", {"f"}};
-  if (word == "mass") return {"m", {}};  // an engine of constant mass: its mass parameter
+  if (word == "mass") return {"m", {}};         // an engine of constant mass: its mass parameter
   if (word == "Pmax") return {"P", {"\\max"}};  // a solar-electric engine's powers
   if (word == "Pbus") return {"P", {"\\mathrm{bus}"}};
   if (word == "Pw") return {"P", {"w"}};

@@ -139,9 +139,9 @@ struct Problem {
   // parameters it uses, recorded by the thrust term for the fuel cost.
   GiNaC::ex max_thrust;
   std::vector<std::string> thrust_parameters;
-  std::vector<GiNaC::ex> coast_f;          // unpowered r, v dynamics in the gravity field (coasting targets)
-  GiNaC::ex running_cost;                  // L (with the homotopy parameter eps)
-  GiNaC::ex endpoint_cost;                 // phi (Mayer term), in states at tf
+  std::vector<GiNaC::ex> coast_f;  // unpowered r, v dynamics in the gravity field (coasting targets)
+  GiNaC::ex running_cost;          // L (with the homotopy parameter eps)
+  GiNaC::ex endpoint_cost;         // phi (Mayer term), in states at tf
   std::vector<EndpointConstraint> constraints;
   std::vector<InteriorEvent> events;  // in time order
   std::vector<OrbitBody> orbit_bodies;
