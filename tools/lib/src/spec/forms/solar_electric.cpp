@@ -27,26 +27,29 @@ void read(Builder& b, const std::smatch& match) {
   const std::string list = match[1].str();
   static const std::regex split(R"(\s*(?:,\s*and\s+|,\s*|;\s*|\s+and\s+|\s+with\s+)\s*)");
   static const std::regex array =
-      re(R"((?:(?:its|the) )?(?:solar )?(?:arrays?|panels?) (?:give|gives|provide|provides|deliver|delivers|produce|)"
-         R"(produces|generate|generates|supply|supplies) )" +
+      re(R"((?:(?:its|the) )?(?:solar )?(?:arrays?|panels?) (?:(?:that|which) )?(?:give|gives|giving|provide|)"
+         R"(provides|providing|deliver|delivers|delivering|produce|produces|producing|generate|generates|)"
+         R"(generating|supply|supplies|supplying|of) )" +
          kQuantity + R"( at 1 AU)");
+  // "a solar array power of 12 kW at 1 AU", "15 kW of array power at 1 AU"
   static const std::regex array_power =
-      re(R"((?:an? )?(?:solar |solar array |array )power of )" + kQuantity + R"( at 1 AU)");
+      re(R"((?:an? )?(?:solar |solar array |array )power of )" + kQuantity + R"( at 1 AU|)" + kQuantity +
+         R"( of (?:solar |solar array |array )power at 1 AU)");
   static const std::regex bus = re(R"((?:(?:the|its) )?bus (?:uses|takes|needs|consumes|draws) )" + kQuantity + "|" +
                                    R"((?:an? )?bus (?:power|load|margin) of )" + kQuantity);
   static const std::regex cap =
       re(R"((?:(?:the|its) )?(?:engine|thruster) (?:takes|uses|draws|accepts|consumes) (?:at most|up to) )" +
          kQuantity + "|" + R"((?:an? )?maximum (?:engine |input )?power of )" + kQuantity);
-  static const std::regex efficiency =
-      re(R"((?:an? )?(?:engine |thruster |total )?efficiency of ()" + kNum + R"()\s*(%)?)");
-  static const std::regex isp = re(R"((?:an? )?(?:specific impulse|Isp) of )" + kQuantity);
+  static const std::regex efficiency = re(
+      R"((?:an? |the |its )?(?:engine(?:'s)? |thruster(?:'s)? |total )?efficiency (?:of|is) ()" + kNum + R"()\s*(%)?)");
+  static const std::regex isp = re(R"((?:an? |the |its )?(?:specific impulse|Isp)(?: of| is)? )" + kQuantity);
   static const std::regex mass = re(R"((?:an? )?initial mass of )" + kQuantity);
   const std::vector<std::string> parts(std::sregex_token_iterator(list.begin(), list.end(), split, -1), {});
   for (const std::string& part : parts) {
     std::smatch m;
     if (part.empty()) continue;
     if (std::regex_match(part, m, array) || std::regex_match(part, m, array_power)) {
-      b.spacecraft["array_power_1AU_W"] = power(m, 1, "the arrays' power at 1 AU");
+      b.spacecraft["array_power_1AU_W"] = power(m, m[1].matched ? 1 : 3, "the arrays' power at 1 AU");
     } else if (std::regex_match(part, m, bus)) {
       const std::size_t at = m[1].matched ? 1 : 3;
       const double w = quantity(m, at, Dimension::Power);
@@ -88,7 +91,7 @@ std::vector<Form> solar_electric() {
   return {
       {"a solar-electric engine",
        79,
-       R"((?:The spacecraft (?:is|has|uses|flies)|The spacecraft's (?:engine|propulsion) is) (?:an? )?)"
+       R"((?:The spacecraft (?:is|has|uses|flies)|The (?:spacecraft's )?(?:engine|propulsion|thruster) is) (?:an? )?)"
        R"(solar[- ]electric(?: propulsion| engine| spacecraft| propulsion system)?(?:\s*[:;,]\s*|\s+with\s+)(.+))",
        read,
        {{"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, the bus uses 0.5 kW, the engine takes at "
@@ -101,6 +104,20 @@ std::vector<Form> solar_electric() {
          "sun -engine",
          R"~({"/spacecraft": {"array_power_1AU_W": 12000, "engine_efficiency": 0.65, "isp_s": 2500,
               "initial_mass_kg": 1000}})~"},
+        {"The spacecraft uses solar electric propulsion: 15 kW of array power at 1 AU, an engine efficiency of 65 %, "
+         "a specific impulse of 3100 s, a maximum input power of 7 kW and an initial mass of 800 kg.",
+         "sun -engine",
+         R"~({"/spacecraft": {"array_power_1AU_W": 15000, "max_engine_power_W": 7000, "engine_efficiency": 0.65,
+              "isp_s": 3100, "initial_mass_kg": 800}})~"},
+        {"The spacecraft is solar-electric with arrays giving 12 kW at 1 AU, a bus load of 300 W, an efficiency of "
+         "0.55, an Isp of 2500 s and an initial mass of 1 t.",
+         "sun -engine",
+         R"~({"/spacecraft": {"array_power_1AU_W": 12000, "bus_power_W": 300, "engine_efficiency": 0.55,
+              "isp_s": 2500, "initial_mass_kg": 1000}})~"},
+        {"The engine is solar electric; the solar arrays produce 10 kW at 1 AU and the thruster's efficiency is 0.6 "
+         "with Isp 3000 s and an initial mass of 500 kg.",
+         "sun -engine", R"~({"/spacecraft": {"array_power_1AU_W": 10000, "engine_efficiency": 0.6, "isp_s": 3000,
+              "initial_mass_kg": 500}})~"},
         {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, an efficiency of 1.5 and a specific "
          "impulse of 3000 s.",
          "sun -engine ", R"~({"error": "the engine efficiency must be in (0, 1] (or (0, 100] %), got 1.5"})~"},
