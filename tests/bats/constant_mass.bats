@@ -16,22 +16,12 @@ load test_helper
 
 setup_file() {
   require_tool parse derive verify gen solve
-  export WORK="$BATS_FILE_TMPDIR/work" CACHE="$BATS_FILE_TMPDIR/cache"
+  export WORK="$BATS_FILE_TMPDIR/work"
   mkdir -p "$WORK"
 }
 
 setup() {
   common_setup
-}
-
-# chain DIR: DIR/problem.txt -> DIR/solution.json with the default settings.
-chain() {
-  "$BIN/helios-parse" "$1/problem.txt" -o "$1/spec.json"
-  "$BIN/helios-derive" "$1/spec.json" -o "$1/derivation.json"
-  "$BIN/helios-verify" "$1/derivation.json" -o "$1/verify.json"
-  "$BIN/helios-gen" "$1/derivation.json" -o "$1/shoot.cpp"
-  "$BIN/helios-solve" "$1/shoot.cpp" --cache-dir "$CACHE" --plots "" --trajectory "$1/trajectory.csv" \
-    -o "$1/solution.json" 2>"$1/stderr"
 }
 
 # gto DIR ENGINE TIME OBJECTIVE: S14 made planar at a constant mass of 1500 kg.
@@ -49,14 +39,6 @@ $4
 EOF
 }
 
-# within GOT WANT REL: |GOT - WANT| <= REL |WANT|
-within() {
-  awk -v g="$1" -v w="$2" -v r="$3" 'BEGIN { d = g - w; if (d < 0) d = -d; a = w < 0 ? -w : w; exit !(d <= r * a) }' || {
-    echo "got $1, want $2 to $3 relative" >&2
-    return 1
-  }
-}
-
 @test "constant mass: control-toolbox's planar minimum-time transfer, 13.403181957149329 h to 1e-9" {
   mkdir -p "$WORK/ct"
   cat >"$WORK/ct/problem.txt" <<'EOF'
@@ -69,7 +51,7 @@ At the final time the spacecraft is on the circular equatorial orbit of radius 4
 The time of flight is free, at most 1 day.
 Minimize the time of flight.
 EOF
-  chain "$WORK/ct"
+  run_chain "$WORK/ct/problem.txt" "" "$WORK/ct"
   local sol="$WORK/ct/solution.json"
   assert_jq "$WORK/ct/verify.json" '.verdict == "pass"'
   assert_jq "$WORK/ct/derivation.json" '[.states[].name] == ["rx", "ry", "rz", "vx", "vy", "vz"]'
@@ -83,7 +65,7 @@ EOF
 @test "constant mass: planar GTO to GEO at 60 N, its minimum time the Isp = 1e13 s limit to 1e-9" {
   gto "$WORK/time" "The spacecraft has a maximum thrust of 60 N and a specific impulse of 1994.7500254 s." \
     "The time of flight is free, at most 2 days." "Minimize the time of flight."
-  chain "$WORK/time"
+  run_chain "$WORK/time/problem.txt" "" "$WORK/time"
   local sol="$WORK/time/solution.json"
   assert_jq "$WORK/time/verify.json" '.verdict == "pass"'
   assert_jq "$sol" '.status == "converged" and .max_residual < 1e-10'
@@ -97,7 +79,7 @@ EOF
   # at full throttle throughout (constant_mass_full_thrust): the same transfer, nothing to price
   gto "$WORK/full" "The spacecraft has a maximum thrust of 60 N and a specific impulse of 1994.7500254 s." \
     "The time of flight is free, at most 2 days." $'The engine thrusts at full throttle throughout.\nMinimize the time of flight.'
-  chain "$WORK/full"
+  run_chain "$WORK/full/problem.txt" "" "$WORK/full"
   assert_jq "$WORK/full/derivation.json" '[.terms[].name] == ["two_body", "constant_mass_full_thrust", "time"]'
   within "$(jq '.tof_hours' "$WORK/full/solution.json")" "$(jq '.tof_hours' "$sol")" 1e-9
   within "$(jq '.propellant_kg' "$WORK/full/solution.json")" "$(jq '.propellant_kg' "$sol")" 1e-9
@@ -109,7 +91,7 @@ EOF
   tof=$(jq -n "1.5 * $(cat "$WORK/t_min_days")")
   gto "$WORK/fuel" "The spacecraft has a maximum thrust of 60 N and a specific impulse of 1994.7500254 s." \
     "The time of flight is $tof days." "Minimize the fuel consumption."
-  chain "$WORK/fuel"
+  run_chain "$WORK/fuel/problem.txt" "" "$WORK/fuel"
   local sol="$WORK/fuel/solution.json"
   assert_jq "$WORK/fuel/verify.json" '.verdict == "pass"'
   assert_jq "$WORK/fuel/derivation.json" '[.terms[].name] == ["two_body", "constant_mass_thrust", "fuel"]'
@@ -121,7 +103,7 @@ EOF
   # without an Isp the same extremal, its cost the delta-v in m/s
   gto "$WORK/dv" "The spacecraft has a maximum thrust of 60 N." "The time of flight is $tof days." \
     "Minimize the fuel consumption."
-  chain "$WORK/dv"
+  run_chain "$WORK/dv/problem.txt" "" "$WORK/dv"
   local dv="$WORK/dv/solution.json"
   assert_jq "$WORK/dv/derivation.json" '[.terms[].name] == ["two_body", "constant_mass_thrust", "delta_v"]'
   assert_jq "$dv" '.status == "converged" and (has("propellant_kg") | not)'

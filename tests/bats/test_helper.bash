@@ -120,16 +120,25 @@ assert_dir_empty() {
 
 # run_chain PROBLEM SETTINGS WORK: the builtin chain in WORK, cold, compile cache in the file's
 # temp folder: spec, derivation, verify, shoot.cpp, solution.json (stderr in WORK/stderr) and
-# trajectory.csv.
+# trajectory.csv. SETTINGS "": the solver's defaults.
 run_chain() {
-  local problem=$1 settings=$2 work=$3
+  local problem=$1 work=$3 settings=()
+  [[ -z $2 ]] || settings=(--settings "$2")
   mkdir -p "$work"
   "$BIN/helios-parse" "$problem" -o "$work/spec.json"
   "$BIN/helios-derive" "$work/spec.json" -o "$work/derivation.json"
   "$BIN/helios-verify" "$work/derivation.json" -o "$work/verify.json"
   "$BIN/helios-gen" "$work/derivation.json" -o "$work/shoot.cpp"
-  "$BIN/helios-solve" "$work/shoot.cpp" --settings "$settings" --cache-dir "$BATS_FILE_TMPDIR/cache" --plots "" \
+  "$BIN/helios-solve" "$work/shoot.cpp" "${settings[@]}" --cache-dir "$BATS_FILE_TMPDIR/cache" --plots "" \
     --trajectory "$work/trajectory.csv" -o "$work/solution.json" 2>"$work/stderr"
+}
+
+# within GOT WANT REL: |GOT - WANT| <= REL |WANT|
+within() {
+  awk -v g="$1" -v w="$2" -v r="$3" 'BEGIN { d = g - w; if (d < 0) d = -d; a = w < 0 ? -w : w; exit !(d <= r * a) }' || {
+    echo "got $1, want $2 to $3 relative" >&2
+    return 1
+  }
 }
 
 # assert_s14_minimum_time SOLUTION: converged cold to S14's published minimum time,
