@@ -62,6 +62,45 @@ std::string throttle_cost_rate(const Context& c) {
   return "";
 }
 
+// The bodies on their Keplerian orbits: a parameter array each and the list the runtime reads
+// ("" without bodies).
+std::string orbit_bodies(const std::vector<derivation::Body>& bodies) {
+  if (bodies.empty()) return "";
+  std::ostringstream o;
+  o << "// Bodies on their Keplerian orbits: a (normalized), e, i, raan, argp, mean anomaly (rad) and the\n"
+    << "// normalized time of the elements.\n";
+  std::string list;
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    const derivation::Body& b = bodies[k];
+    const std::string name = "kOrbitBody" + std::to_string(k);
+    o << "HELIOS_PARAMETER_ARRAY(" << name << ", " << number(b.a) << ", " << number(b.e) << ", " << number(b.i_rad)
+      << ", " << number(b.raan_rad) << ", " << number(b.argp_rad) << ", " << number(b.mean_anomaly_rad) << ", "
+      << number(b.epoch) << ");  // " << comment_text(b.name) << "\n";
+    list += (list.empty() ? "" : ", ") + std::string("{") + cpp_string(b.name) + ", " + name + "}";
+  }
+  o << "const helios_rt::OrbitBody kOrbitBodies[] = {" << list << "};\n";
+  return o.str();
+}
+
+// What the runtime reads of the engine: an engine of constant mass's full-throttle cost rate
+// (`rate`, "" for none), the parameters of role thrust_scale (the thrust continuation multiplies
+// them) and whether the full-throttle mass flow follows the position (a solar-electric engine: T(r)).
+std::string engine_contract(const Context& c, const std::string& rate, const std::vector<std::string>& scale) {
+  std::ostringstream o;
+  if (!rate.empty())
+    o << "// An engine of constant mass: the rate of its L1 cost at full throttle (the propellant it would\n"
+      << "// burn, or the delta-v without an exhaust velocity), read when called: it follows the thrust.\n"
+      << "inline double ThrottleCostRate() { return " << rate << "; }\n";
+  bool flow_varies = false;
+  if (c.terms)
+    for (const auto& t : *c.terms) flow_varies = flow_varies || t.name == "solar_electric_thrust";
+  o << "// The parameters the thrust is proportional to (role thrust_scale), and whether the mass flow\n"
+    << "// follows the position (a solar-electric engine).\n"
+    << "const char* const kThrustScale[] = {" << (scale.empty() ? "" : quoted_list(scale) + ", ") << "nullptr};\n"
+    << "constexpr bool kMassFlowVaries = " << (flow_varies ? "true" : "false") << ";\n";
+  return o.str();
+}
+
 }  // namespace
 
 std::string problem_block(Context& c) {
@@ -121,41 +160,16 @@ std::string problem_block(Context& c) {
     << "const char* const kVariableNames[] = {" << quoted_list(vars) << "};\n"
     << "const char* const kEquationNames[] = {" << quoted_list(eqs) << "};\n";
   const std::vector<derivation::Body>& bodies = c.bodies;
-  if (!bodies.empty()) {
-    o << "// Bodies on their Keplerian orbits: a (normalized), e, i, raan, argp, mean anomaly (rad) and the\n"
-      << "// normalized time of the elements.\n";
-    std::string list;
-    for (std::size_t k = 0; k < bodies.size(); ++k) {
-      const derivation::Body& b = bodies[k];
-      const std::string name = "kOrbitBody" + std::to_string(k);
-      o << "HELIOS_PARAMETER_ARRAY(" << name << ", " << number(b.a) << ", " << number(b.e) << ", " << number(b.i_rad)
-        << ", " << number(b.raan_rad) << ", " << number(b.argp_rad) << ", " << number(b.mean_anomaly_rad) << ", "
-        << number(b.epoch) << ");  // " << comment_text(b.name) << "\n";
-      list += (list.empty() ? "" : ", ") + std::string("{") + cpp_string(b.name) + ", " + name + "}";
-    }
-    o << "const helios_rt::OrbitBody kOrbitBodies[] = {" << list << "};\n";
-  }
+  o << orbit_bodies(bodies);
   for (const auto& p : c.parameter_quantities)
     if (!p.runtime_evaluated())
       o << "HELIOS_PARAMETER(" << p.name << ", " << number(p.value) << ");  // "
         << comment_text(p.meaning + " [" + p.unit_text + "]") << "\n";
   const std::string rate = throttle_cost_rate(c);
-  if (!rate.empty())
-    o << "// An engine of constant mass: the rate of its L1 cost at full throttle (the propellant it would\n"
-      << "// burn, or the delta-v without an exhaust velocity), read when called: it follows the thrust.\n"
-      << "inline double ThrottleCostRate() { return " << rate << "; }\n";
-  // The parameters of role thrust_scale (the thrust continuation multiplies them) and whether the
-  // full-throttle mass flow follows the position (a solar-electric engine: T(r)).
   std::vector<std::string> scale;
   for (const auto& p : c.parameter_quantities)
     if (p.role == derivation::Role::ThrustScale) scale.push_back(p.name);
-  bool flow_varies = false;
-  if (c.terms)
-    for (const auto& t : *c.terms) flow_varies = flow_varies || t.name == "solar_electric_thrust";
-  o << "// The parameters the thrust is proportional to (role thrust_scale), and whether the mass flow\n"
-    << "// follows the position (a solar-electric engine).\n"
-    << "const char* const kThrustScale[] = {" << (scale.empty() ? "" : quoted_list(scale) + ", ") << "nullptr};\n"
-    << "constexpr bool kMassFlowVaries = " << (flow_varies ? "true" : "false") << ";\n";
+  o << engine_contract(c, rate, scale);
   o << "constexpr bool kFinalCoastKeepsTarget = " << (final_coast_keeps_target(c) ? "true" : "false")
     << ";  // a coast keeps the final constraint (an orbit, two-body forces)\n";
   o << "}  // namespace problem\n\n"

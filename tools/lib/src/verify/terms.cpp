@@ -43,6 +43,7 @@ class TermFamily : public Family {
   void sample();
   std::optional<std::vector<ex>> parameters_of(const Term& t, std::size_t count, Check& c) const;
   std::optional<Contribution> force(const Term& t, const std::vector<Term>& all, Check& c) const;
+  bool engine(const Term& t, const std::vector<ex>& q, Check& c, std::vector<ex>& a, Contribution& out) const;
   std::vector<ex> gradient(const ex& potential) const;
   std::vector<ex> third_body(const std::vector<ex>& q, Check& c, const std::string& body) const;
   ex solar_electric_thrust(const std::vector<ex>& q) const;
@@ -154,6 +155,12 @@ std::optional<ex> central_mu(const Context& ctx, const std::vector<Term>& all) {
   return std::nullopt;
 }
 
+// Whether a force term is an engine (TermFamily::engine).
+bool engine_name(const std::string& name) {
+  return name == "thrust" || name == "full_thrust" || name.rfind("constant_mass_", 0) == 0 ||
+         name == "solar_electric_thrust";
+}
+
 // One force term's contribution to the velocities' (and the mass's) rates.
 std::optional<Contribution> TermFamily::force(const Term& t, const std::vector<Term>& all, Check& c) const {
   static const std::map<std::string, std::size_t> counts = {{"two_body", 1},
@@ -198,44 +205,8 @@ std::optional<Contribution> TermFamily::force(const Term& t, const std::vector<T
     if (rel_diff(n, want) > kTol)
       c.fail("term third_body (" + t.body + "): its mean motion " + t.parameters[5] + " = " + num(n) +
              " is not sqrt((mu + mu3)/a^3) = " + num(want) + ".");
-  } else if (t.name == "thrust") {
-    if (ctx.throttle.empty() || ctx.directions.size() != 3 || mass_ < 0) {
-      c.fail("term thrust needs a throttle, three direction controls and a mass state.");
-      return std::nullopt;
-    }
-    const ex u = ctx.sym(ctx.throttle);
-    for (const auto& d : ctx.directions) a.push_back((*q)[0] * u * ctx.sym(d) / m_);
-    out.rate[static_cast<std::size_t>(mass_)] = -(*q)[0] * u / (*q)[1];
-  } else if (t.name == "full_thrust") {  // u = 1 throughout: no throttle control
-    if (!ctx.throttle.empty() || ctx.directions.size() != 3 || mass_ < 0) {
-      c.fail("term full_thrust needs three direction controls, a mass state and no throttle (it is 1 throughout).");
-      return std::nullopt;
-    }
-    for (const auto& d : ctx.directions) a.push_back((*q)[0] * ctx.sym(d) / m_);
-    out.rate[static_cast<std::size_t>(mass_)] = -(*q)[0] / (*q)[1];
-  } else if (constant_mass) {  // Tmax u a / mass, no mass state and no mass flow
-    const bool full = t.name == "constant_mass_full_thrust";
-    if (ctx.throttle.empty() != full || ctx.directions.size() != 3 || mass_ >= 0) {
-      c.fail("term " + t.name + " needs three direction controls, " + (full ? "no throttle" : "a throttle") +
-             " and no mass state (its mass is the parameter " + t.parameters[1] + ").");
-      return std::nullopt;
-    }
-    if (rel_diff(value_of(ctx, (*q)[1]), 1.0) > kTol)
-      c.fail("term " + t.name + ": its mass " + t.parameters[1] + " = " + num(value_of(ctx, (*q)[1])) +
-             " is not 1, the mass unit (the constant mass sets it).");
-    const ex u = full ? ex(1) : ctx.sym(ctx.throttle);
-    for (const auto& d : ctx.directions) a.push_back((*q)[0] * u * ctx.sym(d) / (*q)[1]);
-  } else if (sep) {  // T(r) u a / m and -T(r) u / c, T(r) recomputed here (solar_electric_thrust below)
-    if (ctx.throttle.empty() || ctx.directions.size() != 3 || mass_ < 0) {
-      c.fail("term solar_electric_thrust needs a throttle, three direction controls and a mass state.");
-      return std::nullopt;
-    }
-    if (q->size() == 6 && rel_diff(value_of(ctx, (*q)[5]), 0.01 * value_of(ctx, (*q)[4])) > kTol)
-      c.fail("term solar_electric_thrust: its cap width " + t.parameters[5] + " = " + num(value_of(ctx, (*q)[5])) +
-             " is not 1% of its maximum input power " + t.parameters[4] + ".");
-    const ex u = ctx.sym(ctx.throttle), T = solar_electric_thrust(*q);
-    for (const auto& d : ctx.directions) a.push_back(T * u * ctx.sym(d) / m_);
-    out.rate[static_cast<std::size_t>(mass_)] = -T * u / (*q)[3];
+  } else if (engine_name(t.name)) {
+    if (!engine(t, *q, c, a, out)) return std::nullopt;
   } else if (t.name == "solar_sail") {
     if (ctx.sails.size() != 3) {
       c.fail("term solar_sail needs three sail_normal controls.");
@@ -258,6 +229,52 @@ std::optional<Contribution> TermFamily::force(const Term& t, const std::vector<T
   for (std::size_t i = 0, k = 0; i < ctx.states.size() && k < 3; ++i)
     if (ctx.kinds[static_cast<std::size_t>(ctx.slot(ctx.states[i]))] == Kind::Velocity) out.rate[i] = a[k++];
   return out;
+}
+
+// An engine term's acceleration a and mass rate (into out.rate), its parameters q; false (with the
+// reason in c) where the controls or the states do not fit it.
+bool TermFamily::engine(const Term& t, const std::vector<ex>& q, Check& c, std::vector<ex>& a,
+                        Contribution& out) const {
+  if (t.name == "thrust") {
+    if (ctx.throttle.empty() || ctx.directions.size() != 3 || mass_ < 0) {
+      c.fail("term thrust needs a throttle, three direction controls and a mass state.");
+      return false;
+    }
+    const ex u = ctx.sym(ctx.throttle);
+    for (const auto& d : ctx.directions) a.push_back(q[0] * u * ctx.sym(d) / m_);
+    out.rate[static_cast<std::size_t>(mass_)] = -q[0] * u / q[1];
+  } else if (t.name == "full_thrust") {  // u = 1 throughout: no throttle control
+    if (!ctx.throttle.empty() || ctx.directions.size() != 3 || mass_ < 0) {
+      c.fail("term full_thrust needs three direction controls, a mass state and no throttle (it is 1 throughout).");
+      return false;
+    }
+    for (const auto& d : ctx.directions) a.push_back(q[0] * ctx.sym(d) / m_);
+    out.rate[static_cast<std::size_t>(mass_)] = -q[0] / q[1];
+  } else if (t.name.rfind("constant_mass_", 0) == 0) {  // Tmax u a / mass, no mass state and no mass flow
+    const bool full = t.name == "constant_mass_full_thrust";
+    if (ctx.throttle.empty() != full || ctx.directions.size() != 3 || mass_ >= 0) {
+      c.fail("term " + t.name + " needs three direction controls, " + (full ? "no throttle" : "a throttle") +
+             " and no mass state (its mass is the parameter " + t.parameters[1] + ").");
+      return false;
+    }
+    if (rel_diff(value_of(ctx, q[1]), 1.0) > kTol)
+      c.fail("term " + t.name + ": its mass " + t.parameters[1] + " = " + num(value_of(ctx, q[1])) +
+             " is not 1, the mass unit (the constant mass sets it).");
+    const ex u = full ? ex(1) : ctx.sym(ctx.throttle);
+    for (const auto& d : ctx.directions) a.push_back(q[0] * u * ctx.sym(d) / q[1]);
+  } else {  // T(r) u a / m and -T(r) u / c, T(r) recomputed here (solar_electric_thrust below)
+    if (ctx.throttle.empty() || ctx.directions.size() != 3 || mass_ < 0) {
+      c.fail("term solar_electric_thrust needs a throttle, three direction controls and a mass state.");
+      return false;
+    }
+    if (q.size() == 6 && rel_diff(value_of(ctx, q[5]), 0.01 * value_of(ctx, q[4])) > kTol)
+      c.fail("term solar_electric_thrust: its cap width " + t.parameters[5] + " = " + num(value_of(ctx, q[5])) +
+             " is not 1% of its maximum input power " + t.parameters[4] + ".");
+    const ex u = ctx.sym(ctx.throttle), T = solar_electric_thrust(q);
+    for (const auto& d : ctx.directions) a.push_back(T * u * ctx.sym(d) / m_);
+    out.rate[static_cast<std::size_t>(mass_)] = -T * u / q[3];
+  }
+  return true;
 }
 
 // The largest relative difference of two expressions over the sample points (2 if one cannot
