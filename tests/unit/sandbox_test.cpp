@@ -198,6 +198,47 @@ TEST(Compile, TheCacheKeyChangesWithTheRuntimeAndKeyKindsAreApart) {
             compile_key(KeyKind::Source, "x", "y\nz", version, a));
 }
 
+// The compiler's identity and the runtime's hash are kept by the stamps of their files: computed
+// once while the files stay as they were, again when one changes, never kept for a file changed in
+// the last two seconds (its stamp could repeat within one tick of the clock), and not taken from a
+// memo that others may write or that is not one.
+TEST(Compile, AValueKeptByItsFilesStampsIsComputedAgainOnlyWhenOneChanges) {
+  const fs::path dir = fresh_dir("memo");
+  const std::string file = (dir / "compiler").string(), memo = (dir / "memo.json").string();
+  const auto an_hour_ago = fs::file_time_type::clock::now() - std::chrono::hours(1);
+  std::ofstream(file) << "version 1";
+  fs::last_write_time(file, an_hour_ago);
+  int computed = 0;
+  const auto value = [&] {
+    return helios::solve::memo_by_stamps(memo, {file}, [&] {
+      ++computed;
+      return helios::io::read_text(file);
+    });
+  };
+  EXPECT_EQ(value(), "version 1");
+  EXPECT_EQ(value(), "version 1");
+  EXPECT_EQ(computed, 1);
+  std::ofstream(file) << "version 2";  // the same size, another time
+  fs::last_write_time(file, an_hour_ago + std::chrono::seconds(1));
+  EXPECT_EQ(value(), "version 2");
+  EXPECT_EQ(value(), "version 2");
+  EXPECT_EQ(computed, 2);
+  std::ofstream(file) << "version 3";  // just now: not kept
+  EXPECT_EQ(value(), "version 3");
+  EXPECT_EQ(value(), "version 3");
+  EXPECT_EQ(computed, 4);
+  fs::last_write_time(file, an_hour_ago);
+  EXPECT_EQ(value(), "version 3");
+  fs::permissions(memo, fs::perms::group_write, fs::perm_options::add);
+  EXPECT_EQ(value(), "version 3");
+  EXPECT_EQ(computed, 6) << "a memo others may write is not read";
+  std::ofstream(memo) << "{\"stamps\": 1}";
+  EXPECT_EQ(value(), "version 3");
+  EXPECT_EQ(value(), "version 3");
+  EXPECT_EQ(computed, 7) << "a malformed memo is replaced";
+  fs::remove_all(dir);
+}
+
 // A compile against the runtime found beside this executable records a command that rebuilds the
 // program by hand: the header's folder and the library by absolute path.
 TEST(Compile, TheCommandNamesTheRuntimeByAbsolutePath) {
@@ -205,7 +246,7 @@ TEST(Compile, TheCommandNamesTheRuntimeByAbsolutePath) {
   ASSERT_TRUE(fs::path(runtime.library).is_absolute());
   EXPECT_TRUE(fs::is_regular_file(runtime.library));
   EXPECT_TRUE(fs::is_regular_file(fs::path(runtime.include_dir) / "helios_runtime.hpp"));
-  EXPECT_EQ(runtime.sha256.size(), 64u);
+  EXPECT_EQ(helios::solve::runtime_sha256().size(), 64u);
   const fs::path dir = fresh_dir("compile");
   helios::solve::SolveOptions o;
   o.cache_dir = dir.string();

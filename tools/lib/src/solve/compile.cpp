@@ -9,7 +9,9 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -99,6 +101,7 @@ std::optional<std::string> private_file(const fs::path& path, std::size_t limit)
   if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_nlink == 1 && st.st_uid == ::geteuid() &&
       (st.st_mode & 022) == 0 && static_cast<std::size_t>(st.st_size) <= limit) {
     out.emplace();
+    out->reserve(static_cast<std::size_t>(st.st_size));
     char buf[65536];
     for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) != 0;) {
       if (n < 0 && errno == EINTR) continue;
@@ -127,6 +130,61 @@ bool read_entry(const fs::path& dir, CompileResult& c) {
   c.diagnostics = *log;
   return true;
 }
+
+// A file's stamp: where it is (device, inode), its size and its modification time in nanoseconds;
+// "" when it cannot be read. A rebuilt or upgraded file gets another (a new inode, size or time).
+std::string file_stamp(const std::string& path) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) return "";
+  return std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino) + ":" + std::to_string(st.st_size) + ":" +
+         std::to_string(st.st_mtim.tv_sec) + ":" + std::to_string(st.st_mtim.tv_nsec);
+}
+
+// The stamps of `files`, one line each; "" when one cannot be read or was modified in the last
+// kRacySeconds (the clock's coarse ticks could give a file changed again within one tick the same
+// stamp, git's "racily clean" files): such a value is computed every time, never kept.
+std::string stamps_of(const std::vector<std::string>& files) {
+  constexpr double kRacySeconds = 2.0;
+  std::string out;
+  for (const std::string& f : files) {
+    struct stat st;
+    const std::string stamp = file_stamp(f);
+    if (stamp.empty() || ::stat(f.c_str(), &st) != 0) return "";
+    const double age = static_cast<double>(std::time(nullptr) - st.st_mtim.tv_sec);
+    if (age < kRacySeconds) return "";
+    out += f + " " + stamp + "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string memo_by_stamps(const std::string& memo_path, const std::vector<std::string>& files,
+                           const std::function<std::string()>& compute) {
+  const std::string before = stamps_of(files);
+  if (!before.empty()) {
+    if (const auto kept = private_file(memo_path, 1 << 16)) {
+      try {
+        const json memo = json::parse(*kept);
+        if (memo.at("stamps").get<std::string>() == before) return memo.at("value").get<std::string>();
+      } catch (const json::exception&) {
+        // not one of ours, or torn: computed anew and replaced below
+      }
+    }
+  }
+  const std::string value = compute();
+  // Kept only when no file changed while it was computed.
+  if (!before.empty() && stamps_of(files) == before) {
+    try {
+      io::write_text_atomic(memo_path, json{{"stamps", before}, {"value", value}}.dump() + "\n");
+    } catch (const std::exception&) {
+      // a memo that cannot be written is computed again next time
+    }
+  }
+  return value;
+}
+
+namespace {
 
 const char* key_kind_name(KeyKind kind) {
   return kind == KeyKind::Structure ? "structure" : "source";
@@ -158,11 +216,19 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
   // The key covers the source, the command, the compiler's identity and the runtime's bytes; the
   // cache's is the same over the source's structure, its numbers masked, which the program reads
   // at run time from the parameters file, or over the whole source when nothing is masked.
-  const std::string compiler_version = io::first_line(io::capture({compiler, "--version"}));
+  fs::create_directories(o.cache_dir);
+  // Both kept in the cache folder by the stamps of the files they come from (memo_by_stamps).
+  const std::string compiler_path = io::on_path(compiler);
+  const std::string compiler_version =
+      memo_by_stamps((fs::path(o.cache_dir) / "compiler-identity.json").string(), {compiler_path}, [&] {
+        return io::first_line(io::capture({compiler_path, "--version"}));
+      });
   c.parameters = program_parameters(source);
-  c.sha256 = compile_key(KeyKind::Source, source, c.command, compiler_version, runtime.sha256);
+  const std::string runtime_hash = memo_by_stamps((fs::path(o.cache_dir) / "runtime-identity.json").string(),
+                                                  runtime.files, [] { return runtime_sha256(); });
+  c.sha256 = compile_key(KeyKind::Source, source, c.command, compiler_version, runtime_hash);
   c.structure_sha256 = c.parameters.readable ? compile_key(KeyKind::Structure, c.parameters.structure, c.command,
-                                                           compiler_version, runtime.sha256)
+                                                           compiler_version, runtime_hash)
                                              : c.sha256;
   // Absolute, as the sandbox binds the folder at its absolute path.
   const fs::path dir = fs::absolute(fs::path(o.cache_dir) / c.structure_sha256).lexically_normal();

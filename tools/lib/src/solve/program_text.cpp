@@ -39,6 +39,7 @@ class Reader {
   explicit Reader(const std::string& source) : s_(source) {}
 
   ProgramText read() {
+    out_.tokens.reserve(s_.size() / 4);  // about one token in four characters of generated code
     out_.line_starts_in_code.push_back(true);
     if (s_.find("\\\n") != std::string::npos || s_.find("\\\r\n") != std::string::npos)
       return fail("a line ends in a backslash (a line splice)");
@@ -62,7 +63,7 @@ class Reader {
         token();
       }
     }
-    return out_;
+    return std::move(out_);
   }
 
  private:

@@ -26,11 +26,9 @@ RuntimeFiles locate() {
       RuntimeFiles f;
       f.library = fs::canonical(library).string();
       f.include_dir = fs::canonical(include).string();
-      // The public header and the three it includes, then the library: what a program is built from.
-      std::string bytes;
       for (const char* h : {"helios_runtime.hpp", "runtime_records.hpp", "runtime_calls.hpp", "module_interface.hpp"})
-        bytes += io::read_text((include / h).string());
-      f.sha256 = io::sha256_hex(bytes + io::read_text(f.library));
+        f.files.push_back((fs::path(f.include_dir) / h).string());
+      f.files.push_back(f.library);
       return f;
     }
     tried += (tried.empty() ? "" : ", ") + library.string();
@@ -44,6 +42,15 @@ RuntimeFiles locate() {
 const RuntimeFiles& runtime_files() {
   static const RuntimeFiles files = locate();
   return files;
+}
+
+const std::string& runtime_sha256() {
+  static const std::string sha256 = [] {
+    std::string bytes;
+    for (const std::string& f : runtime_files().files) bytes += io::read_text(f);
+    return io::sha256_hex(bytes);
+  }();
+  return sha256;
 }
 
 }  // namespace helios::solve

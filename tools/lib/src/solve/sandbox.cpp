@@ -32,10 +32,15 @@ namespace fs = std::filesystem;
 // Processes the program may add to the user's count (RLIMIT_NPROC): it needs none.
 constexpr long kMaxChildProcesses = 16;
 
-// Processes whose parent is this process, from /proc (the orphans a subreaper inherits).
-std::vector<pid_t> children_of_self() {
-  std::vector<pid_t> out;
-  const std::string self = std::to_string(::getpid());
+// From /proc: the processes whose parent is this process (the orphans a subreaper inherits), and
+// whether a process of `group` still runs (a zombie does not).
+struct ProcessScan {
+  std::vector<pid_t> children;
+  bool group_running = false;
+};
+ProcessScan scan_processes(pid_t group) {
+  ProcessScan out;
+  const std::string self = std::to_string(::getpid()), group_id = std::to_string(group);
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator("/proc", ec)) {
     const std::string name = entry.path().filename().string();
@@ -43,13 +48,14 @@ std::vector<pid_t> children_of_self() {
     std::ifstream stat(entry.path() / "stat");
     std::string line;
     if (!std::getline(stat, line)) continue;
-    // pid (comm) state ppid ...: comm may hold spaces, so read after the last ')'.
+    // pid (comm) state ppid pgrp ...: comm may hold spaces, so read after the last ')'.
     const auto close = line.rfind(')');
     if (close == std::string::npos) continue;
     std::istringstream rest(line.substr(close + 1));
-    std::string state, ppid;
-    rest >> state >> ppid;
-    if (ppid == self) out.push_back(static_cast<pid_t>(std::stol(name)));
+    std::string state, ppid, pgrp;
+    rest >> state >> ppid >> pgrp;
+    if (ppid == self) out.children.push_back(static_cast<pid_t>(std::stol(name)));
+    if (pgrp == group_id && state != "Z" && state != "X") out.group_running = true;
   }
   return out;
 }
@@ -88,18 +94,20 @@ bool ends_within(pid_t p, std::chrono::milliseconds grace) {
 
 // Kills whatever the program left behind: its process group, then (as a child subreaper) every
 // orphan reparented to us, including those that left the group with setsid(). Returns how many.
+// Done when no process is our child and none of the group runs: a process that outlives the
+// program is then nowhere (one whose parent died was reparented to us before that parent became a
+// zombie, and a dying one is still in the group).
 int kill_leftovers(pid_t group) {
   int killed = 0;
   ::kill(-group, SIGKILL);
-  for (int quiet = 0, round = 0; quiet < 3 && round < 200; ++round) {
-    const auto stray = children_of_self();
-    if (stray.empty()) {
-      ++quiet;
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  for (int round = 0; round < 1000; ++round) {
+    const ProcessScan scan = scan_processes(group);
+    if (scan.children.empty()) {
+      if (!scan.group_running) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));  // the group's processes are dying
       continue;
     }
-    quiet = 0;
-    for (const pid_t p : stray) {
+    for (const pid_t p : scan.children) {
       // bubblewrap's own init, reparented to us as its program ends, is no leftover of the
       // program's: it gets a moment to end on its own, and is not counted.
       if (command_name(p) == "bwrap") {

@@ -4,16 +4,21 @@
 // (<bin>/../lib and <bin>/../include/helios-runtime; a test executable in the build tree's root
 // finds them in lib/ and include/helios-runtime beside it).
 #include <string>
+#include <vector>
 
 namespace helios::solve {
 
 struct RuntimeFiles {
   std::string library;      // absolute path of libhelios-runtime.a
   std::string include_dir;  // absolute folder of helios_runtime.hpp
-  std::string sha256;       // SHA-256 of the header's bytes then the library's
+  std::vector<std::string>
+      files;  // what a program is built from: the public header, the three it includes, the library
 };
 
 // Located once from /proc/self/exe; throws std::runtime_error naming the paths tried.
 const RuntimeFiles& runtime_files();
+
+// The SHA-256 of the runtime's files' bytes, in order (computed once).
+const std::string& runtime_sha256();
 
 }  // namespace helios::solve

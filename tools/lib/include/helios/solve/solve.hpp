@@ -106,6 +106,13 @@ enum class KeyKind { Source, Structure };
 // runtime invalidates cached programs.
 std::string compile_key(KeyKind kind, const std::string& text, const std::string& command,
                         const std::string& compiler_version, const std::string& runtime_sha256);
+// `compute()`, the value of `files`, kept in `memo_path` with the files' stamps (device, inode, size,
+// modification time) and read from there while they match: the compiler's --version line and the
+// runtime's SHA-256 are asked on every solve and change only with the files (ccache identifies a
+// compiler by the same stamps). A file modified in the last two seconds is not trusted to its stamp:
+// the value is then computed and not kept; nor is it when a file changed while it was computed.
+std::string memo_by_stamps(const std::string& memo_path, const std::vector<std::string>& files,
+                           const std::function<std::string()>& compute);
 // Writes the checked program of `c` to `path` (a new file of mode 0700 in the run's private folder),
 // which is what runs: the cache may change after the check, the private copy not.
 void install_program(const CompileResult& c, const std::string& path);
