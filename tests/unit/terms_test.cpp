@@ -422,8 +422,9 @@ TEST(SolarElectric, EveryDerivationRowAgreesWithFiniteDifferences) {
   const double accel_unit = AU_m / (year_s * year_s);
   std::mt19937_64 rng(48);
   std::uniform_real_distribution<double> uni(-1, 1);
-  // Distances through the cap's crossing (P0/r^2 - Pbus = Pmax at r = sqrt(20/10.5) = 1.380 AU).
-  for (const double dist : {0.7, 1.0, 1.3, 1.375, 1.380, 1.385, 1.45, 1.65, 2.2}) {
+  // Distances through the cap's crossing (P0/r^2 - Pbus = Pmax at r = sqrt(20/10.5) = 1.380 AU) and
+  // the floor's (the bus takes all the arrays give at r = sqrt(20/0.5) = 6.325 AU).
+  for (const double dist : {0.7, 1.0, 1.3, 1.375, 1.380, 1.385, 1.45, 1.65, 2.2, 6.0, 6.3, 6.325, 6.35, 6.5}) {
     SCOPED_TRACE(dist);
     helios::symbolic::Values at = values;
     double dir[3] = {uni(rng), uni(rng), uni(rng)};
@@ -439,9 +440,11 @@ TEST(SolarElectric, EveryDerivationRowAgreesWithFiniteDifferences) {
     at["t"] = 0;
     at["u"] = 0.6;
     at["ax"] = 0.6, at["ay"] = 0.8, at["az"] = 0;
-    // T(r) in newtons from the watts of the problem text, the cap a smooth minimum of width 1% of Pmax.
-    const double available = 20000 / (dist * dist) - 500, pmax = 10000, width = 100;
-    const double input = (available + pmax - std::sqrt((available - pmax) * (available - pmax) + width * width)) / 2;
+    // T(r) in newtons from the watts of the problem text, the cap a smooth minimum of width 1% of
+    // Pmax, then floored at zero by a soft positive part of width 1% of the bus.
+    const double available = 20000 / (dist * dist) - 500, pmax = 10000, width = 100, floor_width = 5;
+    const double capped = (available + pmax - std::sqrt((available - pmax) * (available - pmax) + width * width)) / 2;
+    const double input = (capped + std::sqrt(capped * capped + floor_width * floor_width)) / 2;
     const double thrust_N = 2 * 0.6 * input / (g0 * isp);
     const double thrust_accel = thrust_N / (mass_kg * at["m"]) / accel_unit;  // normalized
     const double mdot = -thrust_N / (g0 * isp) / mass_kg * year_s;            // normalized
@@ -453,6 +456,7 @@ TEST(SolarElectric, EveryDerivationRowAgreesWithFiniteDifferences) {
     const double gravity_vx = helios::symbolic::evaluate(parse(d["state_odes"][3]["rhs"]), table, coast);
     EXPECT_NEAR((rhs(3) - gravity_vx) / (0.6 * 0.6 * thrust_accel), 1.0, 1e-9);
     EXPECT_NEAR(rhs(6) / (0.6 * mdot), 1.0, 1e-9);
+    EXPECT_LT(rhs(6), 0) << "the mass flow never turns: the engine gets nothing where the bus takes all";
     // Costate rates: -dH/dx by central differences.
     for (std::size_t i = 0; i < states.size(); ++i) {
       SCOPED_TRACE(states[i]);

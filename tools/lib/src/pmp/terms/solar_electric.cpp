@@ -7,7 +7,14 @@
 // width Pw = 1% of Pmax (kSmoothWidth): the input power is C-infinity in r, so the costate rates
 // (which carry dT/dr) and the shooting function stay smooth for hybrj and the eps homotopy; it is
 // Pw/2 below the hard minimum where Pa = Pmax and within Pw^2 / (4 |Pa - Pmax|) of it elsewhere.
-// Without a maximum input power the engine takes all the arrays give (no cap). The thrust depends
+// Without a maximum input power the engine takes all the arrays give (no cap). Where a bus takes
+// its share, the arrays give less than it beyond r = sqrt(P0/Pbus) AU and the engine gets nothing:
+// the capped power P is floored at zero smoothly, (P + sqrt(P^2 + Pf^2)) / 2 with Pf = 1% of Pbus
+// (kSmoothWidth), positive everywhere and within Pf^2 / (4 |P|) of max(P, 0) (a relative 1e-7 at
+// Mars for S15's 20 kW arrays and 0.5 kW bus), so the thrust and the mass flow never turn negative
+// (the cap, Pw^2 / (4 Pmax) below Pa where Pa is small, comes first: floored before it, the power
+// would still go below zero). Without a bus the power is positive out to 200 sqrt(P0/Pmax) AU. The
+// thrust depends
 // on the position, so H's r-derivatives (the costate rates), the switching function and the throttle
 // law carry T(r) and dT/dr: the derivation finds them from H, nothing here is written for them.
 #include <cmath>
@@ -85,6 +92,10 @@ class SolarElectric : public ForceTerm {
     if (cap_) {
       const ex Pmax = S.get("Pmax"), Pw = S.get("Pw");
       input = (available + Pmax - GiNaC::sqrt(GiNaC::pow(available - Pmax, 2) + Pw * Pw)) / 2;
+    }
+    if (bus_ > 0) {
+      const ex floor_width = kSmoothWidth * S.get("Pbus");
+      input = (input + GiNaC::sqrt(GiNaC::pow(input, 2) + floor_width * floor_width)) / 2;
     }
     p.max_thrust = 2 * S.get("eta") * input / S.get("c");
     p.thrust_parameters.clear();
