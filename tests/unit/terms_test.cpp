@@ -548,6 +548,26 @@ TEST(SolarElectric, WhatItCannotFlyIsRefusedNamingTheField) {
   EXPECT_TRUE(contains(refusal_of(text), "kN")) << refusal_of(text);
 }
 
+// The cap stated by the engine's maximum thrust is the input power at which it gives that thrust,
+// T c / (2 eta): 0.5 N at 2000 s and an efficiency of 0.5 is the 9806.65 W cap; with both stated,
+// the lower one binds.
+TEST(SolarElectric, ACapStatedByItsThrustIsThePowerThatGivesIt) {
+  const auto pmax_W = [](const std::string& engine) {
+    const json d = derive_text(s01_with("The spacecraft is solar-electric: its arrays give 20 kW at 1 AU, " + engine +
+                                        " with an efficiency of 0.5 and a specific impulse of 2000 s.\nThe "
+                                        "spacecraft has an initial mass of 1000 kg."));
+    double pmax = NAN, p0 = NAN;
+    for (const auto& q : d["parameters"]) {
+      if (q["name"] == "Pmax") pmax = q["value"];
+      if (q["name"] == "P0") p0 = q["value"];
+    }
+    return pmax / p0 * 20000;  // in W, through P0's own normalization
+  };
+  EXPECT_NEAR(pmax_W("the engine gives at most 0.5 N") / 9806.65, 1.0, 1e-12);
+  EXPECT_NEAR(pmax_W("the engine gives at most 500 mN, the engine takes at most 5 kW") / 5000, 1.0, 1e-12);
+  EXPECT_NEAR(pmax_W("a maximum thrust of 0.25 N, the engine takes at most 9 kW") / 4903.325, 1.0, 1e-12);
+}
+
 // In the 1-AU limit (arrays so large that the cap always binds, Pmax = T c / (2 eta)), the
 // derivation is S01's with T(r) = Tmax up to the smooth cap's Pw^2/(4 (Pa - Pmax)) < 1e-6 Tmax.
 TEST(SolarElectric, WithTheCapAlwaysBindingTheThrustIsTheConstantEngines) {

@@ -167,8 +167,8 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   doc["problem"] = b.problem;
   doc["central_body"] = b.central_body;
   json spacecraft = json::object();  // in one order, however the text states the facts
-  for (const char* k : {"thrust_N", "array_power_1AU_W", "bus_power_W", "max_engine_power_W", "engine_efficiency",
-                        "isp_s", "initial_mass_kg", "final_mass_kg", "mass_model"})
+  for (const char* k : {"thrust_N", "array_power_1AU_W", "bus_power_W", "max_engine_power_W", "max_thrust_N",
+                        "engine_efficiency", "isp_s", "initial_mass_kg", "final_mass_kg", "mass_model"})
     if (b.spacecraft.contains(k)) spacecraft[k] = b.spacecraft[k];
   for (const auto& [k, v] : b.spacecraft.items())
     if (!spacecraft.contains(k)) spacecraft[k] = v;

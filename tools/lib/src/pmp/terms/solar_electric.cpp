@@ -17,6 +17,7 @@
 // thrust depends
 // on the position, so H's r-derivatives (the costate rates), the switching function and the throttle
 // law carry T(r) and dT/dr: the derivation finds them from H, nothing here is written for them.
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -49,9 +50,15 @@ class SolarElectric : public ForceTerm {
     const double power_unit_W = U.mass_kg * std::pow(U.length_km * 1e3, 2) / std::pow(U.time_s, 3);
     p0_ = sc.at("array_power_1AU_W").get<double>() / power_unit_W;
     bus_ = sc.value("bus_power_W", 0.0) / power_unit_W;
-    cap_ = sc.contains("max_engine_power_W");
-    if (cap_) pmax_ = sc.at("max_engine_power_W").get<double>() / power_unit_W;
     eta_ = sc.at("engine_efficiency").get<double>();
+    // The cap: the maximum input power, or the power at which the engine gives its maximum thrust
+    // (T c / (2 eta)), the lower of the two where both are stated.
+    cap_ = sc.contains("max_engine_power_W") || sc.contains("max_thrust_N");
+    double pmax_W = sc.value("max_engine_power_W", INFINITY);
+    if (sc.contains("max_thrust_N"))
+      pmax_W = std::min(pmax_W, sc.at("max_thrust_N").get<double>() * sc.at("isp_s").get<double>() *
+                                    helios::astro::G0_M_S2 / (2 * eta_));
+    if (cap_) pmax_ = pmax_W / power_unit_W;
     exhaust_ = sc.at("isp_s").get<double>() * helios::astro::G0_M_S2 * 1e-3 / U.speed_km_s();
     if (!(eta_ > 0 && eta_ <= 1))
       throw std::invalid_argument("field /spacecraft/engine_efficiency: " + std::to_string(eta_) + " is not in (0, 1]");

@@ -2,8 +2,10 @@
 // takes at most 5 kW with an efficiency of 0.6 and a specific impulse of 3000 s.": a solar-electric
 // engine about the Sun (pmp/terms/solar_electric.cpp): the arrays' power at 1 AU
 // (array_power_1AU_W), optionally the bus's share (bus_power_W) and the engine's maximum input power
-// (max_engine_power_W), its efficiency (engine_efficiency) and specific impulse; clauses in any
-// order, an initial mass among them too. The thrust follows from the power: no maximum thrust.
+// (max_engine_power_W) or its maximum thrust (max_thrust_N, the cap a data sheet states: the input
+// power at which the engine gives it), its efficiency (engine_efficiency) and specific impulse;
+// clauses in any order, an initial mass among them too. The thrust follows from the power: a thrust
+// is only ever its cap.
 #include "../form.hpp"
 #include "../grammar.hpp"
 
@@ -11,8 +13,8 @@ namespace helios::spec::grammar::forms {
 namespace {
 
 const std::string kExpected =
-    "expected 'its arrays give Q at 1 AU', 'the bus uses Q', 'the engine takes at most Q', 'an efficiency of N' or "
-    "'a specific impulse of Q'";
+    "expected 'its arrays give Q at 1 AU', 'the bus uses Q', 'the engine takes at most Q', 'the engine gives at most "
+    "Q' (a thrust), 'an efficiency of N' or 'a specific impulse of Q'";
 
 // The power of clause m's group idx (number) and idx + 1 (unit), in W, positive.
 double power(const std::smatch& m, std::size_t idx, const std::string& what) {
@@ -40,6 +42,12 @@ void read(Builder& b, const std::smatch& match) {
   static const std::regex cap =
       re(R"((?:(?:the|its) )?(?:engine|thruster) (?:takes|uses|draws|accepts|consumes) (?:at most|up to) )" +
          kQuantity + "|" + R"((?:an? )?maximum (?:engine |input )?power of )" + kQuantity);
+  // "the engine gives at most 0.25 N", "a maximum thrust of 250 mN": the cap stated by its thrust
+  static const std::regex thrust_cap =
+      re(R"((?:(?:the|its) )?(?:engine|thruster) (?:gives|delivers|produces|provides|gives a thrust of) (?:at most|up )"
+         R"(to) )" +
+         kQuantity + "|" + R"((?:an? |its )?(?:maximum|most) thrust (?:of|is) )" + kQuantity + "|" +
+         R"((?:an? )?thrust of at most )" + kQuantity);
   static const std::regex efficiency = re(
       R"((?:an? |the |its )?(?:engine(?:'s)? |thruster(?:'s)? |total )?efficiency (?:of|is) ()" + kNum + R"()\s*(%)?)");
   static const std::regex isp = re(R"((?:an? |the |its )?(?:specific impulse|Isp)(?: of| is)? )" + kQuantity);
@@ -58,6 +66,13 @@ void read(Builder& b, const std::smatch& match) {
       b.spacecraft["bus_power_W"] = w;
     } else if (std::regex_match(part, m, cap)) {
       b.spacecraft["max_engine_power_W"] = power(m, m[1].matched ? 1 : 3, "the engine's maximum input power");
+    } else if (std::regex_match(part, m, thrust_cap)) {
+      const std::size_t at = m[1].matched ? 1 : m[3].matched ? 3 : 5;
+      const double n = quantity(m, at, Dimension::Force);
+      if (!(n > 0))
+        throw sentence_error("the engine's maximum thrust must be positive, got " + m[at].str() + " " +
+                             m[at + 1].str());
+      b.spacecraft["max_thrust_N"] = n;
     } else if (std::regex_match(part, m, efficiency)) {
       const double eta = number(m[1].str()) / (m[2].matched ? 100.0 : 1.0);
       if (!(eta > 0 && eta <= 1))
@@ -118,6 +133,19 @@ std::vector<Form> solar_electric() {
          "with Isp 3000 s and an initial mass of 500 kg.",
          "sun -engine", R"~({"/spacecraft": {"array_power_1AU_W": 10000, "engine_efficiency": 0.6, "isp_s": 3000,
               "initial_mass_kg": 500}})~"},
+        {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, the engine gives at most 250 mN with an "
+         "efficiency of 0.6 and a specific impulse of 3000 s and an initial mass of 1000 kg.",
+         "sun -engine",
+         R"~({"/spacecraft": {"array_power_1AU_W": 10000, "max_thrust_N": 0.25, "engine_efficiency": 0.6,
+              "isp_s": 3000, "initial_mass_kg": 1000}})~"},
+        {"The spacecraft uses solar electric propulsion: 20 kW of array power at 1 AU, a maximum thrust of 0.4 N, a "
+         "maximum input power of 8 kW, an efficiency of 60 %, an Isp of 2000 s and an initial mass of 900 kg.",
+         "sun -engine",
+         R"~({"/spacecraft": {"array_power_1AU_W": 20000, "max_thrust_N": 0.4, "max_engine_power_W": 8000,
+              "engine_efficiency": 0.6, "isp_s": 2000, "initial_mass_kg": 900}})~"},
+        {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, the engine gives at most 0 N, an "
+         "efficiency of 0.6 and a specific impulse of 3000 s.",
+         "sun -engine ", R"~({"error": "the engine's maximum thrust must be positive, got 0 N"})~"},
         {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, an efficiency of 1.5 and a specific "
          "impulse of 3000 s.",
          "sun -engine ", R"~({"error": "the engine efficiency must be in (0, 1] (or (0, 100] %), got 1.5"})~"},
