@@ -35,7 +35,7 @@ setup() {
   m_end=$(tail -1 "$dir/trajectory.csv" | cut -d, -f8)
   within "$m_end" "$(jq '.final_mass_kg' "$sol")" 1e-9
   # the thrust the last burn's samples burn: -dm/dt g0 Isp, against 2 eta P_in(r)/(g0 Isp) at their
-  # mid-point (P_in the smooth cap of width 100 W and floor of width 5 W, as derived; the hard minimum
+  # mid-point (P_in the smooth floor of width 5 W and cap of width 100 W, as derived; the hard minimum
   # differs by 1e-4 here)
   awk -F, -v AU=149597870.691 '
     NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
@@ -47,8 +47,7 @@ setup() {
       measured = -(m[k] - m[k - 1]) / ((t[k] - t[k - 1]) * 86400) * c
       r = sqrt(((x[k] + x[k - 1]) / 2) ^ 2 + ((y[k] + y[k - 1]) / 2) ^ 2 + ((z[k] + z[k - 1]) / 2) ^ 2) / AU
       pa = 20000 / (r * r) - 500; pmax = 10000; w = 100; f = 5
-      pin = (pa + pmax - sqrt((pa - pmax) ^ 2 + w * w)) / 2
-      pin = (pin + sqrt(pin * pin + f * f)) / 2
+      pin = (sqrt(pa * pa + f * f) + sqrt(pmax * pmax + w * w) - sqrt((pa - pmax) ^ 2 + w * w)) / 2
       hard = pa < pmax ? pa : pmax
       want = 2 * 0.6 * pin / c
       printf "day %.3f r %.6f AU: measured %.9g N, power law %.9g N (hard minimum %.9g N)\n", t[k], r, measured, want, 2 * 0.6 * hard / c

@@ -440,11 +440,12 @@ TEST(SolarElectric, EveryDerivationRowAgreesWithFiniteDifferences) {
     at["t"] = 0;
     at["u"] = 0.6;
     at["ax"] = 0.6, at["ay"] = 0.8, at["az"] = 0;
-    // T(r) in newtons from the watts of the problem text, the cap a smooth minimum of width 1% of
-    // Pmax, then floored at zero by a soft positive part of width 1% of the bus.
+    // T(r) in newtons from the watts of the problem text: max(Pa, 0) less max(Pa - Pmax, 0) plus
+    // max(-Pmax, 0), each max softened over its width (1% of the bus, 1% of Pmax, 1% of Pmax).
     const double available = 20000 / (dist * dist) - 500, pmax = 10000, width = 100, floor_width = 5;
-    const double capped = (available + pmax - std::sqrt((available - pmax) * (available - pmax) + width * width)) / 2;
-    const double input = (capped + std::sqrt(capped * capped + floor_width * floor_width)) / 2;
+    const auto soft = [](double x, double w) { return (x + std::sqrt(x * x + w * w)) / 2; };
+    const double input = soft(available, floor_width) - soft(available - pmax, width) + soft(-pmax, width);
+    EXPECT_GT(input, 0);
     const double thrust_N = 2 * 0.6 * input / (g0 * isp);
     const double thrust_accel = thrust_N / (mass_kg * at["m"]) / accel_unit;  // normalized
     const double mdot = -thrust_N / (g0 * isp) / mass_kg * year_s;            // normalized

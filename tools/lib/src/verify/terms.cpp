@@ -129,21 +129,23 @@ std::vector<ex> TermFamily::third_body(const std::vector<ex>& q, Check& c, const
 
 // A solar-electric engine's full thrust, written here from the physics, not taken from pmp: the
 // arrays' power falls as the inverse square of the Sun's distance d (in AU, the length unit), the
-// bus takes its share, the engine at most Pmax (the smooth minimum of width Pw, written as Pmax less
-// a soft positive part) and, where a bus is, nothing below zero (the soft positive part of width 1%
-// of the bus: the engine gets nothing where the bus takes all), and the jet power eta P_in is T c / 2. q = P0, Pbus,
-// eta, c[, Pmax, Pw]; `bus` the value of Pbus.
+// bus takes its share (where a bus is, what is left floored at zero: the soft positive part of width
+// 1% of the bus), the engine at most Pmax (the smooth minimum of width Pw), and the jet power
+// eta P_in is T c / 2. q = P0, Pbus, eta, c[, Pmax, Pw]; `bus` the value of Pbus.
 ex TermFamily::solar_electric_thrust(const std::vector<ex>& q, double bus) const {
   const ex d = GiNaC::sqrt(r_[0] * r_[0] + r_[1] * r_[1] + r_[2] * r_[2]);
   const ex available = q[0] * GiNaC::pow(d, -2) - q[1];
+  // max(x, 0) softened over a width w
+  const auto soft_positive = [](const ex& x, const ex& w) { return (x + GiNaC::sqrt(x * x + w * w)) / 2; };
   ex input = available;
+  if (bus > 0) input = soft_positive(available, q[1] / 100);
   if (q.size() == 6) {
-    const ex excess = q[4] - available;  // the power the engine cannot take, where negative
-    input = q[4] - (excess + GiNaC::sqrt(excess * excess + q[5] * q[5])) / 2;
-  }
-  if (bus > 0) {
-    const ex floor_width = q[1] / 100;
-    input = (input + GiNaC::sqrt(input * input + floor_width * floor_width)) / 2;
+    // At most Pmax: less the soft excess over it. Where a bus is, plus that excess at no power, so
+    // that no power gives no thrust.
+    if (bus > 0)
+      input += soft_positive(-q[4], q[5]) - soft_positive(available - q[4], q[5]);
+    else
+      input = q[4] - soft_positive(q[4] - available, q[5]);
   }
   return 2 * q[2] * input / q[3];
 }

@@ -2,21 +2,26 @@
 // length unit is the AU), the bus takes Pbus of it, and the engine takes the rest up to its
 // maximum input power Pmax; at a constant efficiency eta and exhaust velocity c = g0 Isp its
 // thrust is T(r) = 2 eta P_in(r) / c and its mass flow T(r) u / c:
-//   a = T(r) u a_hat / m,  dm/dt = -T(r) u / c,  P_in = min(P0/r^2 - Pbus, Pmax).
+//   a = T(r) u a_hat / m,  dm/dt = -T(r) u / c,  P_in = min(max(P0/r^2 - Pbus, 0), Pmax).
 // The cap is a smooth saturation, P_in = (Pa + Pmax - sqrt((Pa - Pmax)^2 + Pw^2)) / 2 with the
 // width Pw = 1% of Pmax (kSmoothWidth): the input power is C-infinity in r, so the costate rates
 // (which carry dT/dr) and the shooting function stay smooth for hybrj and the eps homotopy; it is
 // Pw/2 below the hard minimum where Pa = Pmax and within Pw^2 / (4 |Pa - Pmax|) of it elsewhere.
 // Without a maximum input power the engine takes all the arrays give (no cap). Where a bus takes
 // its share, the arrays give less than it beyond r = sqrt(P0/Pbus) AU and the engine gets nothing:
-// the capped power P is floored at zero smoothly, (P + sqrt(P^2 + Pf^2)) / 2 with Pf = 1% of Pbus
-// (kSmoothWidth), positive everywhere and within Pf^2 / (4 |P|) of max(P, 0) (a relative 1e-7 at
-// Mars for S15's 20 kW arrays and 0.5 kW bus), so the thrust and the mass flow never turn negative
-// (the cap, Pw^2 / (4 Pmax) below Pa where Pa is small, comes first: floored before it, the power
-// would still go below zero). Without a bus the power is positive out to 200 sqrt(P0/Pmax) AU. The
-// thrust depends
-// on the position, so H's r-derivatives (the costate rates), the switching function and the throttle
-// law carry T(r) and dT/dr: the derivation finds them from H, nothing here is written for them.
+// Pa is floored at zero smoothly, s_f(Pa) = (Pa + sqrt(Pa^2 + Pf^2)) / 2 with Pf = 1% of Pbus
+// (kSmoothWidth), within Pf^2 / (4 |Pa|) of max(Pa, 0) (a relative 1e-7 at Mars for S15's 20 kW
+// arrays and 0.5 kW bus), and with a cap the two soft parts are summed, not nested:
+//   P_in = s_f(Pa) - s_w(Pa - Pmax) + s_w(-Pmax)
+//        = (sqrt(Pa^2 + Pf^2) + sqrt(Pmax^2 + Pw^2) - sqrt((Pa - Pmax)^2 + Pw^2)) / 2,
+// s_w the soft positive part of width Pw. It is positive for every Pa (s_w rises with a slope below
+// 1, so the cap's part never takes more than the floor's gives), tends to Pmax + s_w(-Pmax) (0.25 W
+// above Pmax for a 10 kW cap) and keeps the thrust and the mass flow from turning negative. The
+// cap of the floored power (s_w of s_f) would be the same physics, but the derivation's expansion
+// of its square grows the program tenfold and loses the power to cancellation near the Sun.
+// The thrust depends on the position, so H's r-derivatives (the costate rates), the switching
+// function and the throttle law carry T(r) and dT/dr: the derivation finds them from H, nothing
+// here is written for them.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -96,13 +101,18 @@ class SolarElectric : public ForceTerm {
     const ex r2 = x.r[0] * x.r[0] + x.r[1] * x.r[1] + x.r[2] * x.r[2];
     const ex available = S.get("P0") / r2 - S.get("Pbus");
     ex input = available;
-    if (cap_) {
+    if (bus_ > 0) {  // floored at zero (the soft positive part of width Pf), and capped as below
+      const ex Pf = kSmoothWidth * S.get("Pbus");
+      input = (available + GiNaC::sqrt(GiNaC::pow(available, 2) + Pf * Pf)) / 2;
+      if (cap_) {
+        const ex Pmax = S.get("Pmax"), Pw = S.get("Pw");
+        input = (GiNaC::sqrt(GiNaC::pow(available, 2) + Pf * Pf) + GiNaC::sqrt(Pmax * Pmax + Pw * Pw) -
+                 GiNaC::sqrt(GiNaC::pow(available - Pmax, 2) + Pw * Pw)) /
+                2;
+      }
+    } else if (cap_) {
       const ex Pmax = S.get("Pmax"), Pw = S.get("Pw");
       input = (available + Pmax - GiNaC::sqrt(GiNaC::pow(available - Pmax, 2) + Pw * Pw)) / 2;
-    }
-    if (bus_ > 0) {
-      const ex floor_width = kSmoothWidth * S.get("Pbus");
-      input = (input + GiNaC::sqrt(GiNaC::pow(input, 2) + floor_width * floor_width)) / 2;
     }
     p.max_thrust = 2 * S.get("eta") * input / S.get("c");
     p.thrust_parameters.clear();
