@@ -131,28 +131,19 @@ bool read_entry(const fs::path& dir, CompileResult& c) {
   return true;
 }
 
-// A file's stamp: where it is (device, inode), its size and its modification time in nanoseconds;
-// "" when it cannot be read. A rebuilt or upgraded file gets another (a new inode, size or time).
-std::string file_stamp(const std::string& path) {
-  struct stat st;
-  if (::stat(path.c_str(), &st) != 0) return "";
-  return std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino) + ":" + std::to_string(st.st_size) + ":" +
-         std::to_string(st.st_mtim.tv_sec) + ":" + std::to_string(st.st_mtim.tv_nsec);
-}
-
-// The stamps of `files`, one line each; "" when one cannot be read or was modified in the last
-// kRacySeconds (the clock's coarse ticks could give a file changed again within one tick the same
-// stamp, git's "racily clean" files): such a value is computed every time, never kept.
+// The stamps of `files`, one line each: where the file is (device, inode), its size and its
+// modification time in nanoseconds (a rebuilt or upgraded file gets another); "" when one cannot be
+// read or was modified in the last kRacySeconds (the clock's coarse ticks could give a file changed
+// again within one tick the same stamp, git's "racily clean" files): such a value is computed every
+// time, never kept.
 std::string stamps_of(const std::vector<std::string>& files) {
-  constexpr double kRacySeconds = 2.0;
+  constexpr std::time_t kRacySeconds = 2;
   std::string out;
   for (const std::string& f : files) {
     struct stat st;
-    const std::string stamp = file_stamp(f);
-    if (stamp.empty() || ::stat(f.c_str(), &st) != 0) return "";
-    const double age = static_cast<double>(std::time(nullptr) - st.st_mtim.tv_sec);
-    if (age < kRacySeconds) return "";
-    out += f + " " + stamp + "\n";
+    if (::stat(f.c_str(), &st) != 0 || std::time(nullptr) - st.st_mtim.tv_sec < kRacySeconds) return "";
+    out += f + " " + std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino) + ":" + std::to_string(st.st_size) +
+           ":" + std::to_string(st.st_mtim.tv_sec) + ":" + std::to_string(st.st_mtim.tv_nsec) + "\n";
   }
   return out;
 }
@@ -239,7 +230,6 @@ CompileResult compile_cached(const std::string& source, const SolveOptions& o) {
     c.seconds = io::seconds_since(start);
     return c;
   };
-  fs::create_directories(dir.parent_path());
   private_folder(dir);
   if (read_entry(dir, c)) return from_cache();
   // One compile per structure at a time: a second solve of the same structure (a sweep's next row

@@ -46,7 +46,7 @@ class TermFamily : public Family {
   bool engine(const Term& t, const std::vector<ex>& q, Check& c, std::vector<ex>& a, Contribution& out) const;
   std::vector<ex> gradient(const ex& potential) const;
   std::vector<ex> third_body(const std::vector<ex>& q, Check& c, const std::string& body) const;
-  ex solar_electric_thrust(const std::vector<ex>& q, double bus) const;
+  ex solar_electric_thrust(const std::vector<ex>& q) const;
   double mismatch(const ex& given, const ex& expected, Check& c) const;
   bool depends(const ex& difference, const ex& expected, const ex& q) const;
   void diagnose(Check& c, std::size_t state, const std::vector<ex>& expected,
@@ -127,32 +127,33 @@ std::vector<ex> TermFamily::third_body(const std::vector<ex>& q, Check& c, const
   return gradient(mu3 * (1 / GiNaC::sqrt(d2) - rr3 / GiNaC::pow(a, 3)));
 }
 
+// The value of a parameter of the derivation (a constant).
+double value_of(const Context& ctx, const ex& symbol_) {
+  return ctx.values[static_cast<std::size_t>(ctx.slot(GiNaC::ex_to<symbol>(symbol_).get_name()))];
+}
+
 // A solar-electric engine's full thrust, written here from the physics, not taken from pmp: the
 // arrays' power falls as the inverse square of the Sun's distance d (in AU, the length unit), the
 // bus takes its share (where a bus is, what is left floored at zero: the soft positive part of width
 // 1% of the bus), the engine at most Pmax (the smooth minimum of width Pw), and the jet power
-// eta P_in is T c / 2. q = P0, Pbus, eta, c[, Pmax, Pw]; `bus` the value of Pbus.
-ex TermFamily::solar_electric_thrust(const std::vector<ex>& q, double bus) const {
+// eta P_in is T c / 2. q = P0, Pbus, eta, c[, Pmax, Pw].
+ex TermFamily::solar_electric_thrust(const std::vector<ex>& q) const {
   const ex d = GiNaC::sqrt(r_[0] * r_[0] + r_[1] * r_[1] + r_[2] * r_[2]);
   const ex available = q[0] * GiNaC::pow(d, -2) - q[1];
   // max(x, 0) softened over a width w
   const auto soft_positive = [](const ex& x, const ex& w) { return (x + GiNaC::sqrt(x * x + w * w)) / 2; };
+  const bool bus = value_of(ctx, q[1]) > 0;
   ex input = available;
-  if (bus > 0) input = soft_positive(available, q[1] / 100);
+  if (bus) input = soft_positive(available, q[1] / 100);
   if (q.size() == 6) {
     // At most Pmax: less the soft excess over it. Where a bus is, plus that excess at no power, so
     // that no power gives no thrust.
-    if (bus > 0)
+    if (bus)
       input += soft_positive(-q[4], q[5]) - soft_positive(available - q[4], q[5]);
     else
       input = q[4] - soft_positive(q[4] - available, q[5]);
   }
   return 2 * q[2] * input / q[3];
-}
-
-// The value of a parameter of the derivation (a constant).
-double value_of(const Context& ctx, const ex& symbol_) {
-  return ctx.values[static_cast<std::size_t>(ctx.slot(GiNaC::ex_to<symbol>(symbol_).get_name()))];
 }
 
 // The central body's mu: the parameter of the listed two_body term.
@@ -278,7 +279,7 @@ bool TermFamily::engine(const Term& t, const std::vector<ex>& q, Check& c, std::
     if (q.size() == 6 && rel_diff(value_of(ctx, q[5]), 0.01 * value_of(ctx, q[4])) > kTol)
       c.fail("term solar_electric_thrust: its cap width " + t.parameters[5] + " = " + num(value_of(ctx, q[5])) +
              " is not 1% of its maximum input power " + t.parameters[4] + ".");
-    const ex u = ctx.sym(ctx.throttle), T = solar_electric_thrust(q, value_of(ctx, q[1]));
+    const ex u = ctx.sym(ctx.throttle), T = solar_electric_thrust(q);
     for (const auto& d : ctx.directions) a.push_back(T * u * ctx.sym(d) / m_);
     out.rate[static_cast<std::size_t>(mass_)] = -T * u / q[3];
   }
@@ -411,8 +412,7 @@ Check TermFamily::cost(const std::optional<std::vector<Term>>& terms) {
     if (ctx.throttle.empty()) return c.fail("the cost term " + t.name + " needs a throttle control."), c;
     if (sep && !read_frame(c)) return c;
     const ex u = ctx.sym(ctx.throttle), eps = ctx.sym(ctx.eps);
-    running = (sep ? solar_electric_thrust(*q, value_of(ctx, (*q)[1])) / (*q)[3] : (*q)[0] / (*q)[1]) *
-              (u - eps * u * (1 - u));
+    running = (sep ? solar_electric_thrust(*q) / (*q)[3] : (*q)[0] / (*q)[1]) * (u - eps * u * (1 - u));
   } else if (t.name == "final_radius" || t.name == "final_energy") {
     const auto q = parameters_of(t, t.name == "final_energy" ? 1 : 0, c);
     if (!q || !read_frame(c)) return c;

@@ -11,8 +11,8 @@ namespace helios::solve {
 struct RuntimeFiles {
   std::string library;      // absolute path of libhelios-runtime.a
   std::string include_dir;  // absolute folder of helios_runtime.hpp
-  std::vector<std::string>
-      files;  // what a program is built from: the public header, the three it includes, the library
+  // What a program is built from: the public header, the three it includes, then the library.
+  std::vector<std::string> files;
 };
 
 // Located once from /proc/self/exe; throws std::runtime_error naming the paths tried.

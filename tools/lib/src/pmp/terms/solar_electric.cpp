@@ -101,14 +101,15 @@ class SolarElectric : public ForceTerm {
     const ex r2 = x.r[0] * x.r[0] + x.r[1] * x.r[1] + x.r[2] * x.r[2];
     const ex available = S.get("P0") / r2 - S.get("Pbus");
     ex input = available;
-    if (bus_ > 0) {  // floored at zero (the soft positive part of width Pf), and capped as below
-      const ex Pf = kSmoothWidth * S.get("Pbus");
-      input = (available + GiNaC::sqrt(GiNaC::pow(available, 2) + Pf * Pf)) / 2;
-      if (cap_) {
+    if (bus_ > 0) {  // floored at zero (the soft positive part of width Pf), and capped as above
+      const ex Pf = kSmoothWidth * S.get("Pbus"), floor_root = GiNaC::sqrt(GiNaC::pow(available, 2) + Pf * Pf);
+      if (!cap_) {
+        input = (available + floor_root) / 2;
+      } else {
         const ex Pmax = S.get("Pmax"), Pw = S.get("Pw");
-        input = (GiNaC::sqrt(GiNaC::pow(available, 2) + Pf * Pf) + GiNaC::sqrt(Pmax * Pmax + Pw * Pw) -
-                 GiNaC::sqrt(GiNaC::pow(available - Pmax, 2) + Pw * Pw)) /
-                2;
+        input =
+            (floor_root + GiNaC::sqrt(Pmax * Pmax + Pw * Pw) - GiNaC::sqrt(GiNaC::pow(available - Pmax, 2) + Pw * Pw)) /
+            2;
       }
     } else if (cap_) {
       const ex Pmax = S.get("Pmax"), Pw = S.get("Pw");

@@ -16,11 +16,12 @@ const std::string kExpected =
     "expected 'its arrays give Q at 1 AU', 'the bus uses Q', 'the engine takes at most Q', 'the engine gives at most "
     "Q' (a thrust), 'an efficiency of N' or 'a specific impulse of Q'";
 
-// The power of clause m's group idx (number) and idx + 1 (unit), in W, positive.
-double power(const std::smatch& m, std::size_t idx, const std::string& what) {
-  const double w = quantity(m, idx, Dimension::Power);
-  if (!(w > 0)) throw sentence_error(what + " must be positive, got " + m[idx].str() + " " + m[idx + 1].str());
-  return w;
+// The quantity of clause m's group idx (number) and idx + 1 (unit) in SI (W for a power, N for a
+// force), positive.
+double positive(const std::smatch& m, std::size_t idx, Dimension dim, const std::string& what) {
+  const double v = quantity(m, idx, dim);
+  if (!(v > 0)) throw sentence_error(what + " must be positive, got " + m[idx].str() + " " + m[idx + 1].str());
+  return v;
 }
 
 void read(Builder& b, const std::smatch& match) {
@@ -44,8 +45,8 @@ void read(Builder& b, const std::smatch& match) {
          kQuantity + "|" + R"((?:an? )?maximum (?:engine |input )?power of )" + kQuantity);
   // "the engine gives at most 0.25 N", "a maximum thrust of 250 mN": the cap stated by its thrust
   static const std::regex thrust_cap =
-      re(R"((?:(?:the|its) )?(?:engine|thruster) (?:gives|delivers|produces|provides|gives a thrust of) (?:at most|up )"
-         R"(to) )" +
+      re(R"((?:(?:the|its) )?(?:engine|thruster) (?:gives|delivers|produces|provides|gives a thrust of) )"
+         R"((?:at most|up to) )" +
          kQuantity + "|" + R"((?:an? |its )?(?:maximum|most) thrust (?:of|is) )" + kQuantity + "|" +
          R"((?:an? )?thrust of at most )" + kQuantity);
   static const std::regex efficiency = re(
@@ -57,7 +58,8 @@ void read(Builder& b, const std::smatch& match) {
     std::smatch m;
     if (part.empty()) continue;
     if (std::regex_match(part, m, array) || std::regex_match(part, m, array_power)) {
-      b.spacecraft["array_power_1AU_W"] = power(m, m[1].matched ? 1 : 3, "the arrays' power at 1 AU");
+      b.spacecraft["array_power_1AU_W"] =
+          positive(m, m[1].matched ? 1 : 3, Dimension::Power, "the arrays' power at 1 AU");
     } else if (std::regex_match(part, m, bus)) {
       const std::size_t at = m[1].matched ? 1 : 3;
       const double w = quantity(m, at, Dimension::Power);
@@ -65,14 +67,14 @@ void read(Builder& b, const std::smatch& match) {
         throw sentence_error("the bus power must not be negative, got " + m[at].str() + " " + m[at + 1].str());
       b.spacecraft["bus_power_W"] = w;
     } else if (std::regex_match(part, m, cap)) {
-      b.spacecraft["max_engine_power_W"] = power(m, m[1].matched ? 1 : 3, "the engine's maximum input power");
+      b.spacecraft["max_engine_power_W"] =
+          positive(m, m[1].matched ? 1 : 3, Dimension::Power, "the engine's maximum input power");
     } else if (std::regex_match(part, m, thrust_cap)) {
-      const std::size_t at = m[1].matched ? 1 : m[3].matched ? 3 : 5;
-      const double n = quantity(m, at, Dimension::Force);
-      if (!(n > 0))
-        throw sentence_error("the engine's maximum thrust must be positive, got " + m[at].str() + " " +
-                             m[at + 1].str());
-      b.spacecraft["max_thrust_N"] = n;
+      b.spacecraft["max_thrust_N"] = positive(m,
+                                              m[1].matched   ? 1
+                                              : m[3].matched ? 3
+                                                             : 5,
+                                              Dimension::Force, "the engine's maximum thrust");
     } else if (std::regex_match(part, m, efficiency)) {
       const double eta = number(m[1].str()) / (m[2].matched ? 100.0 : 1.0);
       if (!(eta > 0 && eta <= 1))
