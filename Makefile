@@ -140,7 +140,7 @@ artifacts_of = $(addprefix $(RUNS)/$(1)/,$(ARTIFACTS))
 # complete (its score and report say so), and the chain goes on.
 SOLVED := || test $$? -eq 5
 
-.PHONY: run all scoreboard test unit bats tools deps clean sweep help
+.PHONY: run all scoreboard test unit bats tools deps clean sweep help catalogue
 run: $(call artifacts_of,$(scenario))
 
 all: $(foreach s,$(SCENARIOS),$(call artifacts_of,$(s)))
@@ -385,6 +385,12 @@ bats: $(TOOLS_STAMP) $(TOOL_STAMPS)
 	tests/run-bats.sh tests/bats
 
 test: unit bats
+
+# The schemas' parts the catalogue of terms makes (helios/pmp/catalogue.hpp), rewritten from it after
+# a term is added or changed; the unit test catalogue_test holds them to it.
+catalogue: $(TOOLS_STAMP)
+	cmake --build '$(BUILD)' --target helios-test-catalogue
+	HELIOS_WRITE_CATALOGUE=1 '$(BUILD)/helios-test-catalogue' --gtest_filter=Catalogue.TheSchemasAreWrittenFromIt
 
 # ---- the rules of the test tree's tools, each in a fragment beside them -------------------------
 # make test-sanitized: the suite under ASan and UBSan (build-asan).

@@ -130,9 +130,11 @@ TEST(LlmPrompt, FillsEveryPlaceholderOnceAndNeverExpandsValues) {
 
 TEST(LlmPrompt, EveryShippedPromptHasItsPlaceholders) {
   EXPECT_NO_THROW(fill(prompt("parse.txt"), {{"SPEC_SCHEMA", "s"}, {"SOURCE_FILE", "f"}, {"PROBLEM_TEXT", "t"}}));
-  EXPECT_NO_THROW(
-      fill(prompt("pmp_derive.txt"),
-           {{"DERIVATION_SCHEMA", "s"}, {"SPEC_JSON", "j"}, {"NORMALIZATION_JSON", "n"}, {"FEEDBACK", ""}}));
+  EXPECT_NO_THROW(fill(prompt("pmp_derive.txt"), {{"DERIVATION_SCHEMA", "s"},
+                                                  {"SPEC_JSON", "j"},
+                                                  {"NORMALIZATION_JSON", "n"},
+                                                  {"TERM_CATALOGUE", "c"},
+                                                  {"FEEDBACK", ""}}));
   EXPECT_NO_THROW(fill(prompt("codegen.txt"), {{"DERIVATION_JSON", "d"}, {"PROBLEM_BLOCK", "p"}, {"RUNTIME", "r"}}));
   EXPECT_NO_THROW(fill(prompt("repair.txt"), {{"ROUND", "1"}, {"COMMAND", "c"}, {"COMPILER_ERRORS", "e"}}));
   for (const char* rule :

@@ -4,15 +4,12 @@
 #include <algorithm>
 
 #include "helios/io/error.hpp"
+#include "helios/pmp/catalogue.hpp"
 
 namespace helios::derivation {
 namespace {
 
 using io::json;
-
-bool known(const std::vector<std::string>& names, const std::string& name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
 
 // The names, separated by ", ".
 std::string join(const std::vector<std::string>& names) {
@@ -44,41 +41,41 @@ Term read_term(const json& entry, const std::string& at) {
   Term t;
   t.name = text("name");
   t.kind = text("kind");
-  const bool force = known(force_term_names(), t.name), cost = known(cost_term_names(), t.name);
-  if (!force && !cost)
+  const pmp::TermEntry* known = pmp::find_term(t.name);
+  if (!known)
     throw helios::input_error(at + ".name: unknown term '" + t.name + "' (known: " + join(force_term_names()) + ", " +
                               join(cost_term_names()) + ")");
-  if (t.kind != (force ? "force" : "cost"))
-    throw helios::input_error(at + ".kind: '" + t.kind + "', but " + t.name + " is a " + (force ? "force" : "cost"));
+  if (t.kind != known->kind)
+    throw helios::input_error(at + ".kind: '" + t.kind + "', but " + t.name + " is a " + known->kind);
   t.parameters = strings(entry, "parameters", at);
   t.label = text("label");
   t.acceleration = strings(entry, "acceleration", at);
   t.body = text("body");
-  if (t.name == "user_acceleration" && t.acceleration.size() != 3)
+  for (const auto& field : known->details)
+    if (!entry.contains(field))
+      throw helios::input_error(at + "." + field + ": a " + t.name + " term lists its " + field);
+  if (entry.contains("acceleration") && t.acceleration.size() != 3)
     throw helios::input_error(at + ".acceleration: a user acceleration needs its three normalized components");
-  if (t.name == "third_body" && t.body.empty()) throw helios::input_error(at + ".body: a third body needs its name");
   return t;
+}
+
+// The names of the catalogue's terms of `kind`.
+std::vector<std::string> names_of(const std::string& kind) {
+  std::vector<std::string> out;
+  for (const auto& e : pmp::term_catalogue())
+    if (e.kind == kind) out.push_back(e.name);
+  return out;
 }
 
 }  // namespace
 
 const std::vector<std::string>& force_term_names() {
-  static const std::vector<std::string> names = {"two_body",
-                                                 "j2",
-                                                 "solar_sail",
-                                                 "thrust",
-                                                 "full_thrust",
-                                                 "constant_mass_thrust",
-                                                 "constant_mass_full_thrust",
-                                                 "solar_electric_thrust",
-                                                 "user_acceleration",
-                                                 "third_body"};
+  static const std::vector<std::string> names = names_of("force");
   return names;
 }
 
 const std::vector<std::string>& cost_term_names() {
-  static const std::vector<std::string> names = {"fuel",         "delta_v",      "time",
-                                                 "initial_mass", "final_radius", "final_energy"};
+  static const std::vector<std::string> names = names_of("cost");
   return names;
 }
 

@@ -11,6 +11,7 @@
 #include "helios/io/embedded.hpp"
 #include "helios/io/error.hpp"
 #include "helios/io/schema.hpp"
+#include "helios/pmp/catalogue.hpp"
 #include "helios/pmp/derive.hpp"
 #include "helios/pmp/model.hpp"
 #include "helios/verify/verify.hpp"
@@ -237,6 +238,7 @@ json derive(const DeriveRequest& r, const CallInfo& call) {
       fill(prompt("pmp_derive.txt"), {{"DERIVATION_SCHEMA", embedded::file("schemas/derivation.schema.json")},
                                       {"SPEC_JSON", pretty(r.spec)},
                                       {"NORMALIZATION_JSON", pretty(norm)},
+                                      {"TERM_CATALOGUE", pmp::term_catalogue_text()},
                                       {"FEEDBACK", feedback_section(r, call.round)}});
   return conv.ask({system_message("deriver"), {"user", user}}, [&](const std::string& content) {
     const json reply = reply_object(content);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "helios/astro/constants.hpp"
+#include "helios/pmp/catalogue.hpp"
 #include "helios/spec/state_conditions.hpp"
 #include "helios/symbolic/expr.hpp"
 
@@ -424,7 +425,8 @@ void refuse_free_node_by_symmetry(const json& spec) {
   const json* departure = nullptr;
   bool symmetric = true;
   for (const auto& q : spec.at("dynamics").value("perturbations", json::array()))
-    symmetric = symmetric && q.at("kind") == "j2";
+    symmetric = symmetric && find_perturbation(q.at("kind").get<std::string>()) &&
+                find_perturbation(q.at("kind").get<std::string>())->axially_symmetric;
   for (const auto& c : spec.at("constraints")) {
     const json& t = c.at("target");
     const json free = t.value("free", json::array());

@@ -58,55 +58,58 @@ bool Problem::has_control(const std::string& name) const {
 
 namespace {
 
-// The problem's name, its dynamics model (with its perturbations) and its objective and units;
-// returns whether J2 is one of the perturbations.
-bool describe(Problem& p, const json& spec) {
+// The problem's name, its dynamics model (with its perturbations) and its objective and units.
+void describe(Problem& p, const json& spec) {
   p.id = spec.at("problem").at("id").get<std::string>();
   const json& dyn = spec.at("dynamics");
   p.propulsion = dyn.at("propulsion").get<std::string>();
   bool j2 = false;
   for (const auto& q : dyn.value("perturbations", json::array())) {
-    if (q.at("kind") == "j2") {
-      j2 = true;
-      p.perturbations.push_back("j2");
-    } else {
-      p.perturbations.push_back(q.at("name").get<std::string>());
-    }
+    j2 = j2 || q.at("kind") == "j2";
+    p.perturbations.push_back(q.value("name", q.at("kind").get<std::string>()));
   }
   p.dynamics_model = dyn.at("model").get<std::string>() + (j2 ? "_j2" : "") + "_" +
                      dyn.at("coordinates").get<std::string>() + "_" + p.propulsion;
   p.objective = spec.at("objective").at("kind").get<std::string>();
   p.units = units_for(spec.at("central_body"));
-  return j2;
 }
 
-// The force terms of the spec, in the order their parameters are registered: two-body gravity,
-// J2, the sail or the thruster, the user's accelerations and the third bodies.
-terms::ForceList force_terms(const Problem& p, const json& spec, bool j2) {
-  const json& central = spec.at("central_body");
-  const json& sc = spec.at("spacecraft");
+// The force terms of the spec, built by the catalogue's entries in its order (the order their
+// parameters are registered): two-body gravity, J2, the engine, the user's accelerations, the third
+// bodies, ...; a perturbation's term once for each of the spec's entries of its kind.
+terms::ForceList force_terms(const Problem& p, const json& spec) {
   const std::string mass_unit = p.free_initial_mass ? "final mass" : "initial mass";
-  terms::ForceList forces;
-  forces.push_back(terms::two_body(central, p.units));
-  if (j2) forces.push_back(terms::j2(central, p.units));
-  if (p.propulsion == "solar_sail")
-    forces.push_back(terms::solar_sail(sc, p.units));
-  else if (sc.contains("array_power_1AU_W"))
-    forces.push_back(terms::solar_electric_thrust(sc, p.units, mass_unit));
-  else
-    forces.push_back(terms::thrust(sc, p.units, mass_unit));
   const json perturbations = spec.at("dynamics").value("perturbations", json::array());
   for (const auto& q : perturbations)
-    if (q.at("kind") == "acceleration") forces.push_back(terms::user_acceleration(q));
-  for (const auto& q : perturbations)
-    if (q.at("kind") == "third_body") forces.push_back(terms::third_body(q, central, p.units));
+    if (!find_perturbation(q.at("kind").get<std::string>()))
+      throw std::invalid_argument("field /dynamics/perturbations: no term of the catalogue is built from the kind '" +
+                                  q.at("kind").get<std::string>() + "'");
+  terms::ForceList forces;
+  int engines = 0;
+  for (const auto& entry : term_catalogue()) {
+    if (!entry.build) continue;
+    const auto add = [&](const json* perturbation) {
+      auto term = entry.build({p, spec, perturbation, mass_unit});
+      if (!term) return;
+      engines += entry.engine;
+      forces.push_back(std::move(term));
+    };
+    if (entry.spec_kind.empty())
+      add(nullptr);
+    else
+      for (const auto& q : perturbations)
+        if (q.at("kind") == entry.spec_kind) add(&q);
+  }
+  if (engines != 1)
+    throw std::invalid_argument("field /spacecraft: " + std::to_string(engines) +
+                                " engine terms of the catalogue apply to the spacecraft; its propulsion needs one");
   return forces;
 }
 
 // The states, controls and parameters: position and velocity in the central body's field, and
 // what each force term adds (a sail's normal, or a thruster's throttle and direction with the
 // mass it burns).
-terms::ForceList spacecraft(Problem& p, const json& spec, bool j2) {
+terms::ForceList spacecraft(Problem& p, const json& spec) {
   const json& sc = spec.at("spacecraft");
   // Minimum initial mass: m0 is unknown and the final (dry + payload) mass is given, so it sets the
   // mass scale; otherwise m0 does.
@@ -120,7 +123,7 @@ terms::ForceList spacecraft(Problem& p, const json& spec, bool j2) {
   const std::string L = p.units.length_name, T = p.units.time_name;
   p.states = {{"rx", "position x", L},           {"ry", "position y", L},           {"rz", "position z", L},
               {"vx", "velocity x", L + "/" + T}, {"vy", "velocity y", L + "/" + T}, {"vz", "velocity z", L + "/" + T}};
-  terms::ForceList forces = force_terms(p, spec, j2);
+  terms::ForceList forces = force_terms(p, spec);
   for (const auto& term : forces) {
     for (auto& s : term->states()) p.states.push_back(s);
     for (auto& c : term->controls()) p.controls.push_back(c);
@@ -157,7 +160,7 @@ void dynamics(Problem& p, const terms::ForceList& forces) {
     const std::vector<ex> a = term->acceleration(p, x);
     for (int i = 0; i < 3; ++i) {
       accel[i] += a[i];
-      if (term->field()) field[i] += a[i];
+      if (find_term(term->name())->field) field[i] += a[i];
     }
     mass_rate += term->mass_rate(p);
     std::vector<std::string> used;
@@ -260,8 +263,8 @@ void check_magnitudes(const Problem& p) {
 
 Problem build_problem(const json& spec) {
   Problem p;
-  const bool j2 = describe(p, spec);
-  const terms::ForceList forces = spacecraft(p, spec, j2);
+  describe(p, spec);
+  const terms::ForceList forces = spacecraft(p, spec);
   register_symbols(p);
   dynamics(p, forces);
   times(p, spec.at("time"));

@@ -31,7 +31,9 @@ struct Form {
 };
 
 // Every form file's forms, in no order: defined by the list the build generates from forms/*.cpp.
+namespace forms {
 std::vector<Form> all_forms();
+}
 
 // Every form, by increasing order, each pattern compiled (whole sentence, without case).
 struct CompiledForm {

@@ -13,7 +13,7 @@ namespace helios::spec::grammar {
 
 const std::vector<CompiledForm>& compiled_forms() {
   static const std::vector<Form> all = [] {
-    std::vector<Form> f = all_forms();
+    std::vector<Form> f = forms::all_forms();
     std::sort(f.begin(), f.end(), [](const Form& a, const Form& b) { return a.order < b.order; });
     for (std::size_t k = 1; k < f.size(); ++k)
       if (f[k].order == f[k - 1].order)

@@ -1,12 +1,11 @@
 // The dynamics and the running cost as the sums of the terms the derivation lists (its field
-// "terms"), each term recomputed here from its parameters in the verifier's own way: gravity
-// terms as the gradient of their potential (two_body mu/|r|; j2 -J2 mu R^2/(2 r^3) (3 z^2/r^2 - 1);
-// third_body mu3 (1/|r3 - r| - r.r3/|r3|^3) with r3 rotated from the orbit's plane), the thruster
-// Tmax u a/m with the mass flow -Tmax u/c (of constant mass: Tmax u a/mass, no mass flow), the sail ac (rref/r)^2
-// (n.rhat)^2 n, a solar-electric engine T(r) u a/m with -T(r) u/c and T(r) = 2 eta P_in(r)/c of its own (the
-// fuel's flow T(r)/c), a user acceleration as listed. Checks: dynamics_terms (state_rhs equals the kinematics plus the
-// forces' sum) and cost_terms (running_cost equals the cost term). A failure names the term: one missing, one with the
-// wrong sign, one whose parameters are not the derivation's, or a part no term accounts for.
+// "terms"), each force recomputed by the verifier's own recomputation of its catalogue entry
+// (verify/terms/, one file per term file of pmp/terms), the cost here: fuel and initial_mass
+// Tmax/c (u - eps u (1 - u)) (with a solar-electric engine its recomputed T(r)/c), delta_v
+// Tmax/mass (...), time 1, final_radius and final_energy Mayer terms. Checks: dynamics_terms
+// (state_rhs equals the kinematics plus the forces' sum) and cost_terms (running_cost equals the
+// cost term). A failure names the term: one missing, one with the wrong sign, one whose parameters
+// are not the derivation's, or a part no term accounts for.
 #include <cmath>
 #include <map>
 #include <optional>
@@ -14,9 +13,19 @@
 
 #include "family.hpp"
 #include "helios/derivation/terms.hpp"
+#include "helios/pmp/catalogue.hpp"
 #include "sail.hpp"
+#include "terms/recompute.hpp"
 
 namespace helios::verify::detail {
+
+const recompute::Recomputation* recompute::find(const std::string& name) {
+  static const std::vector<Recomputation> all = all_files();
+  for (const auto& r : all)
+    if (r.name == name) return &r;
+  return nullptr;
+}
+
 namespace {
 
 using derivation::Term;
@@ -41,12 +50,8 @@ class TermFamily : public Family {
 
   bool read_frame(Check& c);
   void sample();
-  std::optional<std::vector<ex>> parameters_of(const Term& t, std::size_t count, Check& c) const;
+  std::optional<std::vector<ex>> parameters_of(const Term& t, const std::vector<std::size_t>& counts, Check& c) const;
   std::optional<Contribution> force(const Term& t, const std::vector<Term>& all, Check& c) const;
-  bool engine(const Term& t, const std::vector<ex>& q, Check& c, std::vector<ex>& a, Contribution& out) const;
-  std::vector<ex> gradient(const ex& potential) const;
-  std::vector<ex> third_body(const std::vector<ex>& q, Check& c, const std::string& body) const;
-  ex solar_electric_thrust(const std::vector<ex>& q) const;
   double mismatch(const ex& given, const ex& expected, Check& c) const;
   bool depends(const ex& difference, const ex& expected, const ex& q) const;
   void diagnose(Check& c, std::size_t state, const std::vector<ex>& expected,
@@ -86,11 +91,15 @@ void TermFamily::sample() {
   }
 }
 
-// The symbols of a term's listed parameters, `count` of them, each a parameter of the derivation.
-std::optional<std::vector<ex>> TermFamily::parameters_of(const Term& t, std::size_t count, Check& c) const {
-  if (t.parameters.size() != count) {
+// The symbols of a term's listed parameters, as many as one of `counts`, each a parameter of the
+// derivation.
+std::optional<std::vector<ex>> TermFamily::parameters_of(const Term& t, const std::vector<std::size_t>& counts,
+                                                         Check& c) const {
+  if (std::find(counts.begin(), counts.end(), t.parameters.size()) == counts.end()) {
+    std::vector<std::string> allowed;
+    for (const auto n : counts) allowed.push_back(std::to_string(n));
     c.fail("term " + t.name + " lists " + std::to_string(t.parameters.size()) + " parameter(s), it needs " +
-           std::to_string(count) + ".");
+           join(allowed, " or ") + ".");
     return std::nullopt;
   }
   std::vector<ex> out;
@@ -104,186 +113,25 @@ std::optional<std::vector<ex>> TermFamily::parameters_of(const Term& t, std::siz
   return out;
 }
 
-std::vector<ex> TermFamily::gradient(const ex& potential) const {
-  return {potential.diff(GiNaC::ex_to<symbol>(r_[0])), potential.diff(GiNaC::ex_to<symbol>(r_[1])),
-          potential.diff(GiNaC::ex_to<symbol>(r_[2]))};
-}
-
-// A third body on its circular orbit: r3 = Rz(W) Rx(i) (a cos u, a sin u, 0), u = u0 + n t, its
-// potential's gradient; the mean motion's value must be sqrt((mu + mu3)/a^3).
-std::vector<ex> TermFamily::third_body(const std::vector<ex>& q, Check& c, const std::string& body) const {
-  const ex &mu3 = q[0], &a = q[1], &inc = q[2], &W = q[3];
-  if (!ctx.slots.count("t")) c.fail("term third_body (" + body + "): the dynamics do not depend on the time t.");
-  const ex t = ctx.slots.count("t") ? ctx.sym("t") : ex(0);
-  const ex u = q[4] + q[5] * t;
-  const ex px = a * GiNaC::cos(u), py = a * GiNaC::sin(u);
-  const ex yi = py * GiNaC::cos(inc), zi = py * GiNaC::sin(inc);
-  const std::vector<ex> r3 = {GiNaC::cos(W) * px - GiNaC::sin(W) * yi, GiNaC::sin(W) * px + GiNaC::cos(W) * yi, zi};
-  ex d2 = 0, rr3 = 0;
-  for (int k = 0; k < 3; ++k) {
-    d2 += GiNaC::pow(r3[k] - r_[k], 2);
-    rr3 += r_[k] * r3[k];
-  }
-  return gradient(mu3 * (1 / GiNaC::sqrt(d2) - rr3 / GiNaC::pow(a, 3)));
-}
-
-// The value of a parameter of the derivation (a constant).
-double value_of(const Context& ctx, const ex& symbol_) {
-  return ctx.values[static_cast<std::size_t>(ctx.slot(GiNaC::ex_to<symbol>(symbol_).get_name()))];
-}
-
-// A solar-electric engine's full thrust, written here from the physics, not taken from pmp: the
-// arrays' power falls as the inverse square of the Sun's distance d (in AU, the length unit), the
-// bus takes its share (where a bus is, what is left floored at zero: the soft positive part of width
-// 1% of the bus), the engine at most Pmax (the smooth minimum of width Pw), and the jet power
-// eta P_in is T c / 2. q = P0, Pbus, eta, c[, Pmax, Pw].
-ex TermFamily::solar_electric_thrust(const std::vector<ex>& q) const {
-  const ex d = GiNaC::sqrt(r_[0] * r_[0] + r_[1] * r_[1] + r_[2] * r_[2]);
-  const ex available = q[0] * GiNaC::pow(d, -2) - q[1];
-  // max(x, 0) softened over a width w
-  const auto soft_positive = [](const ex& x, const ex& w) { return (x + GiNaC::sqrt(x * x + w * w)) / 2; };
-  const bool bus = value_of(ctx, q[1]) > 0;
-  ex input = available;
-  if (bus) input = soft_positive(available, q[1] / 100);
-  if (q.size() == 6) {
-    // At most Pmax: less the soft excess over it. Where a bus is, plus that excess at no power, so
-    // that no power gives no thrust.
-    if (bus)
-      input += soft_positive(-q[4], q[5]) - soft_positive(available - q[4], q[5]);
-    else
-      input = q[4] - soft_positive(q[4] - available, q[5]);
-  }
-  return 2 * q[2] * input / q[3];
-}
-
-// The central body's mu: the parameter of the listed two_body term.
-std::optional<ex> central_mu(const Context& ctx, const std::vector<Term>& all) {
-  for (const auto& t : all)
-    if (t.name == "two_body" && t.parameters.size() == 1 && ctx.slots.count(t.parameters[0]))
-      return ctx.sym(t.parameters[0]);
-  return std::nullopt;
-}
-
-// Whether a force term is an engine (TermFamily::engine).
-bool engine_name(const std::string& name) {
-  return name == "thrust" || name == "full_thrust" || name.rfind("constant_mass_", 0) == 0 ||
-         name == "solar_electric_thrust";
-}
-
-// One force term's contribution to the velocities' (and the mass's) rates.
+// One force term's contribution to the velocities' (and the mass's) rates, by its recomputation.
 std::optional<Contribution> TermFamily::force(const Term& t, const std::vector<Term>& all, Check& c) const {
-  static const std::map<std::string, std::size_t> counts = {{"two_body", 1},
-                                                            {"j2", 2},
-                                                            {"solar_sail", 2},
-                                                            {"thrust", 2},
-                                                            {"full_thrust", 2},
-                                                            {"user_acceleration", 0},
-                                                            {"third_body", 6},
-                                                            {"constant_mass_thrust", 2},
-                                                            {"constant_mass_full_thrust", 2},
-                                                            {"solar_electric_thrust", 4}};
-  // An engine of constant mass lists Tmax and its mass, and the exhaust velocity where a specific
-  // impulse prices its propellant (used by the cost alone).
-  const bool constant_mass = t.name.rfind("constant_mass_", 0) == 0;
-  // A solar-electric engine lists P0, Pbus, eta, c and, with a cap, Pmax and the cap's width Pw.
-  const bool sep = t.name == "solar_electric_thrust";
-  const auto q = parameters_of(t,
-                               (constant_mass && t.parameters.size() == 3) || (sep && t.parameters.size() == 6)
-                                   ? t.parameters.size()
-                                   : counts.at(t.name),
-                               c);
-  if (!q) return std::nullopt;
-  Contribution out{t.name + (t.body.empty() ? "" : " (" + t.body + ")") + (t.label.empty() ? "" : " (" + t.label + ")"),
-                   std::vector<ex>(ctx.states.size(), 0), *q};
-  std::vector<ex> a;
-  const ex r = GiNaC::sqrt(r_[0] * r_[0] + r_[1] * r_[1] + r_[2] * r_[2]);
-  const auto mu = central_mu(ctx, all);
-  if ((t.name == "j2" || t.name == "third_body") && !mu) {
-    c.fail("term " + t.name + " needs the central body's mu, the parameter of a two_body term.");
+  const recompute::Recomputation* recomputation = recompute::find(t.name);
+  if (!recomputation) {
+    c.fail("term " + t.name + " has no recomputation in the verifier (tools/lib/src/verify/terms/).");
     return std::nullopt;
   }
-  if (t.name == "two_body") {
-    a = gradient((*q)[0] / r);
-  } else if (t.name == "j2") {
-    const ex z = r_[2];
-    a = gradient(-(*q)[0] * (*mu) * (*q)[1] * (*q)[1] / (2 * GiNaC::pow(r, 3)) * (3 * z * z / (r * r) - 1));
-  } else if (t.name == "third_body") {
-    a = third_body(*q, c, t.body);
-    const double n = value_of(ctx, (*q)[5]), a3 = value_of(ctx, (*q)[1]);
-    const double want = std::sqrt((value_of(ctx, *mu) + value_of(ctx, (*q)[0])) / (a3 * a3 * a3));
-    if (rel_diff(n, want) > kTol)
-      c.fail("term third_body (" + t.body + "): its mean motion " + t.parameters[5] + " = " + num(n) +
-             " is not sqrt((mu + mu3)/a^3) = " + num(want) + ".");
-  } else if (engine_name(t.name)) {
-    if (!engine(t, *q, c, a, out)) return std::nullopt;
-  } else if (t.name == "solar_sail") {
-    if (ctx.sails.size() != 3) {
-      c.fail("term solar_sail needs three sail_normal controls.");
-      return std::nullopt;
-    }
-    ex nr = 0;
-    for (int k = 0; k < 3; ++k) nr += ctx.sym(ctx.sails[k]) * r_[k];
-    for (const auto& n : ctx.sails)
-      a.push_back((*q)[0] * GiNaC::pow((*q)[1], 2) * nr * nr * ctx.sym(n) / GiNaC::pow(r, 4));
-  } else {  // user_acceleration: its components as listed
-    try {
-      for (std::size_t k = 0; k < 3; ++k)
-        a.push_back(
-            ctx.statement(t.acceleration[k], "terms (" + t.label + ").acceleration[" + std::to_string(k) + "]"));
-    } catch (const std::exception& e) {
-      c.fail("term user_acceleration (" + t.label + "): " + e.what() + ".");
-      return std::nullopt;
-    }
-  }
+  const auto q = parameters_of(t, pmp::parameter_counts(*pmp::find_term(t.name)), c);
+  if (!q) return std::nullopt;
+  const recompute::Frame x{ctx, r_, v_, m_, mass_, all};
+  const auto rates = recomputation->rates(x, t, *q, c);
+  if (!rates) return std::nullopt;
+  Contribution out{t.name + (t.body.empty() ? "" : " (" + t.body + ")") + (t.label.empty() ? "" : " (" + t.label + ")"),
+                   std::vector<ex>(ctx.states.size(), 0), *q};
   for (std::size_t i = 0, k = 0; i < ctx.states.size() && k < 3; ++i)
-    if (ctx.kinds[static_cast<std::size_t>(ctx.slot(ctx.states[i]))] == Kind::Velocity) out.rate[i] = a[k++];
+    if (ctx.kinds[static_cast<std::size_t>(ctx.slot(ctx.states[i]))] == Kind::Velocity)
+      out.rate[i] = rates->acceleration[k++];
+  if (mass_ >= 0) out.rate[static_cast<std::size_t>(mass_)] = rates->mass_rate;
   return out;
-}
-
-// An engine term's acceleration a and mass rate (into out.rate), its parameters q; false (with the
-// reason in c) where the controls or the states do not fit it.
-bool TermFamily::engine(const Term& t, const std::vector<ex>& q, Check& c, std::vector<ex>& a,
-                        Contribution& out) const {
-  if (t.name == "thrust") {
-    if (ctx.throttle.empty() || ctx.directions.size() != 3 || mass_ < 0) {
-      c.fail("term thrust needs a throttle, three direction controls and a mass state.");
-      return false;
-    }
-    const ex u = ctx.sym(ctx.throttle);
-    for (const auto& d : ctx.directions) a.push_back(q[0] * u * ctx.sym(d) / m_);
-    out.rate[static_cast<std::size_t>(mass_)] = -q[0] * u / q[1];
-  } else if (t.name == "full_thrust") {  // u = 1 throughout: no throttle control
-    if (!ctx.throttle.empty() || ctx.directions.size() != 3 || mass_ < 0) {
-      c.fail("term full_thrust needs three direction controls, a mass state and no throttle (it is 1 throughout).");
-      return false;
-    }
-    for (const auto& d : ctx.directions) a.push_back(q[0] * ctx.sym(d) / m_);
-    out.rate[static_cast<std::size_t>(mass_)] = -q[0] / q[1];
-  } else if (t.name.rfind("constant_mass_", 0) == 0) {  // Tmax u a / mass, no mass state and no mass flow
-    const bool full = t.name == "constant_mass_full_thrust";
-    if (ctx.throttle.empty() != full || ctx.directions.size() != 3 || mass_ >= 0) {
-      c.fail("term " + t.name + " needs three direction controls, " + (full ? "no throttle" : "a throttle") +
-             " and no mass state (its mass is the parameter " + t.parameters[1] + ").");
-      return false;
-    }
-    if (rel_diff(value_of(ctx, q[1]), 1.0) > kTol)
-      c.fail("term " + t.name + ": its mass " + t.parameters[1] + " = " + num(value_of(ctx, q[1])) +
-             " is not 1, the mass unit (the constant mass sets it).");
-    const ex u = full ? ex(1) : ctx.sym(ctx.throttle);
-    for (const auto& d : ctx.directions) a.push_back(q[0] * u * ctx.sym(d) / q[1]);
-  } else {  // T(r) u a / m and -T(r) u / c, T(r) recomputed here (solar_electric_thrust below)
-    if (ctx.throttle.empty() || ctx.directions.size() != 3 || mass_ < 0) {
-      c.fail("term solar_electric_thrust needs a throttle, three direction controls and a mass state.");
-      return false;
-    }
-    if (q.size() == 6 && rel_diff(value_of(ctx, q[5]), 0.01 * value_of(ctx, q[4])) > kTol)
-      c.fail("term solar_electric_thrust: its cap width " + t.parameters[5] + " = " + num(value_of(ctx, q[5])) +
-             " is not 1% of its maximum input power " + t.parameters[4] + ".");
-    const ex u = ctx.sym(ctx.throttle), T = solar_electric_thrust(q);
-    for (const auto& d : ctx.directions) a.push_back(T * u * ctx.sym(d) / m_);
-    out.rate[static_cast<std::size_t>(mass_)] = -T * u / q[3];
-  }
-  return true;
 }
 
 // The largest relative difference of two expressions over the sample points (2 if one cannot
@@ -358,15 +206,15 @@ bool TermFamily::depends(const ex& difference, const ex& expected, const ex& q) 
 }
 
 // "<check>: the derivation lists no terms" when it has no listing.
-const char* kNoTerms =
-    "the derivation lists no terms (field terms): list each term of the dynamics (two_body, j2, solar_sail, thrust, "
-    "full_thrust, constant_mass_thrust, constant_mass_full_thrust, solar_electric_thrust, user_acceleration, "
-    "third_body) and of the cost "
-    "(fuel, delta_v, time, initial_mass, final_radius, final_energy) by name with the parameters it uses.";
+std::string no_terms() {
+  return "the derivation lists no terms (field terms): list each term of the dynamics (" +
+         join(derivation::force_term_names(), ", ") + ") and of the cost (" +
+         join(derivation::cost_term_names(), ", ") + ") by name with the parameters it uses.";
+}
 
 Check TermFamily::dynamics(const std::optional<std::vector<Term>>& terms) {
   Check c = start("dynamics_terms", "state_odes", "random_points");
-  if (!terms) return c.fail(kNoTerms), c;
+  if (!terms) return c.fail(no_terms()), c;
   if (!read_frame(c)) return c;
   std::vector<Contribution> parts;
   std::vector<ex> expected(ctx.states.size(), 0);
@@ -394,27 +242,40 @@ Check TermFamily::dynamics(const std::optional<std::vector<Term>>& terms) {
 // (maximized), with L = 0. The other term's endpoint cost is 0.
 Check TermFamily::cost(const std::optional<std::vector<Term>>& terms) {
   Check c = start("cost_terms", "hamiltonian", "random_points");
-  if (!terms) return c.fail(kNoTerms), c;
+  if (!terms) return c.fail(no_terms()), c;
   std::vector<const Term*> costs;
   for (const auto& t : *terms)
     if (t.kind == "cost") costs.push_back(&t);
   if (costs.size() != 1)
-    return c.fail("the derivation lists " + std::to_string(costs.size()) +
-                  " cost terms; the cost is one of fuel, delta_v, time, initial_mass, final_radius, final_energy."),
+    return c.fail("the derivation lists " + std::to_string(costs.size()) + " cost terms; the cost is one of " +
+                  join(derivation::cost_term_names(), ", ") + "."),
            c;
   const Term& t = *costs[0];
   ex running = 1, endpoint = 0;
   if (t.name == "fuel" || t.name == "delta_v" || t.name == "initial_mass") {
-    // With a solar-electric engine the fuel's flow is T(r)/c, listed with the engine's parameters.
-    const bool sep = t.name != "delta_v" && (t.parameters.size() == 4 || t.parameters.size() == 6);
-    const auto q = parameters_of(t, sep ? t.parameters.size() : 2, c);
+    // With an engine whose thrust is no parameter (solar-electric) the fuel's flow is T/c, the cost
+    // listing the engine's parameters: its recomputed T, divided by its exhaust velocity.
+    const recompute::Recomputation* engine = nullptr;
+    std::size_t exhaust = 1;
+    if (t.name != "delta_v")
+      for (const auto& f : *terms) {
+        const recompute::Recomputation* r = recompute::find(f.name);
+        if (f.kind != "force" || f.parameters != t.parameters || !r || !r->full_thrust) continue;
+        engine = r;
+        const auto& listed = pmp::find_term(f.name)->parameters;
+        for (std::size_t i = 0; i < listed.size(); ++i)
+          if (listed[i].role == "exhaust_velocity") exhaust = i;
+      }
+    const auto q = parameters_of(t, {engine ? t.parameters.size() : 2}, c);
     if (!q) return c;
     if (ctx.throttle.empty()) return c.fail("the cost term " + t.name + " needs a throttle control."), c;
-    if (sep && !read_frame(c)) return c;
+    if (engine && !read_frame(c)) return c;
     const ex u = ctx.sym(ctx.throttle), eps = ctx.sym(ctx.eps);
-    running = (sep ? solar_electric_thrust(*q) / (*q)[3] : (*q)[0] / (*q)[1]) * (u - eps * u * (1 - u));
+    const ex flow =
+        engine ? engine->full_thrust({ctx, r_, v_, m_, mass_, *terms}, *q) / (*q)[exhaust] : (*q)[0] / (*q)[1];
+    running = flow * (u - eps * u * (1 - u));
   } else if (t.name == "final_radius" || t.name == "final_energy") {
-    const auto q = parameters_of(t, t.name == "final_energy" ? 1 : 0, c);
+    const auto q = parameters_of(t, {t.name == "final_energy" ? 1u : 0u}, c);
     if (!q || !read_frame(c)) return c;
     const ex r = GiNaC::sqrt(r_[0] * r_[0] + r_[1] * r_[1] + r_[2] * r_[2]);
     running = 0;

@@ -19,7 +19,7 @@ struct Term {
   std::string body;                       // third_body: the body's name
 };
 
-// The names of the known terms, forces then costs.
+// The names of the catalogue's terms (helios/pmp/catalogue.hpp), forces then costs.
 const std::vector<std::string>& force_term_names();
 const std::vector<std::string>& cost_term_names();
 

@@ -36,3 +36,25 @@ std::unique_ptr<CostTerm> final_energy_cost() {
 }
 
 }  // namespace helios::pmp::terms
+
+namespace helios::pmp::catalogue {
+
+std::vector<TermEntry> final_state_cost() {
+  TermEntry radius;
+  radius.name = "final_radius";
+  radius.kind = "cost";
+  radius.order = 130;
+  radius.summary =
+      "the final radius maximized, a Mayer term: running_cost 0, endpoint_cost -sqrt(rx^2+ry^2+rz^2), whose gradient "
+      "enters lambda(tf) = lambda0 dphi/dx + nu^T dpsi/dx";
+  TermEntry energy = radius;
+  energy.name = "final_energy";
+  energy.summary =
+      "the final orbital energy maximized, a Mayer term: running_cost 0, endpoint_cost -((vx^2+vy^2+vz^2)/2 - "
+      "mu/sqrt(rx^2+ry^2+rz^2))";
+  energy.parameters = {{"mu", "gravitational parameter of the central body", "length^3/time^2"}};
+  energy.required = 1;
+  return {radius, energy};
+}
+
+}  // namespace helios::pmp::catalogue

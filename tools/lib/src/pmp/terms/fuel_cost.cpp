@@ -47,3 +47,25 @@ std::unique_ptr<CostTerm> delta_v_cost() {
 }
 
 }  // namespace helios::pmp::terms
+
+namespace helios::pmp::catalogue {
+
+std::vector<TermEntry> fuel_cost() {
+  TermEntry fuel;
+  fuel.name = "fuel";
+  fuel.kind = "cost";
+  fuel.order = 100;
+  fuel.summary =
+      "the propellant, L = Tmax/c (u - eps u (1 - u)); with a solar-electric engine its parameters, L = T(r)/c (u - "
+      "eps u (1 - u))";
+  fuel.parameters = {{"Tmax", "maximum thrust", "mass*length/time^2", "thrust_scale"},
+                     {"c", "exhaust velocity Isp*g0", "length/time", "exhaust_velocity"}};
+  fuel.required = 2;
+  TermEntry delta_v = fuel;
+  delta_v.name = "delta_v";
+  delta_v.summary = "the delta-v of an engine of constant mass without an Isp, L = Tmax/mass (u - eps u (1 - u))";
+  delta_v.parameters[1] = {"mass", "the constant mass: 1, the mass unit", "mass"};
+  return {fuel, delta_v};
+}
+
+}  // namespace helios::pmp::catalogue

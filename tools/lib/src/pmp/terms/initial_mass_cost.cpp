@@ -22,3 +22,19 @@ std::unique_ptr<CostTerm> initial_mass_cost() {
 }
 
 }  // namespace helios::pmp::terms
+
+namespace helios::pmp::catalogue {
+
+std::vector<TermEntry> initial_mass_cost() {
+  TermEntry e;
+  e.name = "initial_mass";
+  e.kind = "cost";
+  e.order = 120;
+  e.summary = "the initial mass with the final mass given, the fuel's L = Tmax/c (u - eps u (1 - u))";
+  e.parameters = {{"Tmax", "maximum thrust", "mass*length/time^2", "thrust_scale"},
+                  {"c", "exhaust velocity Isp*g0", "length/time", "exhaust_velocity"}};
+  e.required = 2;
+  return {e};
+}
+
+}  // namespace helios::pmp::catalogue

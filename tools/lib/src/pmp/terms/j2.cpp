@@ -25,17 +25,35 @@ class J2 : public ForceTerm {
     const ex zz = 5 * r[2] * r[2] / r2;
     return {k * r[0] * (1 - zz), k * r[1] * (1 - zz), k * r[2] * (3 - zz)};
   }
-  bool field() const override { return true; }
 
  private:
   double j2_, radius_;
   std::string length_;
 };
 
-}  // namespace
-
-std::unique_ptr<ForceTerm> j2(const json& central, const Units& U) {
-  return std::make_unique<J2>(central, U);
+std::unique_ptr<ForceTerm> build(const TermSource& s) {
+  return std::make_unique<J2>(s.spec.at("central_body"), s.problem.units);
 }
 
+}  // namespace
 }  // namespace helios::pmp::terms
+
+namespace helios::pmp::catalogue {
+
+std::vector<TermEntry> j2() {
+  TermEntry e;
+  e.name = "j2";
+  e.kind = "force";
+  e.summary = "the central body's J2 zonal term (needs two_body), the gradient of -J2 mu Req^2/(2 r^3) (3 z^2/r^2 - 1)";
+  e.parameters = {{"J2", "J2 zonal coefficient of the central body", "1"},
+                  {"Req", "equatorial radius of the central body", "length"}};
+  e.required = 2;
+  e.field = e.axially_symmetric = true;
+  e.spec_kind = "j2";
+  e.spec_schema = {{"additionalProperties", false}, {"properties", {{"kind", {{"const", "j2"}}}}}};
+  e.order = 20;
+  e.build = terms::build;
+  return {e};
+}
+
+}  // namespace helios::pmp::catalogue

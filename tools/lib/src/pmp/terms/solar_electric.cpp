@@ -130,10 +130,39 @@ class SolarElectric : public ForceTerm {
   bool cap_ = false;
 };
 
-}  // namespace
-
-std::unique_ptr<ForceTerm> solar_electric_thrust(const json& spacecraft, const Units& U, const std::string& mass_unit) {
-  return std::make_unique<SolarElectric>(spacecraft, U, mass_unit);
+std::unique_ptr<ForceTerm> build(const TermSource& s) {
+  const json& sc = s.spec.at("spacecraft");
+  if (s.problem.propulsion == "solar_sail" || !sc.contains("array_power_1AU_W")) return nullptr;
+  return std::make_unique<SolarElectric>(sc, s.problem.units, s.mass_unit);
 }
 
+}  // namespace
 }  // namespace helios::pmp::terms
+
+namespace helios::pmp::catalogue {
+
+std::vector<TermEntry> solar_electric() {
+  const std::string power = "mass*length^2/time^3";
+  TermEntry e;
+  e.name = "solar_electric_thrust";
+  e.kind = "force";
+  e.summary =
+      "a solar-electric engine, T(r) u a/m with the mass flow -T(r) u/c, T(r) = 2 eta P_in/c, Pa = "
+      "P0/(rx^2+ry^2+rz^2) - Pbus, Pf = Pbus/100, Pw = Pmax/100: P_in = Pa without a bus or a cap, (Pa + Pmax - "
+      "sqrt((Pa - Pmax)^2 + Pw^2))/2 with a cap alone, (Pa + sqrt(Pa^2 + Pf^2))/2 with a bus alone, (sqrt(Pa^2 + "
+      "Pf^2) + sqrt(Pmax^2 + Pw^2) - sqrt((Pa - Pmax)^2 + Pw^2))/2 with both; its fuel cost lists the same "
+      "parameters, L = T(r)/c (u - eps u (1 - u))";
+  e.parameters = {{"P0", "solar array power at 1 AU", power, "thrust_scale"},
+                  {"Pbus", "bus power taken from the arrays", power, "thrust_scale"},
+                  {"eta", "engine efficiency (jet power / input power)", "1"},
+                  {"c", "exhaust velocity Isp*g0", "length/time", "exhaust_velocity"},
+                  {"Pmax", "maximum engine input power", power, "thrust_scale"},
+                  {"Pw", "width of the smooth power cap (Pmax/100)", power, "thrust_scale"}};
+  e.required = 4;
+  e.engine = true;
+  e.order = 30;
+  e.build = terms::build;
+  return {e};
+}
+
+}  // namespace helios::pmp::catalogue

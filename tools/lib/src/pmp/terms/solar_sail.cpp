@@ -40,10 +40,28 @@ class SolarSail : public ForceTerm {
   std::string accel_unit_, length_;
 };
 
-}  // namespace
-
-std::unique_ptr<ForceTerm> solar_sail(const json& spacecraft, const Units& U) {
-  return std::make_unique<SolarSail>(spacecraft, U);
+std::unique_ptr<ForceTerm> build(const TermSource& s) {
+  if (s.problem.propulsion != "solar_sail") return nullptr;
+  return std::make_unique<SolarSail>(s.spec.at("spacecraft"), s.problem.units);
 }
 
+}  // namespace
 }  // namespace helios::pmp::terms
+
+namespace helios::pmp::catalogue {
+
+std::vector<TermEntry> solar_sail() {
+  TermEntry e;
+  e.name = "solar_sail";
+  e.kind = "force";
+  e.summary = "an ideal flat sail, ac (rref/r)^2 (n.rhat)^2 n with the unit normal n (controls nx, ny, nz; n.r >= 0)";
+  e.parameters = {{"ac", "characteristic acceleration of the sail", "length/time^2"},
+                  {"rref", "distance at which the characteristic acceleration holds", "length"}};
+  e.required = 2;
+  e.engine = true;
+  e.order = 30;
+  e.build = terms::build;
+  return {e};
+}
+
+}  // namespace helios::pmp::catalogue

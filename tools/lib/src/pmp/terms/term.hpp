@@ -3,8 +3,10 @@
 // manner of Orekit's control/indirect adjoint terms: each force term declares the states,
 // controls and parameters it needs (names, meanings, units, normalized values) and its
 // contribution to f; each cost term its parameters and its contribution to the running cost L.
-// model.cpp builds the list from the spec and sums the contributions. A new force is one new
-// file here, plus its recomputation in verify/terms.cpp.
+// Each file also describes its terms in the catalogue (helios/pmp/catalogue.hpp): the function of
+// the file's name returns their entries, with the builder of each force; model.cpp builds the list
+// from the spec by the catalogue and sums the contributions. A new force is one new file here, plus
+// its recomputation in verify/terms/.
 #include <ginac/ginac.h>
 
 #include <memory>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "helios/io/json_io.hpp"
+#include "helios/pmp/catalogue.hpp"
 #include "helios/pmp/model.hpp"
 
 namespace helios::pmp::terms {
@@ -41,8 +44,6 @@ class ForceTerm {
   virtual std::vector<ex> acceleration(Problem& p, const Frame& x) const = 0;
   // Its contribution to the mass rate (0 unless it burns propellant).
   virtual ex mass_rate(Problem&) const { return 0; }
-  // Whether it belongs to the natural field a coasting target also moves in.
-  virtual bool field() const { return false; }
   // What the derivation lists beyond its name and parameters (a user acceleration's expression,
   // a third body's name).
   virtual json details(const Problem&) const { return json::object(); }
@@ -62,16 +63,7 @@ class CostTerm {
 
 using ForceList = std::vector<std::unique_ptr<ForceTerm>>;
 
-// The force terms, one constructor each (its file): the spec's values in the units U.
-std::unique_ptr<ForceTerm> two_body(const json& central, const Units& U);
-std::unique_ptr<ForceTerm> j2(const json& central, const Units& U);
-std::unique_ptr<ForceTerm> solar_sail(const json& spacecraft, const Units& U);
-std::unique_ptr<ForceTerm> thrust(const json& spacecraft, const Units& U, const std::string& mass_unit);
-std::unique_ptr<ForceTerm> solar_electric_thrust(const json& spacecraft, const Units& U, const std::string& mass_unit);
-std::unique_ptr<ForceTerm> user_acceleration(const json& perturbation);
-std::unique_ptr<ForceTerm> third_body(const json& perturbation, const json& central, const Units& U);
-
-// The cost terms.
+// The cost terms (the objective picks one; their catalogue entries describe them).
 std::unique_ptr<CostTerm> fuel_cost();
 std::unique_ptr<CostTerm> delta_v_cost();  // an engine of constant mass without an exhaust velocity
 std::unique_ptr<CostTerm> time_cost();

@@ -24,7 +24,6 @@ class ThirdBody : public ForceTerm {
   std::string name() const override { return "third_body"; }
   std::vector<Named> parameters() const override;
   std::vector<ex> acceleration(Problem& p, const Frame& x) const override;
-  bool field() const override { return true; }
   json details(const Problem&) const override { return {{"body", body_}}; }
 
  private:
@@ -71,10 +70,51 @@ std::vector<ex> ThirdBody::acceleration(Problem& p, const Frame& x) const {
   return {mu3 * (d[0] / d3 - r3[0] / a3), mu3 * (d[1] / d3 - r3[1] / a3), mu3 * (d[2] / d3 - r3[2] / a3)};
 }
 
-}  // namespace
-
-std::unique_ptr<ForceTerm> third_body(const json& perturbation, const json& central, const Units& U) {
-  return std::make_unique<ThirdBody>(perturbation, central, U);
+std::unique_ptr<ForceTerm> build(const TermSource& s) {
+  return std::make_unique<ThirdBody>(*s.perturbation, s.spec.at("central_body"), s.problem.units);
 }
 
+}  // namespace
 }  // namespace helios::pmp::terms
+
+namespace helios::pmp::catalogue {
+
+std::vector<TermEntry> third_body() {
+  TermEntry e;
+  e.name = "third_body";
+  e.kind = "force";
+  e.summary =
+      "a point mass B on a circular orbit about the central body, direct and indirect parts, mu_B ((r3 - r)/|r3 - "
+      "r|^3 - r3/|r3|^3) with r3 = a_B Rz(W_B) Rx(i_B) (cos u, sin u, 0), u = u0_B + n_B t; listed with \"body\": "
+      "\"B\"";
+  e.parameters = {{"mu_B", "gravitational parameter of the third body", "length^3/time^2"},
+                  {"a_B", "radius of its circular orbit", "length"},
+                  {"i_B", "inclination of the orbit", "rad"},
+                  {"W_B", "ascending node of the orbit", "rad"},
+                  {"u0_B", "argument of latitude at t = 0", "rad"},
+                  {"n_B", "mean motion sqrt((mu + mu_B)/a_B^3)", "1/time"}};
+  e.required = 6;
+  e.details = {"body"};
+  e.field = true;
+  e.spec_kind = "third_body";
+  const io::json positive = {{"type", "number"}, {"exclusiveMinimum", 0}}, number = {{"type", "number"}};
+  e.spec_schema = {
+      {"description",
+       "a point mass on a circular orbit about the central body (radius, inclination, node, argument of latitude at "
+       "t0; angles default to 0), perturbing the spacecraft directly and through the central body"},
+      {"required", {"kind", "name", "mu_km3_s2", "orbit_radius_km"}},
+      {"additionalProperties", false},
+      {"properties",
+       {{"kind", {{"const", "third_body"}}},
+        {"name", {{"type", "string"}, {"pattern", "^[A-Za-z][A-Za-z0-9]*$"}}},
+        {"mu_km3_s2", positive},
+        {"orbit_radius_km", positive},
+        {"inclination_deg", number},
+        {"raan_deg", number},
+        {"phase_deg", number}}}};
+  e.order = 50;
+  e.build = terms::build;
+  return {e};
+}
+
+}  // namespace helios::pmp::catalogue

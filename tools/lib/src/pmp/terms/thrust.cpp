@@ -75,10 +75,48 @@ class Thrust : public ForceTerm {
   std::string mass_unit_, L_, T_;
 };
 
-}  // namespace
-
-std::unique_ptr<ForceTerm> thrust(const json& spacecraft, const Units& U, const std::string& mass_unit) {
-  return std::make_unique<Thrust>(spacecraft, U, mass_unit);
+// The engine of a spacecraft that is neither a sail nor solar-electric.
+std::unique_ptr<ForceTerm> build(const TermSource& s) {
+  const json& sc = s.spec.at("spacecraft");
+  if (s.problem.propulsion == "solar_sail" || sc.contains("array_power_1AU_W")) return nullptr;
+  return std::make_unique<Thrust>(sc, s.problem.units, s.mass_unit);
 }
 
+}  // namespace
 }  // namespace helios::pmp::terms
+
+namespace helios::pmp::catalogue {
+
+std::vector<TermEntry> thrust() {
+  const TermParameter tmax = {"Tmax", "maximum thrust", "mass*length/time^2", "thrust_scale"},
+                      c = {"c", "exhaust velocity Isp*g0", "length/time", "exhaust_velocity"},
+                      mass = {"mass", "the constant mass: 1, the mass unit", "mass"};
+  TermEntry e;
+  e.kind = "force";
+  e.engine = true;
+  e.order = 30;
+  e.name = "thrust";
+  e.summary = "a thruster, Tmax u a/m (throttle u in [0, 1], unit direction a) with the mass flow -Tmax u/c";
+  e.parameters = {tmax, c};
+  e.required = 2;
+  e.build = terms::build;
+  TermEntry full = e;
+  full.name = "full_thrust";
+  full.summary =
+      "an engine at full throttle throughout, Tmax a/m with the mass flow -Tmax/c (no throttle control: the direction "
+      "is the only control)";
+  full.build = nullptr;
+  TermEntry constant = e;
+  constant.name = "constant_mass_thrust";
+  constant.summary =
+      "an engine of constant mass (spacecraft.mass_model \"constant\"), no mass state: Tmax u a/mass with the "
+      "parameter mass = 1, the mass unit; c only where an Isp is given";
+  constant.parameters = {tmax, mass, c};
+  constant.build = nullptr;
+  TermEntry constant_full = constant;
+  constant_full.name = "constant_mass_full_thrust";
+  constant_full.summary = "an engine of constant mass at full throttle throughout, Tmax a/mass";
+  return {e, full, constant, constant_full};
+}
+
+}  // namespace helios::pmp::catalogue

@@ -18,3 +18,16 @@ std::unique_ptr<CostTerm> time_cost() {
 }
 
 }  // namespace helios::pmp::terms
+
+namespace helios::pmp::catalogue {
+
+std::vector<TermEntry> time_cost() {
+  TermEntry e;
+  e.name = "time";
+  e.kind = "cost";
+  e.order = 110;
+  e.summary = "the time of flight, L = 1";
+  return {e};
+}
+
+}  // namespace helios::pmp::catalogue

@@ -17,18 +17,17 @@ class TwoBody : public ForceTerm {
     const ex r3 = GiNaC::pow(x.r[0] * x.r[0] + x.r[1] * x.r[1] + x.r[2] * x.r[2], GiNaC::numeric(3, 2));
     return {-mu * x.r[0] / r3, -mu * x.r[1] / r3, -mu * x.r[2] / r3};
   }
-  bool field() const override { return true; }
 
  private:
   double mu_;
   std::string unit_;
 };
 
-}  // namespace
-
-std::unique_ptr<ForceTerm> two_body(const json& central, const Units& U) {
-  return std::make_unique<TwoBody>(central, U);
+std::unique_ptr<ForceTerm> build(const TermSource& s) {
+  return std::make_unique<TwoBody>(s.spec.at("central_body"), s.problem.units);
 }
+
+}  // namespace
 
 TermListing listing(const std::string& name, const std::string& kind, const std::vector<std::string>& parameters,
                     const json& details) {
@@ -36,3 +35,20 @@ TermListing listing(const std::string& name, const std::string& kind, const std:
 }
 
 }  // namespace helios::pmp::terms
+
+namespace helios::pmp::catalogue {
+
+std::vector<TermEntry> two_body() {
+  TermEntry e;
+  e.name = "two_body";
+  e.kind = "force";
+  e.summary = "the central body's gravity, -mu r/|r|^3";
+  e.parameters = {{"mu", "gravitational parameter of the central body", "length^3/time^2"}};
+  e.required = 1;
+  e.field = e.axially_symmetric = true;
+  e.order = 10;
+  e.build = terms::build;
+  return {e};
+}
+
+}  // namespace helios::pmp::catalogue

@@ -55,10 +55,38 @@ std::vector<ex> UserAcceleration::acceleration(Problem& p, const Frame& x) const
   return components_;
 }
 
-}  // namespace
-
-std::unique_ptr<ForceTerm> user_acceleration(const json& perturbation) {
-  return std::make_unique<UserAcceleration>(perturbation);
+std::unique_ptr<ForceTerm> build(const TermSource& s) {
+  return std::make_unique<UserAcceleration>(*s.perturbation);
 }
 
+}  // namespace
 }  // namespace helios::pmp::terms
+
+namespace helios::pmp::catalogue {
+
+std::vector<TermEntry> user_acceleration() {
+  TermEntry e;
+  e.name = "user_acceleration";
+  e.kind = "force";
+  e.summary =
+      "an acceleration the spec writes out, listed with its \"label\" and its three components in normalized units "
+      "(\"acceleration\")";
+  e.details = {"label", "acceleration"};
+  e.spec_kind = "acceleration";
+  e.spec_schema = {
+      {"description",
+       "user-written acceleration: components in variables x, y, z, r [km], vx, vy, vz [km/s], m [kg], t [s since t0]"},
+      {"required", {"kind", "name", "components", "unit"}},
+      {"additionalProperties", false},
+      {"properties",
+       {{"kind", {{"const", "acceleration"}}},
+        {"name", {{"type", "string"}, {"pattern", "^[A-Za-z][A-Za-z0-9_]*$"}}},
+        {"components",
+         {{"type", "array"}, {"items", {{"type", "string"}, {"minLength", 1}}}, {"minItems", 3}, {"maxItems", 3}}},
+        {"unit", {{"enum", {"mm/s^2", "m/s^2", "km/s^2"}}}}}}};
+  e.order = 40;
+  e.build = terms::build;
+  return {e};
+}
+
+}  // namespace helios::pmp::catalogue
