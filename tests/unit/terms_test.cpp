@@ -598,3 +598,98 @@ TEST(SolarElectric, WithTheCapAlwaysBindingTheThrustIsTheConstantEngines) {
     EXPECT_NEAR(flow * c_sep / tmax, 1.0, 1e-6);
   }
 }
+
+// ---- atmospheric drag: one term (pmp/terms/drag.cpp), its recomputation (verify/terms/drag.cpp) and
+// its sentence (spec/forms/drag.cpp), nothing else
+
+const char* kDrag =
+    "\nAtmospheric drag acts on the spacecraft: drag coefficient 2.2, area 4 m^2, in an exponential atmosphere of "
+    "density 3.6e-12 kg/m^3 at 400 km altitude with scale height 58 km.\n";
+
+// S05 (a J2 orbit raise about the Earth at 7000 km) with drag: derived as one more term, verified, the
+// drag in its rows is the physical deceleration of the text's numbers, its costate rows are -dH/dx by
+// central differences, and verify fails a costate row without drag or a drag of the wrong sign.
+TEST(Drag, TheSentenceIsOneTermDerivedAndVerified) {
+  const json d = derive_text(problem_text("S05") + kDrag);
+  const json& plain = derivation("S05");
+  EXPECT_EQ(term(const_cast<json&>(d), "drag")["parameters"], json({"Bd", "r0", "H", "w"}));
+  EXPECT_EQ(verify(d)["verdict"], "pass") << verify(d).dump(1);
+  helios::symbolic::SymbolTable table;
+  for (const auto& s : d["states"]) table.get(s["name"]), table.get(s["costate"]);
+  for (const auto& c : d["controls"]) table.get(c["name"]);
+  for (const auto& q : d["parameters"]) table.get(q["name"]);
+  for (const char* n : {"lambda0", "eps", "t"}) table.get(n);
+  helios::symbolic::Values at;
+  for (const auto& q : d["parameters"]) at[q["name"].get<std::string>()] = q["value"];
+  const auto parse = [&](const json& e) { return table.parse(e.get<std::string>(), "drag"); };
+  const double R = 6378.137, T = std::sqrt(R * R * R / 398600.4418);  // the units: km and s
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> uni(-1, 1);
+  for (const double altitude_km : {200.0, 400.0, 622.0}) {
+    SCOPED_TRACE(altitude_km);
+    // On the x axis, moving along y with a radial and a vertical part, engine off.
+    const double r_km = R + altitude_km, v[3] = {0.1, 7.7, 0.3};
+    at["rx"] = r_km / R, at["ry"] = 0, at["rz"] = 0;
+    at["vx"] = v[0] * T / R, at["vy"] = v[1] * T / R, at["vz"] = v[2] * T / R;
+    at["m"] = 0.9, at["u"] = 0, at["ax"] = 1, at["ay"] = 0, at["az"] = 0;
+    for (const auto& s : d["states"]) at[s["costate"].get<std::string>()] = uni(rng);
+    at["lambda0"] = 1, at["eps"] = 0.5, at["t"] = 0;
+    // -1/2 rho Cd A / m |v_rel| v_rel with v_rel = v - w z x r, in m/s^2.
+    const double w = 7.2921159e-5, rel[3] = {v[0], v[1] - w * r_km, v[2]};
+    const double speed = std::sqrt(rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2]) * 1e3;
+    const double rho = 3.6e-12 * std::exp(-(altitude_km - 400) / 58);
+    for (int k = 0; k < 3; ++k) {
+      const double want = -0.5 * rho * 2.2 * 4 / (500 * 0.9) * speed * rel[k] * 1e3;
+      const double got = (helios::symbolic::evaluate(parse(d["state_odes"][3 + k]["rhs"]), table, at) -
+                          helios::symbolic::evaluate(parse(plain["state_odes"][3 + k]["rhs"]), table, at)) *
+                         R * 1e3 / (T * T);
+      // Less the rows without drag: gravity's 8 m/s^2 leaves an absolute round-off of about 1e-15 of it.
+      EXPECT_NEAR(got, want, 1e-9 * std::fabs(want) + 1e-13) << k;
+    }
+    // The costate rows: -dH/dx by central differences (thrusting, so every part is in H).
+    at["u"] = 0.6, at["ax"] = 0.6, at["ay"] = 0.8;
+    const GiNaC::ex H = parse(d["hamiltonian"]);
+    for (const auto& s : d["states"]) {
+      const std::string x = s["name"];
+      SCOPED_TRACE(x);
+      const double h = 1e-6 * std::max(1.0, std::fabs(at[x]));
+      helios::symbolic::Values plus = at, minus = at;
+      plus[x] += h;
+      minus[x] -= h;
+      const double fd =
+          -(helios::symbolic::evaluate(H, table, plus) - helios::symbolic::evaluate(H, table, minus)) / (2 * h);
+      double row = 0;
+      for (const auto& c : d["costate_odes"])
+        if (c["costate"] == s["costate"]) row = helios::symbolic::evaluate(parse(c["rhs"]), table, at);
+      EXPECT_NEAR(row, fd, 1e-6 * (1 + std::fabs(fd)));
+    }
+  }
+  json m = d;  // the l_vx row of the problem without drag
+  m["costate_odes"][3] = plain["costate_odes"][3];
+  EXPECT_EQ(check(verify(m), "costate_ode:l_vx")["verdict"], "fail");
+  m = d;  // drag that pushes: its sign turned in the dynamics
+  for (auto& row : m["dynamics"]["state_rhs"]) {
+    std::string s = row;
+    for (std::size_t at = s.find("Bd"); at != std::string::npos; at = s.find("Bd", at + 5)) s.replace(at, 2, "(-Bd)");
+    row = s;
+  }
+  EXPECT_TRUE(contains(feedback(m, "dynamics_terms"), "the term drag has the wrong sign"))
+      << feedback(m, "dynamics_terms");
+}
+
+TEST(Drag, WhatItCannotBeIsRefusedAndNeglectingItAddsNothing) {
+  const json spec = helios::spec::parse_problem_text(problem_text("S05") + "\nNeglect atmospheric drag.\n", "p.txt");
+  EXPECT_EQ(spec["dynamics"]["perturbations"], json::parse(R"([{"kind": "j2"}])"));
+  // An atmosphere at rest, stated: w = 0.
+  const json still = derive_text(problem_text("S05") +
+                                 "\nThe spacecraft feels atmospheric drag with Cd = 2.2 and an area of 4 m^2 in a "
+                                 "non-rotating atmosphere of density 3.6e-12 kg/m^3 at 400 km altitude and a scale "
+                                 "height of 58 km.\n");
+  for (const auto& q : still["parameters"])
+    if (q["name"] == "w") EXPECT_EQ(q["value"], 0.0);
+  EXPECT_TRUE(contains(refusal_of(problem_text("S01") + kDrag), "drag needs a planet with an atmosphere"))
+      << refusal_of(problem_text("S01") + kDrag);
+  const std::string half = problem_text("S05") + "\nAtmospheric drag acts on the spacecraft with Cd = 2.2.\n";
+  EXPECT_TRUE(contains(refusal_of(half), "atmospheric drag needs its area (m^2), the density (kg/m^3)"))
+      << refusal_of(half);
+}
