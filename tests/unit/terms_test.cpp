@@ -686,7 +686,9 @@ TEST(Drag, WhatItCannotBeIsRefusedAndNeglectingItAddsNothing) {
                                  "non-rotating atmosphere of density 3.6e-12 kg/m^3 at 400 km altitude and a scale "
                                  "height of 58 km.\n");
   for (const auto& q : still["parameters"])
-    if (q["name"] == "w") EXPECT_EQ(q["value"], 0.0);
+    if (q["name"] == "w") {
+      EXPECT_EQ(q["value"], 0.0);
+    }
   EXPECT_TRUE(contains(refusal_of(problem_text("S01") + kDrag), "drag needs a planet with an atmosphere"))
       << refusal_of(problem_text("S01") + kDrag);
   const std::string half = problem_text("S05") + "\nAtmospheric drag acts on the spacecraft with Cd = 2.2.\n";

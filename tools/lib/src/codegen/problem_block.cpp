@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "helios/pmp/catalogue.hpp"
+
 namespace helios::codegen::detail {
 namespace {
 
@@ -93,7 +95,7 @@ std::string engine_contract(const Context& c, const std::string& rate, const std
       << "inline double ThrottleCostRate() { return " << rate << "; }\n";
   bool flow_varies = false;
   if (c.terms)
-    for (const auto& t : *c.terms) flow_varies = flow_varies || t.name == "solar_electric_thrust";
+    for (const auto& t : *c.terms) flow_varies = flow_varies || pmp::find_term(t.name)->varying_flow;
   o << "// The parameters the thrust is proportional to (role thrust_scale), and whether the mass flow\n"
     << "// follows the position (a solar-electric engine).\n"
     << "const char* const kThrustScale[] = {" << (scale.empty() ? "" : quoted_list(scale) + ", ") << "nullptr};\n"

@@ -253,26 +253,20 @@ Check TermFamily::cost(const std::optional<std::vector<Term>>& terms) {
   const Term& t = *costs[0];
   ex running = 1, endpoint = 0;
   if (t.name == "fuel" || t.name == "delta_v" || t.name == "initial_mass") {
-    // With an engine whose thrust is no parameter (solar-electric) the fuel's flow is T/c, the cost
-    // listing the engine's parameters: its recomputed T, divided by its exhaust velocity.
+    // With an engine whose flow is no ratio of two parameters (solar-electric) the cost lists the
+    // engine's parameters and its flow is the engine's recomputed full-throttle flow.
     const recompute::Recomputation* engine = nullptr;
-    std::size_t exhaust = 1;
     if (t.name != "delta_v")
       for (const auto& f : *terms) {
         const recompute::Recomputation* r = recompute::find(f.name);
-        if (f.kind != "force" || f.parameters != t.parameters || !r || !r->full_thrust) continue;
-        engine = r;
-        const auto& listed = pmp::find_term(f.name)->parameters;
-        for (std::size_t i = 0; i < listed.size(); ++i)
-          if (listed[i].role == "exhaust_velocity") exhaust = i;
+        if (f.kind == "force" && f.parameters == t.parameters && r && r->full_flow) engine = r;
       }
     const auto q = parameters_of(t, {engine ? t.parameters.size() : 2}, c);
     if (!q) return c;
     if (ctx.throttle.empty()) return c.fail("the cost term " + t.name + " needs a throttle control."), c;
     if (engine && !read_frame(c)) return c;
     const ex u = ctx.sym(ctx.throttle), eps = ctx.sym(ctx.eps);
-    const ex flow =
-        engine ? engine->full_thrust({ctx, r_, v_, m_, mass_, *terms}, *q) / (*q)[exhaust] : (*q)[0] / (*q)[1];
+    const ex flow = engine ? engine->full_flow({ctx, r_, v_, m_, mass_, *terms}, *q) : (*q)[0] / (*q)[1];
     running = flow * (u - eps * u * (1 - u));
   } else if (t.name == "final_radius" || t.name == "final_energy") {
     const auto q = parameters_of(t, {t.name == "final_energy" ? 1u : 0u}, c);

@@ -53,6 +53,7 @@ struct TermEntry {
   bool field = false;              // it belongs to the natural field a coasting target also moves in
   bool axially_symmetric = false;  // unchanged by a turn about the central body's z axis
   bool engine = false;             // the spacecraft's propulsion: exactly one engine term per problem
+  bool varying_flow = false;       // an engine whose full-throttle mass flow follows the state (T(r))
   // A force built from the spec's perturbations: their "kind" and the JSON schema of one entry (its
   // "then" branch in spec.schema.json's definition "perturbation").
   std::string spec_kind;

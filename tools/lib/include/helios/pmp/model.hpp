@@ -135,10 +135,12 @@ struct Problem {
   std::vector<TermListing> terms;          // the forces, then the costs, whose sums are f and L
   std::vector<GiNaC::ex> f;                // state rhs, one per state (may contain the time symbol t)
   SailModel sail;                          // when propulsion is solar_sail
-  // The engine's thrust at full throttle (Tmax, or a solar-electric engine's T(r)) and the
-  // parameters it uses, recorded by the thrust term for the fuel cost.
-  GiNaC::ex max_thrust;
-  std::vector<std::string> thrust_parameters;
+  // The engine's thrust at full throttle (Tmax, or a solar-electric engine's T(r)) with the
+  // parameters it uses, and its mass-flow law, the flow at full throttle (Tmax/c, T(r)/c) with the
+  // parameters that uses: recorded by the engine's term for the mass rate and the fuel cost (no flow
+  // for an engine of constant mass without an exhaust velocity).
+  GiNaC::ex max_thrust, max_mass_flow;
+  std::vector<std::string> thrust_parameters, flow_parameters;
   std::vector<GiNaC::ex> coast_f;  // unpowered r, v dynamics in the gravity field (coasting targets)
   GiNaC::ex running_cost;          // L (with the homotopy parameter eps)
   GiNaC::ex endpoint_cost;         // phi (Mayer term), in states at tf

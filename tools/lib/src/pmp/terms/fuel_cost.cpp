@@ -1,7 +1,7 @@
-// The fuel cost: the mass flow T u / c (T the engine's full thrust: Tmax, or a solar-electric
-// engine's T(r)), for a constant engine the mass flow Tmax u / c with the quadratic homotopy term, L = Tmax/c (u - eps
-// u (1 - u)): eps = 1 is an energy-like problem, eps = 0 the bang-bang fuel-optimal one
-// (Bertrand & Epenoy; Jiang, Baoyin & Li 2012). An engine of constant mass has the same L1 cost
+// The fuel cost: the engine's mass flow at full throttle F (Tmax/c, a solar-electric engine's
+// T(r)/c, as its term records it) with the quadratic homotopy term,
+// L = F (u - eps u (1 - u)): eps = 1 is an energy-like problem, eps = 0 the bang-bang fuel-optimal
+// one (Bertrand & Epenoy; Jiang, Baoyin & Li 2012). An engine of constant mass has the same L1 cost
 // (Tmax/c: the propellant it would burn); without an exhaust velocity its cost is the delta-v,
 // L = Tmax/mass (u - eps u (1 - u)) (delta_v).
 #include <algorithm>
@@ -13,37 +13,35 @@ namespace {
 
 class FuelCost : public CostTerm {
  public:
-  // `per`: the parameter the thrust is divided by (c: the propellant's mass flow, mass: the
-  // acceleration, whose integral is the delta-v).
-  explicit FuelCost(std::string per) : per_(std::move(per)) {}
-  std::string name() const override { return per_ == "c" ? "fuel" : "delta_v"; }
-  // The engine's thrust parameters (Tmax, or a solar-electric engine's, which list c already) and per.
-  std::vector<std::string> parameters(const Problem& p) const {
-    std::vector<std::string> out = p.thrust_parameters;
-    if (std::find(out.begin(), out.end(), per_) == out.end()) out.push_back(per_);
-    return out;
-  }
+  explicit FuelCost(bool delta_v) : delta_v_(delta_v) {}
+  std::string name() const override { return delta_v_ ? "delta_v" : "fuel"; }
   std::vector<std::string> parameters() const override { return parameters_; }
   ex running_cost(Problem& p) const override {
     auto& S = p.symbols;
-    parameters_ = parameters(p);
-    const ex TM = p.max_thrust, C = S.get(per_), u = S.get("u"), eps = S.get("eps");
-    return TM / C * (u - eps * u * (1 - u));
+    const ex u = S.get("u"), eps = S.get("eps");
+    if (!delta_v_) {
+      parameters_ = p.flow_parameters;
+      return p.max_mass_flow * (u - eps * u * (1 - u));
+    }
+    // The acceleration, whose integral is the delta-v: the thrust's parameters and the mass.
+    parameters_ = p.thrust_parameters;
+    parameters_.push_back("mass");
+    return p.max_thrust / S.get("mass") * (u - eps * u * (1 - u));
   }
 
  private:
-  std::string per_;
-  mutable std::vector<std::string> parameters_ = {"Tmax", per_};
+  bool delta_v_;
+  mutable std::vector<std::string> parameters_;
 };
 
 }  // namespace
 
 std::unique_ptr<CostTerm> fuel_cost() {
-  return std::make_unique<FuelCost>("c");
+  return std::make_unique<FuelCost>(false);
 }
 
 std::unique_ptr<CostTerm> delta_v_cost() {
-  return std::make_unique<FuelCost>("mass");
+  return std::make_unique<FuelCost>(true);
 }
 
 }  // namespace helios::pmp::terms
@@ -56,8 +54,8 @@ std::vector<TermEntry> fuel_cost() {
   fuel.kind = "cost";
   fuel.order = 100;
   fuel.summary =
-      "the propellant, L = Tmax/c (u - eps u (1 - u)); with a solar-electric engine its parameters, L = T(r)/c (u - "
-      "eps u (1 - u))";
+      "the propellant, L = Tmax/c (u - eps u (1 - u)); with a solar-electric engine the engine's parameters, L = "
+      "T(r)/c (u - eps u (1 - u))";
   fuel.parameters = {{"Tmax", "maximum thrust", "mass*length/time^2", "thrust_scale"},
                      {"c", "exhaust velocity Isp*g0", "length/time", "exhaust_velocity"}};
   fuel.required = 2;

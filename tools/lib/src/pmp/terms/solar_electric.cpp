@@ -116,13 +116,15 @@ class SolarElectric : public ForceTerm {
       input = (available + Pmax - GiNaC::sqrt(GiNaC::pow(available - Pmax, 2) + Pw * Pw)) / 2;
     }
     p.max_thrust = 2 * S.get("eta") * input / S.get("c");
+    p.max_mass_flow = p.max_thrust / S.get("c");
     p.thrust_parameters.clear();
     for (const auto& q : parameters()) p.thrust_parameters.push_back(q.name);
+    p.flow_parameters = p.thrust_parameters;
     const ex u = S.get("u");
     return {p.max_thrust * u * S.get("ax") / x.mass, p.max_thrust * u * S.get("ay") / x.mass,
             p.max_thrust * u * S.get("az") / x.mass};
   }
-  ex mass_rate(Problem& p) const override { return -p.max_thrust * p.symbols.get("u") / p.symbols.get("c"); }
+  ex mass_rate(Problem& p) const override { return -p.max_mass_flow * p.symbols.get("u"); }
 
  private:
   std::string mass_unit_, L_, T_;
@@ -159,7 +161,7 @@ std::vector<TermEntry> solar_electric() {
                   {"Pmax", "maximum engine input power", power, "thrust_scale"},
                   {"Pw", "width of the smooth power cap (Pmax/100)", power, "thrust_scale"}};
   e.required = 4;
-  e.engine = true;
+  e.engine = e.varying_flow = true;
   e.order = 30;
   e.build = terms::build;
   return {e};

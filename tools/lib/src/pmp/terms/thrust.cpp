@@ -60,11 +60,15 @@ class Thrust : public ForceTerm {
     const ex u = throttle(p), TM = S.get("Tmax"), m = constant_mass_ ? ex(S.get("mass")) : x.mass;
     p.max_thrust = TM;
     p.thrust_parameters = {"Tmax"};
+    if (exhaust_ > 0) {
+      p.max_mass_flow = TM / S.get("c");
+      p.flow_parameters = {"Tmax", "c"};
+    }
     return {TM * u * S.get("ax") / m, TM * u * S.get("ay") / m, TM * u * S.get("az") / m};
   }
   ex mass_rate(Problem& p) const override {
     if (constant_mass_) return 0;
-    return -p.symbols.get("Tmax") * throttle(p) / p.symbols.get("c");
+    return -p.max_mass_flow * throttle(p);
   }
 
  private:

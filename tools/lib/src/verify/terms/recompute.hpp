@@ -53,8 +53,9 @@ struct Recomputation {
   // The term's rates from its listed parameters q (their symbols, as many as the catalogue allows),
   // or nothing with the reason in c where the controls or the states do not fit it.
   std::optional<Rates> (*rates)(const Frame& x, const derivation::Term& t, const std::vector<ex>& q, Check& c);
-  // An engine whose full thrust is no parameter: T from its parameters, for its fuel's flow T/c.
-  ex (*full_thrust)(const Frame& x, const std::vector<ex>& q) = nullptr;
+  // An engine whose mass flow at full throttle is no parameter's ratio: that flow from its
+  // parameters (T(r)/c), which its fuel cost lists too.
+  ex (*full_flow)(const Frame& x, const std::vector<ex>& q) = nullptr;
 };
 
 // Every file's recomputations, in no order (the build's list), and the one of `name` or nullptr.

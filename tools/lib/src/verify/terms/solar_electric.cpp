@@ -46,7 +46,8 @@ std::optional<Rates> rates(const Frame& x, const derivation::Term& t, const std:
 }  // namespace
 
 std::vector<Recomputation> solar_electric() {
-  return {{"solar_electric_thrust", rates, full_thrust}};
+  return {{"solar_electric_thrust", rates,
+           [](const Frame& x, const std::vector<ex>& q) { return full_thrust(x, q) / q[3]; }}};
 }
 
 }  // namespace helios::verify::detail::recompute
