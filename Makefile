@@ -418,6 +418,7 @@ Targets:
   make fuzz                    each libFuzzer target for FUZZ_SECONDS (build-fuzz)
   make bench                   stage timings, the search audit (bench-search) and the P01 bench grid (bench-sweep)
   make tools | deps | clean    build the tools | install missing Debian packages | remove build trees and runs
+  make catalogue               rewrite the schemas' parts the catalogue of terms makes (after adding a term)
   make help                    this text
 
 Variables (scenario and sweep may also be spelled SCENARIO and SWEEP):
