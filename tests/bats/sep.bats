@@ -72,6 +72,34 @@ setup() {
   within "$(jq '.final_mass_kg' "$WORK/limit/solution.json")" "$(jq '.final_mass_kg' "$WORK/s01/solution.json")" 1e-6
 }
 
+# A spiral out from 1 AU to a circular 1.5 AU orbit in minimum time with 1.5 kW arrays (2.9
+# revolutions about the Sun): the thrust route runs on the engine's powers (their role thrust_scale)
+# and arrives at the problem's thrust; the delta-v is at least Edelbaum's circle-to-circle |v1 - v2|
+# (5465.6 m/s: the low-thrust limit) and near it, and the propellant is the rocket equation's at the
+# engine's constant exhaust velocity.
+@test "sep: a minimum-time spiral to 1.5 AU: the thrust route runs on the powers, delta-v at Edelbaum's" {
+  mkdir -p "$WORK/spiral"
+  cat >"$WORK/spiral/problem.txt" <<'EOF'
+Problem SEPSPIRAL: a solar-electric spiral from 1 AU to 1.5 AU in minimum time.
+The central body is the Sun with gravitational parameter 1.32712440018e11 km^3/s^2.
+The spacecraft is solar-electric: its arrays give 1.5 kW at 1 AU, an efficiency of 0.6 and a specific impulse of 3000 s.
+The spacecraft has an initial mass of 1000 kg.
+The spacecraft departs at t = 0 days from position [149597870.7, 0, 0] km with velocity [0, 29.784691831696804, 0] km/s.
+At the final time the spacecraft is on the circular equatorial orbit of radius 224396806 km.
+The time of flight is free, at most 3000 days.
+Minimize the time of flight.
+EOF
+  run_chain "$WORK/spiral/problem.txt" "" "$WORK/spiral"
+  local sol="$WORK/spiral/solution.json"
+  assert_jq "$WORK/spiral/verify.json" '.verdict == "pass"'
+  assert_jq "$sol" '.status == "converged" and .start == "cold" and .max_residual < 1e-10 and .search.saturated'
+  assert_jq "$sol" '.search.routes[] | select(.name == "thrust continuation") | .ran'
+  assert_jq "$sol" '.search.thrust_continuation.arrived'
+  echo "tof $(jq '.tof_days' "$sol") d, delta-v $(jq '.delta_v_m_s' "$sol") m/s, propellant $(jq '.propellant_kg' "$sol") kg"
+  assert_jq "$sol" '.delta_v_m_s > 5465.59 and .delta_v_m_s < 1.02 * 5465.59'
+  within "$(jq '.propellant_kg' "$sol")" "$(jq '1000 * (1 - ((-.delta_v_m_s / (9.80665 * 3000)) | exp))' "$sol")" 1e-6
+}
+
 @test "sep: a wrong sentence is refused in one line naming the field and the value" {
   mkdir -p bad
   sed 's/an efficiency of 0.6/an efficiency of 1.6/' "$ROOT/scenarios/S15/problem.txt" >bad/problem.txt
