@@ -254,6 +254,20 @@ chain() {
     --derivation "$dir/derivation.json" --verify "$dir/verify.json" --solution "$dir/solution.json" -o "$dir/score.json"
 }
 
+# chain_or_note SCENARIO DIR [PROBLEM]: chain in a setup_file, its output in DIR.log; a failure is
+# noted for chains_passed, which each test's setup calls.
+chain_or_note() {
+  chain "$@" >"$2.log" 2>&1 || echo "$(basename "$2") failed" >>"$BATS_FILE_TMPDIR/failures"
+}
+
+# chains_passed: fails (showing what failed and the logs) when a chain of the file's setup failed.
+chains_passed() {
+  if [[ -s $BATS_FILE_TMPDIR/failures ]]; then
+    cat "$BATS_FILE_TMPDIR/failures" "$BATS_FILE_TMPDIR"/*.log >&2
+    return 1
+  fi
+}
+
 # assert_oem_of_run DIR: helios-score --oem writes DIR's converged trajectory as DIR/trajectory.oem,
 # and the independent parser of oem.bats (oem_check.awk) accepts it and finds trajectory.csv in it.
 assert_oem_of_run() {
