@@ -24,6 +24,15 @@ double positive(const std::smatch& m, std::size_t idx, Dimension dim, const std:
   return v;
 }
 
+// Sets the engine's `key` to `value`, refusing a second value of it (a clause or a sentence that
+// states it again).
+void set_once(Builder& b, const char* key, double value, const std::string& what) {
+  if (b.spacecraft.contains(key))
+    throw sentence_error(what + " is given twice (" + io::short_number(b.spacecraft[key].get<double>()) + " and " +
+                         io::short_number(value) + ")");
+  b.spacecraft[key] = value;
+}
+
 void read(Builder& b, const std::smatch& match) {
   b.once("the solar-electric engine");
   ++b.seen["the spacecraft's engine"];
@@ -58,29 +67,32 @@ void read(Builder& b, const std::smatch& match) {
     std::smatch m;
     if (part.empty()) continue;
     if (std::regex_match(part, m, array) || std::regex_match(part, m, array_power)) {
-      b.spacecraft["array_power_1AU_W"] =
-          positive(m, m[1].matched ? 1 : 3, Dimension::Power, "the arrays' power at 1 AU");
+      set_once(b, "array_power_1AU_W", positive(m, m[1].matched ? 1 : 3, Dimension::Power, "the arrays' power at 1 AU"),
+               "the arrays' power at 1 AU");
     } else if (std::regex_match(part, m, bus)) {
       const std::size_t at = m[1].matched ? 1 : 3;
       const double w = quantity(m, at, Dimension::Power);
       if (!(w >= 0))
         throw sentence_error("the bus power must not be negative, got " + m[at].str() + " " + m[at + 1].str());
-      b.spacecraft["bus_power_W"] = w;
+      set_once(b, "bus_power_W", w, "the bus power");
     } else if (std::regex_match(part, m, cap)) {
-      b.spacecraft["max_engine_power_W"] =
-          positive(m, m[1].matched ? 1 : 3, Dimension::Power, "the engine's maximum input power");
+      set_once(b, "max_engine_power_W",
+               positive(m, m[1].matched ? 1 : 3, Dimension::Power, "the engine's maximum input power"),
+               "the engine's maximum input power");
     } else if (std::regex_match(part, m, thrust_cap)) {
-      b.spacecraft["max_thrust_N"] = positive(m,
-                                              m[1].matched   ? 1
-                                              : m[3].matched ? 3
-                                                             : 5,
-                                              Dimension::Force, "the engine's maximum thrust");
+      set_once(b, "max_thrust_N",
+               positive(m,
+                        m[1].matched   ? 1
+                        : m[3].matched ? 3
+                                       : 5,
+                        Dimension::Force, "the engine's maximum thrust"),
+               "the engine's maximum thrust");
     } else if (std::regex_match(part, m, efficiency)) {
       const double eta = number(m[1].str()) / (m[2].matched ? 100.0 : 1.0);
       if (!(eta > 0 && eta <= 1))
         throw sentence_error("the engine efficiency must be in (0, 1] (or (0, 100] %), got " + m[1].str() +
                              (m[2].matched ? " %" : ""));
-      b.spacecraft["engine_efficiency"] = eta;
+      set_once(b, "engine_efficiency", eta, "the engine efficiency");
     } else if (std::regex_match(part, m, isp) || std::regex_match(part, m, mass)) {
       const bool is_isp = std::regex_match(part, isp);
       const detail::Field field = is_isp ? detail::Field::Isp : detail::Field::InitialMass;
@@ -160,6 +172,9 @@ std::vector<Form> solar_electric() {
         {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, the bus uses 12 kW, an efficiency of 0.6 "
          "and a specific impulse of 3000 s.",
          "sun -engine ", R"~({"error": "takes all the arrays give at 1 AU"})~"},
+        {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, the engine takes at most 5 kW, a maximum "
+         "input power of 6 kW, an efficiency of 0.6 and a specific impulse of 3000 s.",
+         "sun -engine ", R"~({"error": "the engine's maximum input power is given twice (5000 and 6000)"})~"},
         {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, a tank of 3 kg and an efficiency of 0.6.",
          "sun -engine ", R"~({"error": "cannot read 'a tank of 3 kg' of the solar-electric engine"})~"},
         {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU and a specific impulse of 3000 s and an "
