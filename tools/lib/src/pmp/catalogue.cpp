@@ -35,6 +35,13 @@ const TermEntry* find_perturbation(const std::string& spec_kind) {
   return nullptr;
 }
 
+const TermParameter* find_typeset_parameter(const std::string& name) {
+  for (const auto& e : term_catalogue())
+    for (const auto& q : e.parameters)
+      if (q.name == name && !q.symbol_base.empty()) return &q;
+  return nullptr;
+}
+
 std::vector<std::size_t> parameter_counts(const TermEntry& entry) {
   if (entry.required == entry.parameters.size()) return {entry.required};
   return {entry.required, entry.parameters.size()};

@@ -1,6 +1,7 @@
 #include "helios/symbolic/latex.hpp"
 
 #include "helios/derivation/names.hpp"
+#include "helios/pmp/catalogue.hpp"
 #include "helios/symbolic/expr.hpp"
 
 #include <algorithm>
@@ -68,12 +69,12 @@ Atom atom(const std::string& word) {
   if (auto it = g.find(word); it != g.end()) return {it->second, {}};
   if (is_component(word)) return {word.substr(0, 1), {word.substr(1)}};
   if (word.size() == 1) return {word, {}};
-  if (word == "Tmax") return {"T", {"\\max"}};
   if (word == "tf") return {"t", {"f"}};
-  if (word == "mass") return {"m", {}};         // an engine of constant mass: its mass parameter
-  if (word == "Pmax") return {"P", {"\\max"}};  // a solar-electric engine's powers
-  if (word == "Pbus") return {"P", {"\\mathrm{bus}"}};
-  if (word == "Pw") return {"P", {"w"}};
+  // A term's parameter the catalogue typesets (Tmax T_{\max}, a constant mass's m, a bus power P_bus).
+  if (const pmp::TermParameter* q = pmp::find_typeset_parameter(word)) {
+    if (q->symbol_subscript.empty()) return {q->symbol_base, {}};
+    return {q->symbol_base, {q->symbol_subscript}};
+  }
   std::size_t digits = word.size();
   while (digits > 0 && std::isdigit(static_cast<unsigned char>(word[digits - 1]))) --digits;
   if (digits > 0 && digits < word.size()) {
@@ -85,8 +86,8 @@ Atom atom(const std::string& word) {
 }
 
 bool is_atom_word(const std::string& word) {
-  return greek().count(word) || is_component(word) || word.size() == 1 || word == "Tmax" || word == "tf" ||
-         word == "mass" || word == "Pmax" || word == "Pbus" || word == "Pw";
+  return greek().count(word) || is_component(word) || word.size() == 1 || word == "tf" ||
+         pmp::find_typeset_parameter(word);
 }
 
 std::string joined(const std::vector<std::string>& parts, const std::string& separator) {

@@ -23,12 +23,21 @@ class ForceTerm;
 }
 
 // A parameter a term lists, in its order: its role (what the runtime and the verifier ask for, e.g.
-// "thrust_scale"; empty for a coefficient only the term reads), what it is, and its dimension.
+// "thrust_scale"; empty for a coefficient only the term reads), what it is, its dimension, and how
+// the report typesets it where its name alone would print upright (Tmax: T with subscript \max).
 struct TermParameter {
   TermParameter(std::string n, std::string m, std::string d, std::string r = "")
       : name(std::move(n)), meaning(std::move(m)), dimension(std::move(d)), role(std::move(r)) {}
+  // This parameter printed as `base` with the subscript `subscript` (LaTeX; "" for none).
+  TermParameter typeset(std::string base, std::string subscript) const {
+    TermParameter out = *this;
+    out.symbol_base = std::move(base);
+    out.symbol_subscript = std::move(subscript);
+    return out;
+  }
   std::string name, meaning, dimension;
   std::string role;
+  std::string symbol_base, symbol_subscript;  // empty: the typesetter's own rules
 };
 
 // What a builder sees: the problem so far (units, mass unit, objective), the spec, and the
@@ -75,6 +84,9 @@ const TermEntry* find_term(const std::string& name);
 
 // The entry built from the spec's perturbations of kind `spec_kind`, or nullptr.
 const TermEntry* find_perturbation(const std::string& spec_kind);
+
+// The first parameter named `name` that says how it is typeset, or nullptr.
+const TermParameter* find_typeset_parameter(const std::string& name);
 
 // The parameter counts a listing of the entry may have: {required, all} (one value when equal).
 std::vector<std::size_t> parameter_counts(const TermEntry& entry);

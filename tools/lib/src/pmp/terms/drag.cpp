@@ -85,10 +85,11 @@ std::vector<TermEntry> drag() {
   e.summary =
       "atmospheric drag in an exponential atmosphere turning with the body, -Bd/2 exp(-(|r| - r0)/H) |v_rel| v_rel/m "
       "with v_rel = (vx + w ry, vy - w rx, vz) (m the mass state, or 1 for a constant mass)";
-  e.parameters = {{"Bd", "drag coefficient times area times the density at r0", "mass/length"},
-                  {"r0", "reference radius of the atmosphere", "length"},
-                  {"H", "scale height", "length"},
-                  {"w", "rotation rate of the atmosphere about z", "1/time"}};
+  e.parameters = {
+      TermParameter("Bd", "drag coefficient times area times the density at r0", "mass/length").typeset("B", "d"),
+      {"r0", "reference radius of the atmosphere", "length"},
+      {"H", "scale height", "length"},
+      {"w", "rotation rate of the atmosphere about z", "1/time"}};
   e.required = 4;
   e.axially_symmetric = true;
   e.spec_kind = "drag";

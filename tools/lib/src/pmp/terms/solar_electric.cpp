@@ -154,12 +154,13 @@ std::vector<TermEntry> solar_electric() {
       "sqrt((Pa - Pmax)^2 + Pw^2))/2 with a cap alone, (Pa + sqrt(Pa^2 + Pf^2))/2 with a bus alone, (sqrt(Pa^2 + "
       "Pf^2) + sqrt(Pmax^2 + Pw^2) - sqrt((Pa - Pmax)^2 + Pw^2))/2 with both; its fuel cost lists the same "
       "parameters, L = T(r)/c (u - eps u (1 - u))";
-  e.parameters = {{"P0", "solar array power at 1 AU", power, "thrust_scale"},
-                  {"Pbus", "bus power taken from the arrays", power, "thrust_scale"},
-                  {"eta", "engine efficiency (jet power / input power)", "1"},
-                  {"c", "exhaust velocity Isp*g0", "length/time", "exhaust_velocity"},
-                  {"Pmax", "maximum engine input power", power, "thrust_scale"},
-                  {"Pw", "width of the smooth power cap (Pmax/100)", power, "thrust_scale"}};
+  e.parameters = {
+      {"P0", "solar array power at 1 AU", power, "thrust_scale"},
+      TermParameter("Pbus", "bus power taken from the arrays", power, "thrust_scale").typeset("P", "\\mathrm{bus}"),
+      {"eta", "engine efficiency (jet power / input power)", "1"},
+      {"c", "exhaust velocity Isp*g0", "length/time", "exhaust_velocity"},
+      TermParameter("Pmax", "maximum engine input power", power, "thrust_scale").typeset("P", "\\max"),
+      TermParameter("Pw", "width of the smooth power cap (Pmax/100)", power, "thrust_scale").typeset("P", "w")};
   e.required = 4;
   e.engine = e.varying_flow = true;
   e.order = 30;

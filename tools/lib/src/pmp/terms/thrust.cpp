@@ -92,9 +92,10 @@ std::unique_ptr<ForceTerm> build(const TermSource& s) {
 namespace helios::pmp::catalogue {
 
 std::vector<TermEntry> thrust() {
-  const TermParameter tmax = {"Tmax", "maximum thrust", "mass*length/time^2", "thrust_scale"},
+  const TermParameter tmax = TermParameter("Tmax", "maximum thrust", "mass*length/time^2", "thrust_scale")
+                                 .typeset("T", "\\max"),
                       c = {"c", "exhaust velocity Isp*g0", "length/time", "exhaust_velocity"},
-                      mass = {"mass", "the constant mass: 1, the mass unit", "mass"};
+                      mass = TermParameter("mass", "the constant mass: 1, the mass unit", "mass").typeset("m", "");
   TermEntry e;
   e.kind = "force";
   e.engine = true;
