@@ -3,7 +3,6 @@
 // rotating at Q rad/s]." (also "The spacecraft feels atmospheric drag ...", "Include atmospheric drag
 // ...") -> a drag perturbation. The atmosphere turns with the central body unless said to be at rest
 // or given its own rate. "Neglect atmospheric drag." (or "Drag is negligible.") adds nothing.
-#include <cmath>
 #include <optional>
 #include <regex>
 
@@ -17,25 +16,20 @@ const char* kExample =
     "e.g. 'Atmospheric drag acts on the spacecraft: drag coefficient 2.2, area 4 m^2, in an exponential atmosphere "
     "of density 3.6e-12 kg/m^3 at 400 km altitude with scale height 58 km.'";
 
-// The number after the first of `labels` in `clause` with its unit (the unit's group may be empty).
-std::optional<std::pair<double, std::string>> labelled(const std::string& clause, const std::string& labels,
-                                                       const std::string& unit = "") {
+// The number (group 1) after the first of `labels` in `clause`, with its unit (group 2, may be
+// empty); the match refers to `clause`.
+std::optional<std::smatch> labelled(const std::string& clause, const std::string& labels,
+                                    const std::string& unit = "") {
   const std::regex pattern("(?:" + labels + R"()\s*(?:=|of|is)?\s*()" + kNum + R"()\s*()" + unit + ")",
                            std::regex::icase);
   std::smatch m;
   if (!std::regex_search(clause, m, pattern)) return std::nullopt;
-  return std::make_pair(number(m[1].str()), lowercase(m[2].str()));
+  return m;
 }
 
-// A density in kg/m^3 or g/cm^3, an area in m^2 or cm^2, a rate in rad/s or deg/s, in the spec's units.
-double density_kg_m3(const std::pair<double, std::string>& q) {
-  return q.second == "g/cm^3" ? q.first * 1e3 : q.first;
-}
-double area_m2(const std::pair<double, std::string>& q) {
-  return q.second == "cm^2" ? q.first * 1e-4 : q.first;
-}
-double rate_rad_s(const std::pair<double, std::string>& q) {
-  return q.second == "deg/s" ? q.first * 3.14159265358979323846 / 180 : q.first;
+// The number of a labelled match, scaled by `factor` where its unit begins with `prefix` (without case).
+double scaled(const std::smatch& m, const std::string& prefix, double factor) {
+  return number(m[1].str()) * (lowercase(m[2].str()).rfind(prefix, 0) == 0 ? factor : 1.0);
 }
 
 void read(Builder& b, const std::smatch& m) {
@@ -65,16 +59,15 @@ void read(Builder& b, const std::smatch& m) {
       list += (i == 0 ? "" : i + 1 == missing.size() ? " and " : ", ") + missing[i];
     throw sentence_error("atmospheric drag needs " + list + ", " + kExample);
   }
-  std::smatch sm;
-  const std::string scale_text = std::to_string(scale->first) + " " + scale->second;
-  std::regex_match(scale_text, sm, re(kQuantity));
+  // A density in kg/m^3 or g/cm^3, an area in m^2 or cm^2, in the spec's units.
+  const double coefficient = number((*cd)[1].str());
   json drag = {{"kind", "drag"},
-               {"drag_coefficient", cd->first},
-               {"area_m2", area_m2(*area)},
-               {"density_kg_m3", density_kg_m3(*density)},
+               {"drag_coefficient", coefficient},
+               {"area_m2", scaled(*area, "cm", 1e-4)},
+               {"density_kg_m3", scaled(*density, "g/", 1e3)},
                {"reference_altitude_km", quantity(at, 1, Dimension::Length)},
-               {"scale_height_km", quantity(sm, 1, Dimension::Length)}};
-  if (!(cd->first > 0) || !(drag["area_m2"] > 0) || !(drag["density_kg_m3"] > 0) || !(drag["scale_height_km"] > 0) ||
+               {"scale_height_km", quantity(*scale, 1, Dimension::Length)}};
+  if (!(coefficient > 0) || !(drag["area_m2"] > 0) || !(drag["density_kg_m3"] > 0) || !(drag["scale_height_km"] > 0) ||
       drag["reference_altitude_km"] < 0)
     throw sentence_error(
         "atmospheric drag: its coefficient, area, density and scale height must be positive and the "
@@ -83,7 +76,7 @@ void read(Builder& b, const std::smatch& m) {
   if (std::regex_search(clause, at_rest))
     drag["atmosphere_rotation_rad_s"] = 0.0;
   else if (const auto rate = labelled(clause, R"(rotat(?:es|ing) at|rotation rate)", R"(rad/s|deg/s)"))
-    drag["atmosphere_rotation_rad_s"] = rate_rad_s(*rate);
+    drag["atmosphere_rotation_rad_s"] = scaled(*rate, "deg", 3.14159265358979323846 / 180);
   b.perturbations.push_back(drag);
 }
 
@@ -106,6 +99,12 @@ std::vector<Form> drag() {
          R"~({"/dynamics/perturbations": [{"kind": "drag", "drag_coefficient": 2, "area_m2": 2,
                  "density_kg_m3": 1e-11, "reference_altitude_km": 300, "scale_height_km": 50,
                  "atmosphere_rotation_rad_s": 0}]})~"},
+        {"Atmospheric drag acts on the spacecraft: Cd = 2.2, an area of 35000 cm2, in an exponential atmosphere of "
+         "density 2.5e-15 g/cm3 at 350 km altitude with scale height 56.123456789 km, rotating at 0.0042 deg/s.",
+         "earth",
+         R"~({"/dynamics/perturbations": [{"kind": "drag", "drag_coefficient": 2.2, "area_m2": 3.5,
+             "density_kg_m3": 2.5e-12, "reference_altitude_km": 350, "scale_height_km": 56.123456789,
+             "atmosphere_rotation_rad_s": 7.330382858376184e-05}]})~"},
         {"Neglect atmospheric drag.", "earth", R"~({"/dynamics/model": "two_body"})~"},
         {"Atmospheric drag acts on the spacecraft with a drag coefficient of 2.2 and an area of 4 m^2.", "earth",
          R"~({"error": "atmospheric drag needs the density (kg/m^3), the altitude of that density and the scale height"})~"}}}};
