@@ -1,8 +1,6 @@
 // Reads the derivation's "terms" listing into typed entries, refusing what a reader cannot use.
 #include "helios/derivation/terms.hpp"
 
-#include <algorithm>
-
 #include "helios/io/error.hpp"
 #include "helios/pmp/catalogue.hpp"
 

@@ -6,8 +6,8 @@
 // (state_rhs equals the kinematics plus the forces' sum) and cost_terms (running_cost equals the
 // cost term). A failure names the term: one missing, one with the wrong sign, one whose parameters
 // are not the derivation's, or a part no term accounts for.
+#include <algorithm>
 #include <cmath>
-#include <map>
 #include <optional>
 #include <random>
 
@@ -49,6 +49,8 @@ class TermFamily : public Family {
   std::vector<Point> points_;
 
   bool read_frame(Check& c);
+  // The states read_frame found, with the listed terms, as a recomputation sees them.
+  recompute::Frame frame(const std::vector<Term>& all) const { return {ctx, r_, v_, m_, mass_, all}; }
   void sample();
   std::optional<std::vector<ex>> parameters_of(const Term& t, const std::vector<std::size_t>& counts, Check& c) const;
   std::optional<Contribution> force(const Term& t, const std::vector<Term>& all, Check& c) const;
@@ -122,8 +124,7 @@ std::optional<Contribution> TermFamily::force(const Term& t, const std::vector<T
   }
   const auto q = parameters_of(t, pmp::parameter_counts(*pmp::find_term(t.name)), c);
   if (!q) return std::nullopt;
-  const recompute::Frame x{ctx, r_, v_, m_, mass_, all};
-  const auto rates = recomputation->rates(x, t, *q, c);
+  const auto rates = recomputation->rates(frame(all), t, *q, c);
   if (!rates) return std::nullopt;
   Contribution out{t.name + (t.body.empty() ? "" : " (" + t.body + ")") + (t.label.empty() ? "" : " (" + t.label + ")"),
                    std::vector<ex>(ctx.states.size(), 0), *q};
@@ -266,12 +267,12 @@ Check TermFamily::cost(const std::optional<std::vector<Term>>& terms) {
     if (ctx.throttle.empty()) return c.fail("the cost term " + t.name + " needs a throttle control."), c;
     if (engine && !read_frame(c)) return c;
     const ex u = ctx.sym(ctx.throttle), eps = ctx.sym(ctx.eps);
-    const ex flow = engine ? engine->full_flow({ctx, r_, v_, m_, mass_, *terms}, *q) : (*q)[0] / (*q)[1];
+    const ex flow = engine ? engine->full_flow(frame(*terms), *q) : (*q)[0] / (*q)[1];
     running = flow * (u - eps * u * (1 - u));
   } else if (t.name == "final_radius" || t.name == "final_energy") {
     const auto q = parameters_of(t, {t.name == "final_energy" ? 1u : 0u}, c);
     if (!q || !read_frame(c)) return c;
-    const ex r = GiNaC::sqrt(r_[0] * r_[0] + r_[1] * r_[1] + r_[2] * r_[2]);
+    const ex r = frame(*terms).radius();
     running = 0;
     endpoint = t.name == "final_radius" ? -r : -((v_[0] * v_[0] + v_[1] * v_[1] + v_[2] * v_[2]) / 2 - (*q)[0] / r);
   } else if (!t.parameters.empty()) {

@@ -23,7 +23,8 @@ double known_rotation_rad_s(const std::string& body) {
 
 class Drag : public ForceTerm {
  public:
-  Drag(const json& q, const json& central, const Problem& p) : L_(p.units.length_name), T_(p.units.time_name) {
+  Drag(const json& q, const json& central, const Problem& p, std::string mass_unit)
+      : L_(p.units.length_name), T_(p.units.time_name), mass_unit_(std::move(mass_unit)) {
     const Units& U = p.units;
     const std::string where = "field /dynamics/perturbations (drag)";
     if (U.length_name == "AU")
@@ -42,7 +43,6 @@ class Drag : public ForceTerm {
     reference_ = (U.length_km + q.at("reference_altitude_km").get<double>()) / U.length_km;
     scale_ = q.at("scale_height_km").get<double>() / U.length_km;
     rotation_ = rotation * U.time_s;
-    mass_unit_ = p.free_initial_mass ? "final mass" : "initial mass";
     if (!(coefficient_ > 0) || !(scale_ > 0) || !std::isfinite(coefficient_ * reference_ * rotation_))
       throw std::domain_error(where + ": a coefficient is 0 or not finite in normalized units");
   }
@@ -70,7 +70,7 @@ class Drag : public ForceTerm {
 };
 
 std::unique_ptr<ForceTerm> build(const TermSource& s) {
-  return std::make_unique<Drag>(*s.perturbation, s.spec.at("central_body"), s.problem);
+  return std::make_unique<Drag>(*s.perturbation, s.spec.at("central_body"), s.problem, s.mass_unit);
 }
 
 }  // namespace
