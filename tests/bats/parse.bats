@@ -199,3 +199,39 @@ write_problem() {
   "$BIN/helios-parse" isp.txt -o isp.json
   assert_jq isp.json '.spacecraft.isp_s == 3000'
 }
+
+# ---- a thruster given by fits ------------------------------------------------------------------
+
+# s15_fits FILE THRUSTER-SENTENCE: S15 (a solar-electric engine) with its efficiency, Isp and cap
+# replaced by the thruster's fits.
+s15_fits() {
+  sed "s|^The spacecraft is solar-electric: .*\$|The spacecraft is solar-electric: its arrays give 20 kW at 1 AU, the bus uses 0.5 kW.\n$2|" \
+    "$ROOT/scenarios/S15/problem.txt" >"$1"
+  grep -q "thrust is" "$1"
+}
+
+@test "parse: S15's engine given by fits writes the polynomials in mN and mg/s, the same from N, kg/s and P in W" {
+  # 2 eta / (g0 Isp) per kW at S15's eta 0.6 and Isp 2000 s: 61.18 mN/kW and 3.119 mg/s per kW
+  s15_fits kw.txt "The thruster's thrust is 61.1829727786757 P mN and its mass flow is 3.1194634650301425 P mg/s, with P its input power in kW up to 10 kW."
+  s15_fits w.txt "The thruster's thrust is 6.11829727786757e-5 P N and its mass flow is 3.1194634650301425e-9 P kg/s, where P is its input power in W, up to 10000 W."
+  "$BIN/helios-parse" kw.txt -o kw.json
+  "$BIN/helios-parse" w.txt -o w.json
+  assert_jq kw.json '.spacecraft == {"array_power_1AU_W": 20000, "bus_power_W": 500, "max_engine_power_W": 10000,
+    "thrust_polynomial_mN": [0, 61.1829727786757], "mass_flow_polynomial_mg_s": [0, 3.1194634650301425],
+    "initial_mass_kg": 1000}'
+  jq -n --slurpfile a kw.json --slurpfile b w.json -e '
+    [$a[0].spacecraft, $b[0].spacecraft] as [$x, $y]
+    | ($x | keys) == ($y | keys) and $x.max_engine_power_W == $y.max_engine_power_W
+      and ([range(2)] | all((($x.thrust_polynomial_mN[.] - $y.thrust_polynomial_mN[.]) | fabs) <= 1e-12 * 62
+        and (($x.mass_flow_polynomial_mg_s[.] - $y.mass_flow_polynomial_mg_s[.]) | fabs) <= 1e-12 * 4))'
+}
+
+@test "parse: fits beside an efficiency -> exit 3 in one line naming the efficiency" {
+  s15_fits both.txt "The thruster's thrust is -1.9137 + 36.242 P mN and its mass flow is 0.47556 + 0.90209 P mg/s for an input power P between 0.5 and 2.6 kW."
+  sed -i 's/the bus uses 0.5 kW\./the bus uses 0.5 kW and an efficiency of 0.6./' both.txt
+  grep -q 'efficiency of 0.6' both.txt
+  run -3 --separate-stderr "$BIN/helios-parse" both.txt -o both.json
+  assert_one_error_line parse
+  assert_stderr_contains "engine_efficiency (0.6)" "the thruster's fits give its performance"
+  [[ ! -e both.json ]]
+}

@@ -91,8 +91,13 @@ void check_complete(grammar::Builder& b, const std::string& source) {
       throw input_error(where + ", so it burns no propellant that a larger initial mass would carry: minimize the " +
                         "fuel (the propellant with a specific impulse, else the delta-v) or the time instead");
   }
-  // A solar-electric engine: the thrust follows from the power, about the Sun.
+  // A solar-electric engine: the thrust follows from the power, about the Sun; its performance is its
+  // efficiency and specific impulse, or the fits of its thrust and mass flow to its input power.
   const bool solar_electric = b.spacecraft.contains("array_power_1AU_W");
+  const bool fits = b.spacecraft.contains("thrust_polynomial_mN");
+  if (fits && !solar_electric)
+    missing(source, "the solar arrays that power the thruster's fits",
+            "The spacecraft is solar-electric: its arrays give 10 kW at 1 AU.");
   if (solar_electric) {
     const std::string where = source + ": the spacecraft is solar-electric";
     const std::string body = b.central_body.value("name", "");
@@ -105,6 +110,24 @@ void check_complete(grammar::Builder& b, const std::string& source) {
       throw input_error(where + ", so the thrust follows from the power: drop the maximum thrust (" +
                         io::short_number(b.spacecraft["thrust_N"].get<double>()) + " N)");
     if (constant_mass) throw input_error(where + ": a solar-electric engine of constant mass is not supported");
+    if (fits) {
+      for (const char* key : {"engine_efficiency", "isp_s", "max_thrust_N"})
+        if (b.spacecraft.contains(key))
+          throw input_error(source + ": the spacecraft's " + key + " (" +
+                            io::short_number(b.spacecraft[key].get<double>()) +
+                            ") is stated, but the thruster's fits give its performance (its thrust and mass flow at "
+                            "each input power): drop the " +
+                            key);
+    } else if (!b.spacecraft.contains("engine_efficiency") || !b.spacecraft.contains("isp_s")) {
+      const bool eta = b.spacecraft.contains("engine_efficiency"), isp = b.spacecraft.contains("isp_s");
+      throw input_error(where + ", so its engine needs its " +
+                        (!eta && !isp ? "efficiency and specific impulse"
+                         : !eta       ? "efficiency"
+                                      : "specific impulse") +
+                        " ('with an efficiency of 0.6 and a specific impulse of 3000 s' in its sentence), or fits of "
+                        "its thrust and mass flow to its input power ('The thruster's thrust is 20 + 30 P mN and its "
+                        "mass flow is 1 + 0.6 P mg/s, with P its input power in kW up to 7 kW.')");
+    }
   }
   if (b.propulsion == "low_thrust") {
     // Minimizing the initial mass needs the final mass instead of the initial one.
@@ -115,7 +138,7 @@ void check_complete(grammar::Builder& b, const std::string& source) {
              {Field::Isp, "2000 s"},
              {find_m0 ? Field::FinalMass : Field::InitialMass, find_m0 ? "1500 kg" : "1000 kg"}})
       if (!(constant_mass && field == Field::Isp) && !(solar_electric && field == Field::Thrust) &&
-          !b.spacecraft.contains(detail::spec_key(field)))
+          !(fits && field == Field::Isp) && !b.spacecraft.contains(detail::spec_key(field)))
         missing(source, "the spacecraft's " + detail::spec_key(field), detail::controlled_form(field, example));
     const std::string extra = find_m0 ? "initial_mass_kg" : "final_mass_kg";
     if (b.spacecraft.contains(extra))
@@ -167,8 +190,9 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   doc["problem"] = b.problem;
   doc["central_body"] = b.central_body;
   json spacecraft = json::object();  // in one order, however the text states the facts
-  for (const char* k : {"thrust_N", "array_power_1AU_W", "bus_power_W", "max_engine_power_W", "max_thrust_N",
-                        "engine_efficiency", "isp_s", "initial_mass_kg", "final_mass_kg", "mass_model"})
+  for (const char* k : {"thrust_N", "array_power_1AU_W", "bus_power_W", "min_engine_power_W", "max_engine_power_W",
+                        "max_thrust_N", "thrust_polynomial_mN", "mass_flow_polynomial_mg_s", "engine_efficiency",
+                        "isp_s", "initial_mass_kg", "final_mass_kg", "mass_model"})
     if (b.spacecraft.contains(k)) spacecraft[k] = b.spacecraft[k];
   for (const auto& [k, v] : b.spacecraft.items())
     if (!spacecraft.contains(k)) spacecraft[k] = v;

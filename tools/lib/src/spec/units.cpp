@@ -180,6 +180,7 @@ const SpecUnit& spec_of(Dimension d) {
       {Dimension::Acceleration, {"mm/s^2", "mm/s^2, m/s^2, km/s^2", {1e-3, {1, -2, 0}}}},
       {Dimension::Angle, {"deg", "deg, rad", angle(DEG_TO_RAD)}},
       {Dimension::Power, {"W", "W, kW, MW", power(1.0)}},
+      {Dimension::MassFlow, {"kg/s", "mg/s, g/s, kg/s", {1.0, {0, -1, 1}}}},
   };
   return t.at(d);
 }
@@ -205,6 +206,8 @@ std::string dimension_name(Dimension d) {
       return "angle";
     case Dimension::Power:
       return "power";
+    case Dimension::MassFlow:
+      return "mass flow";
   }
   return "?";
 }

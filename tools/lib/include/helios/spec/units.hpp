@@ -5,9 +5,10 @@
 namespace helios::spec {
 
 // Time is stored in days (epochs, times of flight); Duration in seconds (specific impulse).
-enum class Dimension { Length, Speed, Force, Time, Duration, Mass, GravParam, Acceleration, Angle, Power };
+enum class Dimension { Length, Speed, Force, Time, Duration, Mass, GravParam, Acceleration, Angle, Power, MassFlow };
 
-// Name of the unit the spec stores a dimension in (km, km/s, N, days, s, kg, km^3/s^2, mm/s^2, deg, W).
+// Name of the unit the spec stores a dimension in (km, km/s, N, days, s, kg, km^3/s^2, mm/s^2, deg, W,
+// kg/s).
 std::string spec_unit(Dimension d);
 
 // `text` in lower case (units and body names are matched case-insensitively).

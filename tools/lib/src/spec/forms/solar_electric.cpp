@@ -5,7 +5,9 @@
 // (max_engine_power_W) or its maximum thrust (max_thrust_N, the cap a data sheet states: the input
 // power at which the engine gives it), its efficiency (engine_efficiency) and specific impulse;
 // clauses in any order, an initial mass among them too. The thrust follows from the power: a thrust
-// is only ever its cap.
+// is only ever its cap. A thruster given by fits of its thrust and mass flow to its input power
+// (forms/thruster_fits.cpp) takes the place of the efficiency and specific impulse: the text states
+// one or the other (parse.cpp's check_complete).
 #include "../form.hpp"
 #include "../grammar.hpp"
 
@@ -106,8 +108,6 @@ void read(Builder& b, const std::smatch& match) {
   }
   if (!b.spacecraft.contains("array_power_1AU_W"))
     throw sentence_error("a solar-electric engine needs its arrays' power at 1 AU ('its arrays give 10 kW at 1 AU')");
-  if (!b.spacecraft.contains("engine_efficiency"))
-    throw sentence_error("a solar-electric engine needs its efficiency ('an efficiency of 0.6')");
   const double p0 = b.spacecraft["array_power_1AU_W"].get<double>();
   if (b.spacecraft.value("bus_power_W", 0.0) >= p0)
     throw sentence_error("the bus power " + io::short_number(b.spacecraft["bus_power_W"].get<double>()) +
@@ -180,6 +180,16 @@ std::vector<Form> solar_electric() {
         {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU and a specific impulse of 3000 s and an "
          "initial mass of 1000 kg.",
          "sun -engine", R"~({"error": "needs its efficiency"})~"},
+        // S15's engine given by fits instead: its thrust and mass flow proportional to its input power
+        {"The spacecraft is solar-electric: its arrays give 20 kW at 1 AU, the bus uses 0.5 kW and an initial mass "
+         "of 1000 kg.\nThe thruster's thrust is 61.1829727786757 P mN and its mass flow is 3.1194634650301425 P mg/s, "
+         "with P its input power in kW up to 10 kW.",
+         "sun -engine",
+         R"~({"/spacecraft": {"array_power_1AU_W": 20000, "bus_power_W": 500, "max_engine_power_W": 10000,
+              "thrust_polynomial_mN": [0, 61.1829727786757], "mass_flow_polynomial_mg_s": [0, 3.1194634650301425],
+              "initial_mass_kg": 1000}})~"},
+        {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU and an initial mass of 1000 kg.",
+         "sun -engine", R"~({"error": "needs its efficiency and specific impulse"})~"},
         {"The spacecraft is solar-electric: its arrays give 10 kW at 1 AU, an efficiency of 0.6 and a specific "
          "impulse of 3000 s and an initial mass of 1000 kg.",
          "earth -engine", R"~({"error": "needs the Sun as the central body"})~"}}}};
