@@ -23,6 +23,8 @@ std::string Body::print(const GiNaC::ex& e) {
     }
   }
   for (const auto& name : symbolic::free_symbols(chosen)) used_.insert(name);
+  for (auto it = local_parts_.rbegin(); it != local_parts_.rend(); ++it)  // each uses earlier ones only
+    if (uses(it->first)) used_.insert(it->second.begin(), it->second.end());
   for (const auto& [name, parts] : relative_parts_)
     if (uses(name)) used_.insert(parts.begin(), parts.end());
   return text;
@@ -49,6 +51,12 @@ void Body::unpack_y() {
   for (std::size_t i = 0; i < c_.states.size(); ++i) unpack(c_.states[i], "y[" + std::to_string(i) + "]");
   for (std::size_t i = 0; i < c_.costates.size(); ++i)
     unpack(c_.costates[i], "y[" + std::to_string(c_.states.size() + i) + "]");
+  for (const auto& [q, expression] : c_.chain.order()) local(q.get_name(), expression);
+}
+
+void Body::local(const std::string& name, const GiNaC::ex& value) {
+  unpack(name, c_.cpp(value, dialect()));
+  local_parts_.emplace_back(name, symbolic::free_symbols(value));
 }
 
 void Body::unpack_variables(bool with_control) {

@@ -30,7 +30,11 @@ class Body {
   bool uses(const std::string& name) const { return used_.count(name) > 0; }
   // The line "  const <scalar> <name> = <value>;" (with "  // <comment>" when given), written if used.
   void unpack(const std::string& name, const std::string& value, const std::string& comment = "");
-  // The states then the costates from y[], as the runtime's modules have them.
+  // The local `name` = `value`, written if used, and then what `value` uses counts as used (it may
+  // use the locals made before it, not later ones).
+  void local(const std::string& name, const GiNaC::ex& value);
+  // The states then the costates from y[], as the runtime's modules have them, then the
+  // derivation's intermediates computed from them.
   void unpack_y();
   // unpack_y, then the controls from control[] (with_control) and the multipliers from mult.
   void unpack_variables(bool with_control);
@@ -67,6 +71,7 @@ class Body {
   std::set<std::string> used_;
   GiNaC::exmap relative_;                                                         // from -> to + name
   std::vector<std::pair<std::string, std::vector<std::string>>> relative_parts_;  // name -> {from, to}
+  std::vector<std::pair<std::string, std::vector<std::string>>> local_parts_;     // local -> the symbols it uses
 };
 
 }  // namespace helios::codegen::detail

@@ -24,7 +24,10 @@ int index_of(const std::vector<std::string>& v, const std::string& name);
 
 // The derivation as read (names, symbols, units) and the generator's helpers over it.
 struct Context : derivation::Document {
-  explicit Context(const json& derivation) : Document(derivation) {}
+  explicit Context(const json& derivation) : Document(derivation), chain(chain_rule()) {}
+
+  // The intermediates: each module computes them after unpacking y and differentiates through them.
+  const symbolic::ChainRule chain;
 
   // The variables of the normalization equation (the sphere: lambda0 and lambda(t0)).
   std::vector<std::string> sphere_variables() {

@@ -44,6 +44,39 @@ std::vector<GiNaC::ex> right_hand_sides(Context& c) {
   return rhs;
 }
 
+// The intermediates' gradients in the variables `vars`: locals d_<q>_<j> of a body (written where
+// used), each by the chain rule through the earlier ones, so that a derivative through an
+// intermediate names its gradient instead of repeating the expression in every entry.
+class Gradients {
+ public:
+  Gradients(Context& c, Body& body, const std::vector<GiNaC::symbol>& vars) : vars_(vars) {
+    for (const auto& [q, expression] : c.chain.order()) {
+      std::vector<GiNaC::ex> g(vars.size(), GiNaC::ex(0));
+      for (std::size_t j = 0; j < vars.size(); ++j) {
+        const GiNaC::ex d = through(expression, j);
+        if (d.is_zero()) continue;
+        const std::string name = "d_" + q.get_name() + "_" + std::to_string(j);
+        body.local(name, d);
+        g[j] = c.symbols.get(name);
+      }
+      q_.push_back(q);
+      gradient_.push_back(std::move(g));
+    }
+  }
+  // d e / d vars[j], through the intermediates.
+  GiNaC::ex through(const GiNaC::ex& e, std::size_t j) const {
+    GiNaC::ex d = e.diff(vars_[j]);
+    for (std::size_t i = 0; i < q_.size(); ++i)
+      if (!gradient_[i][j].is_zero() && e.has(q_[i])) d += e.diff(q_[i]) * gradient_[i][j];
+    return d;
+  }
+
+ private:
+  const std::vector<GiNaC::symbol>& vars_;
+  std::vector<GiNaC::symbol> q_;
+  std::vector<std::vector<GiNaC::ex>> gradient_;  // gradient_[i][j]: the local of d q_i / d vars[j], or 0
+};
+
 // dynamics_jacobian: dfdz[i * nz + j] = d dy_i / d z_j and dfdu[i * nc + k] = d dy_i / d control_k
 // at fixed control, zero where the derivative is identically zero.
 std::string dynamics_jacobian_function(Context& c) {
@@ -52,11 +85,12 @@ std::string dynamics_jacobian_function(Context& c) {
   const std::size_t ny = rhs.size(), nz = z.size(), nc = c.controls.size();
   Body body(c);
   body.unpack_variables(true);
+  const Gradients gradients(c, body, z);
   body.code() << "  std::fill(dfdz, dfdz + " << ny * nz << ", 0.0);\n";
   if (nc > 0) body.code() << "  std::fill(dfdu, dfdu + " << ny * nc << ", 0.0);\n";
   for (std::size_t i = 0; i < ny; ++i) {
     for (std::size_t j = 0; j < nz; ++j) {
-      const GiNaC::ex d = rhs[i].diff(z[j]);
+      const GiNaC::ex d = gradients.through(rhs[i], j);
       if (!d.is_zero()) body.code() << "  dfdz[" << i * nz + j << "] = " << body.cpp(d) << ";\n";
     }
     for (std::size_t k = 0; k < nc; ++k) {
@@ -95,7 +129,7 @@ std::string direction_jacobian_function(Context& c) {
     std::vector<std::vector<GiNaC::ex>> grads;  // grads[i][j] = d def_i / d y_j (a symbol or 0)
     // The derivative of e in y_j: its own and through each definition's gradient.
     auto total = [&](const GiNaC::ex& e, std::size_t j) {
-      GiNaC::ex d = e.diff(y[j]);
+      GiNaC::ex d = c.chain.diff(e, y[j]);
       for (std::size_t i = 0; i < defs.size(); ++i)
         if (!grads[i][j].is_zero()) d += e.diff(defs[i]) * grads[i][j];
       return d;
@@ -149,12 +183,13 @@ std::string throttle_jacobian_function(Context& c) {
   const std::vector<GiNaC::symbol> z = z_symbols(c);
   Body body(c);
   body.unpack_variables(false);
+  const Gradients gradients(c, body, z);
   body.code() << "  std::fill(d_lower, d_lower + " << z.size() << ", 0.0);\n"
               << "  std::fill(d_upper, d_upper + " << z.size() << ", 0.0);\n";
   for (const char* side : {"lower", "upper"}) {
     const GiNaC::ex e = c.parsed(std::string(side) == "lower" ? throttle.dH_du_at_lower : throttle.dH_du_at_upper);
     for (std::size_t j = 0; j < z.size(); ++j) {
-      const GiNaC::ex d = e.diff(z[j]);
+      const GiNaC::ex d = gradients.through(e, j);
       if (!d.is_zero()) body.code() << "  d_" << side << "[" << j << "] = " << body.cpp(d) << ";\n";
     }
   }
@@ -172,6 +207,7 @@ std::string throttle_jacobian_function(Context& c) {
 bool jacobian_supported(Context& c) {
   std::vector<GiNaC::ex> checked = right_hand_sides(c);
   checked.push_back(c.parsed(c.hamiltonian));
+  for (const auto& [q, expression] : c.chain.order()) checked.push_back(expression);
   for (const auto& e : checked)
     for (const auto& name : symbolic::free_symbols(e))
       if (name == "t") return false;

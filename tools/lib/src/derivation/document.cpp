@@ -3,6 +3,7 @@
 #include "helios/derivation/document.hpp"
 
 #include <cmath>
+#include <set>
 #include <stdexcept>
 
 #include "helios/io/error.hpp"
@@ -317,6 +318,17 @@ json equation_json(const sections::ShootingEquation<E>& q) {
 
 namespace sections {
 
+std::vector<Intermediate<Expression>> read_intermediates(const json& d) {
+  std::vector<Intermediate<Expression>> out;
+  const json& list = array(d, "intermediates", "", false);
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string where = at("/intermediates", i);
+    out.push_back({io::require_string(list[i], "name", where), io::require_string(list[i], "meaning", where),
+                   optional_text(list[i], "unit", where), expression(list[i], "expression", where)});
+  }
+  return out;
+}
+
 ControlLaw<Expression> read_control_law(const json& d) {
   const json& law = object(d, "control_law", "");
   ControlLaw<Expression> out;
@@ -397,6 +409,18 @@ Shooting<Expression> read_shooting(const json& d) {
 }
 
 template <class E>
+json to_json(const std::vector<Intermediate<E>>& intermediates) {
+  json out = json::array();
+  for (const auto& q : intermediates) {
+    json entry = {{"name", q.name}, {"meaning", q.meaning}};
+    put(entry, "unit", q.unit);
+    entry["expression"] = text(q.expression);
+    out.push_back(entry);
+  }
+  return out;
+}
+
+template <class E>
 json to_json(const ControlLaw<E>& law) {
   json out = json::object();
   if (law.direction) out["direction"] = direction_json(*law.direction);
@@ -433,6 +457,8 @@ json to_json(const Shooting<E>& shooting) {
 }
 
 // helios-derive writes the GiNaC form, a reader (and the round-trip tests) the Expression form.
+template json to_json(const std::vector<Intermediate<GiNaC::ex>>&);
+template json to_json(const std::vector<Intermediate<Expression>>&);
 template json to_json(const ControlLaw<GiNaC::ex>&);
 template json to_json(const ControlLaw<Expression>&);
 template json to_json(const std::vector<InitialValue<GiNaC::ex>>&);
@@ -453,6 +479,37 @@ Document::Document(const json& derivation, const std::string& file, bool parse_u
   } catch (const std::invalid_argument& e) {  // "field <pointer> ..."
     throw input_error(file + ": " + e.what());
   }
+  check_intermediates();
+}
+
+// An intermediate is a function of t, the states, the parameters and the earlier intermediates:
+// the readers evaluate them first and differentiate through them in the states only.
+void Document::check_intermediates() const {
+  std::set<std::string> allowed(states.begin(), states.end()), taken;
+  allowed.insert(parameters.begin(), parameters.end());
+  allowed.insert("t");
+  for (const auto* of : {&states, &costates, &controls, &parameters, &variables, &definitions, &event_values})
+    taken.insert(of->begin(), of->end());
+  taken.insert({"t", multiplier, homotopy});
+  for (const auto& q : intermediate_list) {
+    if (!symbolic::is_identifier(q.name) || taken.count(q.name))
+      throw input_error(file + ": field /intermediates: the name '" + q.name +
+                        "' is not an identifier or is taken by another symbol of the derivation");
+    taken.insert(q.name);
+    for (const auto& name : symbolic::free_symbols(parse(q.expression)))
+      if (!allowed.count(name))
+        throw input_error(
+            file + ": field " + q.expression.pointer + ": the intermediate " + q.name + " uses " + name +
+            "; an intermediate may use only t, the states, the parameters and the intermediates before it");
+    allowed.insert(q.name);
+  }
+}
+
+symbolic::ChainRule Document::chain_rule() const {
+  symbolic::ChainRule chain;
+  for (const auto& q : intermediate_list)
+    chain.add(GiNaC::ex_to<GiNaC::symbol>(symbols.symtab().at(q.name)), parse(q.expression));
+  return chain;
 }
 
 void Document::read_sections() {
@@ -471,6 +528,7 @@ void Document::read_sections() {
                       io::require_number(el, "argp_rad", w), io::require_number(el, "mean_anomaly_rad", w)});
   }
   times = read_times(d);
+  intermediate_list = sections::read_intermediates(d);
   const json& dyn = object(d, "dynamics", "");
   dynamics = {expressions(dyn, "state_rhs", "/dynamics"), expression(dyn, "running_cost", "/dynamics"),
               expression(dyn, "endpoint_cost", "/dynamics")};

@@ -169,6 +169,8 @@ void Reader::read_names(const std::string& file) {
         for (const auto& def : array_or_empty(d.at("control_law").at(kind), "definitions", "/control_law"))
           definitions.push_back(io::require_string(def, "name", "/control_law/" + std::string(kind) + "/definitions"));
   for (const auto& e : array_or_empty(d, "events", "")) events.push_back(io::require_string(e, "id", "/events"));
+  for (const auto& q : array_or_empty(d, "intermediates", ""))
+    intermediates.push_back(io::require_string(q, "name", "/intermediates"));
 }
 
 void Reader::register_symbols() {
@@ -192,6 +194,8 @@ void Reader::register_symbols() {
         symbols.get(names::after(n, id));
       }
   }
+  // Last, so that a derivation without intermediates makes its symbols as before.
+  for (const auto& n : intermediates) symbols.get(n);
 }
 
 const Quantity& Reader::parameter(const std::string& name) const {

@@ -151,6 +151,7 @@ void problem_sections(const Derivation& d, json& doc) {
   doc["terms"] = terms_json(p.terms);
   doc["homotopy"] = homotopy_json(d.smoothed);
   doc["multiplier"] = "lambda0";
+  if (!p.intermediates.empty()) doc["intermediates"] = derivation::sections::to_json(p.intermediates);
   doc["dynamics"] = {{"state_rhs", texts(p.f)},
                      {"running_cost", to_text(p.running_cost)},
                      {"endpoint_cost", to_text(p.endpoint_cost)}};

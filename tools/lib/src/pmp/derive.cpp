@@ -38,16 +38,18 @@ ShootingEquation constraint_equation(const std::string& name, const ex& expressi
 
 namespace {
 
-// H = lambda0 L + lambda^T f and its canonical system: x' = dH/dlambda, lambda' = -dH/dx.
+// H = lambda0 L + lambda^T f and its canonical system: x' = dH/dlambda, lambda' = -dH/dx (through
+// the intermediates f and L hold).
 void canonical_system(Derivation& d) {
   Problem& p = d.problem;
   auto& S = p.symbols;
+  const symbolic::ChainRule chain = p.chain_rule();
   d.hamiltonian = S.get("lambda0") * p.running_cost;
   for (std::size_t i = 0; i < p.states.size(); ++i) d.hamiltonian += S.get(names::costate(p.states[i].name)) * p.f[i];
   d.smoothed = d.hamiltonian.has(S.get("eps"));
   for (const auto& s : p.states) {
     d.state_odes.push_back(d.hamiltonian.diff(S.get(names::costate(s.name))));
-    d.costate_odes.push_back((-d.hamiltonian.diff(S.get(s.name))).expand());
+    d.costate_odes.push_back((-chain.diff(d.hamiltonian, S.get(s.name))).expand());
   }
 }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <stdexcept>
 
 #include "constraints.hpp"
@@ -48,6 +49,21 @@ bool Problem::has_state(const std::string& name) const {
   for (const auto& s : states)
     if (s.name == name) return true;
   return false;
+}
+
+symbolic::ChainRule Problem::chain_rule() const {
+  symbolic::ChainRule chain;
+  const auto symbol = [&](const std::string& name) { return GiNaC::ex_to<GiNaC::symbol>(symbols.symtab().at(name)); };
+  std::set<std::string> named;
+  for (const auto& q : intermediates) {
+    chain.add(symbol(q.name), q.expression);
+    named.insert(q.name);
+  }
+  for (const auto& q : intermediates)
+    for (const auto& s : states)
+      if (named.count(names::partial(q.name, s.name)))
+        chain.name_partial(symbol(q.name), symbol(s.name), symbol(names::partial(q.name, s.name)));
+  return chain;
 }
 
 bool Problem::has_control(const std::string& name) const {
@@ -147,6 +163,23 @@ void register_symbols(Problem& p) {
   S.get("eps");
 }
 
+// Each intermediate's own partial derivatives in the states, intermediates of their own
+// (names::partial): the costate equations then hold dT/dr as dT/dP dP_in_drx, not the power law's
+// gradient multiplied into every term.
+void state_partials(Problem& p) {
+  const std::size_t given = p.intermediates.size();
+  for (std::size_t i = 0; i < given; ++i)
+    for (const auto& s : p.states) {
+      const derivation::sections::Intermediate<ex> q = p.intermediates[i];
+      const ex d = q.expression.diff(p.symbols.get(s.name));
+      if (d.is_zero()) continue;
+      p.symbols.get(names::partial(q.name, s.name));
+      p.intermediates.push_back({names::partial(q.name, s.name),
+                                 "the partial derivative of " + q.name + " in " + s.name + " (at fixed intermediates)",
+                                 q.unit + "/" + s.unit, d});
+    }
+}
+
 // f(x, u): the sum of the force terms' accelerations and mass rates, each term listed; the
 // natural field's terms alone are the coast dynamics of coasting targets.
 void dynamics(Problem& p, const terms::ForceList& forces) {
@@ -170,6 +203,7 @@ void dynamics(Problem& p, const terms::ForceList& forces) {
   p.coast_f = {x.v[0], x.v[1], x.v[2], field[0], field[1], field[2]};
   p.f = {x.v[0], x.v[1], x.v[2], accel[0], accel[1], accel[2]};
   if (has_mass) p.f.push_back(mass_rate);
+  state_partials(p);
 }
 
 // The running cost L and the endpoint cost phi of the objective's cost term.

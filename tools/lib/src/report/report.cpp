@@ -387,6 +387,14 @@ std::string dotted(const std::string& tex) {
 }
 
 void Writer::equations(std::ostringstream& o) {
+  if (d_.contains("intermediates") && !d_.at("intermediates").empty()) {
+    o << "### Intermediates\n\nNamed quantities of the dynamics, evaluated in this order; the equations below use "
+         "their names and differentiate through them by the chain rule.\n\n";
+    for (const auto& q : d_.at("intermediates"))
+      o << markdown_text(q.value("meaning", "")) << " (" << code(q.value("name", "")) << ")"
+        << (q.value("unit", "").empty() ? "" : ", " + markdown_text(q.value("unit", ""))) << ":\n"
+        << display(tex_.symbol(q.value("name", "")), q.value("expression", ""), "/intermediates");
+  }
   o << "### Hamiltonian\n"
     << display("H", d_.at("hamiltonian"), "/hamiltonian")
     << findings([](const json& c) { return id_starts(c, "hamiltonian"); });

@@ -98,6 +98,9 @@ bool exact_proportional(const ex& a, const ex& b) {
 }
 
 ex tidy(const ex& e) {
+  // Beyond a few exact budgets the grouping's normal() runs for minutes (a fitted thruster's rows
+  // with its intermediates substituted): the feedback then shows the expression as it is.
+  if (tree_size(e, kTidyBudget) > kTidyBudget) return e;
   try {
     const ex x = e.expand();
     if (!GiNaC::is_a<GiNaC::add>(x)) return x;

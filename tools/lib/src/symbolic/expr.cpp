@@ -60,7 +60,7 @@ GiNaC::ex SymbolTable::parse(const std::string& text, const std::string& where) 
         << " terms; the limit of the symbolic work is " << kMaxExpandedTerms << " terms";
     throw std::invalid_argument(why.str());
   }
-  return e;
+  return substitutions_.empty() ? e : e.subs(substitutions_);
 }
 
 namespace {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -163,6 +164,10 @@ std::string latex_text(const std::string& text) {
 }
 
 std::string latex_symbol(const std::string& name) {
+  // An intermediate's partial derivative in a state (names::partial: dP_in_drx).
+  static const std::regex partial(R"(d([A-Za-z][A-Za-z0-9_]*)_d([A-Za-z][A-Za-z0-9]*))");
+  if (std::smatch m; std::regex_match(name, m, partial))
+    return "\\partial_{" + latex_symbol(m[2].str()) + "} " + latex_symbol(m[1].str());
   std::vector<std::string> parts = split(name);
   if (parts.empty() || std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
     return upright(name);

@@ -197,6 +197,14 @@ void Context::read_names() {
   }
   declare(multiplier, Kind::Multiplier);
   declare(eps, Kind::Homotopy);
+  // The intermediates (symbols without a slot): substituted wherever a claim names them, so that
+  // every check recomputes from the states, the parameters and its own arithmetic.
+  GiNaC::exmap substituted;
+  for (const auto& q : doc.intermediate_list) {
+    const ex e = symbols.parse(q.expression.text, "derivation: intermediates[" + q.name + "]");
+    substituted[symbols.get(q.name)] = e;
+    symbols.substitute_on_parse(substituted);
+  }
 }
 
 // The multipliers the constraints name (kind Free).

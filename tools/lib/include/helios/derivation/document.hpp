@@ -19,6 +19,7 @@
 #include "helios/derivation/sections.hpp"
 #include "helios/derivation/terms.hpp"
 #include "helios/io/json_io.hpp"
+#include "helios/symbolic/chain_rule.hpp"
 
 namespace helios::derivation {
 
@@ -111,6 +112,7 @@ class Document : public Reader {
   double homotopy_start = 1;
   std::vector<Body> bodies;
   Times times;
+  std::vector<Intermediate> intermediate_list;  // each in t, the states, the parameters and the earlier ones
   Dynamics dynamics;
   Expression hamiltonian;
   std::vector<Ode> state_odes, costate_odes;
@@ -125,10 +127,13 @@ class Document : public Reader {
 
   // `e` over the document's symbols; throws input_error "<file>: field <pointer>: cannot parse ...".
   GiNaC::ex parse(const Expression& e) const;
+  // The intermediates parsed, for differentiating through them or substituting them.
+  symbolic::ChainRule chain_rule() const;
 
  private:
   void read_sections();
   void read_events();
+  void check_intermediates() const;
 };
 
 }  // namespace helios::derivation

@@ -68,6 +68,11 @@ inline bool is_before_or_after(const std::string& name) {
   return ends_with(before_label("")) || ends_with(after_label(""));
 }
 
+// The intermediate that holds intermediate q's own partial derivative in state x (dP_in_drx).
+inline std::string partial(const std::string& q, const std::string& x) {
+  return "d" + q + "_d" + x;
+}
+
 inline std::string costate(const std::string& state) {
   return at(kCostate, state);
 }

@@ -77,6 +77,7 @@ class Reader {
   std::vector<std::string> events;             // interior events' ids
   std::vector<std::string> variables;          // the shooting variables, in x's order
   std::vector<std::string> definitions;        // control_law.direction/sail definitions' names
+  std::vector<std::string> intermediates;      // intermediates' names, in order
   std::vector<std::string> event_values;       // event_values' names
   std::string multiplier, homotopy;
   int throttle_index = -1;  // index of the throttle among the controls

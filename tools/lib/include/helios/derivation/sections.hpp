@@ -1,8 +1,8 @@
 #pragma once
 // The sections of the derivation artifact (schemas/derivation.schema.json) that its writer and its
 // readers share, defined once: the control law, the initial values, the event values and the
-// shooting system. Each struct is a template over how an expression is held: helios-derive fills
-// it with GiNaC expressions (pmp::Derivation, E = GiNaC::ex), the readers with the text and JSON
+// shooting system, and the intermediates of the dynamics. Each struct is a template over how an expression is held:
+// helios-derive fills it with GiNaC expressions (pmp::Derivation, E = GiNaC::ex), the readers with the text and JSON
 // pointer of each expression (derivation::Document, E = Expression). One to_json writes either;
 // one read_* reads the JSON back into the Expression form, strictly: a field missing or of the
 // wrong type throws std::invalid_argument "field <pointer> must be ..., got <value>", to which
@@ -27,6 +27,18 @@ struct Expression {
 };
 
 namespace sections {
+
+// intermediates[]: a named quantity of the dynamics (a solar-electric thruster's input power, its
+// thrust and mass flow at that power), a function of the time, the states, the parameters and the
+// earlier intermediates only, in order. Any other expression of the artifact may use its name:
+// a reader evaluates the intermediates first, and differentiates through them by the chain rule
+// (symbolic/chain_rule.hpp). They keep the expressions of an engine given by fits from expanding
+// into the powers of its power law.
+template <class E>
+struct Intermediate {
+  std::string name, meaning, unit;
+  E expression;
+};
 
 // A named intermediate expression of a direction or sail law.
 template <class E>
@@ -140,6 +152,8 @@ struct Shooting {
 
 // The JSON of each section, for E = GiNaC::ex and E = Expression.
 template <class E>
+io::json to_json(const std::vector<Intermediate<E>>& intermediates);
+template <class E>
 io::json to_json(const ControlLaw<E>& law);
 template <class E>
 io::json to_json(const std::vector<InitialValue<E>>& values);
@@ -148,6 +162,7 @@ template <class E>
 io::json to_json(const Shooting<E>& shooting);
 
 // Each section read from the artifact `d` (the whole document); an optional section absent reads empty.
+std::vector<Intermediate<Expression>> read_intermediates(const io::json& d);
 ControlLaw<Expression> read_control_law(const io::json& d);
 std::vector<InitialValue<Expression>> read_initial_values(const io::json& d);
 std::vector<EventValue> read_event_values(const io::json& d);
@@ -155,6 +170,7 @@ Shooting<Expression> read_shooting(const io::json& d);
 
 }  // namespace sections
 
+using Intermediate = sections::Intermediate<Expression>;
 using Definition = sections::Definition<Expression>;
 using DirectionLaw = sections::DirectionLaw<Expression>;
 using SailLaw = sections::SailLaw<Expression>;

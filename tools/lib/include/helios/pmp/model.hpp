@@ -10,7 +10,9 @@
 
 #include "helios/astro/kepler.hpp"
 #include "helios/derivation/names.hpp"
+#include "helios/derivation/sections.hpp"
 #include "helios/io/json_io.hpp"
+#include "helios/symbolic/chain_rule.hpp"
 #include "helios/symbolic/expr.hpp"
 
 namespace helios::pmp {
@@ -134,7 +136,11 @@ struct Problem {
   std::vector<std::string> perturbations;  // names of the accelerations added to two-body gravity
   std::vector<TermListing> terms;          // the forces, then the costs, whose sums are f and L
   std::vector<GiNaC::ex> f;                // state rhs, one per state (may contain the time symbol t)
-  SailModel sail;                          // when propulsion is solar_sail
+  // Named quantities f may hold (a fitted thruster's input power, thrust and mass flow), each in
+  // the states, the parameters and the earlier ones; the costate equations differentiate through
+  // them by the chain rule, and every expression of the derivation may keep their names.
+  std::vector<derivation::sections::Intermediate<GiNaC::ex>> intermediates;
+  SailModel sail;  // when propulsion is solar_sail
   // The engine's thrust at full throttle (Tmax, or a solar-electric engine's T(r)) with the
   // parameters it uses, and its mass-flow law, the flow at full throttle (Tmax/c, T(r)/c) with the
   // parameters that uses: recorded by the engine's term for the mass rate and the fuel cost (no flow
@@ -161,6 +167,8 @@ struct Problem {
   bool free_initial_mass = false;
   double final_mass = 1;
   bool has_state(const std::string& name) const;
+  // The intermediates, for differentiating through them.
+  symbolic::ChainRule chain_rule() const;
   bool has_control(const std::string& name) const;
 };
 

@@ -11,6 +11,7 @@ namespace helios::symbolic {
 // Expressions beyond this many nodes skip the exact comparison (a caller's random points still
 // decide): GiNaC's expand/normal grow quickly on large rational forms and a verdict must stay < 1 s.
 constexpr std::size_t kExactBudget = 1500;
+constexpr std::size_t kTidyBudget = 4 * kExactBudget;  // tidy() leaves a larger expression as it is
 
 // Number of nodes of an expression tree, counted up to `limit`.
 std::size_t tree_size(const GiNaC::ex& e, std::size_t limit);

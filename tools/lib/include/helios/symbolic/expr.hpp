@@ -7,6 +7,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace helios::symbolic {
@@ -56,9 +57,13 @@ class SymbolTable {
   // ("... would expand to about N terms").
   GiNaC::ex parse(const std::string& text, const std::string& where) const;
   const GiNaC::symtab& symtab() const { return table_; }
+  // From here on, parse() returns its expression with these symbols replaced: a reader that checks
+  // claims by its own arithmetic substitutes the derivation's intermediates in whatever it reads.
+  void substitute_on_parse(GiNaC::exmap substitutions) { substitutions_ = std::move(substitutions); }
 
  private:
   GiNaC::symtab table_;
+  GiNaC::exmap substitutions_;
 };
 
 // Text GiNaC's parser reads back (the default print form).
