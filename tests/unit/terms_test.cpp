@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <random>
 #include <set>
@@ -19,6 +20,7 @@
 #include "helios/io/schema.hpp"
 #include "helios/pmp/derive.hpp"
 #include "helios/spec/parse.hpp"
+#include "helios/symbolic/chain_rule.hpp"
 #include "helios/symbolic/expr.hpp"
 #include "helios/verify/verify.hpp"
 
@@ -694,4 +696,224 @@ TEST(Drag, WhatItCannotBeIsRefusedAndNeglectingItAddsNothing) {
   const std::string half = problem_text("S05") + "\nAtmospheric drag acts on the spacecraft with Cd = 2.2.\n";
   EXPECT_TRUE(contains(refusal_of(half), "atmospheric drag needs its area (m^2), the density (kg/m^3)"))
       << refusal_of(half);
+}
+
+// ---- a solar-electric thruster given by fits to its input power (pmp/terms/solar_electric_fits.cpp):
+// the intermediates P_in, T_P, F_P and P_in's gradient keep its rows short --------------------------
+
+const char* kFitsArrays = "The spacecraft is solar-electric: its arrays give 5 kW at 1 AU, the bus uses 0.3 kW.\n";
+const char* kNstarLike =
+    "The thruster's thrust is -1.9137 + 36.242 P - 0.5 P^2 mN and its mass flow is 0.47556 + 0.90209 P + 0.01 P^3 "
+    "mg/s for an input power P between 0.5 and 2.6 kW.\nThe spacecraft has an initial mass of 150 kg.";
+
+// A table with every name of derivation `d` and the intermediates substituted in whatever it parses.
+struct Substituted {
+  helios::symbolic::SymbolTable table;
+  helios::symbolic::Values values;  // the parameters'
+  explicit Substituted(const json& d) {
+    for (const auto& s : d["states"]) table.get(s["name"]), table.get(s["costate"]);
+    for (const auto& c : d["controls"]) table.get(c["name"]);
+    for (const auto& q : d["parameters"]) values[table.get(q["name"]).get_name()] = q["value"];
+    for (const char* n : {"lambda0", "eps", "t"}) table.get(n);
+    GiNaC::exmap inlined;
+    for (const auto& q : d.value("intermediates", json::array())) {
+      const GiNaC::ex e = table.parse(q["expression"].get<std::string>(), "intermediates");
+      inlined[table.get(q["name"])] = e;
+      table.substitute_on_parse(inlined);
+    }
+  }
+  double at(const json& text, const helios::symbolic::Values& point) {
+    return helios::symbolic::evaluate(table.parse(text.get<std::string>(), "derivation"), table, point);
+  }
+};
+
+// A random state and costate at the Sun's distance `dist` (AU), with a throttle and a direction.
+helios::symbolic::Values point_at(const json& d, const helios::symbolic::Values& parameters, double dist,
+                                  std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> uni(-1, 1);
+  helios::symbolic::Values at = parameters;
+  double dir[3] = {uni(rng), uni(rng), uni(rng)};
+  const double n = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+  at["rx"] = dist * dir[0] / n, at["ry"] = dist * dir[1] / n, at["rz"] = dist * dir[2] / n;
+  for (const char* v : {"vx", "vy", "vz"}) at[v] = 6 * uni(rng);
+  at["m"] = 0.7 + 0.2 * uni(rng);
+  for (const auto& s : d["states"]) at[s["costate"].get<std::string>()] = uni(rng);
+  at["lambda0"] = 0.5, at["eps"] = 0.3, at["t"] = 0, at["u"] = 0.6;
+  at["ax"] = 0.6, at["ay"] = 0.8, at["az"] = 0;
+  return at;
+}
+
+// S01's transfer with fits equal to S15's engine (T = 2 eta P / (g0 Isp), F = T / (g0 Isp)) derive S15's dynamics and
+// costate rates (its P_in kept by name and differentiated through), list their term and verify.
+TEST(FittedThruster, FitsEqualToTheEfficiencyEngineDeriveItsRows) {
+  const std::string fits =
+      "The spacecraft is solar-electric: its arrays give 20 kW at 1 AU, the bus uses 0.5 kW.\nThe thruster's thrust is "
+      "61.1829727786757 P mN and its mass flow is 3.1194634650301425 P mg/s, with P its input power in kW up to 10 "
+      "kW.\nThe spacecraft has an initial mass of 1000 kg.";
+  const json d = derive_text(s01_with(fits));
+  EXPECT_NO_THROW(helios::io::validate("derivation", d, "terms_test"));
+  std::vector<std::string> intermediates;
+  for (const auto& q : d["intermediates"]) intermediates.push_back(q["name"]);
+  EXPECT_EQ(intermediates, (std::vector<std::string>{"P_in", "T_P", "F_P", "dP_in_drx", "dP_in_dry", "dP_in_drz"}));
+  const auto terms = helios::derivation::read_terms(d, "fits");
+  ASSERT_EQ(terms->size(), 3u);
+  EXPECT_EQ((*terms)[1].name, "solar_electric_fitted_thrust");
+  EXPECT_EQ((*terms)[1].parameters.size(), 14u);  // P0 Pbus Pmax Pw T0..T4 F0..F4: no lowest power
+  EXPECT_EQ((*terms)[2].parameters, (*terms)[1].parameters);
+  for (const auto& row : d["costate_odes"]) EXPECT_LT(row["rhs"].get<std::string>().size(), 2000u) << row;
+  const json r = verify(d);
+  EXPECT_EQ(r["verdict"], "pass") << r.dump(1);
+  // S01's target in S15's units: the same points give the same rows (the parameters differ in name).
+  const json& s15 = derivation("S15");
+  Substituted fitted(d), efficiency(s15);
+  std::mt19937_64 rng(15);
+  for (const double dist : {0.7, 1.0, 1.38, 1.65, 3.0}) {
+    SCOPED_TRACE(dist);
+    helios::symbolic::Values at = point_at(d, fitted.values, dist, rng), at15 = at;
+    for (const auto& [name, value] : efficiency.values) at15[name] = value;
+    for (std::size_t i = 0; i < 7; ++i) {
+      const double a = fitted.at(d["state_odes"][i]["rhs"], at), b = efficiency.at(s15["state_odes"][i]["rhs"], at15);
+      EXPECT_NEAR(a, b, 1e-11 * (1 + std::fabs(b))) << "state " << i;
+      const double la = fitted.at(d["costate_odes"][i]["rhs"], at);
+      const double lb = efficiency.at(s15["costate_odes"][i]["rhs"], at15);
+      EXPECT_NEAR(la, lb, 1e-9 * (1 + std::fabs(lb))) << "costate " << i;
+    }
+  }
+}
+
+// Every row of S01's transfer by an NSTAR-like quadratic/cubic fit with a lowest power against numbers computed here:
+// the dynamics against the fits in SI at the input power of the text's watts, the costate rates
+// against central differences of H, the switching function against H along the throttle.
+TEST(FittedThruster, EveryDerivationRowAgreesWithTheFitsAndFiniteDifferences) {
+  const json d = derive_text(s01_with(std::string(kFitsArrays) + kNstarLike));
+  EXPECT_EQ(verify(d)["verdict"], "pass");
+  Substituted s(d);
+  const GiNaC::ex H = s.table.parse(d["hamiltonian"].get<std::string>(), "H");
+  const double AU_m = 149597870.691e3, year_s = 365.25 * 86400, mass_kg = 150;
+  const double accel_unit = AU_m / (year_s * year_s);
+  std::mt19937_64 rng(26);
+  // Through the cap (4.7 kW at 1 AU, 2.6 kW at 1.33 AU) and the lowest power (0.5 kW at 2.5 AU).
+  for (const double dist : {0.8, 1.0, 1.3, 1.33, 1.36, 1.65, 2.2, 2.45, 2.5, 2.55, 3.5}) {
+    SCOPED_TRACE(dist);
+    helios::symbolic::Values at = point_at(d, s.values, dist, rng);
+    const auto soft = [](double x, double w) { return (x + std::sqrt(x * x + w * w)) / 2; };
+    const double available = 5000 / (dist * dist) - 300;
+    const double P = soft(available, 3) - soft(available - 2600, 26) + soft(-2600, 26), kW = P / 1000;
+    const double on = 1 / (1 + std::exp(-(P - 500) / 5));
+    const double thrust_N = on * (-1.9137 + 36.242 * kW - 0.5 * kW * kW) * 1e-3;
+    const double flow_kg_s = on * (0.47556 + 0.90209 * kW + 0.01 * kW * kW * kW) * 1e-6;
+    const auto rhs = [&](std::size_t i, const helios::symbolic::Values& p) {
+      return s.at(d["state_odes"][i]["rhs"], p);
+    };
+    helios::symbolic::Values coast = at;
+    coast["u"] = 0;
+    const double accel = thrust_N / (mass_kg * at["m"]) / accel_unit, flow = flow_kg_s / mass_kg * year_s;
+    EXPECT_NEAR(rhs(3, at) - rhs(3, coast), 0.6 * 0.6 * accel, 1e-10 * (1 + std::fabs(accel)));
+    EXPECT_NEAR(rhs(6, at), -0.6 * flow, 1e-10 * (1 + flow));
+    if (on > 1e-3) EXPECT_NEAR(rhs(6, at) / (-0.6 * flow), 1.0, 1e-9);
+    for (std::size_t i = 0; i < 7; ++i) {
+      const std::string x = d["states"][i]["name"];
+      SCOPED_TRACE(x);
+      const double h = 1e-6 * std::max(1.0, std::fabs(at[x]));
+      helios::symbolic::Values plus = at, minus = at;
+      plus[x] += h;
+      minus[x] -= h;
+      const double fd =
+          -(helios::symbolic::evaluate(H, s.table, plus) - helios::symbolic::evaluate(H, s.table, minus)) / (2 * h);
+      EXPECT_NEAR(s.at(d["costate_odes"][i]["rhs"], at), fd, 1e-6 * (1 + std::fabs(fd)));
+    }
+    helios::symbolic::Values up = at, down = at;
+    up["eps"] = down["eps"] = 0;
+    up["u"] = 0.5 + 1e-4;
+    down["u"] = 0.5 - 1e-4;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::string a = d["control_law"]["direction"]["controls"][k];
+      up[a] = down[a] = s.at(d["control_law"]["direction"]["law"][k], at);
+    }
+    const double fd =
+        (helios::symbolic::evaluate(H, s.table, up) - helios::symbolic::evaluate(H, s.table, down)) / 2e-4;
+    EXPECT_NEAR(s.at(d["control_law"]["throttle"]["switching_function"], at), fd, 1e-7 * (1 + std::fabs(fd)));
+  }
+}
+
+// A costate row without its dT/dr part, a thrust fit changed in its intermediate, the power's
+// gradient changed, a step of another width: each fails verify, naming the row or the term; an
+// intermediate that uses a costate is refused in one line.
+TEST(FittedThruster, VerifyFailsAMutatedRowOrIntermediate) {
+  const json d = derive_text(s01_with(std::string(kFitsArrays) + kNstarLike));
+  const auto mutated = [&](const std::function<void(json&)>& change) {
+    json m = d;
+    change(m);
+    return m;
+  };
+  const auto replace_all = [](std::string s, const std::string& from, const std::string& to) {
+    for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
+      s.replace(at, from.size(), to);
+    return s;
+  };
+  const json no_dTdr = mutated(
+      [&](json& m) { m["costate_odes"][0]["rhs"] = replace_all(m["costate_odes"][0]["rhs"], "dP_in_drx", "0"); });
+  EXPECT_EQ(check(verify(no_dTdr), "costate_ode:l_rx")["verdict"], "fail");
+  const json thrust = mutated([&](json& m) {
+    m["intermediates"][1]["expression"] = replace_all(m["intermediates"][1]["expression"], "T1", "(1.01*T1)");
+  });
+  EXPECT_TRUE(contains(feedback(thrust, "dynamics_terms"), "solar_electric_fitted_thrust"))
+      << feedback(thrust, "dynamics_terms");
+  const json gradient = mutated([&](json& m) {
+    for (auto& q : m["intermediates"])
+      if (q["name"] == "dP_in_dry") q["expression"] = "1.01*(" + q["expression"].get<std::string>() + ")";
+  });
+  EXPECT_EQ(check(verify(gradient), "costate_ode:l_ry")["verdict"], "fail");
+  EXPECT_EQ(check(verify(gradient), "costate_ode:l_rx")["verdict"], "pass");
+  const json step = mutated([&](json& m) {
+    for (auto& q : m["parameters"])
+      if (q["name"] == "Pn") q["value"] = 3 * q["value"].get<double>();
+  });
+  EXPECT_TRUE(contains(feedback(step, "dynamics_terms"), "is not 1% of Pmin")) << feedback(step, "dynamics_terms");
+  const json costate = mutated([&](json& m) { m["intermediates"][0]["expression"] = "l_rx"; });
+  try {
+    helios::verify::verify_derivation(costate, {});
+    ADD_FAILURE() << "an intermediate in a costate was read";
+  } catch (const std::exception& e) {
+    EXPECT_TRUE(contains(e.what(), "the intermediate P_in uses l_rx")) << e.what();
+  }
+}
+
+// What the fits cannot be: negative where the engine runs (without a lowest power the range starts
+// at no power), beside an efficiency (the sentence's refusal), or without arrays.
+TEST(FittedThruster, AFitNegativeWhereTheEngineRunsIsRefused) {
+  const std::string no_bottom = refusal_of(s01_with(
+      std::string(kFitsArrays) +
+      "The thruster's thrust is -1.9137 + 36.242 P mN and its mass flow is 0.47556 + 0.90209 P mg/s, with P its input "
+      "power in kW up to 2.6 kW.\nThe spacecraft has an initial mass of 150 kg."));
+  EXPECT_TRUE(contains(no_bottom, "-1.91")) << no_bottom;
+  EXPECT_TRUE(contains(no_bottom, "state the range's bottom")) << no_bottom;
+  json spec = helios::spec::parse_problem_text(s01_with(std::string(kFitsArrays) + kNstarLike), "problem.txt");
+  spec["spacecraft"]["mass_flow_polynomial_mg_s"] = json::array({0.47556, -0.5});
+  try {
+    helios::pmp::derive_from_spec(spec);
+    ADD_FAILURE() << "a mass flow negative at 2.6 kW was derived";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_TRUE(contains(e.what(), "field /spacecraft/mass_flow_polynomial_mg_s")) << e.what();
+  }
+}
+
+// The chain rule through named intermediates differentiates as the substituted expression does,
+// and a named partial stands for its intermediate's own derivative.
+TEST(ChainRule, DifferentiatesThroughIntermediatesAsTheirSubstitution) {
+  const GiNaC::symbol x("x"), y("y"), p("p"), q("q"), dp("dp");
+  helios::symbolic::ChainRule chain;
+  chain.add(p, GiNaC::sqrt(x * x + y));
+  chain.add(q, GiNaC::pow(p, 3) + x * p);
+  const GiNaC::ex e = q * GiNaC::sin(p) + x;
+  for (const auto& v : {x, y}) {
+    const GiNaC::ex through = chain.substituted(chain.diff(e, v)), direct = chain.substituted(e).diff(v);
+    EXPECT_TRUE((through - direct).subs(GiNaC::lst{x == 0.7, y == 1.3}).evalf().is_zero() ||
+                std::fabs(GiNaC::ex_to<GiNaC::numeric>((through - direct).subs(GiNaC::lst{x == 0.7, y == 1.3}).evalf())
+                              .to_double()) < 1e-12);
+  }
+  chain.add(dp, GiNaC::sqrt(x * x + y).diff(x));
+  chain.name_partial(p, x, dp);
+  EXPECT_TRUE(chain.diff(p * p, x).is_equal(2 * p * dp));
+  EXPECT_THROW(chain.add(p, x), std::invalid_argument);
 }

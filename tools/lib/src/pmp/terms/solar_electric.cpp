@@ -32,8 +32,6 @@
 namespace helios::pmp::terms {
 namespace {
 
-constexpr double kSmoothWidth = 0.01;  // of Pmax
-
 class SolarElectric : public ForceTerm {
  public:
   SolarElectric(const json& sc, const Units& U, std::string mass_unit)
@@ -98,23 +96,7 @@ class SolarElectric : public ForceTerm {
   }
   std::vector<ex> acceleration(Problem& p, const Frame& x) const override {
     auto& S = p.symbols;
-    const ex r2 = x.r[0] * x.r[0] + x.r[1] * x.r[1] + x.r[2] * x.r[2];
-    const ex available = S.get("P0") / r2 - S.get("Pbus");
-    ex input = available;
-    if (bus_ > 0) {  // floored at zero (the soft positive part of width Pf), and capped as above
-      const ex Pf = kSmoothWidth * S.get("Pbus"), floor_root = GiNaC::sqrt(GiNaC::pow(available, 2) + Pf * Pf);
-      if (!cap_) {
-        input = (available + floor_root) / 2;
-      } else {
-        const ex Pmax = S.get("Pmax"), Pw = S.get("Pw");
-        input =
-            (floor_root + GiNaC::sqrt(Pmax * Pmax + Pw * Pw) - GiNaC::sqrt(GiNaC::pow(available - Pmax, 2) + Pw * Pw)) /
-            2;
-      }
-    } else if (cap_) {
-      const ex Pmax = S.get("Pmax"), Pw = S.get("Pw");
-      input = (available + Pmax - GiNaC::sqrt(GiNaC::pow(available - Pmax, 2) + Pw * Pw)) / 2;
-    }
+    const ex input = solar_input_power(S, x, bus_ > 0, cap_);
     p.max_thrust = 2 * S.get("eta") * input / S.get("c");
     p.max_mass_flow = p.max_thrust / S.get("c");
     p.thrust_parameters.clear();
@@ -134,11 +116,27 @@ class SolarElectric : public ForceTerm {
 
 std::unique_ptr<ForceTerm> build(const TermSource& s) {
   const json& sc = s.spec.at("spacecraft");
-  if (s.problem.propulsion == "solar_sail" || !sc.contains("array_power_1AU_W")) return nullptr;
+  if (s.problem.propulsion == "solar_sail" || !sc.contains("array_power_1AU_W") || fitted_engine(sc)) return nullptr;
   return std::make_unique<SolarElectric>(sc, s.problem.units, s.mass_unit);
 }
 
 }  // namespace
+
+ex solar_input_power(symbolic::SymbolTable& S, const Frame& x, bool bus, bool cap) {
+  const ex r2 = x.r[0] * x.r[0] + x.r[1] * x.r[1] + x.r[2] * x.r[2];
+  const ex available = S.get("P0") / r2 - S.get("Pbus");
+  if (bus) {  // floored at zero (the soft positive part of width Pf), and capped as above
+    const ex Pf = kSmoothWidth * S.get("Pbus"), floor_root = GiNaC::sqrt(GiNaC::pow(available, 2) + Pf * Pf);
+    if (!cap) return (available + floor_root) / 2;
+    const ex Pmax = S.get("Pmax"), Pw = S.get("Pw");
+    return (floor_root + GiNaC::sqrt(Pmax * Pmax + Pw * Pw) - GiNaC::sqrt(GiNaC::pow(available - Pmax, 2) + Pw * Pw)) /
+           2;
+  }
+  if (!cap) return available;
+  const ex Pmax = S.get("Pmax"), Pw = S.get("Pw");
+  return (available + Pmax - GiNaC::sqrt(GiNaC::pow(available - Pmax, 2) + Pw * Pw)) / 2;
+}
+
 }  // namespace helios::pmp::terms
 
 namespace helios::pmp::catalogue {

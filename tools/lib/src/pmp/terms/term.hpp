@@ -82,6 +82,17 @@ inline std::string acceleration_unit(const Units& U) {
 inline std::string mu_unit(const Units& U) {
   return U.length_name + "^3/" + U.time_name + "^2";
 }
+// A solar-electric engine's input power at the spacecraft's distance (solar_electric.cpp): the
+// arrays' P0/r^2 (r in AU) less the bus's Pbus, floored at zero where a bus is and capped at Pmax
+// (a cap), each softly over its width, kSmoothWidth of Pbus and of Pmax (Pw).
+constexpr double kSmoothWidth = 0.01;
+ex solar_input_power(symbolic::SymbolTable& S, const Frame& x, bool bus, bool cap);
+// True if the spacecraft's engine is given by fits of its thrust and mass flow to its input power
+// (solar_electric_fits.cpp) rather than by an efficiency and a specific impulse.
+inline bool fitted_engine(const json& spacecraft) {
+  return spacecraft.contains("thrust_polynomial_mN") || spacecraft.contains("mass_flow_polynomial_mg_s");
+}
+
 // A gravitational parameter [km^3/s^2] in the units U.
 inline double normalized_mu(double mu_km3_s2, const Units& U) {
   return mu_km3_s2 * U.time_s * U.time_s / (U.length_km * U.length_km * U.length_km);

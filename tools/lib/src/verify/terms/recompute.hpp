@@ -58,6 +58,11 @@ struct Recomputation {
   ex (*full_flow)(const Frame& x, const std::vector<ex>& q) = nullptr;
 };
 
+// A solar-electric engine's input power (solar_electric.cpp): the arrays' P0/d^2 at the Sun's
+// distance d in AU less the bus Pbus, floored at zero softly over Pbus/100 where a bus is, and
+// capped softly at Pmax over Pw (no cap where Pmax is 0).
+ex input_power(const Frame& x, const ex& P0, const ex& Pbus, const ex& Pmax, const ex& Pw);
+
 // Every file's recomputations, in no order (the build's list), and the one of `name` or nullptr.
 std::vector<Recomputation> all_files();
 const Recomputation* find(const std::string& name);

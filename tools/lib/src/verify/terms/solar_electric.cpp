@@ -6,25 +6,30 @@
 #include "recompute.hpp"
 
 namespace helios::verify::detail::recompute {
-namespace {
 
-ex full_thrust(const Frame& x, const std::vector<ex>& q) {
+ex input_power(const Frame& x, const ex& P0, const ex& Pbus, const ex& Pmax, const ex& Pw) {
   const ex d = x.radius();
-  const ex available = q[0] * GiNaC::pow(d, -2) - q[1];
+  const ex available = P0 * GiNaC::pow(d, -2) - Pbus;
   // max(y, 0) softened over a width w
   const auto soft_positive = [](const ex& y, const ex& w) { return (y + GiNaC::sqrt(y * y + w * w)) / 2; };
-  const bool bus = x.value(q[1]) > 0;
+  const bool bus = x.value(Pbus) > 0;
   ex input = available;
-  if (bus) input = soft_positive(available, q[1] / 100);
-  if (q.size() == 6) {
+  if (bus) input = soft_positive(available, Pbus / 100);
+  if (!Pmax.is_zero()) {
     // At most Pmax: less the soft excess over it. Where a bus is, plus that excess at no power, so
     // that no power gives no thrust.
     if (bus)
-      input += soft_positive(-q[4], q[5]) - soft_positive(available - q[4], q[5]);
+      input += soft_positive(-Pmax, Pw) - soft_positive(available - Pmax, Pw);
     else
-      input = q[4] - soft_positive(q[4] - available, q[5]);
+      input = Pmax - soft_positive(Pmax - available, Pw);
   }
-  return 2 * q[2] * input / q[3];
+  return input;
+}
+
+namespace {
+
+ex full_thrust(const Frame& x, const std::vector<ex>& q) {
+  return 2 * q[2] * input_power(x, q[0], q[1], q.size() == 6 ? q[4] : ex(0), q.size() == 6 ? q[5] : ex(0)) / q[3];
 }
 
 std::optional<Rates> rates(const Frame& x, const derivation::Term& t, const std::vector<ex>& q, Check& c) {
