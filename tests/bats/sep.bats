@@ -3,7 +3,8 @@
 # parses, derives with T(r) = 2 eta P_in(r)/(g0 Isp) and its dT/dr in the costates, verifies, and
 # solves S15 (S01 flown by it) from a cold start with the default settings; the thrust the trajectory
 # burns at the arrival is the power law's; in the 1-AU limit (the cap binding throughout) the engine is
-# S01's constant one and the final mass S01's.
+# S01's constant one and the final mass S01's. A thruster given by fits to its input power flies the
+# same way.
 
 load test_helper
 
@@ -98,6 +99,54 @@ EOF
   echo "tof $(jq '.tof_days' "$sol") d, delta-v $(jq '.delta_v_m_s' "$sol") m/s, propellant $(jq '.propellant_kg' "$sol") kg"
   assert_jq "$sol" '.delta_v_m_s > 5465.59 and .delta_v_m_s < 1.02 * 5465.59'
   within "$(jq '.propellant_kg' "$sol")" "$(jq '1000 * (1 - ((-.delta_v_m_s / (9.80665 * 3000)) | exp))' "$sol")" 1e-6
+}
+
+# A thruster given by fits of its thrust and mass flow to its input power (NSTAR, NEXT): linear fits
+# equal to S15's engine (T = 2 eta P/(g0 Isp), F = T/(g0 Isp)) fly S15's extremal, its input power
+# and gradient kept as the derivation's intermediates.
+@test "sep: fits equal to S15's engine give S15's final mass, with the power kept as an intermediate" {
+  mkdir -p "$WORK/fits" "$WORK/s15"
+  sed -e "s/, the engine takes at most 10 kW with an efficiency of 0.6 and a specific impulse of 2000 s\./.\nThe thruster's thrust is 61.1829727786757 P mN and its mass flow is 3.1194634650301425 P mg\/s, with P its input power in kW up to 10 kW./" \
+    "$ROOT/scenarios/S15/problem.txt" >"$WORK/fits/problem.txt"
+  grep -q 'thruster' "$WORK/fits/problem.txt"
+  [[ -f $WORK/s15/solution.json ]] || { cp "$ROOT/scenarios/S15/problem.txt" "$WORK/s15/" && run_chain "$WORK/s15/problem.txt" "" "$WORK/s15"; }
+  run_chain "$WORK/fits/problem.txt" "" "$WORK/fits"
+  assert_jq "$WORK/fits/verify.json" '.verdict == "pass"'
+  assert_jq "$WORK/fits/derivation.json" '[.terms[].name] == ["two_body", "solar_electric_fitted_thrust", "fuel"] and [.intermediates[].name] == ["P_in", "T_P", "F_P", "dP_in_drx", "dP_in_dry", "dP_in_drz"]'
+  assert_jq "$WORK/fits/solution.json" '.status == "converged" and .start == "cold" and .epsilon == 0 and .max_residual < 1e-10'
+  echo "S15 $(jq '.final_mass_kg' "$WORK/s15/solution.json") kg, its engine as fits $(jq '.final_mass_kg' "$WORK/fits/solution.json") kg"
+  within "$(jq '.final_mass_kg' "$WORK/fits/solution.json")" "$(jq '.final_mass_kg' "$WORK/s15/solution.json")" 1e-10
+}
+
+# An NSTAR-like thruster (a quadratic thrust and a cubic mass flow in P, 0.5 to 2.6 kW) on S01's
+# transfer with 5 kW arrays: converged cold and verified; the mass flow a burn's samples burn is the
+# fit's at the input power of their distance (smooth cap and step as derived).
+@test "sep: an NSTAR-like thruster given by fits converges cold, its burn's mass flow the fit's" {
+  mkdir -p "$WORK/nstar"
+  sed -e "s/^The spacecraft has a maximum thrust of 0.5 N, a specific impulse of 2000 s and an initial mass of 1000 kg.\$/The spacecraft is solar-electric: its arrays give 5 kW at 1 AU, the bus uses 0.3 kW.\nThe thruster's thrust is -1.9137 + 36.242 P - 0.5 P^2 mN and its mass flow is 0.47556 + 0.90209 P + 0.01 P^3 mg\/s for an input power P between 0.5 and 2.6 kW.\nThe spacecraft has an initial mass of 150 kg./" \
+    "$S01/problem.txt" >"$WORK/nstar/problem.txt"
+  grep -q 'thruster' "$WORK/nstar/problem.txt"
+  run_chain "$WORK/nstar/problem.txt" "" "$WORK/nstar"
+  local dir="$WORK/nstar"
+  assert_jq "$dir/verify.json" '.verdict == "pass"'
+  assert_jq "$dir/solution.json" '.status == "converged" and .start == "cold" and .epsilon == 0 and .max_residual < 1e-10 and .search.saturated'
+  awk -F, -v AU=149597870.691 '
+    NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+    { t[NR] = $1; m[NR] = $col["m_kg"]; u[NR] = $col["u"]; x[NR] = $col["rx_km"]; y[NR] = $col["ry_km"]; z[NR] = $col["rz_km"]; n = NR }
+    END {
+      for (k = n; k > 2 && !(u[k] == 1 && u[k - 1] == 1 && t[k] > t[k - 1]); k--) ;
+      if (k <= 2) { print "no burn in the trajectory"; exit 1 }
+      measured = -(m[k] - m[k - 1]) / ((t[k] - t[k - 1]) * 86400) * 1e6
+      r = sqrt(((x[k] + x[k - 1]) / 2) ^ 2 + ((y[k] + y[k - 1]) / 2) ^ 2 + ((z[k] + z[k - 1]) / 2) ^ 2) / AU
+      pa = 5000 / (r * r) - 300; pmax = 2600; w = 26; f = 3
+      p = (sqrt(pa * pa + f * f) + sqrt(pmax * pmax + w * w) - sqrt((pa - pmax) ^ 2 + w * w)) / 2 / 1000
+      on = 1 / (1 + exp(-(p * 1000 - 500) / 5))
+      want = on * (0.47556 + 0.90209 * p + 0.01 * p ^ 3)
+      printf "day %.3f r %.6f AU, input power %.6g kW: measured %.9g mg/s, the fit %.9g mg/s\n", t[k], r, p, measured, want
+      d = measured - want; if (d < 0) d = -d
+      exit !(d < 1e-5 * want)
+    }' "$dir/trajectory.csv" >"$dir/flow.txt" || { cat "$dir/flow.txt" >&2; return 1; }
+  cat "$dir/flow.txt"
 }
 
 @test "sep: a wrong sentence is refused in one line naming the field and the value" {
