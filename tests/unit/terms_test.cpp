@@ -329,6 +329,27 @@ TEST(Terms, AConstantMassIsRefusedWhereItContradictsTheText) {
 
 // ---- A solar-electric engine (issue 48): T(r) = 2 eta P_in(r)/c, the costates carry dT/dr -----------
 
+// A table with every name of derivation `d` and the intermediates substituted in whatever it parses.
+struct Substituted {
+  helios::symbolic::SymbolTable table;
+  helios::symbolic::Values values;  // the parameters'
+  explicit Substituted(const json& d) {
+    for (const auto& s : d["states"]) table.get(s["name"]), table.get(s["costate"]);
+    for (const auto& c : d["controls"]) table.get(c["name"]);
+    for (const auto& q : d["parameters"]) values[table.get(q["name"]).get_name()] = q["value"];
+    for (const char* n : {"lambda0", "eps", "t"}) table.get(n);
+    GiNaC::exmap inlined;
+    for (const auto& q : d.value("intermediates", json::array())) {
+      const GiNaC::ex e = table.parse(q["expression"].get<std::string>(), "intermediates");
+      inlined[table.get(q["name"])] = e;
+      table.substitute_on_parse(inlined);
+    }
+  }
+  double at(const json& text, const helios::symbolic::Values& point) {
+    return helios::symbolic::evaluate(table.parse(text.get<std::string>(), "derivation"), table, point);
+  }
+};
+
 const char* kS01Engine =
     "The spacecraft has a maximum thrust of 0.5 N, a specific impulse of 2000 s and an initial mass of 1000 kg.";
 const char* kS15Engine =
@@ -379,7 +400,8 @@ TEST(SolarElectric, TheSentenceIsDerivedAsOneTermWithRolesAndVerified) {
                                                        {"Pw", "thrust_scale"}}));
   // The thrust continuation multiplies every thrust_scale parameter by one factor: T(r), and so the
   // mass flow, must scale by it exactly, on either side of the cap.
-  helios::symbolic::SymbolTable table;
+  Substituted substituted(d);  // P_in and its gradient substituted
+  helios::symbolic::SymbolTable& table = substituted.table;
   for (const auto& s : d["states"]) table.get(s["name"]);
   for (const auto& c : d["controls"]) table.get(c["name"]);
   helios::symbolic::Values own, scaled;
@@ -407,7 +429,8 @@ TEST(SolarElectric, TheSentenceIsDerivedAsOneTermWithRolesAndVerified) {
 // against a central difference of H along the throttle with the direction's law.
 TEST(SolarElectric, EveryDerivationRowAgreesWithFiniteDifferences) {
   const json& d = derivation("S15");
-  helios::symbolic::SymbolTable table;
+  Substituted substituted(d);  // P_in and its gradient substituted
+  helios::symbolic::SymbolTable& table = substituted.table;
   std::vector<std::string> states, costates;
   for (const auto& s : d["states"]) {
     states.push_back(s["name"]);
@@ -492,7 +515,8 @@ TEST(SolarElectric, EveryDerivationRowAgreesWithFiniteDifferences) {
 // thrust, a cap of another width: each fails verify, naming the row or the term.
 TEST(SolarElectric, VerifyFailsAMutatedDTdrRowOrThrust) {
   const json& d = derivation("S15");
-  helios::symbolic::SymbolTable table;
+  Substituted substituted(d);  // P_in and its gradient substituted
+  helios::symbolic::SymbolTable& table = substituted.table;
   for (const auto& s : d["states"]) table.get(s["name"]), table.get(s["costate"]);
   for (const auto& c : d["controls"]) table.get(c["name"]);
   for (const auto& q : d["parameters"]) table.get(q["name"]);
@@ -587,7 +611,8 @@ TEST(SolarElectric, WithTheCapAlwaysBindingTheThrustIsTheConstantEngines) {
   for (const auto& q : sep["parameters"])
     if (q["name"] == "c") c_sep = q["value"];
   EXPECT_DOUBLE_EQ(c_sep, c_s01);
-  helios::symbolic::SymbolTable table;
+  Substituted substituted(sep);  // P_in and its gradient substituted
+  helios::symbolic::SymbolTable& table = substituted.table;
   for (const auto& s : sep["states"]) table.get(s["name"]);
   for (const auto& c : sep["controls"]) table.get(c["name"]);
   helios::symbolic::Values at;
@@ -705,27 +730,6 @@ const char* kFitsArrays = "The spacecraft is solar-electric: its arrays give 5 k
 const char* kNstarLike =
     "The thruster's thrust is -1.9137 + 36.242 P - 0.5 P^2 mN and its mass flow is 0.47556 + 0.90209 P + 0.01 P^3 "
     "mg/s for an input power P between 0.5 and 2.6 kW.\nThe spacecraft has an initial mass of 150 kg.";
-
-// A table with every name of derivation `d` and the intermediates substituted in whatever it parses.
-struct Substituted {
-  helios::symbolic::SymbolTable table;
-  helios::symbolic::Values values;  // the parameters'
-  explicit Substituted(const json& d) {
-    for (const auto& s : d["states"]) table.get(s["name"]), table.get(s["costate"]);
-    for (const auto& c : d["controls"]) table.get(c["name"]);
-    for (const auto& q : d["parameters"]) values[table.get(q["name"]).get_name()] = q["value"];
-    for (const char* n : {"lambda0", "eps", "t"}) table.get(n);
-    GiNaC::exmap inlined;
-    for (const auto& q : d.value("intermediates", json::array())) {
-      const GiNaC::ex e = table.parse(q["expression"].get<std::string>(), "intermediates");
-      inlined[table.get(q["name"])] = e;
-      table.substitute_on_parse(inlined);
-    }
-  }
-  double at(const json& text, const helios::symbolic::Values& point) {
-    return helios::symbolic::evaluate(table.parse(text.get<std::string>(), "derivation"), table, point);
-  }
-};
 
 // A random state and costate at the Sun's distance `dist` (AU), with a throttle and a direction.
 helios::symbolic::Values point_at(const json& d, const helios::symbolic::Values& parameters, double dist,

@@ -21,7 +21,9 @@
 // of its square grows the program tenfold and loses the power to cancellation near the Sun.
 // The thrust depends on the position, so H's r-derivatives (the costate rates), the switching
 // function and the throttle law carry T(r) and dT/dr: the derivation finds them from H, nothing
-// here is written for them.
+// here is written for them. The input power is the derivation's intermediate P_in: the costate
+// rates hold its gradient by name (dP_in_drx, ...), not its expansion (S15's program 859 KB with
+// it expanded).
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -96,8 +98,10 @@ class SolarElectric : public ForceTerm {
   }
   std::vector<ex> acceleration(Problem& p, const Frame& x) const override {
     auto& S = p.symbols;
-    const ex input = solar_input_power(S, x, bus_ > 0, cap_);
-    p.max_thrust = 2 * S.get("eta") * input / S.get("c");
+    const std::string power = mass_unit_ + "*" + L_ + "^2/" + T_ + "^3";
+    p.intermediates = {{"P_in", "the engine's input power at the spacecraft's distance", power,
+                        solar_input_power(S, x, bus_ > 0, cap_)}};
+    p.max_thrust = 2 * S.get("eta") * S.get("P_in") / S.get("c");
     p.max_mass_flow = p.max_thrust / S.get("c");
     p.thrust_parameters.clear();
     for (const auto& q : parameters()) p.thrust_parameters.push_back(q.name);
