@@ -263,10 +263,10 @@ TEST(DerivationDocument, AMistypedOptionalFieldOfASharedSectionNamesItsPointer) 
   EXPECT_EQ(document_error(d), "");
 }
 
-// The derivation of every scenario: S01..S14, and the sweep P01 at its first cell.
+// The derivation of every scenario: S01..S15, and the sweep P01 at its first cell.
 std::vector<std::pair<std::string, json>> every_derivation() {
   std::vector<std::pair<std::string, json>> out;
-  for (int k = 1; k <= 14; ++k) {
+  for (int k = 1; k <= 15; ++k) {
     const std::string s = std::string(k < 10 ? "S0" : "S") + std::to_string(k);
     out.emplace_back(s, derivation_of(s));
   }
@@ -287,6 +287,10 @@ TEST(DerivationSections, WriteReadWriteGivesTheSameJson) {
     EXPECT_EQ(sections::to_json(doc.event_value_list).dump(), d.value("event_values", json::array()).dump())
         << scenario;
     EXPECT_EQ(sections::to_json(doc.shooting).dump(), d.at("shooting").dump()) << scenario;
+    EXPECT_EQ(sections::to_json(doc.intermediate_list).dump(), d.value("intermediates", json::array()).dump())
+        << scenario;
+    EXPECT_EQ(sections::to_json(doc.constraints).dump(), d.at("constraints").dump()) << scenario;
+    EXPECT_EQ(sections::to_json(doc.interior_events).dump(), d.value("events", json::array()).dump()) << scenario;
   }
 }
 

@@ -119,67 +119,6 @@ std::vector<Ode> read_odes(const json& d, const std::string& key, const std::str
   return out;
 }
 
-std::vector<SideCondition> read_side_conditions(const json& obj, const std::string& where) {
-  std::vector<SideCondition> out;
-  if (!obj.contains("must_be_positive")) return out;
-  const json& list = array(obj, "must_be_positive", where);
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string w = at(where + "/must_be_positive", i);
-    out.push_back({expression(list[i], "expression", w), io::require_string(list[i], "meaning", w)});
-  }
-  return out;
-}
-
-std::vector<Constraint> read_constraints(const json& d) {
-  std::vector<Constraint> out;
-  const json& list = array(d, "constraints", "");
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string where = at("/constraints", i);
-    Constraint c;
-    c.id = io::require_string(list[i], "id", where);
-    c.kind = io::require_string(list[i], "kind", where);
-    c.at = io::require_string(list[i], "at", where);
-    c.psi = expressions(list[i], "psi", where);
-    c.multipliers = strings(list[i], "multipliers", where);
-    c.must_be_positive = read_side_conditions(list[i], where);
-    c.target = optional_json(list[i], "target");
-    out.push_back(std::move(c));
-  }
-  return out;
-}
-
-std::vector<CostateMapEntry> read_costate_map(const json& e, const std::string& where) {
-  std::vector<CostateMapEntry> out;
-  const json& list = array(e, "costate_map", where);
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string w = at(where + "/costate_map", i);
-    out.push_back({io::require_string(list[i], "costate", w), optional_string(list[i], "variable", w),
-                   optional_expression(list[i], "expression", w)});
-  }
-  return out;
-}
-
-Event read_event(const json& e, const std::string& where) {
-  Event out;
-  out.id = io::require_string(e, "id", where);
-  out.kind = io::require_string(e, "kind", where);
-  const json& time = object(e, "time", where);
-  out.time_symbol = io::require_string(time, "symbol", where + "/time");
-  out.window = numbers(time, "window", where + "/time", true);
-  out.time_expression = expression(time, "expression", where + "/time");
-  out.duration = io::require_number(time, "duration", where + "/time");
-  out.psi = expressions(e, "psi", where);
-  out.multipliers = strings(e, "multipliers", where);
-  out.must_be_positive = read_side_conditions(e, where);
-  const json& map = array(e, "state_map", where);
-  for (std::size_t i = 0; i < map.size(); ++i)
-    out.state_map.push_back({io::require_string(map[i], "state", at(where + "/state_map", i)),
-                             expression(map[i], "expression", at(where + "/state_map", i))});
-  out.costate_map = read_costate_map(e, where);
-  out.target = optional_json(e, "target");
-  return out;
-}
-
 // ---- the shared sections (sections.hpp): read as Expression, written from either form --------
 
 std::vector<Definition> read_definitions(const json& law, const std::string& where) {
@@ -329,6 +268,80 @@ std::vector<Intermediate<Expression>> read_intermediates(const json& d) {
   return out;
 }
 
+std::vector<SideCondition<Expression>> read_side_conditions(const json& obj, const std::string& where) {
+  std::vector<SideCondition<Expression>> out;
+  if (!obj.contains("must_be_positive")) return out;
+  const json& list = array(obj, "must_be_positive", where);
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string w = at(where + "/must_be_positive", i);
+    out.push_back({expression(list[i], "expression", w), io::require_string(list[i], "meaning", w)});
+  }
+  return out;
+}
+
+// An optional list of strings: absent reads as nullopt.
+std::optional<std::vector<std::string>> optional_strings(const json& obj, const std::string& key,
+                                                         const std::string& where) {
+  if (!obj.contains(key)) return std::nullopt;
+  return strings(obj, key, where);
+}
+
+std::vector<Constraint<Expression>> read_constraints(const json& d) {
+  std::vector<Constraint<Expression>> out;
+  const json& list = array(d, "constraints", "");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string where = at("/constraints", i);
+    Constraint<Expression> c;
+    c.id = io::require_string(list[i], "id", where);
+    c.kind = io::require_string(list[i], "kind", where);
+    c.at = io::require_string(list[i], "at", where);
+    c.target = optional_json(list[i], "target");
+    c.psi = expressions(list[i], "psi", where);
+    c.multipliers = strings(list[i], "multipliers", where);
+    c.must_be_positive = read_side_conditions(list[i], where);
+    c.conditions = optional_strings(list[i], "conditions", where);
+    c.eliminated_multipliers = optional_strings(list[i], "eliminated_multipliers", where);
+    c.time_condition = optional_text(list[i], "time_condition", where);
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+std::vector<Event<Expression>> read_events(const json& d) {
+  std::vector<Event<Expression>> out;
+  const json& list = array(d, "events", "", false);
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const json& e = list[k];
+    const std::string where = at("/events", k);
+    Event<Expression> ev;
+    ev.id = io::require_string(e, "id", where);
+    ev.kind = io::require_string(e, "kind", where);
+    ev.target = optional_json(e, "target");
+    const json& time = object(e, "time", where);
+    ev.time_symbol = io::require_string(time, "symbol", where + "/time");
+    ev.window = numbers(time, "window", where + "/time", true);
+    ev.time_expression = expression(time, "expression", where + "/time");
+    ev.duration = io::require_number(time, "duration", where + "/time");
+    ev.psi = expressions(e, "psi", where);
+    ev.multipliers = strings(e, "multipliers", where);
+    ev.must_be_positive = read_side_conditions(e, where);
+    ev.conditions = optional_strings(e, "conditions", where).value_or(std::vector<std::string>{});
+    const json& map = array(e, "state_map", where);
+    for (std::size_t i = 0; i < map.size(); ++i)
+      ev.state_map.push_back({io::require_string(map[i], "state", at(where + "/state_map", i)),
+                              expression(map[i], "expression", at(where + "/state_map", i))});
+    const json& costates = array(e, "costate_map", where);
+    for (std::size_t i = 0; i < costates.size(); ++i) {
+      const std::string w = at(where + "/costate_map", i);
+      ev.costate_map.push_back({io::require_string(costates[i], "costate", w),
+                                optional_string(costates[i], "variable", w),
+                                optional_expression(costates[i], "expression", w)});
+    }
+    out.push_back(std::move(ev));
+  }
+  return out;
+}
+
 ControlLaw<Expression> read_control_law(const json& d) {
   const json& law = object(d, "control_law", "");
   ControlLaw<Expression> out;
@@ -456,6 +469,59 @@ json to_json(const Shooting<E>& shooting) {
   return {{"variables", variables}, {"equations", equations}};
 }
 
+template <class E>
+json side_conditions_json(const std::vector<SideCondition<E>>& sides) {
+  json out = json::array();
+  for (const auto& side : sides) out.push_back({{"expression", text(side.expression)}, {"meaning", side.meaning}});
+  return out;
+}
+
+template <class E>
+json to_json(const std::vector<Constraint<E>>& constraints) {
+  json list = json::array();
+  for (const auto& c : constraints) {
+    json out = {{"id", c.id}, {"kind", c.kind}, {"at", c.at}};
+    if (!c.target.is_null()) out["target"] = c.target;
+    out["psi"] = texts(c.psi);
+    out["multipliers"] = c.multipliers;
+    if (!c.must_be_positive.empty()) out["must_be_positive"] = side_conditions_json(c.must_be_positive);
+    if (c.conditions) out["conditions"] = *c.conditions;
+    if (c.eliminated_multipliers) out["eliminated_multipliers"] = *c.eliminated_multipliers;
+    put(out, "time_condition", c.time_condition);
+    list.push_back(out);
+  }
+  return list;
+}
+
+template <class E>
+json to_json(const std::vector<Event<E>>& events) {
+  json list = json::array();
+  for (const auto& e : events) {
+    json out = {{"id", e.id}, {"kind", e.kind}};
+    if (!e.target.is_null()) out["target"] = e.target;
+    out["time"] = {{"symbol", e.time_symbol},
+                   {"window", e.window},
+                   {"expression", text(e.time_expression)},
+                   {"duration", e.duration}};
+    out["psi"] = texts(e.psi);
+    out["multipliers"] = e.multipliers;
+    if (!e.must_be_positive.empty()) out["must_be_positive"] = side_conditions_json(e.must_be_positive);
+    out["conditions"] = e.conditions;
+    json state_map = json::array(), costate_map = json::array();
+    for (const auto& m : e.state_map) state_map.push_back({{"state", m.state}, {"expression", text(m.expression)}});
+    for (const auto& m : e.costate_map) {
+      json entry = {{"costate", m.costate}};
+      if (m.variable) entry["variable"] = *m.variable;
+      if (m.expression) entry["expression"] = text(*m.expression);
+      costate_map.push_back(entry);
+    }
+    out["state_map"] = state_map;
+    out["costate_map"] = costate_map;
+    list.push_back(out);
+  }
+  return list;
+}
+
 // helios-derive writes the GiNaC form, a reader (and the round-trip tests) the Expression form.
 template json to_json(const std::vector<Intermediate<GiNaC::ex>>&);
 template json to_json(const std::vector<Intermediate<Expression>>&);
@@ -463,6 +529,10 @@ template json to_json(const ControlLaw<GiNaC::ex>&);
 template json to_json(const ControlLaw<Expression>&);
 template json to_json(const std::vector<InitialValue<GiNaC::ex>>&);
 template json to_json(const std::vector<InitialValue<Expression>>&);
+template json to_json(const std::vector<Constraint<GiNaC::ex>>&);
+template json to_json(const std::vector<Constraint<Expression>>&);
+template json to_json(const std::vector<Event<GiNaC::ex>>&);
+template json to_json(const std::vector<Event<Expression>>&);
 template json to_json(const Shooting<GiNaC::ex>&);
 template json to_json(const Shooting<Expression>&);
 
@@ -473,7 +543,7 @@ Document::Document(const json& derivation, const std::string& file, bool parse_u
   try {
     read_sections();
     control_law = sections::read_control_law(d);
-    read_events();
+    interior_events = sections::read_events(d);
     shooting = sections::read_shooting(d);
     terms = read_terms(d, file);
   } catch (const std::invalid_argument& e) {  // "field <pointer> ..."
@@ -535,18 +605,13 @@ void Document::read_sections() {
   hamiltonian = expression(d, "hamiltonian", "");
   state_odes = read_odes(d, "state_odes", "state");
   costate_odes = read_odes(d, "costate_odes", "costate");
-  constraints = read_constraints(d);
+  constraints = sections::read_constraints(d);
   initial_values = sections::read_initial_values(d);
   event_value_list = sections::read_event_values(d);
   if (d.contains("coast_dynamics")) {
     const json& c = object(d, "coast_dynamics", "");
     coast_dynamics = CoastDynamics{strings(c, "states", "/coast_dynamics"), expressions(c, "rhs", "/coast_dynamics")};
   }
-}
-
-void Document::read_events() {
-  const json& list = array(d, "events", "", false);
-  for (std::size_t i = 0; i < list.size(); ++i) interior_events.push_back(read_event(list[i], at("/events", i)));
 }
 
 GiNaC::ex Document::parse(const Expression& e) const {

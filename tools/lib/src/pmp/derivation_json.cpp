@@ -29,65 +29,64 @@ json named_list(const std::vector<Named>& v, bool with_value) {
   return out;
 }
 
-// The conditions g > 0 a constraint's rows leave to the runtime (model.hpp's SideCondition).
-json side_conditions_json(const std::vector<SideCondition>& sides) {
-  json out = json::array();
-  for (const auto& side : sides) out.push_back({{"expression", to_text(side.expression)}, {"meaning", side.meaning}});
-  return out;
-}
-
-json constraint_json(const EndpointConditions& c) {
+// The constraint's section (derivation/sections.hpp): its rows, multipliers and side conditions,
+// and the conditions it gives in words.
+derivation::sections::Constraint<GiNaC::ex> constraint_section(const EndpointConditions& c) {
   const EndpointConstraint& k = c.constraint;
-  json out = {{"id", k.id}, {"kind", k.kind}, {"at", k.at}, {"target", k.target}};
-  out["psi"] = texts(k.psi);
-  out["multipliers"] = c.multipliers;
-  if (!k.must_be_positive.empty()) out["must_be_positive"] = side_conditions_json(k.must_be_positive);
+  derivation::sections::Constraint<GiNaC::ex> out{k.id,
+                                                  k.kind,
+                                                  k.at,
+                                                  k.target,
+                                                  k.psi,
+                                                  c.multipliers,
+                                                  k.must_be_positive,
+                                                  std::vector<std::string>{},
+                                                  std::nullopt,
+                                                  c.time_condition};
   if (k.at == "t0") {
-    out["conditions"] = json::array({"x(t0) is fixed for " + std::to_string(k.fixed_states.size()) +
-                                     " states, so their costates at t0 are free (shooting variables)"});
+    out.conditions->push_back("x(t0) is fixed for " + std::to_string(k.fixed_states.size()) +
+                              " states, so their costates at t0 are free (shooting variables)");
     for (const auto& q : k.free_parameters)
-      out["conditions"].push_back("nu^T dpsi/d" + q.name + " = 0 with lambda(t0) = -nu^T dpsi/dx: " + q.name +
-                                  " is a free parameter of psi");
+      out.conditions->push_back("nu^T dpsi/d" + q.name + " = 0 with lambda(t0) = -nu^T dpsi/dx: " + q.name +
+                                " is a free parameter of psi");
   } else {
-    json conditions = json::array(), eliminated = json::array();
-    for (const auto& row : c.transversality) conditions.push_back(to_text(row) + " = 0");
-    for (const auto& row : c.eliminated) eliminated.push_back(to_text(row) + " = 0");
-    out["conditions"] = conditions;
-    out["eliminated_multipliers"] = eliminated;
+    out.eliminated_multipliers.emplace();
+    for (const auto& row : c.transversality) out.conditions->push_back(to_text(row) + " = 0");
+    for (const auto& row : c.eliminated) out.eliminated_multipliers->push_back(to_text(row) + " = 0");
   }
-  if (!c.time_condition.empty()) out["time_condition"] = c.time_condition;
   return out;
 }
 
-json event_json(const Problem& p, const EventConditions& c) {
+// The event's section: its epoch, rows, the conditions in words and the maps across it.
+derivation::sections::Event<GiNaC::ex> event_section(const Problem& p, const EventConditions& c) {
   const InteriorEvent& e = c.event;
-  json conditions = json::array(), state_map = json::array(), costate_map = json::array();
+  derivation::sections::Event<GiNaC::ex> out;
+  out.id = e.id;
+  out.kind = e.kind;
+  out.target = e.target;
+  out.time_symbol = c.time_symbol;
+  out.window = {e.window_lo, e.window_hi};
+  out.time_expression = c.time;
+  out.duration = e.duration;
+  out.psi = c.psi;
+  out.multipliers = c.multipliers;
+  out.must_be_positive = e.must_be_positive;
   for (std::size_t s = 0; s < p.states.size(); ++s) {
     const std::string& x = p.states[s].name;
     const std::string xm = names::before(x, e.id);
-    conditions.push_back(names::before(names::costate(x), e.id) + " = nu^T dc/d" + xm + " + lambda(t+)^T dg/d" + xm);
-    state_map.push_back({{"state", x}, {"expression", to_text(e.map[s])}});
+    out.conditions.push_back(names::before(names::costate(x), e.id) + " = nu^T dc/d" + xm + " + lambda(t+)^T dg/d" +
+                             xm);
+    out.state_map.push_back({x, e.map[s]});
     const CostateAfterEvent& l = c.costate_map[s];
-    costate_map.push_back(
-        {{"costate", l.costate}, {l.shooting_variable ? "variable" : "expression", to_text(l.value)}});
+    if (l.shooting_variable)
+      out.costate_map.push_back({l.costate, to_text(l.value), std::nullopt});
+    else
+      out.costate_map.push_back({l.costate, std::nullopt, l.value});
   }
-  conditions.push_back("lambda(t+) = -nu_g (the multipliers of x+ - g)");
-  conditions.push_back("H(t-) - H(t+) + nu_c^T dc/dt + lambda(t+)^T dg/dt = 0 (free epoch)");
-  for (const auto& q : e.free_parameters) conditions.push_back("nu_c^T dc/d" + q + " + lambda(t+)^T dg/d" + q + " = 0");
-  json out = {{"id", e.id},
-              {"kind", e.kind},
-              {"target", e.target},
-              {"time",
-               {{"symbol", c.time_symbol},
-                {"window", {e.window_lo, e.window_hi}},
-                {"expression", to_text(c.time)},
-                {"duration", e.duration}}},
-              {"psi", texts(c.psi)},
-              {"multipliers", c.multipliers}};
-  if (!e.must_be_positive.empty()) out["must_be_positive"] = side_conditions_json(e.must_be_positive);
-  out["conditions"] = conditions;
-  out["state_map"] = state_map;
-  out["costate_map"] = costate_map;
+  out.conditions.push_back("lambda(t+) = -nu_g (the multipliers of x+ - g)");
+  out.conditions.push_back("H(t-) - H(t+) + nu_c^T dc/dt + lambda(t+)^T dg/dt = 0 (free epoch)");
+  for (const auto& q : e.free_parameters)
+    out.conditions.push_back("nu_c^T dc/d" + q + " + lambda(t+)^T dg/d" + q + " = 0");
   return out;
 }
 
@@ -181,9 +180,9 @@ json derivation_json(const Derivation& d) {
   json doc = io::artifact_header("derivation", "helios-derive", "builtin");
   problem_sections(d, doc);
   if (!d.events.empty()) {
-    json events = json::array();
-    for (const auto& e : d.events) events.push_back(event_json(p, e));
-    doc["events"] = events;
+    std::vector<derivation::sections::Event<GiNaC::ex>> events;
+    for (const auto& e : d.events) events.push_back(event_section(p, e));
+    doc["events"] = derivation::sections::to_json(events);
   }
   doc["hamiltonian"] = to_text(d.hamiltonian);
   json state_odes = json::array(), costate_odes = json::array();
@@ -195,9 +194,9 @@ json derivation_json(const Derivation& d) {
   doc["costate_odes"] = costate_odes;
   doc["control_law"] = derivation::sections::to_json(d.control);
   doc["initial_values"] = derivation::sections::to_json(d.initial_values);
-  json constraints = json::array();
-  for (const auto& c : d.constraints) constraints.push_back(constraint_json(c));
-  doc["constraints"] = constraints;
+  std::vector<derivation::sections::Constraint<GiNaC::ex>> constraints;
+  for (const auto& c : d.constraints) constraints.push_back(constraint_section(c));
+  doc["constraints"] = derivation::sections::to_json(constraints);
   doc["shooting"] = derivation::sections::to_json(d.shooting);
   check_expression_sizes(doc);
   return doc;

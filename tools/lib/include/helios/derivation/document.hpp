@@ -45,50 +45,6 @@ struct Ode {
   Expression rhs;
 };
 
-// A condition g > 0 the rows leave to the runtime (must_be_positive): they also hold on the
-// target's mirror, where an extremal is not returned.
-struct SideCondition {
-  Expression expression;
-  std::string meaning;
-};
-
-// An endpoint constraint psi = 0 at t0 or tf with the multipliers nu of its rows.
-struct Constraint {
-  std::string id, kind, at;
-  std::vector<Expression> psi;
-  std::vector<std::string> multipliers;
-  std::vector<SideCondition> must_be_positive;
-  io::json target;  // where the constraint takes its target from, as written (null when absent)
-};
-
-// One state's value after an interior event.
-struct StateMapEntry {
-  std::string state;
-  Expression expression;
-};
-
-// One costate just after an interior event: a new shooting variable or an expression.
-struct CostateMapEntry {
-  std::string costate;
-  std::optional<std::string> variable;
-  std::optional<Expression> expression;
-};
-
-// An interior event (events[]): its time, interior constraint psi with multipliers, and maps.
-struct Event {
-  std::string id, kind;
-  std::string time_symbol;
-  std::vector<double> window;
-  Expression time_expression;
-  double duration = 0;
-  std::vector<Expression> psi;
-  std::vector<std::string> multipliers;
-  std::vector<SideCondition> must_be_positive;  // in the state just before the event
-  std::vector<StateMapEntry> state_map;
-  std::vector<CostateMapEntry> costate_map;
-  io::json target;  // null when absent
-};
-
 // coast_dynamics: a coasting target's states and their uncontrolled dynamics.
 struct CoastDynamics {
   std::vector<std::string> states;
@@ -132,7 +88,6 @@ class Document : public Reader {
 
  private:
   void read_sections();
-  void read_events();
   void check_intermediates() const;
 };
 

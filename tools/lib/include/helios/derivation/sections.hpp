@@ -1,7 +1,8 @@
 #pragma once
 // The sections of the derivation artifact (schemas/derivation.schema.json) that its writer and its
 // readers share, defined once: the control law, the initial values, the event values and the
-// shooting system, and the intermediates of the dynamics. Each struct is a template over how an expression is held:
+// shooting system, the intermediates of the dynamics, the endpoint constraints and the interior
+// events. Each struct is a template over how an expression is held:
 // helios-derive fills it with GiNaC expressions (pmp::Derivation, E = GiNaC::ex), the readers with the text and JSON
 // pointer of each expression (derivation::Document, E = Expression). One to_json writes either;
 // one read_* reads the JSON back into the Expression form, strictly: a field missing or of the
@@ -98,6 +99,62 @@ struct InitialValue {
   E value;
 };
 
+// A condition g > 0 a constraint's rows leave to the runtime (must_be_positive): they also hold
+// on the target's mirror (an orbit run the other way), where an extremal is not returned.
+template <class E>
+struct SideCondition {
+  E expression;
+  std::string meaning;
+};
+
+// constraints[]: an endpoint constraint psi = 0 at t0 or tf with the multipliers nu of its rows,
+// the conditions it gives in words (at tf the transversality rows "... = 0"), the rows that
+// determine its equality multipliers (at tf), and what it adds to a free time's condition.
+template <class E>
+struct Constraint {
+  std::string id, kind, at;
+  io::json target;  // where it takes its target from, as written (null when absent: not written)
+  std::vector<E> psi;
+  std::vector<std::string> multipliers;
+  std::vector<SideCondition<E>> must_be_positive;
+  std::optional<std::vector<std::string>> conditions, eliminated_multipliers;
+  std::string time_condition;
+};
+
+// One state's value after an interior event.
+template <class E>
+struct StateMapEntry {
+  std::string state;
+  E expression;
+};
+
+// One costate just after an interior event: a new shooting variable or an expression.
+template <class E>
+struct CostateMapEntry {
+  std::string costate;
+  std::optional<std::string> variable;
+  std::optional<E> expression;
+};
+
+// events[]: an interior event at the epoch time_symbol = time_expression in its window (a stay of
+// `duration`), its interior constraint psi with multipliers, the conditions in words, and the maps
+// of the states and costates across it.
+template <class E>
+struct Event {
+  std::string id, kind;
+  io::json target;  // null when absent (not written)
+  std::string time_symbol;
+  std::vector<double> window;
+  E time_expression;
+  double duration = 0;
+  std::vector<E> psi;
+  std::vector<std::string> multipliers;
+  std::vector<SideCondition<E>> must_be_positive;  // in the state just before the event
+  std::vector<std::string> conditions;
+  std::vector<StateMapEntry<E>> state_map;
+  std::vector<CostateMapEntry<E>> costate_map;
+};
+
 // event_values[]: a value the runtime evaluates (H just before or after an event, H at tf, ...).
 struct EventValue {
   std::string name, meaning;
@@ -160,6 +217,10 @@ io::json to_json(const std::vector<InitialValue<E>>& values);
 io::json to_json(const std::vector<EventValue>& values);
 template <class E>
 io::json to_json(const Shooting<E>& shooting);
+template <class E>
+io::json to_json(const std::vector<Constraint<E>>& constraints);
+template <class E>
+io::json to_json(const std::vector<Event<E>>& events);
 
 // Each section read from the artifact `d` (the whole document); an optional section absent reads empty.
 std::vector<Intermediate<Expression>> read_intermediates(const io::json& d);
@@ -167,11 +228,18 @@ ControlLaw<Expression> read_control_law(const io::json& d);
 std::vector<InitialValue<Expression>> read_initial_values(const io::json& d);
 std::vector<EventValue> read_event_values(const io::json& d);
 Shooting<Expression> read_shooting(const io::json& d);
+std::vector<Constraint<Expression>> read_constraints(const io::json& d);
+std::vector<Event<Expression>> read_events(const io::json& d);
 
 }  // namespace sections
 
 using Intermediate = sections::Intermediate<Expression>;
 using Definition = sections::Definition<Expression>;
+using SideCondition = sections::SideCondition<Expression>;
+using Constraint = sections::Constraint<Expression>;
+using StateMapEntry = sections::StateMapEntry<Expression>;
+using CostateMapEntry = sections::CostateMapEntry<Expression>;
+using Event = sections::Event<Expression>;
 using DirectionLaw = sections::DirectionLaw<Expression>;
 using SailLaw = sections::SailLaw<Expression>;
 using ThrottleLaw = sections::ThrottleLaw<Expression>;

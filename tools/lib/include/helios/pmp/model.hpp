@@ -60,10 +60,8 @@ struct Control {
 // A condition g(x) > 0 a constraint's rows do not impose: they also hold on its mirror (an orbit
 // of the stated plane run the other way, the periapsis opposite the stated one), which a
 // converged extremal must not be on. The runtime checks it on every extremal it returns.
-struct SideCondition {
-  GiNaC::ex expression;  // in the symbols of the constraint's rows
-  std::string meaning;
-};
+// expression: in the symbols of the constraint's rows.
+using SideCondition = derivation::sections::SideCondition<GiNaC::ex>;
 
 // psi(t_k, x(t_k), p) = 0 at t0 or tf, comparing states with target parameters.
 struct EndpointConstraint {
