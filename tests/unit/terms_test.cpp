@@ -883,6 +883,22 @@ TEST(FittedThruster, VerifyFailsAMutatedRowOrIntermediate) {
   }
 }
 
+// A chain of intermediates, each small as written, whose substitution asks for a million terms
+// ((rx + ... + vz)^40 as a fourth power of a tenth power) is refused in one line, not expanded.
+TEST(FittedThruster, IntermediatesThatWouldExpandPastTheLimitAreRefused) {
+  json d = derive_text(s01_with(std::string(kFitsArrays) + kNstarLike));
+  d["intermediates"].push_back(
+      {{"name", "Q1"}, {"meaning", "a tenth power"}, {"expression", "(rx+ry+rz+vx+vy+vz)^10"}});
+  d["intermediates"].push_back({{"name", "Q2"}, {"meaning", "its fourth power"}, {"expression", "Q1^4"}});
+  try {
+    helios::verify::verify_derivation(d, {});
+    ADD_FAILURE() << "a substitution of 1e6 terms was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_TRUE(contains(e.what(), "with its intermediates substituted would expand to about 1.2e+06 terms"))
+        << e.what();
+  }
+}
+
 // What the fits cannot be: negative where the engine runs (without a lowest power the range starts
 // at no power), beside an efficiency (the sentence's refusal), or without arrays.
 TEST(FittedThruster, AFitNegativeWhereTheEngineRunsIsRefused) {

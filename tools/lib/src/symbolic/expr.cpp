@@ -1,5 +1,7 @@
 #include "helios/symbolic/expr.hpp"
 
+#include "helios/symbolic/compare.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -53,14 +55,26 @@ GiNaC::ex SymbolTable::parse(const std::string& text, const std::string& where) 
   double terms = expanded_terms(e);
   for (const auto& name : free_symbols(e))
     terms = std::max(terms, expanded_terms(e.diff(GiNaC::ex_to<GiNaC::symbol>(table_.at(name)))));
-  if (terms > kMaxExpandedTerms) {
+  const auto too_much = [&](double n, const std::string& how, double limit) {
     std::ostringstream why;
     why.precision(2);
-    why << where << ": expression '" << shown(text) << "' (or a first derivative of it) would expand to about " << terms
-        << " terms; the limit of the symbolic work is " << kMaxExpandedTerms << " terms";
-    throw std::invalid_argument(why.str());
-  }
-  return substitutions_.empty() ? e : e.subs(substitutions_);
+    why << where << ": expression '" << shown(text) << "'" << how << " would expand to about " << n
+        << " terms; the limit of the symbolic work is " << limit << " terms";
+    return std::invalid_argument(why.str());
+  };
+  if (terms > kMaxExpandedTerms) throw too_much(terms, " (or a first derivative of it)", kMaxExpandedTerms);
+  if (substitutions_.empty()) return e;
+  // An intermediate named in it stands for its whole expression: the work of the expression so
+  // made (each intermediate may be a power of the one before), bounded in nodes first.
+  const GiNaC::ex substituted = e.subs(substitutions_);
+  if (substituted.is_equal(e)) return e;
+  if (tree_size(substituted, kMaxSubstitutedNodes) > kMaxSubstitutedNodes)
+    throw std::invalid_argument(where + ": expression '" + shown(text) +
+                                "' with its intermediates substituted has more than " +
+                                std::to_string(kMaxSubstitutedNodes) + " nodes");
+  if (const double n = expanded_terms(substituted); n > kMaxSubstitutedTerms)
+    throw too_much(n, " with its intermediates substituted", kMaxSubstitutedTerms);
+  return substituted;
 }
 
 namespace {

@@ -21,6 +21,11 @@ inline constexpr int kMaxExpressionDepth = 256;
 // The scenarios ask for at most 268 (S10); (x+y+z+vx+vy+vz)^40 asks for 1.2e6, and the limit
 // is about what the 1 MiB limit of an expression text holds (6,200 terms took 310 kB).
 inline constexpr double kMaxExpandedTerms = 2e4;
+// Bounds of an expression with its intermediates substituted (SymbolTable::substitute_on_parse),
+// which only a reader holds (no text): its nodes counted along every path (each intermediate may be
+// a power of the one before) and the terms of its expansion.
+inline constexpr std::size_t kMaxSubstitutedNodes = 200000;
+inline constexpr double kMaxSubstitutedTerms = 2e5;
 
 // An upper bound of the number of terms of e.expand() or of the expansion of any sum inside a
 // function or a negative power (which expand() multiplies out too): a positive integer power k
@@ -54,7 +59,7 @@ class SymbolTable {
   // for a text beyond kMaxExpressionChars or nested deeper than kMaxExpressionDepth (GiNaC's
   // parser recurses per parenthesis: ~7,800 levels overflowed the stack), and for an expression
   // whose expansion or whose first derivatives' expansions would exceed kMaxExpandedTerms
-  // ("... would expand to about N terms").
+  // ("... would expand to about N terms"), as written or with the substitutions made.
   GiNaC::ex parse(const std::string& text, const std::string& where) const;
   const GiNaC::symtab& symtab() const { return table_; }
   // From here on, parse() returns its expression with these symbols replaced: a reader that checks
