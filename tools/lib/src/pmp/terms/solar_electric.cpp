@@ -34,27 +34,14 @@
 namespace helios::pmp::terms {
 namespace {
 
-class SolarElectric : public ForceTerm {
+class SolarElectric : public SolarArrayEngine {
  public:
-  SolarElectric(const json& sc, const Units& U, std::string mass_unit)
-      : mass_unit_(std::move(mass_unit)), L_(U.length_name), T_(U.time_name) {
-    if (U.length_name != "AU")
-      throw std::invalid_argument(
-          "field /spacecraft/array_power_1AU_W: a solar-electric engine needs the Sun as the central body (its "
-          "power falls as 1/r^2 with r in AU)");
-    if (sc.value("mass_model", "variable") == "constant" || sc.value("full_throttle", false))
-      throw std::invalid_argument(
-          "field /spacecraft: a solar-electric engine of constant mass or at full throttle throughout is not "
-          "supported");
+  SolarElectric(const json& sc, const Units& U, std::string mass_unit) : SolarArrayEngine(sc, U, std::move(mass_unit)) {
     if (sc.contains("thrust_N"))
       throw std::invalid_argument(
           "field /spacecraft/thrust_N: a solar-electric engine's thrust follows from its power; drop thrust_N");
     if (!sc.contains("isp_s"))
       throw std::invalid_argument("field /spacecraft/isp_s is missing (a solar-electric engine needs it)");
-    // Power in the normalized units: mass * length^2 / time^3.
-    const double power_unit_W = U.mass_kg * std::pow(U.length_km * 1e3, 2) / std::pow(U.time_s, 3);
-    p0_ = sc.at("array_power_1AU_W").get<double>() / power_unit_W;
-    bus_ = sc.value("bus_power_W", 0.0) / power_unit_W;
     eta_ = sc.at("engine_efficiency").get<double>();
     // The cap: the maximum input power, or the power at which the engine gives its maximum thrust
     // (T c / (2 eta)), the lower of the two where both are stated.
@@ -63,28 +50,19 @@ class SolarElectric : public ForceTerm {
     if (sc.contains("max_thrust_N"))
       pmax_W = std::min(pmax_W, sc.at("max_thrust_N").get<double>() * sc.at("isp_s").get<double>() *
                                     helios::astro::G0_M_S2 / (2 * eta_));
-    if (cap_) pmax_ = pmax_W / power_unit_W;
+    if (cap_) pmax_ = pmax_W / power_unit_W_;
     exhaust_ = sc.at("isp_s").get<double>() * helios::astro::G0_M_S2 * 1e-3 / U.speed_km_s();
     if (!(eta_ > 0 && eta_ <= 1))
       throw std::invalid_argument("field /spacecraft/engine_efficiency: " + std::to_string(eta_) + " is not in (0, 1]");
-    if (!(bus_ < p0_))
-      throw std::invalid_argument("field /spacecraft/bus_power_W: the bus takes all the arrays give at 1 AU");
-    if (!(p0_ > 0) || !(exhaust_ > 0) || (cap_ && !(pmax_ > 0)))
+    if (!(exhaust_ > 0) || (cap_ && !(pmax_ > 0)))
       throw std::domain_error(
           "field /spacecraft: a power or the exhaust velocity is 0 in normalized units: the spacecraft's magnitudes "
           "are beyond the range of double precision");
   }
   std::string name() const override { return "solar_electric_thrust"; }
-  std::vector<Named> states() const override { return {{"m", "mass", mass_unit_}}; }
-  std::vector<Control> controls() const override {
-    return {{"u", "throttle T/T(r) in [0, 1] (T(r) the thrust the power at r allows)", "throttle"},
-            {"ax", "thrust direction x (unit vector)", "direction"},
-            {"ay", "thrust direction y (unit vector)", "direction"},
-            {"az", "thrust direction z (unit vector)", "direction"}};
-  }
   // P0, Pbus, eta, c, and with a cap Pmax and the cap's width Pw.
   std::vector<Named> parameters() const override {
-    const std::string power = mass_unit_ + "*" + L_ + "^2/" + T_ + "^3";
+    const std::string power = power_unit();
     std::vector<Named> out = {{"P0", "solar array power at 1 AU", power, p0_, "", "thrust_scale"},
                               {"Pbus", "bus power taken from the arrays", power, bus_, "", "thrust_scale"},
                               {"eta", "engine efficiency (jet power / input power)", "1", eta_},
@@ -98,23 +76,14 @@ class SolarElectric : public ForceTerm {
   }
   std::vector<ex> acceleration(Problem& p, const Frame& x) const override {
     auto& S = p.symbols;
-    const std::string power = mass_unit_ + "*" + L_ + "^2/" + T_ + "^3";
-    p.intermediates = {{"P_in", "the engine's input power at the spacecraft's distance", power,
+    p.intermediates = {{"P_in", "the engine's input power at the spacecraft's distance", power_unit(),
                         solar_input_power(S, x, bus_ > 0, cap_)}};
-    p.max_thrust = 2 * S.get("eta") * S.get("P_in") / S.get("c");
-    p.max_mass_flow = p.max_thrust / S.get("c");
-    p.thrust_parameters.clear();
-    for (const auto& q : parameters()) p.thrust_parameters.push_back(q.name);
-    p.flow_parameters = p.thrust_parameters;
-    const ex u = S.get("u");
-    return {p.max_thrust * u * S.get("ax") / x.mass, p.max_thrust * u * S.get("ay") / x.mass,
-            p.max_thrust * u * S.get("az") / x.mass};
+    const ex thrust = 2 * S.get("eta") * S.get("P_in") / S.get("c");
+    return thrust_acceleration(p, x, thrust, thrust / S.get("c"));
   }
-  ex mass_rate(Problem& p) const override { return -p.max_mass_flow * p.symbols.get("u"); }
 
  private:
-  std::string mass_unit_, L_, T_;
-  double p0_ = 0, bus_ = 0, pmax_ = 0, eta_ = 0, exhaust_ = 0;
+  double pmax_ = 0, eta_ = 0, exhaust_ = 0;
   bool cap_ = false;
 };
 
@@ -125,6 +94,47 @@ std::unique_ptr<ForceTerm> build(const TermSource& s) {
 }
 
 }  // namespace
+
+SolarArrayEngine::SolarArrayEngine(const json& sc, const Units& U, std::string mass_unit)
+    : mass_unit_(std::move(mass_unit)), L_(U.length_name), T_(U.time_name) {
+  if (U.length_name != "AU")
+    throw std::invalid_argument(
+        "field /spacecraft/array_power_1AU_W: a solar-electric engine needs the Sun as the central body (its "
+        "power falls as 1/r^2 with r in AU)");
+  if (sc.value("mass_model", "variable") == "constant" || sc.value("full_throttle", false))
+    throw std::invalid_argument(
+        "field /spacecraft: a solar-electric engine of constant mass or at full throttle throughout is not "
+        "supported");
+  // Power in the normalized units: mass * length^2 / time^3.
+  power_unit_W_ = U.mass_kg * std::pow(U.length_km * 1e3, 2) / std::pow(U.time_s, 3);
+  p0_ = sc.at("array_power_1AU_W").get<double>() / power_unit_W_;
+  bus_ = sc.value("bus_power_W", 0.0) / power_unit_W_;
+  if (!(bus_ < p0_))
+    throw std::invalid_argument("field /spacecraft/bus_power_W: the bus takes all the arrays give at 1 AU");
+  if (!(p0_ > 0))
+    throw std::domain_error(
+        "field /spacecraft: a power is 0 in normalized units: the spacecraft's magnitudes are beyond the range of "
+        "double precision");
+}
+
+std::vector<Control> SolarArrayEngine::controls() const {
+  return {{"u", "throttle T/T(r) in [0, 1] (T(r) the thrust the power at r allows)", "throttle"},
+          {"ax", "thrust direction x (unit vector)", "direction"},
+          {"ay", "thrust direction y (unit vector)", "direction"},
+          {"az", "thrust direction z (unit vector)", "direction"}};
+}
+
+std::vector<ex> SolarArrayEngine::thrust_acceleration(Problem& p, const Frame& x, const ex& thrust,
+                                                      const ex& flow) const {
+  auto& S = p.symbols;
+  p.max_thrust = thrust;
+  p.max_mass_flow = flow;
+  p.thrust_parameters.clear();
+  for (const auto& q : parameters()) p.thrust_parameters.push_back(q.name);
+  p.flow_parameters = p.thrust_parameters;
+  const ex u = S.get("u");
+  return {thrust * u * S.get("ax") / x.mass, thrust * u * S.get("ay") / x.mass, thrust * u * S.get("az") / x.mass};
+}
 
 ex solar_input_power(symbolic::SymbolTable& S, const Frame& x, bool bus, bool cap) {
   const ex r2 = x.r[0] * x.r[0] + x.r[1] * x.r[1] + x.r[2] * x.r[2];

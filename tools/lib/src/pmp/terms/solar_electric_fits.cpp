@@ -44,18 +44,10 @@ std::string unit_text(const std::string& mass, const std::string& length, const 
   return (num.empty() ? "1" : num) + den;
 }
 
-class FittedSolarElectric : public ForceTerm {
+class FittedSolarElectric : public SolarArrayEngine {
  public:
   FittedSolarElectric(const json& sc, const Units& U, std::string mass_unit)
-      : mass_unit_(std::move(mass_unit)), L_(U.length_name), T_(U.time_name) {
-    if (U.length_name != "AU")
-      throw std::invalid_argument(
-          "field /spacecraft/array_power_1AU_W: a solar-electric engine needs the Sun as the central body (its "
-          "power falls as 1/r^2 with r in AU)");
-    if (sc.value("mass_model", "variable") == "constant" || sc.value("full_throttle", false))
-      throw std::invalid_argument(
-          "field /spacecraft: a solar-electric engine of constant mass or at full throttle throughout is not "
-          "supported");
+      : SolarArrayEngine(sc, U, std::move(mass_unit)) {
     for (const char* field : {"thrust_N", "engine_efficiency", "isp_s", "max_thrust_N"})
       if (sc.contains(field))
         throw std::invalid_argument(std::string("field /spacecraft/") + field +
@@ -66,35 +58,22 @@ class FittedSolarElectric : public ForceTerm {
         throw std::invalid_argument(std::string("field /spacecraft/") + field +
                                     " is missing (a thruster given by fits needs both fits and the top of their "
                                     "power range, max_engine_power_W)");
-    // Power in the normalized units: mass * length^2 / time^3.
-    const double power_unit_W = U.mass_kg * std::pow(U.length_km * 1e3, 2) / std::pow(U.time_s, 3);
-    p0_ = sc.at("array_power_1AU_W").get<double>() / power_unit_W;
-    bus_ = sc.value("bus_power_W", 0.0) / power_unit_W;
     const double pmax_W = sc.at("max_engine_power_W").get<double>(), pmin_W = sc.value("min_engine_power_W", 0.0);
-    pmax_ = pmax_W / power_unit_W;
-    pmin_ = pmin_W / power_unit_W;
-    if (!(bus_ < p0_))
-      throw std::invalid_argument("field /spacecraft/bus_power_W: the bus takes all the arrays give at 1 AU");
+    pmax_ = pmax_W / power_unit_W_;
+    pmin_ = pmin_W / power_unit_W_;
     if (!(pmin_W >= 0 && pmin_W < pmax_W))
       throw std::invalid_argument("field /spacecraft/min_engine_power_W: " + io::short_number(pmin_W) +
                                   " W is not below max_engine_power_W (" + io::short_number(pmax_W) + " W)");
     // A coefficient of P^k in mN/kW^k is 1e-3 (power unit/kW)^k / (force unit) of the normalized one.
-    const double per_kW = power_unit_W / 1000;
+    const double per_kW = power_unit_W_ / 1000;
     thrust_ = read_fit(sc, "thrust_polynomial_mN", 1e-3 / U.force_N(), per_kW, pmin_W, pmax_W);
     flow_ = read_fit(sc, "mass_flow_polynomial_mg_s", 1e-6 * U.time_s / U.mass_kg, per_kW, pmin_W, pmax_W);
-    if (!(p0_ > 0) || !(pmax_ > 0))
+    if (!(pmax_ > 0))
       throw std::domain_error(
-          "field /spacecraft: a power is 0 in normalized units: the spacecraft's magnitudes are beyond the range of "
-          "double precision");
+          "field /spacecraft/max_engine_power_W: 0 in normalized units: the spacecraft's magnitudes are beyond the "
+          "range of double precision");
   }
   std::string name() const override { return "solar_electric_fitted_thrust"; }
-  std::vector<Named> states() const override { return {{"m", "mass", mass_unit_}}; }
-  std::vector<Control> controls() const override {
-    return {{"u", "throttle T/T_P in [0, 1] (T_P the thrust the power at r allows)", "throttle"},
-            {"ax", "thrust direction x (unit vector)", "direction"},
-            {"ay", "thrust direction y (unit vector)", "direction"},
-            {"az", "thrust direction z (unit vector)", "direction"}};
-  }
   // P0, Pbus, Pmax, Pw, T0..T4, F0..F4, and with a lowest power Pmin and its step's width Pn.
   std::vector<Named> parameters() const override {
     const std::string power = power_unit();
@@ -136,20 +115,10 @@ class FittedSolarElectric : public ForceTerm {
                         solar_input_power(S, x, bus_ > 0, true)},
                        {"T_P", "the fitted thrust at the input power P_in", force, thrust},
                        {"F_P", "the fitted mass flow at the input power P_in", rate, flow}};
-    p.max_thrust = S.get("T_P");
-    p.max_mass_flow = S.get("F_P");
-    p.thrust_parameters.clear();
-    for (const auto& q : parameters()) p.thrust_parameters.push_back(q.name);
-    p.flow_parameters = p.thrust_parameters;
-    const ex u = S.get("u");
-    return {p.max_thrust * u * S.get("ax") / x.mass, p.max_thrust * u * S.get("ay") / x.mass,
-            p.max_thrust * u * S.get("az") / x.mass};
+    return thrust_acceleration(p, x, S.get("T_P"), S.get("F_P"));
   }
-  ex mass_rate(Problem& p) const override { return -p.max_mass_flow * p.symbols.get("u"); }
 
  private:
-  std::string power_unit() const { return unit_text(mass_unit_, L_, T_, 1, 2, -3); }
-
   // The fit of `field` (c0..ck in the spec's units of P in kW), normalized by unit (its P^0
   // coefficient's factor) and per_kW (the power unit in kW); refused where it is negative on
   // the range the engine runs in, [Pmin, Pmax] (from 0 without a Pmin: the power falls with the
@@ -178,8 +147,7 @@ class FittedSolarElectric : public ForceTerm {
     return out;
   }
 
-  std::string mass_unit_, L_, T_;
-  double p0_ = 0, bus_ = 0, pmax_ = 0, pmin_ = 0;
+  double pmax_ = 0, pmin_ = 0;
   std::vector<double> thrust_, flow_;
 };
 

@@ -87,6 +87,26 @@ inline std::string mu_unit(const Units& U) {
 // (a cap), each softly over its width, kSmoothWidth of Pbus and of Pmax (Pw).
 constexpr double kSmoothWidth = 0.01;
 ex solar_input_power(symbolic::SymbolTable& S, const Frame& x, bool bus, bool cap);
+// What both solar-electric engines share (solar_electric.cpp): the spacecraft's checks (the Sun as
+// the central body, a mass that changes, a throttle), the arrays' power at 1 AU and the bus in
+// normalized units, the mass state, the throttle and the direction, and the acceleration and mass
+// rate of a thrust and flow at full throttle, which it records on the problem with the parameters.
+class SolarArrayEngine : public ForceTerm {
+ public:
+  std::vector<Named> states() const override { return {{"m", "mass", mass_unit_}}; }
+  std::vector<Control> controls() const override;
+  ex mass_rate(Problem& p) const override { return -p.max_mass_flow * p.symbols.get("u"); }
+
+ protected:
+  SolarArrayEngine(const json& spacecraft, const Units& U, std::string mass_unit);
+  std::string power_unit() const { return mass_unit_ + "*" + L_ + "^2/" + T_ + "^3"; }
+  // T u a / m for the full-throttle thrust and flow, both recorded on p.
+  std::vector<ex> thrust_acceleration(Problem& p, const Frame& x, const ex& thrust, const ex& flow) const;
+
+  std::string mass_unit_, L_, T_;
+  double power_unit_W_ = 0, p0_ = 0, bus_ = 0;  // W per normalized power; P0 and Pbus normalized
+};
+
 // True if the spacecraft's engine is given by fits of its thrust and mass flow to its input power
 // (solar_electric_fits.cpp) rather than by an efficiency and a specific impulse.
 inline bool fitted_engine(const json& spacecraft) {
