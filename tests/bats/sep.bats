@@ -18,6 +18,20 @@ setup() {
   common_setup
 }
 
+# last_burn TRAJECTORY: "DAY R_AU FLOW_KG_S" of the last two samples at full throttle: the day, the
+# distance from the Sun at their mid-point and the mass flow between them.
+last_burn() {
+  awk -F, -v AU=149597870.691 '
+    NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+    { t[NR] = $1; m[NR] = $col["m_kg"]; u[NR] = $col["u"]; x[NR] = $col["rx_km"]; y[NR] = $col["ry_km"]; z[NR] = $col["rz_km"]; n = NR }
+    END {
+      for (k = n; k > 2 && !(u[k] == 1 && u[k - 1] == 1 && t[k] > t[k - 1]); k--) ;
+      if (k <= 2) { print "no burn in the trajectory" > "/dev/stderr"; exit 1 }
+      r = sqrt(((x[k] + x[k - 1]) / 2) ^ 2 + ((y[k] + y[k - 1]) / 2) ^ 2 + ((z[k] + z[k - 1]) / 2) ^ 2) / AU
+      printf "%.17g %.17g %.17g\n", t[k], r, -(m[k] - m[k - 1]) / ((t[k] - t[k - 1]) * 86400)
+    }' "$1"
+}
+
 @test "sep: S15 converges cold with default settings, verified, its arrival thrust the power law's, its mass consistent" {
   mkdir -p "$WORK/s15"
   cp "$ROOT/scenarios/S15/problem.txt" "$WORK/s15/"
@@ -38,23 +52,21 @@ setup() {
   # the thrust the last burn's samples burn: -dm/dt g0 Isp, against 2 eta P_in(r)/(g0 Isp) at their
   # mid-point (P_in the smooth floor of width 5 W and cap of width 100 W, as derived; the hard minimum
   # differs by 1e-4 here)
-  awk -F, -v AU=149597870.691 '
-    NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
-    { t[NR] = $1; m[NR] = $col["m_kg"]; u[NR] = $col["u"]; x[NR] = $col["rx_km"]; y[NR] = $col["ry_km"]; z[NR] = $col["rz_km"]; n = NR }
-    END {
-      for (k = n; k > 2 && !(u[k] == 1 && u[k - 1] == 1 && t[k] > t[k - 1]); k--) ;
-      if (k <= 2) { print "no burn in the trajectory"; exit 1 }
+  local burn
+  burn=$(last_burn "$dir/trajectory.csv")
+  awk -v burn="$burn" '
+    BEGIN {
+      split(burn, b, " ")
       c = 9.80665 * 2000
-      measured = -(m[k] - m[k - 1]) / ((t[k] - t[k - 1]) * 86400) * c
-      r = sqrt(((x[k] + x[k - 1]) / 2) ^ 2 + ((y[k] + y[k - 1]) / 2) ^ 2 + ((z[k] + z[k - 1]) / 2) ^ 2) / AU
+      measured = b[3] * c; r = b[2]
       pa = 20000 / (r * r) - 500; pmax = 10000; w = 100; f = 5
       pin = (sqrt(pa * pa + f * f) + sqrt(pmax * pmax + w * w) - sqrt((pa - pmax) ^ 2 + w * w)) / 2
       hard = pa < pmax ? pa : pmax
       want = 2 * 0.6 * pin / c
-      printf "day %.3f r %.6f AU: measured %.9g N, power law %.9g N (hard minimum %.9g N)\n", t[k], r, measured, want, 2 * 0.6 * hard / c
+      printf "day %.3f r %.6f AU: measured %.9g N, power law %.9g N (hard minimum %.9g N)\n", b[1], r, measured, want, 2 * 0.6 * hard / c
       d = measured - want; if (d < 0) d = -d
       exit !(d < 1e-5 * want)
-    }' "$dir/trajectory.csv" >"$dir/thrust.txt" || { cat "$dir/thrust.txt" >&2; return 1; }
+    }' >"$dir/thrust.txt" || { cat "$dir/thrust.txt" >&2; return 1; }
   cat "$dir/thrust.txt"
 }
 
@@ -130,22 +142,20 @@ EOF
   local dir="$WORK/nstar"
   assert_jq "$dir/verify.json" '.verdict == "pass"'
   assert_jq "$dir/solution.json" '.status == "converged" and .start == "cold" and .epsilon == 0 and .max_residual < 1e-10 and .search.saturated'
-  awk -F, -v AU=149597870.691 '
-    NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
-    { t[NR] = $1; m[NR] = $col["m_kg"]; u[NR] = $col["u"]; x[NR] = $col["rx_km"]; y[NR] = $col["ry_km"]; z[NR] = $col["rz_km"]; n = NR }
-    END {
-      for (k = n; k > 2 && !(u[k] == 1 && u[k - 1] == 1 && t[k] > t[k - 1]); k--) ;
-      if (k <= 2) { print "no burn in the trajectory"; exit 1 }
-      measured = -(m[k] - m[k - 1]) / ((t[k] - t[k - 1]) * 86400) * 1e6
-      r = sqrt(((x[k] + x[k - 1]) / 2) ^ 2 + ((y[k] + y[k - 1]) / 2) ^ 2 + ((z[k] + z[k - 1]) / 2) ^ 2) / AU
+  local burn
+  burn=$(last_burn "$dir/trajectory.csv")
+  awk -v burn="$burn" '
+    BEGIN {
+      split(burn, b, " ")
+      measured = b[3] * 1e6; r = b[2]
       pa = 5000 / (r * r) - 300; pmax = 2600; w = 26; f = 3
       p = (sqrt(pa * pa + f * f) + sqrt(pmax * pmax + w * w) - sqrt((pa - pmax) ^ 2 + w * w)) / 2 / 1000
       on = 1 / (1 + exp(-(p * 1000 - 500) / 5))
       want = on * (0.47556 + 0.90209 * p + 0.01 * p ^ 3)
-      printf "day %.3f r %.6f AU, input power %.6g kW: measured %.9g mg/s, the fit %.9g mg/s\n", t[k], r, p, measured, want
+      printf "day %.3f r %.6f AU, input power %.6g kW: measured %.9g mg/s, the fit %.9g mg/s\n", b[1], r, p, measured, want
       d = measured - want; if (d < 0) d = -d
       exit !(d < 1e-5 * want)
-    }' "$dir/trajectory.csv" >"$dir/flow.txt" || { cat "$dir/flow.txt" >&2; return 1; }
+    }' >"$dir/flow.txt" || { cat "$dir/flow.txt" >&2; return 1; }
   cat "$dir/flow.txt"
 }
 
