@@ -7,10 +7,9 @@ namespace helios::symbolic {
 void ChainRule::add(const GiNaC::symbol& q, const GiNaC::ex& expression) {
   if (expression.has(q))
     throw std::invalid_argument("the intermediate " + q.get_name() + " is defined in terms of itself");
-  for (const auto& [later, unused] : inlined_)
-    if (later.is_equal(q)) throw std::invalid_argument("the intermediate " + q.get_name() + " is defined twice");
+  for (const auto& [earlier, unused] : order_)
+    if (earlier.is_equal(q)) throw std::invalid_argument("the intermediate " + q.get_name() + " is defined twice");
   order_.emplace_back(q, expression);
-  inlined_[q] = expression.subs(inlined_);
 }
 
 void ChainRule::name_partial(const GiNaC::symbol& q, const GiNaC::symbol& x, const GiNaC::symbol& named) {

@@ -1,9 +1,9 @@
 #pragma once
 // Named intermediate quantities q_1, ..., q_k of an expression (the derivation's intermediates),
-// each a function of other symbols and the earlier ones, and what their users ask of them: the
-// derivative of an expression that holds them, by the chain rule through them (without
-// substituting them, which would expand the powers of a fit of the power into thousands of terms),
-// and the expression with them substituted (a reader that checks a claim by its own arithmetic).
+// each a function of other symbols and the earlier ones, and the derivative of an expression that
+// holds them, by the chain rule through them: without substituting them, which would expand the
+// powers of a fit of the power into thousands of terms. (A reader that checks a claim by its own
+// arithmetic substitutes them instead: SymbolTable::substitute_on_parse.)
 #include <ginac/ginac.h>
 
 #include <map>
@@ -25,8 +25,6 @@ class ChainRule {
   // de/dx = the partial derivative plus sum_q de/dq dq/dx, dq/dx by the same rule (remembered).
   // x is any symbol but an intermediate.
   GiNaC::ex diff(const GiNaC::ex& e, const GiNaC::symbol& x) const;
-  // e with every intermediate replaced by its expression in the other symbols.
-  GiNaC::ex substituted(const GiNaC::ex& e) const { return e.subs(inlined_); }
   // The intermediates in order: name and expression (in the symbols and the earlier ones).
   const std::vector<std::pair<GiNaC::symbol, GiNaC::ex>>& order() const { return order_; }
 
@@ -35,7 +33,6 @@ class ChainRule {
   const GiNaC::ex& total(std::size_t i, const GiNaC::symbol& x) const;
 
   std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> order_;
-  GiNaC::exmap inlined_;  // q -> its expression with the earlier ones substituted
   std::map<std::pair<std::size_t, std::string>, GiNaC::ex> named_;  // (q's index, x) -> its partial's symbol
   mutable std::map<std::pair<std::size_t, std::string>, GiNaC::ex> derivatives_;  // (q's index, x) -> dq/dx
 };
