@@ -263,10 +263,10 @@ TEST(DerivationDocument, AMistypedOptionalFieldOfASharedSectionNamesItsPointer) 
   EXPECT_EQ(document_error(d), "");
 }
 
-// The derivation of every scenario: S01..S15, and the sweep P01 at its first cell.
+// The derivation of every scenario: S01..S16, and the sweep P01 at its first cell.
 std::vector<std::pair<std::string, json>> every_derivation() {
   std::vector<std::pair<std::string, json>> out;
-  for (int k = 1; k <= 15; ++k) {
+  for (int k = 1; k <= 16; ++k) {
     const std::string s = std::string(k < 10 ? "S0" : "S") + std::to_string(k);
     out.emplace_back(s, derivation_of(s));
   }
