@@ -842,7 +842,7 @@ TEST(FittedThruster, EveryDerivationRowAgreesWithTheFitsAndFiniteDifferences) {
 
 // A costate row without its dT/dr part, a thrust fit changed in its intermediate, the power's
 // gradient changed, a step of another width: each fails verify, naming the row or the term; an
-// intermediate that uses a costate is refused in one line.
+// intermediate that uses a costate, or a shooting row that names one, is refused in one line.
 TEST(FittedThruster, VerifyFailsAMutatedRowOrIntermediate) {
   const json d = derive_text(s01_with(std::string(kFitsArrays) + kNstarLike));
   const auto mutated = [&](const std::function<void(json&)>& change) {
@@ -874,6 +874,16 @@ TEST(FittedThruster, VerifyFailsAMutatedRowOrIntermediate) {
       if (q["name"] == "Pn") q["value"] = 3 * q["value"].get<double>();
   });
   EXPECT_TRUE(contains(feedback(step, "dynamics_terms"), "is not 1% of Pmin")) << feedback(step, "dynamics_terms");
+  const json in_row = mutated([&](json& m) {
+    m["shooting"]["equations"][0]["expression"] =
+        m["shooting"]["equations"][0]["expression"].get<std::string>() + "+0*P_in";
+  });
+  try {
+    helios::verify::verify_derivation(in_row, {});
+    ADD_FAILURE() << "an intermediate in a shooting equation was read";
+  } catch (const std::exception& e) {
+    EXPECT_TRUE(contains(e.what(), "field /shooting/equations/0/expression: uses the intermediate P_in")) << e.what();
+  }
   const json costate = mutated([&](json& m) { m["intermediates"][0]["expression"] = "l_rx"; });
   try {
     helios::verify::verify_derivation(costate, {});

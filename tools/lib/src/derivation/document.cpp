@@ -2,6 +2,7 @@
 // JSON of the sections helios-derive and the readers share (sections.hpp).
 #include "helios/derivation/document.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -573,6 +574,46 @@ void Document::check_intermediates() const {
             "; an intermediate may use only t, the states, the parameters and the intermediates before it");
     allowed.insert(q.name);
   }
+  if (intermediate_list.empty()) return;
+  // They are evaluated along the trajectory (the dynamics, H, the costate equations, the control
+  // law), not where the shooting rows, the endpoint and event conditions or the initial values are:
+  // an expression there that names one is refused, naming both.
+  std::set<std::string> names;
+  for (const auto& q : intermediate_list) names.insert(q.name);
+  const auto refuse_in = [&](const Expression& e) {
+    for (std::size_t at = 0; at < e.text.size();) {
+      if (!(std::isalpha(static_cast<unsigned char>(e.text[at])) || e.text[at] == '_')) {
+        ++at;
+        continue;
+      }
+      std::size_t end = at;
+      while (end < e.text.size() && (std::isalnum(static_cast<unsigned char>(e.text[end])) || e.text[end] == '_'))
+        ++end;
+      if (const std::string word = e.text.substr(at, end - at); names.count(word))
+        throw input_error(file + ": field " + e.pointer + ": uses the intermediate " + word +
+                          ", which is evaluated only along the trajectory (dynamics, H, costate equations, control "
+                          "law); write it out here");
+      at = end;
+    }
+  };
+  for (const auto& q : shooting.equations) {
+    refuse_in(q.expression);
+    if (q.alone_expression) refuse_in(*q.alone_expression);
+    if (q.inequality) refuse_in(q.inequality->inactive_expression);
+  }
+  for (const auto& c : constraints) {
+    for (const auto& e : c.psi) refuse_in(e);
+    for (const auto& side : c.must_be_positive) refuse_in(side.expression);
+  }
+  for (const auto& ev : interior_events) {
+    refuse_in(ev.time_expression);
+    for (const auto& e : ev.psi) refuse_in(e);
+    for (const auto& side : ev.must_be_positive) refuse_in(side.expression);
+    for (const auto& m : ev.state_map) refuse_in(m.expression);
+    for (const auto& m : ev.costate_map)
+      if (m.expression) refuse_in(*m.expression);
+  }
+  for (const auto& v : initial_values) refuse_in(v.value);
 }
 
 symbolic::ChainRule Document::chain_rule() const {
