@@ -2,7 +2,6 @@
 // JSON of the sections helios-derive and the readers share (sections.hpp).
 #include "helios/derivation/document.hpp"
 
-#include <cctype>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -581,20 +580,11 @@ void Document::check_intermediates() const {
   std::set<std::string> names;
   for (const auto& q : intermediate_list) names.insert(q.name);
   const auto refuse_in = [&](const Expression& e) {
-    for (std::size_t at = 0; at < e.text.size();) {
-      if (!(std::isalpha(static_cast<unsigned char>(e.text[at])) || e.text[at] == '_')) {
-        ++at;
-        continue;
-      }
-      std::size_t end = at;
-      while (end < e.text.size() && (std::isalnum(static_cast<unsigned char>(e.text[end])) || e.text[end] == '_'))
-        ++end;
-      if (const std::string word = e.text.substr(at, end - at); names.count(word))
+    for (const auto& word : symbolic::identifiers(e.text))
+      if (names.count(word))
         throw input_error(file + ": field " + e.pointer + ": uses the intermediate " + word +
                           ", which is evaluated only along the trajectory (dynamics, H, costate equations, control "
                           "law); write it out here");
-      at = end;
-    }
   };
   for (const auto& q : shooting.equations) {
     refuse_in(q.expression);

@@ -3,6 +3,7 @@
 #include "helios/symbolic/compare.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -231,6 +232,25 @@ void fix_expression_order(char** argv) {
   if (personality(static_cast<unsigned long>(current) | ADDR_NO_RANDOMIZE) == -1) return;
   execv("/proc/self/exe", argv);
   personality(static_cast<unsigned long>(current));  // exec failed: carry on as before
+}
+
+std::vector<std::string> identifiers(const std::string& text) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto ch = static_cast<unsigned char>(text[i]);
+    if (!(std::isalpha(ch) || ch == '_') || (i > 0 && (std::isalnum(static_cast<unsigned char>(text[i - 1])) ||
+                                                       text[i - 1] == '_' || text[i - 1] == '.'))) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < text.size() && (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_')) ++j;
+    std::size_t k = j;
+    while (k < text.size() && std::isspace(static_cast<unsigned char>(text[k]))) ++k;
+    if (k >= text.size() || text[k] != '(') out.push_back(text.substr(i, j - i));
+    i = j;
+  }
+  return out;
 }
 
 bool is_identifier(const std::string& s) {

@@ -2,7 +2,6 @@
 #include "context.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <stdexcept>
 
@@ -27,26 +26,6 @@ Kind state_kind(const std::string& name, const std::string& meaning) {
       (name[0] == 'r' && name.size() <= 2))
     return Kind::Position;
   return Kind::OtherState;
-}
-
-// Identifiers of an expression text that are not function names.
-std::vector<std::string> identifiers(const std::string& text) {
-  std::vector<std::string> out;
-  for (std::size_t i = 0; i < text.size();) {
-    const auto ch = static_cast<unsigned char>(text[i]);
-    if (!(std::isalpha(ch) || ch == '_') || (i > 0 && (std::isalnum(static_cast<unsigned char>(text[i - 1])) ||
-                                                       text[i - 1] == '_' || text[i - 1] == '.'))) {
-      ++i;
-      continue;
-    }
-    std::size_t j = i;
-    while (j < text.size() && (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_')) ++j;
-    std::size_t k = j;
-    while (k < text.size() && std::isspace(static_cast<unsigned char>(text[k]))) ++k;
-    if (k >= text.size() || text[k] != '(') out.push_back(text.substr(i, j - i));
-    i = j;
-  }
-  return out;
 }
 
 // A standard normal draw (Box-Muller).
@@ -152,7 +131,7 @@ void Context::declare_new(const std::string& name, Kind kind) {
 // Declares the identifiers of `text` that are not symbols yet (kind Free); returns them.
 std::vector<std::string> Context::declare_unknown(const std::string& text) {
   std::vector<std::string> out;
-  for (const auto& name : identifiers(text))
+  for (const auto& name : symbolic::identifiers(text))
     if (!slots.count(name) && name != "Pi" && name != "Euler" && name != "Catalan" && is_identifier(name)) {
       declare(name, Kind::Free);
       out.push_back(name);
@@ -222,7 +201,7 @@ void Context::read_statement() {
                       std::to_string(states.size()) + ")");
   // Dynamics that depend on the time (a third body's motion, a user's acceleration) name t.
   for (const auto& e : rhs)
-    for (const auto& name : identifiers(e.text))
+    for (const auto& name : symbolic::identifiers(e.text))
       if (name == "t") declare_new("t", Kind::Free);
   for (std::size_t i = 0; i < rhs.size(); ++i)
     state_rhs.push_back(statement(rhs[i].text, "dynamics.state_rhs[" + states[i] + "]"));
@@ -243,7 +222,7 @@ void Context::read_statement() {
     for (const auto& s : states) to_state[sym(names::at(s, k.at))] = sym(s);
     for (std::size_t j = 0; j < c.psi.size(); ++j) {
       if (k.at == "t0")
-        for (const auto& name : identifiers(c.psi[j].text))
+        for (const auto& name : symbolic::identifiers(c.psi[j].text))
           if (unknowns.count(name) && !slots.count(name)) {
             declare(name, Kind::Free);
             k.free_params.push_back(name);
@@ -306,7 +285,7 @@ void Context::read_times_and_events() {
     return;
   }
   tf_text = times.tf_expression->text;
-  for (const auto& name : identifiers(tf_text))
+  for (const auto& name : symbolic::identifiers(tf_text))
     if (!slots.count(name) && name != "Pi" && name != "Euler" && name != "Catalan") {
       tf_vars.push_back(name);
       declare(name, Kind::Free);

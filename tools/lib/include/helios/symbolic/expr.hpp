@@ -44,6 +44,10 @@ double expanded_terms(const GiNaC::ex& e);
 // before. Not for helios-solve: the programs it runs would inherit the flag.
 void fix_expression_order(char** argv);
 
+// The identifiers an expression text names, in order, without function names (a word followed by
+// '(') or a number's exponent: a scan of the text, no parse.
+std::vector<std::string> identifiers(const std::string& text);
+
 // True if `s` is a C identifier (what a symbol's name must be).
 bool is_identifier(const std::string& s);
 
