@@ -329,6 +329,16 @@ TEST(Terms, AConstantMassIsRefusedWhereItContradictsTheText) {
 
 // ---- A solar-electric engine (issue 48): T(r) = 2 eta P_in(r)/c, the costates carry dT/dr -----------
 
+// -dH/dx at `at` by a central difference of step rel max(1, |x|).
+double minus_dH_dx(const GiNaC::ex& H, const helios::symbolic::SymbolTable& table, const helios::symbolic::Values& at,
+                   const std::string& x, double rel) {
+  const double h = rel * std::max(1.0, std::fabs(at.at(x)));
+  helios::symbolic::Values plus = at, minus = at;
+  plus[x] += h;
+  minus[x] -= h;
+  return -(helios::symbolic::evaluate(H, table, plus) - helios::symbolic::evaluate(H, table, minus)) / (2 * h);
+}
+
 // A table with every name of derivation `d` and the intermediates substituted in whatever it parses.
 struct Substituted {
   helios::symbolic::SymbolTable table;
@@ -487,12 +497,7 @@ TEST(SolarElectric, EveryDerivationRowAgreesWithFiniteDifferences) {
     // Costate rates: -dH/dx by central differences.
     for (std::size_t i = 0; i < states.size(); ++i) {
       SCOPED_TRACE(states[i]);
-      const double h = 1e-5 * std::max(1.0, std::fabs(at[states[i]]));
-      helios::symbolic::Values plus = at, minus = at;
-      plus[states[i]] += h;
-      minus[states[i]] -= h;
-      const double fd =
-          -(helios::symbolic::evaluate(H, table, plus) - helios::symbolic::evaluate(H, table, minus)) / (2 * h);
+      const double fd = minus_dH_dx(H, table, at, states[i], 1e-5);
       const double row = helios::symbolic::evaluate(parse(d["costate_odes"][i]["rhs"]), table, at);
       EXPECT_NEAR(row, fd, 1e-6 * (1 + std::fabs(fd)));
     }
@@ -679,12 +684,7 @@ TEST(Drag, TheSentenceIsOneTermDerivedAndVerified) {
     for (const auto& s : d["states"]) {
       const std::string x = s["name"];
       SCOPED_TRACE(x);
-      const double h = 1e-6 * std::max(1.0, std::fabs(at[x]));
-      helios::symbolic::Values plus = at, minus = at;
-      plus[x] += h;
-      minus[x] -= h;
-      const double fd =
-          -(helios::symbolic::evaluate(H, table, plus) - helios::symbolic::evaluate(H, table, minus)) / (2 * h);
+      const double fd = minus_dH_dx(H, table, at, x, 1e-6);
       double row = 0;
       for (const auto& c : d["costate_odes"])
         if (c["costate"] == s["costate"]) row = helios::symbolic::evaluate(parse(c["rhs"]), table, at);
@@ -818,12 +818,7 @@ TEST(FittedThruster, EveryDerivationRowAgreesWithTheFitsAndFiniteDifferences) {
     for (std::size_t i = 0; i < 7; ++i) {
       const std::string x = d["states"][i]["name"];
       SCOPED_TRACE(x);
-      const double h = 1e-6 * std::max(1.0, std::fabs(at[x]));
-      helios::symbolic::Values plus = at, minus = at;
-      plus[x] += h;
-      minus[x] -= h;
-      const double fd =
-          -(helios::symbolic::evaluate(H, s.table, plus) - helios::symbolic::evaluate(H, s.table, minus)) / (2 * h);
+      const double fd = minus_dH_dx(H, s.table, at, x, 1e-6);
       EXPECT_NEAR(s.at(d["costate_odes"][i]["rhs"], at), fd, 1e-6 * (1 + std::fabs(fd)));
     }
     helios::symbolic::Values up = at, down = at;
