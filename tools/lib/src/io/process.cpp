@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <map>
 #include <stdexcept>
+#include <utility>
 
 namespace helios::io {
 
@@ -15,14 +16,17 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void exec_or_exit(const std::vector<std::string>& argv, bool search_path) {
-  std::vector<char*> args;
-  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
+ExecArgv::ExecArgv(std::vector<std::string> argv) : strings_(std::move(argv)) {
+  if (strings_.empty()) throw std::invalid_argument("a command needs at least its program's name");
+  for (auto& a : strings_) pointers_.push_back(a.data());
+  pointers_.push_back(nullptr);
+}
+
+void ExecArgv::exec_or_exit(bool search_path) const {
   if (search_path)
-    ::execvp(args[0], args.data());
+    ::execvp(pointers_[0], pointers_.data());
   else
-    ::execv(args[0], args.data());
+    ::execv(pointers_[0], pointers_.data());
   _exit(127);
 }
 
@@ -42,13 +46,14 @@ std::string on_path(const std::string& name) {
 
 std::string capture(const std::vector<std::string>& argv) {
   int pipefd[2];
+  const ExecArgv command(argv);
   if (::pipe(pipefd) != 0) return "";
   const pid_t pid = ::fork();
   if (pid == 0) {
     ::dup2(pipefd[1], 1);
     ::dup2(pipefd[1], 2);
     ::close(pipefd[0]);
-    exec_or_exit(argv, true);
+    command.exec_or_exit(true);
   }
   ::close(pipefd[1]);
   std::string out;
@@ -68,12 +73,13 @@ std::vector<int> run_all(const std::vector<std::vector<std::string>>& commands, 
   bool fork_failed = false;
   while ((!fork_failed && next < commands.size()) || !running.empty()) {
     while (!fork_failed && next < commands.size() && static_cast<int>(running.size()) < std::max(1, jobs)) {
+      const ExecArgv command(commands[next]);
       const pid_t pid = ::fork();
       if (pid < 0) {
         fork_failed = true;
         break;
       }
-      if (pid == 0) exec_or_exit(commands[next], true);
+      if (pid == 0) command.exec_or_exit(true);
       running[pid] = next++;
     }
     if (running.empty()) break;

@@ -207,6 +207,7 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
   // The CPU limit counts every thread's time, and the search runs one per core.
   const rlim_t cores = std::max(1u, std::thread::hardware_concurrency());
   const pid_t parent = ::getpid();
+  const io::ExecArgv command(argv);
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
   if (pid == 0) {
@@ -231,7 +232,7 @@ RunResult run_limited(const std::vector<std::string>& argv, double wall_limit_s,
     ::setrlimit(RLIMIT_CORE, &no_core);
     // NOTE: the kernel does not apply RLIMIT_NPROC to root; kill_leftovers() is the bound there.
     ::setrlimit(RLIMIT_NPROC, &proc_limit);
-    io::exec_or_exit(argv, false);
+    command.exec_or_exit(false);
   }
   ::close(err_pipe[1]);
   ::fcntl(err_pipe[0], F_SETFL, O_NONBLOCK);

@@ -12,9 +12,23 @@ namespace helios::io {
 // Seconds since `start` on the steady clock.
 double seconds_since(std::chrono::steady_clock::time_point start);
 
-// In a forked child: replaces it with argv (argv[0] a path, or looked up on PATH when
-// `search_path`); exits 127 when that fails.
-[[noreturn]] void exec_or_exit(const std::vector<std::string>& argv, bool search_path);
+// A command's argv as exec wants it, built before fork: a forked child may not allocate. Another
+// thread of the parent may hold the allocator's lock at the fork, and a child that lowered its
+// RLIMIT_AS below the parent's mappings (the sandbox's memory limit) cannot map anything: under
+// AddressSanitizer even a small malloc may map a new page of its allocation records there, and fails.
+class ExecArgv {
+ public:
+  explicit ExecArgv(std::vector<std::string> argv);
+  ExecArgv(const ExecArgv&) = delete;
+  ExecArgv& operator=(const ExecArgv&) = delete;
+  // In the forked child: replaces it with the command (argv[0] a path, or looked up on PATH when
+  // `search_path`); exits 127 when that fails. Allocates nothing.
+  [[noreturn]] void exec_or_exit(bool search_path) const;
+
+ private:
+  std::vector<std::string> strings_;
+  std::vector<char*> pointers_;
+};
 
 // `name` itself when it holds a '/', else the first executable PATH entry of that name; `name`
 // when none is (the exec then fails with its own error).
