@@ -46,6 +46,14 @@ TEST(LatexSymbol, StatesCostatesGreekAndEventParts) {
   EXPECT_EQ(latex_symbol("rref"), "\\mathrm{rref}");
 }
 
+TEST(Typesetter, AnIntermediateAndItsPartialsTakeItsQualifierAsASubscript) {
+  Typesetter t({"P_in", "T_P", "dP_in_drx", "a_arrival"}, {"P_in", "T_P"});
+  EXPECT_EQ(t.symbol("P_in"), "P_{\\mathrm{in}}");
+  EXPECT_EQ(t.symbol("T_P"), "T_{P}");
+  EXPECT_EQ(t.symbol("dP_in_drx"), "\\partial_{r_{x}} P_{\\mathrm{in}}");
+  EXPECT_EQ(t.symbol("a_arrival"), "a^{\\mathrm{arrival}}");  // no intermediate: a qualifier's superscript
+}
+
 TEST(Typesetter, TwoNamesThatWouldPrintAlikeDoNot) {
   Typesetter t({"mars_vx", "vx_mars"});
   EXPECT_NE(t.symbol("mars_vx"), t.symbol("vx_mars"));

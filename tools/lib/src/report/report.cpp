@@ -151,7 +151,7 @@ class Writer {
         d_(in.derivation),
         reader_(in.derivation, in.derivation_source, false),
         symbols_(with_multipliers(reader_.symbols, in.derivation)),
-        tex_(names()) {}
+        tex_(names(), intermediate_names(in.derivation)) {}
 
   std::string write();
 
@@ -166,6 +166,12 @@ class Writer {
     for (const auto& c : d.value("constraints", json::array())) add(c);
     for (const auto& e : d.value("events", json::array())) add(e);
     return table;
+  }
+
+  static std::set<std::string> intermediate_names(const json& d) {
+    std::set<std::string> out;
+    for (const auto& q : d.value("intermediates", json::array())) out.insert(q.value("name", ""));
+    return out;
   }
 
   std::vector<std::string> names() const {

@@ -131,6 +131,12 @@ struct RenameSymbols : GiNaC::map_function {
   }
 };
 
+// An intermediate's partial derivative in a state (names::partial: dP_in_drx), its two names matched.
+const std::regex& partial_name() {
+  static const std::regex partial(R"(d([A-Za-z][A-Za-z0-9_]*)_d([A-Za-z][A-Za-z0-9]*))");
+  return partial;
+}
+
 }  // namespace
 
 std::string latex_text(const std::string& text) {
@@ -164,9 +170,7 @@ std::string latex_text(const std::string& text) {
 }
 
 std::string latex_symbol(const std::string& name) {
-  // An intermediate's partial derivative in a state (names::partial: dP_in_drx).
-  static const std::regex partial(R"(d([A-Za-z][A-Za-z0-9_]*)_d([A-Za-z][A-Za-z0-9]*))");
-  if (std::smatch m; std::regex_match(name, m, partial))
+  if (std::smatch m; std::regex_match(name, m, partial_name()))
     return "\\partial_{" + latex_symbol(m[2].str()) + "} " + latex_symbol(m[1].str());
   std::vector<std::string> parts = split(name);
   if (parts.empty() || std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
@@ -206,10 +210,26 @@ std::string latex_symbol(const std::string& name) {
   return render(core, sup, time);
 }
 
-Typesetter::Typesetter(const std::vector<std::string>& names) {
+std::string latex_intermediate(const std::string& name) {
+  const std::vector<std::string> parts = split(name);
+  if (parts.size() < 2 || std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
+    return latex_symbol(name);
+  Atom core = atom(parts[0]);
+  for (std::size_t i = 1; i < parts.size(); ++i)
+    core.sub.push_back(is_atom_word(parts[i]) ? render(atom(parts[i]), {}, "") : upright(parts[i]));
+  return render(core, {}, "");
+}
+
+Typesetter::Typesetter(const std::vector<std::string>& names, const std::set<std::string>& intermediates) {
+  const auto typeset = [&](const std::string& name) {
+    if (intermediates.count(name)) return latex_intermediate(name);
+    if (std::smatch m; std::regex_match(name, m, partial_name()) && intermediates.count(m[1].str()))
+      return "\\partial_{" + latex_symbol(m[2].str()) + "} " + latex_intermediate(m[1].str());
+    return latex_symbol(name);
+  };
   std::set<std::string> taken;
   for (const auto& name : names) {
-    std::string tex = latex_symbol(name);
+    std::string tex = typeset(name);
     if (!taken.insert(tex).second) {
       tex = upright(name);
       taken.insert(tex);

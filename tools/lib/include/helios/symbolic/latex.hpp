@@ -28,6 +28,11 @@ namespace helios::symbolic {
 // other multi-letter word is upright. Not injective on every name: Typesetter checks its names.
 std::string latex_symbol(const std::string& name);
 
+// The LaTeX of an intermediate quantity's name: its first part the symbol, the others its subscript
+// (P_in is P_{\mathrm{in}}, T_P is T_{P}), not the superscript of a body or an event: a
+// superscript on a quantity reads as a power.
+std::string latex_intermediate(const std::string& name);
+
 // LaTeX text for prose (escapes the characters TeX treats specially).
 std::string latex_text(const std::string& text);
 
@@ -41,7 +46,9 @@ class Typesetter {
  public:
   // `names`: every symbol name the expressions may use. A name whose latex_symbol() another name
   // already prints as is printed as upright text instead, so no two symbols look alike.
-  explicit Typesetter(const std::vector<std::string>& names);
+  // `intermediates`: the names among them that are the derivation's intermediates, printed with
+  // their qualifier as a subscript (latex_intermediate), and so their partials.
+  explicit Typesetter(const std::vector<std::string>& names, const std::set<std::string>& intermediates = {});
 
   // The compact form of `e` (see the header comment), over symbols that print as LaTeX.
   GiNaC::ex compact(const GiNaC::ex& e);
