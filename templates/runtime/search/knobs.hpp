@@ -125,21 +125,29 @@ class ProgramKnobs {
   }
 
  private:
-  // The program's own thrust (normalized): Tmax, or where the thrust follows the position the full
-  // throttle's mass flow at (1, 0, 0) times the exhaust velocity (the thrust at one length unit).
+  // The program's own thrust (normalized): Tmax, or where the thrust follows the position its value
+  // at (1, 0, 0), one length unit from the centre: the full throttle's mass flow there times the
+  // exhaust velocity, or without one (an engine given by fits) the mass times the acceleration the
+  // full throttle adds to the coast's, its direction the control law's for lambda_v = (-1, 0, 0).
   static double reference_thrust() {
     if (const double* tmax = scalar_parameter("Tmax")) return *tmax;
     const int m = kProblem.mass_index, u = kProblem.throttle_index;
-    const double c = kProblem.exhaust_velocity_m_s / (kProblem.speed_unit_km_s * 1e3);
-    if (m < 0 || u < 0 || !(c > 0)) return 0;
-    std::array<double, kMaxNY> y{}, dy{};
+    if (m < 0 || u < 0) return 0;
+    std::array<double, kMaxNY> y{}, full{}, coast{};
     std::array<double, kMaxControls> control{};
     y[0] = 1;
     y[4] = 1;
     y[m] = 1;
-    control[u] = 1;
-    dynamics(0.0, y.data(), control.data(), Multipliers{0.0, 0.0}, dy.data());
-    return -dy[m] * c;
+    y[kProblem.num_states + 3] = -1;
+    const Multipliers mult{0.0, 0.0};
+    control_in_mode(y.data(), kFull, mult, control.data());
+    dynamics(0.0, y.data(), control.data(), mult, full.data());
+    const double c = kProblem.exhaust_velocity_m_s / (kProblem.speed_unit_km_s * 1e3);
+    if (c > 0) return -full[m] * c;
+    control_in_mode(y.data(), kOff, mult, control.data());
+    dynamics(0.0, y.data(), control.data(), mult, coast.data());
+    const double thrust = std::hypot(full[3] - coast[3], full[4] - coast[4], full[5] - coast[5]);
+    return std::isfinite(thrust) ? thrust : 0;
   }
 
   std::vector<double*> thrust_;
