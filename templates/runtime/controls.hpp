@@ -83,10 +83,19 @@ inline double full_throttle_cost_rate() {
 
 // The time full throttle takes to burn the whole initial mass (normalized; the initial mass is the
 // mass unit): infinite for an engine of constant mass, and where the throttle has no mass flow of
-// its own.
+// its own (a solar-electric engine's flow follows the distance: no burnout is known).
 inline double burnout_time() {
   const double flow = constant_mass() ? 0.0 : full_throttle_cost_rate();
   return flow > 0 ? 1 / flow : INFINITY;
+}
+
+// Whether the throttle has a fuel cost: with a mass state, whose flow is the throttle's at a rate of
+// its own or following the Sun's distance (a solar-electric engine); at a constant mass, the L1
+// cost's rate. The routes that continue a minimum-fuel extremal in its final time need only this,
+// not the rate.
+inline bool throttle_has_fuel_cost() {
+  if (constant_mass() || !kProblem.mass_flow_varies) return full_throttle_cost_rate() > 0;
+  return kProblem.mass_index >= 0 && kProblem.throttle_index >= 0;
 }
 
 // The minimum-fuel cost of an engine of constant mass is the delta-v (no exhaust velocity prices it

@@ -75,3 +75,27 @@ setup() {
   grep -q '^The minimum time found: 0.61668' report.md
   grep -q '^| minimum time past the bound | yes |' report.md
 }
+
+# A solar-electric engine's mass flow follows the Sun's distance: the route once skipped it, so such
+# a problem ended "0 converged" like a solver failure. An NSTAR-like thruster (fits of thrust and
+# mass flow, 5 kW arrays) on S01's 348.795-day rendezvous at 350 kg: infeasible, and the minimum time
+# it gives is the one the same transfer's minimum-time problem returns (a separate program and
+# search). The fuel extremals at the doubled final time come down to 638 days only (one family): the
+# minimum-time problem's own starts there find the shorter one.
+@test "infeasible: a solar-electric problem below its minimum time ends infeasible with the minimum-time problem's answer" {
+  local sentence="The spacecraft is solar-electric: its arrays give 5 kW at 1 AU, the bus uses 0.3 kW.\nThe thruster's thrust is -1.9137 + 36.242 P - 0.5 P^2 mN and its mass flow is 0.47556 + 0.90209 P + 0.01 P^3 mg\/s for an input power P between 0.5 and 2.6 kW.\nThe spacecraft has an initial mass of 350 kg."
+  mkdir -p "$WORK/sep-fixed" "$WORK/sep-time"
+  sed -e "s/^The spacecraft has a maximum thrust of 0.5 N, a specific impulse of 2000 s and an initial mass of 1000 kg.\$/$sentence/" \
+    "$ROOT/scenarios/S01/problem.txt" >"$WORK/sep-fixed/problem.txt"
+  sed -e 's/^The time of flight is 348.795 days.$/The time of flight is at most 1000 days./' \
+    -e 's/^Minimize the fuel consumption.$/Minimize the time of flight./' "$WORK/sep-fixed/problem.txt" >"$WORK/sep-time/problem.txt"
+  grep -q 'at most 1000 days' "$WORK/sep-time/problem.txt"
+  local status=0
+  run_chain "$WORK/sep-fixed/problem.txt" "" "$WORK/sep-fixed" || status=$?
+  [[ $status == 5 ]] || { tail -5 "$WORK/sep-fixed/stderr" >&2; return 1; }
+  run_chain "$WORK/sep-time/problem.txt" "" "$WORK/sep-time"
+  assert_jq "$WORK/sep-time/solution.json" '.status == "converged" and .search.saturated'
+  local fixed="$WORK/sep-fixed/solution.json"
+  assert_jq "$fixed" '.status == "infeasible" and .search.minimum_time.settled and .search.minimum_time.bound_days == 348.795'
+  within "$(jq '.search.minimum_time.tf_days' "$fixed")" "$(jq '.tof_days' "$WORK/sep-time/solution.json")" 1e-8
+}

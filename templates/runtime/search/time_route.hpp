@@ -35,12 +35,12 @@ constexpr const char* kLambda0Held = "lambda0 held, the final time free (lambda0
 constexpr const char* kFinalTimeUp = "minimum fuel, the final time up [days]";
 
 // Whether the problem has the route: minimum propellant at a fixed final time (a parameter), with
-// a throttle that burns mass and lambda0 a variable, and targets that do not move on the calendar
+// a throttle that burns mass (at a constant rate or not) and lambda0 a variable, and targets that do not move on the calendar
 // (no epoch, no body on an orbit, no coasting target: a final time moved elsewhere would meet them
 // elsewhere).
 inline bool has_time_route() {
-  return kProblem.objective == Objective::propellant && free_final_time().variable < 0 &&
-         full_throttle_cost_rate() > 0 && lambda0_variable() >= 0 && scalar_parameter("kTf") != nullptr &&
+  return kProblem.objective == Objective::propellant && free_final_time().variable < 0 && throttle_has_fuel_cost() &&
+         lambda0_variable() >= 0 && scalar_parameter("kTf") != nullptr &&
          targets_fixed_in_time();
 }
 
@@ -174,6 +174,52 @@ void fuel_path_from_minimum_time(const Settings& s, const Settings& along, Progr
   evaluations += up.evaluations + itself.evaluations;
 }
 
+// The minimum-time problem itself, searched: starts on the held-multiplier system (lambda0 held at
+// 0, the final time free in its slot, drawn log-uniformly between a tenth of the program's final
+// time and the program's), drawn until saturated. Its extremals (cost: the final time as a fraction
+// of the program's) are the minimum-time extremals of every family the starts reach, where
+// continuing one fuel extremal down in its final time reaches its own family's only. The
+// held-multiplier system writes the program's final time (one for the whole program) at every
+// evaluation, so these starts run on one thread.
+struct MinimumTimeSearch {
+  std::vector<StartExtremal> found;
+  bool saturated = false;
+};
+
+inline MinimumTimeSearch search_minimum_time(SearchContext& c) {
+  const int l0 = lambda0_variable();
+  const double held = 0;
+  MinimumTimeSearch out;
+  int drawn = 0, converged = 0;
+  bool cut = false;
+  const DrawStop stop = draw_until_saturated(
+      c.coarse, 1, kMinimumTimeStream, out.found, drawn, converged, cut, start_cap(c.coarse), c.started,
+      [&](int, std::mt19937_64& rng) {
+        StartRun run;
+        run.x.assign(kProblem.num_vars, 0.0);
+        c.guess(rng, run.x.data());
+        run.x[l0] = std::pow(10.0, std::uniform_real_distribution<double>(-1.0, 0.0)(rng));
+        Shooter shooter(c.coarse, held_multiplier_function(c.knobs, l0, held));
+        int info = 0;
+        run.ok = shooter.solve(run.x, 0.0, c.coarse.accept_residual, info, run.res) && run.x[l0] > 0;
+        c.knobs.reset_final_time();
+        if (run.ok) {
+          run.shape.revolutions = minimum_time_revolutions(c.coarse, c.knobs, run.x);
+          run.shape.cost = run.x[l0];
+        }
+        c.count(shooter.evaluations);
+        return run;
+      },
+      [&](const StartRun& run, int k) { c.pool.enter_start(out.found, run, k); },
+      [&](int k) { c.progress.tick(std::to_string(k) + " starts of the minimum-time problem"); });
+  out.saturated = stop == DrawStop::kSaturated;
+  c.rec().cut_by_time = c.rec().cut_by_time || cut;
+  c.progress.stage(std::to_string(drawn) + " starts of the minimum-time problem: " + std::to_string(converged) +
+                   " converged, " + std::to_string(out.found.size()) + " distinct" +
+                   (out.saturated ? ", saturated" : ", not saturated"));
+  return out;
+}
+
 // The route (see the top of this file), at the integrator's own tolerance, one path at a time:
 // from each of kTimeRouteSources lowest-cost extremals of the starts at eps_start down to a
 // minimum-time extremal, and from each distinct one up to the problem's final time and on to
@@ -184,7 +230,6 @@ class TimeRoute : public Route {
  public:
   const char* name() const override { return "minimum-time route"; }
   std::string skip(const SearchContext& c) const override {
-    if (kProblem.objective == Objective::propellant && *varying_flow_reason()) return varying_flow_reason();
     if (!has_time_route()) return "not a minimum-fuel problem at a fixed final time with targets fixed in time";
     if (c.nested) return "inside a search at a raised thrust";
     const std::string& when = c.coarse.search_fuel_from_time;
@@ -219,9 +264,10 @@ class TimeRoute : public Route {
     }
     std::string line = std::to_string(c.rec().time_route_paths.size()) + " paths, " + std::to_string(arrived) +
                        " arrived at the problem's final time";
-    if (kProblem.final_coast_keeps_target && std::isfinite(t_min)) {
+    if (kProblem.final_coast_keeps_target && std::isfinite(t_min) && full_throttle_cost_rate() > 0) {
       // The minimum-time transfer burns throughout; completed by a coast on the target it is a
-      // feasible transfer at the problem's final time, which no returned extremal may cost more than.
+      // feasible transfer at the problem's final time, which no returned extremal may cost more than
+      // (its cost is the rate times t_min: none is known where the flow follows the distance).
       c.rec().coast_bound = full_throttle_cost_rate() * t_min / kProblem.time_unit_days;
       line += "; the minimum time " + days_text(t_min) + " and a coast cost " + objective_text(c.rec().coast_bound);
     }
@@ -235,46 +281,15 @@ class TimeRoute : public Route {
   // give the minimum-time extremals of their families only, and the one the final time comes down
   // to need not be the shortest (GTO to GEO at 60 N in 1.5 t_min: the starts reach only the family
   // of two revolutions, which comes down to 21.54 h; the shortest, 14.80 h, is one revolution).
-  // So the minimum-time problem itself is searched: starts on the held-multiplier system (lambda0
-  // held at 0, the final time free in its slot, drawn log-uniformly between a tenth of the
-  // problem's and the problem's), drawn until saturated; each distinct minimum-time extremal is
-  // taken up to the problem's final time. The held-multiplier system writes the program's final
-  // time (one for the whole program) at every evaluation, so these starts run on one thread.
+  // So the minimum-time problem itself is searched (search_minimum_time), and each of its
+  // lowest-cost extremals is taken up to the problem's final time.
   void minimum_time_starts(SearchContext& c) {
-    SearchRecord& rec = c.rec();
-    const int l0 = lambda0_variable();
-    const double held = 0;
-    std::vector<StartExtremal> found;
-    int drawn = 0, converged = 0;
-    bool cut = false;
-    draw_until_saturated(
-        c.coarse, 1, kMinimumTimeStream, found, drawn, converged, cut, start_cap(c.coarse), c.started,
-        [&](int, std::mt19937_64& rng) {
-          StartRun run;
-          run.x.assign(kProblem.num_vars, 0.0);
-          c.guess(rng, run.x.data());
-          run.x[l0] = std::pow(10.0, std::uniform_real_distribution<double>(-1.0, 0.0)(rng));
-          Shooter shooter(c.coarse, held_multiplier_function(c.knobs, l0, held));
-          int info = 0;
-          run.ok = shooter.solve(run.x, 0.0, c.coarse.accept_residual, info, run.res) && run.x[l0] > 0;
-          c.knobs.reset_final_time();
-          if (run.ok) {
-            run.shape.revolutions = minimum_time_revolutions(c.coarse, c.knobs, run.x);
-            run.shape.cost = run.x[l0];
-          }
-          c.count(shooter.evaluations);
-          return run;
-        },
-        [&](const StartRun& run, int k) { c.pool.enter_start(found, run, k); },
-        [&](int k) { c.progress.tick(std::to_string(k) + " starts of the minimum-time problem"); });
-    rec.cut_by_time = rec.cut_by_time || cut;
-    c.progress.stage(std::to_string(drawn) + " starts of the minimum-time problem: " + std::to_string(converged) +
-                     " converged, " + std::to_string(found.size()) + " distinct");
-    for (const int k : lowest_cost(found, kTimeRouteSources)) {
+    MinimumTimeSearch search = search_minimum_time(c);
+    for (const int k : lowest_cost(search.found, kTimeRouteSources)) {
       if (c.out_of_time()) break;
       TimeRouteArrival a;
-      std::vector<double> z = found[k].x;
-      path(c, "the minimum-time start " + std::to_string(found[k].first_start), &z, a);
+      std::vector<double> z = search.found[k].x;
+      path(c, "the minimum-time start " + std::to_string(search.found[k].first_start), &z, a);
     }
   }
 
