@@ -329,6 +329,30 @@ script() {
   [[ ! -e spec.json && ! -e spec.transcript.json ]]
 }
 
+# A model's derivation with intermediates (S15's solar-electric engine keeps its input power P_in and
+# the partials dP_in_drx, ... by name): round 1 has a wrong partial, which verify fails by its own
+# check and names in the costate row that uses it; round 2, asked with that feedback, passes.
+@test "llm: a derivation with intermediates: a wrong partial fails its own check, the next round is asked with it" {
+  "$BIN/helios-parse" "$ROOT/scenarios/S15/problem.txt" -o spec.json
+  "$BIN/helios-derive" spec.json -o builtin.json
+  jq 'del(.schema, .schema_version, .producer, .units, .times, .parameters)' builtin.json >good.json
+  jq '(.intermediates[] | select(.name == "dP_in_dry") | .expression) |= "1.01*(" + . + ")"' good.json >bad.json
+  fence good.json >"$FX/s15_good.txt"
+  fence bad.json >"$FX/s15_bad.txt"
+  start_fake "$(script s15.json '{"replies": [{"content_file": "s15_bad.txt"},
+    {"content_file": "s15_good.txt", "match": "## Round 2"}]}')" requests.jsonl
+  "$BIN/helios-derive" --backend llm --round 1 spec.json -o d1.json
+  assert_jq d1.json '[.intermediates[].name] == ["P_in", "dP_in_drx", "dP_in_dry", "dP_in_drz"]'
+  "$BIN/helios-verify" --advisory d1.json -o v1.json
+  assert_jq v1.json '.verdict == "fail" and ([.checks[] | select(.verdict == "fail") | .id] == ["intermediate:dP_in_dry", "costate_ode:l_ry"])'
+  assert_jq v1.json '.checks[] | select(.id == "costate_ode:l_ry") | .feedback | test("It names dP_in_dry, which fails its own check")'
+  "$BIN/helios-derive" --backend llm --round 2 --previous d1.json --feedback v1.json spec.json -o d2.json
+  jq -e '.turns[0].request.messages[-1].content | test("intermediates\\[dP_in_dry\\]: expected dP_in/dry")' d2.transcript.json
+  "$BIN/helios-verify" d2.json -o v2.json
+  assert_jq v2.json '.verdict == "pass" and ([.checks[] | select(.category == "intermediates")] | length) == 3'
+  jq -e --slurpfile b builtin.json '.intermediates == $b[0].intermediates and .costate_odes == $b[0].costate_odes' d2.json
+}
+
 # ---- untrusted code ----------------------------------------------------------------------------
 
 @test "solve: a generated program that never terminates is killed at its limit, reported, and scored" {

@@ -862,8 +862,14 @@ TEST(FittedThruster, VerifyFailsAMutatedRowOrIntermediate) {
     for (auto& q : m["intermediates"])
       if (q["name"] == "dP_in_dry") q["expression"] = "1.01*(" + q["expression"].get<std::string>() + ")";
   });
-  EXPECT_EQ(check(verify(gradient), "costate_ode:l_ry")["verdict"], "fail");
-  EXPECT_EQ(check(verify(gradient), "costate_ode:l_rx")["verdict"], "pass");
+  const json gradient_report = verify(gradient);
+  EXPECT_EQ(check(gradient_report, "costate_ode:l_ry")["verdict"], "fail");
+  EXPECT_EQ(check(gradient_report, "costate_ode:l_rx")["verdict"], "pass");
+  // the wrong partial fails its own check, and the row that names it says so
+  EXPECT_EQ(check(gradient_report, "intermediate:dP_in_dry")["verdict"], "fail");
+  EXPECT_EQ(check(gradient_report, "intermediate:dP_in_drx")["verdict"], "pass");
+  EXPECT_TRUE(contains(check(gradient_report, "costate_ode:l_ry")["feedback"].get<std::string>(),
+                       "It names dP_in_dry, which fails its own check (intermediates): correct it first."));
   const json step = mutated([&](json& m) {
     for (auto& q : m["parameters"])
       if (q["name"] == "Pn") q["value"] = 3 * q["value"].get<double>();

@@ -400,6 +400,7 @@ void Writer::equations(std::ostringstream& o) {
       o << markdown_text(q.value("meaning", "")) << " (" << code(q.value("name", "")) << ")"
         << (q.value("unit", "").empty() ? "" : ", " + markdown_text(q.value("unit", ""))) << ":\n"
         << display(tex_.symbol(q.value("name", "")), q.value("expression", ""), "/intermediates");
+    o << findings([](const json& c) { return c.value("category", "") == "intermediates"; });
   }
   o << "### Hamiltonian\n"
     << display("H", d_.at("hamiltonian"), "/hamiltonian")

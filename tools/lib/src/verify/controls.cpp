@@ -2,11 +2,13 @@
 // each recomputed from the problem statement and compared with the derivation's claims.
 #include "family.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
 #include <stdexcept>
 
+#include "helios/symbolic/expr.hpp"
 #include "sail.hpp"
 
 namespace helios::verify::detail {
@@ -21,6 +23,7 @@ class ControlFamily : public Family {
   using Family::Family;
 
   std::vector<Check> run() override {
+    check_intermediate_partials();
     check_hamiltonian();
     check_odes(true);
     check_odes(false);
@@ -33,6 +36,27 @@ class ControlFamily : public Family {
  private:
   // a* for the exact throttle checks: the default of the context, the derivation's own law once verified.
   std::vector<ex> direction_law = ctx.direction_law;
+  // The intermediates named as a partial (dQ_dx) that are not one.
+  std::set<std::string> wrong_partials;
+
+  // An intermediate named as another's partial in a state (names::partial: dP_in_drx) must be that
+  // partial: a wrong one fails its own check, so the costate row that names it is not the only
+  // thing the feedback points at (both are compared with everything substituted).
+  void check_intermediate_partials() {
+    const auto& list = ctx.doc.intermediate_list;
+    for (std::size_t k = 0; k < list.size(); ++k)
+      for (std::size_t j = 0; j < k; ++j)
+        for (const auto& x : ctx.states) {
+          if (list[k].name != derivation::names::partial(list[j].name, x)) continue;
+          const ex of = ctx.statement(list[j].name, "intermediates[" + list[j].name + "]");
+          const ex expected = of.diff(GiNaC::ex_to<symbol>(ctx.sym(x)));
+          Check c = equality("intermediate:" + list[k].name, "intermediates", "intermediates[" + list[k].name + "]",
+                             "d" + list[j].name + "/d" + x, {expected, ctx.compile(expected), {}},
+                             list[k].expression.text, false);
+          if (!c.pass) wrong_partials.insert(list[k].name);
+          checks.push_back(c);
+        }
+  }
 
   void check_hamiltonian() {
     const std::string sum =
@@ -100,6 +124,15 @@ class ControlFamily : public Family {
       if (!c.pass && !state && parsed && !at && c.feedback.find("whole expression is flipped") == std::string::npos) {
         const std::string j = jacobian_diagnosis(i, given);
         if (!j.empty()) c.feedback += " " + j;
+      }
+      if (!c.pass) {
+        std::vector<std::string> named;
+        for (const auto& id : symbolic::identifiers(given_text))
+          if (wrong_partials.count(id) && std::find(named.begin(), named.end(), id) == named.end()) named.push_back(id);
+        if (!named.empty())
+          c.feedback += " It names " + join(named, ", ") +
+                        (named.size() == 1 ? ", which fails its own check (intermediates): correct it first."
+                                           : ", which fail their own checks (intermediates): correct them first.");
       }
       if (!order.empty() && c.pass) c.fail(order + ".");
       checks.push_back(c);
