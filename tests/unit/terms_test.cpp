@@ -929,6 +929,24 @@ TEST(FittedThruster, AFitNegativeWhereTheEngineRunsIsRefused) {
   }
 }
 
+// A spec written by hand skips the sentence's rule that the jet power T^2/(2 mdot) stays below the
+// input power; the term keeps it: a mass flow given in kg/s read as mg/s is refused at derivation.
+TEST(FittedThruster, AJetPowerAboveTheInputPowerIsRefusedInASpecWrittenByHand) {
+  json spec = helios::spec::parse_problem_text(s01_with(std::string(kFitsArrays) + kNstarLike), "problem.txt");
+  EXPECT_NO_THROW(helios::pmp::derive_from_spec(spec));
+  for (auto& c : spec["spacecraft"]["mass_flow_polynomial_mg_s"]) c = c.get<double>() / 1000;
+  try {
+    helios::pmp::derive_from_spec(spec);
+    ADD_FAILURE() << "fits whose jet power is 1000 times the input power were derived";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_TRUE(contains(what, "field /spacecraft/thrust_polynomial_mN: with mass_flow_polynomial_mg_s it gives a jet "
+                               "power T^2/(2 mdot) of "))
+        << what;
+    EXPECT_TRUE(contains(what, "at an input power of 500 W")) << what;
+  }
+}
+
 // The chain rule through named intermediates differentiates as the substituted expression does,
 // and a named partial stands for its intermediate's own derivative.
 TEST(ChainRule, DifferentiatesThroughIntermediatesAsTheirSubstitution) {

@@ -68,6 +68,7 @@ class FittedSolarElectric : public SolarArrayEngine {
     const double per_kW = power_unit_W_ / 1000;
     thrust_ = read_fit(sc, "thrust_polynomial_mN", 1e-3 / U.force_N(), per_kW, pmin_W, pmax_W);
     flow_ = read_fit(sc, "mass_flow_polynomial_mg_s", 1e-6 * U.time_s / U.mass_kg, per_kW, pmin_W, pmax_W);
+    check_jet_power(sc, pmin_W, pmax_W);
     if (!(pmax_ > 0))
       throw std::domain_error(
           "field /spacecraft/max_engine_power_W: 0 in normalized units: the spacecraft's magnitudes are beyond the "
@@ -145,6 +146,33 @@ class FittedSolarElectric : public SolarArrayEngine {
                                     (pmin_W > 0 ? "" : "; state its lowest input power, min_engine_power_W") + ")");
     }
     return out;
+  }
+
+  // The fit of `field` (its spec units: mN or mg/s, P in kW) at P_kW.
+  static double fit_at(const json& sc, const char* field, double P_kW) {
+    const json& c = sc.at(field);
+    double v = 0;
+    for (std::size_t k = c.size(); k-- > 0;) v = v * P_kW + c[k].get<double>();
+    return v;
+  }
+
+  // The jet power T^2/(2 mdot) cannot exceed the input power where the engine surely runs (over the
+  // range from a stated lowest power, else at its top): a spec written by hand meets the sentence's
+  // rule here, which catches fits in the wrong units.
+  static void check_jet_power(const json& sc, double pmin_W, double pmax_W) {
+    for (int i = pmin_W > 0 ? 0 : kRangeSamples; i <= kRangeSamples; ++i) {
+      const double P_W = pmin_W + (pmax_W - pmin_W) * i / kRangeSamples;
+      const double thrust_N = fit_at(sc, "thrust_polynomial_mN", P_W / 1000) * 1e-3;
+      const double flow_kg_s = fit_at(sc, "mass_flow_polynomial_mg_s", P_W / 1000) * 1e-6;
+      const double jet_W = thrust_N * thrust_N / (2 * flow_kg_s);
+      if (flow_kg_s > 0 && jet_W > P_W)
+        throw std::invalid_argument(
+            "field /spacecraft/thrust_polynomial_mN: with mass_flow_polynomial_mg_s it gives a jet power T^2/(2 mdot) "
+            "of " +
+            io::short_number(jet_W) + " W at an input power of " + io::short_number(P_W) + " W, " +
+            io::short_number(jet_W / P_W) +
+            " times what the engine takes (check the fits' units: thrust in mN, mass flow in mg/s, P in kW)");
+    }
   }
 
   double pmax_ = 0, pmin_ = 0;
