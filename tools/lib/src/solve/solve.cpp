@@ -238,6 +238,24 @@ std::string add_user_units(json& doc) {
               " TDB (MJD2000 " + io::short_number(arrival) + ")";
     }
   }
+  // What the flight cost: the final mass and the propellant, or at a constant mass the delta-v.
+  const auto number = [&](const char* key) {
+    const auto it = doc.find(key);
+    return it != doc.end() && it->is_number() ? std::optional<double>(it->get<double>()) : std::nullopt;
+  };
+  const auto sig = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return std::string(buf);
+  };
+  const auto final_mass = number("final_mass_kg"), initial_mass = number("initial_mass_kg");
+  const auto propellant = number("propellant_kg"), delta_v = number("delta_v_m_s");
+  std::string cost;
+  if (final_mass && propellant)
+    cost = "final mass " + sig(*final_mass) + " kg (propellant " + sig(*propellant) + " kg)";
+  else if (delta_v && final_mass && initial_mass && *final_mass == *initial_mass)
+    cost = "delta-v " + sig(*delta_v) + " m/s at a constant mass of " + sig(*final_mass) + " kg";
+  if (!cost.empty()) line += (line.empty() ? "" : ", ") + cost;
   return line;
 }
 

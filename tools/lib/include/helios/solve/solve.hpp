@@ -165,7 +165,8 @@ io::json plot_trajectory(const std::string& csv_path, const std::string& prefix,
 
 // Adds the user's units beside the solution's SI/named keys: tof_hours for a flight under
 // astro::kHoursBelowDays, and with departure_mjd2000 the departure's and the arrival's calendar
-// dates (departure_date_tdb, arrival_mjd2000, arrival_date_tdb). Returns the line that says them.
+// dates (departure_date_tdb, arrival_mjd2000, arrival_date_tdb). Returns the line that says them,
+// and what the flight cost: the final mass and the propellant, at a constant mass the delta-v.
 std::string add_user_units(io::json& solution);
 
 // Removes the private run folders (.run.<pid>.<6 characters>) in `dir` left by runs whose process
