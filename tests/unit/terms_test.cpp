@@ -940,10 +940,85 @@ TEST(FittedThruster, AJetPowerAboveTheInputPowerIsRefusedInASpecWrittenByHand) {
     ADD_FAILURE() << "fits whose jet power is 1000 times the input power were derived";
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
-    EXPECT_TRUE(contains(what, "field /spacecraft/thrust_polynomial_mN: with mass_flow_polynomial_mg_s it gives a jet "
-                               "power T^2/(2 mdot) of "))
+    EXPECT_TRUE(contains(what,
+                         "field /spacecraft/thrust_polynomial_mN: with mass_flow_polynomial_mg_s it gives a jet "
+                         "power T^2/(2 mdot) of "))
         << what;
     EXPECT_TRUE(contains(what, "at an input power of 500 W")) << what;
+  }
+}
+
+// A thruster table (spacecraft.thruster_table) is fitted by the term: a table of the NSTAR-like fits'
+// own values over their range derives the fits' parameters, and the table's meaning says how it was
+// fitted; a table no polynomial follows, or beside fits, is refused naming the field.
+json nstar_table_spec(const std::vector<double>& powers_kW) {
+  json spec = helios::spec::parse_problem_text(s01_with(std::string(kFitsArrays) + kNstarLike), "problem.txt");
+  json& sc = spec["spacecraft"];
+  const std::vector<double> T = sc["thrust_polynomial_mN"], F = sc["mass_flow_polynomial_mg_s"];
+  const auto at = [](const std::vector<double>& c, double P) {
+    double v = 0;
+    for (std::size_t k = c.size(); k-- > 0;) v = v * P + c[k];
+    return v;
+  };
+  for (const char* key :
+       {"thrust_polynomial_mN", "mass_flow_polynomial_mg_s", "min_engine_power_W", "max_engine_power_W"})
+    sc.erase(key);
+  for (const double P : powers_kW)
+    sc["thruster_table"].push_back(
+        {{"input_power_W", P * 1000}, {"thrust_N", at(T, P) * 1e-3}, {"mass_flow_kg_s", at(F, P) * 1e-6}});
+  return spec;
+}
+
+TEST(FittedThruster, ATableOfTheFitsValuesDerivesTheFits) {
+  const json fits = derive_text(s01_with(std::string(kFitsArrays) + kNstarLike));
+  const json table = helios::pmp::derive_from_spec(nstar_table_spec({0.5, 0.8, 1.1, 1.4, 1.7, 2.0, 2.3, 2.6}));
+  std::map<std::string, double> want;
+  for (const auto& q : fits["parameters"]) want[q["name"]] = q["value"];
+  int compared = 0;
+  for (const auto& q : table["parameters"]) {
+    const std::string name = q["name"];
+    if (!want.count(name)) continue;
+    ++compared;
+    const double scale = name[0] == 'T' || name[0] == 'F' ? std::fabs(want["T1"]) + std::fabs(want["F1"]) : 1.0;
+    EXPECT_NEAR(q["value"].get<double>(), want[name], 1e-9 * (scale + std::fabs(want[name]))) << name;
+    if (name == "T0")
+      EXPECT_TRUE(contains(q["meaning"].get<std::string>(),
+                           "(least squares over the thruster table's 8 rows: the thrust of degree 2, off by at most "
+                           "0 % at a row, the mass flow of degree 3, at most 0 %)"))
+          << q["meaning"];
+  }
+  EXPECT_EQ(compared, static_cast<int>(want.size()));
+  EXPECT_EQ(verify(table)["verdict"], "pass");
+}
+
+TEST(FittedThruster, ATableNoPolynomialFollowsOrBesideFitsIsRefused) {
+  json kinked = nstar_table_spec({0.5, 0.8, 1.1, 1.4, 1.7, 2.0, 2.3, 2.6});
+  kinked["spacecraft"]["thruster_table"][5]["thrust_N"] = 0.080;  // a jump of 20 % at 2 kW
+  try {
+    helios::pmp::derive_from_spec(kinked);
+    ADD_FAILURE() << "a table with a kink was fitted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_TRUE(contains(e.what(), "field /spacecraft/thruster_table/")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "no polynomial of degree 4 or less in the power follows the table")) << e.what();
+  }
+  json both = nstar_table_spec({0.5, 1.5, 2.6});
+  both["spacecraft"]["thrust_polynomial_mN"] = json::array({1, 30});
+  try {
+    helios::pmp::derive_from_spec(both);
+    ADD_FAILURE() << "a table beside fits was derived";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_TRUE(contains(e.what(),
+                         "field /spacecraft/thrust_polynomial_mN: the thruster table gives the engine's "
+                         "performance and its power range; drop thrust_polynomial_mN"))
+        << e.what();
+  }
+  json unsorted = nstar_table_spec({0.5, 1.5, 1.2, 2.6});
+  try {
+    helios::pmp::derive_from_spec(unsorted);
+    ADD_FAILURE() << "a table out of order was derived";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_TRUE(contains(e.what(), "field /spacecraft/thruster_table/2/input_power_W: 1200 W is not above"))
+        << e.what();
   }
 }
 

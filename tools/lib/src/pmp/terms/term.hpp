@@ -107,10 +107,11 @@ class SolarArrayEngine : public ForceTerm {
   double power_unit_W_ = 0, p0_ = 0, bus_ = 0;  // W per normalized power; P0 and Pbus normalized
 };
 
-// True if the spacecraft's engine is given by fits of its thrust and mass flow to its input power
+// True if the spacecraft's engine is given by fits of its thrust and mass flow to its input power, or a table of them
 // (solar_electric_fits.cpp) rather than by an efficiency and a specific impulse.
 inline bool fitted_engine(const json& spacecraft) {
-  return spacecraft.contains("thrust_polynomial_mN") || spacecraft.contains("mass_flow_polynomial_mg_s");
+  return spacecraft.contains("thrust_polynomial_mN") || spacecraft.contains("mass_flow_polynomial_mg_s") ||
+         spacecraft.contains("thruster_table");
 }
 
 // A gravitational parameter [km^3/s^2] in the units U.
