@@ -235,3 +235,65 @@ s15_fits() {
   assert_stderr_contains "engine_efficiency (0.6)" "the thruster's fits give its performance"
   [[ ! -e both.json ]]
 }
+
+# ---- a thruster given by a table ---------------------------------------------------------------
+
+# s15_table FILE LINE...: S15 with its efficiency, Isp and cap replaced by the thruster's table, whose
+# lines (the sentence announcing it, the header, the rows) follow the solar-electric sentence.
+s15_table() {
+  local file="$1" line
+  shift
+  while IFS= read -r line; do
+    if [[ $line == "The spacecraft is solar-electric: "* ]]; then
+      echo "The spacecraft is solar-electric: its arrays give 20 kW at 1 AU, the bus uses 0.5 kW."
+      printf '%s\n' "$@"
+    else
+      printf '%s\n' "$line"
+    fi
+  done <"$ROOT/scenarios/S15/problem.txt" >"$file"
+  grep -q "table" "$file"
+}
+
+@test "parse: S15's engine given by a thruster's table writes its rows in SI, the same from W, N, kg/s in another order" {
+  s15_table kw.txt "The thruster's table gives its thrust and mass flow at these input powers:" \
+    "| input power [kW] | thrust [mN] | mass flow [mg/s] |" "|---|---|---|" \
+    "| 0.525 | 19.0 | 0.91 |" "| 1.0 | 35.0 | 1.32 |" "| 1.5 | 52.0 | 1.73 |" "| 2.0 | 68.0 | 2.13 |" "| 2.567 | 92.7 | 2.89 |"
+  s15_table w.txt "The thruster is given by this table of its input power, thrust and mass flow:" \
+    "| mdot (kg/s) | P (W) | T (N) |" \
+    "| 9.1e-7 | 525 | 0.019 |" "| 1.32e-6 | 1000 | 0.035 |" "| 1.73e-6 | 1500 | 0.052 |" "| 2.13e-6 | 2000 | 0.068 |" \
+    "| 2.89e-6 | 2567 | 0.0927 |"
+  "$BIN/helios-parse" kw.txt -o kw.json
+  "$BIN/helios-parse" w.txt -o w.json
+  assert_jq kw.json '.spacecraft | keys == ["array_power_1AU_W", "bus_power_W", "initial_mass_kg", "thruster_table"]
+    and .array_power_1AU_W == 20000 and .bus_power_W == 500 and .initial_mass_kg == 1000'
+  local want='[[525, 0.019, 9.1e-7], [1000, 0.035, 1.32e-6], [1500, 0.052, 1.73e-6], [2000, 0.068, 2.13e-6],
+    [2567, 0.0927, 2.89e-6]]'
+  local f
+  for f in kw.json w.json; do
+    jq -e --argjson w "$want" '.spacecraft.thruster_table as $t | ($t | length) == 5
+      and all($t[]; keys == ["input_power_W", "mass_flow_kg_s", "thrust_N"])
+      and ([range(5)] | all(. as $k | [$t[$k].input_power_W, $t[$k].thrust_N, $t[$k].mass_flow_kg_s] as $r
+        | [range(3)] | all((($r[.] - $w[$k][.]) | fabs) <= 1e-12 * $w[$k][.])))' "$f"
+  done
+}
+
+@test "parse: a thruster's table whose input powers go down -> exit 3 in one line naming the row" {
+  s15_table down.txt "The thruster's throttle table:" "| P [kW] | T [mN] | mdot [mg/s] |" \
+    "| 0.5 | 20 | 1 |" "| 2.0 | 68 | 2.13 |" "| 1.5 | 52 | 1.73 |"
+  run -3 --separate-stderr "$BIN/helios-parse" down.txt -o down.json
+  assert_one_error_line parse
+  assert_stderr_contains 'down.txt:11: cannot use table row "| 1.5 | 52 | 1.73 |"' \
+    "the input power 1.5 kW is not above the row before's (2 kW)"
+  [[ ! -e down.json ]]
+}
+
+@test "parse: a thruster's table beside the engine's efficiency -> exit 3 in one line naming the efficiency" {
+  s15_table both.txt "The thruster's throttle table:" "| P [kW] | T [mN] | mdot [mg/s] |" \
+    "| 0.5 | 20 | 1 |" "| 1.5 | 52 | 1.73 |" "| 2.5 | 90 | 2.9 |"
+  sed -i 's/the bus uses 0.5 kW\./the bus uses 0.5 kW and an efficiency of 0.6./' both.txt
+  grep -q 'efficiency of 0.6' both.txt
+  run -3 --separate-stderr "$BIN/helios-parse" both.txt -o both.json
+  assert_one_error_line parse
+  assert_stderr_contains "engine_efficiency (0.6)" "the thruster's table gives its performance"
+  [[ ! -e both.json ]]
+}

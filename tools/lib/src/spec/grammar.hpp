@@ -125,17 +125,29 @@ struct Endpoint {
   std::optional<double> max_speed;
 };
 
-// Columns of an elements table, in the order written: what each holds ("body", "a", "e", "i", "raan",
-// "argp", "mean" or "true", "epoch") and its factor to the spec's unit (a in AU, angles in deg); the
-// epoch's scale (MJD or MJD2000).
+// What a table holds: bodies by their orbital elements (tables.cpp), or a thruster's thrust and mass
+// flow at its input powers (forms/thruster_table.cpp). A table's introducing sentence chooses it; a
+// table without one is an elements table.
+enum class TableKind { Elements, Thruster };
+
+// Columns of a table, in the order written: what each holds (of an elements table "body", "a", "e",
+// "i", "raan", "argp", "mean" or "true", "epoch"; of a thruster's "power", "thrust", "flow"), its
+// factor to the spec's unit (a in AU, angles in deg; SI for a thruster's) and its unit as written;
+// the epoch's scale (MJD or MJD2000).
 struct TableColumns {
+  TableKind kind = TableKind::Elements;
   std::vector<std::string> fields;
   std::vector<double> factors;
+  std::vector<std::string> units;
   std::string epoch_scale;
 };
 
 inline constexpr const char* kTableHeader =
     "| body | a [AU] | e | i [deg] | node [deg] | argument of perihelion [deg] | mean anomaly [deg] | epoch [MJD] |";
+inline constexpr const char* kThrusterTableHeader = "| input power [kW] | thrust [mN] | mass flow [mg/s] |";
+
+// A table header's cell as its name and unit: "a [AU]", "i (deg)", "e" (tables.cpp).
+std::pair<std::string, std::string> name_and_unit(const std::string& cell);
 
 struct Builder {
   explicit Builder(std::string src) : source(std::move(src)) {}
@@ -150,8 +162,13 @@ struct Builder {
   std::vector<OrbitDef> orbits;
   std::optional<TableColumns> table;  // a table's header was read and its rows may follow
   bool table_separator_allowed = false;
-  std::optional<Where> table_intro;  // a sentence announcing a table, waiting for its header
+  std::optional<Where> table_intro;            // a sentence announcing a table, waiting for its header
+  TableKind table_kind = TableKind::Elements;  // what the last sentence announcing a table announced
   std::string table_about;
+  // The thruster's table (forms/thruster_table.cpp): where its sentence stands, its rows read so far
+  // in SI, made spacecraft.thruster_table once its last row is read.
+  Where thruster_table_where;
+  json thruster_rows = json::array();
   Where free_departure_where;
   std::optional<std::pair<double, double>> window_dates;  // a departure window between two dates [MJD2000]
   bool departure_at_t = false;
@@ -248,8 +265,16 @@ struct Builder {
   static double element_unit(const std::string& field, const std::string& unit);
   static std::vector<std::string> cells_of(const std::string& row);
   static bool is_table_header(const std::string& row);
+  // The item after a sentence announcing a table may be its header: any table line for a thruster's
+  // table (its header is read as one), an elements header for an elements table.
+  bool may_be_header(const Sentence& item) const;
+  // The header a table of the kind announced reads, for errors.
+  const char* header_example() const;
   void table_line(const std::string& row);
   TableColumns table_header(const std::vector<std::string>& cells);
+  // The table being read ends (a sentence follows it, another header, or the end of the text): a
+  // thruster's table is then checked whole and stored.
+  void end_table();
 
   // ---- facts stated in other words (apply_facts.cpp) ----
   std::map<std::string, std::string> body_names() const;
@@ -263,5 +288,13 @@ struct Builder {
   void apply_event(const detail::SentenceFacts& f);
   void finish_facts();
 };
+
+// ---- a thruster's table (forms/thruster_table.cpp) ----
+// The columns of its header: the input power, the thrust and the mass flow, each once with its unit.
+TableColumns thruster_table_header(const std::vector<std::string>& cells);
+// A row, checked and added to b.thruster_rows in SI.
+void thruster_table_row(Builder& b, const TableColumns& columns, const std::vector<std::string>& cells);
+// The table once its last row is read: enough rows, stored as spacecraft.thruster_table.
+void finish_thruster_table(Builder& b);
 
 }  // namespace helios::spec::grammar

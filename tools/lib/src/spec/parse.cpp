@@ -37,13 +37,14 @@ void Builder::fail(const Where& w, const std::string& why) const {
 void Builder::read(const Sentence& item) {
   here = {item.line, item.text, item.table_row};
   try {
-    if (table_intro && !(item.table_row && is_table_header(item.text)))
-      throw sentence_error("it follows a sentence announcing a table, so it must be the table's header " +
-                           std::string(kTableHeader));
+    if (table_intro && !may_be_header(item))
+      throw sentence_error(std::string("it follows a sentence announcing ") +
+                           (table_kind == TableKind::Thruster ? "the thruster's table" : "a table") +
+                           ", so it must be the table's header " + header_example());
     if (item.table_row) {
       table_line(item.text);
     } else {
-      table.reset();
+      end_table();
       // numbers in words as digits, but for the problem's title, which is kept as written
       static const std::regex title = re("Problem .*");
       sentence = std::regex_match(item.text, title) ? item.text : with_digits(item.text);
@@ -71,7 +72,8 @@ namespace {
 // flight has it free.
 void check_complete(grammar::Builder& b, const std::string& source) {
   if (b.table_intro)
-    b.fail(*b.table_intro, "no table follows it (its header reads " + std::string(grammar::kTableHeader) + ")");
+    b.fail(*b.table_intro, "no table follows it (its header reads " + std::string(b.header_example()) + ")");
+  b.end_table();
   b.finish_facts();
   if (b.central_body.is_null() && b.constants_body)  // "The Sun's gravitational parameter is Q." names it
     b.central(b.constants_body->first, "");
@@ -92,11 +94,13 @@ void check_complete(grammar::Builder& b, const std::string& source) {
                         "fuel (the propellant with a specific impulse, else the delta-v) or the time instead");
   }
   // A solar-electric engine: the thrust follows from the power, about the Sun; its performance is its
-  // efficiency and specific impulse, or the fits of its thrust and mass flow to its input power.
+  // efficiency and specific impulse, or the fits of its thrust and mass flow to its input power, or
+  // a table of them (whose lowest and highest powers are the engine's range).
   const bool solar_electric = b.spacecraft.contains("array_power_1AU_W");
   const bool fits = b.spacecraft.contains("thrust_polynomial_mN");
-  if (fits && !solar_electric)
-    missing(source, "the solar arrays that power the thruster's fits",
+  const bool table = b.spacecraft.contains("thruster_table");
+  if ((fits || table) && !solar_electric)
+    missing(source, std::string("the solar arrays that power the thruster's ") + (fits ? "fits" : "table"),
             "The spacecraft is solar-electric: its arrays give 10 kW at 1 AU.");
   if (solar_electric) {
     const std::string where = source + ": the spacecraft is solar-electric";
@@ -118,6 +122,14 @@ void check_complete(grammar::Builder& b, const std::string& source) {
                             ") is stated, but the thruster's fits give its performance (its thrust and mass flow at "
                             "each input power): drop the " +
                             key);
+    } else if (table) {
+      for (const char* key : {"engine_efficiency", "isp_s", "max_thrust_N", "max_engine_power_W"})
+        if (b.spacecraft.contains(key))
+          throw input_error(source + ": the spacecraft's " + key + " (" +
+                            io::short_number(b.spacecraft[key].get<double>()) +
+                            ") is stated, but the thruster's table gives its performance (its thrust and mass flow at "
+                            "each input power, from its lowest input power to its highest): drop the " +
+                            key);
     } else if (!b.spacecraft.contains("engine_efficiency") || !b.spacecraft.contains("isp_s")) {
       const bool eta = b.spacecraft.contains("engine_efficiency"), isp = b.spacecraft.contains("isp_s");
       throw input_error(where + ", so its engine needs its " +
@@ -126,7 +138,10 @@ void check_complete(grammar::Builder& b, const std::string& source) {
                                       : "specific impulse") +
                         " ('with an efficiency of 0.6 and a specific impulse of 3000 s' in its sentence), or fits of "
                         "its thrust and mass flow to its input power ('The thruster's thrust is 20 + 30 P mN and its "
-                        "mass flow is 1 + 0.6 P mg/s, with P its input power in kW up to 7 kW.')");
+                        "mass flow is 1 + 0.6 P mg/s, with P its input power in kW up to 7 kW.'), or a table of "
+                        "them ('The thruster's table gives its thrust and mass flow at these input powers:' above "
+                        "the table " +
+                        grammar::kThrusterTableHeader + ")");
     }
   }
   if (b.propulsion == "low_thrust") {
@@ -138,7 +153,7 @@ void check_complete(grammar::Builder& b, const std::string& source) {
              {Field::Isp, "2000 s"},
              {find_m0 ? Field::FinalMass : Field::InitialMass, find_m0 ? "1500 kg" : "1000 kg"}})
       if (!(constant_mass && field == Field::Isp) && !(solar_electric && field == Field::Thrust) &&
-          !(fits && field == Field::Isp) && !b.spacecraft.contains(detail::spec_key(field)))
+          !((fits || table) && field == Field::Isp) && !b.spacecraft.contains(detail::spec_key(field)))
         missing(source, "the spacecraft's " + detail::spec_key(field), detail::controlled_form(field, example));
     const std::string extra = find_m0 ? "initial_mass_kg" : "final_mass_kg";
     if (b.spacecraft.contains(extra))
@@ -191,8 +206,8 @@ json parse_problem_text(const std::string& text, const std::string& source) {
   doc["central_body"] = b.central_body;
   json spacecraft = json::object();  // in one order, however the text states the facts
   for (const char* k : {"thrust_N", "array_power_1AU_W", "bus_power_W", "min_engine_power_W", "max_engine_power_W",
-                        "max_thrust_N", "thrust_polynomial_mN", "mass_flow_polynomial_mg_s", "engine_efficiency",
-                        "isp_s", "initial_mass_kg", "final_mass_kg", "mass_model"})
+                        "max_thrust_N", "thrust_polynomial_mN", "mass_flow_polynomial_mg_s", "thruster_table",
+                        "engine_efficiency", "isp_s", "initial_mass_kg", "final_mass_kg", "mass_model"})
     if (b.spacecraft.contains(k)) spacecraft[k] = b.spacecraft[k];
   for (const auto& [k, v] : b.spacecraft.items())
     if (!spacecraft.contains(k)) spacecraft[k] = v;

@@ -1,5 +1,6 @@
 // Bodies given by their orbital elements: the elements as the spec keeps them, the orbits defined,
-// and the elements table (its lines are items of their own, read here).
+// and the elements table (its lines are items of their own, read here); the lines of a thruster's
+// table are read here too, its header and rows by forms/thruster_table.cpp.
 #include "grammar.hpp"
 
 #include <algorithm>
@@ -104,15 +105,14 @@ std::vector<std::string> Builder::cells_of(const std::string& row) {
   return cells;
 }
 
-namespace {
-
-// A header cell's name and unit: "a [AU]", "i (deg)", "e".
 std::pair<std::string, std::string> name_and_unit(const std::string& cell) {
   static const std::regex cell_re(R"(([^\[(]*?)\s*(?:[\[(]\s*([^\])]*?)\s*[\])])?)");
   std::smatch m;
   if (!std::regex_match(cell, m, cell_re)) return {cell, ""};
   return {trimmed(m[1].str()), m[2].str()};
 }
+
+namespace {
 
 bool is_body_column(const std::string& cell) {
   const std::string name = lowercase(name_and_unit(cell).first);
@@ -131,10 +131,25 @@ bool Builder::is_table_header(const std::string& row) {
   }
 }
 
+bool Builder::may_be_header(const Sentence& item) const {
+  return item.table_row && (table_kind == TableKind::Thruster || is_table_header(item.text));
+}
+
+const char* Builder::header_example() const {
+  return table_kind == TableKind::Thruster ? kThrusterTableHeader : kTableHeader;
+}
+
+void Builder::end_table() {
+  if (table && table->kind == TableKind::Thruster) finish_thruster_table(*this);
+  table.reset();
+}
+
 void Builder::table_line(const std::string& row) {
   const std::vector<std::string> cells = cells_of(row);
-  if (is_table_header(row)) {
-    table = table_header(cells);
+  const bool thruster_header = table_intro && table_kind == TableKind::Thruster;
+  if (thruster_header || is_table_header(row)) {
+    end_table();
+    table = thruster_header ? thruster_table_header(cells) : table_header(cells);
     table_separator_allowed = true;
     table_intro.reset();
     return;
@@ -142,7 +157,19 @@ void Builder::table_line(const std::string& row) {
   static const std::regex rule(R"(\s*:?-+:?\s*)");
   const bool is_rule =
       std::all_of(cells.begin(), cells.end(), [](const std::string& c) { return std::regex_match(c, rule); });
-  if (!table) throw sentence_error("a table row needs its header line just above it: " + std::string(kTableHeader));
+  if (!table) {
+    bool thruster = false;  // a thruster's header with no sentence announcing it
+    try {
+      thruster_table_header(cells);
+      thruster = true;
+    } catch (const sentence_error&) {
+    }
+    if (thruster)
+      throw sentence_error(
+          "a thruster's table needs the sentence that announces it just above its header ('The thruster's table "
+          "gives its thrust and mass flow at these input powers:')");
+    throw sentence_error("a table row needs its header line just above it: " + std::string(kTableHeader));
+  }
   if (is_rule) {
     if (!table_separator_allowed) throw sentence_error("a rule line may only follow the table's header");
     table_separator_allowed = false;
@@ -153,6 +180,7 @@ void Builder::table_line(const std::string& row) {
   if (cells.size() != t.fields.size())
     throw sentence_error("the row has " + std::to_string(cells.size()) + " cells where the header has " +
                          std::to_string(t.fields.size()));
+  if (t.kind == TableKind::Thruster) return thruster_table_row(*this, t, cells);
   static const std::regex num_re("\\s*" + kNum + "\\s*");
   std::map<std::string, double> v;
   std::string body, epoch;

@@ -8,6 +8,7 @@ namespace {
 
 void read(Builder& b, const std::smatch& m) {
   b.table_intro = b.here;
+  b.table_kind = TableKind::Elements;
   b.table_about = m[1].str();
 }
 

@@ -197,6 +197,8 @@ Range read_range(const std::string& tail) {
 
 void read(Builder& b, const std::smatch& match) {
   if (b.spacecraft.contains("thrust_polynomial_mN")) throw sentence_error("the thruster's fits are given twice");
+  if (b.seen.count("the thruster's table"))
+    throw sentence_error("the thruster is given by a table already: state its table or its fits, not both");
   ++b.seen["the spacecraft's engine"];
   static const std::regex split =
       re(R"((.*?)\s*,?\s+and (?:its|the) (?:(?:thruster|engine)(?:'s|\xE2\x80\x99s)? )?mass flow(?: rate)? )"
