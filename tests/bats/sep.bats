@@ -162,6 +162,29 @@ EOF
   cat "$dir/flow.txt"
 }
 
+# The same thruster given by a table of its fits' values (8 rows, 0.5 to 2.6 kW): the derivation fits
+# the table (least squares, the lowest degree that reproduces it), and the transfer costs what the
+# fits' transfer above costs.
+@test "sep: a thruster given by its table flies as its fits do" {
+  [[ -s $WORK/nstar/solution.json ]] || skip "runs after the NSTAR-like fits' test of this file"
+  mkdir -p "$WORK/table"
+  local table="The thruster's table gives its thrust and mass flow at these input powers:\n| input power [kW] | thrust [mN] | mass flow [mg\/s] |\n|---|---|---|"
+  local p
+  for p in 0.5 0.8 1.1 1.4 1.7 2.0 2.3 2.6; do
+    table+=$(awk -v p="$p" 'BEGIN { printf "\\n| %s | %.6f | %.6f |", p, -1.9137 + 36.242 * p - 0.5 * p * p, 0.47556 + 0.90209 * p + 0.01 * p ^ 3 }')
+  done
+  sed -e "s/^The spacecraft has a maximum thrust of 0.5 N, a specific impulse of 2000 s and an initial mass of 1000 kg.\$/The spacecraft is solar-electric: its arrays give 5 kW at 1 AU, the bus uses 0.3 kW.\n$table\nThe spacecraft has an initial mass of 150 kg./" \
+    "$S01/problem.txt" >"$WORK/table/problem.txt"
+  grep -q '^| 2.6 | 88.935500 | 2.996754 |$' "$WORK/table/problem.txt"
+  run_chain "$WORK/table/problem.txt" "" "$WORK/table"
+  local dir="$WORK/table"
+  assert_jq "$dir/spec.json" '.spacecraft.thruster_table | length == 8 and .[0].input_power_W == 500'
+  assert_jq "$dir/derivation.json" '.parameters[] | select(.name == "T0") | .meaning | test("least squares over the thruster table.s 8 rows: the thrust of degree 2, .* the mass flow of degree 3")'
+  assert_jq "$dir/verify.json" '.verdict == "pass"'
+  assert_jq "$dir/solution.json" '.status == "converged" and .start == "cold" and .epsilon == 0 and .max_residual < 1e-10 and .search.saturated'
+  within "$(jq '.final_mass_kg' "$dir/solution.json")" "$(jq '.final_mass_kg' "$WORK/nstar/solution.json")" 1e-9
+}
+
 @test "sep: a wrong sentence is refused in one line naming the field and the value" {
   mkdir -p bad
   sed 's/an efficiency of 0.6/an efficiency of 1.6/' "$ROOT/scenarios/S15/problem.txt" >bad/problem.txt
