@@ -374,14 +374,17 @@ TEST(SolveSettings, TheSearchThreadsFollowSlurmCpusPerTaskUnlessTheSettingsSayOt
 // The line helios-solve ends a run with says the flight in the user's units and what it cost.
 TEST(UserUnits, TheOutcomeLineSaysTheTimeTheDatesAndTheCost) {
   using helios::io::json;
-  json fuel = {{"tof_days", 348.795}, {"departure_mjd2000", 400.0}, {"initial_mass_kg", 1000.0},
-               {"final_mass_kg", 603.940156}, {"propellant_kg", 396.059844}};
+  json fuel = {{"tof_days", 348.795},
+               {"departure_mjd2000", 400.0},
+               {"initial_mass_kg", 1000.0},
+               {"final_mass_kg", 603.940156},
+               {"propellant_kg", 396.059844}};
   EXPECT_EQ(helios::solve::add_user_units(fuel),
             "time of flight 348.7950 days, departure 2001-02-04T00:00:00 TDB (MJD2000 400), arrival "
             "2002-01-18T19:04:48 TDB (MJD2000 748.795), final mass 603.94 kg (propellant 396.06 kg)");
   EXPECT_EQ(fuel.at("arrival_date_tdb"), "2002-01-18T19:04:48");
-  json constant_mass = {{"tof_days", 20.0 / 24}, {"initial_mass_kg", 2000.0}, {"final_mass_kg", 2000.0},
-                        {"delta_v_m_s", 1587.40796}};
+  json constant_mass = {
+      {"tof_days", 20.0 / 24}, {"initial_mass_kg", 2000.0}, {"final_mass_kg", 2000.0}, {"delta_v_m_s", 1587.40796}};
   EXPECT_EQ(helios::solve::add_user_units(constant_mass),
             "time of flight 20.0000 h, delta-v 1587.41 m/s at a constant mass of 2000 kg");
   EXPECT_DOUBLE_EQ(constant_mass.at("tof_hours").get<double>(), 20.0);
