@@ -114,22 +114,20 @@ void check_complete(grammar::Builder& b, const std::string& source) {
       throw input_error(where + ", so the thrust follows from the power: drop the maximum thrust (" +
                         io::short_number(b.spacecraft["thrust_N"].get<double>()) + " N)");
     if (constant_mass) throw input_error(where + ": a solar-electric engine of constant mass is not supported");
+    // The fits or the table give the engine's performance: what else would give it is refused.
+    const auto given_by = [&](std::initializer_list<const char*> keys, const std::string& what) {
+      for (const char* key : keys)
+        if (b.spacecraft.contains(key))
+          throw input_error(
+              source + ": the spacecraft's " + key + " (" + io::short_number(b.spacecraft[key].get<double>()) +
+              ") is stated, but the thruster's " + what + " give" + (what == "fits" ? "" : "s") +
+              " its performance (its thrust and mass flow at each input power" +
+              (what == "fits" ? "" : ", from its lowest input power to its highest") + "): drop the " + key);
+    };
     if (fits) {
-      for (const char* key : {"engine_efficiency", "isp_s", "max_thrust_N"})
-        if (b.spacecraft.contains(key))
-          throw input_error(source + ": the spacecraft's " + key + " (" +
-                            io::short_number(b.spacecraft[key].get<double>()) +
-                            ") is stated, but the thruster's fits give its performance (its thrust and mass flow at "
-                            "each input power): drop the " +
-                            key);
+      given_by({"engine_efficiency", "isp_s", "max_thrust_N"}, "fits");
     } else if (table) {
-      for (const char* key : {"engine_efficiency", "isp_s", "max_thrust_N", "max_engine_power_W"})
-        if (b.spacecraft.contains(key))
-          throw input_error(source + ": the spacecraft's " + key + " (" +
-                            io::short_number(b.spacecraft[key].get<double>()) +
-                            ") is stated, but the thruster's table gives its performance (its thrust and mass flow at "
-                            "each input power, from its lowest input power to its highest): drop the " +
-                            key);
+      given_by({"engine_efficiency", "isp_s", "max_thrust_N", "max_engine_power_W"}, "table");
     } else if (!b.spacecraft.contains("engine_efficiency") || !b.spacecraft.contains("isp_s")) {
       const bool eta = b.spacecraft.contains("engine_efficiency"), isp = b.spacecraft.contains("isp_s");
       throw input_error(where + ", so its engine needs its " +
