@@ -15,8 +15,9 @@
 // continued down in the final time to the minimum-time extremal of its family (time_route.hpp),
 // and the minimum-time problem searched there by its own starts (search_minimum_time): the shortest
 // of them, longer than the stated time, proves the problem infeasible; shorter, the fuel extremal
-// is continued up from it to the stated time and entered into the pool. Targets that move on the calendar are met where
-// they are at each final time, so this route serves a fixed-date rendezvous too.
+// is continued up from it to the stated time and entered into the pool. Targets that move on the
+// calendar are met where they are at each final time, so this route serves a fixed-date rendezvous
+// too.
 // ---------------------------------------------------------------------------------------------
 #pragma once
 

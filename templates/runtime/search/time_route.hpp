@@ -35,8 +35,9 @@ constexpr const char* kLambda0Held = "lambda0 held, the final time free (lambda0
 constexpr const char* kFinalTimeUp = "minimum fuel, the final time up [days]";
 
 // Whether the problem has the route: minimum propellant at a fixed final time (a parameter), with
-// a throttle that burns mass (at a constant rate or not) and lambda0 a variable, and targets that do not move on the
-// calendar (no epoch, no body on an orbit, no coasting target: a final time moved elsewhere would meet them elsewhere).
+// a throttle that has a fuel cost (its flow at a constant rate or not) and lambda0 a variable, and
+// targets that do not move on the calendar (no epoch, no body on an orbit, no coasting target: a
+// final time moved elsewhere would meet them elsewhere).
 inline bool has_time_route() {
   return kProblem.objective == Objective::propellant && free_final_time().variable < 0 && throttle_has_fuel_cost() &&
          lambda0_variable() >= 0 && scalar_parameter("kTf") != nullptr && targets_fixed_in_time();
