@@ -68,34 +68,26 @@ namespace {
                     "\")");
 }
 
-// Every fact a problem needs is stated, once the whole text is read; a minimum time without a time of
-// flight has it free.
-void check_complete(grammar::Builder& b, const std::string& source) {
-  if (b.table_intro)
-    b.fail(*b.table_intro, "no table follows it (its header reads " + std::string(b.header_example()) + ")");
-  b.end_table();
-  b.finish_facts();
-  if (b.central_body.is_null() && b.constants_body)  // "The Sun's gravitational parameter is Q." names it
-    b.central(b.constants_body->first, "");
-  if (b.problem.is_null()) missing(source, "its name", "Problem S01: Earth to Mars.");
-  if (b.central_body.is_null()) missing(source, "the central body", "The central body is the Sun.");
-  // A constant mass (no mass state): the mass is the initial one throughout and the specific impulse
-  // optional (it prices the minimum fuel in kg; without it the cost is the delta-v).
+// A constant mass (no mass state): the mass is the initial one throughout and the specific impulse
+// optional (it prices the minimum fuel in kg; without it the cost is the delta-v).
+void check_constant_mass(const grammar::Builder& b, const std::string& source) {
+  if (b.spacecraft.value("mass_model", "") != "constant") return;
+  const std::string where = source + ": the spacecraft's mass is constant";
+  if (b.propulsion == "solar_sail")
+    throw input_error(where + ", but a solar sail has no engine and no mass: drop the sentence on the mass");
+  if (b.spacecraft.contains("final_mass_kg"))
+    throw input_error(where + ", so a constant mass has no final mass of its own: state the mass ('The " +
+                      "spacecraft's mass is constant at 1500 kg.')");
+  if (b.objective.is_object() && b.objective.value("kind", "") == "minimum_initial_mass")
+    throw input_error(where + ", so it burns no propellant that a larger initial mass would carry: minimize the " +
+                      "fuel (the propellant with a specific impulse, else the delta-v) or the time instead");
+}
+
+// A solar-electric engine: the thrust follows from the power, about the Sun; its performance is its
+// efficiency and specific impulse, or the fits of its thrust and mass flow to its input power, or
+// a table of them (whose lowest and highest powers are the engine's range).
+void check_solar_electric(const grammar::Builder& b, const std::string& source) {
   const bool constant_mass = b.spacecraft.value("mass_model", "") == "constant";
-  if (constant_mass) {
-    const std::string where = source + ": the spacecraft's mass is constant";
-    if (b.propulsion == "solar_sail")
-      throw input_error(where + ", but a solar sail has no engine and no mass: drop the sentence on the mass");
-    if (b.spacecraft.contains("final_mass_kg"))
-      throw input_error(where + ", so a constant mass has no final mass of its own: state the mass ('The " +
-                        "spacecraft's mass is constant at 1500 kg.')");
-    if (b.objective.is_object() && b.objective.value("kind", "") == "minimum_initial_mass")
-      throw input_error(where + ", so it burns no propellant that a larger initial mass would carry: minimize the " +
-                        "fuel (the propellant with a specific impulse, else the delta-v) or the time instead");
-  }
-  // A solar-electric engine: the thrust follows from the power, about the Sun; its performance is its
-  // efficiency and specific impulse, or the fits of its thrust and mass flow to its input power, or
-  // a table of them (whose lowest and highest powers are the engine's range).
   const bool solar_electric = b.spacecraft.contains("array_power_1AU_W");
   const bool fits = b.spacecraft.contains("thrust_polynomial_mN");
   const bool table = b.spacecraft.contains("thruster_table");
@@ -112,14 +104,14 @@ void check_complete(grammar::Builder& b, const std::string& source) {
                         body);
     if (b.spacecraft.contains("thrust_N"))
       throw input_error(where + ", so the thrust follows from the power: drop the maximum thrust (" +
-                        io::short_number(b.spacecraft["thrust_N"].get<double>()) + " N)");
+                        io::short_number(b.spacecraft.at("thrust_N").get<double>()) + " N)");
     if (constant_mass) throw input_error(where + ": a solar-electric engine of constant mass is not supported");
     // The fits or the table give the engine's performance: what else would give it is refused.
     const auto given_by = [&](std::initializer_list<const char*> keys, const std::string& what) {
       for (const char* key : keys)
         if (b.spacecraft.contains(key))
           throw input_error(
-              source + ": the spacecraft's " + key + " (" + io::short_number(b.spacecraft[key].get<double>()) +
+              source + ": the spacecraft's " + key + " (" + io::short_number(b.spacecraft.at(key).get<double>()) +
               ") is stated, but the thruster's " + what + " give" + (what == "fits" ? "" : "s") +
               " its performance (its thrust and mass flow at each input power" +
               (what == "fits" ? "" : ", from its lowest input power to its highest") + "): drop the " + key);
@@ -142,6 +134,24 @@ void check_complete(grammar::Builder& b, const std::string& source) {
                         grammar::kThrusterTableHeader + ")");
     }
   }
+}
+
+// Every fact a problem needs is stated, once the whole text is read; a minimum time without a time of
+// flight has it free.
+void check_complete(grammar::Builder& b, const std::string& source) {
+  if (b.table_intro)
+    b.fail(*b.table_intro, "no table follows it (its header reads " + std::string(b.header_example()) + ")");
+  b.end_table();
+  b.finish_facts();
+  if (b.central_body.is_null() && b.constants_body)  // "The Sun's gravitational parameter is Q." names it
+    b.central(b.constants_body->first, "");
+  if (b.problem.is_null()) missing(source, "its name", "Problem S01: Earth to Mars.");
+  if (b.central_body.is_null()) missing(source, "the central body", "The central body is the Sun.");
+  check_constant_mass(b, source);
+  check_solar_electric(b, source);
+  const bool constant_mass = b.spacecraft.value("mass_model", "") == "constant";
+  const bool solar_electric = b.spacecraft.contains("array_power_1AU_W");
+  const bool fitted = b.spacecraft.contains("thrust_polynomial_mN") || b.spacecraft.contains("thruster_table");
   if (b.propulsion == "low_thrust") {
     // Minimizing the initial mass needs the final mass instead of the initial one.
     const bool find_m0 = b.objective.is_object() && b.objective.value("kind", "") == "minimum_initial_mass";
@@ -151,7 +161,7 @@ void check_complete(grammar::Builder& b, const std::string& source) {
              {Field::Isp, "2000 s"},
              {find_m0 ? Field::FinalMass : Field::InitialMass, find_m0 ? "1500 kg" : "1000 kg"}})
       if (!(constant_mass && field == Field::Isp) && !(solar_electric && field == Field::Thrust) &&
-          !((fits || table) && field == Field::Isp) && !b.spacecraft.contains(detail::spec_key(field)))
+          !(fitted && field == Field::Isp) && !b.spacecraft.contains(detail::spec_key(field)))
         missing(source, "the spacecraft's " + detail::spec_key(field), detail::controlled_form(field, example));
     const std::string extra = find_m0 ? "initial_mass_kg" : "final_mass_kg";
     if (b.spacecraft.contains(extra))
