@@ -154,8 +154,12 @@ std::string read_program_file(const std::string& path, std::size_t limit) {
 }
 
 std::string short_number(double value) {
+  return significant(value, 10);
+}
+
+std::string significant(double value, int digits) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", value);
+  std::snprintf(buf, sizeof buf, "%.*g", digits, value);
   return buf;
 }
 

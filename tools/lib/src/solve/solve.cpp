@@ -243,11 +243,7 @@ std::string add_user_units(json& doc) {
     const auto it = doc.find(key);
     return it != doc.end() && it->is_number() ? std::optional<double>(it->get<double>()) : std::nullopt;
   };
-  const auto sig = [](double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", v);
-    return std::string(buf);
-  };
+  const auto sig = [](double v) { return io::significant(v, 6); };
   const auto final_mass = number("final_mass_kg"), initial_mass = number("initial_mass_kg");
   const auto propellant = number("propellant_kg"), delta_v = number("delta_v_m_s");
   std::string cost;

@@ -20,9 +20,7 @@ constexpr double kTol = 1e-9;  // |a - b| <= kTol (1 + max(|a|, |b|)) at every p
 
 // A number in feedback: 3 significant digits.
 inline std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
+  return io::significant(v, 3);
 }
 
 inline std::string join(const std::vector<std::string>& parts, const std::string& sep) {

@@ -29,6 +29,9 @@ std::string read_program_file(const std::string& path, std::size_t limit = kMaxJ
 // that is shorter (1e+300, not its 301 digits).
 std::string short_number(double value);
 
+// `value` to `digits` significant digits (printf %.*g): for a value a program computed, in a message.
+std::string significant(double value, int digits);
+
 // Whether `path` is such a file (a regular file, not a symbolic link, one link).
 bool is_program_file(const std::string& path);
 

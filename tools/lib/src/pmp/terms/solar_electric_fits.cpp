@@ -16,7 +16,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -127,11 +126,7 @@ RawFits table_fits(const json& sc) {
   std::size_t thrust_worst = 0, flow_worst = 0;
   out.thrust_mN = least_squares_fit(P, T, thrust_degree, thrust_deviation, thrust_worst);
   out.flow_mg_s = least_squares_fit(P, F, flow_degree, flow_deviation, flow_worst);
-  const auto percent = [](double d) {  // two significant digits
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.2g", d * 100);
-    return std::string(buf);
-  };
+  const auto percent = [](double d) { return io::significant(d * 100, 2); };
   for (const auto& [what, deviation, worst] : {std::tuple{"thrust_N", thrust_deviation, thrust_worst},
                                                std::tuple{"mass_flow_kg_s", flow_deviation, flow_worst}})
     if (deviation > kTableRefused)

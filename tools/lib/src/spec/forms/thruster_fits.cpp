@@ -8,7 +8,6 @@
 // (forms/solar_electric.cpp), which then states no efficiency, specific impulse or maximum thrust: the
 // fits give the engine's performance (parse.cpp's check_complete holds the two together).
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <tuple>
 
@@ -107,13 +106,6 @@ std::vector<double> coefficients(std::string text, const std::string& what) {
   std::vector<double> c(static_cast<std::size_t>(terms.rbegin()->first) + 1, 0.0);
   for (const auto& [power, term] : terms) c[static_cast<std::size_t>(power)] = term.first;
   return c;
-}
-
-// Three significant digits, for a value the fits give (not one the text states).
-std::string rounded(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", v);
-  return text;
 }
 
 double value_at(const std::vector<double>& c, double p) {
@@ -238,8 +230,8 @@ void read(Builder& b, const std::smatch& match) {
     for (const auto& [c, what, unit] : {std::tuple{&t, "thrust", "mN"}, std::tuple{&f, "mass flow", "mg/s"}}) {
       const double v = value_at(*c, p);
       if (v < 0 || (k == kRangeSamples && !(v > 0)))
-        throw sentence_error(std::string("the ") + what + " fit gives " + rounded(v) + " " + unit + " at " +
-                             rounded(p) + " kW, inside its power range" +
+        throw sentence_error(std::string("the ") + what + " fit gives " + io::significant(v, 3) + " " + unit + " at " +
+                             io::significant(p, 3) + " kW, inside its power range" +
                              (range.bottom_W ? ""
                                              : " (from no power: state the range's bottom, below which the engine is "
                                                "off, 'between 0.5 and 2.6 kW')"));
@@ -251,8 +243,8 @@ void read(Builder& b, const std::smatch& match) {
     const double efficiency = flow_kg_s > 0 ? thrust_N * thrust_N / (2 * flow_kg_s) / (p * 1e3) : 0;
     if (efficiency > 1)
       throw sentence_error(
-          "the fits give a jet power T^2/(2 mdot) of " + rounded(efficiency * p * 1e3) + " W at an input power of " +
-          rounded(p) + " kW, " + rounded(efficiency) +
+          "the fits give a jet power T^2/(2 mdot) of " + io::significant(efficiency * p * 1e3, 3) +
+          " W at an input power of " + io::significant(p, 3) + " kW, " + io::significant(efficiency, 3) +
           " times what the engine takes: check the fits' units (thrust in " + thrust.unit + ", mass flow in " +
           flow.unit + ", P in " + range.p_unit +
           (range.p_unit_stated ? "" : ", the unit of the range's top: say 'with P its input power in kW' otherwise") +

@@ -10,7 +10,6 @@
 // check_complete); the thruster's fits (forms/thruster_fits.cpp) are the other way to give it.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <stdexcept>
 
@@ -59,13 +58,6 @@ std::string field_of(const std::string& name) {
 const std::regex& number_cell() {
   static const std::regex n("\\s*" + kNum + "\\s*");
   return n;
-}
-
-// Three significant digits, for a value the table gives (not one the text states).
-std::string rounded(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", v);
-  return text;
 }
 
 // A cell in its column's unit, in SI. A unit that is a power of ten of the SI one (mN, kW, mg/s)
@@ -177,8 +169,8 @@ void thruster_table_row(Builder& b, const TableColumns& t, const std::vector<std
   // unit (as the fits' check does, forms/thruster_fits.cpp).
   const double jet = thrust * thrust / (2 * flow);
   if (jet > p)
-    throw sentence_error("the row gives a jet power T^2/(2 mdot) of " + rounded(jet) + " W at an input power of " +
-                         written.at("power") + ", " + rounded(jet / p) +
+    throw sentence_error("the row gives a jet power T^2/(2 mdot) of " + io::significant(jet, 3) +
+                         " W at an input power of " + written.at("power") + ", " + io::significant(jet / p, 3) +
                          " times what the engine takes: check the table's units (input power in " +
                          t.units[at.at("power")] + ", thrust in " + t.units[at.at("thrust")] + ", mass flow in " +
                          t.units[at.at("flow")] + ")");
